@@ -1,0 +1,44 @@
+#pragma once
+// Error types. Each carries enough context for the user to find the cause without a debugger.
+#include <stdexcept>
+#include <string>
+
+namespace ballista {
+
+/// Base of every error Ballista reports to the user.
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Bad input deck: names the file, line, column and key path (line/column 1-based, 0 = unknown).
+class DeckError : public Error {
+ public:
+  DeckError(std::string file, int line, int column, std::string key_path, std::string message)
+      : Error(format(file, line, column, key_path, message)),
+        file_(std::move(file)), line_(line), column_(column), key_path_(std::move(key_path)) {}
+  const std::string& file() const { return file_; }
+  int line() const { return line_; }
+  int column() const { return column_; }
+  const std::string& key_path() const { return key_path_; }
+
+ private:
+  static std::string format(const std::string& file, int line, int column, const std::string& key,
+                            const std::string& message) {
+    std::string where = file.empty() ? std::string("<deck>") : file;
+    if (line > 0) where += ":" + std::to_string(line) + ":" + std::to_string(column);
+    return where + ": " + (key.empty() ? std::string() : "'" + key + "': ") + message;
+  }
+  std::string file_;
+  int line_;
+  int column_;
+  std::string key_path_;
+};
+
+/// A run that cannot continue (NaN, inverted particle, energy blow-up, particle left the grid).
+class PhysicsError : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace ballista

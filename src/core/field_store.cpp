@@ -1,0 +1,131 @@
+#include "core/field_store.hpp"
+
+#include "core/error.hpp"
+
+namespace ballista {
+
+int FieldStore::find(const std::string& name) const {
+  for (size_t k = 0; k < info_.size(); ++k)
+    if (info_[k].name == name) return static_cast<int>(k);
+  return -1;
+}
+
+void FieldStore::check_ncomp(const std::string& name, int ncomp) const {
+  const FieldInfo& fi = info(name);
+  if (fi.type != FieldType::Real || fi.ncomp != ncomp)
+    throw Error("field '" + name + "' has " + std::to_string(fi.ncomp) +
+                " components, a view of " + std::to_string(ncomp) + " was requested");
+}
+
+const FieldInfo& FieldStore::info(const std::string& name) const {
+  const int k = find(name);
+  if (k < 0) throw Error("no field named '" + name + "'");
+  return info_[k];
+}
+
+void FieldStore::add_real(const std::string& name, int ncomp, const std::string& unit, bool output,
+                          double initial) {
+  const int k = find(name);
+  if (k >= 0) {
+    if (info_[k].ncomp != ncomp || info_[k].type != FieldType::Real)
+      throw Error("field '" + name + "' declared twice with different shapes");
+    return;
+  }
+  info_.push_back({name, ncomp, FieldType::Real, unit, output});
+  real_.emplace_back(static_cast<size_t>(size_ * ncomp), initial);
+  int_.emplace_back();
+  real_init_.push_back(initial);
+  int_init_.push_back(0);
+}
+
+void FieldStore::add_int(const std::string& name, int ncomp, const std::string& unit, bool output,
+                         std::int64_t initial) {
+  const int k = find(name);
+  if (k >= 0) {
+    if (info_[k].ncomp != ncomp || info_[k].type != FieldType::Int)
+      throw Error("field '" + name + "' declared twice with different shapes");
+    return;
+  }
+  info_.push_back({name, ncomp, FieldType::Int, unit, output});
+  real_.emplace_back();
+  int_.emplace_back(static_cast<size_t>(size_ * ncomp), initial);
+  real_init_.push_back(0.0);
+  int_init_.push_back(initial);
+}
+
+void FieldStore::resize(Index n) {
+  for (size_t k = 0; k < info_.size(); ++k) {
+    const size_t len = static_cast<size_t>(n * info_[k].ncomp);
+    if (info_[k].type == FieldType::Real)
+      real_[k].resize(len, real_init_[k]);
+    else
+      int_[k].resize(len, int_init_[k]);
+  }
+  size_ = n;
+}
+
+double* FieldStore::real(const std::string& name) {
+  const int k = find(name);
+  if (k < 0 || info_[k].type != FieldType::Real) throw Error("no real field named '" + name + "'");
+  return real_[k].data();
+}
+const double* FieldStore::real(const std::string& name) const {
+  return const_cast<FieldStore*>(this)->real(name);
+}
+std::int64_t* FieldStore::ints(const std::string& name) {
+  const int k = find(name);
+  if (k < 0 || info_[k].type != FieldType::Int) throw Error("no integer field named '" + name + "'");
+  return int_[k].data();
+}
+const std::int64_t* FieldStore::ints(const std::string& name) const {
+  return const_cast<FieldStore*>(this)->ints(name);
+}
+
+namespace {
+template <class T>
+void permute_array(std::vector<T>& a, int nc, const std::vector<Index>& order) {
+  std::vector<T> out(order.size() * nc);
+  const Index n = static_cast<Index>(order.size());
+  for_each(0, n, [&](Index i) {
+    const T* src = a.data() + order[i] * nc;
+    T* dst = out.data() + i * nc;
+    for (int c = 0; c < nc; ++c) dst[c] = src[c];
+  });
+  a.swap(out);
+}
+template <class T>
+void compact_array(std::vector<T>& a, int nc, const std::vector<char>& keep) {
+  size_t w = 0;
+  for (size_t i = 0; i < keep.size(); ++i) {
+    if (!keep[i]) continue;
+    for (int c = 0; c < nc; ++c) a[w * nc + c] = a[i * nc + c];
+    ++w;
+  }
+  a.resize(w * nc);
+}
+}  // namespace
+
+void FieldStore::permute(const std::vector<Index>& order) {
+  if (static_cast<Index>(order.size()) != size_) throw Error("permute: order has the wrong size");
+  for (size_t k = 0; k < info_.size(); ++k) {
+    if (info_[k].type == FieldType::Real)
+      permute_array(real_[k], info_[k].ncomp, order);
+    else
+      permute_array(int_[k], info_[k].ncomp, order);
+  }
+}
+
+void FieldStore::compact(const std::vector<char>& keep) {
+  if (static_cast<Index>(keep.size()) != size_) throw Error("compact: mask has the wrong size");
+  Index n = 0;
+  for (char k : keep) n += k ? 1 : 0;
+  for (size_t k = 0; k < info_.size(); ++k) {
+    if (info_[k].type == FieldType::Real)
+      compact_array(real_[k], info_[k].ncomp, keep);
+    else
+      compact_array(int_[k], info_[k].ncomp, keep);
+  }
+  size_ = n;
+}
+
+}  // namespace ballista

@@ -1,0 +1,74 @@
+#pragma once
+// Structure-of-arrays storage for points (MPM particles, PD points, OTM material points).
+// Each field has a name (also its output dataset name), a component count, a unit and a type.
+// Components of one point are contiguous (x,y,z of a position; 9 entries of F), so a kernel
+// reads a Vec3 or Mat3 with one load; different fields live in different arrays.
+// Pointers from real()/ints()/view() are invalidated by resize, append, permute and compact.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/parallel.hpp"
+
+namespace ballista {
+
+enum class FieldType { Real, Int };
+
+struct FieldInfo {
+  std::string name;    ///< dataset name
+  int ncomp = 1;       ///< components per point
+  FieldType type = FieldType::Real;
+  std::string unit;    ///< SI unit, "1" for dimensionless
+  bool output = true;  ///< written to the HDF5 output
+};
+
+class FieldStore {
+ public:
+  /// Declares a real field (idempotent if the same name/ncomp already exists).
+  void add_real(const std::string& name, int ncomp, const std::string& unit, bool output = true,
+                double initial = 0.0);
+  void add_int(const std::string& name, int ncomp, const std::string& unit, bool output = true,
+               std::int64_t initial = 0);
+  bool has(const std::string& name) const { return find(name) >= 0; }
+
+  Index size() const { return size_; }
+  void resize(Index n);
+
+  double* real(const std::string& name);
+  const double* real(const std::string& name) const;
+  std::int64_t* ints(const std::string& name);
+  const std::int64_t* ints(const std::string& name) const;
+
+  /// Typed view of a real field whose ncomp matches sizeof(T)/sizeof(double) (Vec3, Mat3, double).
+  template <class T>
+  T* view(const std::string& name) {
+    check_ncomp(name, static_cast<int>(sizeof(T) / sizeof(double)));
+    return reinterpret_cast<T*>(real(name));
+  }
+  template <class T>
+  const T* view(const std::string& name) const {
+    check_ncomp(name, static_cast<int>(sizeof(T) / sizeof(double)));
+    return reinterpret_cast<const T*>(real(name));
+  }
+
+  const std::vector<FieldInfo>& fields() const { return info_; }
+  const FieldInfo& info(const std::string& name) const;
+
+  /// Reorders every field: new point i is old point order[i].
+  void permute(const std::vector<Index>& order);
+  /// Keeps the points with keep[i] != 0, in order.
+  void compact(const std::vector<char>& keep);
+
+ private:
+  int find(const std::string& name) const;
+  void check_ncomp(const std::string& name, int ncomp) const;
+
+  Index size_ = 0;
+  std::vector<FieldInfo> info_;
+  std::vector<std::vector<double>> real_;        // indexed like info_ (empty if Int)
+  std::vector<std::vector<std::int64_t>> int_;   // indexed like info_ (empty if Real)
+  std::vector<double> real_init_;
+  std::vector<std::int64_t> int_init_;
+};
+
+}  // namespace ballista

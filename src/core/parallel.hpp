@@ -1,0 +1,63 @@
+#pragma once
+// Parallel loops over index ranges. Maps to OpenMP today. Results never depend on the thread
+// count: loops write disjoint data, and reductions sum fixed-size chunks whose partial results
+// are combined in chunk order (see deterministic_sum).
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace ballista {
+
+using Index = std::int64_t;
+
+inline int max_threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+inline void set_threads(int n) {
+#ifdef _OPENMP
+  if (n > 0) omp_set_num_threads(n);
+#else
+  (void)n;
+#endif
+}
+
+/// Calls f(i) for i in [begin, end); iterations must write disjoint data.
+template <class F>
+inline void for_each(Index begin, Index end, F&& f) {
+#pragma omp parallel for schedule(static)
+  for (Index i = begin; i < end; ++i) f(i);
+}
+
+/// Chunk size for reductions: fixed, so chunk boundaries (and thus round-off) do not depend on
+/// the number of threads.
+inline constexpr Index kReduceChunk = 4096;
+
+/// Sums N values per index, value(i, out[N]) adding into out; bitwise reproducible for any
+/// thread count because chunk partials are combined serially in chunk order.
+template <int N, class F>
+inline void deterministic_sum(Index begin, Index end, F&& value, double (&result)[N]) {
+  for (int k = 0; k < N; ++k) result[k] = 0.0;
+  if (end <= begin) return;
+  const Index nchunk = (end - begin + kReduceChunk - 1) / kReduceChunk;
+  std::vector<double> partial(static_cast<size_t>(nchunk) * N, 0.0);
+#pragma omp parallel for schedule(static)
+  for (Index c = 0; c < nchunk; ++c) {
+    double local[N] = {};
+    const Index lo = begin + c * kReduceChunk;
+    const Index hi = lo + kReduceChunk < end ? lo + kReduceChunk : end;
+    for (Index i = lo; i < hi; ++i) value(i, local);
+    for (int k = 0; k < N; ++k) partial[c * N + k] = local[k];
+  }
+  for (Index c = 0; c < nchunk; ++c)
+    for (int k = 0; k < N; ++k) result[k] += partial[c * N + k];
+}
+
+}  // namespace ballista

@@ -1,0 +1,141 @@
+#pragma once
+// The validated, fully resolved description of a run: what the deck reader produces and the
+// solvers, probes and writers consume. Every length is in m, time in s, velocity in m/s,
+// pressure and moduli in Pa, density in kg/m^3 (docs/deck.md).
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/tensor.hpp"
+#include "materials/material.hpp"
+
+namespace ballista {
+
+enum class Dimension { ThreeD, PlaneStrain, Axisymmetric };
+/// Boundary condition on one face of the grid box.
+enum class FaceBC {
+  Free,      ///< nothing imposed
+  Fixed,     ///< all velocity components zero
+  Symmetry,  ///< normal velocity zero (roller)
+  Wall,      ///< rigid frictionless wall: normal velocity may not point into the wall
+};
+
+/// Where a value came from in the deck (for error messages raised after parsing).
+struct DeckMark {
+  std::string file;
+  std::string key_path;
+  int line = 0;
+  int column = 0;
+};
+
+/// Piecewise-linear function of time, held constant beyond its first and last points.
+struct LoadCurve {
+  std::vector<double> t;  ///< s, strictly increasing
+  std::vector<double> v;  ///< scale factor (dimensionless)
+  double at(double time) const;
+};
+
+struct SimulationSpec {
+  std::string solver = "mpm";
+  Dimension dimension = Dimension::ThreeD;
+  double end_time = 0.0;            ///< s
+  double cfl = 0.3;                 ///< Courant number (0, 1]
+  double max_dt = 0.0;              ///< s; 0 = no cap
+  long max_steps = 0;               ///< 0 = unlimited
+  double damping = 0.0;             ///< 1/s; grid acceleration a - c v (dynamic relaxation)
+  double energy_drift_limit = 0.0;  ///< stop if |E_total - E0| / max(E0, E_scale) exceeds this; 0 = off
+  std::string on_particle_exit = "stop";  ///< "stop" or "delete"
+  int threads = 0;                  ///< 0 = OpenMP default
+};
+
+struct MpmSpec {
+  std::string shape_function = "linear";  ///< linear | gimp | cpdi | bspline3
+  std::string update = "usl";             ///< usl | musl
+  double flip = 1.0;                      ///< FLIP fraction in [0,1]; 1 = pure FLIP, 0 = PIC
+  int sort_every = 20;                    ///< steps between particle sorts by cell
+};
+
+struct GridSpec {
+  Vec3 lower;               ///< m; z ignored in 2D
+  Vec3 upper;               ///< m
+  double cell_size = 0.0;   ///< m, cubic cells
+  /// Per face: x_min, x_max, y_min, y_max, z_min, z_max.
+  std::array<FaceBC, 6> faces{FaceBC::Free, FaceBC::Free, FaceBC::Free,
+                              FaceBC::Free, FaceBC::Free, FaceBC::Free};
+};
+
+struct MaterialSpec {
+  std::string name;
+  std::string model;
+  ParamValues params;  ///< every ParamSpec of the model, defaults filled
+  DeckMark mark;
+  std::map<std::string, DeckMark> param_marks;
+};
+
+/// Solid shapes. In 2D only x and y are used (axisymmetric: x = r, y = axial z).
+struct ShapeSpec {
+  std::string type;       ///< box | cylinder | sphere | tube
+  Vec3 lower, upper;      ///< box corners, m
+  Vec3 center;            ///< sphere centre / cylinder and tube base centre, m
+  int axis = 2;           ///< cylinder/tube axis: 0 x, 1 y, 2 z
+  double radius = 0.0;    ///< m (outer radius of a tube; in 2D a cylinder across its axis is a disk)
+  double inner_radius = 0.0;  ///< tube inner radius, m
+  double length = 0.0;    ///< cylinder/tube length along axis, m
+};
+
+struct BodySpec {
+  std::string name;
+  std::string material;
+  ShapeSpec shape;
+  int particles_per_cell = 2;    ///< per direction
+  Vec3 velocity;                 ///< initial velocity, m/s
+  double activation_time = 0.0;  ///< s; the body is inert and invisible before it
+  std::string initial_state = "none";  ///< none | mms_axis_aligned
+  DeckMark mark;
+};
+
+struct LoadSpec {
+  std::string type;        ///< body_force | pressure | mms_axis_aligned
+  std::string body;        ///< body name ("" = all bodies for body_force)
+  Vec3 acceleration;       ///< body_force, m/s^2
+  std::string surface;     ///< pressure: x_min..z_max for boxes; outer|inner|top|bottom for cylinders/tubes
+  double pressure = 0.0;   ///< Pa (positive pushes into the body)
+  LoadCurve curve;         ///< scale factor of time (default: 1)
+  DeckMark mark;
+};
+
+struct ProbeSpec {
+  std::string name;
+  std::string type;    ///< extent | max_radius | field_max | energy
+  std::string body;    ///< "" = all bodies
+  int axis = 1;        ///< extent: axis measured; max_radius: axis of symmetry
+  double plane = 0.0;  ///< max_radius: position of the plane normal to `axis`, m
+  double distance = 0.0;  ///< max_radius: only particles within this distance of the plane, m
+  Vec3 center;         ///< max_radius: a point on the axis of symmetry, m
+  std::string field;   ///< field_max: field name; energy: kinetic|internal|plastic|external|total
+  DeckMark mark;
+};
+
+struct OutputSpec {
+  double interval = 0.0;             ///< s between HDF5 outputs; 0 = only first and last
+  std::vector<std::string> fields;   ///< field names to write; empty = all
+  bool domains = false;              ///< also write each particle's domain as a deformed hexahedron
+  int history_every = 10;            ///< steps between history.csv rows
+  std::vector<std::int64_t> track;   ///< particle ids whose history is recorded (reserved)
+};
+
+struct Scenario {
+  std::string file;               ///< deck path
+  SimulationSpec simulation;
+  MpmSpec mpm;
+  GridSpec grid;
+  std::vector<MaterialSpec> materials;
+  std::vector<BodySpec> bodies;
+  std::vector<LoadSpec> loads;
+  std::vector<ProbeSpec> probes;
+  OutputSpec output;
+  std::string resolved_yaml;      ///< the deck with every default filled, as YAML text
+};
+
+}  // namespace ballista

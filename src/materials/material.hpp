@@ -1,0 +1,128 @@
+#pragma once
+// Material interface shared by every solver and the single-element driver.
+//
+// A model is written once as a pure per-point kernel (see linear_elastic.hpp for the pattern):
+//   struct Model {
+//     static constexpr const char* kName;           // deck name
+//     struct Params {...};                          // named parameters, SI units
+//     static std::vector<ParamSpec> param_specs();  // names, units, defaults, ranges (deck + info)
+//     static Params make(const ParamValues&);       // derive/cross-check, throws ParamError
+//     static std::vector<StateFieldSpec> state_fields();  // internal variables (become fields)
+//     static void update(const Params&, const PointKinematics&, Mat3& sigma_bar, double* state,
+//                        PointResult&);             // unrotated-frame stress update
+//     static double wave_speed(const Params&, const double* state, double J);
+//   };
+// MaterialAdapter<Model> (material_adapter.hpp) turns it into a Material that updates a batch of
+// points stored in a FieldStore: it does the polar decomposition, rotates into the unrotated
+// frame (thesis seed 000 eq. 2.6), calls the kernel and rotates back. The kernel itself never
+// sees the rotation, so every model is objective by construction.
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/field_store.hpp"
+#include "core/tensor.hpp"
+
+namespace ballista {
+
+/// One material parameter as the deck and `ballista info` see it.
+struct ParamSpec {
+  std::string name;
+  std::string unit;         ///< SI unit; "1" for dimensionless
+  std::string description;
+  bool required = true;     ///< if false, default_value is used when absent
+  double default_value = 0.0;
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_exclusive = false;
+  bool max_exclusive = false;
+};
+
+/// Parameter values by name, already range-checked against the ParamSpecs.
+using ParamValues = std::map<std::string, double>;
+
+/// Thrown by Model::make for a bad combination of parameters; `param` names the deck key so the
+/// deck layer can point at its line.
+class ParamError : public Error {
+ public:
+  ParamError(std::string param, const std::string& message) : Error(message), param_(std::move(param)) {}
+  const std::string& param() const { return param_; }
+
+ private:
+  std::string param_;
+};
+
+/// An internal state variable of a model; stored as a per-point field of this name.
+struct StateFieldSpec {
+  std::string name;
+  std::string unit;
+  double initial = 0.0;
+};
+
+/// What a kernel is given for one point over one step [t_n, t_{n+1}].
+struct PointKinematics {
+  Mat3 F_old;   ///< deformation gradient at t_n
+  Mat3 F_new;   ///< deformation gradient at t_{n+1}
+  Mat3 R_new;   ///< rotation of F_new = R U
+  Mat3 D_bar;   ///< unrotated rate of deformation R^T sym(L) R, 1/s (thesis eq. 2.6)
+  double dt = 0.0;
+};
+
+/// Per-point by-products of a kernel call.
+struct PointResult {
+  double plastic_work_density = 0.0;  ///< plastic dissipation over the step, J/m^3 (current volume)
+};
+
+/// Pointers to the arrays a batch update reads and writes (all indexed by point).
+struct MaterialBatch {
+  const Index* points = nullptr;  ///< indices of the points of this material
+  Index count = 0;
+  const Mat3* F_old = nullptr;    ///< F at t_n
+  const Mat3* F_new = nullptr;    ///< F at t_{n+1}
+  const Mat3* L = nullptr;        ///< velocity gradient over the step, 1/s
+  Mat3* R = nullptr;              ///< in: rotation at t_n; out: rotation at t_{n+1}
+  Mat3* stress = nullptr;         ///< in: Cauchy stress at t_n; out: at t_{n+1}, Pa
+  double* plastic_work = nullptr; ///< out: plastic dissipation over the step, J/m^3 (may be null)
+  FieldStore* store = nullptr;    ///< holds the model's state fields
+  double dt = 0.0;
+};
+
+class Material {
+ public:
+  virtual ~Material() = default;
+  virtual const std::string& name() const = 0;   ///< user's name for this material
+  virtual const char* model() const = 0;          ///< deck model name
+  virtual double density() const = 0;            ///< reference density rho0, kg/m^3
+  virtual std::vector<StateFieldSpec> state_fields() const = 0;
+  /// Declares the model's state fields in `store` (idempotent).
+  void declare_fields(FieldStore& store) const {
+    for (const auto& s : state_fields()) store.add_real(s.name, 1, s.unit, true, s.initial);
+  }
+  /// Stress update of a batch of points (parallel inside; results independent of thread count).
+  virtual void update(const MaterialBatch& batch) const = 0;
+  /// Initial stress for a point with deformation gradient F and no history (e.g. a prestrained
+  /// manufactured-solution start); hypoelastic models return zero.
+  virtual Mat3 initial_stress(const Mat3& F) const = 0;
+  /// Largest dilatational wave speed of point p (m/s), J = det F.
+  virtual double wave_speed(const FieldStore& store, Index p, double J) const = 0;
+};
+
+/// How a model is made from the deck; one per registered model.
+struct MaterialFactory {
+  std::string model;
+  std::string description;
+  std::vector<ParamSpec> params;
+  std::vector<StateFieldSpec> state_fields;
+  std::unique_ptr<Material> (*create)(const std::string& name, const ParamValues& values) = nullptr;
+};
+
+/// Registered models, filled at static-initialisation time by one line per model file
+/// (BALLISTA_REGISTER_MATERIAL); read-only afterwards.
+const std::vector<MaterialFactory>& material_registry();
+const MaterialFactory* find_material(const std::string& model);
+bool register_material(MaterialFactory factory);
+
+}  // namespace ballista
