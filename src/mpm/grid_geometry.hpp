@@ -1,0 +1,30 @@
+#pragma once
+// Geometry of a block of the MPM background grid. Node indices are relative to the block origin
+// so that an MPI rank can own one block (with ghost layers) without changing any kernel.
+#include <cmath>
+
+#include "core/parallel.hpp"
+#include "core/tensor.hpp"
+
+namespace ballista {
+
+struct GridGeometry {
+  Vec3 origin;               ///< position of node (0,0,0) of this block, m
+  double h = 1.0;            ///< cell size, m (cubic cells)
+  int nodes[3] = {1, 1, 1};  ///< node counts per axis (nodes[2] = 1 in 2D)
+  int dim = 3;               ///< 2 or 3
+
+  Index node_count() const { return static_cast<Index>(nodes[0]) * nodes[1] * nodes[2]; }
+  Index node_index(int i, int j, int k) const {
+    return (static_cast<Index>(k) * nodes[1] + j) * nodes[0] + i;
+  }
+  /// Index of the cell containing coordinate x along `axis` (cell c spans nodes c and c+1).
+  int cell_of(double x, int axis) const {
+    return static_cast<int>(std::floor((x - origin[axis]) / h));
+  }
+  Vec3 node_position(int i, int j, int k) const {
+    return {{origin[0] + i * h, origin[1] + j * h, dim == 3 ? origin[2] + k * h : origin[2]}};
+  }
+};
+
+}  // namespace ballista
