@@ -128,4 +128,29 @@ void FieldStore::compact(const std::vector<char>& keep) {
   size_ = n;
 }
 
+void FieldStore::append_from(const FieldStore& other, const std::vector<Index>& which) {
+  if (other.info_.size() != info_.size()) throw Error("append_from: field layouts differ");
+  const Index n0 = size_;
+  resize(size_ + static_cast<Index>(which.size()));
+  for (size_t k = 0; k < info_.size(); ++k) {
+    const int nc = info_[k].ncomp;
+    if (other.info_[k].name != info_[k].name || other.info_[k].ncomp != nc)
+      throw Error("append_from: field '" + info_[k].name + "' differs");
+    for (size_t q = 0; q < which.size(); ++q)
+      for (int c = 0; c < nc; ++c) {
+        const size_t dst = (n0 + q) * nc + c, src = which[q] * nc + c;
+        if (info_[k].type == FieldType::Real)
+          real_[k][dst] = other.real_[k][src];
+        else
+          int_[k][dst] = other.int_[k][src];
+      }
+  }
+}
+
+FieldStore FieldStore::empty_like() const {
+  FieldStore s = *this;
+  s.resize(0);
+  return s;
+}
+
 }  // namespace ballista

@@ -58,6 +58,10 @@ class FieldStore {
   void permute(const std::vector<Index>& order);
   /// Keeps the points with keep[i] != 0, in order.
   void compact(const std::vector<char>& keep);
+  /// Appends points `which` of `other`, which must declare the same fields in the same order.
+  void append_from(const FieldStore& other, const std::vector<Index>& which);
+  /// An empty store with the same field declarations.
+  FieldStore empty_like() const;
 
  private:
   int find(const std::string& name) const;

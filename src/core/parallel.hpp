@@ -29,10 +29,14 @@ inline void set_threads(int n) {
 #endif
 }
 
+/// Below this many iterations a loop runs on the calling thread: starting a parallel region
+/// costs more than the work (and oversubscribed machines make spinning threads expensive).
+inline constexpr Index kParallelThreshold = 4096;
+
 /// Calls f(i) for i in [begin, end); iterations must write disjoint data.
 template <class F>
 inline void for_each(Index begin, Index end, F&& f) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (end - begin > kParallelThreshold)
   for (Index i = begin; i < end; ++i) f(i);
 }
 
@@ -48,7 +52,7 @@ inline void deterministic_sum(Index begin, Index end, F&& value, double (&result
   if (end <= begin) return;
   const Index nchunk = (end - begin + kReduceChunk - 1) / kReduceChunk;
   std::vector<double> partial(static_cast<size_t>(nchunk) * N, 0.0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nchunk > 1)
   for (Index c = 0; c < nchunk; ++c) {
     double local[N] = {};
     const Index lo = begin + c * kReduceChunk;

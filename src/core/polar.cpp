@@ -18,7 +18,13 @@ Mat3 polar_rotation(const Mat3& F, const Mat3& guess) {
     X = Xn;
     if (diff < 1e-14) break;
   }
-  return guess * X;
+  // guess is orthogonal only to round-off, and when it is the previous step's R that error is
+  // inherited and accumulates over steps (measured: |R^T R - I| ~ 3e-11 after 10^6 warm-started
+  // steps, which the unrotate/rotate round trip of the stress turns into a systematic drift).
+  // One unscaled Newton step on the product itself restores orthogonality to round-off
+  // (quadratic convergence: an error e becomes O(e^2)).
+  const Mat3 R = guess * X;
+  return 0.5 * (R + inverse_transpose(R));
 }
 
 void polar_decompose(const Mat3& F, Mat3& R, Mat3& U, const Mat3& guess) {

@@ -1,0 +1,44 @@
+#pragma once
+// What the run loop needs from any discretisation (MPM today; peridynamics and OTM later).
+#include <string>
+
+#include "core/field_store.hpp"
+#include "core/tensor.hpp"
+
+namespace ballista {
+
+/// Global energy and momentum totals (already reduced over ranks). In axisymmetric runs the
+/// values are for the full body of revolution (per-radian sums times 2 pi); in plane strain per
+/// metre of thickness.
+struct EnergyTotals {
+  double kinetic = 0.0;        ///< J
+  double internal = 0.0;       ///< J, accumulated stress power (elastic + plastic)
+  double plastic = 0.0;        ///< J, accumulated plastic dissipation
+  double external = 0.0;       ///< J, accumulated work of body forces and surface loads
+  double mass = 0.0;           ///< kg
+  Vec3 momentum;               ///< kg m/s
+  double removed_mass = 0.0;   ///< kg carried off by deleted particles
+  double removed_energy = 0.0; ///< J (kinetic + internal) carried off by deleted particles
+  Vec3 removed_momentum;       ///< kg m/s carried off by deleted particles
+  /// Energy balance: kinetic + internal + removed - external; constant in an exact solution.
+  double total() const { return kinetic + internal + removed_energy - external; }
+};
+
+class Solver {
+ public:
+  virtual ~Solver() = default;
+  virtual const char* name() const = 0;
+  /// Largest stable time step for the current state (global minimum over ranks), s.
+  virtual double stable_dt() = 0;
+  /// Advances the state by dt; throws PhysicsError on NaN, inverted points or lost particles.
+  virtual void step(double dt) = 0;
+  virtual double time() const = 0;
+  virtual long steps() const = 0;
+  /// The points of this rank (fields named as the output datasets).
+  virtual FieldStore& points() = 0;
+  virtual EnergyTotals energies() const = 0;
+  /// Multiplier turning per-point sums into physical totals (2 pi in axisymmetric runs).
+  virtual double reporting_scale() const = 0;
+};
+
+}  // namespace ballista

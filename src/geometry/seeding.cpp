@@ -1,0 +1,144 @@
+#include "geometry/seeding.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/shape.hpp"
+
+namespace ballista {
+
+void declare_point_fields(FieldStore& p) {
+  p.add_int("id", 1, "1");
+  p.add_int("body", 1, "1");
+  p.add_int("material", 1, "1");
+  p.add_real("x", 3, "m");
+  p.add_real("x0", 3, "m");
+  p.add_real("v", 3, "m/s");
+  p.add_real("F", 9, "1", true);
+  p.add_real("R", 9, "1", false);
+  p.add_real("L", 9, "1/s", false);
+  p.add_real("stress", 9, "Pa");
+  p.add_real("mass", 1, "kg");
+  p.add_real("volume0", 1, "m^3");
+  p.add_real("volume", 1, "m^3");
+  p.add_real("half_size", 3, "m");
+  p.add_real("internal_energy", 1, "J");
+  p.add_real("plastic_work", 1, "J");
+}
+
+Index seed_body(const BodySpec& body, int body_index, int material_index, const Material& material,
+                const GridSpec& grid, Dimension dim, FieldStore& points, std::int64_t& next_id) {
+  const int nd = dim == Dimension::ThreeD ? 3 : 2;
+  const double h = grid.cell_size;
+  const int ppc = body.particles_per_cell;
+  const double dx = h / ppc;
+  Vec3 lo, hi;
+  shape_bounds(body.shape, nd, lo, hi);
+  // Lattice aligned with the grid: sub-cell centres grid.lower + (i + 1/2) dx.
+  int first[3] = {0, 0, 0}, last[3] = {0, 0, 0};
+  for (int k = 0; k < nd; ++k) {
+    first[k] = static_cast<int>(std::floor((lo[k] - grid.lower[k]) / dx));
+    last[k] = static_cast<int>(std::ceil((hi[k] - grid.lower[k]) / dx));
+  }
+  std::vector<Vec3> pos;
+  for (int k = first[2]; k <= last[2]; ++k)
+    for (int j = first[1]; j <= last[1]; ++j)
+      for (int i = first[0]; i <= last[0]; ++i) {
+        Vec3 x{{grid.lower[0] + (i + 0.5) * dx, grid.lower[1] + (j + 0.5) * dx,
+                nd == 3 ? grid.lower[2] + (k + 0.5) * dx : 0.0}};
+        if (nd == 2 && k != first[2]) continue;
+        bool inside_grid = true;
+        for (int a = 0; a < nd; ++a)
+          if (x[a] <= grid.lower[a] || x[a] >= grid.upper[a]) inside_grid = false;
+        if (inside_grid && shape_contains(body.shape, x, nd)) pos.push_back(x);
+      }
+  if (pos.empty())
+    throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path,
+                    "body '" + body.name + "' has no particles inside the grid: check its shape, the grid box and cell_size");
+
+  const Index n0 = points.size();
+  const Index n = static_cast<Index>(pos.size());
+  points.resize(n0 + n);
+  auto* id = points.ints("id");
+  auto* bid = points.ints("body");
+  auto* mid = points.ints("material");
+  auto* x = points.view<Vec3>("x");
+  auto* x0 = points.view<Vec3>("x0");
+  auto* v = points.view<Vec3>("v");
+  auto* F = points.view<Mat3>("F");
+  auto* R = points.view<Mat3>("R");
+  auto* mass = points.real("mass");
+  auto* vol0 = points.real("volume0");
+  auto* vol = points.real("volume");
+  auto* half = points.view<Vec3>("half_size");
+  const double cell_volume = nd == 3 ? dx * dx * dx : dx * dx;
+  for (Index q = 0; q < n; ++q) {
+    const Index p = n0 + q;
+    id[p] = next_id++;
+    bid[p] = body_index;
+    mid[p] = material_index;
+    x[p] = pos[q];
+    x0[p] = pos[q];
+    v[p] = body.velocity;
+    if (nd == 2) v[p][2] = 0.0;
+    F[p] = Mat3::identity();
+    R[p] = Mat3::identity();
+    // Axisymmetric: volume per radian = r * area (thesis seed 000 ch. 5 uses Uintah's convention).
+    vol0[p] = dim == Dimension::Axisymmetric ? pos[q][0] * cell_volume : cell_volume;
+    vol[p] = vol0[p];
+    mass[p] = material.density() * vol0[p];
+    half[p] = Vec3{{0.5 * dx, 0.5 * dx, nd == 3 ? 0.5 * dx : 0.0}};
+  }
+  return n;
+}
+
+Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, int body_index,
+                            double h, Dimension dim, FieldStore& points) {
+  const std::string field = "load_area_" + std::to_string(k);
+  points.add_real(field, 3, "m^2", false);
+  const int nd = dim == Dimension::ThreeD ? 3 : 2;
+  const double dx = h / body.particles_per_cell;
+  const ShapeSpec& s = body.shape;
+  const auto* bid = points.ints("body");
+  const auto* x0 = points.view<Vec3>("x0");
+  const auto* vol0 = points.real("volume0");
+  auto* area = points.view<Vec3>(field);
+  Index marked = 0;
+  for (Index p = 0; p < points.size(); ++p) {
+    if (bid[p] != body_index) continue;
+    const Vec3& X = x0[p];
+    Vec3 N;  // outward unit normal of the surface at the point
+    double depth = -1.0;  // distance of the point inside the surface, m
+    if (s.type == "box") {
+      static const char* names[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
+      for (int f = 0; f < 2 * nd; ++f) {
+        if (load.surface != names[f]) continue;
+        const int a = f / 2;
+        depth = (f % 2) ? s.upper[a] - X[a] : X[a] - s.lower[a];
+        N[a] = (f % 2) ? 1.0 : -1.0;
+      }
+    } else {  // cylinder / tube: outer, inner, top, bottom
+      const int a = (nd == 2 && s.axis == 2) ? -1 : s.axis;
+      Vec3 d = X - s.center;
+      if (a >= 0) d[a] = 0.0;
+      if (nd == 2 && a == 1) d = Vec3{{X[0], 0.0, 0.0}};  // axisymmetric: radius is x
+      const double r = norm(d);
+      if (load.surface == "outer") { depth = s.radius - r; N = (1.0 / r) * d; }
+      if (load.surface == "inner") { depth = r - s.inner_radius; N = (-1.0 / r) * d; }
+      if (a >= 0 && load.surface == "top") { depth = s.center[a] + s.length - X[a]; N[a] = 1.0; }
+      if (a >= 0 && load.surface == "bottom") { depth = X[a] - s.center[a]; N[a] = -1.0; }
+    }
+    // Band of lattice points carrying the surface: depth in [0, w) with w = dx max_i |N_i|. A
+    // lattice column along the dominant normal axis then holds exactly one point of the band, so
+    // giving each point the area V0 / w makes the band's total area equal the surface's, also
+    // on curved (staircase-seeded) surfaces.
+    const double mx = std::max({std::abs(N[0]), std::abs(N[1]), std::abs(N[2])});
+    const double w = dx * mx;
+    if (!(depth >= -1e-12 * dx && depth < w)) continue;
+    area[p] = (vol0[p] / w) * N;
+    ++marked;
+  }
+  return marked;
+}
+
+}  // namespace ballista

@@ -1,0 +1,25 @@
+#pragma once
+// Seeding material points of a body on a regular lattice aligned with the grid cells.
+#include "core/field_store.hpp"
+#include "io/scenario.hpp"
+#include "materials/material.hpp"
+
+namespace ballista {
+
+/// Declares the fields every solver's points carry (positions, velocity, F, stress, mass, ...).
+void declare_point_fields(FieldStore& points);
+
+/// Appends the points of `body` to `points`: particles_per_cell^dim points per grid cell of size
+/// h, at sub-cell centres inside the shape. Mass = rho0 * volume; in axisymmetric runs volumes
+/// and masses are per radian (volume = r * area), in plane strain per metre of thickness.
+/// Ids continue from next_id. Returns the number of points added (error if zero).
+Index seed_body(const BodySpec& body, int body_index, int material_index, const Material& material,
+                const GridSpec& grid, Dimension dim, FieldStore& points, std::int64_t& next_id);
+
+/// Marks the points of `body` lying within one point spacing of the named surface for pressure
+/// load k: field "load_area_<k>" gets the reference area vector N dA0 (outward normal times the
+/// point's share of the surface; per radian in axisymmetric runs). Returns the number marked.
+Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, int body_index,
+                            double h, Dimension dim, FieldStore& points);
+
+}  // namespace ballista

@@ -1,0 +1,75 @@
+#include "geometry/shape.hpp"
+
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace ballista {
+
+namespace {
+// Coordinates of x relative to a cylinder's base centre: axial distance and radial distance.
+void axial_radial(const ShapeSpec& s, const Vec3& x, int dim, double& axial, double& radial) {
+  const Vec3 d = x - s.center;
+  const int a = s.axis;
+  if (dim == 2 && a == 2) {  // disk in the x-y plane
+    axial = 0.0;
+    radial = std::hypot(d[0], d[1]);
+    return;
+  }
+  if (dim == 2) {  // axisymmetric half plane: x is the radius
+    axial = d[a];
+    radial = std::abs(x[0]);
+    return;
+  }
+  axial = d[a];
+  double r2 = 0.0;
+  for (int k = 0; k < 3; ++k)
+    if (k != a) r2 += d[k] * d[k];
+  radial = std::sqrt(r2);
+}
+}  // namespace
+
+bool shape_contains(const ShapeSpec& s, const Vec3& x, int dim) {
+  const int nd = dim == 3 ? 3 : 2;
+  if (s.type == "box") {
+    for (int k = 0; k < nd; ++k)
+      if (x[k] < s.lower[k] || x[k] > s.upper[k]) return false;
+    return true;
+  }
+  if (s.type == "sphere") {
+    double r2 = 0.0;
+    for (int k = 0; k < nd; ++k) r2 += (x[k] - s.center[k]) * (x[k] - s.center[k]);
+    return r2 <= s.radius * s.radius;
+  }
+  if (s.type == "cylinder" || s.type == "tube") {
+    double axial, radial;
+    axial_radial(s, x, dim, axial, radial);
+    const bool in_length = (dim == 2 && s.axis == 2) || (axial >= 0.0 && axial <= s.length);
+    const double rin = s.type == "tube" ? s.inner_radius : -1.0;
+    return in_length && radial <= s.radius && radial >= rin;
+  }
+  throw Error("unknown shape type '" + s.type + "'");
+}
+
+void shape_bounds(const ShapeSpec& s, int dim, Vec3& lo, Vec3& hi) {
+  if (s.type == "box") {
+    lo = s.lower;
+    hi = s.upper;
+  } else if (s.type == "sphere") {
+    for (int k = 0; k < 3; ++k) { lo[k] = s.center[k] - s.radius; hi[k] = s.center[k] + s.radius; }
+  } else {  // cylinder, tube
+    for (int k = 0; k < 3; ++k) {
+      if (k == s.axis) {
+        lo[k] = s.center[k];
+        hi[k] = s.center[k] + s.length;
+      } else {
+        lo[k] = s.center[k] - s.radius;
+        hi[k] = s.center[k] + s.radius;
+      }
+    }
+    if (dim == 2 && s.axis == 1) { lo[0] = 0.0; hi[0] = s.radius; }  // axisymmetric: x = r >= 0
+  }
+  if (dim == 2) { lo[2] = 0.0; hi[2] = 0.0; }
+}
+
+}  // namespace ballista

@@ -1,0 +1,16 @@
+#pragma once
+// Solid shapes used to seed bodies: point-membership tests and bounding boxes.
+#include "core/tensor.hpp"
+#include "io/scenario.hpp"
+
+namespace ballista {
+
+/// True if point x lies inside the shape. In 2D (dim == 2) only x[0], x[1] are used:
+/// a cylinder/tube with axis z is a disk/annulus; with axis y (axisymmetric) it is the
+/// rectangle 0 <= r <= radius, center.y <= y <= center.y + length in the (r, z) half plane.
+bool shape_contains(const ShapeSpec& s, const Vec3& x, int dim);
+
+/// Axis-aligned bounding box of the shape (2D: z components are 0).
+void shape_bounds(const ShapeSpec& s, int dim, Vec3& lower, Vec3& upper);
+
+}  // namespace ballista

@@ -1,0 +1,169 @@
+#pragma once
+// DeckNode: a validating view of one YAML map (or list) of an input deck.
+//
+// Every getter checks the type (and range) of one key, raises a DeckError pointing at the key's
+// line if it is wrong, and records the value it returns (the default when the key is absent) in a
+// mirror tree, so that after reading the mirror is the fully resolved deck (Scenario::resolved_yaml).
+// finish() rejects keys that were never asked for, naming the closest valid key (edit distance),
+// and duplicate keys. Errors inside a value set by a command-line override name the override.
+#include <limits>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "core/error.hpp"
+#include "core/tensor.hpp"
+#include "io/deck_overrides.hpp"
+#include "io/scenario.hpp"
+
+namespace ballista {
+
+/// Levenshtein distance (insertions, deletions, substitutions each cost 1).
+size_t edit_distance(const std::string& a, const std::string& b);
+/// The candidate closest to `word` if it is close enough to be a plausible typo, else "".
+std::string closest_name(const std::string& word, const std::vector<std::string>& candidates);
+/// "; did you mean 'x'?" for a plausible typo, else "; expected one of: a, b, c" ("" if no candidates).
+std::string suggest(const std::string& word, const std::vector<std::string>& candidates);
+/// "a, b, c".
+std::string join_names(const std::vector<std::string>& names);
+/// Shortest text that reads back as exactly `x` (0.3, 8e-05, 1.17e+11); ".inf"/".nan" in YAML style.
+std::string format_number(double x);
+
+/// Reads a plain (unquoted) YAML scalar as a finite number ("1e9", "+2", "-0.5"); false otherwise.
+bool scalar_number(const YAML::Node& v, double& x);
+
+/// Allowed values of a number; unit is shown in messages ("" or "1" = dimensionless).
+struct NumberRange {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_exclusive = false;
+  bool max_exclusive = false;
+  std::string unit;
+
+  bool contains(double x) const;
+  /// "> 0 kg/m^3", "in (-1, 0.5)", "" for an unbounded range.
+  std::string describe() const;
+
+  static NumberRange any(std::string unit = "") { return {.unit = std::move(unit)}; }
+  static NumberRange positive(std::string unit = "") {
+    return {.min = 0.0, .min_exclusive = true, .unit = std::move(unit)};
+  }
+  static NumberRange non_negative(std::string unit = "") { return {.min = 0.0, .unit = std::move(unit)}; }
+  /// [lo, hi] with optional exclusive ends.
+  static NumberRange between(double lo, double hi, bool lo_exclusive = false, bool hi_exclusive = false,
+                             std::string unit = "") {
+    return {lo, hi, lo_exclusive, hi_exclusive, std::move(unit)};
+  }
+};
+
+/// What every node of one deck shares.
+struct DeckContext {
+  std::string file;                     ///< file name used in messages
+  std::vector<DeckOverride> overrides;  ///< applied overrides, to attribute errors to them
+};
+
+class DeckNode {
+ public:
+  /// The top level of a deck; fails unless `doc` is a map (an empty document counts as an empty map).
+  DeckNode(std::shared_ptr<const DeckContext> ctx, YAML::Node doc);
+
+  /// The resolved tree built so far (the root's mirror is the whole resolved deck).
+  YAML::Node resolved() const { return mirror_; }
+  /// "bodies.0.shape" ("" at the top level).
+  const std::string& path() const { return path_; }
+  std::string child_path(const std::string& key) const;
+  /// False for an optional section that is absent from the deck.
+  bool present() const { return node_.IsDefined() && !node_.IsNull(); }
+  /// True if `key` is present with a non-null value (an empty value means "use the default").
+  bool has(const std::string& key) const;
+  const YAML::Node& yaml() const { return node_; }
+  const std::string& file() const { return ctx_->file; }
+
+  /// Where this node is (its own position, or its parent's if it is absent).
+  DeckMark mark() const;
+  /// Where the value of `key` is (this node's position if the key is absent).
+  DeckMark mark_of(const std::string& key) const;
+
+  /// DeckError at this node.
+  [[noreturn]] void fail(const std::string& message) const;
+  /// DeckError at the value of `key` (key path this.key).
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const;
+
+  // ---- nested containers -------------------------------------------------------------------
+  /// A child map; an absent optional one reads as empty (every key defaulted).
+  DeckNode map(const std::string& key, bool required);
+  /// A child list; an absent optional one reads as empty.
+  DeckNode list(const std::string& key, bool required);
+  /// Number of elements (list) or entries (map).
+  size_t size() const;
+  /// Element i of a list; must be a map.
+  DeckNode element(size_t i);
+  /// Keys of a map whose entries are user-named (materials); all of them count as read.
+  std::vector<std::string> entry_names();
+  /// The entry `name` of a user-named map; must itself be a map.
+  DeckNode entry(const std::string& name);
+
+  // ---- values (the overloads without a default make the key required) ----------------------
+  double number(const std::string& key, const NumberRange& range = {});
+  double number(const std::string& key, double fallback, const NumberRange& range = {});
+  /// Absent (or null) -> nullopt and nothing written to the resolved tree.
+  std::optional<double> optional_number(const std::string& key, const NumberRange& range = {});
+  long integer(const std::string& key, long min, long max);
+  long integer(const std::string& key, long fallback, long min, long max);
+  bool boolean(const std::string& key, bool fallback);
+  std::string string(const std::string& key);
+  std::string string(const std::string& key, const std::string& fallback);
+  std::string choice(const std::string& key, const std::vector<std::string>& options);
+  std::string choice(const std::string& key, const std::string& fallback, const std::vector<std::string>& options);
+  /// A list of min_count..3 numbers (missing trailing components are 0).
+  Vec3 vector(const std::string& key, int min_count = 3);
+  Vec3 vector(const std::string& key, const Vec3& fallback, int min_count = 3);
+  std::vector<std::string> strings(const std::string& key, const std::vector<std::string>& fallback);
+  /// The raw value of `key` (undefined if absent), counted as read; for custom structures,
+  /// which then write their resolved form with set_resolved().
+  YAML::Node raw(const std::string& key);
+  void set_resolved(const std::string& key, const YAML::Node& value);
+
+  /// Marks `key` as valid here without reading it (so it is not reported as unknown).
+  void allow(const std::string& key) { known_->push_back(key); }
+  /// Rejects duplicate keys and keys never asked for (naming the closest valid one).
+  void finish() const;
+
+  // ---- helpers for building resolved values -------------------------------------------------
+  static YAML::Node number_node(double x);
+  static YAML::Node vector_node(const Vec3& v);
+
+ private:
+  DeckNode(std::shared_ptr<const DeckContext> ctx, YAML::Node node, YAML::Node mirror, std::string path,
+           YAML::Mark anchor);
+  /// The value of key (undefined if absent); records the key as known.
+  YAML::Node lookup(const std::string& key) const;
+  /// Position of `key` itself in this map (anchor_ if absent).
+  YAML::Mark key_mark(const std::string& key) const;
+  /// Value node of `key` for a required key; fails if absent or null.
+  YAML::Node require(const std::string& key, const char* what) const;
+  double to_number(const YAML::Node& v, const std::string& key_path, const NumberRange& range) const;
+  long to_integer(const YAML::Node& v, const std::string& key, long min, long max) const;
+  Vec3 to_vector(const YAML::Node& v, const std::string& key, int min_count) const;
+  std::string to_choice(const YAML::Node& v, const std::string& key, const std::vector<std::string>& options) const;
+
+  std::shared_ptr<const DeckContext> ctx_;
+  YAML::Node node_;    ///< the deck's node (undefined for an absent optional section)
+  YAML::Node mirror_;  ///< its resolved counterpart
+  std::string path_;
+  YAML::Mark anchor_;  ///< position of errors about the node as a whole (its key, or its parent's)
+  std::shared_ptr<std::vector<std::string>> known_ = std::make_shared<std::vector<std::string>>();
+};
+
+/// Raises a DeckError for `key_path` at `mark`, attributing it to an override if the value came
+/// from one (line 0 and the override text in the message).
+[[noreturn]] void deck_fail(const DeckContext& ctx, const std::string& key_path, const YAML::Mark& mark,
+                            const std::string& message);
+/// The DeckMark for `key_path` at `mark` (line 0 if the value came from an override).
+DeckMark deck_mark(const DeckContext& ctx, const std::string& key_path, const YAML::Mark& mark);
+
+}  // namespace ballista

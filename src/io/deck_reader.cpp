@@ -1,0 +1,476 @@
+#include "io/deck_reader.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+#include "io/deck_node.hpp"
+#include "io/deck_overrides.hpp"
+
+namespace ballista {
+
+const char* dimension_name(Dimension d) {
+  switch (d) {
+    case Dimension::ThreeD: return "3d";
+    case Dimension::PlaneStrain: return "plane_strain";
+    case Dimension::Axisymmetric: return "axisymmetric";
+  }
+  return "?";
+}
+
+const char* face_bc_name(FaceBC bc) {
+  switch (bc) {
+    case FaceBC::Free: return "free";
+    case FaceBC::Fixed: return "fixed";
+    case FaceBC::Symmetry: return "symmetry";
+    case FaceBC::Wall: return "wall";
+  }
+  return "?";
+}
+
+const char* axis_name(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : axis == 2 ? "z" : "?"; }
+
+namespace {
+
+const std::vector<std::string> kSections{"simulation", "mpm", "grid", "materials", "bodies", "loads", "probes", "output"};
+const std::vector<std::string> kFaces{"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
+const std::vector<std::string> kFaceBCs{"free", "fixed", "symmetry", "wall"};
+const std::vector<std::string> kEnergies{"kinetic", "internal", "plastic", "external", "total"};
+constexpr long kLongMax = LONG_MAX;
+
+FaceBC face_bc_from(const std::string& s) {
+  if (s == "fixed") return FaceBC::Fixed;
+  if (s == "symmetry") return FaceBC::Symmetry;
+  if (s == "wall") return FaceBC::Wall;
+  return FaceBC::Free;
+}
+
+int axis_from(const std::string& s) { return s == "x" ? 0 : s == "y" ? 1 : 2; }
+
+/// Axis-aligned bounding box of a shape in the directions used.
+void shape_bounds(const ShapeSpec& s, Vec3& lo, Vec3& hi) {
+  if (s.type == "box") {
+    lo = s.lower;
+    hi = s.upper;
+    return;
+  }
+  const double r = s.radius;
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = s.center[d] - r;
+    hi[d] = s.center[d] + r;
+  }
+  if (s.type == "cylinder" || s.type == "tube") {
+    lo[s.axis] = s.center[s.axis];
+    hi[s.axis] = s.center[s.axis] + s.length;
+  }
+}
+
+class Reader {
+ public:
+  Reader(std::shared_ptr<DeckContext> ctx, YAML::Node doc) : ctx_(ctx), root_(ctx, doc) {}
+
+  Scenario read() {
+    sc_.file = ctx_->file;
+    // Unknown sections first: a misspelt section name is better reported as such than as a
+    // missing required section.
+    for (const auto& s : kSections) root_.allow(s);
+    root_.finish();
+    simulation();
+    mpm();
+    grid();
+    materials();
+    bodies();
+    loads();
+    probes();
+    output();
+    std::ostringstream os;
+    os << "# Fully resolved deck (every default filled) of " << ctx_->file << ", written by ballista.\n";
+    os << YAML::Dump(root_.resolved()) << "\n";
+    sc_.resolved_yaml = os.str();
+    return std::move(sc_);
+  }
+
+ private:
+  bool two_d() const { return sc_.simulation.dimension != Dimension::ThreeD; }
+  int ndim() const { return two_d() ? 2 : 3; }
+  int vmin() const { return two_d() ? 2 : 3; }
+  std::vector<std::string> axes() const {
+    return two_d() ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"};
+  }
+
+  void simulation() {
+    DeckNode s = root_.map("simulation", true);
+    SimulationSpec& sim = sc_.simulation;
+    sim.solver = s.choice("solver", "mpm", {"mpm"});
+    const std::string dim = s.choice("dimension", "3d", {"3d", "plane_strain", "axisymmetric"});
+    sim.dimension = dim == "plane_strain" ? Dimension::PlaneStrain
+                    : dim == "axisymmetric" ? Dimension::Axisymmetric
+                                            : Dimension::ThreeD;
+    sim.end_time = s.number("end_time", NumberRange::positive("s"));
+    sim.cfl = s.number("cfl", 0.3, NumberRange::between(0.0, 1.0, true, false));
+    sim.max_dt = s.number("max_dt", 0.0, NumberRange::non_negative("s"));
+    sim.max_steps = s.integer("max_steps", 0, 0, kLongMax);
+    sim.damping = s.number("damping", 0.0, NumberRange::non_negative("1/s"));
+    sim.energy_drift_limit = s.number("energy_drift_limit", 0.0, NumberRange::non_negative());
+    sim.on_particle_exit = s.choice("on_particle_exit", "stop", {"stop", "delete"});
+    sim.threads = static_cast<int>(s.integer("threads", 0, 0, 4096));
+    s.finish();
+  }
+
+  void mpm() {
+    DeckNode m = root_.map("mpm", false);
+    MpmSpec& mp = sc_.mpm;
+    mp.shape_function = m.choice("shape_function", "linear", {"linear", "gimp", "cpdi", "bspline3"});
+    mp.update = m.choice("update", "usl", {"usl", "musl"});
+    mp.flip = m.number("flip", 1.0, NumberRange::between(0.0, 1.0));
+    mp.sort_every = static_cast<int>(m.integer("sort_every", 20, 0, INT_MAX));
+    m.finish();
+  }
+
+  /// Fails unless upper > lower in every direction used.
+  void check_ordered(DeckNode& n, const std::string& upper_key, const Vec3& lo, const Vec3& hi,
+                     const std::string& what) {
+    for (int d = 0; d < ndim(); ++d)
+      if (!(hi[d] > lo[d]))
+        n.fail(upper_key, "expected " + what + " greater than lower in every direction; in " + axis_name(d) +
+                              " upper is " + format_number(hi[d]) + " and lower " + format_number(lo[d]));
+  }
+
+  void grid() {
+    DeckNode g = root_.map("grid", true);
+    GridSpec& gr = sc_.grid;
+    gr.lower = g.vector("lower", vmin());
+    gr.upper = g.vector("upper", vmin());
+    check_ordered(g, "upper", gr.lower, gr.upper, "upper");
+    gr.cell_size = g.number("cell_size", NumberRange::positive("m"));
+    double cells = 1.0;
+    for (int d = 0; d < ndim(); ++d) cells *= std::ceil((gr.upper[d] - gr.lower[d]) / gr.cell_size);
+    if (cells > 2.0e9)
+      g.fail("cell_size", "the grid would have " + format_number(cells) +
+                              " cells; check that lengths are in metres");
+    DeckNode b = g.map("boundary", false);
+    for (int f = 0; f < 6; ++f) gr.faces[f] = face_bc_from(b.choice(kFaces[f], "free", kFaceBCs));
+    b.finish();
+    g.finish();
+  }
+
+  void materials() {
+    DeckNode ms = root_.map("materials", true);
+    const auto names = ms.entry_names();
+    if (names.empty()) ms.fail("expected at least one material (name: {model: ..., parameters})");
+    for (const auto& name : names) {
+      DeckNode m = ms.entry(name);
+      MaterialSpec spec;
+      spec.name = name;
+      spec.mark = m.mark();
+      std::vector<std::string> models;
+      for (const auto& f : material_registry()) models.push_back(f.model);
+      spec.model = m.string("model");
+      const MaterialFactory* factory = find_material(spec.model);
+      if (!factory) {
+        std::string hint;
+        if (const std::string best = closest_name(spec.model, models); !best.empty())
+          hint = "; did you mean '" + best + "'?";
+        m.fail("model", "unknown material model '" + spec.model + "'" + hint +
+                            " (registered models: " + join_names(models) + ")");
+      }
+      for (const ParamSpec& p : factory->params) {
+        const NumberRange range{p.min, p.max, p.min_exclusive, p.max_exclusive, p.unit};
+        double v = 0.0;
+        if (p.required) {
+          v = m.number(p.name, range);
+        } else if (std::isnan(p.default_value)) {
+          const auto given = m.optional_number(p.name, range);
+          v = given ? *given : p.default_value;
+          if (!given) m.set_resolved(p.name, YAML::Node(YAML::NodeType::Null));
+        } else {
+          v = m.number(p.name, p.default_value, range);
+        }
+        spec.params[p.name] = v;
+        if (m.has(p.name)) spec.param_marks[p.name] = m.mark_of(p.name);
+      }
+      m.finish();
+      // Cross-checks of the model (e.g. exactly one pair of elastic constants).
+      try {
+        (void)factory->create(name, spec.params);
+      } catch (const ParamError& e) {
+        const std::string msg = "material '" + name + "' (" + spec.model + "): " + e.what();
+        m.fail(e.param(), msg);  // at the parameter, or at the material's name if it is absent
+      } catch (const DeckError&) {
+        throw;
+      } catch (const std::exception& e) {
+        m.fail("material '" + name + "' (" + spec.model + "): " + e.what());
+      }
+      sc_.materials.push_back(std::move(spec));
+    }
+    ms.finish();
+  }
+
+  ShapeSpec shape(DeckNode& s) {
+    ShapeSpec sh;
+    const bool axi = sc_.simulation.dimension == Dimension::Axisymmetric;
+    const bool plane = sc_.simulation.dimension == Dimension::PlaneStrain;
+    sh.type = s.choice("type", {"box", "sphere", "cylinder", "tube"});
+    if (sh.type == "box") {
+      sh.lower = s.vector("lower", vmin());
+      sh.upper = s.vector("upper", vmin());
+      check_ordered(s, "upper", sh.lower, sh.upper, "upper");
+      if (axi && sh.lower[0] < 0.0)
+        s.fail("lower", "expected x (the radius) >= 0 in an axisymmetric deck, got " + format_number(sh.lower[0]));
+    } else if (sh.type == "sphere") {
+      sh.center = s.vector("center", vmin());
+      sh.radius = s.number("radius", NumberRange::positive("m"));
+      if (axi && sh.center[0] != 0.0)
+        s.fail("center", "expected x = 0 in an axisymmetric deck (the centre must lie on the axis), got " +
+                             format_number(sh.center[0]));
+    } else {  // cylinder, tube
+      sh.center = s.vector("center", vmin());
+      const std::string ax = s.choice("axis", {"x", "y", "z"});
+      sh.axis = axis_from(ax);
+      sh.radius = s.number("radius", NumberRange::positive("m"));
+      if (sh.type == "tube") {
+        sh.inner_radius = s.number("inner_radius", NumberRange::positive("m"));
+        if (!(sh.inner_radius < sh.radius))
+          s.fail("inner_radius", "expected inner_radius < radius (" + format_number(sh.radius) + " m), got " +
+                                     format_number(sh.inner_radius));
+      }
+      if (plane && sh.axis == 2)  // a disk (or annulus) in the x-y plane: length unused
+        sh.length = s.number("length", 0.0, NumberRange::non_negative("m"));
+      else
+        sh.length = s.number("length", NumberRange::positive("m"));
+      if (axi && sh.axis != 1)
+        s.fail("axis", "expected axis y in an axisymmetric deck (the symmetry axis), got " + ax);
+      if (axi && sh.center[0] != 0.0)
+        s.fail("center", "expected x = 0 in an axisymmetric deck (the base centre must lie on the axis), got " +
+                             format_number(sh.center[0]));
+    }
+    s.finish();
+    return sh;
+  }
+
+  const BodySpec* find_body(const std::string& name) const {
+    for (const auto& b : sc_.bodies)
+      if (b.name == name) return &b;
+    return nullptr;
+  }
+
+  std::vector<std::string> body_names() const {
+    std::vector<std::string> n;
+    for (const auto& b : sc_.bodies) n.push_back(b.name);
+    return n;
+  }
+
+  /// Reads `key` as the name of a defined body ("" allowed if optional and absent).
+  std::string body_ref(DeckNode& n, bool required) {
+    const std::string name = required ? n.string("body") : n.string("body", "");
+    if (!name.empty() && !find_body(name))
+      n.fail("body", "unknown body '" + name + "'" + suggest(name, body_names()));
+    return name;
+  }
+
+  void bodies() {
+    DeckNode bs = root_.list("bodies", true);
+    if (bs.size() == 0) bs.fail("expected at least one body");
+    std::vector<std::string> materials;
+    for (const auto& m : sc_.materials) materials.push_back(m.name);
+    for (size_t i = 0; i < bs.size(); ++i) {
+      DeckNode b = bs.element(i);
+      BodySpec body;
+      body.mark = b.mark();
+      body.name = b.string("name");
+      if (const BodySpec* other = find_body(body.name))
+        b.fail("name", "duplicate body name '" + body.name + "' (also " + other->mark.key_path +
+                           (other->mark.line > 0 ? " at line " + std::to_string(other->mark.line) : "") + ")");
+      body.material = b.string("material");
+      if (std::find(materials.begin(), materials.end(), body.material) == materials.end())
+        b.fail("material", "unknown material '" + body.material + "'" + suggest(body.material, materials));
+      DeckNode s = b.map("shape", true);
+      body.shape = shape(s);
+      body.particles_per_cell = static_cast<int>(b.integer("particles_per_cell", 2, 1, 8));
+      body.velocity = b.vector("velocity", Vec3{}, vmin());
+      body.activation_time = b.number("activation_time", 0.0, NumberRange::non_negative("s"));
+      body.initial_state = b.choice("initial_state", "none", {"none", "mms_axis_aligned"});
+      b.finish();
+      Vec3 lo, hi;
+      shape_bounds(body.shape, lo, hi);
+      for (int d = 0; d < ndim(); ++d)
+        if (hi[d] < sc_.grid.lower[d] || lo[d] > sc_.grid.upper[d])
+          b.fail("shape", "body '" + body.name + "' lies entirely outside the grid (in " + axis_name(d) +
+                              " it spans " + format_number(lo[d]) + " to " + format_number(hi[d]) +
+                              ", the grid " + format_number(sc_.grid.lower[d]) + " to " +
+                              format_number(sc_.grid.upper[d]) + ")");
+      sc_.bodies.push_back(std::move(body));
+    }
+  }
+
+  LoadCurve curve(DeckNode& l) {
+    LoadCurve c;
+    const YAML::Node v = l.raw("curve");
+    YAML::Node out(YAML::NodeType::Sequence);
+    out.SetStyle(YAML::EmitterStyle::Flow);
+    if (v.IsDefined() && !v.IsNull()) {
+      const std::string what = "a list of [time, scale] pairs with strictly increasing times";
+      if (!v.IsSequence()) l.fail("curve", "expected " + what);
+      for (size_t i = 0; i < v.size(); ++i) {
+        const YAML::Node p = v[i];
+        const std::string path = l.child_path("curve") + "." + std::to_string(i);
+        if (!p.IsSequence() || p.size() != 2)
+          deck_fail(*ctx_, path, p.Mark(), "expected a [time, scale] pair (list of 2 numbers)");
+        double tv[2];
+        for (int k = 0; k < 2; ++k) {
+          const YAML::Node x = p[k];
+          double value = 0.0;
+          if (!scalar_number(x, value))
+            deck_fail(*ctx_, path + "." + std::to_string(k), x.Mark(),
+                      "expected a number, got " + (x.IsScalar() ? "'" + x.Scalar() + "'" : std::string("a list or map")));
+          tv[k] = value;
+        }
+        if (!c.t.empty() && !(tv[0] > c.t.back()))
+          deck_fail(*ctx_, path + ".0", p[0].Mark(),
+                    "expected times strictly increasing; " + format_number(tv[0]) + " follows " +
+                        format_number(c.t.back()));
+        c.t.push_back(tv[0]);
+        c.v.push_back(tv[1]);
+        YAML::Node pair(YAML::NodeType::Sequence);
+        pair.SetStyle(YAML::EmitterStyle::Flow);
+        pair.push_back(format_number(tv[0]));
+        pair.push_back(format_number(tv[1]));
+        out.push_back(pair);
+      }
+    }
+    l.set_resolved("curve", out);
+    return c;
+  }
+
+  std::vector<std::string> surfaces(const ShapeSpec& s) const {
+    const bool plane = sc_.simulation.dimension == Dimension::PlaneStrain;
+    if (s.type == "box")
+      return two_d() ? std::vector<std::string>{"x_min", "x_max", "y_min", "y_max"} : kFaces;
+    if (s.type == "sphere") return {"outer"};
+    std::vector<std::string> out{"outer"};
+    if (s.type == "tube") out.push_back("inner");
+    if (!(plane && s.axis == 2)) {
+      out.push_back("top");
+      out.push_back("bottom");
+    }
+    return out;
+  }
+
+  void loads() {
+    DeckNode ls = root_.list("loads", false);
+    for (size_t i = 0; i < ls.size(); ++i) {
+      DeckNode l = ls.element(i);
+      LoadSpec load;
+      load.mark = l.mark();
+      load.type = l.choice("type", {"body_force", "pressure", "mms_axis_aligned"});
+      if (load.type == "body_force") {
+        load.body = body_ref(l, false);
+        load.acceleration = l.vector("acceleration", vmin());
+        load.curve = curve(l);
+      } else if (load.type == "pressure") {
+        load.body = body_ref(l, true);
+        const BodySpec* body = find_body(load.body);
+        const auto valid = surfaces(body->shape);
+        load.surface = l.string("surface");
+        if (std::find(valid.begin(), valid.end(), load.surface) == valid.end()) {
+          std::string hint;
+          if (const std::string best = closest_name(load.surface, valid); !best.empty())
+            hint = " (did you mean '" + best + "'?)";
+          l.fail("surface", "expected one of: " + join_names(valid) + " (the surfaces of body '" + load.body +
+                                "', a " + body->shape.type + "), got '" + load.surface + "'" + hint);
+        }
+        load.pressure = l.number("pressure", NumberRange::any("Pa"));
+        load.curve = curve(l);
+      } else {  // mms_axis_aligned
+        load.body = body_ref(l, true);
+      }
+      l.finish();
+      sc_.loads.push_back(std::move(load));
+    }
+  }
+
+  void probes() {
+    DeckNode ps = root_.list("probes", false);
+    for (size_t i = 0; i < ps.size(); ++i) {
+      DeckNode p = ps.element(i);
+      ProbeSpec probe;
+      probe.mark = p.mark();
+      probe.name = p.string("name");
+      for (const auto& other : sc_.probes)
+        if (other.name == probe.name)
+          p.fail("name", "duplicate probe name '" + probe.name + "' (also " + other.mark.key_path +
+                             (other.mark.line > 0 ? " at line " + std::to_string(other.mark.line) : "") + ")");
+      probe.type = p.choice("type", {"extent", "max_radius", "field_max", "energy"});
+      if (probe.type == "extent") {
+        probe.body = body_ref(p, false);
+        probe.axis = axis_from(p.choice("axis", axes()));
+      } else if (probe.type == "max_radius") {
+        probe.body = body_ref(p, false);
+        probe.axis = axis_from(p.choice("axis", axes()));
+        probe.plane = p.number("plane", 0.0, NumberRange::any("m"));
+        probe.distance = p.number("distance", NumberRange::positive("m"));
+        probe.center = p.vector("center", Vec3{}, vmin());
+      } else if (probe.type == "field_max") {
+        probe.body = body_ref(p, false);
+        probe.field = p.string("field");
+      } else {  // energy
+        probe.field = p.choice("field", kEnergies);
+      }
+      p.finish();
+      sc_.probes.push_back(std::move(probe));
+    }
+  }
+
+  void output() {
+    DeckNode o = root_.map("output", false);
+    OutputSpec& out = sc_.output;
+    out.interval = o.number("interval", 0.0, NumberRange::non_negative("s"));
+    out.fields = o.strings("fields", {});
+    out.domains = o.boolean("domains", false);
+    out.history_every = static_cast<int>(o.integer("history_every", 10, 1, INT_MAX));
+    o.finish();
+  }
+
+  std::shared_ptr<DeckContext> ctx_;
+  DeckNode root_;
+  Scenario sc_;
+};
+
+}  // namespace
+
+Scenario parse_deck(const std::string& yaml_text, const std::string& file_name,
+                    const std::vector<std::string>& overrides) {
+  YAML::Node doc;
+  try {
+    doc = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw DeckError(file_name, e.mark.line >= 0 ? e.mark.line + 1 : 0, e.mark.column >= 0 ? e.mark.column + 1 : 0,
+                    "", "invalid YAML: " + e.msg);
+  }
+  auto ctx = std::make_shared<DeckContext>();
+  ctx->file = file_name;
+  if (doc.IsDefined() && !doc.IsNull() && !doc.IsMap())
+    throw DeckError(file_name, doc.Mark().line + 1, doc.Mark().column + 1, "",
+                    "expected the deck to be a map of sections (simulation, grid, materials, bodies, ...)");
+  ctx->overrides = apply_overrides(doc, overrides, file_name);
+  Reader reader(ctx, doc);
+  return reader.read();
+}
+
+Scenario read_deck(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw DeckError(path, 0, 0, "", std::string("cannot open the deck file: ") + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw DeckError(path, 0, 0, "", "cannot read the deck file");
+  return parse_deck(text.str(), path, overrides);
+}
+
+}  // namespace ballista

@@ -1,0 +1,284 @@
+#include "io/particle_writer.hpp"
+
+#include <hdf5.h>
+
+#include <charconv>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/parallel.hpp"
+#include "core/tensor.hpp"
+#include "io/atomic_file.hpp"
+
+namespace ballista {
+
+namespace {
+
+/// Owns one HDF5 identifier and closes it with the matching H5?close.
+class H5Id {
+ public:
+  H5Id(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
+    if (id_ < 0) throw Error("HDF5: cannot " + what);
+  }
+  ~H5Id() {
+    if (id_ >= 0) close_(id_);
+  }
+  H5Id(const H5Id&) = delete;
+  H5Id& operator=(const H5Id&) = delete;
+  operator hid_t() const { return id_; }
+  /// Closes now and reports failure (a file's data are flushed at close).
+  void close(const std::string& what) {
+    const herr_t rc = close_(id_);
+    id_ = -1;
+    if (rc < 0) throw Error("HDF5: cannot " + what);
+  }
+
+ private:
+  hid_t id_;
+  herr_t (*close_)(hid_t);
+};
+
+/// Writes a dataset of the given shape (empty dims = scalar) and an optional "unit" attribute.
+void write_dataset(hid_t file, const std::string& name, hid_t mem_type, hid_t file_type,
+                   const std::vector<hsize_t>& dims, const void* data, const std::string& unit) {
+  H5Id space(dims.empty() ? H5Screate(H5S_SCALAR)
+                          : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+             H5Sclose, "create dataspace for '" + name + "'");
+  H5Id dset(H5Dcreate2(file, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+            H5Dclose, "create dataset '" + name + "'");
+  hsize_t total = 1;
+  for (hsize_t d : dims) total *= d;
+  if (total > 0 && H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    throw Error("HDF5: cannot write dataset '" + name + "'");
+  if (unit.empty()) return;
+  H5Id str(H5Tcopy(H5T_C_S1), H5Tclose, "create string type");
+  if (H5Tset_size(str, unit.size()) < 0) throw Error("HDF5: cannot size string type");
+  H5Id aspace(H5Screate(H5S_SCALAR), H5Sclose, "create attribute dataspace");
+  H5Id attr(H5Acreate2(dset, "unit", str, aspace, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+            "create attribute 'unit' of '" + name + "'");
+  if (H5Awrite(attr, str, unit.data()) < 0) throw Error("HDF5: cannot write unit of '" + name + "'");
+}
+
+/// Escapes text for an XML attribute value or element content.
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+/// Round-trip representation of a double.
+std::string num(double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+/// XDMF DataItem referencing dataset `name` of `file` with the given rows x cols (cols 1 = 1-D).
+std::string data_item(const std::string& file, const std::string& name, Index rows, int cols,
+                      bool is_int, const std::string& indent) {
+  std::string dims = std::to_string(rows);
+  if (cols != 1) dims.append(1, ' ').append(std::to_string(cols));
+  return indent + "<DataItem Dimensions=\"" + dims + "\" NumberType=\"" + (is_int ? "Int" : "Float") +
+         "\" Precision=\"8\" Format=\"HDF\">" + xml_escape(file) + ":/" + xml_escape(name) +
+         "</DataItem>\n";
+}
+
+/// XDMF attribute type for a component count.
+const char* attribute_type(int ncomp) {
+  switch (ncomp) {
+    case 1: return "Scalar";
+    case 3: return "Vector";
+    case 9: return "Tensor";
+    default: return "Matrix";
+  }
+}
+
+/// Attributes for every written field, centred on nodes (particles) or cells (domains).
+std::string attributes(const std::string& file, const std::vector<const FieldInfo*>& fields, Index n,
+                       const char* center, const std::string& indent) {
+  std::string s;
+  for (const FieldInfo* f : fields) {
+    s += indent + "<Attribute Name=\"" + xml_escape(f->name) + "\" AttributeType=\"" +
+         attribute_type(f->ncomp) + "\" Center=\"" + center + "\">\n";
+    s += data_item(file, f->name, n, f->ncomp, f->type == FieldType::Int, indent + "  ");
+    s += indent + "</Attribute>\n";
+  }
+  return s;
+}
+
+const char* const kReserved[] = {"time", "step", "vertex_cells", "domain_points", "domain_cells"};
+
+}  // namespace
+
+ParticleWriter::ParticleWriter(std::string dir, std::vector<std::string> fields, bool domains, int dim)
+    : dir_(std::move(dir)), fields_(std::move(fields)), domains_(domains), dim_(dim) {
+  if (dim_ != 2 && dim_ != 3) throw Error("ParticleWriter: dim must be 2 or 3, got " + std::to_string(dim_));
+  if (dir_.empty()) dir_.assign(1, '.');
+  std::error_code ec;
+  std::filesystem::create_directories(dir_, ec);
+  if (ec) throw Error("cannot create output directory '" + dir_ + "': " + ec.message());
+}
+
+std::string ParticleWriter::xdmf_path() const { return dir_ + "/particles.xdmf"; }
+
+std::string ParticleWriter::h5_path(int index) const {
+  char name[32];
+  std::snprintf(name, sizeof name, "particles_%06d.h5", index);
+  return dir_ + "/" + name;
+}
+
+void ParticleWriter::write(double time, long step, const FieldStore& points) {
+  // Fields to write: the requested ones (or every output field); "x" is the geometry.
+  std::vector<const FieldInfo*> sel;
+  if (fields_.empty()) {
+    for (const FieldInfo& f : points.fields())
+      if (f.output) sel.push_back(&f);
+  } else {
+    for (const std::string& name : fields_) {
+      if (!points.has(name)) throw Error("output field '" + name + "' does not exist");
+      bool dup = false;  // a field listed twice is written once
+      for (const FieldInfo* f : sel) dup = dup || f->name == name;
+      if (!dup) sel.push_back(&points.info(name));
+    }
+  }
+  if (!points.has("x") || points.info("x").type != FieldType::Real || points.info("x").ncomp != 3)
+    throw Error("particle output needs a real field 'x' with 3 components");
+  if (domains_ && !(points.has("F") && points.has("half_size")))
+    throw Error("particle domain output needs fields 'F' (Mat3) and 'half_size' (Vec3)");
+  bool x_selected = false;
+  for (const FieldInfo* f : sel) {
+    if (f->name.empty() || f->name.find('/') != std::string::npos)
+      throw Error("field name '" + f->name + "' cannot be an HDF5 dataset name");
+    for (const char* r : kReserved)
+      if (f->name == r) throw Error("field name '" + f->name + "' is reserved in particle output");
+    x_selected = x_selected || f->name == "x";
+  }
+
+  const Index n = points.size();
+  const int index = count();
+  const std::string path = h5_path(index);
+  const std::string file = std::filesystem::path(path).filename().string();  // relative to the xdmf
+  const int nc = dim_ == 3 ? 8 : 4;  // corners per domain
+
+  {
+    AtomicPath out(path);
+    {
+      H5Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "create file access list");
+#if H5_VERSION_GE(1, 10, 7)
+      H5Pset_file_locking(fapl, false, true);  // locks fail on some parallel file systems
+#endif
+      H5Id h5(H5Fcreate(out.tmp().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose,
+              "create '" + out.tmp() + "'");
+      write_dataset(h5, "time", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {}, &time, "s");
+      const std::int64_t step64 = step;
+      write_dataset(h5, "step", H5T_NATIVE_INT64, H5T_STD_I64LE, {}, &step64, "");
+
+      std::vector<const FieldInfo*> datasets = sel;
+      if (!x_selected) datasets.push_back(&points.info("x"));
+      for (const FieldInfo* f : datasets) {
+        std::vector<hsize_t> dims{static_cast<hsize_t>(n)};
+        if (f->ncomp != 1) dims.push_back(static_cast<hsize_t>(f->ncomp));
+        if (f->type == FieldType::Real)
+          write_dataset(h5, f->name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, dims, points.real(f->name), f->unit);
+        else
+          write_dataset(h5, f->name, H5T_NATIVE_INT64, H5T_STD_I64LE, dims, points.ints(f->name), f->unit);
+      }
+
+      // Polyvertex connectivity: readers differ on implicit connectivity, so it is explicit.
+      std::vector<std::int64_t> verts(static_cast<size_t>(n));
+      for (Index p = 0; p < n; ++p) verts[p] = p;
+      write_dataset(h5, "vertex_cells", H5T_NATIVE_INT64, H5T_STD_I64LE, {static_cast<hsize_t>(n)},
+                    verts.data(), "");
+
+      if (domains_) {
+        const Vec3* x = points.view<Vec3>("x");
+        const Mat3* F = points.view<Mat3>("F");
+        const Vec3* h = points.view<Vec3>("half_size");
+        // Corner sign patterns in VTK/XDMF order: bottom face counter-clockwise, then top face.
+        static const int s3[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                     {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+        static const int s2[4][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+        const int(*sign)[3] = dim_ == 3 ? s3 : s2;
+        std::vector<Vec3> corners(static_cast<size_t>(n * nc));
+        std::vector<std::int64_t> cells(static_cast<size_t>(n * nc));
+        for_each(0, n, [&](Index p) {
+          for (int k = 0; k < nc; ++k) {
+            const Vec3 r{{sign[k][0] * h[p][0], sign[k][1] * h[p][1], sign[k][2] * h[p][2]}};
+            corners[p * nc + k] = x[p] + F[p] * r;
+            cells[p * nc + k] = p * nc + k;
+          }
+        });
+        write_dataset(h5, "domain_points", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE,
+                      {static_cast<hsize_t>(n * nc), 3}, corners.data(), points.info("x").unit);
+        write_dataset(h5, "domain_cells", H5T_NATIVE_INT64, H5T_STD_I64LE,
+                      {static_cast<hsize_t>(n), static_cast<hsize_t>(nc)}, cells.data(), "");
+      }
+      h5.close("close '" + out.tmp() + "'");
+    }
+    out.commit();
+  }
+
+  // XDMF grid(s) of this output: particles (Polyvertex) and, with domains, the deformed cells.
+  const std::string t = num(time);
+  const std::string name = "output_" + std::to_string(index);
+  std::string g;
+  std::string in = "      ";
+  if (domains_) {
+    g += in + "<Grid Name=\"" + name + "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n";
+    g += in + "  <Time Value=\"" + t + "\"/>\n";
+    in += "  ";
+  }
+  g += in + "<Grid Name=\"particles\" GridType=\"Uniform\">\n";
+  g += in + "  <Time Value=\"" + t + "\"/>\n";
+  g += in + "  <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + std::to_string(n) +
+       "\" NodesPerElement=\"1\">\n";
+  g += data_item(file, "vertex_cells", n, 1, true, in + "    ");
+  g += in + "  </Topology>\n";
+  g += in + "  <Geometry GeometryType=\"XYZ\">\n";
+  g += data_item(file, "x", n, 3, false, in + "    ");
+  g += in + "  </Geometry>\n";
+  g += attributes(file, sel, n, "Node", in + "  ");
+  g += in + "</Grid>\n";
+  if (domains_) {
+    g += in + "<Grid Name=\"domains\" GridType=\"Uniform\">\n";
+    g += in + "  <Time Value=\"" + t + "\"/>\n";
+    g += in + "  <Topology TopologyType=\"" + (dim_ == 3 ? "Hexahedron" : "Quadrilateral") +
+         "\" NumberOfElements=\"" + std::to_string(n) + "\">\n";
+    g += data_item(file, "domain_cells", n, nc, true, in + "    ");
+    g += in + "  </Topology>\n";
+    g += in + "  <Geometry GeometryType=\"XYZ\">\n";
+    g += data_item(file, "domain_points", n * nc, 3, false, in + "    ");
+    g += in + "  </Geometry>\n";
+    g += attributes(file, sel, n, "Cell", in + "  ");
+    g += in + "</Grid>\n";
+    g += "      </Grid>\n";
+  }
+  entries_.push_back(std::move(g));
+
+  std::string xml =
+      "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+      "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n"
+      "  <Domain>\n"
+      "    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const std::string& e : entries_) xml += e;
+  xml +=
+      "    </Grid>\n"
+      "  </Domain>\n"
+      "</Xdmf>\n";
+  write_file_atomic(xdmf_path(), xml);
+}
+
+}  // namespace ballista

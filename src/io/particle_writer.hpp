@@ -1,0 +1,41 @@
+#pragma once
+// Particle output: one HDF5 file per output time (dir/particles_NNNNNN.h5) plus an XDMF 3 index
+// (dir/particles.xdmf, rewritten atomically after every output) that ParaView opens as a time
+// series. Each .h5 holds /time, /step, one dataset per field (N x ncomp, or N for one component;
+// real fields as float64, int fields as int64, with a "unit" attribute), /vertex_cells (0..N-1,
+// the Polyvertex connectivity) and, with domains, /domain_points and /domain_cells: each
+// particle's deformed domain x_p + F_p (±a, ±b, ±c), (a,b,c) = half_size, as a hexahedron (3D)
+// or a quadrilateral (2D, c = 0) in VTK/XDMF node order.
+#include <string>
+#include <vector>
+
+#include "core/field_store.hpp"
+
+namespace ballista {
+
+class ParticleWriter {
+ public:
+  /// fields: names to write (empty = every field with FieldInfo::output); "x" is always written
+  /// (it is the geometry). domains: also write particle domains (needs fields "F" and
+  /// "half_size"). dim: 2 (quadrilaterals) or 3 (hexahedra). Creates dir if missing.
+  ParticleWriter(std::string dir, std::vector<std::string> fields, bool domains, int dim);
+
+  /// Writes dir/particles_NNNNNN.h5 (NNNNNN = outputs so far) and rewrites dir/particles.xdmf.
+  void write(double time, long step, const FieldStore& points);
+
+  /// Number of outputs written so far.
+  int count() const { return static_cast<int>(entries_.size()); }
+  /// Path of the XDMF index.
+  std::string xdmf_path() const;
+  /// Path of output number `index`.
+  std::string h5_path(int index) const;
+
+ private:
+  std::string dir_;
+  std::vector<std::string> fields_;
+  bool domains_;
+  int dim_;
+  std::vector<std::string> entries_;  // XDMF grid of each output so far
+};
+
+}  // namespace ballista

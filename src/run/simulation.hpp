@@ -1,0 +1,41 @@
+#pragma once
+// The run loop of `ballista run`: deck -> solver -> outputs, histories, probes and summary.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/solver.hpp"
+#include "io/scenario.hpp"
+
+namespace ballista {
+
+struct RunOptions {
+  std::string out_dir = "out";  ///< results folder (created)
+  int threads = 0;              ///< OpenMP threads; 0 = the deck's or the default
+  bool progress = true;         ///< progress bar on a terminal, periodic log lines otherwise
+};
+
+/// What a finished (or stopped) run reports.
+struct RunResult {
+  bool ok = true;
+  std::string error;            ///< PhysicsError message when !ok
+  long steps = 0;
+  double time = 0.0;            ///< simulated time reached, s
+  double wall_seconds = 0.0;
+  double particle_steps_per_second = 0.0;
+  std::vector<std::pair<std::string, double>> probes;  ///< final probe values
+};
+
+/// Builds the materials of the scenario from the registry.
+std::vector<std::unique_ptr<Material>> make_materials(const Scenario& sc);
+
+/// Builds the solver named in the scenario (simulation.solver).
+std::unique_ptr<Solver> make_solver(const Scenario& sc);
+
+/// Runs the scenario to its end time, writing resolved.yaml, particles_*.h5 + particles.xdmf,
+/// history.csv and summary.json to options.out_dir. A PhysicsError stops the run after the state
+/// is written to a new output file (earlier outputs stay intact) and is reported in the result
+/// and summary.json (status "failed").
+RunResult run_simulation(const Scenario& sc, const RunOptions& options);
+
+}  // namespace ballista

@@ -1,0 +1,91 @@
+// Atomic file writes: complete replacement, no temporary left behind, cleanup on failure.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+
+namespace fs = std::filesystem;
+using namespace ballista;
+
+namespace {
+
+/// Fresh per-test directory under the system temp directory, removed afterwards.
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path = fs::temp_directory_path() /
+           ("ballista_output_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+int count_tmp(const fs::path& dir) {
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".tmp") ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST(OutputAtomic, WritesAndReplacesWithoutTemporary) {
+  TempDir d;
+  const std::string p = (d.path / "a.txt").string();
+  write_file_atomic(p, "first\n");
+  EXPECT_EQ(slurp(p), "first\n");
+  write_file_atomic(p, std::string("second\0binary", 13));
+  EXPECT_EQ(slurp(p), std::string("second\0binary", 13));
+  EXPECT_EQ(count_tmp(d.path), 0);
+  EXPECT_EQ(tmp_path_for(p), p + ".tmp");
+}
+
+TEST(OutputAtomic, FailsLoudlyOnMissingDirectory) {
+  TempDir d;
+  EXPECT_THROW(write_file_atomic((d.path / "no" / "such" / "file").string(), "x"), Error);
+}
+
+TEST(OutputAtomic, PathGuardCommitsOrCleansUp) {
+  TempDir d;
+  const std::string p = (d.path / "b.bin").string();
+  {
+    AtomicPath guard(p);
+    std::ofstream(guard.tmp()) << "partial";
+    // Not committed: the destructor removes the temporary, NAME never appears.
+  }
+  EXPECT_FALSE(fs::exists(p));
+  EXPECT_EQ(count_tmp(d.path), 0);
+  {
+    AtomicPath guard(p);
+    std::ofstream(guard.tmp()) << "complete";
+    EXPECT_FALSE(fs::exists(p));
+    guard.commit();
+  }
+  EXPECT_EQ(slurp(p), "complete");
+  EXPECT_EQ(count_tmp(d.path), 0);
+  // A previous complete file survives an abandoned rewrite.
+  {
+    AtomicPath guard(p);
+    std::ofstream(guard.tmp()) << "half";
+  }
+  EXPECT_EQ(slurp(p), "complete");
+}
+
+TEST(OutputAtomic, CommitOfMissingTemporaryThrows) {
+  TempDir d;
+  EXPECT_THROW(commit_atomic((d.path / "x.tmp").string(), (d.path / "x").string()), Error);
+}

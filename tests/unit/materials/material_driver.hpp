@@ -1,0 +1,130 @@
+#pragma once
+// Test helper: drives points of one material through prescribed deformation-gradient paths using
+// the real registry, MaterialAdapter and FieldStore, the way a solver does. The velocity gradient
+// over a step is L = (F_{n+1} F_n^{-1} - I)/dt (thesis seed 000, eq. 4.10; CATALOGUE §A).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <numeric>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/field_store.hpp"
+#include "core/tensor.hpp"
+#include "materials/material.hpp"
+
+namespace ballista::test {
+
+/// Runs the enclosing scope on one thread (single-point paths of 10^5-10^6 steps: a parallel
+/// region per step costs far more than the point update on a loaded machine).
+class SerialGuard {
+ public:
+  SerialGuard() : saved_(max_threads()) { set_threads(1); }
+  ~SerialGuard() { set_threads(saved_); }
+  SerialGuard(const SerialGuard&) = delete;
+  SerialGuard& operator=(const SerialGuard&) = delete;
+
+ private:
+  int saved_;
+};
+
+inline ParamValues elastic_kg(double rho, double K, double G) {
+  return {{"density", rho}, {"bulk_modulus", K}, {"shear_modulus", G}};
+}
+
+inline std::unique_ptr<Material> make_material(const std::string& model, const ParamValues& v) {
+  const MaterialFactory* f = find_material(model);
+  if (!f) {
+    ADD_FAILURE() << "model '" << model << "' is not registered";
+    return nullptr;
+  }
+  return f->create("test_" + model, v);
+}
+
+class PointDriver {
+ public:
+  /// Batches of fewer than 1000 points run on one thread while the driver lives (see SerialGuard).
+  PointDriver(const std::string& model, const ParamValues& v, Index n = 1) : mat_(make_material(model, v)) {
+    if (n < 1000) serial_.emplace();
+    store_.add_real("F_old", 9, "1");
+    store_.add_real("F", 9, "1");
+    store_.add_real("L", 9, "1/s");
+    store_.add_real("R", 9, "1");
+    store_.add_real("stress", 9, "Pa");
+    store_.add_real("plastic_work", 1, "J/m^3");
+    if (mat_) mat_->declare_fields(store_);
+    store_.resize(n);
+    for (Index p = 0; p < n; ++p) {
+      F(p) = Mat3::identity();
+      store_.view<Mat3>("F_old")[p] = Mat3::identity();
+      R(p) = Mat3::identity();
+    }
+    all_.resize(static_cast<size_t>(n));
+    std::iota(all_.begin(), all_.end(), Index{0});
+  }
+
+  Material& material() { return *mat_; }
+  FieldStore& store() { return store_; }
+  Mat3& F(Index p = 0) { return store_.view<Mat3>("F")[p]; }
+  Mat3& R(Index p = 0) { return store_.view<Mat3>("R")[p]; }
+  Mat3& stress(Index p = 0) { return store_.view<Mat3>("stress")[p]; }
+  double& plastic_work(Index p = 0) { return store_.real("plastic_work")[p]; }
+  double& state(const std::string& name, Index p = 0) { return store_.real(name)[p]; }
+  /// Unrotated stress R^T sigma R of point p.
+  Mat3 stress_bar(Index p = 0) { return unrotate(R(p), stress(p)); }
+
+  /// Sets F_new of point p (call for every point of the batch, then step()).
+  void set_F(Index p, const Mat3& F_new) {
+    store_.view<Mat3>("F_old")[p] = F(p);
+    F(p) = F_new;
+    store_.view<Mat3>("L")[p] = (1.0 / dt_) * (F_new * inverse(store_.view<Mat3>("F_old")[p]) - Mat3::identity());
+  }
+
+  /// Advances the given points (all if empty) by dt after set_F.
+  void step(double dt, const std::vector<Index>& points = {}) {
+    const std::vector<Index>& idx = points.empty() ? all_ : points;
+    MaterialBatch b;
+    b.points = idx.data();
+    b.count = static_cast<Index>(idx.size());
+    b.F_old = store_.view<Mat3>("F_old");
+    b.F_new = store_.view<Mat3>("F");
+    b.L = store_.view<Mat3>("L");
+    b.R = store_.view<Mat3>("R");
+    b.stress = store_.view<Mat3>("stress");
+    b.plastic_work = store_.real("plastic_work");
+    b.store = &store_;
+    b.dt = dt;
+    mat_->update(b);
+  }
+
+  /// One step of point 0 to F_new over dt.
+  void advance(const Mat3& F_new, double dt) {
+    dt_ = dt;
+    set_F(0, F_new);
+    step(dt, {0});
+  }
+  void set_dt(double dt) { dt_ = dt; }
+
+ private:
+  std::optional<SerialGuard> serial_;
+  std::unique_ptr<Material> mat_;
+  FieldStore store_;
+  std::vector<Index> all_;
+  double dt_ = 1.0;
+};
+
+/// Piecewise-linear interpolation of a table (t_k, y_k) at t (t within the table).
+inline double interp(const std::vector<double>& t, const std::vector<double>& y, double x) {
+  for (size_t k = 1; k < t.size(); ++k)
+    if (x <= t[k]) return y[k - 1] + (y[k] - y[k - 1]) * (x - t[k - 1]) / (t[k] - t[k - 1]);
+  return y.back();
+}
+
+inline double rel_diff(const Mat3& A, const Mat3& B) {
+  const double scale = std::max(frobenius(A), frobenius(B));
+  return scale > 0 ? frobenius(A - B) / scale : 0.0;
+}
+
+}  // namespace ballista::test

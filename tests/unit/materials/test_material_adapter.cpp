@@ -1,0 +1,180 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <set>
+
+#include "material_driver.hpp"
+
+using namespace ballista;
+using namespace ballista::test;
+
+namespace {
+ParamValues j2_values() {
+  ParamValues v = elastic_kg(7800, 160e9, 80e9);
+  v["yield_stress"] = 300e6;
+  v["hardening_modulus"] = 1e9;
+  return v;
+}
+bool same_bits(const Mat3& a, const Mat3& b) { return std::memcmp(a.a, b.a, sizeof a.a) == 0; }
+}  // namespace
+
+// The three models register themselves under their deck names with their parameters.
+TEST(MaterialAdapter, ModelsAreRegistered) {
+  std::set<std::string> names;
+  for (const MaterialFactory& f : material_registry()) {
+    names.insert(f.model);
+    EXPECT_FALSE(f.description.empty()) << f.model;
+    EXPECT_NE(f.create, nullptr) << f.model;
+  }
+  for (const char* m : {"linear_elastic", "neo_hookean", "j2_plasticity"}) {
+    EXPECT_TRUE(names.count(m)) << m;
+    const MaterialFactory* f = find_material(m);
+    ASSERT_NE(f, nullptr) << m;
+    EXPECT_EQ(f->model, m);
+    bool has_density = false;
+    for (const ParamSpec& s : f->params) has_density |= s.name == "density";
+    EXPECT_TRUE(has_density) << m;
+  }
+  EXPECT_EQ(find_material("no_such_model"), nullptr);
+  const auto mat = make_material("j2_plasticity", j2_values());
+  EXPECT_EQ(mat->name(), "test_j2_plasticity");
+  EXPECT_STREQ(mat->model(), "j2_plasticity");
+  EXPECT_EQ(mat->density(), 7800.0);
+}
+
+// declare_fields adds the model's state fields (name, unit, initial value), is idempotent and
+// leaves other fields alone.
+TEST(MaterialAdapter, DeclaresStateFields) {
+  const auto mat = make_material("j2_plasticity", j2_values());
+  const auto specs = mat->state_fields();
+  ASSERT_EQ(specs.size(), 1u);
+  EXPECT_EQ(specs[0].name, "eqps");
+  FieldStore st;
+  st.add_real("mass", 1, "kg");
+  st.resize(3);
+  st.real("mass")[1] = 2.5;
+  mat->declare_fields(st);
+  mat->declare_fields(st);  // idempotent
+  ASSERT_TRUE(st.has("eqps"));
+  EXPECT_EQ(st.info("eqps").unit, "1");
+  EXPECT_EQ(st.info("eqps").ncomp, 1);
+  EXPECT_EQ(st.fields().size(), 2u);
+  for (Index p = 0; p < 3; ++p) EXPECT_EQ(st.real("eqps")[p], 0.0);
+  EXPECT_EQ(st.real("mass")[1], 2.5);
+  // Models without state declare nothing.
+  FieldStore st2;
+  make_material("linear_elastic", elastic_kg(1, 1, 1))->declare_fields(st2);
+  EXPECT_TRUE(st2.fields().empty());
+}
+
+// A batch over a subset of the points updates exactly those points: stress, R, state and
+// plastic work of the others are left bit-for-bit unchanged.
+TEST(MaterialAdapter, BatchTouchesOnlyItsPoints) {
+  const Index n = 7;
+  PointDriver d("j2_plasticity", j2_values(), n);
+  const Mat3 sentinel{{1, 2, 3, 4, 5, 6, 7, 8, 9}};
+  for (Index p = 0; p < n; ++p) {
+    d.stress(p) = sentinel;
+    d.state("eqps", p) = 0.125;
+    d.plastic_work(p) = -1.0;
+    d.set_dt(1e-3);
+    d.set_F(p, Mat3::diag(1.01, 1.0, 1.0));  // large enough to yield
+  }
+  const std::vector<Index> subset{1, 4, 5};
+  d.step(1e-3, subset);
+  for (Index p = 0; p < n; ++p) {
+    const bool in = p == 1 || p == 4 || p == 5;
+    SCOPED_TRACE("point " + std::to_string(p));
+    if (in) {
+      EXPECT_FALSE(same_bits(d.stress(p), sentinel));
+      EXPECT_GT(d.state("eqps", p), 0.125);
+      EXPECT_GT(d.plastic_work(p), 0.0);
+    } else {
+      EXPECT_TRUE(same_bits(d.stress(p), sentinel));
+      EXPECT_EQ(d.state("eqps", p), 0.125);
+      EXPECT_EQ(d.plastic_work(p), -1.0);
+      EXPECT_TRUE(same_bits(d.R(p), Mat3::identity()));
+    }
+  }
+  // A null plastic_work pointer is allowed.
+  MaterialBatch b;
+  b.points = subset.data();
+  b.count = 1;
+  b.F_old = d.store().view<Mat3>("F_old");
+  b.F_new = d.store().view<Mat3>("F");
+  b.L = d.store().view<Mat3>("L");
+  b.R = d.store().view<Mat3>("R");
+  b.stress = d.store().view<Mat3>("stress");
+  b.store = &d.store();
+  b.dt = 1e-3;
+  EXPECT_NO_THROW(d.material().update(b));
+}
+
+// The adapter stores the polar rotation of F_new in R and hands the kernel D_bar = R^T sym(L) R:
+// for F = Q diag(1+e, 1, 1) reached in one step from F = Q (R_old = Q), R_new = Q and the
+// linear-elastic stress is Q diag(M e, lambda e, lambda e) Q^T with e = D11 dt = e exactly.
+// Tolerance 1e-10: forming F_{n+1} F_n^{-1} - I loses digits to cancellation, 1e-16/e = 1e-12.
+TEST(MaterialAdapter, RotationAndUnrotatedRate) {
+  const double K = 10e9, G = 6e9, M = K + 4 * G / 3, lam = K - 2 * G / 3, e = 1e-4;
+  PointDriver d("linear_elastic", elastic_kg(1000, K, G));
+  const Mat3 Q = rotation_about(Vec3{{0.0, 0.6, 0.8}}, 1.3);
+  d.F() = Q;
+  d.R() = Q;
+  d.advance(Q * Mat3::diag(1 + e, 1, 1), 1e-6);
+  EXPECT_LT(frobenius(d.R() - Q), 1e-14);
+  EXPECT_LT(rel_diff(d.stress(), rotate(Q, Mat3::diag(M * e, lam * e, lam * e))), 1e-10);
+}
+
+// Results do not depend on the number of threads (each point is independent): bitwise equal.
+TEST(MaterialAdapter, ThreadCountIndependent) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.02, 0.02);
+  const Index n = 5000;
+  std::vector<Mat3> F(n);
+  for (auto& f : F) {
+    f = Mat3::identity();
+    for (double& a : f.a) a += u(rng);
+  }
+  auto run = [&](int threads) {
+    const int saved = max_threads();
+    set_threads(threads);
+    PointDriver d("j2_plasticity", j2_values(), n);
+    d.set_dt(1e-6);
+    for (Index p = 0; p < n; ++p) d.set_F(p, F[p]);
+    d.step(1e-6);
+    set_threads(saved);
+    std::vector<Mat3> s(n);
+    for (Index p = 0; p < n; ++p) s[p] = d.stress(p);
+    return s;
+  };
+  const auto s1 = run(1), s4 = run(4);
+  for (Index p = 0; p < n; ++p) ASSERT_TRUE(same_bits(s1[p], s4[p])) << p;
+}
+
+// Parameter errors name the deck key.
+TEST(MaterialAdapter, ParamErrors) {
+  const MaterialFactory* f = find_material("neo_hookean");
+  ASSERT_NE(f, nullptr);
+  try {
+    f->create("m", {{"density", 1.0}, {"youngs_modulus", 1.0}, {"poisson_ratio", 0.3}, {"bulk_modulus", 1.0}, {"shear_modulus", 1.0}});
+    ADD_FAILURE() << "both elastic pairs accepted";
+  } catch (const ParamError& e) {
+    EXPECT_EQ(e.param(), "bulk_modulus");
+  }
+  EXPECT_THROW(f->create("m", {{"density", 1.0}, {"bulk_modulus", 1.0}}), ParamError);
+  EXPECT_THROW(f->create("m", {{"density", 1.0}}), ParamError);
+}
+
+// Hyperelastic models provide the initial stress of a prestrained point; hypoelastic ones give 0.
+TEST(MaterialAdapter, InitialStress) {
+  const Mat3 F{{1.1, 0.05, 0, 0, 0.95, 0.02, 0.01, 0, 1.02}};
+  const auto nh = make_material("neo_hookean", elastic_kg(1, 3, 2));
+  const double lam = 3 - 4.0 / 3.0, mu = 2, J = det(F);
+  Mat3 ref = (mu / J) * (F * transpose(F) - Mat3::identity());
+  for (int i = 0; i < 3; ++i) ref(i, i) += lam * std::log(J) / J;
+  EXPECT_LT(rel_diff(nh->initial_stress(F), ref), 1e-13);
+  for (double x : make_material("linear_elastic", elastic_kg(1, 3, 2))->initial_stress(F).a) EXPECT_EQ(x, 0.0);
+  for (double x : make_material("j2_plasticity", j2_values())->initial_stress(F).a) EXPECT_EQ(x, 0.0);
+}
