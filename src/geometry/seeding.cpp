@@ -117,6 +117,11 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
         depth = (f % 2) ? s.upper[a] - X[a] : X[a] - s.lower[a];
         N[a] = (f % 2) ? 1.0 : -1.0;
       }
+    } else if (s.type == "sphere") {
+      Vec3 d = X - s.center;
+      if (nd == 2) d[2] = 0.0;
+      const double r = norm(d);
+      if (load.surface == "outer" && r > 0.0) { depth = s.radius - r; N = (1.0 / r) * d; }
     } else {  // cylinder / tube: outer, inner, top, bottom
       const int a = (nd == 2 && s.axis == 2) ? -1 : s.axis;
       Vec3 d = X - s.center;

@@ -105,7 +105,10 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
       auto* stress = points_.view<Mat3>("stress");
       auto* vol = points_.real("volume");
       const auto* vol0 = points_.real("volume0");
+      auto* x = points_.view<Vec3>("x");
       for (Index p = n0; p < points_.size(); ++p) {
+        // The lattice is the reference configuration X; the body starts displaced by u(X, 0).
+        x[p] = x0[p] + mms.displacement(x0[p], 0.0);
         v[p] = mms.velocity(x0[p], 0.0);
         F[p] = mms.F(x0[p], 0.0);
         R[p] = Mat3::identity();  // F is diagonal and positive: no rotation

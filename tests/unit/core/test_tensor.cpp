@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "core/polar.hpp"
@@ -135,12 +136,12 @@ TEST(Tensor, PolarWarmStartDoesNotDrift) {
   double worst = 0.0;
   for (int n = 1; n <= N; ++n) {
     const double t = double(n) / N;
-    const Mat3 F = rotation_about(Vec3{{0, 0, 1}}, 2.0 * M_PI * t) * Mat3::diag(1.0 - 0.002 * t, 1.0, 1.0);
+    const Mat3 F = rotation_about(Vec3{{0, 0, 1}}, 2.0 * std::numbers::pi * t) * Mat3::diag(1.0 - 0.002 * t, 1.0, 1.0);
     R = polar_rotation(F, R);
     if (n % 1000 == 0) worst = std::max(worst, frobenius(transpose_times(R, R) - Mat3::identity()));
   }
   EXPECT_LT(worst, 4e-15);  // without the re-orthogonalisation: 1.6e-11 (round-off accumulates)
-  const Mat3 F1 = rotation_about(Vec3{{0, 0, 1}}, 2.0 * M_PI) * Mat3::diag(0.998, 1.0, 1.0);
+  const Mat3 F1 = rotation_about(Vec3{{0, 0, 1}}, 2.0 * std::numbers::pi) * Mat3::diag(0.998, 1.0, 1.0);
   EXPECT_LT(frobenius(R - polar_rotation(F1)), 4e-15);
 }
 

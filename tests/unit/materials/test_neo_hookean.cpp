@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "material_driver.hpp"
@@ -114,7 +115,7 @@ TEST(NeoHookean, UniaxialStretchHandFormula) {
     const int N = 200;
     for (int n = 1; n <= N; ++n) {
       const double t = double(n) / N;
-      d.advance(rotation_about(Vec3{{0, 0, 1}}, 0.5 * 3.14159265358979 * t) * Mat3::diag(1.0 + (a - 1.0) * t, 1.0, 1.0),
+      d.advance(rotation_about(Vec3{{0, 0, 1}}, 0.5 * std::numbers::pi * t) * Mat3::diag(1.0 + (a - 1.0) * t, 1.0, 1.0),
                 1.0 / N);
     }
     const Mat3 sb = d.stress_bar();
