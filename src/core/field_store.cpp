@@ -1,5 +1,7 @@
 #include "core/field_store.hpp"
 
+#include <algorithm>
+
 #include "core/error.hpp"
 
 namespace ballista {
@@ -82,16 +84,17 @@ const std::int64_t* FieldStore::ints(const std::string& name) const {
 }
 
 namespace {
+/// Permutes through a scratch buffer that is reused across calls (no allocation per sort).
 template <class T>
-void permute_array(std::vector<T>& a, int nc, const std::vector<Index>& order) {
-  std::vector<T> out(order.size() * nc);
+void permute_array(std::vector<T>& a, int nc, const std::vector<Index>& order, std::vector<T>& out) {
+  out.resize(order.size() * nc);
   const Index n = static_cast<Index>(order.size());
   for_each(0, n, [&](Index i) {
     const T* src = a.data() + order[i] * nc;
     T* dst = out.data() + i * nc;
     for (int c = 0; c < nc; ++c) dst[c] = src[c];
   });
-  a.swap(out);
+  std::copy(out.begin(), out.end(), a.begin());
 }
 template <class T>
 void compact_array(std::vector<T>& a, int nc, const std::vector<char>& keep) {
@@ -109,9 +112,9 @@ void FieldStore::permute(const std::vector<Index>& order) {
   if (static_cast<Index>(order.size()) != size_) throw Error("permute: order has the wrong size");
   for (size_t k = 0; k < info_.size(); ++k) {
     if (info_[k].type == FieldType::Real)
-      permute_array(real_[k], info_[k].ncomp, order);
+      permute_array(real_[k], info_[k].ncomp, order, real_scratch_);
     else
-      permute_array(int_[k], info_[k].ncomp, order);
+      permute_array(int_[k], info_[k].ncomp, order, int_scratch_);
   }
 }
 
@@ -130,12 +133,17 @@ void FieldStore::compact(const std::vector<char>& keep) {
 
 void FieldStore::append_from(const FieldStore& other, const std::vector<Index>& which) {
   if (other.info_.size() != info_.size()) throw Error("append_from: field layouts differ");
+  // Check the whole layout before growing, so a refused append leaves this store unchanged.
+  for (size_t k = 0; k < info_.size(); ++k)
+    if (other.info_[k].name != info_[k].name || other.info_[k].ncomp != info_[k].ncomp ||
+        other.info_[k].type != info_[k].type)
+      throw Error("append_from: field '" + info_[k].name + "' differs");
+  for (Index q : which)
+    if (q < 0 || q >= other.size_) throw Error("append_from: point index out of range");
   const Index n0 = size_;
   resize(size_ + static_cast<Index>(which.size()));
   for (size_t k = 0; k < info_.size(); ++k) {
     const int nc = info_[k].ncomp;
-    if (other.info_[k].name != info_[k].name || other.info_[k].ncomp != nc)
-      throw Error("append_from: field '" + info_[k].name + "' differs");
     for (size_t q = 0; q < which.size(); ++q)
       for (int c = 0; c < nc; ++c) {
         const size_t dst = (n0 + q) * nc + c, src = which[q] * nc + c;

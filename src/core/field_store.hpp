@@ -72,6 +72,8 @@ class FieldStore {
   std::vector<std::vector<double>> real_;        // indexed like info_ (empty if Int)
   std::vector<std::vector<std::int64_t>> int_;   // indexed like info_ (empty if Real)
   std::vector<double> real_init_;
+  std::vector<double> real_scratch_;      // reused by permute
+  std::vector<std::int64_t> int_scratch_;
   std::vector<std::int64_t> int_init_;
 };
 

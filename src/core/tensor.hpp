@@ -80,6 +80,30 @@ inline Mat3 times_transpose(const Mat3& A, const Mat3& B) {
 inline Mat3 rotate(const Mat3& Q, const Mat3& A) { return times_transpose(Q * A, Q); }
 /// Q^T A Q (rotation of a tensor into the unrotated frame, thesis eq. 2.6).
 inline Mat3 unrotate(const Mat3& Q, const Mat3& A) { return transpose_times(Q, A * Q); }
+/// Q S Q^T for symmetric S: only the upper triangle is computed (result exactly symmetric).
+inline Mat3 rotate_sym(const Mat3& Q, const Mat3& S) {
+  const Mat3 B = Q * S;
+  Mat3 C;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      const double c = B.a[3 * i] * Q.a[3 * j] + B.a[3 * i + 1] * Q.a[3 * j + 1] + B.a[3 * i + 2] * Q.a[3 * j + 2];
+      C.a[3 * i + j] = c;
+      C.a[3 * j + i] = c;
+    }
+  return C;
+}
+/// Q^T S Q for symmetric S: only the upper triangle is computed (result exactly symmetric).
+inline Mat3 unrotate_sym(const Mat3& Q, const Mat3& S) {
+  const Mat3 B = S * Q;
+  Mat3 C;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      const double c = Q.a[i] * B.a[j] + Q.a[3 + i] * B.a[3 + j] + Q.a[6 + i] * B.a[6 + j];
+      C.a[3 * i + j] = c;
+      C.a[3 * j + i] = c;
+    }
+  return C;
+}
 
 inline double trace(const Mat3& A) { return A.a[0] + A.a[4] + A.a[8]; }
 inline double ddot(const Mat3& A, const Mat3& B) { double s = 0; for (int k = 0; k < 9; ++k) s += A.a[k] * B.a[k]; return s; }

@@ -50,6 +50,7 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
         bool inside_grid = true;
         for (int a = 0; a < nd; ++a)
           if (x[a] <= grid.lower[a] || x[a] >= grid.upper[a]) inside_grid = false;
+        if (dim == Dimension::Axisymmetric && !(x[0] > 0.0)) inside_grid = false;  // r > 0 only
         if (inside_grid && shape_contains(body.shape, x, nd)) pos.push_back(x);
       }
   if (pos.empty())
@@ -126,7 +127,7 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
       const int a = (nd == 2 && s.axis == 2) ? -1 : s.axis;
       Vec3 d = X - s.center;
       if (a >= 0) d[a] = 0.0;
-      if (nd == 2 && a == 1) d = Vec3{{X[0], 0.0, 0.0}};  // axisymmetric: radius is x
+      if (nd == 2) d[2] = 0.0;  // 2D: the radius lies in the x-y plane (axisymmetric: r = x)
       const double r = norm(d);
       if (load.surface == "outer") { depth = s.radius - r; N = (1.0 / r) * d; }
       if (load.surface == "inner") { depth = r - s.inner_radius; N = (-1.0 / r) * d; }
@@ -140,7 +141,11 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
     const double mx = std::max({std::abs(N[0]), std::abs(N[1]), std::abs(N[2])});
     const double w = dx * mx;
     if (!(depth >= -1e-12 * dx && depth < w)) continue;
-    area[p] = (vol0[p] / w) * N;
+    // Axisymmetric: vol0 = r_p dA carries the point's radius, but the surface element's per-radian
+    // area is r_s ds at the surface radius r_s = r_p + depth N_r (the point projected onto the
+    // surface along N); without this the cylindrical faces get (1 -+ depth/r) of their area.
+    const double r_scale = dim == Dimension::Axisymmetric ? (X[0] + depth * N[0]) / X[0] : 1.0;
+    area[p] = (r_scale * vol0[p] / w) * N;
     ++marked;
   }
   return marked;

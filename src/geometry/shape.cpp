@@ -16,9 +16,9 @@ void axial_radial(const ShapeSpec& s, const Vec3& x, int dim, double& axial, dou
     radial = std::hypot(d[0], d[1]);
     return;
   }
-  if (dim == 2) {  // axisymmetric half plane: x is the radius
+  if (dim == 2) {  // axial section (plane strain) or r-z half plane (axisymmetric, centre x = 0)
     axial = d[a];
-    radial = std::abs(x[0]);
+    radial = std::abs(d[1 - a]);
     return;
   }
   axial = d[a];
@@ -67,7 +67,8 @@ void shape_bounds(const ShapeSpec& s, int dim, Vec3& lo, Vec3& hi) {
         hi[k] = s.center[k] + s.radius;
       }
     }
-    if (dim == 2 && s.axis == 1) { lo[0] = 0.0; hi[0] = s.radius; }  // axisymmetric: x = r >= 0
+    // 2D with axis x or y: the axial section [c - R, c + R] across the axis (axisymmetric decks
+    // have c.x = 0; seeding keeps only r > 0 there).
   }
   if (dim == 2) { lo[2] = 0.0; hi[2] = 0.0; }
 }

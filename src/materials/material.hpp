@@ -16,6 +16,7 @@
 // points stored in a FieldStore: it does the polar decomposition, rotates into the unrotated
 // frame (thesis seed 000 eq. 2.6), calls the kernel and rotates back. The kernel itself never
 // sees the rotation, so every model is objective by construction.
+#include <atomic>
 #include <limits>
 #include <map>
 #include <memory>
@@ -64,7 +65,7 @@ struct StateFieldSpec {
 
 /// What a kernel is given for one point over one step [t_n, t_{n+1}].
 struct PointKinematics {
-  Mat3 F_old;   ///< deformation gradient at t_n
+  Mat3 F_old;   ///< deformation gradient at t_n (filled only if Model::kNeedsFOld is true)
   Mat3 F_new;   ///< deformation gradient at t_{n+1}
   Mat3 R_new;   ///< rotation of F_new = R U
   Mat3 D_bar;   ///< unrotated rate of deformation R^T sym(L) R, 1/s (thesis eq. 2.6)
@@ -76,18 +77,26 @@ struct PointResult {
   double plastic_work_density = 0.0;  ///< plastic dissipation over the step, J/m^3 (current volume)
 };
 
-/// Pointers to the arrays a batch update reads and writes (all indexed by point).
+/// Pointers to the arrays a batch update reads and writes (all indexed by point). Optional
+/// pointers may be null; the solvers use the energy accumulators so that the update, the energy
+/// bookkeeping and the finiteness check happen in one pass over memory.
 struct MaterialBatch {
   const Index* points = nullptr;  ///< indices of the points of this material
   Index count = 0;
-  const Mat3* F_old = nullptr;    ///< F at t_n
+  const Mat3* F_old = nullptr;    ///< F at t_n; if null it is recovered as (I + dt L)^-1 F_new
   const Mat3* F_new = nullptr;    ///< F at t_{n+1}
   const Mat3* L = nullptr;        ///< velocity gradient over the step, 1/s
   Mat3* R = nullptr;              ///< in: rotation at t_n; out: rotation at t_{n+1}
   Mat3* stress = nullptr;         ///< in: Cauchy stress at t_n; out: at t_{n+1}, Pa
-  double* plastic_work = nullptr; ///< out: plastic dissipation over the step, J/m^3 (may be null)
+  double* plastic_work = nullptr; ///< optional out: plastic dissipation over the step, J/m^3
   FieldStore* store = nullptr;    ///< holds the model's state fields
   double dt = 0.0;
+  // Optional energy accumulation (all three set, or none):
+  const double* volume0 = nullptr;   ///< reference volume, m^3
+  double* internal_energy = nullptr; ///< += dt <V> <sigma> : D (trapezoidal stress power), J
+  double* plastic_energy = nullptr;  ///< += plastic dissipation density * V_{n+1}, J
+  /// Optional: lowest index of a point whose new stress is not finite (atomic minimum).
+  std::atomic<Index>* first_bad = nullptr;
 };
 
 class Material {
@@ -108,6 +117,8 @@ class Material {
   virtual Mat3 initial_stress(const Mat3& F) const = 0;
   /// Largest dilatational wave speed of point p (m/s), J = det F.
   virtual double wave_speed(const FieldStore& store, Index p, double J) const = 0;
+  /// max over the points of (wave speed + |v|), m/s: the signal speed of the Courant condition.
+  virtual double max_signal_speed(const FieldStore& store, const Index* points, Index count) const = 0;
 };
 
 /// How a model is made from the deck; one per registered model.

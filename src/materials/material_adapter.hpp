@@ -1,5 +1,6 @@
 #pragma once
 // Turns a per-point kernel (see material.hpp) into a Material that updates a batch of points.
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -35,22 +36,64 @@ class MaterialAdapter final : public Material {
     for_each(0, b.count, [&](Index k) {
       const Index p = b.points[k];
       PointKinematics kin;
-      kin.F_old = b.F_old[p];
       kin.F_new = b.F_new[p];
+      const Mat3& L = b.L[p];
+      // F_new = (I + dt L) F_old (thesis seed 000 eq. 4.9): when F_old is not stored it is
+      // recovered for the models that read it (Model::kNeedsFOld), and J_old = J_new / det(A).
+      const Mat3 A = Mat3::identity() + b.dt * L;
+      const double detA = det(A);
+      if (b.F_old)
+        kin.F_old = b.F_old[p];
+      else if constexpr (kNeedsFOld)
+        kin.F_old = inverse(A) * kin.F_new;
+      else
+        kin.F_old = Mat3{};  // not read by this model
       kin.dt = b.dt;
       const Mat3 R_old = b.R[p];
+      const Mat3 D = sym(L);
       kin.R_new = polar_rotation(kin.F_new, R_old);
-      kin.D_bar = unrotate(kin.R_new, sym(b.L[p]));
-      Mat3 sigma_bar = unrotate(R_old, b.stress[p]);
+      kin.D_bar = unrotate_sym(kin.R_new, D);
+      const Mat3 sigma_old = b.stress[p];
+      Mat3 sigma_bar = unrotate_sym(R_old, sigma_old);
       double st[kMaxState];
       for (int s = 0; s < ns; ++s) st[s] = sptr[s][p];
       PointResult res;
       Model::update(prm, kin, sigma_bar, st, res);
       for (int s = 0; s < ns; ++s) sptr[s][p] = st[s];
-      b.stress[p] = rotate(kin.R_new, sigma_bar);
+      const Mat3 sigma_new = rotate_sym(kin.R_new, sigma_bar);
+      b.stress[p] = sigma_new;
       b.R[p] = kin.R_new;
       if (b.plastic_work) b.plastic_work[p] = res.plastic_work_density;
+      if (b.internal_energy) {
+        const double V_new = b.volume0[p] * det(kin.F_new);
+        const double V_old = V_new / detA;
+        b.internal_energy[p] += b.dt * 0.5 * (V_old + V_new) * 0.5 * ddot(sigma_old + sigma_new, D);
+        b.plastic_energy[p] += res.plastic_work_density * V_new;
+      }
+      if (b.first_bad && !all_finite(sigma_new)) {
+        Index cur = b.first_bad->load(std::memory_order_relaxed);
+        while (p < cur && !b.first_bad->compare_exchange_weak(cur, p, std::memory_order_relaxed)) {
+        }
+      }
     });
+  }
+
+  double max_signal_speed(const FieldStore& store, const Index* points, Index count) const override {
+    constexpr int kMaxState = 16;
+    const int ns = static_cast<int>(state_.size());
+    std::vector<const double*> sptr(ns);
+    for (int s = 0; s < ns; ++s) sptr[s] = store.real(state_[s].name);
+    const Mat3* F = store.view<Mat3>("F");
+    const Vec3* v = store.view<Vec3>("v");
+    double vmax = 0.0;
+#pragma omp parallel for reduction(max : vmax) schedule(static) if (count > kParallelThreshold)
+    for (Index k = 0; k < count; ++k) {
+      const Index p = points[k];
+      double st[kMaxState];
+      for (int s = 0; s < ns; ++s) st[s] = sptr[s][p];
+      vmax = std::max(vmax, Model::wave_speed(params_, st, det(F[p])) + norm(v[p]));
+    }
+    return vmax;
   }
 
   double wave_speed(const FieldStore& store, Index p, double J) const override {
@@ -62,6 +105,11 @@ class MaterialAdapter final : public Material {
 
  private:
   using Params = typename Model::Params;
+  /// Models that read PointKinematics::F_old declare `static constexpr bool kNeedsFOld = true`.
+  static constexpr bool kNeedsFOld = [] {
+    if constexpr (requires { Model::kNeedsFOld; }) return Model::kNeedsFOld;
+    else return false;
+  }();
   // Hyperelastic models define initial_stress(params, F); hypoelastic ones start stress-free.
   Mat3 initial_stress_impl(const Mat3& F, const Mat3& R) const {
     if constexpr (requires { Model::initial_stress(params_, F); }) {

@@ -153,21 +153,25 @@ double MpmSolver::reporting_scale() const {
 
 double MpmSolver::stable_dt() {
   // dt = CFL h / max_p (c_p + |v_p|)  (Courant condition with the dilatational wave speed).
-  const auto* v = points_.view<Vec3>("v");
-  const auto* F = points_.view<Mat3>("F");
-  const auto* mat = points_.ints("material");
-  const Index n = points_.size();
+  ensure_material_groups();
   double local_max = 0.0;
-#pragma omp parallel for reduction(max : local_max) schedule(static) if (n > kParallelThreshold)
-  for (Index p = 0; p < n; ++p) {
-    const double c = materials_[mat[p]]->wave_speed(points_, p, det(F[p]));
-    local_max = std::max(local_max, c + norm(v[p]));
-  }
+  for (size_t m = 0; m < materials_.size(); ++m)
+    local_max = std::max(local_max, materials_[m]->max_signal_speed(
+                                        points_, material_points_[m].data(),
+                                        static_cast<Index>(material_points_[m].size())));
   const double speed = comm_.max(local_max);
   double dt = speed > 0.0 ? scenario_.simulation.cfl * grid_.geom.h / speed
                           : scenario_.simulation.end_time;
   if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
   return dt;
+}
+
+void MpmSolver::ensure_material_groups() {
+  if (!groups_dirty_) return;
+  material_points_.assign(materials_.size(), {});
+  const auto* mat = points_.ints("material");
+  for (Index p = 0; p < points_.size(); ++p) material_points_[mat[p]].push_back(p);
+  groups_dirty_ = false;
 }
 
 void MpmSolver::activate_pending() {
@@ -186,6 +190,7 @@ void MpmSolver::activate_pending() {
   if (now.empty()) return;
   points_.append_from(pending_, now);
   pending_.compact(keep);
+  groups_dirty_ = true;
   pending_activation_.swap(still);
   sort_by_cell();
 }
@@ -197,19 +202,23 @@ void MpmSolver::sort_by_cell() {
   if (n == 0) return;
   const GridGeometry& g = grid_.geom;
   const auto* x = points_.view<Vec3>("x");
-  std::vector<Index> key(n);
+  std::vector<Index>& key = sort_key_;  // member scratch buffers: no allocation per sort
+  key.resize(n);
   const Index ncell = g.node_count();
   for_each(0, n, [&](Index p) {
     int c[3] = {0, 0, 0};
     for (int a = 0; a < dim_; ++a) c[a] = std::clamp(g.cell_of(x[p][a], a), 0, g.nodes[a] - 1);
     key[p] = g.node_index(c[0], c[1], c[2]);
   });
-  std::vector<Index> start(ncell + 1, 0);
+  std::vector<Index>& start = sort_start_;
+  start.assign(ncell + 1, 0);
   for (Index p = 0; p < n; ++p) ++start[key[p] + 1];
   for (Index c = 0; c < ncell; ++c) start[c + 1] += start[c];
-  std::vector<Index> order(n);
+  std::vector<Index>& order = sort_order_;
+  order.resize(n);
   for (Index p = 0; p < n; ++p) order[start[key[p]]++] = p;
   points_.permute(order);
+  groups_dirty_ = true;
 }
 
 int MpmSolver::stencil_reach_now() const {
@@ -249,7 +258,8 @@ void MpmSolver::build_slabs() {
   const int nslab = (g.nodes[slab_axis_] + slab_width_ - 1) / slab_width_;
   const Index n = points_.size();
   const auto* x = points_.view<Vec3>("x");
-  std::vector<int> slab(n);
+  std::vector<int>& slab = slab_of_point_;  // member scratch: no allocation per step
+  slab.resize(n);
   for_each(0, n, [&](Index p) {
     const int c = std::clamp(g.cell_of(x[p][slab_axis_], slab_axis_), 0, g.nodes[slab_axis_] - 1);
     slab[p] = c / slab_width_;
@@ -258,16 +268,16 @@ void MpmSolver::build_slabs() {
   for (Index p = 0; p < n; ++p) ++slab_start_[slab[p] + 1];
   for (int s = 0; s < nslab; ++s) slab_start_[s + 1] += slab_start_[s];
   slab_points_.resize(n);
-  std::vector<Index> fill(slab_start_.begin(), slab_start_.end() - 1);
-  for (Index p = 0; p < n; ++p) slab_points_[fill[slab[p]]++] = p;
-  // Material groups for the stress update (dispatch per material, not per point).
-  material_points_.assign(materials_.size(), {});
-  const auto* mat = points_.ints("material");
-  for (Index p = 0; p < n; ++p) material_points_[mat[p]].push_back(p);
+  slab_fill_.assign(slab_start_.begin(), slab_start_.end() - 1);
+  for (Index p = 0; p < n; ++p) slab_points_[slab_fill_[slab[p]]++] = p;
 }
 
 void MpmSolver::compute_external_forces() {
   const Index n = points_.size();
+  if (scenario_.loads.empty()) {  // no loads: no external-force array, no external work
+    fext_.clear();
+    return;
+  }
   fext_.assign(n, Vec3{});
   const auto* mass = points_.real("mass");
   const auto* bid = points_.ints("body");
@@ -320,6 +330,7 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
     gp[i] = Vec3{};
   });
   const bool axisym = dimension_ == Dimension::Axisymmetric;
+  const bool has_ext = !fext_.empty();
   const int nslab = static_cast<int>(slab_start_.size()) - 1;
   for (int color = 0; color < 2; ++color) {
 #pragma omp parallel for schedule(dynamic, 1) if (points_.size() > kParallelThreshold)
@@ -338,7 +349,7 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
         // adds the hoop term -V_p sigma_tt N_I / r_p to the radial force (per-radian volume).
         const Mat3 Vs = vol[p] * stress[p];
         const double hoop = axisym ? vol[p] * stress[p](2, 2) / x[p][0] : 0.0;
-        const Vec3 fe = fext_[p];
+        const Vec3 fe = has_ext ? fext_[p] : Vec3{};
         for (int k = 0; k < st.count; ++k) {
           const Index I = st.node[k];
           const double w = st.w[k];
@@ -418,143 +429,136 @@ void MpmSolver::update_grid(double dt) {
   }
 }
 
+inline void MpmSolver::finish_point(Index p, const Mat3& l, const Vec3& disp, double dt,
+                                    std::atomic<Index>& bad, std::atomic<Index>& out) {
+  L_[p] = l;
+  Vec3& x = x_[p];
+  x += disp;
+  // F_{n+1} = (I + dt L) F_n (thesis seed 000 eq. 4.9); volume from J = det F.
+  Mat3& F = F_[p];
+  F = (Mat3::identity() + dt * l) * F;
+  const double J = det(F);
+  vol_[p] = vol0_[p] * J;
+  if (!(J > 0.0) || !all_finite(F)) record_min(bad, p);
+  for (int a = 0; a < dim_; ++a)
+    if (!(x[a] >= box_lower_[a] && x[a] <= box_upper_[a])) record_min(out, p);
+}
+
 template <int Dim, ShapeKind K>
 void MpmSolver::grid_to_particles(double dt) {
+  // One pass per point: grid velocity, acceleration and velocity gradient at the point; FLIP/PIC
+  // velocity update; position, F and volume update (USL); failure and exit detection.
   const GridGeometry& g = grid_.geom;
-  auto* x = points_.view<Vec3>("x");
   auto* v = points_.view<Vec3>("v");
-  auto* L = points_.view<Mat3>("L");
-  const auto* F = points_.view<Mat3>("F");
   const auto* half = points_.view<Vec3>("half_size");
   const Vec3* vn = grid_.velocity_new.data();
   const Vec3* ga = grid_.accel.data();
   const bool axisym = dimension_ == Dimension::Axisymmetric;
+  const bool has_ext = !fext_.empty();
+  const bool defer = musl_;  // MUSL: L, F and positions after the second projection
   const double flip = flip_;
   const Index n = points_.size();
-  power_.assign(n, 0.0);
-  displacement_.resize(n);
-  for_each(0, n, [&](Index p) {
+  if (defer) displacement_.resize(n);
+  std::atomic<Index> bad{n}, out{n};
+  double pw[1];
+  deterministic_sum<1>(0, n, [&](Index p, double* o) {
     Stencil<Dim> st;
-    stencil_of<Dim, K>(g, x[p], half[p], F[p], st);
+    const Vec3 xp = x_[p];
+    stencil_of<Dim, K>(g, xp, half[p], F_[p], st);
     Vec3 vg, acc;
     Mat3 l;
-    double vr = 0.0;
     for (int k = 0; k < st.count; ++k) {
       const Vec3& u = vn[st.node[k]];
       const double w = st.w[k];
       vg += w * u;
       acc += w * ga[st.node[k]];
       const Vec3& dN = st.grad[k];
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) l(i, j) += u[i] * dN[j];
-      vr += w * u[0];
+      for (int i = 0; i < Dim; ++i)
+        for (int j = 0; j < Dim; ++j) l(i, j) += u[i] * dN[j];
     }
     // Axisymmetric hoop rate v_r / r (thesis seed 000 ch. 5: Uintah's axisymmetric MPM).
-    if (axisym) l(2, 2) = vr / x[p][0];
-    L[p] = l;
+    if (axisym) l(2, 2) = vg[0] / xp[0];
     const Vec3 v_old = v[p];
-    // FLIP/PIC blend (Stomakhin et al. 2013 style): flip * (v + dt a) + (1 - flip) v_grid.
+    // FLIP/PIC blend: flip (v + dt a) + (1 - flip) v_grid (Brackbill & Ruppel 1986 FLIP).
     v[p] = flip * (v_old + dt * acc) + (1.0 - flip) * vg;
-    power_[p] = dot(fext_[p], 0.5 * (v_old + v[p]));
-    displacement_[p] = dt * vg;
-  });
+    if (has_ext) o[0] += dot(fext_[p], 0.5 * (v_old + v[p]));
+    // Positions move with the grid velocity (x += dt sum N_I v_I).
+    if (defer) {
+      displacement_[p] = dt * vg;
+      return;
+    }
+    finish_point(p, l, dt * vg, dt, bad, out);
+  }, pw);
+  external_work_ += dt * comm_.sum(pw[0]);
+  first_bad_ = bad.load();
+  first_out_ = out.load();
 }
 
 template <int Dim, ShapeKind K>
-void MpmSolver::velocity_gradient_from_grid() {
+void MpmSolver::velocity_gradient_from_grid(double dt) {
   // Modified USL (Sulsky, Zhou & Schreyer, CPC 87 (1995) 236): L from the grid velocity that the
-  // updated particle momenta map back to.
+  // updated particle momenta map back to, with the shape functions of this step.
   const GridGeometry& g = grid_.geom;
-  const auto* x = points_.view<Vec3>("x");
-  auto* L = points_.view<Mat3>("L");
-  const auto* F = points_.view<Mat3>("F");
   const auto* half = points_.view<Vec3>("half_size");
   const Vec3* vg = grid_.velocity_new.data();
   const bool axisym = dimension_ == Dimension::Axisymmetric;
-  for_each(0, points_.size(), [&](Index p) {
+  const Index n = points_.size();
+  std::atomic<Index> bad{n}, out{n};
+  for_each(0, n, [&](Index p) {
     Stencil<Dim> st;
-    stencil_of<Dim, K>(g, x[p], half[p], F[p], st);
+    const Vec3 xp = x_[p];
+    stencil_of<Dim, K>(g, xp, half[p], F_[p], st);
     Mat3 l;
     double vr = 0.0;
     for (int k = 0; k < st.count; ++k) {
       const Vec3& u = vg[st.node[k]];
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) l(i, j) += u[i] * st.grad[k][j];
+      for (int i = 0; i < Dim; ++i)
+        for (int j = 0; j < Dim; ++j) l(i, j) += u[i] * st.grad[k][j];
       vr += st.w[k] * u[0];
     }
-    if (axisym) l(2, 2) = vr / x[p][0];
-    L[p] = l;
+    if (axisym) l(2, 2) = vr / xp[0];
+    finish_point(p, l, displacement_[p], dt, bad, out);
   });
+  first_bad_ = bad.load();
+  first_out_ = out.load();
 }
 
-void MpmSolver::update_deformation_and_stress(double dt) {
+void MpmSolver::update_stress(double dt) {
   const Index n = points_.size();
-  auto* F = points_.view<Mat3>("F");
-  const auto* L = points_.view<Mat3>("L");
-  auto* stress = points_.view<Mat3>("stress");
-  auto* vol = points_.real("volume");
-  const auto* vol0 = points_.real("volume0");
-  F_old_.resize(n);
-  stress_old_.resize(n);
-  volume_old_.resize(n);
-  std::atomic<Index> bad{n};
-  for_each(0, n, [&](Index p) {
-    F_old_[p] = F[p];
-    stress_old_[p] = stress[p];
-    volume_old_[p] = vol[p];
-    // F_{n+1} = (I + dt L) F_n (thesis seed 000 eq. 4.9).
-    F[p] = (Mat3::identity() + dt * L[p]) * F[p];
-    const double J = det(F[p]);
-    vol[p] = vol0[p] * J;
-    if (!(J > 0.0) || !all_finite(F[p])) record_min(bad, p);
-  });
-  if (bad.load() < n) fail(bad.load(), "inverted or non-finite deformation gradient (J <= 0 or NaN)");
-
-  plastic_density_.assign(n, 0.0);
+  ensure_material_groups();
+  std::atomic<Index> bad_stress{n};
   for (size_t m = 0; m < materials_.size(); ++m) {
     MaterialBatch b;
     b.points = material_points_[m].data();
     b.count = static_cast<Index>(material_points_[m].size());
     if (b.count == 0) continue;
-    b.F_old = F_old_.data();
-    b.F_new = F;
-    b.L = L;
+    b.F_old = nullptr;  // recovered from F_new and L inside the adapter
+    b.F_new = F_;
+    b.L = L_;
     b.R = points_.view<Mat3>("R");
-    b.stress = stress;
-    b.plastic_work = plastic_density_.data();
+    b.stress = points_.view<Mat3>("stress");
     b.store = &points_;
     b.dt = dt;
+    // Energy: dE = dt <V> <sigma> : D (trapezoidal stress power); plastic dissipation from the model.
+    b.volume0 = vol0_;
+    b.internal_energy = points_.real("internal_energy");
+    b.plastic_energy = points_.real("plastic_work");
+    b.first_bad = &bad_stress;
     materials_[m]->update(b);
   }
-  // Energy: dE = dt <V> <sigma> : D (trapezoidal stress power); plastic dissipation from the model.
-  auto* eint = points_.real("internal_energy");
-  auto* wp = points_.real("plastic_work");
-  std::atomic<Index> bad_stress{n};
-  for_each(0, n, [&](Index p) {
-    if (!all_finite(stress[p])) record_min(bad_stress, p);
-    const Mat3 D = sym(L[p]);
-    const double Vm = 0.5 * (volume_old_[p] + vol[p]);
-    eint[p] += dt * Vm * ddot(0.5 * (stress_old_[p] + stress[p]), D);
-    wp[p] += plastic_density_[p] * vol[p];
-  });
   if (bad_stress.load() < n) fail(bad_stress.load(), "non-finite stress after the material update");
 }
 
 void MpmSolver::handle_exits() {
   const Index n = points_.size();
+  if (first_out_ >= n) return;
+  if (scenario_.simulation.on_particle_exit != "delete")
+    fail(first_out_, "left the grid box (set simulation.on_particle_exit: delete to remove such particles)");
   const auto* x = points_.view<Vec3>("x");
   std::vector<char> keep(n, 1);
-  std::atomic<Index> first{n};
-  for_each(0, n, [&](Index p) {
+  for (Index p = 0; p < n; ++p)
     for (int a = 0; a < dim_; ++a)
-      if (!(x[p][a] >= box_lower_[a] && x[p][a] <= box_upper_[a])) {
-        keep[p] = 0;
-        record_min(first, p);
-      }
-  });
-  if (first.load() == n) return;
-  if (scenario_.simulation.on_particle_exit != "delete")
-    fail(first.load(), "left the grid box (set simulation.on_particle_exit: delete to remove such particles)");
+      if (!(x[p][a] >= box_lower_[a] && x[p][a] <= box_upper_[a])) keep[p] = 0;
   const auto* v = points_.view<Vec3>("v");
   const auto* mass = points_.real("mass");
   const auto* eint = points_.real("internal_energy");
@@ -565,6 +569,7 @@ void MpmSolver::handle_exits() {
     removed_energy_ += 0.5 * mass[p] * dot(v[p], v[p]) + eint[p];
   }
   points_.compact(keep);
+  groups_dirty_ = true;
 }
 
 void MpmSolver::fail(Index p, const std::string& what) const {
@@ -587,6 +592,7 @@ void MpmSolver::fail(Index p, const std::string& what) const {
 
 template <int Dim, ShapeKind K>
 void MpmSolver::step_impl(double dt) {
+  bind_fields();
   build_slabs();
   compute_external_forces();
   particles_to_grid<Dim, K>(false);
@@ -601,15 +607,19 @@ void MpmSolver::step_impl(double dt) {
       grid_.velocity_new[i] = m > kTinyMass ? (1.0 / m) * grid_.velocity[i] : Vec3{};
     });
     apply_velocity_bcs(grid_.velocity_new, false);
-    velocity_gradient_from_grid<Dim, K>();
+    velocity_gradient_from_grid<Dim, K>(dt);
   }
-  // Positions move with the grid velocity (x += dt sum N_I v_I).
-  auto* x = points_.view<Vec3>("x");
-  for_each(0, points_.size(), [&](Index p) { x[p] += displacement_[p]; });
-  update_deformation_and_stress(dt);
-  double pw[1];
-  deterministic_sum<1>(0, points_.size(), [&](Index p, double* o) { o[0] += power_[p]; }, pw);
-  external_work_ += dt * comm_.sum(pw[0]);
+  if (first_bad_ < points_.size())
+    fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0 or NaN)");
+  update_stress(dt);
+}
+
+void MpmSolver::bind_fields() {
+  x_ = points_.view<Vec3>("x");
+  F_ = points_.view<Mat3>("F");
+  L_ = points_.view<Mat3>("L");
+  vol_ = points_.real("volume");
+  vol0_ = points_.real("volume0");
 }
 
 void MpmSolver::step(double dt) {

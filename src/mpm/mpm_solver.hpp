@@ -3,6 +3,7 @@
 // last and modified-USL as in Nairn, CMES 4 (2003) 649 and Buzzi et al. 2008), the solver of the
 // thesis seed 000 (ch. 5-6, run there in Uintah). One velocity field on the grid for all bodies,
 // which gives no-slip contact for free.
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -59,10 +60,14 @@ class MpmSolver final : public Solver {
   template <int Dim, ShapeKind K> void step_impl(double dt);
   template <int Dim, ShapeKind K> void particles_to_grid(bool momentum_only);
   template <int Dim, ShapeKind K> void grid_to_particles(double dt);
-  template <int Dim, ShapeKind K> void velocity_gradient_from_grid();
+  template <int Dim, ShapeKind K> void velocity_gradient_from_grid(double dt);
+  void finish_point(Index p, const Mat3& l, const Vec3& disp, double dt, std::atomic<Index>& bad,
+                    std::atomic<Index>& out);
+  void bind_fields();
+  void ensure_material_groups();
+  void update_stress(double dt);
   void update_grid(double dt);
   void apply_velocity_bcs(std::vector<Vec3>& vel, bool wall_only_inward);
-  void update_deformation_and_stress(double dt);
   void handle_exits();
   [[noreturn]] void fail(Index p, const std::string& what) const;
   int stencil_reach_now() const;
@@ -84,14 +89,20 @@ class MpmSolver final : public Solver {
   FieldStore pending_;          ///< seeded points of bodies not yet active
   std::vector<double> pending_activation_;  ///< activation time of each pending point
   std::vector<Vec3> fext_;      ///< external force on each point this step, N
-  std::vector<Mat3> F_old_;     ///< F at t_n during the stress update
-  std::vector<Mat3> stress_old_;  ///< stress at t_n (energy integration)
-  std::vector<double> volume_old_;  ///< volume at t_n, m^3
-  std::vector<double> plastic_density_;  ///< plastic dissipation over the step, J/m^3
-  std::vector<double> power_;   ///< external power on each point at mid-step, W
-  std::vector<Vec3> displacement_;  ///< dt * grid velocity at each point this step, m
+  std::vector<Vec3> displacement_;  ///< MUSL: dt * grid velocity at each point this step, m
+  bool groups_dirty_ = true;    ///< material_points_ must be rebuilt (points reordered/removed)
+  Index first_bad_ = 0, first_out_ = 0;  ///< lowest inverted / escaped point of the step (or n)
+  // Field pointers bound at the start of each step (valid until points are reordered).
+  Vec3* x_ = nullptr;
+  Mat3* F_ = nullptr;
+  Mat3* L_ = nullptr;
+  double* vol_ = nullptr;
+  const double* vol0_ = nullptr;
   std::vector<std::vector<Index>> material_points_;  ///< indices per material
   std::vector<Index> slab_start_, slab_points_;      ///< CSR lists of point indices per slab
+  std::vector<int> slab_of_point_;                   ///< scratch: slab of each point
+  std::vector<Index> slab_fill_;                     ///< scratch: fill cursor per slab
+  std::vector<Index> sort_key_, sort_start_, sort_order_;  ///< scratch of sort_by_cell
   int slab_axis_ = 2, slab_width_ = 2;
   double time_ = 0.0;
   long steps_ = 0;

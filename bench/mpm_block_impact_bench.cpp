@@ -1,0 +1,77 @@
+// Throughput of the MPM solver: a 3D J2 steel block striking a rigid wall at 200 m/s.
+// Reports particle-steps per second for 1e5 and 1e6 particles, linear and GIMP shape functions,
+// and the thread counts given by --threads (default 1 and 2). Setup is not timed.
+//   ./build/bench/mpm_block_impact_bench [--benchmark_filter=...]
+// Figures and the exact command are recorded in docs/performance.md.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <string>
+
+#include "core/parallel.hpp"
+#include "io/deck_reader.hpp"
+#include "run/simulation.hpp"
+
+namespace {
+
+std::string deck(long particles, const std::string& shape) {
+  // 8 particles per cell (2 per direction); block of nx x ny x nz cells with ny = 0.8 nx.
+  const double cells = static_cast<double>(particles) / 8.0;
+  const int nx = static_cast<int>(std::lround(std::cbrt(cells / 0.8)));
+  const int ny = static_cast<int>(std::lround(0.8 * nx));
+  const double h = 1.0e-3;
+  const double lx = nx * h, ly = ny * h;
+  char buf[2048];
+  std::snprintf(buf, sizeof buf, R"(
+simulation: {solver: mpm, dimension: 3d, end_time: 1.0, cfl: 0.3}
+materials:
+  steel: {model: j2_plasticity, density: 7850, youngs_modulus: 200.0e9, poisson_ratio: 0.29,
+          yield_stress: 350.0e6, hardening_modulus: 1.0e9}
+mpm: {shape_function: %s, update: usl, flip: 0.99, sort_every: 20}
+grid:
+  lower: [0, 0, 0]
+  upper: [%g, %g, %g]
+  cell_size: %g
+  boundary: {y_min: wall}
+bodies:
+  - name: block
+    material: steel
+    shape: {type: box, lower: [%g, %g, %g], upper: [%g, %g, %g]}
+    particles_per_cell: 2
+    velocity: [0, -200.0, 0]
+)",
+                shape.c_str(), lx + 4 * h, ly + 2 * h, lx + 4 * h, h, 2 * h, 0.0, 2 * h,
+                2 * h + lx, ly, 2 * h + lx);
+  return buf;
+}
+
+void BM_BlockImpact(benchmark::State& state, std::string shape) {
+  const long target = state.range(0);
+  const int threads = static_cast<int>(state.range(1));
+  ballista::set_threads(threads);
+  const ballista::Scenario sc = ballista::parse_deck(deck(target, shape), "bench.yaml");
+  auto solver = ballista::make_solver(sc);
+  const double n = static_cast<double>(solver->points().size());
+  // Warm-up steps: first touch of the grid and the first sort are not steady state.
+  for (int k = 0; k < 3; ++k) solver->step(solver->stable_dt());
+  double steps = 0;
+  for (auto _ : state) {
+    solver->step(solver->stable_dt());
+    steps += 1;
+  }
+  state.counters["particles"] = n;
+  state.counters["threads"] = threads;
+  state.counters["particle_steps_per_second"] =
+      benchmark::Counter(n * steps, benchmark::Counter::kIsRate);
+  state.counters["seconds_per_particle_step"] =
+      benchmark::Counter(n * steps, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(BM_BlockImpact, linear, std::string("linear"))
+    ->ArgsProduct({{100000, 1000000}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_BlockImpact, gimp, std::string("gimp"))
+    ->ArgsProduct({{100000, 1000000}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,192 @@
+#!/usr/bin/env python3
+"""Smoke checks of the shipped example decks (tests/examples/CMakeLists.txt).
+
+Two modes:
+
+  check_example.py run --ballista BIN --deck DECK --out DIR [--set K=V ...] [--probe NAME ...]
+      Runs `BIN run DECK -o DIR -q --set ...` and checks its outputs:
+        * exit status 0 and summary.json with status "completed";
+        * history.csv with a header, at least two rows, every value finite, and the probes as
+          columns;
+        * particles.xdmf parses as XML, every .h5 file it references exists, opens with h5py and
+          holds the referenced dataset with the advertised dimensions; the final output's time
+          equals the summary's end time;
+        * every deck probe and every --probe NAME is in summary.json and finite.
+
+  check_example.py typo --ballista BIN --deck DECK --out DIR --key KEY --typo TYPO
+      Copies DECK to DIR with the first `KEY:` misspelt as `TYPO:`, runs `BIN run` on it and
+      checks that it exits non-zero without creating a results folder and that stderr names the
+      deck file, the line and column of the typo, the misspelt key and the suggested key.
+
+Needs numpy and h5py (BALLISTA_PYTHON, /usr/bin/python3).
+"""
+import argparse
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+
+def fail(msg):
+    print("FAIL: " + msg, file=sys.stderr)
+    sys.exit(1)
+
+
+def check_history(path, probes):
+    if not os.path.isfile(path):
+        fail("missing " + path)
+    with open(path) as f:
+        lines = [l.rstrip("\n") for l in f if l.strip()]
+    if len(lines) < 3:
+        fail(f"{path}: expected a header and at least 2 rows, got {len(lines)} lines")
+    header = lines[0].split(",")
+    for col in ["time", "step", "kinetic_energy", "internal_energy", "total_energy", "mass"] + probes:
+        if col not in header:
+            fail(f"{path}: no column '{col}' (columns: {', '.join(header)})")
+    for i, line in enumerate(lines[1:], start=2):
+        cells = line.split(",")
+        if len(cells) != len(header):
+            fail(f"{path}:{i}: {len(cells)} values for {len(header)} columns")
+        for name, cell in zip(header, cells):
+            v = float(cell)
+            if not math.isfinite(v):
+                fail(f"{path}:{i}: column '{name}' is {cell}")
+    print(f"history.csv: {len(lines) - 1} rows, {len(header)} columns, all finite")
+
+
+def check_xdmf(out, end_time):
+    import h5py
+
+    path = os.path.join(out, "particles.xdmf")
+    if not os.path.isfile(path):
+        fail("missing " + path)
+    try:
+        root = ET.parse(path).getroot()
+    except ET.ParseError as e:
+        fail(f"{path} is not valid XML: {e}")
+    items = [d for d in root.iter("DataItem") if d.get("Format") == "HDF"]
+    if not items:
+        fail(f"{path} references no HDF5 data")
+    files = {}
+    for d in items:
+        ref = (d.text or "").strip()
+        if ":" not in ref:
+            fail(f"{path}: malformed HDF reference '{ref}'")
+        fname, dset = ref.split(":", 1)
+        h5 = os.path.join(out, fname)
+        if not os.path.isfile(h5):
+            fail(f"{path} references {fname}, which does not exist")
+        if h5 not in files:
+            try:
+                files[h5] = h5py.File(h5, "r")
+            except OSError as e:
+                fail(f"cannot open {h5}: {e}")
+        f = files[h5]
+        if dset not in f:
+            fail(f"{fname} has no dataset {dset} (referenced by particles.xdmf)")
+        dims = tuple(int(x) for x in d.get("Dimensions", "").split())
+        if dims and tuple(f[dset].shape) != dims:
+            fail(f"{fname}:{dset} has shape {f[dset].shape}, particles.xdmf says {dims}")
+    times = []
+    for h5 in sorted(files):
+        times.append(float(files[h5]["time"][()]))
+    if times != sorted(times):
+        fail(f"output times are not increasing: {times}")
+    if not math.isclose(times[-1], end_time, rel_tol=1e-9):
+        fail(f"last output at t = {times[-1]}, summary says end time {end_time}")
+    for f in files.values():
+        f.close()
+    print(f"particles.xdmf: {len(files)} outputs, {len(items)} datasets, all present")
+
+
+def run_mode(args):
+    if os.path.exists(args.out):
+        shutil.rmtree(args.out)
+    cmd = [args.ballista, "run", args.deck, "-o", args.out, "-q"]
+    for s in args.set or []:
+        cmd += ["--set", s]
+    print("running: " + " ".join(cmd), flush=True)
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    sys.stdout.write(p.stdout)
+    sys.stderr.write(p.stderr)
+    if p.returncode != 0:
+        fail(f"ballista exited with status {p.returncode}")
+    summary_path = os.path.join(args.out, "summary.json")
+    if not os.path.isfile(summary_path):
+        fail("missing " + summary_path)
+    with open(summary_path) as f:
+        summary = json.load(f)
+    if summary.get("status") != "completed":
+        fail(f"summary status is {summary.get('status')!r}: {summary.get('error', '')}")
+    probes = summary.get("probes", {})
+    wanted = list(dict.fromkeys(list(probes) + (args.probe or [])))
+    for name in wanted:
+        v = probes.get(name)
+        if v is None or not isinstance(v, (int, float)) or not math.isfinite(v):
+            fail(f"probe '{name}' missing or not finite in summary.json: {v!r}")
+        print(f"probe {name} = {v:.6g}")
+    if not os.path.isfile(os.path.join(args.out, "resolved.yaml")):
+        fail("missing resolved.yaml")
+    check_history(os.path.join(args.out, "history.csv"), wanted)
+    check_xdmf(args.out, summary["statistics"]["end_time"])
+    print("OK")
+
+
+def typo_mode(args):
+    os.makedirs(args.out, exist_ok=True)
+    with open(args.deck) as f:
+        lines = f.readlines()
+    pat = re.compile(r"^(\s*)" + re.escape(args.key) + r":")
+    line_no = col = None
+    for i, line in enumerate(lines):
+        m = pat.match(line)
+        if m:
+            lines[i] = line.replace(args.key + ":", args.typo + ":", 1)
+            line_no, col = i + 1, len(m.group(1)) + 1
+            break
+    if line_no is None:
+        fail(f"{args.deck} has no line starting with '{args.key}:'")
+    deck = os.path.join(args.out, "typo_deck.yaml")
+    with open(deck, "w") as f:
+        f.writelines(lines)
+    results = os.path.join(args.out, "results")
+    if os.path.exists(results):
+        shutil.rmtree(results)
+    cmd = [args.ballista, "run", deck, "-o", results, "-q"]
+    print("running: " + " ".join(cmd), flush=True)
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    print(f"exit status {p.returncode}; stderr: {p.stderr.strip()}")
+    if p.returncode == 0:
+        fail("ballista accepted a deck with an unknown key")
+    where = f"{deck}:{line_no}:{col}:"
+    for needle in [where, f"'{args.typo}'", f"did you mean '{args.key}'"]:
+        if needle not in p.stderr:
+            fail(f"stderr does not contain {needle!r}")
+    if os.path.exists(results):
+        fail("a results folder was created for an invalid deck")
+    print("OK")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest="mode", required=True)
+    r = sub.add_parser("run")
+    t = sub.add_parser("typo")
+    for p in (r, t):
+        p.add_argument("--ballista", required=True)
+        p.add_argument("--deck", required=True)
+        p.add_argument("--out", required=True)
+    r.add_argument("--set", action="append", help="deck override key.path=value (repeatable)")
+    r.add_argument("--probe", action="append", help="probe that must be present and finite")
+    t.add_argument("--key", required=True, help="key to misspell (its first occurrence)")
+    t.add_argument("--typo", required=True, help="the misspelling")
+    args = ap.parse_args()
+    run_mode(args) if args.mode == "run" else typo_mode(args)
+
+
+if __name__ == "__main__":
+    main()

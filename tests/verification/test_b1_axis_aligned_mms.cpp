@@ -1,0 +1,90 @@
+// B1: axis-aligned displacement manufactured solution (Wallstedt & Guilkey, J. Comput. Phys. 227
+// (2008) 9628; CATALOGUE B1; examples/axis_aligned_mms.yaml). A unit cube of compressible
+// neo-Hookean material starts on the manufactured solution (displaced by u(X, 0), with its velocity,
+// F and stress) and is driven by the manufactured body force; every particle must follow
+// x(X, t) = X + u(X, t). The test measures the displacement error at t = 0.02 on three grids and
+// asserts second-order-like convergence (docs/validation.md, "B1").
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "analysis/mms_axis_aligned.hpp"
+#include "verification/verification_support.hpp"
+
+using namespace ballista;
+using namespace ballista::verification;
+
+namespace {
+
+struct MmsError {
+  double l2 = 0.0;    ///< RMS over particles of |x_p - (X_p + u(X_p, t))|, m
+  double linf = 0.0;  ///< max over particles, m
+  long particles = 0;
+  long steps = 0;
+};
+
+/// Runs the example deck at `cell_size` to its end time and measures the displacement error
+/// against the analytic u of src/analysis/mms_axis_aligned.hpp at the reference positions "x0".
+MmsError run_mms(double cell_size) {
+  const Scenario sc = load_example("axis_aligned_mms.yaml", {set_number("grid.cell_size", cell_size)});
+  auto solver = make_solver(sc);
+  advance(*solver, sc.simulation.end_time, sc.output.interval);
+  const FieldStore& pts = solver->points();
+  const Vec3* x = pts.view<Vec3>("x");
+  const Vec3* X = pts.view<Vec3>("x0");
+  const mms::AxisAligned exact;
+  const double t = solver->time();
+  MmsError e;
+  double sum = 0.0;
+  for (Index p = 0; p < pts.size(); ++p) {
+    const double d = norm(x[p] - (X[p] + exact.displacement(X[p], t)));
+    sum += d * d;
+    e.linf = std::max(e.linf, d);
+  }
+  e.particles = static_cast<long>(pts.size());
+  e.l2 = std::sqrt(sum / static_cast<double>(pts.size()));
+  e.steps = solver->steps();
+  return e;
+}
+
+}  // namespace
+
+TEST(B1AxisAlignedMms, DisplacementErrorConvergesAtSecondOrder) {
+  // Cell sizes 1/4, 1/8, 1/16 (2 particles per cell per direction: 512 ... 32768 particles; about
+  // 6 s on 2 cores in total). The deck's full size (1/32) is left to manual runs.
+  const std::vector<double> h = {0.25, 0.125, 0.0625};
+  std::vector<MmsError> err;
+  std::printf("B1 axis-aligned MMS, t = 0.02, GIMP, USL, FLIP:\n");
+  std::printf("  %10s %10s %8s %14s %14s %8s\n", "cell_size", "particles", "steps", "L2 [m]", "Linf [m]", "order");
+  for (size_t k = 0; k < h.size(); ++k) {
+    err.push_back(run_mms(h[k]));
+    const double order = k ? observed_order(err[k - 1].l2, err[k].l2) : NAN;
+    std::printf("  %10.5g %10ld %8ld %14.6e %14.6e %8.3f\n", h[k], err[k].particles, err[k].steps,
+                err[k].l2, err[k].linf, order);
+    report("L2_h" + std::to_string(k), err[k].l2);
+    report("Linf_h" + std::to_string(k), err[k].linf);
+  }
+  const double order_coarse = observed_order(err[0].l2, err[1].l2);
+  const double order_fine = observed_order(err[1].l2, err[2].l2);
+  const double order_linf = observed_order(err[1].linf, err[2].linf);
+  report("order_L2_coarse_pair", order_coarse);
+  report("order_L2_fine_pair", order_fine);
+  report("order_Linf_fine_pair", order_linf);
+
+  // The error must fall monotonically under refinement.
+  EXPECT_LT(err[1].l2, err[0].l2);
+  EXPECT_LT(err[2].l2, err[1].l2);
+  // Order: GIMP with a smooth solution and pure FLIP converges at second order in space
+  // (Wallstedt & Guilkey 2008 report ~2 for GIMP on this problem; the time error, first order in
+  // dt but with CFL 0.2 and only ~1 wave period, stays below the spatial error here). Measured
+  // 1.73 on the coarse pair (pre-asymptotic: 4 cells per half-wave) and 1.88 on the fine pair.
+  // 1.5 sits between first order (a broken stress divergence or boundary treatment) and the
+  // measured rate with a margin for round-off-free but resolution-dependent noise.
+  EXPECT_GE(order_fine, 1.5);
+  // Regression guard on the absolute level: measured 2.69e-3 at h = 1/16 (and matching the lead's
+  // independent `ballista run` + h5py measurement 0.00269); 4e-3 allows ~50 % for deliberate
+  // changes of the time-step rule before someone has to look.
+  EXPECT_LT(err[2].l2, 4.0e-3);
+}

@@ -1,0 +1,209 @@
+#pragma once
+// Shared helpers of the verification tests (tests/verification/*.cpp): load a shipped example deck
+// with overrides, advance a solver exactly as `ballista run` does, temporary result folders,
+// history.csv reading, convergence orders and reporting (stdout + gtest XML properties).
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/solver.hpp"
+#include "io/deck_reader.hpp"
+#include "materials/elastic_constants.hpp"
+#include "run/simulation.hpp"
+
+namespace ballista::verification {
+
+/// Path of a shipped deck, examples/<name>.
+inline std::string example_path(const std::string& name) {
+  return (std::filesystem::path(BALLISTA_SOURCE_DIR) / "examples" / name).string();
+}
+
+/// Reads examples/<name> with --set style overrides.
+inline Scenario load_example(const std::string& name, const std::vector<std::string>& overrides = {}) {
+  return read_deck(example_path(name), overrides);
+}
+
+/// "key=value" with the value printed to full precision.
+inline std::string set_number(const std::string& key, double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", value);
+  return key + "=" + buf;
+}
+
+/// Advances the solver to `end` with the time-step choice of run_simulation (src/run/simulation.cpp):
+/// dt = stable_dt(), shortened to land exactly on every multiple of `interval` (the deck's
+/// output.interval; 0 = none) and on `end`. Landing on the same times as `ballista run` makes the
+/// numbers below reproducible with the command line.
+inline void advance(Solver& solver, double end, double interval = 0.0) {
+  const double iv = interval > 0 ? interval : end;
+  double next = iv;
+  while (solver.time() < end * (1.0 - 1e-12)) {
+    double dt = solver.stable_dt();
+    if (!(dt > 0.0) || !std::isfinite(dt)) throw std::runtime_error("time step collapsed");
+    dt = std::min({dt, end - solver.time(), next - solver.time()});
+    solver.step(dt);
+    if (solver.time() >= next * (1.0 - 1e-12)) next = std::min(next + iv, end);
+  }
+}
+
+/// A fresh folder under the system temp directory, removed at scope exit (kept if the environment
+/// variable BALLISTA_KEEP_TEST_OUTPUT is set, to inspect the results).
+class TempDir {
+ public:
+  explicit TempDir(const std::string& tag) {
+    static std::atomic<int> counter{0};
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = "ballista_ver_" + tag + "_" + std::to_string(::getpid()) + "_" +
+                       std::to_string(counter++);
+    if (info) name += std::string("_") + info->name();
+    path_ = std::filesystem::temp_directory_path() / name;
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    if (std::getenv("BALLISTA_KEEP_TEST_OUTPUT")) {
+      std::printf("kept test output in %s\n", path_.string().c_str());
+      return;
+    }
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  std::string str() const { return path_.string(); }
+  std::filesystem::path path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+/// Runs the scenario with the real driver (run_simulation) into `dir`, quietly.
+inline RunResult run_into(const Scenario& sc, const std::string& dir, int threads = 0) {
+  RunOptions opt;
+  opt.out_dir = dir;
+  opt.progress = false;
+  opt.threads = threads;
+  return run_simulation(sc, opt);
+}
+
+/// history.csv as columns (name -> values in row order).
+struct History {
+  std::map<std::string, std::vector<double>> columns;
+  size_t rows = 0;
+  const std::vector<double>& operator[](const std::string& name) const {
+    auto it = columns.find(name);
+    if (it == columns.end()) throw std::runtime_error("history.csv has no column '" + name + "'");
+    return it->second;
+  }
+};
+
+inline History read_history(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open " + path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  {
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) names.push_back(cell);
+  }
+  History h;
+  for (const auto& n : names) h.columns[n];
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    std::stringstream ss(line);
+    std::string cell;
+    size_t k = 0;
+    while (std::getline(ss, cell, ',') && k < names.size()) h.columns[names[k++]].push_back(std::strtod(cell.c_str(), nullptr));
+    if (k != names.size()) throw std::runtime_error("short row in " + path);
+    ++h.rows;
+  }
+  return h;
+}
+
+/// Observed order of convergence from errors at sizes h and h / ratio.
+inline double observed_order(double e_coarse, double e_fine, double ratio = 2.0) {
+  return std::log(e_coarse / e_fine) / std::log(ratio);
+}
+
+/// Prints "name = value" to stdout (visible with ctest -V / --output-on-failure) and records it
+/// as a property of the current test (in the gtest XML report).
+inline void report(const std::string& name, double value) {
+  std::printf("  %-40s = %.6g\n", name.c_str(), value);
+  std::fflush(stdout);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", value);
+  ::testing::Test::RecordProperty(name, buf);
+}
+
+// ---------------------------------------------------------------------------------------------
+// B3 thick-walled cylinder (test_b3_thick_cylinder.cpp, slow_b3_thick_cylinder_sweep.cpp).
+
+/// Plane-strain Lame solution for a tube with inner radius a (traction free) and outer radius b
+/// under external pressure P: u_r(r) = -(1 + nu) P b^2 / (E (b^2 - a^2)) ((1 - 2 nu) r + a^2 / r)
+/// (derivation in docs/validation.md, B3).
+inline double lame_ur(double r, double a, double b, double P, double E, double nu) {
+  return -(1.0 + nu) * P * b * b / (E * (b * b - a * a)) * ((1.0 - 2.0 * nu) * r + a * a / r);
+}
+
+struct CylinderError {
+  double rel_l2 = 0.0;   ///< sqrt(sum (u_s - u_e)^2 / sum u_e^2) over particles
+  double rms = 0.0;      ///< thesis eq. 6.4: sqrt(sum (u_s - u_e)^2 / N), m
+  double max_rel = 0.0;  ///< max |u_s - u_e| / max |u_e|
+  double ke_over_ie = 0.0;  ///< kinetic / internal energy at the end (settling check)
+  double nu = 0.0, E = 0.0;
+  long particles = 0;
+  long steps = 0;
+};
+
+/// Runs a thick-cylinder scenario (examples/thick_cylinder.yaml layout: body 0 a tube around the
+/// z axis, load 0 the outer pressure, held at its final value) to its end time and compares the
+/// radial displacement u_r = (x - x0) . r_hat with lame_ur at the reference radius |x0| (the
+/// strains are ~1e-4, so reference and current radius differ by far less than the error).
+inline CylinderError run_thick_cylinder(const Scenario& sc) {
+  auto solver = make_solver(sc);
+  advance(*solver, sc.simulation.end_time, sc.output.interval);
+  const ElasticConstants ec = elastic_constants_from(sc.materials.at(0).params);
+  const double K = ec.bulk, G = ec.shear;
+  CylinderError e;
+  e.E = 9.0 * K * G / (3.0 * K + G);
+  e.nu = (3.0 * K - 2.0 * G) / (2.0 * (3.0 * K + G));
+  const double a = sc.bodies.at(0).shape.inner_radius, b = sc.bodies.at(0).shape.radius;
+  const double P = sc.loads.at(0).pressure * sc.loads.at(0).curve.at(solver->time());
+  const FieldStore& pts = solver->points();
+  const Vec3* x = pts.view<Vec3>("x");
+  const Vec3* X = pts.view<Vec3>("x0");
+  double num = 0.0, den = 0.0, maxerr = 0.0, maxex = 0.0;
+  for (Index p = 0; p < pts.size(); ++p) {
+    const double r = std::hypot(X[p][0], X[p][1]);
+    const double us = ((x[p][0] - X[p][0]) * X[p][0] + (x[p][1] - X[p][1]) * X[p][1]) / r;
+    const double ue = lame_ur(r, a, b, P, e.E, e.nu);
+    num += (us - ue) * (us - ue);
+    den += ue * ue;
+    maxerr = std::max(maxerr, std::abs(us - ue));
+    maxex = std::max(maxex, std::abs(ue));
+  }
+  e.particles = static_cast<long>(pts.size());
+  e.steps = solver->steps();
+  e.rel_l2 = std::sqrt(num / den);
+  e.rms = std::sqrt(num / static_cast<double>(pts.size()));
+  e.max_rel = maxerr / maxex;
+  const EnergyTotals en = solver->energies();
+  e.ke_over_ie = en.kinetic / en.internal;
+  return e;
+}
+
+}  // namespace ballista::verification
