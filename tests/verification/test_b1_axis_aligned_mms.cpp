@@ -10,50 +10,14 @@
 
 #include <gtest/gtest.h>
 
-#include "analysis/mms_axis_aligned.hpp"
 #include "verification/verification_support.hpp"
 
 using namespace ballista;
 using namespace ballista::verification;
 
-namespace {
-
-struct MmsError {
-  double l2 = 0.0;    ///< RMS over particles of |x_p - (X_p + u(X_p, t))|, m
-  double linf = 0.0;  ///< max over particles, m
-  long particles = 0;
-  long steps = 0;
-};
-
-/// Runs the example deck at `cell_size` to its end time and measures the displacement error
-/// against the analytic u of src/analysis/mms_axis_aligned.hpp at the reference positions "x0".
-MmsError run_mms(double cell_size) {
-  const Scenario sc = load_example("axis_aligned_mms.yaml", {set_number("grid.cell_size", cell_size)});
-  auto solver = make_solver(sc);
-  advance(*solver, sc.simulation.end_time, sc.output.interval);
-  const FieldStore& pts = solver->points();
-  const Vec3* x = pts.view<Vec3>("x");
-  const Vec3* X = pts.view<Vec3>("x0");
-  const mms::AxisAligned exact;
-  const double t = solver->time();
-  MmsError e;
-  double sum = 0.0;
-  for (Index p = 0; p < pts.size(); ++p) {
-    const double d = norm(x[p] - (X[p] + exact.displacement(X[p], t)));
-    sum += d * d;
-    e.linf = std::max(e.linf, d);
-  }
-  e.particles = static_cast<long>(pts.size());
-  e.l2 = std::sqrt(sum / static_cast<double>(pts.size()));
-  e.steps = solver->steps();
-  return e;
-}
-
-}  // namespace
-
 TEST(B1AxisAlignedMms, DisplacementErrorConvergesAtSecondOrder) {
   // Cell sizes 1/4, 1/8, 1/16 (2 particles per cell per direction: 512 ... 32768 particles; about
-  // 6 s on 2 cores in total). The deck's full size (1/32) is left to manual runs.
+  // 6 s on 2 cores in total). The deck's full size, 1/32, is added in slow_b1_axis_aligned_mms.cpp.
   const std::vector<double> h = {0.25, 0.125, 0.0625};
   std::vector<MmsError> err;
   std::printf("B1 axis-aligned MMS, t = 0.02, GIMP, USL, FLIP:\n");

@@ -1,0 +1,67 @@
+// Cost of one constitutive update per point through the material adapter (polar decomposition,
+// unrotated frame, kernel, energy bookkeeping), the path every solver takes. Reports nanoseconds
+// per point update for elastic and plastic J2 steps and for the elastic models.
+//   ./build/bench/material_update_bench
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "core/parallel.hpp"
+#include "materials/material.hpp"
+
+namespace {
+
+using namespace ballista;
+
+void BM_MaterialUpdate(benchmark::State& state, std::string model, double strain_rate) {
+  set_threads(1);
+  const Index n = 100000;
+  ParamValues v{{"density", 8930}, {"youngs_modulus", 117e9}, {"poisson_ratio", 0.35},
+                {"yield_stress", 400e6}, {"hardening_modulus", 100e6}};
+  if (model != "j2_plasticity") v = {{"density", 8930}, {"youngs_modulus", 117e9}, {"poisson_ratio", 0.35}};
+  auto mat = find_material(model)->create("m", v);
+  FieldStore s;
+  for (auto name : {"F", "R", "L", "stress"}) s.add_real(name, 9, "1");
+  s.add_real("volume0", 1, "m^3", true, 1e-9);
+  s.add_real("internal_energy", 1, "J");
+  s.add_real("plastic_work", 1, "J");
+  mat->declare_fields(s);
+  s.resize(n);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Index> pts(n);
+  const double dt = 1e-8;
+  for (Index p = 0; p < n; ++p) {
+    pts[p] = p;
+    Mat3 L;
+    for (double& a : L.a) a = strain_rate * u(rng);
+    s.view<Mat3>("L")[p] = L;
+    s.view<Mat3>("F")[p] = Mat3::identity() + dt * L;
+    s.view<Mat3>("R")[p] = Mat3::identity();
+  }
+  MaterialBatch b;
+  b.points = pts.data();
+  b.count = n;
+  b.F_new = s.view<Mat3>("F");
+  b.L = s.view<Mat3>("L");
+  b.R = s.view<Mat3>("R");
+  b.stress = s.view<Mat3>("stress");
+  b.store = &s;
+  b.dt = dt;
+  b.volume0 = s.real("volume0");
+  b.internal_energy = s.real("internal_energy");
+  b.plastic_energy = s.real("plastic_work");
+  for (auto _ : state) mat->update(b);
+  // items_per_second = point updates per second; ns per point update = 1e9 / items_per_second.
+  state.SetItemsProcessed(static_cast<std::int64_t>(n) * state.iterations());
+}
+
+}  // namespace
+
+// 1e3 1/s keeps J2 elastic over the benchmark; 1e7 1/s yields on the first steps.
+BENCHMARK_CAPTURE(BM_MaterialUpdate, j2_elastic_steps, std::string("j2_plasticity"), 1e3)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_MaterialUpdate, j2_plastic_steps, std::string("j2_plasticity"), 1e7)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_MaterialUpdate, linear_elastic, std::string("linear_elastic"), 1e3)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_MaterialUpdate, neo_hookean, std::string("neo_hookean"), 1e3)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,200 @@
+// Probes on hand-made point sets whose answers follow from the definitions in
+// analysis/probes.hpp: domains are x_p + F_p (+-a, +-b, +-c) with (a, b, c) = half_size.
+// All inputs are short binary fractions, so most expected values are exact.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "analysis/probes.hpp"
+#include "core/error.hpp"
+
+using namespace ballista;
+
+namespace {
+
+struct Pt {
+  int body;
+  Vec3 x;
+  Vec3 half;
+  Mat3 F = Mat3::identity();
+  double eqps = 0.0;
+};
+
+FieldStore make(const std::vector<Pt>& pts) {
+  FieldStore s;
+  s.add_int("body", 1, "1");
+  s.add_real("x", 3, "m");
+  s.add_real("F", 9, "1");
+  s.add_real("half_size", 3, "m");
+  s.add_real("eqps", 1, "1");
+  s.add_real("v", 3, "m/s");
+  s.resize(static_cast<Index>(pts.size()));
+  for (size_t i = 0; i < pts.size(); ++i) {
+    s.ints("body")[i] = pts[i].body;
+    s.view<Vec3>("x")[i] = pts[i].x;
+    s.view<Mat3>("F")[i] = pts[i].F;
+    s.view<Vec3>("half_size")[i] = pts[i].half;
+    s.real("eqps")[i] = pts[i].eqps;
+  }
+  return s;
+}
+
+ProbeSpec probe(const std::string& type, int axis = 1) {
+  ProbeSpec p;
+  p.name = type;
+  p.type = type;
+  p.axis = axis;
+  return p;
+}
+
+double eval(const ProbeSpec& p, int body, const FieldStore& s, Dimension dim = Dimension::ThreeD,
+            const EnergyTotals& e = {}) {
+  return evaluate_probe(p, body, s, e, dim, Communicator{});
+}
+
+Mat3 shear_xy(double g) {  // x += g y
+  Mat3 F = Mat3::identity();
+  F(0, 1) = g;
+  return F;
+}
+
+}  // namespace
+
+TEST(Probes, ExtentUsesTheDeformedDomainCorners) {
+  Mat3 F = shear_xy(0.5);
+  F(1, 1) = 2.0;
+  // Particle 0: x-extent of its domain 2 (a + 0.5 b), y-extent 2 * 2 b, z-extent 2 c.
+  const FieldStore s = make({{0, {{1.0, 2.0, 3.0}}, {{0.125, 0.25, 0.375}}, F},
+                             {1, {{5.0, 0.0, 0.0}}, {{0.125, 0.125, 0.125}}}});
+  EXPECT_DOUBLE_EQ(eval(probe("extent", 0), 0, s), 2 * (0.125 + 0.5 * 0.25));
+  EXPECT_DOUBLE_EQ(eval(probe("extent", 1), 0, s), 2 * 2 * 0.25);
+  EXPECT_DOUBLE_EQ(eval(probe("extent", 2), 0, s), 2 * 0.375);
+  // All bodies: from the lowest corner of particle 0 to the highest of particle 1.
+  EXPECT_DOUBLE_EQ(eval(probe("extent", 0), -1, s), (5.0 + 0.125) - (1.0 - 0.125 - 0.5 * 0.25));
+  EXPECT_DOUBLE_EQ(eval(probe("extent", 1), -1, s), (2.0 + 0.5) - (0.0 - 0.125));
+  // Body 1 alone.
+  EXPECT_DOUBLE_EQ(eval(probe("extent", 0), 1, s), 0.25);
+}
+
+TEST(Probes, ExtentOfARotatedDomain) {
+  // 90 degrees about z: the domain's x-extent is 2b, its y-extent 2a.
+  const Mat3 R = rotation_about({{0.0, 0.0, 1.0}}, std::numbers::pi / 2);
+  const FieldStore s = make({{0, {{0.0, 0.0, 0.0}}, {{0.125, 0.5, 0.25}}, R}});
+  EXPECT_NEAR(eval(probe("extent", 0), 0, s), 1.0, 1e-15);
+  EXPECT_NEAR(eval(probe("extent", 1), 0, s), 0.25, 1e-15);
+}
+
+TEST(Probes, TwoDimensionalDomainsHaveFourCornersInThePlane) {
+  // In 2D the third half-size and F's out-of-plane column must not enter the in-plane extent.
+  Mat3 F = Mat3::identity();
+  F(0, 2) = 1.0;
+  const FieldStore s = make({{0, {{1.0, 1.0, 0.0}}, {{0.25, 0.125, 7.0}}, F}});
+  EXPECT_DOUBLE_EQ(eval(probe("extent", 0), 0, s, Dimension::PlaneStrain), 0.5);
+  EXPECT_DOUBLE_EQ(eval(probe("extent", 1), 0, s, Dimension::Axisymmetric), 0.25);
+}
+
+TEST(Probes, MaxRadiusAroundAnAxisNearAPlane) {
+  ProbeSpec p = probe("max_radius", 1);  // axis y
+  p.plane = 0.0;
+  p.distance = 0.0625;
+  const FieldStore s = make({
+      {0, {{0.5, 0.03125, 0.0}}, {{0.125, 0.125, 0.125}}},   // corners reach r^2 = 0.625^2 + 0.125^2
+      {0, {{0.25, -0.0625, 0.25}}, {{0.125, 0.125, 0.125}}},  // exactly at the distance: counts; r = 0.375 sqrt 2
+      {0, {{2.0, 0.25, 0.0}}, {{0.125, 0.125, 0.125}}},      // too far from the plane: ignored
+      {1, {{4.0, 0.0, 0.0}}, {{0.125, 0.125, 0.125}}},       // other body
+  });
+  EXPECT_DOUBLE_EQ(eval(p, 0, s), std::sqrt(0.625 * 0.625 + 0.125 * 0.125));
+  EXPECT_DOUBLE_EQ(eval(p, -1, s), std::sqrt(4.125 * 4.125 + 0.125 * 0.125));
+  // Axis through another point: centre (0.5, *, 0) makes particle 1 the farthest of body 0.
+  p.center = {{0.5, 123.0, 0.0}};  // the position along the axis does not matter
+  EXPECT_DOUBLE_EQ(eval(p, 0, s), std::sqrt(0.375 * 0.375 + 0.375 * 0.375));
+  // A plane elsewhere: no particle of body 0 qualifies -> NaN.
+  p.plane = 10.0;
+  EXPECT_TRUE(std::isnan(eval(p, 0, s)));
+}
+
+TEST(Probes, MaxRadiusInTwoDimensions) {
+  // Axisymmetric (axis y): the radius is x. Plane strain with axis x: the distance is |y - c_y|.
+  ProbeSpec p = probe("max_radius", 1);
+  p.distance = 0.5;
+  const FieldStore s = make({{0, {{0.75, 0.25, 0.0}}, {{0.125, 0.125, 0.0}}},
+                             {0, {{0.25, -0.375, 0.0}}, {{0.125, 0.125, 0.0}}}});
+  EXPECT_DOUBLE_EQ(eval(p, 0, s, Dimension::Axisymmetric), 0.875);
+  ProbeSpec q = probe("max_radius", 0);
+  q.distance = 1.0;
+  q.center = {{0.0, 0.125, 0.0}};
+  EXPECT_DOUBLE_EQ(eval(q, 0, s, Dimension::PlaneStrain), 0.625);  // |-0.375 - 0.125 - 0.125|
+}
+
+TEST(Probes, FieldMaxOverABody) {
+  Pt a{0, {{0.0, 0.0, 0.0}}, {{0.1, 0.1, 0.1}}};
+  Pt b = a, c = a;
+  a.eqps = -3.0;
+  b.eqps = -2.0;  // the largest of body 0 is negative: must not be clamped at 0
+  c.body = 1;
+  c.eqps = 5.0;
+  const FieldStore s = make({a, b, c});
+  ProbeSpec p = probe("field_max");
+  p.field = "eqps";
+  EXPECT_EQ(eval(p, 0, s), -2.0);
+  EXPECT_EQ(eval(p, 1, s), 5.0);
+  EXPECT_EQ(eval(p, -1, s), 5.0);
+  EXPECT_TRUE(std::isnan(eval(p, 2, s)));  // a body with no particles
+}
+
+TEST(Probes, NothingQualifiesGivesNan) {
+  const FieldStore empty = make({});
+  EXPECT_TRUE(std::isnan(eval(probe("extent", 0), -1, empty)));
+  ProbeSpec r = probe("max_radius", 2);
+  r.distance = 1.0;
+  EXPECT_TRUE(std::isnan(eval(r, -1, empty)));
+  ProbeSpec f = probe("field_max");
+  f.field = "eqps";
+  EXPECT_TRUE(std::isnan(eval(f, -1, empty)));
+  const FieldStore one = make({{0, {{0.0, 0.0, 0.0}}, {{0.1, 0.1, 0.1}}}});
+  EXPECT_TRUE(std::isnan(eval(probe("extent", 0), 3, one)));
+}
+
+TEST(Probes, EnergyReturnsTheRequestedTotal) {
+  EnergyTotals e;
+  e.kinetic = 1.5;
+  e.internal = 2.25;
+  e.plastic = 0.5;
+  e.external = 4.0;
+  e.removed_energy = 0.125;
+  const FieldStore s = make({});
+  ProbeSpec p = probe("energy");
+  const std::pair<const char*, double> expected[] = {
+      {"kinetic", 1.5}, {"internal", 2.25}, {"plastic", 0.5}, {"external", 4.0},
+      {"total", 1.5 + 2.25 + 0.125 - 4.0}};  // kinetic + internal + removed - external
+  for (const auto& [field, value] : expected) {
+    p.field = field;
+    EXPECT_EQ(eval(p, -1, s, Dimension::ThreeD, e), value) << field;
+  }
+}
+
+TEST(Probes, ValidationRejectsNonScalarOrMissingFields) {
+  const FieldStore s = make({});
+  ProbeSpec p = probe("field_max");
+  p.field = "eqps";
+  EXPECT_NO_THROW(validate_probes({p}, s));
+  p.field = "v";  // a vector
+  EXPECT_THROW(validate_probes({p}, s), DeckError);
+  p.field = "body";  // an integer field
+  EXPECT_THROW(validate_probes({p}, s), DeckError);
+  p.field = "no_such_field";
+  try {
+    validate_probes({p}, s);
+    FAIL() << "expected a DeckError";
+  } catch (const DeckError& e) {
+    EXPECT_NE(std::string(e.what()).find("eqps"), std::string::npos) << "lists the scalar fields: " << e.what();
+  }
+  // Other probe types do not need a field.
+  EXPECT_NO_THROW(validate_probes({probe("extent")}, s));
+}
+
+TEST(Probes, UnknownTypeIsAnError) {
+  const FieldStore s = make({{0, {{0.0, 0.0, 0.0}}, {{0.1, 0.1, 0.1}}}});
+  EXPECT_THROW(eval(probe("median"), -1, s), Error);
+}

@@ -1,0 +1,33 @@
+// B1 axis-aligned MMS, slow part: the three CI resolutions plus the deck's full size, cell_size
+// 1/32 (262,144 particles, ~440 steps, ~1.5 min on 2 cores). See test_b1_axis_aligned_mms.cpp
+// for the problem and docs/validation.md ("B1") for the numbers.
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "verification/verification_support.hpp"
+
+using namespace ballista;
+using namespace ballista::verification;
+
+TEST(B1AxisAlignedMmsSlow, FourResolutions) {
+  const std::vector<double> h = {0.25, 0.125, 0.0625, 0.03125};
+  std::vector<MmsError> err;
+  std::printf("B1 axis-aligned MMS, t = 0.02, GIMP, USL, FLIP:\n");
+  std::printf("  %10s %10s %8s %14s %14s %8s %8s\n", "cell_size", "particles", "steps", "L2 [m]",
+              "Linf [m]", "order", "ord.Linf");
+  for (size_t k = 0; k < h.size(); ++k) {
+    err.push_back(run_mms(h[k]));
+    const double o = k ? observed_order(err[k - 1].l2, err[k].l2) : NAN;
+    const double oi = k ? observed_order(err[k - 1].linf, err[k].linf) : NAN;
+    std::printf("  %10.5g %10ld %8ld %14.6e %14.6e %8.3f %8.3f\n", h[k], err[k].particles, err[k].steps,
+                err[k].l2, err[k].linf, o, oi);
+    report("L2_h" + std::to_string(k), err[k].l2);
+    if (k) report("order_L2_" + std::to_string(k - 1) + "_" + std::to_string(k), o);
+  }
+  for (size_t k = 1; k < h.size(); ++k) EXPECT_LT(err[k].l2, err[k - 1].l2);
+  // Same criterion as the CI test, on the finest pair (see test_b1_axis_aligned_mms.cpp).
+  EXPECT_GE(observed_order(err[2].l2, err[3].l2), 1.5);
+}
