@@ -31,9 +31,14 @@ std::string format_range(const ballista::ParamSpec& p) {
 
 void print_info() {
   std::cout << "Ballista " << BALLISTA_VERSION << "\n\nSolvers\n";
-  std::cout << "  mpm  explicit material point method (USL / modified USL, FLIP/PIC blend);\n"
-               "       dimensions 3d, plane_strain, axisymmetric; deck section `mpm:`\n"
-               "       (shape_function, update, flip, sort_every)\n";
+  std::cout << "  mpm  explicit material point method (Sulsky et al. 1994; USL / modified USL,\n"
+               "       FLIP/PIC blend); dimensions 3d, plane_strain, axisymmetric\n"
+               "      shape_function         [-] linear | gimp | cpdi | bspline3; default linear\n"
+               "      update                 [-] usl | musl; default usl\n"
+               "      flip                   [1] FLIP fraction of the velocity update (1 FLIP, 0 PIC); default 1; range 0 <= x <= 1\n"
+               "      sort_every             [steps] steps between particle sorts by cell (0 = never); default 20\n"
+               "      simulation.cfl         [1] Courant number of dt = cfl h / max(c + |v|); default 0.3; range 0 < x <= 1\n"
+               "      simulation.damping     [1/s] grid damping a - c v (dynamic relaxation); default 0\n";
   std::cout << "\nShape functions (mpm.shape_function)\n";
   for (const auto& n : ballista::shape_kind_names())
     std::cout << "  " << n << "  " << ballista::shape_kind_description(ballista::parse_shape_kind(n)) << "\n";
