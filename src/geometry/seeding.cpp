@@ -110,6 +110,7 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
     const Vec3& X = x0[p];
     Vec3 N;  // outward unit normal of the surface at the point
     double depth = -1.0;  // distance of the point inside the surface, m
+    double curvature_scale = 1.0;  // surface area / band-layer area at the point's depth
     if (s.type == "box") {
       static const char* names[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
       for (int f = 0; f < 2 * nd; ++f) {
@@ -122,22 +123,39 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
       Vec3 d = X - s.center;
       if (nd == 2) d[2] = 0.0;
       const double r = norm(d);
-      if (load.surface == "outer" && r > 0.0) { depth = s.radius - r; N = (1.0 / r) * d; }
+      if (load.surface == "outer" && r > 0.0) {
+        depth = s.radius - r;
+        N = (1.0 / r) * d;
+        curvature_scale = nd == 3 ? (s.radius * s.radius) / (r * r) : s.radius / r;
+      }
     } else {  // cylinder / tube: outer, inner, top, bottom
       const int a = (nd == 2 && s.axis == 2) ? -1 : s.axis;
       Vec3 d = X - s.center;
       if (a >= 0) d[a] = 0.0;
       if (nd == 2) d[2] = 0.0;  // 2D: the radius lies in the x-y plane (axisymmetric: r = x)
       const double r = norm(d);
-      if (load.surface == "outer") { depth = s.radius - r; N = (1.0 / r) * d; }
-      if (load.surface == "inner") { depth = r - s.inner_radius; N = (-1.0 / r) * d; }
+      // Curved faces (not in axisymmetric runs, where the r-z section is straight): the band at
+      // radius r represents the surface at radius R, whose area is larger by R / r.
+      const bool curved = !(dim == Dimension::Axisymmetric);
+      if (load.surface == "outer") {
+        depth = s.radius - r;
+        N = (1.0 / r) * d;
+        if (curved) curvature_scale = s.radius / r;
+      }
+      if (load.surface == "inner") {
+        depth = r - s.inner_radius;
+        N = (-1.0 / r) * d;
+        if (curved) curvature_scale = s.inner_radius / r;
+      }
       if (a >= 0 && load.surface == "top") { depth = s.center[a] + s.length - X[a]; N[a] = 1.0; }
       if (a >= 0 && load.surface == "bottom") { depth = X[a] - s.center[a]; N[a] = -1.0; }
     }
     // Band of lattice points carrying the surface: depth in [0, w) with w = dx max_i |N_i|. A
     // lattice column along the dominant normal axis then holds exactly one point of the band, so
-    // giving each point the area V0 / w makes the band's total area equal the surface's, also
-    // on curved (staircase-seeded) surfaces.
+    // giving each point the area V0 / w makes the band's total area equal the surface's for a
+    // flat surface at any inclination (staircase-seeded). On a curved surface the band point at
+    // radius r stands for surface at radius R: the area is scaled by (R/r) per curved direction,
+    // leaving an O(dx^2/R^2) lattice error.
     const double mx = std::max({std::abs(N[0]), std::abs(N[1]), std::abs(N[2])});
     const double w = dx * mx;
     if (!(depth >= -1e-12 * dx && depth < w)) continue;
@@ -145,7 +163,7 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
     // area is r_s ds at the surface radius r_s = r_p + depth N_r (the point projected onto the
     // surface along N); without this the cylindrical faces get (1 -+ depth/r) of their area.
     const double r_scale = dim == Dimension::Axisymmetric ? (X[0] + depth * N[0]) / X[0] : 1.0;
-    area[p] = (r_scale * vol0[p] / w) * N;
+    area[p] = (curvature_scale * r_scale * vol0[p] / w) * N;
     ++marked;
   }
   return marked;

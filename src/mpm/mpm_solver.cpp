@@ -609,6 +609,10 @@ void MpmSolver::step_impl(double dt) {
     apply_velocity_bcs(grid_.velocity_new, false);
     velocity_gradient_from_grid<Dim, K>(dt);
   }
+  // The step's kinematics are done: count it, so that failure messages, outputs and statistics
+  // name the step whose state they show.
+  time_ += dt;
+  ++steps_;
   if (first_bad_ < points_.size())
     fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0 or NaN)");
   update_stress(dt);
@@ -632,8 +636,6 @@ void MpmSolver::step(double dt) {
     case ShapeKind::Cpdi: three ? step_impl<3, ShapeKind::Cpdi>(dt) : step_impl<2, ShapeKind::Cpdi>(dt); break;
     case ShapeKind::BSpline3: three ? step_impl<3, ShapeKind::BSpline3>(dt) : step_impl<2, ShapeKind::BSpline3>(dt); break;
   }
-  time_ += dt;
-  ++steps_;
   handle_exits();
 }
 

@@ -64,11 +64,13 @@ void sweep(bool by_bulk) {
     EXPECT_NEAR(f.nu, nu, 1e-9);
     // Settled on the static state (see test_b3_thick_cylinder.cpp).
     EXPECT_LT(f.ke_over_ie, 1e-4) << "nu " << nu;
-    // Away from incompressibility the CI bound holds for every nu (measured <= 1.4 % at h = 0.05
-    // for nu <= 0.4, both branches).
-    if (nu <= 0.4) EXPECT_LT(f.rel_l2, 0.02) << "nu " << nu;
-    // Near incompressibility the error grows (locking): measured up to ~9 % at nu = 0.499,
-    // h = 0.05. 20 % flags a worsening (or a blow-up) without claiming more than was seen.
+    // Up to nu = 0.45 the CI bound holds on both branches (measured 0.65-1.11 % at h = 0.05).
+    if (nu <= 0.45) {
+      EXPECT_LT(f.rel_l2, 0.02) << "nu " << nu;
+    }
+    // Near incompressibility the error grows (locking): measured 3.1 % (by K) and 5.8 % (by G,
+    // order 0.24) at nu = 0.499, h = 0.05; 11 % and 6.9 % at h = 0.1. 20 % flags a worsening (or a
+    // blow-up) without claiming more than was seen.
     EXPECT_LT(f.rel_l2, 0.20) << "nu " << nu;
   }
 }

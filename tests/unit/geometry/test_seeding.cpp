@@ -211,6 +211,19 @@ TEST(Seeding, AxisymmetricVolumesArePerRadian) {
   }
 }
 
+TEST(Seeding, PlaneStrainCylinderAlongXOrYSeedsItsAxialSection) {
+  // docs/deck.md: in plane strain a cylinder with axis x or y is the rectangle of its axial
+  // section, 2R x L, wherever its centre is. Lattice-aligned here, so the area is exact.
+  for (const std::string shape : {"{type: cylinder, center: [0.25, 1.0], axis: x, radius: 0.25, length: 1.0}",
+                                  "{type: cylinder, center: [1.0, 0.25], axis: y, radius: 0.25, length: 1.0}",
+                                  "{type: tube, center: [1.0, 0.25], axis: y, radius: 0.5, inner_radius: 0.25, length: 1.0}"}) {
+    const auto s = seed(deck("plane_strain", kGrid2, "  - {name: b, material: m, particles_per_cell: 2, shape: " + shape + "}\n"));
+    EXPECT_NEAR(sum_volume(s->pts), 0.5, kSumTol) << shape;
+    const auto* x = s->pts.view<Vec3>("x");
+    for (Index p = 0; p < s->pts.size(); ++p) ASSERT_TRUE(shape_contains(s->sc.bodies[0].shape, x[p], 2)) << shape;
+  }
+}
+
 namespace {
 
 // Volume within distance d of the boundary of each curved shape: every cell (edge dx, centred at
@@ -304,8 +317,8 @@ TEST(Seeding, IdsAreUniqueAndConsecutiveAcrossBodies) {
   EXPECT_EQ(s->body_count[1], 4 * 2 * 6);
 }
 
-TEST(Seeding, BodyOutsideTheGridIsAnError) {
-  // Partly outside: only the part inside the grid is seeded (strictly inside the box).
+TEST(Seeding, BodyPartlyOutsideTheGridIsClippedToTheGrid) {
+  // Only lattice points strictly inside the grid box are seeded.
   const auto s = seed(deck("plane_strain", kGrid2,
                            "  - {name: a, material: m, particles_per_cell: 1, shape: {type: box, lower: [1.5, 0.5], upper: [2.5, 1.0]}}\n"));
   EXPECT_EQ(s->pts.size(), 4 * 4);
