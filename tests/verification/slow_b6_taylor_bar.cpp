@@ -15,7 +15,8 @@ TEST(B6TaylorBarSlow, AxisymmetricFullResolution) {
   expect_in_acceptance_bands(f);
   // Seeding exact in axisymmetry (see the CI test).
   EXPECT_NEAR(f.ke0, ke0_whole_bar(), 1e-12 * ke0_whole_bar());
-  // Wall loss, first order in h: measured 1.75 % (7.0 % and 3.5 % at 0.8 and 0.4 mm).
+  // Numerical loss (PIC blend + wall), first order in h: measured 1.75 % (7.0 % and 3.5 % at 0.8
+  // and 0.4 mm).
   EXPECT_LT(f.worst_balance, 0.05);
   EXPECT_LT(f.ke_end, 0.01 * f.ke0);
 }
@@ -27,7 +28,7 @@ TEST(B6TaylorBarSlow, ThreeDimensionalQuarterBarFullResolution) {
   // Seeded quarter disk at 0.2 mm spacing: lattice-count error +0.96 % (203 points for
   // pi 16^2 / 4 = 201.1); 2 % bounds it.
   EXPECT_NEAR(f.ke0, 0.25 * ke0_whole_bar(), 0.02 * 0.25 * ke0_whole_bar());
-  // Wall loss measured 4.0 % at 0.4 mm: inside the 5 % acceptance band.
+  // Numerical loss measured 4.0 % at 0.4 mm: inside the 5 % acceptance band.
   EXPECT_LT(f.worst_balance, 0.05);
   EXPECT_LT(f.ke_end, 0.01 * f.ke0);
 }
