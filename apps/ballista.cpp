@@ -34,7 +34,7 @@ void print_info() {
   std::cout << "  mpm  explicit material point method (Sulsky et al. 1994; USL / modified USL,\n"
                "       FLIP/PIC blend); dimensions 3d, plane_strain, axisymmetric\n"
                "      shape_function         [-] linear | gimp | cpdi | bspline3; default linear\n"
-               "      update                 [-] usl | musl; default usl\n"
+               "      update                 [-] usl | musl; default musl (robust against cell-crossing at free surfaces)\n"
                "      flip                   [1] FLIP fraction of the velocity update (1 FLIP, 0 PIC); default 1; range 0 <= x <= 1\n"
                "      sort_every             [steps] steps between particle sorts by cell (0 = never); default 20\n"
                "      simulation.cfl         [1] Courant number of dt = cfl h / max(c + |v|); default 0.3; range 0 < x <= 1\n"

@@ -28,12 +28,13 @@ Mat3 polar_rotation_higham(const Mat3& F, const Mat3& guess) {
 /// Restores orthogonality of a rotation carrying round-off. Without it a warm-started R inherits
 /// the previous step's error and the error accumulates over millions of steps. With E = R^T R - I,
 /// one Newton-Schulz step R <- R (I - E/2) turns an orthogonality error e into O(e^2) (Higham,
-/// Functions of Matrices, 2008, §8.3); it is skipped when R is already orthogonal to 1e-15.
+/// Functions of Matrices, 2008, §8.3); it is skipped while R is orthogonal to 4e-15 (the
+/// round-off of forming R^T R is a few ulps, so a tighter bound would correct every call).
 Mat3 reorthogonalise(const Mat3& R) {
   const Mat3 E = transpose_times(R, R) - Mat3::identity();
   double e = 0.0;
   for (double x : E.a) e = std::max(e, std::abs(x));
-  if (e < 1e-15) return R;
+  if (e < 4e-15) return R;
   return R * (Mat3::identity() - 0.5 * E);
 }
 

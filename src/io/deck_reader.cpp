@@ -128,7 +128,7 @@ class Reader {
     DeckNode m = root_.map("mpm", false);
     MpmSpec& mp = sc_.mpm;
     mp.shape_function = m.choice("shape_function", "linear", {"linear", "gimp", "cpdi", "bspline3"});
-    mp.update = m.choice("update", "usl", {"usl", "musl"});
+    mp.update = m.choice("update", "musl", {"usl", "musl"});
     mp.flip = m.number("flip", 1.0, NumberRange::between(0.0, 1.0));
     mp.sort_every = static_cast<int>(m.integer("sort_every", 20, 0, INT_MAX));
     m.finish();

@@ -51,7 +51,7 @@ struct SimulationSpec {
 
 struct MpmSpec {
   std::string shape_function = "linear";  ///< linear | gimp | cpdi | bspline3
-  std::string update = "usl";             ///< usl | musl
+  std::string update = "musl";            ///< usl | musl (MUSL is the robust default)
   double flip = 1.0;                      ///< FLIP fraction in [0,1]; 1 = pure FLIP, 0 = PIC
   int sort_every = 20;                    ///< steps between particle sorts by cell
 };

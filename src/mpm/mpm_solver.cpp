@@ -168,7 +168,8 @@ double MpmSolver::stable_dt() {
 
 void MpmSolver::ensure_material_groups() {
   if (!groups_dirty_) return;
-  material_points_.assign(materials_.size(), {});
+  material_points_.resize(materials_.size());
+  for (auto& list : material_points_) list.clear();  // keeps capacity: no allocation per sort
   const auto* mat = points_.ints("material");
   for (Index p = 0; p < points_.size(); ++p) material_points_[mat[p]].push_back(p);
   groups_dirty_ = false;

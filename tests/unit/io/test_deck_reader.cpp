@@ -653,7 +653,7 @@ TEST(DeckOverrides, CreateMissingSectionsAndKeys) {
   const std::string d = deck_with("mpm:\n  update: musl\n", "");
   const Scenario s = parse_deck(d, "deck.yaml", {"mpm.flip=0.5", "simulation.max_steps=100"});
   EXPECT_EQ(s.mpm.flip, 0.5);
-  EXPECT_EQ(s.mpm.update, "usl");
+  EXPECT_EQ(s.mpm.update, "musl");  // the default, filled in the section the override created
   EXPECT_EQ(s.simulation.max_steps, 100);
 
   // A required key missing from a section that only an override created.

@@ -38,7 +38,7 @@ std::string deck(const std::string& dim, const std::string& boundary, const std:
                  const std::string& sim_extra = "", const std::string& sf = "linear") {
   const bool three = dim == "3d";
   return "simulation: {dimension: " + dim + ", end_time: 1.0" + sim_extra + "}\n" +
-         "mpm: {shape_function: " + sf + "}\n" +
+         "mpm: {shape_function: " + sf + ", update: usl}\n" +
          "grid: {lower: " + (three ? "[0, 0, 0]" : "[0, 0]") + ", upper: " +
          (three ? "[0.03125, 0.03125, 0.03125]" : "[0.03125, 0.03125]") +
          ", cell_size: 0.00390625, boundary: " + boundary + "}\n" +
@@ -134,7 +134,7 @@ TEST_P(FaceCondition, HoldsAfterTheMuslRemapToo) {
   const int nd = dim == "3d" ? 3 : 2;
   const int a = f / 2;
   std::string yaml = deck(dim, std::string("{") + kFaceNames[f] + ": " + bc + "}", block_against(f, nd));
-  yaml.replace(yaml.find("mpm: {"), 6, "mpm: {update: musl, ");
+  yaml.replace(yaml.find("update: usl"), 11, "update: musl");
   auto solver = solver_for(yaml);
   const GridData& g = solver->grid();
   const int first = static_cast<int>(std::lround(-g.geom.origin[a] / kH));
