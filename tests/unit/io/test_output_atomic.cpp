@@ -8,31 +8,15 @@
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "support/test_files.hpp"
 
 namespace fs = std::filesystem;
+using ballista::test::slurp;
 using namespace ballista;
 
 namespace {
 
-/// Fresh per-test directory under the system temp directory, removed afterwards.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path = fs::temp_directory_path() /
-           ("ballista_output_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 int count_tmp(const fs::path& dir) {
   int n = 0;
@@ -44,7 +28,7 @@ int count_tmp(const fs::path& dir) {
 }  // namespace
 
 TEST(OutputAtomic, WritesAndReplacesWithoutTemporary) {
-  TempDir d;
+  ballista::test::TempDir d{"ballista_output"};
   const std::string p = (d.path / "a.txt").string();
   write_file_atomic(p, "first\n");
   EXPECT_EQ(slurp(p), "first\n");
@@ -55,12 +39,12 @@ TEST(OutputAtomic, WritesAndReplacesWithoutTemporary) {
 }
 
 TEST(OutputAtomic, FailsLoudlyOnMissingDirectory) {
-  TempDir d;
+  ballista::test::TempDir d{"ballista_output"};
   EXPECT_THROW(write_file_atomic((d.path / "no" / "such" / "file").string(), "x"), Error);
 }
 
 TEST(OutputAtomic, PathGuardCommitsOrCleansUp) {
-  TempDir d;
+  ballista::test::TempDir d{"ballista_output"};
   const std::string p = (d.path / "b.bin").string();
   {
     AtomicPath guard(p);
@@ -86,6 +70,6 @@ TEST(OutputAtomic, PathGuardCommitsOrCleansUp) {
 }
 
 TEST(OutputAtomic, CommitOfMissingTemporaryThrows) {
-  TempDir d;
+  ballista::test::TempDir d{"ballista_output"};
   EXPECT_THROW(commit_atomic((d.path / "x.tmp").string(), (d.path / "x").string()), Error);
 }

@@ -12,23 +12,13 @@
 
 #include "core/error.hpp"
 #include "io/history_writer.hpp"
+#include "support/test_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace ballista;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path = fs::temp_directory_path() /
-           ("ballista_output_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 std::vector<std::string> lines_of(const fs::path& p) {
   std::ifstream in(p);
@@ -54,7 +44,7 @@ std::vector<double> parse_row(const std::string& line) {
 }  // namespace
 
 TEST(OutputHistory, RoundTripsNumbersExactly) {
-  TempDir d;
+  ballista::test::TempDir d{"ballista_output"};
   const fs::path p = d.path / "history.csv";
   const double inf = std::numeric_limits<double>::infinity();
   const std::vector<std::vector<double>> rows = {
@@ -91,7 +81,7 @@ TEST(OutputHistory, RoundTripsNumbersExactly) {
 }
 
 TEST(OutputHistory, RejectsBadSetup) {
-  TempDir d;
+  ballista::test::TempDir d{"ballista_output"};
   EXPECT_THROW(HistoryWriter((d.path / "no" / "h.csv").string(), {"t"}), Error);
   EXPECT_THROW(HistoryWriter((d.path / "h.csv").string(), {}), Error);
 }

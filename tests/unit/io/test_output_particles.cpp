@@ -21,29 +21,15 @@
 #include "core/field_store.hpp"
 #include "core/tensor.hpp"
 #include "io/particle_writer.hpp"
+#include "support/test_files.hpp"
 
 namespace fs = std::filesystem;
+using ballista::test::slurp;
 using namespace ballista;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path = fs::temp_directory_path() /
-           ("ballista_output_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 int count_tmp(const fs::path& dir) {
   int n = 0;
@@ -269,7 +255,7 @@ FieldStore make_points(Index n = 5) {
 }  // namespace
 
 TEST(OutputParticles, WritesTwoTimesAndReadsBackExactly) {
-  TempDir d;
+  ballista::test::TempDir d{"ballista_output"};
   FieldStore s = make_points();
   ParticleWriter w(d.path.string(), {}, /*domains=*/true, 3);
   w.write(0.0, 0, s);
@@ -364,7 +350,7 @@ TEST(OutputParticles, WritesTwoTimesAndReadsBackExactly) {
 }
 
 TEST(OutputParticles, PythonParsesXdmfAndFindsEveryDataset) {
-  TempDir d;
+  ballista::test::TempDir d{"ballista_output"};
   FieldStore s = make_points();
   ParticleWriter w(d.path.string(), {}, true, 3);
   w.write(0.0, 0, s);
@@ -376,7 +362,7 @@ TEST(OutputParticles, PythonParsesXdmfAndFindsEveryDataset) {
 }
 
 TEST(OutputParticles, TwoDimensionalDomainsAreQuadrilaterals) {
-  TempDir d;
+  ballista::test::TempDir d{"ballista_output"};
   FieldStore s = make_points(3);
   Vec3* x = s.view<Vec3>("x");
   Mat3* F = s.view<Mat3>("F");
@@ -412,7 +398,7 @@ TEST(OutputParticles, TwoDimensionalDomainsAreQuadrilaterals) {
 }
 
 TEST(OutputParticles, SelectedFieldsAlwaysIncludeGeometry) {
-  TempDir d;
+  ballista::test::TempDir d{"ballista_output"};
   FieldStore s = make_points();
   ParticleWriter w(d.path.string(), {"eqps", "half_size", "eqps"}, false, 3);
   w.write(0.5, 1, s);
@@ -434,7 +420,7 @@ TEST(OutputParticles, SelectedFieldsAlwaysIncludeGeometry) {
 }
 
 TEST(OutputParticles, EmptyStoreStillWritesValidFiles) {
-  TempDir d;
+  ballista::test::TempDir d{"ballista_output"};
   FieldStore s = make_points(0);
   ParticleWriter w(d.path.string(), {}, true, 3);
   w.write(0.0, 0, s);
@@ -445,7 +431,7 @@ TEST(OutputParticles, EmptyStoreStillWritesValidFiles) {
 }
 
 TEST(OutputParticles, RejectsBadRequests) {
-  TempDir d;
+  ballista::test::TempDir d{"ballista_output"};
   FieldStore s = make_points();
   EXPECT_THROW(ParticleWriter(d.path.string(), {}, false, 4), Error);
   ParticleWriter missing(d.path.string(), {"no_such_field"}, false, 3);

@@ -14,30 +14,15 @@
 
 #include "core/error.hpp"
 #include "io/summary_writer.hpp"
+#include "support/test_files.hpp"
 
 namespace fs = std::filesystem;
+using ballista::test::slurp;
 using namespace ballista;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path = fs::temp_directory_path() /
-           ("ballista_output_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 }  // namespace
 
@@ -91,7 +76,7 @@ TEST(OutputSummary, InsertionOrderAndOverwrite) {
 }
 
 TEST(OutputSummary, WritesAtomicallyAndPythonParsesIt) {
-  TempDir d;
+  ballista::test::TempDir d{"ballista_output"};
   const fs::path p = d.path / "summary.json";
   SummaryWriter s;
   s["version"] = "0.1.0";

@@ -17,22 +17,13 @@
 #include "core/error.hpp"
 #include "io/deck_reader.hpp"
 #include "run/simulation.hpp"
+#include "support/test_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace ballista;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path = fs::temp_directory_path() /
-           ("ballista_run_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 RunOptions options(const fs::path& dir, int threads = 0) {
   RunOptions o;
@@ -103,7 +94,7 @@ std::string flying_deck(const std::string& sim_extra = "", const std::string& lo
 }  // namespace
 
 TEST(RunSimulation, CompletedRunLandsOnOutputTimesAndReportsClosedFormProbes) {
-  TempDir dir;
+  ballista::test::TempDir dir{"ballista_run"};
   const Scenario sc = parse_deck(flying_deck(), "flying.yaml");
   const RunResult r = run_simulation(sc, options(dir.path));
   ASSERT_TRUE(r.ok) << r.error;
@@ -151,7 +142,7 @@ TEST(RunSimulation, CompletedRunLandsOnOutputTimesAndReportsClosedFormProbes) {
 }
 
 TEST(RunSimulation, MaxStepsStopsTheRun) {
-  TempDir dir;
+  ballista::test::TempDir dir{"ballista_run"};
   const RunResult r = run_simulation(parse_deck(flying_deck(", max_steps: 7"), "d.yaml"), options(dir.path, 1));
   ASSERT_TRUE(r.ok) << r.error;
   EXPECT_EQ(r.steps, 7);
@@ -181,7 +172,7 @@ constexpr double kPuttyInterval = 5.0e-5;
 }  // namespace
 
 TEST(RunSimulation, InvertedParticleStopsTheRunAndKeepsEarlierOutputs) {
-  TempDir dir;
+  ballista::test::TempDir dir{"ballista_run"};
   const RunResult r = run_simulation(parse_deck(kPuttyDeck, "putty.yaml"), options(dir.path));
   ASSERT_FALSE(r.ok);
   EXPECT_NE(r.error.find("inverted"), std::string::npos) << r.error;
@@ -216,7 +207,7 @@ TEST(RunSimulation, FailingStateIsLabelledWithTheStepThatFailed) {
   // The failing state is written after positions and F were advanced by the failing step, so it
   // must carry that step's end time and number: its file time after the last regular output,
   // and the message's "at step N" equal to the steps reported (each step here is 5e-5 s).
-  TempDir dir;
+  ballista::test::TempDir dir{"ballista_run"};
   const RunResult r = run_simulation(parse_deck(kPuttyDeck, "putty.yaml"), options(dir.path));
   ASSERT_FALSE(r.ok);
   const auto files = h5_files(dir.path);
@@ -232,7 +223,7 @@ TEST(RunSimulation, FailingStateIsLabelledWithTheStepThatFailed) {
 }
 
 TEST(RunSimulation, ParticleLeavingTheGridFailsTheRun) {
-  TempDir dir;
+  ballista::test::TempDir dir{"ballista_run"};
   std::string yaml = flying_deck();
   yaml.replace(yaml.find("velocity: [10, 0]"), 17, "velocity: [40, 0]");  // leaves after ~0.4 ms
   const RunResult r = run_simulation(parse_deck(yaml, "exit.yaml"), options(dir.path));
@@ -248,7 +239,7 @@ TEST(RunSimulation, ParticleLeavingTheGridFailsTheRun) {
 TEST(RunSimulation, EnergyDriftLimitStopsARunThatLosesEnergy) {
   // A block hitting a fixed face loses kinetic energy that no term of the balance accounts
   // for (drift of order 1 after the impact): a limit of 1e-6 must stop it with a clear message.
-  TempDir dir;
+  ballista::test::TempDir dir{"ballista_run"};
   const std::string yaml =
       "simulation: {dimension: plane_strain, end_time: 2.0e-3, energy_drift_limit: 1.0e-6}\n" + kGrid2 +
       ", boundary: {y_min: fixed}}\n" + kMaterials +
@@ -268,7 +259,7 @@ TEST(RunSimulation, EnergyDriftLimitStopsARunThatLosesEnergy) {
 TEST(RunSimulation, EnergyDriftLimitDoesNotTripOnAnExactBalance) {
   // A free block under gravity: the work of the body force equals the kinetic energy gained,
   // step by step, to round-off (see the solver tests), so even a tight limit of 1e-10 holds.
-  TempDir dir;
+  ballista::test::TempDir dir{"ballista_run"};
   const RunResult r = run_simulation(
       parse_deck(flying_deck(", energy_drift_limit: 1.0e-10", "  - {type: body_force, acceleration: [0, -2000]}\n"),
                  "gravity.yaml"),

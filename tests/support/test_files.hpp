@@ -1,0 +1,35 @@
+#pragma once
+// Test helpers for files: a fresh per-test temporary directory and whole-file reads.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace ballista::test {
+
+/// Fresh directory under the system temp directory, named after the running test and the
+/// process id (so parallel ctest runs never collide); removed with everything in it afterwards.
+struct TempDir {
+  std::filesystem::path path;
+  explicit TempDir(const std::string& prefix = "ballista_test") {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path = std::filesystem::temp_directory_path() /
+           (prefix + "_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(path);
+    std::filesystem::create_directories(path);
+  }
+  ~TempDir() { std::filesystem::remove_all(path); }
+};
+
+/// Whole file as a string (empty if it cannot be read).
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace ballista::test
