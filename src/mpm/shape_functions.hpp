@@ -242,6 +242,56 @@ inline void tensor_product(const GridGeometry& g, const Axis1D<N>* ax, Stencil<D
   s.count = m;
 }
 
+/// Drops a zero-weight end node of a 3-node GIMP window (the particle domain lies inside one
+/// cell on this axis), leaving 2 nodes; returns the node count kept (2 or 3). Weights outside the
+/// support are exactly 0, so nothing is lost.
+inline int trim_gimp_window(Axis1D<3>& a) {
+  if (a.w[0] == 0.0 && a.dw[0] == 0.0) {
+    a.first += 1;
+    a.w[0] = a.w[1]; a.dw[0] = a.dw[1];
+    a.w[1] = a.w[2]; a.dw[1] = a.dw[2];
+    return 2;
+  }
+  return (a.w[2] == 0.0 && a.dw[2] == 0.0) ? 2 : 3;
+}
+
+/// Tensor product with a run-time node count per axis (n[d] <= 3).
+template <int Dim>
+inline void tensor_product_var(const GridGeometry& g, const Axis1D<3>* ax, const int* n, Stencil<Dim>& s) {
+  const Index sy = stride_y(g);
+  int m = 0;
+  if constexpr (Dim == 2) {
+    const Index base = static_cast<Index>(ax[1].first) * sy + ax[0].first;
+    for (int b = 0; b < n[1]; ++b) {
+      const Index row = base + b * sy;
+      const double wy = ax[1].w[b], dwy = ax[1].dw[b];
+      for (int a = 0; a < n[0]; ++a, ++m) {
+        s.node[m] = row + a;
+        s.w[m] = ax[0].w[a] * wy;
+        s.grad[m] = Vec3{{ax[0].dw[a] * wy, ax[0].w[a] * dwy, 0.0}};
+      }
+    }
+  } else {
+    const Index sz = stride_z(g);
+    const Index base =
+        static_cast<Index>(ax[2].first) * sz + static_cast<Index>(ax[1].first) * sy + ax[0].first;
+    for (int c = 0; c < n[2]; ++c) {
+      const double wz = ax[2].w[c], dwz = ax[2].dw[c];
+      for (int b = 0; b < n[1]; ++b) {
+        const Index row = base + c * sz + b * sy;
+        const double wy = ax[1].w[b], dwy = ax[1].dw[b];
+        const double wyz = wy * wz, dyz = dwy * wz, yzd = wy * dwz;
+        for (int a = 0; a < n[0]; ++a, ++m) {
+          s.node[m] = row + a;
+          s.w[m] = ax[0].w[a] * wyz;
+          s.grad[m] = Vec3{{ax[0].dw[a] * wyz, ax[0].w[a] * dyz, ax[0].w[a] * yzd}};
+        }
+      }
+    }
+  }
+  s.count = m;
+}
+
 }  // namespace shape_detail
 
 /// Standard MPM linear hat functions: 2^Dim nodes (c, c+1 per axis).
@@ -256,18 +306,21 @@ inline void linear_stencil(const GridGeometry& g, const Vec3& x, Stencil<Dim>& s
 
 /// Uniform GIMP (Bardenhagen & Kober 2004), lp = particle half-length per axis, 0 < lp <= h/2
 /// (values are clamped into that range; lp > h/2 needs a wider window and is asserted against in
-/// debug builds). 3^Dim nodes, some of which may carry zero weight.
+/// debug builds). Between 2^Dim and 3^Dim nodes: zero-weight window ends are dropped.
 template <int Dim>
 inline void gimp_stencil(const GridGeometry& g, const Vec3& x, const Vec3& lp, Stencil<Dim>& s) {
   const double inv_h = 1.0 / g.h;
   shape_detail::Axis1D<3> ax[Dim];
+  int n[Dim];
   for (int d = 0; d < Dim; ++d) {
     assert(lp[d] <= 0.5 * g.h * (1.0 + 1e-12) && "GIMP particle half-length exceeds h/2");
     const double a = std::min(std::max(lp[d] * inv_h, 1e-12), 0.5);
     shape_detail::gimp_1d(x[d], g.origin[d], g.h, inv_h, a, ax[d]);
+    n[d] = shape_detail::trim_gimp_window(ax[d]);
   }
-  s.count = 0;
-  shape_detail::tensor_product<Dim, 3>(g, ax, s);
+  // Only nodes with support are listed: 2 per axis while the particle domain lies inside one
+  // cell (the common case at 2 particles per cell), 3 when it straddles a node.
+  shape_detail::tensor_product_var<Dim>(g, ax, n, s);
 }
 
 /// Cubic B-spline (de Boor 1978; Steffen, Kirby & Berzins 2008), support 4h: 4^Dim nodes

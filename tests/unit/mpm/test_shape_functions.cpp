@@ -139,12 +139,25 @@ void check_node_counts() {
   Stencil<Dim> s;
   const Params p = random_params<Dim>(g, rng);
   const Vec3 x = random_point(g, Dim, rng);
-  const int expected[4] = {1 << Dim, Dim == 3 ? 27 : 9, Dim == 3 ? 64 : 16, Dim == 3 ? 64 : 16};
+  // GIMP lists 3 nodes on an axis where the particle domain [x - lp, x + lp] straddles a node
+  // and 2 where it lies inside one cell (zero-weight ends dropped).
+  int gimp = 1;
+  for (int d = 0; d < Dim; ++d) {
+    const double lo = (x[d] - p.lp[d] - g.origin[d]) / g.h, hi = (x[d] + p.lp[d] - g.origin[d]) / g.h;
+    gimp *= std::floor(lo) == std::floor(hi) ? 2 : 3;
+  }
+  const int expected[4] = {1 << Dim, gimp, Dim == 3 ? 64 : 16, Dim == 3 ? 64 : 16};
   for (int k = 0; k < 4; ++k) {
     compute<Dim>(kKinds[k], g, x, p, s);
     EXPECT_EQ(s.count, expected[k]) << shape_kind_name(kKinds[k]) << " Dim=" << Dim;
     EXPECT_LE(s.count, Stencil<Dim>::kMax);
   }
+  // A domain inside one cell on every axis: exactly 2^Dim GIMP nodes.
+  Params q = p;
+  Vec3 xc;
+  for (int d = 0; d < Dim; ++d) { q.lp[d] = 0.25 * g.h; xc[d] = g.origin[d] + (3.25 + 0.5 * d * 0.1) * g.h; }
+  compute<Dim>(ShapeKind::Gimp, g, xc, q, s);
+  EXPECT_EQ(s.count, 1 << Dim);
 }
 
 TEST(ShapeFunctions, NodeCounts) {
