@@ -157,6 +157,8 @@ class Reader {
                               " cells; check that lengths are in metres");
     DeckNode b = g.map("boundary", false);
     for (int f = 0; f < 6; ++f) gr.faces[f] = face_bc_from(b.choice(kFaces[f], "free", kFaceBCs));
+    if (sc_.simulation.dimension == Dimension::Axisymmetric && gr.lower[0] < 0.0)
+      g.fail("lower", "expected x (the radius) >= 0 in an axisymmetric deck, got " + format_number(gr.lower[0]));
     b.finish();
     g.finish();
   }

@@ -370,6 +370,13 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
 
 void MpmSolver::apply_velocity_bcs(std::vector<Vec3>& vel, bool /*unused*/) {
   const GridGeometry& g = grid_.geom;
+  if (dimension_ == Dimension::Axisymmetric && box_lower_[0] == 0.0) {
+    // The symmetry axis: radial velocity is zero on it (and on the ghost nodes beyond it) whatever
+    // the x_min condition says; without this the hoop rate v_r / r of the particles next to the
+    // axis is unbounded.
+    for (int i = 0; i <= box_first_[0]; ++i)
+      for (int j = 0; j < g.nodes[1]; ++j) vel[g.node_index(i, j, 0)][0] = 0.0;
+  }
   for (int a = 0; a < dim_; ++a) {
     for (int side = 0; side < 2; ++side) {
       const FaceBC bc = scenario_.grid.faces[2 * a + side];
