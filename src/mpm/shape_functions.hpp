@@ -196,71 +196,29 @@ inline void check_node(const GridGeometry& g, int i, int j, int k) {
 }
 #endif
 
-/// Tensor product of per-axis windows into s (appending from s.count).
-template <int Dim, int N>
-inline void tensor_product(const GridGeometry& g, const Axis1D<N>* ax, Stencil<Dim>& s) {
+/// Node count per axis known at compile time (full windows: the loops unroll).
+template <int N>
+struct FixedCount {
+  constexpr int operator[](int) const { return N; }
+};
+/// Node count per axis known at run time (GIMP windows trimmed to the nodes with support).
+struct RuntimeCount {
+  int n[3] = {0, 0, 0};
+  int operator[](int d) const { return n[d]; }
+};
+
+/// Tensor product of per-axis windows into s (appending from s.count), using the first n[d]
+/// nodes of each axis window (n[d] <= N).
+template <int Dim, int N, class Count>
+inline void tensor_product_n(const GridGeometry& g, const Axis1D<N>* ax, const Count& n, Stencil<Dim>& s) {
   static_assert(Dim == 2 || Dim == 3);
   const Index sy = stride_y(g);
   int m = s.count;
   if constexpr (Dim == 2) {
 #ifndef NDEBUG
     check_node(g, ax[0].first, ax[1].first, 0);
-    check_node(g, ax[0].first + N - 1, ax[1].first + N - 1, 0);
+    check_node(g, ax[0].first + n[0] - 1, ax[1].first + n[1] - 1, 0);
 #endif
-    const Index base = static_cast<Index>(ax[1].first) * sy + ax[0].first;
-    for (int b = 0; b < N; ++b) {
-      const Index row = base + b * sy;
-      const double wy = ax[1].w[b], dwy = ax[1].dw[b];
-      for (int a = 0; a < N; ++a, ++m) {
-        s.node[m] = row + a;
-        s.w[m] = ax[0].w[a] * wy;
-        s.grad[m] = Vec3{{ax[0].dw[a] * wy, ax[0].w[a] * dwy, 0.0}};
-      }
-    }
-  } else {
-#ifndef NDEBUG
-    check_node(g, ax[0].first, ax[1].first, ax[2].first);
-    check_node(g, ax[0].first + N - 1, ax[1].first + N - 1, ax[2].first + N - 1);
-#endif
-    const Index sz = stride_z(g);
-    const Index base =
-        static_cast<Index>(ax[2].first) * sz + static_cast<Index>(ax[1].first) * sy + ax[0].first;
-    for (int c = 0; c < N; ++c) {
-      const double wz = ax[2].w[c], dwz = ax[2].dw[c];
-      for (int b = 0; b < N; ++b) {
-        const Index row = base + c * sz + b * sy;
-        const double wy = ax[1].w[b], dwy = ax[1].dw[b];
-        const double wyz = wy * wz, dyz = dwy * wz, yzd = wy * dwz;
-        for (int a = 0; a < N; ++a, ++m) {
-          s.node[m] = row + a;
-          s.w[m] = ax[0].w[a] * wyz;
-          s.grad[m] = Vec3{{ax[0].dw[a] * wyz, ax[0].w[a] * dyz, ax[0].w[a] * yzd}};
-        }
-      }
-    }
-  }
-  s.count = m;
-}
-
-/// Drops a zero-weight end node of a 3-node GIMP window (the particle domain lies inside one
-/// cell on this axis), leaving 2 nodes; returns the node count kept (2 or 3). Weights outside the
-/// support are exactly 0, so nothing is lost.
-inline int trim_gimp_window(Axis1D<3>& a) {
-  if (a.w[0] == 0.0 && a.dw[0] == 0.0) {
-    a.first += 1;
-    a.w[0] = a.w[1]; a.dw[0] = a.dw[1];
-    a.w[1] = a.w[2]; a.dw[1] = a.dw[2];
-    return 2;
-  }
-  return (a.w[2] == 0.0 && a.dw[2] == 0.0) ? 2 : 3;
-}
-
-/// Tensor product with a run-time node count per axis (n[d] <= 3).
-template <int Dim>
-inline void tensor_product_var(const GridGeometry& g, const Axis1D<3>* ax, const int* n, Stencil<Dim>& s) {
-  const Index sy = stride_y(g);
-  int m = 0;
-  if constexpr (Dim == 2) {
     const Index base = static_cast<Index>(ax[1].first) * sy + ax[0].first;
     for (int b = 0; b < n[1]; ++b) {
       const Index row = base + b * sy;
@@ -272,6 +230,10 @@ inline void tensor_product_var(const GridGeometry& g, const Axis1D<3>* ax, const
       }
     }
   } else {
+#ifndef NDEBUG
+    check_node(g, ax[0].first, ax[1].first, ax[2].first);
+    check_node(g, ax[0].first + n[0] - 1, ax[1].first + n[1] - 1, ax[2].first + n[2] - 1);
+#endif
     const Index sz = stride_z(g);
     const Index base =
         static_cast<Index>(ax[2].first) * sz + static_cast<Index>(ax[1].first) * sy + ax[0].first;
@@ -290,6 +252,25 @@ inline void tensor_product_var(const GridGeometry& g, const Axis1D<3>* ax, const
     }
   }
   s.count = m;
+}
+
+/// Full N-node windows on every axis.
+template <int Dim, int N>
+inline void tensor_product(const GridGeometry& g, const Axis1D<N>* ax, Stencil<Dim>& s) {
+  tensor_product_n<Dim, N>(g, ax, FixedCount<N>{}, s);
+}
+
+/// Drops a zero-weight end node of a 3-node GIMP window (the particle domain lies inside one
+/// cell on this axis), leaving 2 nodes; returns the node count kept (2 or 3). Weights outside the
+/// support are exactly 0, so nothing is lost.
+inline int trim_gimp_window(Axis1D<3>& a) {
+  if (a.w[0] == 0.0 && a.dw[0] == 0.0) {
+    a.first += 1;
+    a.w[0] = a.w[1]; a.dw[0] = a.dw[1];
+    a.w[1] = a.w[2]; a.dw[1] = a.dw[2];
+    return 2;
+  }
+  return (a.w[2] == 0.0 && a.dw[2] == 0.0) ? 2 : 3;
 }
 
 }  // namespace shape_detail
@@ -311,16 +292,17 @@ template <int Dim>
 inline void gimp_stencil(const GridGeometry& g, const Vec3& x, const Vec3& lp, Stencil<Dim>& s) {
   const double inv_h = 1.0 / g.h;
   shape_detail::Axis1D<3> ax[Dim];
-  int n[Dim];
+  shape_detail::RuntimeCount n;
   for (int d = 0; d < Dim; ++d) {
     assert(lp[d] <= 0.5 * g.h * (1.0 + 1e-12) && "GIMP particle half-length exceeds h/2");
     const double a = std::min(std::max(lp[d] * inv_h, 1e-12), 0.5);
     shape_detail::gimp_1d(x[d], g.origin[d], g.h, inv_h, a, ax[d]);
-    n[d] = shape_detail::trim_gimp_window(ax[d]);
+    n.n[d] = shape_detail::trim_gimp_window(ax[d]);
   }
   // Only nodes with support are listed: 2 per axis while the particle domain lies inside one
   // cell (the common case at 2 particles per cell), 3 when it straddles a node.
-  shape_detail::tensor_product_var<Dim>(g, ax, n, s);
+  s.count = 0;
+  shape_detail::tensor_product_n<Dim, 3>(g, ax, n, s);
 }
 
 /// Cubic B-spline (de Boor 1978; Steffen, Kirby & Berzins 2008), support 4h: 4^Dim nodes
