@@ -138,4 +138,7 @@ struct Scenario {
   std::string resolved_yaml;      ///< the deck with every default filled, as YAML text
 };
 
+/// Index of the body named `name` in deck order, -1 if there is none (or name is empty).
+int body_index(const Scenario& sc, const std::string& name);
+
 }  // namespace ballista

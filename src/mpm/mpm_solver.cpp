@@ -120,9 +120,7 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   for (size_t k = 0; k < sc.loads.size(); ++k) {
     const LoadSpec& load = sc.loads[k];
     if (load.type != "pressure") continue;
-    int bi = -1;
-    for (size_t b = 0; b < sc.bodies.size(); ++b)
-      if (sc.bodies[b].name == load.body) bi = static_cast<int>(b);
+    const int bi = body_index(sc, load.body);
     const Index marked = mark_pressure_surface(load, static_cast<int>(k), sc.bodies.at(bi), bi, h,
                                                dimension_, points_);
     if (marked == 0)
@@ -285,9 +283,7 @@ void MpmSolver::compute_external_forces() {
   for (size_t k = 0; k < scenario_.loads.size(); ++k) {
     const LoadSpec& load = scenario_.loads[k];
     const double scale = load.curve.at(time_);
-    int body = -1;
-    for (size_t b = 0; b < scenario_.bodies.size(); ++b)
-      if (scenario_.bodies[b].name == load.body) body = static_cast<int>(b);
+    const int body = body_index(scenario_, load.body);  // -1: every body
     if (load.type == "body_force") {
       const Vec3 acc = scale * load.acceleration;
       for_each(0, n, [&](Index p) {
@@ -368,7 +364,7 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
   }
 }
 
-void MpmSolver::apply_velocity_bcs(std::vector<Vec3>& vel, bool /*unused*/) {
+void MpmSolver::apply_velocity_bcs(std::vector<Vec3>& vel) {
   const GridGeometry& g = grid_.geom;
   if (dimension_ == Dimension::Axisymmetric && box_lower_[0] == 0.0) {
     // The symmetry axis: radial velocity is zero on it (and on the ghost nodes beyond it) whatever
@@ -419,7 +415,7 @@ void MpmSolver::update_grid(double dt) {
       grid_.velocity_new[i] = Vec3{};
     }
   });
-  apply_velocity_bcs(grid_.velocity_new, false);
+  apply_velocity_bcs(grid_.velocity_new);
   // The acceleration handed to the particles is the constrained change of velocity.
   for_each(0, nn, [&](Index i) {
     grid_.accel[i] = (1.0 / dt) * (grid_.velocity_new[i] - grid_.velocity[i]);
@@ -614,7 +610,7 @@ void MpmSolver::step_impl(double dt) {
       const double m = grid_.mass[i];
       grid_.velocity_new[i] = m > kTinyMass ? (1.0 / m) * grid_.velocity[i] : Vec3{};
     });
-    apply_velocity_bcs(grid_.velocity_new, false);
+    apply_velocity_bcs(grid_.velocity_new);
     velocity_gradient_from_grid<Dim, K>(dt);
   }
   // The step's kinematics are done: count it, so that failure messages, outputs and statistics

@@ -67,7 +67,7 @@ class MpmSolver final : public Solver {
   void ensure_material_groups();
   void update_stress(double dt);
   void update_grid(double dt);
-  void apply_velocity_bcs(std::vector<Vec3>& vel, bool wall_only_inward);
+  void apply_velocity_bcs(std::vector<Vec3>& vel);
   void handle_exits();
   [[noreturn]] void fail(Index p, const std::string& what) const;
   int stencil_reach_now() const;

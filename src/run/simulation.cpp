@@ -49,12 +49,6 @@ std::vector<std::string> output_fields(const Scenario& sc, const FieldStore& poi
   return sc.output.fields;
 }
 
-int body_index(const Scenario& sc, const std::string& name) {
-  for (size_t b = 0; b < sc.bodies.size(); ++b)
-    if (sc.bodies[b].name == name) return static_cast<int>(b);
-  return -1;
-}
-
 }  // namespace
 
 RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {

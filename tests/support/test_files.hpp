@@ -32,4 +32,12 @@ inline std::string slurp(const std::filesystem::path& p) {
   return ss.str();
 }
 
+/// Number of leftover `*.tmp` files in dir (atomic writes must leave none).
+inline int count_tmp(const std::filesystem::path& dir) {
+  int n = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.path().extension() == ".tmp") ++n;
+  return n;
+}
+
 }  // namespace ballista::test

@@ -11,19 +11,11 @@
 #include "support/test_files.hpp"
 
 namespace fs = std::filesystem;
+using ballista::test::count_tmp;
 using ballista::test::slurp;
 using namespace ballista;
 
 namespace {
-
-
-
-int count_tmp(const fs::path& dir) {
-  int n = 0;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().extension() == ".tmp") ++n;
-  return n;
-}
 
 }  // namespace
 

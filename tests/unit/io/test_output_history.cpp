@@ -19,7 +19,6 @@ using namespace ballista;
 
 namespace {
 
-
 std::vector<std::string> lines_of(const fs::path& p) {
   std::ifstream in(p);
   std::vector<std::string> out;

@@ -22,8 +22,6 @@ using namespace ballista;
 
 namespace {
 
-
-
 }  // namespace
 
 TEST(OutputSummary, CompactDumpIsExact) {

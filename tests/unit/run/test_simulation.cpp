@@ -24,7 +24,6 @@ using namespace ballista;
 
 namespace {
 
-
 RunOptions options(const fs::path& dir, int threads = 0) {
   RunOptions o;
   o.out_dir = dir.string();

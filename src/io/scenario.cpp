@@ -12,4 +12,10 @@ double LoadCurve::at(double time) const {
   return v[k - 1] + s * (v[k] - v[k - 1]);
 }
 
+int body_index(const Scenario& sc, const std::string& name) {
+  for (size_t b = 0; b < sc.bodies.size(); ++b)
+    if (sc.bodies[b].name == name) return static_cast<int>(b);
+  return -1;
+}
+
 }  // namespace ballista
