@@ -17,6 +17,11 @@
 namespace {
 
 std::string format_default(const ballista::ParamSpec& p) {
+  if (!p.choices.empty()) {
+    std::string opts;
+    for (const auto& c : p.choices) opts += (opts.empty() ? "" : " | ") + c;
+    return opts + "; default " + p.default_choice;
+  }
   if (p.required) return "required";
   if (std::isnan(p.default_value)) return "optional";
   return fmt::format("default {:g}", p.default_value);

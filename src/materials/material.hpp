@@ -40,10 +40,33 @@ struct ParamSpec {
   double max = std::numeric_limits<double>::infinity();
   bool min_exclusive = false;
   bool max_exclusive = false;
+  /// Non-empty for an enumerated (word) parameter, e.g. eos.type: {linear, mie_gruneisen}; its
+  /// value is then a string in ParamValues::choices and default_choice is used when absent.
+  std::vector<std::string> choices = {};
+  std::string default_choice = {};
+  /// Names containing a dot ("eos.hugoniot_slope", "failure.criterion") are read from a sub-map
+  /// of the material in the deck (eos: {hugoniot_slope: 1.49}).
 };
 
-/// Parameter values by name, already range-checked against the ParamSpecs.
-using ParamValues = std::map<std::string, double>;
+/// Parameter values by name, already range-checked against the ParamSpecs. Numbers are in the map
+/// itself (NaN = an optional parameter that was not given); enumerated parameters in `choices`.
+struct ParamValues : std::map<std::string, double> {
+  using std::map<std::string, double>::map;
+  std::map<std::string, std::string> choices;
+
+  /// True if the number `name` was given (present and not NaN).
+  bool given(const std::string& name) const {
+    auto it = find(name);
+    return it != end() && !(it->second != it->second);
+  }
+  /// The number `name`, or `fallback` if it was not given.
+  double number_or(const std::string& name, double fallback) const { return given(name) ? at(name) : fallback; }
+  /// The word `name`, or `fallback` if absent.
+  std::string choice(const std::string& name, const std::string& fallback = {}) const {
+    auto it = choices.find(name);
+    return it == choices.end() ? fallback : it->second;
+  }
+};
 
 /// Thrown by Model::make for a bad combination of parameters; `param` names the deck key so the
 /// deck layer can point at its line.
@@ -69,12 +92,27 @@ struct PointKinematics {
   Mat3 F_new;   ///< deformation gradient at t_{n+1}
   Mat3 R_new;   ///< rotation of F_new = R U
   Mat3 D_bar;   ///< unrotated rate of deformation R^T sym(L) R, 1/s (thesis eq. 2.6)
+  double J_old = 1.0;  ///< det F_old (always filled)
+  double J_new = 1.0;  ///< det F_new (always filled)
   double dt = 0.0;
 };
 
-/// Per-point by-products of a kernel call.
+/// Per-point by-products of a kernel call. Everything but plastic_work_density is read only by
+/// the failure criteria (materials/failure.hpp) and by the single-element driver.
 struct PointResult {
   double plastic_work_density = 0.0;  ///< plastic dissipation over the step, J/m^3 (current volume)
+  double delta_eqps = 0.0;            ///< increment of equivalent plastic strain over the step
+  double eqps = 0.0;                  ///< equivalent plastic strain at t_{n+1}
+  double temperature = std::numeric_limits<double>::quiet_NaN();  ///< K at t_{n+1}; NaN if not tracked
+  double melt_temperature = std::numeric_limits<double>::infinity();  ///< K at t_{n+1}
+  /// (sigma_{n+1} - sigma_n) : Delta eps^p over the step, J/m^3 (unrotated frame): Drucker's
+  /// stability product (thesis eq. 6.9, times dt^2); 0 for an elastic step.
+  double drucker_product = 0.0;
+  /// Optional out (set by the caller, e.g. the FD-tangent check): the algorithmic tangent
+  /// d sigma_bar_{n+1} / d eps, eps = D_bar dt, as a 6x6 row-major matrix in the order
+  /// (11, 22, 33, 23, 13, 12) with tensor (not engineering) shear strains. Models that have one
+  /// fill it when it is non-null; others leave it untouched.
+  double* tangent = nullptr;
 };
 
 /// Pointers to the arrays a batch update reads and writes (all indexed by point). Optional
@@ -84,7 +122,7 @@ struct MaterialBatch {
   const Index* points = nullptr;  ///< indices of the points of this material
   Index count = 0;
   const Mat3* F_old = nullptr;    ///< F at t_n; if null it is recovered as (I + dt L)^-1 F_new
-  const Mat3* F_new = nullptr;    ///< F at t_{n+1}
+  Mat3* F_new = nullptr;          ///< F at t_{n+1}; erosion option zero_stress resets it to F_n
   const Mat3* L = nullptr;        ///< velocity gradient over the step, 1/s
   Mat3* R = nullptr;              ///< in: rotation at t_n; out: rotation at t_{n+1}
   Mat3* stress = nullptr;         ///< in: Cauchy stress at t_n; out: at t_{n+1}, Pa
@@ -95,6 +133,8 @@ struct MaterialBatch {
   const double* volume0 = nullptr;   ///< reference volume, m^3
   double* internal_energy = nullptr; ///< += dt <V> <sigma> : D (trapezoidal stress power), J
   double* plastic_energy = nullptr;  ///< += plastic dissipation density * V_{n+1}, J
+  /// Optional out: 36 doubles per point, the algorithmic tangent (see PointResult::tangent).
+  double* tangent = nullptr;
   /// Optional: lowest index of a point whose new stress is not finite (atomic minimum).
   std::atomic<Index>* first_bad = nullptr;
 };

@@ -49,6 +49,8 @@ class MaterialAdapter final : public Material {
       else
         kin.F_old = Mat3{};  // not read by this model
       kin.dt = b.dt;
+      kin.J_new = det(kin.F_new);
+      kin.J_old = kin.J_new / detA;
       const Mat3 R_old = b.R[p];
       const Mat3 D = sym(L);
       kin.R_new = polar_rotation(kin.F_new, R_old);
@@ -58,6 +60,7 @@ class MaterialAdapter final : public Material {
       double st[kMaxState];
       for (int s = 0; s < ns; ++s) st[s] = sptr[s][p];
       PointResult res;
+      if (b.tangent) res.tangent = b.tangent + 36 * p;
       Model::update(prm, kin, sigma_bar, st, res);
       for (int s = 0; s < ns; ++s) sptr[s][p] = st[s];
       const Mat3 sigma_new = rotate_sym(kin.R_new, sigma_bar);
@@ -65,8 +68,8 @@ class MaterialAdapter final : public Material {
       b.R[p] = kin.R_new;
       if (b.plastic_work) b.plastic_work[p] = res.plastic_work_density;
       if (b.internal_energy) {
-        const double V_new = b.volume0[p] * det(kin.F_new);
-        const double V_old = V_new / detA;
+        const double V_new = b.volume0[p] * kin.J_new;
+        const double V_old = b.volume0[p] * kin.J_old;
         b.internal_energy[p] += b.dt * 0.5 * (V_old + V_new) * 0.5 * ddot(sigma_old + sigma_new, D);
         b.plastic_energy[p] += res.plastic_work_density * V_new;
       }
