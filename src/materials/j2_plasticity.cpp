@@ -56,6 +56,20 @@ struct J2Plasticity {
     return p;
   }
 
+  // Verification hooks (MaterialFactory).
+  static ParamValues example_params() {
+    return {{"density", 8930.0}, {"youngs_modulus", 117e9}, {"poisson_ratio", 0.35}, {"yield_stress", 400e6},
+            {"hardening_modulus", 100e6}};
+  }
+  /// Elastic reduction: a yield stress no A1 path can reach.
+  static ParamValues reduce_to_elastic(double rho, double K, double G) {
+    return {{"density", rho}, {"bulk_modulus", K}, {"shear_modulus", G}, {"yield_stress", 1e30}};
+  }
+  static ParamValues reduce_to_j2(double rho, double K, double G, double sy, double h_iso, double h_kin) {
+    if (h_kin != 0.0) return {};  // no kinematic hardening yet
+    return {{"density", rho}, {"bulk_modulus", K}, {"shear_modulus", G}, {"yield_stress", sy}, {"hardening_modulus", h_iso}};
+  }
+
   static std::vector<StateFieldSpec> state_fields() { return {{"eqps", "1", 0.0}}; }
 
   static void update(const Params& p, const PointKinematics& k, Mat3& s, double* state, PointResult& res) {

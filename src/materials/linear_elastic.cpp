@@ -21,6 +21,12 @@ struct LinearElastic {
     const ElasticConstants e = elastic_constants_from(v);
     return {v.at("density"), e.bulk, e.shear};
   }
+  // Verification hooks (MaterialFactory): steel-like example; A1 reduction is the model itself.
+  static ParamValues example_params() { return {{"density", 7850.0}, {"bulk_modulus", 160e9}, {"shear_modulus", 79e9}}; }
+  static ParamValues reduce_to_elastic(double rho, double K, double G) {
+    return {{"density", rho}, {"bulk_modulus", K}, {"shear_modulus", G}};
+  }
+
   static std::vector<StateFieldSpec> state_fields() { return {}; }
   static void update(const Params& p, const PointKinematics& k, Mat3& s, double*, PointResult&) {
     const double lam = p.bulk - 2.0 * p.shear / 3.0;

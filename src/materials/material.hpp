@@ -104,7 +104,8 @@ struct PointResult {
   double delta_eqps = 0.0;            ///< increment of equivalent plastic strain over the step
   double eqps = 0.0;                  ///< equivalent plastic strain at t_{n+1}
   double temperature = std::numeric_limits<double>::quiet_NaN();  ///< K at t_{n+1}; NaN if not tracked
-  double melt_temperature = std::numeric_limits<double>::infinity();  ///< K at t_{n+1}
+  /// (T - T0)/(T_melt - T0) at t_{n+1} (Johnson-Cook T*; melt at 1); NaN if not tracked.
+  double homologous_temperature = std::numeric_limits<double>::quiet_NaN();
   /// (sigma_{n+1} - sigma_n) : Delta eps^p over the step, J/m^3 (unrotated frame): Drucker's
   /// stability product (thesis eq. 6.9, times dt^2); 0 for an elastic step.
   double drucker_product = 0.0;
@@ -168,6 +169,17 @@ struct MaterialFactory {
   std::vector<ParamSpec> params;
   std::vector<StateFieldSpec> state_fields;
   std::unique_ptr<Material> (*create)(const std::string& name, const ParamValues& values) = nullptr;
+  // For the verification suite (ballista verify, CATALOGUE §A). Each is null if the model does not
+  // provide it (Model::example_params, Model::reduce_to_elastic, Model::reduce_to_j2).
+  /// A representative parameter set (A6 objectivity and tangent checks).
+  ParamValues (*example)() = nullptr;
+  /// Parameters that reduce the model to isotropic linear elasticity with K, G (A1).
+  ParamValues (*reduce_elastic)(double density, double bulk, double shear) = nullptr;
+  /// Parameters that reduce the model to J2 plasticity with uniaxial yield stress sigma_y0, linear
+  /// isotropic plastic modulus H_iso and linear kinematic modulus H_kin (A2 and its variants); may
+  /// return an empty ParamValues if the model lacks the requested hardening kind.
+  ParamValues (*reduce_j2)(double density, double bulk, double shear, double yield, double h_iso,
+                           double h_kin) = nullptr;
 };
 
 /// Registered models, filled at static-initialisation time by one line per model file

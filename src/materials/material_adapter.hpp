@@ -129,6 +129,23 @@ class MaterialAdapter final : public Material {
   std::vector<StateFieldSpec> state_;
 };
 
+/// Optional verification hooks of a model (see MaterialFactory); null when the model lacks them.
+template <class Model>
+constexpr auto verification_example() -> ParamValues (*)() {
+  if constexpr (requires { Model::example_params(); }) return &Model::example_params;
+  else return nullptr;
+}
+template <class Model>
+constexpr auto verification_reduce_elastic() -> ParamValues (*)(double, double, double) {
+  if constexpr (requires { Model::reduce_to_elastic(1.0, 1.0, 1.0); }) return &Model::reduce_to_elastic;
+  else return nullptr;
+}
+template <class Model>
+constexpr auto verification_reduce_j2() -> ParamValues (*)(double, double, double, double, double, double) {
+  if constexpr (requires { Model::reduce_to_j2(1.0, 1.0, 1.0, 1.0, 1.0, 1.0); }) return &Model::reduce_to_j2;
+  else return nullptr;
+}
+
 /// Registers Model under Model::kName; use once per model file at namespace scope.
 #define BALLISTA_REGISTER_MATERIAL(Model, Description)                                         \
   namespace {                                                                                  \
@@ -137,6 +154,8 @@ class MaterialAdapter final : public Material {
       [](const std::string& name, const ::ballista::ParamValues& v)                            \
           -> std::unique_ptr<::ballista::Material> {                                           \
         return std::make_unique<::ballista::MaterialAdapter<Model>>(name, Model::make(v));     \
-      }});                                                                                     \
+      },                                                                                       \
+      ::ballista::verification_example<Model>(), ::ballista::verification_reduce_elastic<Model>(), \
+      ::ballista::verification_reduce_j2<Model>()});                                           \
   }
 }  // namespace ballista

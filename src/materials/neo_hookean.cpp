@@ -26,6 +26,12 @@ struct NeoHookean {
     const ElasticConstants e = elastic_constants_from(v);
     return {v.at("density"), e.bulk - 2.0 * e.shear / 3.0, e.shear};
   }
+  // Verification hooks (MaterialFactory): rubber-like example (nu = 0.45) at large strain.
+  static ParamValues example_params() { return {{"density", 1100.0}, {"bulk_modulus", 40e6}, {"shear_modulus", 4e6}}; }
+  static ParamValues reduce_to_elastic(double rho, double K, double G) {
+    return {{"density", rho}, {"bulk_modulus", K}, {"shear_modulus", G}};
+  }
+
   static std::vector<StateFieldSpec> state_fields() { return {}; }
 
   /// [lambda ln J I + mu (B - I)] / J for B = F F^T (spatial) or B = C = F^T F (unrotated).
