@@ -1,7 +1,6 @@
 #include "io/material_presets.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -24,7 +23,7 @@ constexpr int kSchemaVersion = 1;
 int line_of(const YAML::Mark& m) { return m.line >= 0 ? m.line + 1 : 0; }
 int column_of(const YAML::Mark& m) { return m.column >= 0 ? m.column + 1 : 0; }
 
-/// "a map", "a list", "a number or word", "nothing" - for "expected X, got Y" messages.
+/// "a map", "a list", "nothing" or the quoted scalar - for "expected X, got Y" messages.
 std::string kind_of(const YAML::Node& n) {
   if (!n.IsDefined() || n.IsNull()) return "nothing";
   if (n.IsMap()) return "a map";
@@ -38,13 +37,15 @@ class PresetParser {
   explicit PresetParser(std::string file) : file_(std::move(file)) {}
 
   std::vector<MaterialPreset> parse(const YAML::Node& root) {
-    if (!root.IsDefined() || root.IsNull()) fail("", root, "empty presets file: expected 'presets:' with at least one preset");
+    if (!root.IsDefined() || root.IsNull())
+      fail("", root, "empty presets file: expected 'presets:' with at least one preset");
     if (!root.IsMap()) fail("", root, "expected a map with 'schema_version' and 'presets', got " + kind_of(root));
     check_keys(root, "", kTopKeys);
     const YAML::Node version = root["schema_version"];
     double v = 0.0;
     if (!scalar_number(version, v) || v != kSchemaVersion)
-      fail("schema_version", version.IsDefined() ? version : root, "expected schema_version: " + std::to_string(kSchemaVersion) + ", got " + kind_of(version));
+      fail("schema_version", version.IsDefined() ? version : root,
+           "expected schema_version: " + std::to_string(kSchemaVersion) + ", got " + kind_of(version));
     const YAML::Node presets = root["presets"];
     if (!presets.IsMap() || presets.size() == 0)
       fail("presets", presets.IsDefined() ? presets : root, "expected a map of named presets, got " + kind_of(presets));
@@ -87,11 +88,14 @@ class PresetParser {
     p.line = line_of(key.Mark());
     const std::string path = "presets." + p.name;
     if (!names_.insert(p.name).second) fail(path, key, "duplicate preset '" + p.name + "'");
-    if (!node.IsMap()) fail(path, node.IsDefined() && !node.IsNull() ? node : key, "expected a map (model, parameters, sources), got " + kind_of(node));
+    if (!node.IsMap())
+      fail(path, node.IsDefined() && !node.IsNull() ? node : key,
+           "expected a map (model, parameters, sources), got " + kind_of(node));
     check_keys(node, path, kPresetKeys);
     // A missing key is reported at the preset's name (node[...] of an absent key has no position).
     auto at = [&](const char* k) { return node[k].IsDefined() ? node[k] : key; };
-    if (!node["model"].IsDefined()) fail(path + ".model", key, "missing 'model' (the registered model the parameters are for)");
+    if (!node["model"].IsDefined())
+      fail(path + ".model", key, "missing 'model' (the registered model the parameters are for)");
     p.model = word(node["model"], path + ".model", true);
     p.description = word(node["description"], path + ".description", false);
     p.notes = word(node["notes"], path + ".notes", false);
@@ -106,7 +110,8 @@ class PresetParser {
       for (auto it = cc.begin(); it != cc.end(); ++it) {
         double x = 0.0;
         const std::string k = it->first.as<std::string>();
-        if (!scalar_number(it->second, x)) fail(path + ".cross_checks." + k, it->second, "expected a number, got " + kind_of(it->second));
+        if (!scalar_number(it->second, x))
+          fail(path + ".cross_checks." + k, it->second, "expected a number, got " + kind_of(it->second));
         p.cross_checks[k] = x;
       }
     }
@@ -125,10 +130,12 @@ class PresetParser {
         check_keys(v, k, {});
         for (auto jt = v.begin(); jt != v.end(); ++jt)
           if (!jt->second.IsScalar())
-            fail(k + "." + jt->first.as<std::string>(), jt->second.IsDefined() && !jt->second.IsNull() ? jt->second : jt->first,
+            fail(k + "." + jt->first.as<std::string>(),
+                 jt->second.IsDefined() && !jt->second.IsNull() ? jt->second : jt->first,
                  "expected a number or a word, got " + kind_of(jt->second));
       } else if (!v.IsScalar()) {
-        fail(k, v.IsDefined() && !v.IsNull() ? v : it->first, "expected a number, a word or a group map, got " + kind_of(v));
+        fail(k, v.IsDefined() && !v.IsNull() ? v : it->first,
+             "expected a number, a word or a group map, got " + kind_of(v));
       }
     }
   }
@@ -146,17 +153,22 @@ class PresetParser {
       PresetSource src;
       const YAML::Node keys = s["keys"];
       if (!keys.IsSequence() || keys.size() == 0)
-        fail(sp + ".keys", keys.IsDefined() ? keys : s, "expected a non-empty list of parameter keys, got " + kind_of(keys));
-      for (size_t j = 0; j < keys.size(); ++j) src.keys.push_back(word(keys[j], sp + ".keys." + std::to_string(j), true));
+        fail(sp + ".keys", keys.IsDefined() ? keys : s,
+             "expected a non-empty list of parameter keys, got " + kind_of(keys));
+      for (size_t j = 0; j < keys.size(); ++j)
+        src.keys.push_back(word(keys[j], sp + ".keys." + std::to_string(j), true));
       if (!s["cite"].IsDefined()) fail(sp + ".cite", s, "missing 'cite' (author, year, title, table)");
       src.cite = word(s["cite"], sp + ".cite", true);
       src.via = word(s["via"], sp + ".via", false);
-      if (!s["confidence"].IsDefined()) fail(sp + ".confidence", s, "missing 'confidence'; expected one of: " + join_names(levels));
+      if (!s["confidence"].IsDefined())
+        fail(sp + ".confidence", s, "missing 'confidence'; expected one of: " + join_names(levels));
       src.confidence = word(s["confidence"], sp + ".confidence", true);
       if (std::find(levels.begin(), levels.end(), src.confidence) == levels.end())
-        fail(sp + ".confidence", s["confidence"], "unknown confidence '" + src.confidence + "'" + suggest(src.confidence, levels));
+        fail(sp + ".confidence", s["confidence"],
+             "unknown confidence '" + src.confidence + "'" + suggest(src.confidence, levels));
       if ((src.confidence == "checked" || src.confidence == "secondary") && src.via.empty())
-        fail(sp + ".via", s, "confidence '" + src.confidence + "' needs 'via': where the numbers were compared or taken from");
+        fail(sp + ".via", s,
+             "confidence '" + src.confidence + "' needs 'via': where the numbers were compared or taken from");
       out.push_back(std::move(src));
     }
     return out;
@@ -198,7 +210,6 @@ class PresetParser {
     }
   }
 
- private:
   std::string file_;
   std::set<std::string> names_;
 };
@@ -239,7 +250,9 @@ MaterialPresetLibrary MaterialPresetLibrary::load(const std::string& path) {
   return parse(ss.str(), path);
 }
 
-MaterialPresetLibrary MaterialPresetLibrary::load_default() { return load(default_material_presets_path()); }
+MaterialPresetLibrary MaterialPresetLibrary::load_default() {
+  return load(default_material_presets_path());
+}
 
 const MaterialPreset* MaterialPresetLibrary::find(const std::string& name) const {
   for (const auto& p : presets_)
