@@ -351,7 +351,7 @@ ParamValues preset_param_values(const MaterialPreset& preset, const std::vector<
   const std::string base = "presets." + preset.name + ".";
   auto fail = [&](const std::string& key, const YAML::Node& at, const std::string& message) {
     const YAML::Mark m = at.IsDefined() ? at.Mark() : YAML::Mark::null_mark();
-    const int line = at.IsDefined() ? line_of(m) : preset.line;
+    const int line = m.line >= 0 ? line_of(m) : preset.line;  // absent key: at the preset's name
     throw DeckError(preset.file, line, column_of(m), base + key,
                     "material preset '" + preset.name + "' (" + preset.model + "): " + message);
   };

@@ -30,7 +30,10 @@ struct MaterialPreset {
   std::string name;
   std::string model;        ///< registered model name (find_material)
   std::string description;  ///< one line
-  YAML::Node parameters;    ///< a map: deck keys -> scalars, and group -> map of scalars
+  /// A map: deck keys -> scalars, and group -> map of scalars. yaml-cpp nodes have reference
+  /// semantics: a copy of a MaterialPreset shares this node, and `copy.parameters = other` would
+  /// overwrite the shared data; rebind with `copy.parameters.reset(other)` or edit a YAML::Clone.
+  YAML::Node parameters;
   std::vector<PresetSource> sources;
   std::map<std::string, double> cross_checks;  ///< same quantities from independent sources
   std::string notes;

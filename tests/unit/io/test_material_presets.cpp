@@ -365,7 +365,7 @@ TEST(MaterialPresets, RegisteredModelsConstructFromPresets) {
   for (const auto& [k, x] : flatten_parameters(b6.parameters)) EXPECT_TRUE(example.count(k)) << k;
 }
 
-TEST(MaterialPresets, ParamValuesRejectUnknownKeysAndBadWords) {
+TEST(MaterialPresets, ParamValuesRejectUnknownOutOfRangeAndMissingKeys) {
   const MaterialFactory* j2 = find_material("j2_plasticity");
   ASSERT_NE(j2, nullptr);
   auto lib = MaterialPresetLibrary::parse(R"(schema_version: 1
@@ -393,6 +393,18 @@ presets:
     EXPECT_EQ(e.line(), 9);
     EXPECT_EQ(e.key_path(), "presets.typo.yield_strees");
     EXPECT_NE(std::string(e.what()).find("did you mean 'yield_stress'"), std::string::npos) << e.what();
+  }
+  // A required parameter the preset lacks is reported at the preset's name (line 12 here).
+  MaterialPreset no_yield = lib.get("negative");
+  // reset(), not operator=: a yaml-cpp assignment would overwrite the node shared with `lib`.
+  no_yield.parameters.reset(YAML::Load("{density: 8930, youngs_modulus: 117e9, poisson_ratio: 0.35}"));
+  try {
+    (void)preset_param_values(no_yield, j2->params);
+    FAIL() << "expected an error";
+  } catch (const DeckError& e) {
+    EXPECT_EQ(e.line(), 12);
+    EXPECT_EQ(e.key_path(), "presets.negative.yield_stress");
+    EXPECT_NE(std::string(e.what()).find("missing required parameter"), std::string::npos) << e.what();
   }
   try {
     (void)preset_param_values(lib.get("negative"), j2->params);
@@ -606,7 +618,7 @@ TEST(MaterialPresetMerge, MergedTaylorCopperConstructsWithTheDeckOverride) {
   const MaterialPreset& b6 = library().get("copper_taylor_b6_j2");
   const YAML::Node merged = merge_preset_into(b6, YAML::Load("{preset: copper_taylor_b6_j2, yield_stress: 3.0e8}"));
   MaterialPreset as_read = b6;
-  as_read.parameters = YAML::Node(YAML::NodeType::Map);
+  as_read.parameters.reset(YAML::Node(YAML::NodeType::Map));  // rebind, do not overwrite the library's node
   for (auto it = merged.begin(); it != merged.end(); ++it)
     if (it->first.as<std::string>() != "model") as_read.parameters[it->first] = it->second;
   const MaterialFactory* j2 = find_material("j2_plasticity");
@@ -615,4 +627,5 @@ TEST(MaterialPresetMerge, MergedTaylorCopperConstructsWithTheDeckOverride) {
   EXPECT_EQ(v.at("yield_stress"), 3.0e8);
   EXPECT_EQ(v.at("hardening_modulus"), 100.0e6);
   EXPECT_NE(j2->create("b6", v), nullptr);
+  EXPECT_EQ(num(library().get("copper_taylor_b6_j2"), "yield_stress"), 400.0e6);  // the library is untouched
 }
