@@ -6,9 +6,17 @@ namespace ballista {
 
 namespace {
 
-const std::vector<std::string> kCriteria = {"none", "johnson_cook_damage", "melt", "tepla", "drucker_stability",
-                                            "max_stress"};
-const std::vector<std::string> kErosion = {"none", "allow_no_tension", "allow_no_shear", "zero_stress"};
+// Function-local statics: failure_param_specs() runs during the static initialisation of the
+// model files (registration), when namespace-scope objects of this file may not exist yet.
+const std::vector<std::string>& criteria() {
+  static const std::vector<std::string> v = {"none", "johnson_cook_damage", "melt", "tepla", "drucker_stability",
+                                             "max_stress"};
+  return v;
+}
+const std::vector<std::string>& erosion_rules() {
+  static const std::vector<std::string> v = {"none", "allow_no_tension", "allow_no_shear", "zero_stress"};
+  return v;
+}
 
 std::string joined(const std::vector<std::string>& v) {
   std::string s;
@@ -23,7 +31,7 @@ FailureCriterion criterion_from(const std::string& w) {
   if (w == "tepla") return FailureCriterion::Tepla;
   if (w == "drucker_stability") return FailureCriterion::DruckerStability;
   if (w == "max_stress") return FailureCriterion::MaxStress;
-  throw ParamError("failure.criterion", "unknown failure.criterion '" + w + "' (expected one of: " + joined(kCriteria) + ")");
+  throw ParamError("failure.criterion", "unknown failure.criterion '" + w + "' (expected one of: " + joined(criteria()) + ")");
 }
 
 ErosionRule erosion_from(const std::string& w) {
@@ -31,7 +39,7 @@ ErosionRule erosion_from(const std::string& w) {
   if (w == "allow_no_tension") return ErosionRule::AllowNoTension;
   if (w == "allow_no_shear") return ErosionRule::AllowNoShear;
   if (w == "zero_stress") return ErosionRule::ZeroStress;
-  throw ParamError("failure.erosion", "unknown failure.erosion '" + w + "' (expected one of: " + joined(kErosion) + ")");
+  throw ParamError("failure.erosion", "unknown failure.erosion '" + w + "' (expected one of: " + joined(erosion_rules()) + ")");
 }
 
 /// The number `key`, which `criterion` requires.
@@ -52,11 +60,11 @@ std::vector<ParamSpec> failure_param_specs() {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   ParamSpec criterion{"failure.criterion", "",
                       "failure criterion (thesis eq. 6.5-6.10); a failed point is eroded by failure.erosion", false};
-  criterion.choices = kCriteria;
+  criterion.choices = criteria();
   criterion.default_choice = "none";
   ParamSpec erosion{"failure.erosion", "",
                     "stress of a failed point (eq. 6.11-6.14); none still evolves damage but keeps the stress", false};
-  erosion.choices = kErosion;
+  erosion.choices = erosion_rules();
   erosion.default_choice = "none";
   auto jc = [&](const char* name, const char* what) {
     return ParamSpec{name, "1", std::string("johnson_cook_damage: ") + what + " (required with it)", false, nan};
@@ -95,7 +103,7 @@ FailureModel make_failure(const ParamValues& v, ModelCapabilities caps) {
   if (m.criterion == FailureCriterion::None) {
     if (m.erosion != ErosionRule::None)
       throw ParamError("failure.erosion", "failure.erosion has no effect without a failure.criterion (expected one of: " +
-                                              joined(kCriteria) + ")");
+                                              joined(criteria()) + ")");
     return m;
   }
   // What the model must track (declared by its kernel, see ModelCapabilities).
