@@ -1,25 +1,45 @@
 #pragma once
-// Turns a per-point kernel (see material.hpp) into a Material that updates a batch of points.
+// Turns a per-point kernel (see material.hpp) into a Material that updates a batch of points,
+// with the failure criteria and erosion of materials/failure.hpp applied after the kernel.
 #include <algorithm>
 #include <string>
 #include <vector>
 
 #include "core/polar.hpp"
+#include "materials/failure.hpp"
 #include "materials/material.hpp"
 
 namespace ballista {
 
+/// What Model's kernel fills in PointResult (ModelCapabilities; absent flags are false).
+template <class Model>
+constexpr ModelCapabilities model_capabilities() {
+  ModelCapabilities c;
+  if constexpr (requires { Model::kTracksPlasticStrain; }) c.plastic_strain = Model::kTracksPlasticStrain;
+  if constexpr (requires { Model::kTracksTemperature; }) c.temperature = Model::kTracksTemperature;
+  return c;
+}
+
 template <class Model>
 class MaterialAdapter final : public Material {
  public:
-  MaterialAdapter(std::string name, typename Model::Params params)
-      : name_(std::move(name)), params_(params), state_(Model::state_fields()) {}
+  /// Most state variables a point can have (model + failure); checked at construction.
+  static constexpr int kMaxState = 16;
+
+  MaterialAdapter(std::string name, typename Model::Params params, FailureModel failure = {})
+      : name_(std::move(name)), params_(params), failure_(failure), state_(model_state_fields(params_)) {
+    model_states_ = static_cast<int>(state_.size());
+    for (const auto& f : failure_state_fields(failure_)) state_.push_back(f);
+    if (state_.size() > static_cast<size_t>(kMaxState))
+      throw Error(std::string("material model ") + Model::kName + " has more than 16 state variables");
+  }
 
   const std::string& name() const override { return name_; }
   const char* model() const override { return Model::kName; }
   double density() const override { return params_.density; }
   std::vector<StateFieldSpec> state_fields() const override { return state_; }
   const typename Model::Params& params() const { return params_; }
+  const FailureModel& failure() const { return failure_; }
 
   Mat3 initial_stress(const Mat3& F) const override {
     Mat3 R, U;
@@ -27,12 +47,48 @@ class MaterialAdapter final : public Material {
     return initial_stress_impl(F, R);
   }
 
+  /// The failure branch is chosen once per batch, so a material without a criterion pays nothing.
   void update(const MaterialBatch& b) const override {
-    constexpr int kMaxState = 16;
+    if (failure_.active())
+      update_batch<true>(b);
+    else
+      update_batch<false>(b);
+  }
+
+  double max_signal_speed(const FieldStore& store, const Index* points, Index count) const override {
+    const int ns = static_cast<int>(state_.size());
+    std::vector<const double*> sptr(ns);
+    for (int s = 0; s < ns; ++s) sptr[s] = store.real(state_[s].name);
+    const Mat3* F = store.view<Mat3>("F");
+    const Vec3* v = store.view<Vec3>("v");
+    double vmax = 0.0;
+#pragma omp parallel for reduction(max : vmax) schedule(static) if (count > kParallelThreshold)
+    for (Index k = 0; k < count; ++k) {
+      const Index p = points[k];
+      double st[kMaxState];
+      for (int s = 0; s < ns; ++s) st[s] = sptr[s][p];
+      vmax = std::max(vmax, Model::wave_speed(params_, st, det(F[p])) + norm(v[p]));
+    }
+    return vmax;
+  }
+
+  double wave_speed(const FieldStore& store, Index p, double J) const override {
+    double st[kMaxState];
+    for (size_t s = 0; s < state_.size(); ++s) st[s] = store.real(state_[s].name)[p];
+    return Model::wave_speed(params_, st, J);
+  }
+
+ private:
+  using Params = typename Model::Params;
+
+  template <bool kFailure>
+  void update_batch(const MaterialBatch& b) const {
     const int ns = static_cast<int>(state_.size());
     std::vector<double*> sptr(ns);
     for (int s = 0; s < ns; ++s) sptr[s] = b.store->real(state_[s].name);
     const Params& prm = params_;
+    const FailureModel& fm = failure_;
+    const int nm = model_states_;  // failure's damage and failed follow the model's state
     for_each(0, b.count, [&](Index k) {
       const Index p = b.points[k];
       PointKinematics kin;
@@ -57,13 +113,29 @@ class MaterialAdapter final : public Material {
       kin.D_bar = unrotate_sym(kin.R_new, D);
       const Mat3 sigma_old = b.stress[p];
       Mat3 sigma_bar = unrotate_sym(R_old, sigma_old);
+      [[maybe_unused]] const Mat3 sigma_bar_old = kFailure ? sigma_bar : Mat3{};
       double st[kMaxState];
       for (int s = 0; s < ns; ++s) st[s] = sptr[s][p];
       PointResult res;
       if (b.tangent) res.tangent = b.tangent + 36 * p;
       Model::update(prm, kin, sigma_bar, st, res);
+      Mat3 sigma_new = rotate_sym(kin.R_new, sigma_bar);
+      if constexpr (kFailure) {
+        // Criterion on the kernel's stress at t_{n+1}; erosion (thesis eq. 6.11-6.14) once failed.
+        const bool failed = failure_update(fm, sigma_bar_old, sigma_bar, res, b.dt, st[nm], st[nm + 1]);
+        if (failed && fm.erosion != ErosionRule::None) {
+          erode(fm.erosion, sigma_new);
+          // The stress is no longer the model's, nor is its dissipation: the energy released by
+          // erosion stays in the stress-power integral (internal energy), not in plastic work.
+          res.plastic_work_density = 0.0;
+          if (fm.erosion == ErosionRule::ZeroStress) {  // F* = F_n (eq. 6.14): frozen deformation
+            b.F_new[p] = (b.F_old || kNeedsFOld) ? kin.F_old : inverse(A) * kin.F_new;
+            kin.R_new = R_old;
+            kin.J_new = kin.J_old;
+          }
+        }
+      }
       for (int s = 0; s < ns; ++s) sptr[s][p] = st[s];
-      const Mat3 sigma_new = rotate_sym(kin.R_new, sigma_bar);
       b.stress[p] = sigma_new;
       b.R[p] = kin.R_new;
       if (b.plastic_work) b.plastic_work[p] = res.plastic_work_density;
@@ -81,33 +153,14 @@ class MaterialAdapter final : public Material {
     });
   }
 
-  double max_signal_speed(const FieldStore& store, const Index* points, Index count) const override {
-    constexpr int kMaxState = 16;
-    const int ns = static_cast<int>(state_.size());
-    std::vector<const double*> sptr(ns);
-    for (int s = 0; s < ns; ++s) sptr[s] = store.real(state_[s].name);
-    const Mat3* F = store.view<Mat3>("F");
-    const Vec3* v = store.view<Vec3>("v");
-    double vmax = 0.0;
-#pragma omp parallel for reduction(max : vmax) schedule(static) if (count > kParallelThreshold)
-    for (Index k = 0; k < count; ++k) {
-      const Index p = points[k];
-      double st[kMaxState];
-      for (int s = 0; s < ns; ++s) st[s] = sptr[s][p];
-      vmax = std::max(vmax, Model::wave_speed(params_, st, det(F[p])) + norm(v[p]));
-    }
-    return vmax;
+  /// The model's state variables: per instance if the model has state_fields(params) (e.g. the
+  /// EOS energy only with eos.type mie_gruneisen), else its static list.
+  static std::vector<StateFieldSpec> model_state_fields(const Params& p) {
+    if constexpr (requires { Model::state_fields(p); })
+      return Model::state_fields(p);
+    else
+      return Model::state_fields();
   }
-
-  double wave_speed(const FieldStore& store, Index p, double J) const override {
-    constexpr int kMaxState = 16;
-    double st[kMaxState];
-    for (size_t s = 0; s < state_.size(); ++s) st[s] = store.real(state_[s].name)[p];
-    return Model::wave_speed(params_, st, J);
-  }
-
- private:
-  using Params = typename Model::Params;
   /// Models that read PointKinematics::F_old declare `static constexpr bool kNeedsFOld = true`.
   static constexpr bool kNeedsFOld = [] {
     if constexpr (requires { Model::kNeedsFOld; }) return Model::kNeedsFOld;
@@ -126,7 +179,9 @@ class MaterialAdapter final : public Material {
 
   std::string name_;
   Params params_;
-  std::vector<StateFieldSpec> state_;
+  FailureModel failure_;
+  std::vector<StateFieldSpec> state_;  ///< the model's, then failure's
+  int model_states_ = 0;
 };
 
 /// Optional verification hooks of a model (see MaterialFactory); null when the model lacks them.
@@ -146,16 +201,27 @@ constexpr auto verification_reduce_j2() -> ParamValues (*)(double, double, doubl
   else return nullptr;
 }
 
+/// The registry entry of Model: its parameters plus the failure.* group shared by every model,
+/// its (static) state fields, and a create() that makes the kernel's Params, then the failure
+/// model (ParamError naming the key on bad input), and wraps both in a MaterialAdapter. Tests use
+/// it directly to make a material of a test-only kernel without registering it.
+template <class Model>
+MaterialFactory material_factory(const char* description) {
+  std::vector<ParamSpec> params = Model::param_specs();
+  for (auto& s : failure_param_specs()) params.push_back(std::move(s));
+  return MaterialFactory{
+      Model::kName, description, std::move(params), Model::state_fields(),
+      [](const std::string& name, const ParamValues& v) -> std::unique_ptr<Material> {
+        typename Model::Params p = Model::make(v);
+        const FailureModel f = make_failure(v, model_capabilities<Model>());
+        return std::make_unique<MaterialAdapter<Model>>(name, p, f);
+      },
+      verification_example<Model>(), verification_reduce_elastic<Model>(), verification_reduce_j2<Model>()};
+}
+
 /// Registers Model under Model::kName; use once per model file at namespace scope.
-#define BALLISTA_REGISTER_MATERIAL(Model, Description)                                         \
-  namespace {                                                                                  \
-  const bool registered_##Model = ::ballista::register_material(::ballista::MaterialFactory{   \
-      Model::kName, Description, Model::param_specs(), Model::state_fields(),                  \
-      [](const std::string& name, const ::ballista::ParamValues& v)                            \
-          -> std::unique_ptr<::ballista::Material> {                                           \
-        return std::make_unique<::ballista::MaterialAdapter<Model>>(name, Model::make(v));     \
-      },                                                                                       \
-      ::ballista::verification_example<Model>(), ::ballista::verification_reduce_elastic<Model>(), \
-      ::ballista::verification_reduce_j2<Model>()});                                           \
+#define BALLISTA_REGISTER_MATERIAL(Model, Description) \
+  namespace {                                          \
+  const bool registered_##Model = ::ballista::register_material(::ballista::material_factory<Model>(Description)); \
   }
 }  // namespace ballista
