@@ -13,7 +13,7 @@ template <class Model>
 class MaterialAdapter final : public Material {
  public:
   MaterialAdapter(std::string name, typename Model::Params params)
-      : name_(std::move(name)), params_(params), state_(Model::state_fields()) {}
+      : name_(std::move(name)), params_(params), state_(active_state_fields(params_)) {}
 
   const std::string& name() const override { return name_; }
   const char* model() const override { return Model::kName; }
@@ -108,6 +108,14 @@ class MaterialAdapter final : public Material {
 
  private:
   using Params = typename Model::Params;
+  /// The state fields this instance uses. A model whose state depends on its parameters (J2
+  /// without backstress, an EOS without energy) defines `state_fields(const Params&)`, returning a
+  /// subset of `state_fields()` (the full list, which the registry shows); the kernel then receives
+  /// exactly those fields, in that order.
+  static std::vector<StateFieldSpec> active_state_fields(const typename Model::Params& p) {
+    if constexpr (requires { Model::state_fields(p); }) return Model::state_fields(p);
+    else return Model::state_fields();
+  }
   /// Models that read PointKinematics::F_old declare `static constexpr bool kNeedsFOld = true`.
   static constexpr bool kNeedsFOld = [] {
     if constexpr (requires { Model::kNeedsFOld; }) return Model::kNeedsFOld;
