@@ -68,7 +68,8 @@ inline J2Return j2_trial(const Mat3& s_trial, const Mat3* alpha, double yield_n)
 /// r(0) = f_tr > 0 and r(f_tr/c) = sigma_y(0) - sigma_y(f_tr/c) <= 0, so the root is bracketed in
 /// (0, f_tr/c]. Newton's method starts at the upper end (where the residual is finite even for a
 /// power law with n < 1 from eps_p = 0, whose slope is infinite at Delta = 0) and falls back to
-/// bisection whenever a step leaves the bracket or the slope is not finite. Stops when the residual
+/// bisection (geometric while the bracket spans decades) whenever a step leaves the bracket or the
+/// slope is not finite. Stops when the residual
 /// reaches round-off (8 eps q_tr) or the step is below 1e-13 Delta (Newton is quadratic near the
 /// root, so the error is then ~1e-26 relative; a bisection-driven exit leaves <= 1e-13). `slope`
 /// returns h at the solution.
@@ -87,7 +88,14 @@ double j2_solve_increment(double q_trial, double f_trial, double c, const Flow& 
     else
       hi = x;
     double xn = x + r / (c + fs.slope);  // c + slope > 0 for a non-decreasing flow stress
-    if (!(xn > lo && xn < hi)) xn = 0.5 * (lo + hi);
+    if (!(xn > lo && xn < hi)) {
+      // Safeguard: bisect, geometrically while the bracket spans decades (a power law with small n
+      // can put the root many decades below f_tr/c, where Newton from the right always overshoots).
+      if (lo == 0.0)
+        xn = 1e-3 * hi;
+      else
+        xn = hi > 16.0 * lo ? std::sqrt(lo * hi) : 0.5 * (lo + hi);
+    }
     if (std::abs(xn - x) <= 1e-13 * xn) {
       slope = flow(xn).slope;
       return xn;
