@@ -72,7 +72,7 @@ inline J2Return j2_trial(const Mat3& s_trial, const Mat3* alpha, double yield_n)
 /// slope is not finite. Stops when the residual
 /// reaches round-off (8 eps q_tr) or the step is below 1e-13 Delta (Newton is quadratic near the
 /// root, so the error is then ~1e-26 relative; a bisection-driven exit leaves <= 1e-13). `slope`
-/// returns h at the solution.
+/// returns h at the last evaluation, i.e. at the solution to within that last step.
 template <class Flow>
 double j2_solve_increment(double q_trial, double f_trial, double c, const Flow& flow, double& slope) {
   double lo = 0.0, hi = f_trial / c;
@@ -96,10 +96,7 @@ double j2_solve_increment(double q_trial, double f_trial, double c, const Flow& 
       else
         xn = hi > 16.0 * lo ? std::sqrt(lo * hi) : 0.5 * (lo + hi);
     }
-    if (std::abs(xn - x) <= 1e-13 * xn) {
-      slope = flow(xn).slope;
-      return xn;
-    }
+    if (std::abs(xn - x) <= 1e-13 * xn) return xn;  // slope from x: 1e-13 away, ample for a tangent
     x = xn;
   }
   return x;  // not reached: 200 bisections shrink any bracket below round-off

@@ -214,9 +214,10 @@ struct JohnsonCook {
           return 1.0;
         };
         auto flow = [&](double d) {
-          const double e = e0 + d;
-          const double hard = p.A + p.B * std::pow(e, p.n);
-          const double dhard = p.B == 0.0 ? 0.0 : p.B * p.n * std::pow(e, p.n - 1.0);
+          const double e = e0 + d;  // > 0 in practice: the return does not evaluate d = 0
+          const double Ben = p.B * std::pow(e, p.n);
+          const double hard = p.A + Ben;
+          const double dhard = e > 0.0 ? p.n * Ben / e : 0.0;  // n B e^(n-1) (bracket keeps Newton safe)
           double dR;
           const double R = rate_factor(d, dR);
           return FlowStress{hard * R * theta, (dhard * R + hard * dR) * theta};
