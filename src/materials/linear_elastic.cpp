@@ -27,12 +27,7 @@ struct LinearElastic {
   };
   static std::vector<ParamSpec> param_specs() {
     std::vector<ParamSpec> s = elastic_param_specs();
-    for (auto& e : eos_param_specs()) {
-      // "No cutoff" as an absent optional value: a default of -inf would be written to
-      // resolved.yaml as -.inf, which the deck reader does not read back as a number.
-      if (e.name == "eos.min_pressure") e.default_value = std::numeric_limits<double>::quiet_NaN();
-      s.push_back(std::move(e));
-    }
+    for (auto& e : eos_param_specs()) s.push_back(std::move(e));
     return s;
   }
   static Params make(const ParamValues& v) {

@@ -11,7 +11,6 @@
 #include <cmath>
 #include <vector>
 
-#include "materials/j2_return.hpp"
 #include "materials/material_adapter.hpp"
 
 namespace ballista::test {
@@ -73,8 +72,28 @@ struct ScriptedPlastic : ScriptedBase {
   static constexpr bool kTracksPlasticStrain = true;
 };
 
-/// Hypoelastic J2 with linear hardening sigma_y = sigma_y0 + H eps_p (H may be negative: the
-/// radial return of j2_return.hpp stays exact as long as 3G + H > 0), Drucker's product
+/// Radial return for linear hardening (Simo & Hughes 1998 Box 3.1), kept here in closed form so
+/// that this test model may soften (H < 0, exact while 3G + H > 0), which the library's bracketed
+/// return does not need to support.
+struct LinearReturn {
+  double delta_eqps = 0.0, plastic_work = 0.0;
+};
+inline LinearReturn linear_radial_return(Mat3& sigma, double& eqps, double G, double sy0, double H) {
+  LinearReturn r;
+  const double mean = trace(sigma) / 3.0;
+  const Mat3 dev = deviator(sigma);
+  const double q = std::sqrt(1.5 * ddot(dev, dev));
+  const double sy_n = sy0 + H * eqps;
+  if (!(q - sy_n > 0.0)) return r;
+  r.delta_eqps = (q - sy_n) / (3.0 * G + H);
+  sigma = (1.0 - 3.0 * G * r.delta_eqps / q) * dev + mean * Mat3::identity();
+  r.plastic_work = (sy_n + 0.5 * H * r.delta_eqps) * r.delta_eqps;
+  eqps += r.delta_eqps;
+  return r;
+}
+
+/// Hypoelastic J2 with linear hardening sigma_y = sigma_y0 + H eps_p (H may be negative, see
+/// linear_radial_return), Drucker's product
 /// (sigma_{n+1} - sigma_n) : Delta eps^p with Delta eps^p = Delta eps_p (3/2) s_{n+1}/q_{n+1}, and
 /// adiabatic heating T += chi W_p/(rho0 c_p) (thesis eq. 6.7 with the exact plastic work of the
 /// step, W_p = int sigma_y d eps_p).
@@ -114,7 +133,7 @@ struct HeatingJ2 {
     s += k.dt * (2.0 * p.shear) * k.D_bar;
     const double iso = k.dt * lam * trace(k.D_bar);
     s(0, 0) += iso; s(1, 1) += iso; s(2, 2) += iso;
-    const J2Return ret = j2_radial_return(s, state[0], p.shear, p.yield, p.hardening);
+    const LinearReturn ret = linear_radial_return(s, state[0], p.shear, p.yield, p.hardening);
     r.delta_eqps = ret.delta_eqps;
     r.eqps = state[0];
     r.plastic_work_density = ret.plastic_work;

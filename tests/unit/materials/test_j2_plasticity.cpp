@@ -373,9 +373,19 @@ TEST(J2Plasticity, Parameters) {
     if (s.name == "hardening_modulus") { has_h = true; EXPECT_FALSE(s.required); EXPECT_EQ(s.default_value, 0.0); EXPECT_EQ(s.min, 0.0); }
   }
   EXPECT_TRUE(has_yield && has_h);
-  ASSERT_EQ(f->state_fields.size(), 1u);
+  // The registry lists every field the model can have; an instance declares only those its
+  // parameters need (the default deck: eqps alone, as before kinematic hardening and the EOS).
+  ASSERT_EQ(f->state_fields.size(), 8u);
   EXPECT_EQ(f->state_fields[0].name, "eqps");
   EXPECT_EQ(f->state_fields[0].unit, "1");
+  EXPECT_EQ(f->state_fields[1].name, "backstress_11");
+  EXPECT_EQ(f->state_fields[6].name, "backstress_12");
+  EXPECT_EQ(f->state_fields[7].name, "energy_density");
+  {
+    const auto m = f->create("m", j2_params(kK, kG, kSy, 0));
+    ASSERT_EQ(m->state_fields().size(), 1u);
+    EXPECT_EQ(m->state_fields()[0].name, "eqps");
+  }
   ParamValues v = elastic_kg(kRho, kK, kG);
   try {
     f->create("m", v);
