@@ -27,7 +27,7 @@ std::vector<double> drive_history_row(const DriveRecord& r) {
   const Mat3 s = deviator(r.sigma);
   v.push_back(I1);
   v.push_back(std::sqrt(0.5 * ddot(s, s)));  // sqrt(J2), J2 = s:s/2
-  v.push_back(-I1 / 3.0);                    // P = -I1/3 (CATALOGUE sign convention)
+  v.push_back(-I1 / 3.0 + 0.0);              // P = -I1/3 (CATALOGUE sign convention; + 0: no -0)
   v.insert(v.end(), r.state.begin(), r.state.end());
   v.insert(v.end(), {r.plastic_work, r.plastic_work_total, r.internal_energy, static_cast<double>(r.iterations)});
   return v;

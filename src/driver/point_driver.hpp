@@ -88,9 +88,10 @@ struct DriveProgram {
   // Extensions (defaults keep the original behaviour):
   /// Record every n-th step (>= 1); the last step of every row or leg is always recorded.
   int record_every = 1;
-  /// Stress control converges when every held component satisfies
-  /// |sigma_ij - target_ij| <= stress_tolerance * scale, scale = max(|sigma_{n+1}|, |targets|,
-  /// 1e-9 x the largest Jacobian entry) (Frobenius norm; see point_driver.cpp for why 1e-10).
+  /// Stress control converges when every held component satisfies |sigma_ij - target_ij| <=
+  /// max(stress_tolerance * max(|sigma_{n+1}|, |targets|), 1e-14 x the largest Jacobian entry)
+  /// (Frobenius norm; the second term is the round-off floor of eq. 4.10 near zero stress; see
+  /// point_driver.cpp for both numbers).
   double stress_tolerance = 1e-10;
   /// Newton iterations allowed per step before a PhysicsError.
   int max_iterations = 50;
@@ -109,7 +110,8 @@ struct DriveRecord {
   long step = 0;                    ///< step number (0 = initial state)
   double internal_energy = 0.0;     ///< accumulated stress work, J per m^3 of reference volume
   double plastic_work_total = 0.0;  ///< accumulated plastic dissipation, J per m^3 of reference volume
-  int iterations = 0;               ///< Newton iterations of the step (0 without stress control)
+  int iterations = 0;               ///< Newton iterations of the step (0 without stress control;
+                                    ///< -1 marks the step that raised a PhysicsError, see below)
 };
 
 struct DriveResult {
@@ -125,5 +127,11 @@ struct DriveResult {
 /// naming the row, leg or step; and PhysicsError if the stress turns non-finite (naming the step,
 /// time, F, stress and state) or stress control does not converge.
 DriveResult drive_point(const Material& material, const DriveProgram& program);
+
+/// The same, except that a PhysicsError does not propagate: its message goes to `error` and the
+/// result holds every record up to the last good step (for `ballista drive`, which writes the
+/// history up to a reproduced failure). Program errors (Error) still throw. `error` is cleared
+/// on success.
+DriveResult drive_point(const Material& material, const DriveProgram& program, std::string& error);
 
 }  // namespace ballista
