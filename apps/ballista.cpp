@@ -1,6 +1,7 @@
 // The `ballista` command line: run a deck, drive a single material point, list what is registered.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -80,6 +81,11 @@ int main(int argc, char** argv) {
   run->add_option("--threads", threads, "OpenMP threads (default: the deck's, else all cores)");
   run->add_option("--set", overrides, "override a deck value: key.path=value (repeatable)");
   run->add_flag("-q,--quiet", quiet, "no progress output");
+  bool track_failed = false;
+  run->add_flag("--track-failed", track_failed,
+                "if a particle fails, run the deck again from the start with that particle tracked "
+                "(output.track.ids; the run is deterministic for a given thread count), so that its "
+                "F-table tracks/particle_<id>.csv can be replayed with `ballista drive`");
 
   auto* drive = app.add_subcommand("drive", "drive one material point through an F-table or strain/stress legs");
   std::string drive_deck, drive_out;
@@ -124,13 +130,37 @@ int main(int argc, char** argv) {
       return r.ok ? 0 : 3;
     }
     if (*run) {
-      const ballista::Scenario sc = ballista::read_deck(deck, overrides);
+      ballista::Scenario sc = ballista::read_deck(deck, overrides);
       if (out_dir.empty()) out_dir = "out/" + std::filesystem::path(deck).stem().string();
       ballista::RunOptions opt;
       opt.out_dir = out_dir;
       opt.threads = threads;
       opt.progress = !quiet;
-      const ballista::RunResult r = ballista::run_simulation(sc, opt);
+      ballista::RunResult r = ballista::run_simulation(sc, opt);
+      const auto& tracked = sc.output.track;
+      if (!r.ok && track_failed && r.failed_particle >= 0 &&
+          std::find(tracked.begin(), tracked.end(), r.failed_particle) == tracked.end()) {
+        // Re-run from the start with the failing particle tracked: same deck, same thread count,
+        // so the run is bitwise the same up to the failure (docs/deck.md, output.track).
+        std::string ids;
+        for (auto id : tracked) ids += std::to_string(id) + ",";
+        ids += std::to_string(r.failed_particle);
+        const long first_step = r.failed_step;
+        const auto first_particle = r.failed_particle;
+        std::cerr << "re-running with output.track.ids = [" << ids << "] to record the history of particle "
+                  << first_particle << "\n";
+        overrides.push_back("output.track.ids=[" + ids + "]");
+        sc = ballista::read_deck(deck, overrides);
+        r = ballista::run_simulation(sc, opt);
+        if (r.ok || r.failed_particle != first_particle || r.failed_step != first_step)
+          std::cerr << "warning: the re-run did not fail the same way (particle " << r.failed_particle << " at step "
+                    << r.failed_step << ", first run: particle " << first_particle << " at step " << first_step
+                    << "): the run is not reproducible (different thread count?)\n";
+        else
+          std::cerr << "history of particle " << first_particle << " up to the failure: "
+                    << (std::filesystem::path(out_dir) / "tracks" / ("particle_" + std::to_string(first_particle) + ".csv")).string()
+                    << " (replay: ballista drive with drive: {table: <that file>, substeps: 1})\n";
+      }
       std::cout << (r.ok ? "completed" : "FAILED") << ": " << r.steps << " steps to t = " << r.time
                 << " s in " << fmt::format("{:.2f}", r.wall_seconds) << " s ("
                 << fmt::format("{:.3g}", r.particle_steps_per_second) << " particle-steps/s)\n";

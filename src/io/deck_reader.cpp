@@ -397,6 +397,7 @@ class Reader {
     out.history_every = static_cast<int>(o.integer("history_every", 10, 1, INT_MAX));
     DeckNode tr = o.map("track", false);
     out.track = particle_ids(tr, "ids");
+    out.track_mark = tr.mark_of("ids");
     tr.finish();
     o.finish();
   }

@@ -123,6 +123,7 @@ struct OutputSpec {
   bool domains = false;              ///< also write each particle's domain as a deformed hexahedron
   int history_every = 10;            ///< steps between history.csv rows
   std::vector<std::int64_t> track;   ///< output.track.ids: particle ids whose full history is recorded
+  DeckMark track_mark;               ///< where output.track.ids is (ids are checked against the seeding)
 };
 
 struct Scenario {
