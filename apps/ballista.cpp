@@ -96,8 +96,10 @@ int main(int argc, char** argv) {
   drive->add_option("deck", drive_deck, "YAML drive deck (materials + drive)")->required()->check(CLI::ExistingFile);
   drive->add_option("-o,--output", drive_out, "results folder (default out/<deck name>)");
   drive->add_option("--set", drive_overrides, "override a deck value: key.path=value (repeatable)");
-  auto* scale_opt = drive->add_option("--scale", scale, "scale the table's deformation: F -> I + S (F - I) (drive.scale)");
-  auto* noise_opt = drive->add_option("--noise", noise, "multiplicative noise of amplitude A on the table's increments (drive.noise)");
+  auto* scale_opt =
+      drive->add_option("--scale", scale, "scale the table's deformation: F -> I + S (F - I) (drive.scale)");
+  auto* noise_opt = drive->add_option("--noise", noise,
+                                      "multiplicative noise of amplitude A on the table's increments (drive.noise)");
   auto* seed_opt = drive->add_option("--seed", seed, "seed of the noise (drive.seed)")->check(CLI::NonNegativeNumber);
   seed_opt->needs(noise_opt);
   drive->add_flag("-q,--quiet", drive_quiet, "print nothing on success");
@@ -158,12 +160,14 @@ int main(int argc, char** argv) {
                     << "): the run is not reproducible (different thread count?)\n";
         else
           std::cerr << "history of particle " << first_particle << " up to the failure: "
-                    << (std::filesystem::path(out_dir) / "tracks" / ("particle_" + std::to_string(first_particle) + ".csv")).string()
+                    << (std::filesystem::path(out_dir) / "tracks" /
+                        ("particle_" + std::to_string(first_particle) + ".csv"))
+                           .string()
                     << " (replay: ballista drive with drive: {table: <that file>, substeps: 1})\n";
       }
-      std::cout << (r.ok ? "completed" : "FAILED") << ": " << r.steps << " steps to t = " << r.time
-                << " s in " << fmt::format("{:.2f}", r.wall_seconds) << " s ("
-                << fmt::format("{:.3g}", r.particle_steps_per_second) << " particle-steps/s)\n";
+      std::cout << (r.ok ? "completed" : "FAILED") << ": " << r.steps << " steps to t = " << r.time << " s in "
+                << fmt::format("{:.2f}", r.wall_seconds) << " s (" << fmt::format("{:.3g}", r.particle_steps_per_second)
+                << " particle-steps/s)\n";
       for (const auto& [name, value] : r.probes) std::cout << "  " << name << " = " << value << "\n";
       std::cout << "results in " << std::filesystem::absolute(out_dir).string() << "\n";
       return r.ok ? 0 : 3;

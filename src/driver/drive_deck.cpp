@@ -1,5 +1,7 @@
 #include "driver/drive_deck.hpp"
 
+#include <yaml-cpp/yaml.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <climits>
@@ -8,8 +10,6 @@
 #include <fstream>
 #include <memory>
 #include <sstream>
-
-#include <yaml-cpp/yaml.h>
 
 #include "driver/ftable_csv.hpp"
 #include "driver/perturb.hpp"
@@ -98,11 +98,13 @@ class DriveReader {
         d.fail("table", "cannot open the F-table file '" + v.Scalar() + "' (looked for " + deck_.table_file +
                             "; a relative path is relative to the deck's folder)");
       deck_.program.table = read_ftable_csv(deck_.table_file, key).rows;
-      d.set_resolved("table", YAML::Node(v.Scalar()));
+      // The resolved deck names the file absolutely, so that it re-runs from any folder.
+      d.set_resolved("table", YAML::Node(fs::absolute(path).lexically_normal().string()));
       return;
     }
-    const std::string what = "an F-table file name or a list of rows [t, F11, F12, F13, F21, F22, F23, F31, F32, F33] "
-                             "(optionally followed by angle_deg, axis_x, axis_y, axis_z)";
+    const std::string what =
+        "an F-table file name or a list of rows [t, F11, F12, F13, F21, F22, F23, F31, F32, F33] "
+        "(optionally followed by angle_deg, axis_x, axis_y, axis_z)";
     if (!v.IsSequence()) d.fail("table", "expected " + what);
     YAML::Node out(YAML::NodeType::Sequence);
     std::vector<YAML::Mark> marks;
@@ -118,8 +120,9 @@ class DriveReader {
       row.SetStyle(YAML::EmitterStyle::Flow);
       for (size_t k = 0; k < r.size(); ++k) {
         if (!scalar_number(r[k], x[k]))
-          deck_fail(*ctx_, path + "." + std::to_string(k), r[k].Mark(),
-                    "expected a number, got " + (r[k].IsScalar() ? "'" + r[k].Scalar() + "'" : std::string("a list or map")));
+          deck_fail(
+              *ctx_, path + "." + std::to_string(k), r[k].Mark(),
+              "expected a number, got " + (r[k].IsScalar() ? "'" + r[k].Scalar() + "'" : std::string("a list or map")));
         row.push_back(format_number(x[k]));
       }
       FTableRow fr;
@@ -133,7 +136,8 @@ class DriveReader {
       marks.push_back(r.Mark());
       out.push_back(row);
     }
-    if (v.size() < 2) d.fail("table", "expected at least 2 rows (the initial state and one more), got " + std::to_string(v.size()));
+    if (v.size() < 2)
+      d.fail("table", "expected at least 2 rows (the initial state and one more), got " + std::to_string(v.size()));
     check_ftable_rows(deck_.program.table, [&](size_t k, const std::string& msg) {
       deck_fail(*ctx_, key + "." + std::to_string(k), marks[k], msg);
     });
@@ -168,7 +172,8 @@ class DriveReader {
 
   void legs(DeckNode& d) {
     DeckNode ls = d.list("legs", true);
-    if (ls.size() == 0) ls.fail("expected at least one leg {duration: .., steps: .., strain: {11: ..}, stress: {22: 0}}");
+    if (ls.size() == 0)
+      ls.fail("expected at least one leg {duration: .., steps: .., strain: {11: ..}, stress: {22: 0}}");
     for (size_t i = 0; i < ls.size(); ++i) {
       DeckNode l = ls.element(i);
       DriveLeg g;
@@ -196,8 +201,8 @@ DriveDeck parse_drive_deck(const std::string& yaml_text, const std::string& file
   try {
     doc = YAML::Load(yaml_text);
   } catch (const YAML::Exception& e) {
-    throw DeckError(file_name, e.mark.line >= 0 ? e.mark.line + 1 : 0, e.mark.column >= 0 ? e.mark.column + 1 : 0,
-                    "", "invalid YAML: " + e.msg);
+    throw DeckError(file_name, e.mark.line >= 0 ? e.mark.line + 1 : 0, e.mark.column >= 0 ? e.mark.column + 1 : 0, "",
+                    "invalid YAML: " + e.msg);
   }
   auto ctx = std::make_shared<DeckContext>();
   ctx->file = file_name;

@@ -12,14 +12,14 @@
 namespace ballista {
 
 struct DriveDeck {
-  std::string file;            ///< deck path
+  std::string file;  ///< deck path
   MaterialSpec material;
-  DriveProgram program;        ///< ready to drive (perturbation already applied)
-  std::string table_file;      ///< the F-table file read (path as opened), "" for inline rows or legs
-  double scale = 1.0;          ///< drive.scale applied to the table (perturb.hpp)
-  double noise = 0.0;          ///< drive.noise applied to the table
-  std::uint64_t seed = 0;      ///< drive.seed of the noise
-  std::string resolved_yaml;   ///< the deck with every default filled
+  DriveProgram program;       ///< ready to drive (perturbation already applied)
+  std::string table_file;     ///< the F-table file read (path as opened), "" for inline rows or legs
+  double scale = 1.0;         ///< drive.scale applied to the table (perturb.hpp)
+  double noise = 0.0;         ///< drive.noise applied to the table
+  std::uint64_t seed = 0;     ///< drive.seed of the noise
+  std::string resolved_yaml;  ///< the deck with every default filled
 };
 
 /// Reads and validates a drive deck; `overrides` are --set key.path=value strings as for run

@@ -8,11 +8,11 @@ namespace ballista {
 
 struct DriveRunResult {
   bool ok = true;
-  std::string error;     ///< PhysicsError message when !ok (history.csv ends at the failing step)
+  std::string error;  ///< PhysicsError message when !ok (history.csv ends at the failing step)
   long steps = 0;
   size_t records = 0;
   double wall_seconds = 0.0;
-  DriveRecord last;      ///< last record
+  DriveRecord last;  ///< last record
 };
 
 /// Drives the deck's material through its program and writes, in out_dir (created):

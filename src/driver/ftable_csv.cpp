@@ -70,8 +70,10 @@ FTableFile read_ftable_csv(const std::string& path, const std::string& key_path)
         if (k >= cells.size() || k >= ref.size() || cells[k].text != ref[k])
           throw DeckError(path, lineno, k < cells.size() ? cells[k].column : static_cast<int>(line.size()) + 1,
                           key_path,
-                          "expected the header " + join_names(c10) + " (optionally followed by angle_deg, axis_x, "
-                          "axis_y, axis_z)" + (k < cells.size() ? ", got '" + cells[k].text + "'" : ", got fewer columns"));
+                          "expected the header " + join_names(c10) +
+                              " (optionally followed by angle_deg, axis_x, "
+                              "axis_y, axis_z)" +
+                              (k < cells.size() ? ", got '" + cells[k].text + "'" : ", got fewer columns"));
       }
       expected = cells.size();
       continue;
@@ -103,8 +105,9 @@ FTableFile read_ftable_csv(const std::string& path, const std::string& key_path)
   }
   if (in.bad()) throw DeckError(path, 0, 0, key_path, "cannot read the F-table file");
   if (out.rows.size() < 2)
-    throw DeckError(path, lineno, 0, key_path,
-                    "expected at least 2 rows (the initial state and one more), got " + std::to_string(out.rows.size()));
+    throw DeckError(
+        path, lineno, 0, key_path,
+        "expected at least 2 rows (the initial state and one more), got " + std::to_string(out.rows.size()));
   check_ftable_rows(out.rows, [&](size_t k, const std::string& msg) {
     throw DeckError(path, out.lines[k], 1, key_path, "row at t = " + format_number(out.rows[k].t) + ": " + msg);
   });

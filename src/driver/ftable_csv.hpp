@@ -51,12 +51,13 @@ void check_ftable_rows(const std::vector<FTableRow>& rows, Fail&& fail) {
     if (!std::isfinite(r.t) || !all_finite(r.F) || !std::isfinite(r.angle_deg) || !all_finite(r.axis))
       fail(k, "expected finite numbers");
     if (k > 0 && !(r.t > rows[k - 1].t))
-      fail(k, "expected times strictly increasing; " + format_number(r.t) + " follows " +
-                  format_number(rows[k - 1].t));
+      fail(k, "expected times strictly increasing; " + format_number(r.t) + " follows " + format_number(rows[k - 1].t));
     if (!(det(r.F) > 0.0)) fail(k, "expected det F > 0, got " + format_number(det(r.F)));
     if (k == 0 && r.angle_deg != 0.0)
-      fail(k, "expected rotation angle 0 in the first row (the initial state; a rotation accumulates over "
-              "the row that ends at its time), got " + format_number(r.angle_deg));
+      fail(k,
+           "expected rotation angle 0 in the first row (the initial state; a rotation accumulates over "
+           "the row that ends at its time), got " +
+               format_number(r.angle_deg));
     if (r.angle_deg != 0.0 && !(norm(r.axis) > 0.0)) fail(k, "expected a non-zero rotation axis");
   }
 }

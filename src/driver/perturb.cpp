@@ -22,7 +22,7 @@ std::vector<FTableRow> perturb_table(std::vector<FTableRow> rows, double scale, 
       check(k, "scale");
     }
   if (noise != 0.0 && rows.size() > 1) {
-    std::mt19937_64 rng(seed);  // the engine's output sequence is fixed by the standard
+    std::mt19937_64 rng(seed);    // the engine's output sequence is fixed by the standard
     Mat3 F_prev_old = rows[0].F;  // unperturbed F_{k-1}
     for (size_t k = 1; k < rows.size(); ++k) {
       const Mat3 F_old = rows[k].F;

@@ -202,7 +202,8 @@ class Driver {
   }
   std::string state_text(const std::vector<double>& st) const {
     std::string out;
-    for (size_t k = 0; k < st.size(); ++k) out += (out.empty() ? "" : ", ") + result_.state_names[k] + " = " + num(st[k]);
+    for (size_t k = 0; k < st.size(); ++k)
+      out += (out.empty() ? "" : ", ") + result_.state_names[k] + " = " + num(st[k]);
     return out.empty() ? "(no state fields)" : out;
   }
 
@@ -227,8 +228,8 @@ class Driver {
   [[noreturn]] void fail_nonfinite(const Snapshot& before, const Snapshot& after, double t_new,
                                    const std::string& where) const {
     std::ostringstream os;
-    os << "drive: non-finite stress or F after the material update (" << mat_.name() << ", model "
-       << mat_.model() << ") at step " << step_ + 1 << " (t = " << num(t_new) << " s" << where << ")\n"
+    os << "drive: non-finite stress or F after the material update (" << mat_.name() << ", model " << mat_.model()
+       << ") at step " << step_ + 1 << " (t = " << num(t_new) << " s" << where << ")\n"
        << "  F_n     = " << mat_text(before.F) << ", J = " << num(det(before.F))
        << "\n  F_n+1   = " << mat_text(after.F) << ", J = " << num(det(after.F))
        << "\n  stress_n   = " << mat_text(before.stress) << " Pa"
@@ -253,8 +254,10 @@ class Driver {
         throw Error(row + "times must increase strictly; " + num(r.t) + " follows " + num(rows[k - 1].t));
       if (!(det(r.F) > 0.0)) throw Error(row + "det F = " + num(det(r.F)) + " (must be > 0); F = " + mat_text(r.F));
       if (k == 0 && r.angle_deg != 0.0)
-        throw Error(row + "the first row is the initial state: its rotation angle must be 0 (a rotation "
-                          "accumulates over the row that ends at its time), got " + num(r.angle_deg) + " deg");
+        throw Error(row +
+                    "the first row is the initial state: its rotation angle must be 0 (a rotation "
+                    "accumulates over the row that ends at its time), got " +
+                    num(r.angle_deg) + " deg");
       if (r.angle_deg != 0.0 && !(norm(r.axis) > 0.0))
         throw Error(row + "rotation of " + num(r.angle_deg) + " deg about a zero axis");
     }
@@ -281,14 +284,13 @@ class Driver {
         if (rotated) F = (rotation_about(axis, tau * theta) * Q_prev) * F;
         const double dt = t_new - t_;
         if (!all_finite(F) || !(det(F) > 0.0))
-          throw Error("drive program: the interpolated F at step " + std::to_string(step_ + 1) + " (t = " +
-                      num(t_new) + " s, between rows " + std::to_string(k - 1) + " and " + std::to_string(k) +
+          throw Error("drive program: the interpolated F at step " + std::to_string(step_ + 1) + " (t = " + num(t_new) +
+                      " s, between rows " + std::to_string(k - 1) + " and " + std::to_string(k) +
                       ") has det F = " + num(det(F)) + " (must be > 0); F = " + mat_text(F) +
                       " (use more rows: F is interpolated linearly)");
         if (!(dt > 0.0))
-          throw Error("drive program: time step " + num(dt) + " s at step " + std::to_string(step_ + 1) +
-                      " (rows " + std::to_string(k - 1) + ", " + std::to_string(k) +
-                      " too close for the substeps)");
+          throw Error("drive program: time step " + num(dt) + " s at step " + std::to_string(step_ + 1) + " (rows " +
+                      std::to_string(k - 1) + ", " + std::to_string(k) + " too close for the substeps)");
         snapshot(base_, prev_);  // kept only for the error message
         if (!advance(base_, F, dt))
           fail_nonfinite(prev_, base_, t_new, ", F-table rows " + std::to_string(k - 1) + "-" + std::to_string(k));
@@ -396,8 +398,7 @@ class Driver {
   /// absolute round-off ~1e-16, i.e. a stress noise ~1e-16 x the stiffness (2e-5 Pa for steel);
   /// residuals below kStressNoise = 1e-14 x the largest Jacobian entry (100x that noise) count as
   /// converged.
-  int solve_step(size_t leg, int n, double* e6, double dt, double t_new, int m, const int* held,
-                 const double* target) {
+  int solve_step(size_t leg, int n, double* e6, double dt, double t_new, int m, const int* held, const double* target) {
     const double tol = prog_.stress_tolerance;
     double strain_scale = 1e-6;  // forward-difference step: 1e-7 of the increments' size
     for (int k = 0; k < 6; ++k) strain_scale = std::max(strain_scale, std::abs(e6[k]));
@@ -455,8 +456,8 @@ class Driver {
       for (int c = 0; c < m; ++c) strain_scale = std::max(strain_scale, std::abs(e6[held[c]]));
     }
     std::ostringstream os;
-    os << "drive: stress control did not converge at step " << step_ + 1 << " (t = " << num(t_new) << " s"
-       << where() << ") after " << prog_.max_iterations << " iterations: residuals";
+    os << "drive: stress control did not converge at step " << step_ + 1 << " (t = " << num(t_new) << " s" << where()
+       << ") after " << prog_.max_iterations << " iterations: residuals";
     for (int c = 0; c < m; ++c) os << " sigma" << voigt_name(held[c]) << " - target = " << num(r[c]) << " Pa";
     os << " (tolerance " << num(tol) << " relative to the stress scale; raise drive.stress_tolerance or use "
        << "more steps)\n  F_n = " << mat_text(base_.view<Mat3>("F")[0])
@@ -475,10 +476,10 @@ class Driver {
   Snapshot prev_;                    ///< the point at t_n, for error messages
   long step_ = 0;
   double t_ = 0.0;
-  double jac_scale_ = 0.0;           ///< largest entry of the latest stress-control Jacobian, Pa
-  std::string* error_ = nullptr;     ///< where a PhysicsError goes instead of propagating
+  double jac_scale_ = 0.0;                    ///< largest entry of the latest stress-control Jacobian, Pa
+  std::string* error_ = nullptr;              ///< where a PhysicsError goes instead of propagating
   const FieldStore* failed_store_ = nullptr;  ///< the point as the failing step left it
-  double failed_t_ = 0.0;            ///< time of the failing step
+  double failed_t_ = 0.0;                     ///< time of the failing step
 };
 
 }  // namespace

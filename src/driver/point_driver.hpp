@@ -56,10 +56,10 @@ namespace ballista {
 /// One row of an F-table: F at time t and, optionally, a superimposed rotation of angle_deg
 /// degrees about `axis` that accumulates linearly over the row ending at t (thesis §4.2.1).
 struct FTableRow {
-  double t = 0.0;               ///< s
-  Mat3 F = Mat3::identity();    ///< deformation gradient at t (before the superimposed rotation)
-  double angle_deg = 0.0;       ///< rotation added over the row (t_prev, t], degrees
-  Vec3 axis{0.0, 0.0, 1.0};     ///< rotation axis (normalised by the driver)
+  double t = 0.0;             ///< s
+  Mat3 F = Mat3::identity();  ///< deformation gradient at t (before the superimposed rotation)
+  double angle_deg = 0.0;     ///< rotation added over the row (t_prev, t], degrees
+  Vec3 axis{0.0, 0.0, 1.0};   ///< rotation axis (normalised by the driver)
 };
 
 /// Symmetric component order of DriveLeg (and of the model tangent): 11, 22, 33, 23, 13, 12.
@@ -74,8 +74,8 @@ const char* voigt_name(int k);
 /// reach at the end of the leg, Pa, approached linearly in time from its value at the start of the
 /// leg; e.g. 0 for the lateral components of uniaxial stress holds them at 0).
 struct DriveLeg {
-  double duration = 0.0;                  ///< s (> 0)
-  int steps = 1;                          ///< steps over the leg (>= 1)
+  double duration = 0.0;  ///< s (> 0)
+  int steps = 1;          ///< steps over the leg (>= 1)
   std::array<bool, 6> stress_controlled{};
   std::array<double, 6> value{};
 };
@@ -100,10 +100,10 @@ struct DriveProgram {
 /// The state of the point after one step.
 struct DriveRecord {
   double t = 0.0;
-  Mat3 F;            ///< deformation gradient (with any superimposed rotation)
-  Mat3 R;            ///< rotation of F = R U
-  Mat3 sigma;        ///< spatial Cauchy stress, Pa
-  Mat3 sigma_bar;    ///< unrotated Cauchy stress R^T sigma R, Pa
+  Mat3 F;                     ///< deformation gradient (with any superimposed rotation)
+  Mat3 R;                     ///< rotation of F = R U
+  Mat3 sigma;                 ///< spatial Cauchy stress, Pa
+  Mat3 sigma_bar;             ///< unrotated Cauchy stress R^T sigma R, Pa
   std::vector<double> state;  ///< model state fields, in DriveResult::state_names order
   double plastic_work = 0.0;  ///< plastic dissipation over the step, J/m^3
   // Extensions:

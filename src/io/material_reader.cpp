@@ -18,8 +18,8 @@ MaterialSpec read_material_spec(DeckNode& ms, const std::string& name) {
     std::string hint;
     if (const std::string best = closest_name(spec.model, models); !best.empty())
       hint = "; did you mean '" + best + "'?";
-    m.fail("model", "unknown material model '" + spec.model + "'" + hint + " (registered models: " +
-                        join_names(models) + ")");
+    m.fail("model",
+           "unknown material model '" + spec.model + "'" + hint + " (registered models: " + join_names(models) + ")");
   }
   // Parameters named "group.key" live in a sub-map of the material (eos: {...}).
   std::map<std::string, DeckNode> groups;

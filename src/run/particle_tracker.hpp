@@ -58,7 +58,7 @@ class ParticleTracker {
   std::vector<Index> where_;
   std::map<std::int64_t, Track> tracks_;
   std::vector<std::vector<std::string>> state_names_;  ///< per material index
-  double t_prev_ = 0.0;  ///< time of the previous record (start of the current step)
+  double t_prev_ = 0.0;                                ///< time of the previous record (start of the current step)
 };
 
 }  // namespace ballista

@@ -3,12 +3,12 @@
 // single-element driver, and the replayed stress history must equal the in-solver one to
 // round-off; a perturbed replay (thesis §4.2.2) must not. Also: a failing particle's history,
 // recorded by re-running the deterministic run with it tracked, reproduces the failure.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "core/error.hpp"
 #include "driver/ftable_csv.hpp"
@@ -76,9 +76,9 @@ ReplayError compare(const Material& mat, const std::vector<FTableRow>& rows, con
 // Measured: ~1e-13 relative (reported below).
 TEST(Replay, TrackedParticlesOfATaylorImpactReplayToRoundOff) {
   const std::vector<int> ids = {0, 3, 7, 9, 16, 40};
-  const Scenario sc = load_example(
-      "taylor_bar_mpm.yaml", {"grid.cell_size=0.8e-3", "simulation.end_time=20e-6", "output.interval=0",
-                              "output.domains=false", "output.track.ids=[0, 3, 7, 9, 16, 40]"});
+  const Scenario sc =
+      load_example("taylor_bar_mpm.yaml", {"grid.cell_size=0.8e-3", "simulation.end_time=20e-6", "output.interval=0",
+                                           "output.domains=false", "output.track.ids=[0, 3, 7, 9, 16, 40]"});
   TempDir dir("replay");
   const RunResult run = run_into(sc, dir.str());
   ASSERT_TRUE(run.ok) << run.error;
@@ -105,7 +105,8 @@ TEST(Replay, TrackedParticlesOfATaylorImpactReplayToRoundOff) {
     const DriveResult r = drive_point(mat, p);
     double diff = 0.0;
     for (size_t k = 0; k < h.rows; ++k)
-      for (int c = 0; c < 6; ++c) diff = std::max(diff, std::abs(r.records[k].sigma(kVoigtI[c], kVoigtJ[c]) - h[kSig[c]][k]));
+      for (int c = 0; c < 6; ++c)
+        diff = std::max(diff, std::abs(r.records[k].sigma(kVoigtI[c], kVoigtJ[c]) - h[kSig[c]][k]));
     EXPECT_GT(diff, 1e-5 * e.scale);
     worst_perturbed = std::min(worst_perturbed, diff / e.scale);
   }
@@ -128,8 +129,10 @@ TEST(Replay, FailingParticleIsTrackedByARerun) {
       "materials:\n"
       "  putty: {model: linear_elastic, density: 1000, youngs_modulus: 100, poisson_ratio: 0.25}\n"
       "bodies:\n"
-      "  - {name: left, material: putty, velocity: [50, 0], shape: {type: box, lower: [0.00390625, 0.01171875], upper: [0.009765625, 0.01953125]}}\n"
-      "  - {name: slab, material: putty, velocity: [-50, 0], shape: {type: box, lower: [0.041015625, 0.01171875], upper: [0.046875, 0.01953125]}}\n"
+      "  - {name: left, material: putty, velocity: [50, 0], shape: {type: box, lower: [0.00390625, 0.01171875], upper: "
+      "[0.009765625, 0.01953125]}}\n"
+      "  - {name: slab, material: putty, velocity: [-50, 0], shape: {type: box, lower: [0.041015625, 0.01171875], "
+      "upper: [0.046875, 0.01953125]}}\n"
       "output: {interval: 5.0e-5}\n";
   TempDir first("fail1");
   const RunResult r1 = run_into(parse_deck(deck, "putty.yaml"), first.str());

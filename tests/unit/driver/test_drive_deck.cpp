@@ -71,7 +71,8 @@ TEST(DriveDeck, LegsAreRead) {
     - {duration: 1, steps: 100, strain: {11: -0.01, 12: 0.002}, stress: {22: 0, 33: -1e6}}
     - {duration: 2, steps: 5, stress: {11: 0}}
   stress_tolerance: 1e-9
-)", "d.yaml");
+)",
+                                       "d.yaml");
   EXPECT_EQ(d.material.name, "steel");
   ASSERT_EQ(d.program.legs.size(), 2u);
   const DriveLeg& a = d.program.legs[0];
@@ -84,7 +85,7 @@ TEST(DriveDeck, LegsAreRead) {
   EXPECT_EQ(a.value[2], -1e6);
   EXPECT_EQ(a.value[5], 0.002);  // 12 is the last component
   EXPECT_FALSE(a.stress_controlled[3]);
-  EXPECT_EQ(a.value[3], 0.0);    // not given: strain-controlled, zero increment
+  EXPECT_EQ(a.value[3], 0.0);  // not given: strain-controlled, zero increment
   EXPECT_TRUE(d.program.legs[1].stress_controlled[0]);
   EXPECT_EQ(d.program.stress_tolerance, 1e-9);
   EXPECT_EQ(d.program.record_every, 1);
@@ -112,17 +113,20 @@ TEST(DriveDeck, Errors) {
   a: {model: linear_elastic, density: 1, bulk_modulus: 1, shear_modulus: 1}
   b: {model: linear_elastic, density: 1, bulk_modulus: 1, shear_modulus: 1}
 drive: {legs: [{duration: 1, steps: 1}]}
-)"), "d.yaml:1:1: 'materials': expected exactly one material in a drive deck");
+)"),
+             "d.yaml:1:1: 'materials': expected exactly one material in a drive deck");
   // Material errors are those of the run decks (shared reader).
   EXPECT_HAS(deck_error(R"(materials:
   a: {model: linear_elastik, density: 1}
 drive: {legs: [{duration: 1, steps: 1}]}
-)"), "did you mean 'linear_elastic'?");
+)"),
+             "did you mean 'linear_elastic'?");
   EXPECT_HAS(deck_error(kMaterial + "drive: {}\n"), "expected a deformation program in drive");
   EXPECT_HAS(deck_error(kMaterial + "drive: {table: x.csv, legs: [{duration: 1, steps: 1}]}\n"),
              "expected either table or legs in drive, not both");
-  EXPECT_HAS(deck_error(kMaterial + "drive:\n  legs:\n    - {duration: 1, steps: 1, strain: {11: 1}, stress: {11: 0}}\n"),
-             "d.yaml:5:61: 'drive.legs.0.stress.11': component 11 is both strain- and stress-controlled");
+  EXPECT_HAS(
+      deck_error(kMaterial + "drive:\n  legs:\n    - {duration: 1, steps: 1, strain: {11: 1}, stress: {11: 0}}\n"),
+      "d.yaml:5:61: 'drive.legs.0.stress.11': component 11 is both strain- and stress-controlled");
   EXPECT_HAS(deck_error(kMaterial + "drive:\n  legs:\n    - {duration: 1, steps: 1, strain: {21: 0.1}}\n"),
              "'drive.legs.0.strain.21': write the symmetric component 21 as 12");
   EXPECT_HAS(deck_error(kMaterial + "drive:\n  legs:\n    - {duration: 1, steps: 1, strain: {14: 0.1}}\n"),
@@ -133,7 +137,8 @@ drive: {legs: [{duration: 1, steps: 1}]}
              "'drive.legs.0.steps': expected an integer in 1..100000000");
   EXPECT_HAS(deck_error(kMaterial + "drive:\n  legs: [{duration: 1, steps: 1}]\n  substeps: 3\n"),
              "'drive.substeps': 'substeps' applies to an F-table, not to legs");
-  EXPECT_HAS(deck_error(kMaterial + "drive:\n  table: [[0,1,0,0,0,1,0,0,0,1],[1,1,0,0,0,1,0,0,0,1]]\n  stress_tolerance: 1e-8\n"),
+  EXPECT_HAS(deck_error(kMaterial +
+                        "drive:\n  table: [[0,1,0,0,0,1,0,0,0,1],[1,1,0,0,0,1,0,0,0,1]]\n  stress_tolerance: 1e-8\n"),
              "'stress_tolerance' applies to legs");
   EXPECT_HAS(deck_error(kMaterial + "drive:\n  table:\n    - [0,1,0,0,0,1,0,0,0,1]\n    - [1,1,0,0,0,1,0,0]\n"),
              "d.yaml:6:7: 'drive.table.1': expected a row of 10 or 14 numbers");
@@ -145,7 +150,8 @@ drive: {legs: [{duration: 1, steps: 1}]}
              "'drive.table.1.1': expected a number, got 'x'");
   EXPECT_HAS(deck_error(kMaterial + "drive:\n  table: [[0,1,0,0,0,1,0,0,0,1]]\n"), "expected at least 2 rows");
   EXPECT_HAS(deck_error(kMaterial + "drive:\n  table: missing.csv\n", "/nonexistent_dir"),
-             "d.yaml:4:10: 'drive.table': cannot open the F-table file 'missing.csv' (looked for /nonexistent_dir/missing.csv");
+             "d.yaml:4:10: 'drive.table': cannot open the F-table file 'missing.csv' (looked for "
+             "/nonexistent_dir/missing.csv");
   EXPECT_HAS(deck_error(kMaterial + "drive:\n  table: [[0,1,0,0,0,1,0,0,0,1],[1,2,0,0,0,1,0,0,0,1]]\n  noise: 5\n"),
              "'drive.noise': noise makes det F");
 }
@@ -153,8 +159,9 @@ drive: {legs: [{duration: 1, steps: 1}]}
 TEST(FTableCsv, ReadsHeaderCommentsAndBlanks) {
   TempDir dir;
   const auto p = dir.path / "t.csv";
-  write(p, "# comment\n\nt,F11,F12,F13,F21,F22,F23,F31,F32,F33\n0,1,0,0,0,1,0,0,0,1\n"
-           "0.5 1.25 0 0 0 1 0 0 0 1\n1.0000000000000002,1.2500000000000002,0,0,0,1,0,0,0,1\n");
+  write(p,
+        "# comment\n\nt,F11,F12,F13,F21,F22,F23,F31,F32,F33\n0,1,0,0,0,1,0,0,0,1\n"
+        "0.5 1.25 0 0 0 1 0 0 0 1\n1.0000000000000002,1.2500000000000002,0,0,0,1,0,0,0,1\n");
   const FTableFile f = read_ftable_csv(p.string(), "drive.table");
   ASSERT_EQ(f.rows.size(), 3u);
   EXPECT_EQ(f.lines, (std::vector<int>{4, 5, 6}));
@@ -181,7 +188,8 @@ TEST(FTableCsv, ErrorsNameFileLineAndColumn) {
   EXPECT_HAS(err(row0 + "1,1,0,0,0,1,0,0,0\n"), ":2:1: 'drive.table': expected 10 numbers like the rows above");
   EXPECT_HAS(err("0,1,0,0\n"), ":1:1: 'drive.table': expected 10 or 14 numbers");
   EXPECT_HAS(err("t,F11,F12,F13,F21,F22,F23,F31,F32,G33\n" + row0), ":1:35: 'drive.table': expected the header t, F11");
-  EXPECT_HAS(err(row0 + "0,1,0,0,0,1,0,0,0,1\n"), ":2:1: 'drive.table': row at t = 0: expected times strictly increasing");
+  EXPECT_HAS(err(row0 + "0,1,0,0,0,1,0,0,0,1\n"),
+             ":2:1: 'drive.table': row at t = 0: expected times strictly increasing");
   EXPECT_HAS(err(row0), "expected at least 2 rows");
   EXPECT_HAS(err("0,1,0,0,0,1,0,0,0,1,45,0,0,1\n1,1,0,0,0,1,0,0,0,1,0,0,0,1\n"),
              ":1:1: 'drive.table': row at t = 0: expected rotation angle 0 in the first row");
@@ -238,7 +246,8 @@ TEST(DriveRun, WritesOutputs) {
   const std::string sum = slurp(out / "summary.json");
   EXPECT_HAS(sum, "\"status\": \"completed\"");
   EXPECT_HAS(sum, "\"kind\": \"table\"");
-  EXPECT_HAS(slurp(out / "resolved.yaml"), "table: f.csv");
+  EXPECT_HAS(slurp(out / "resolved.yaml"),
+             "table: " + std::filesystem::absolute(dir.path / "f.csv").lexically_normal().string());
   EXPECT_EQ(ballista::test::count_tmp(out), 0);
 }
 
@@ -248,7 +257,8 @@ TEST(DriveRun, FailureIsReportedWithHistory) {
   TempDir dir;
   const DriveDeck d = parse_drive_deck(kMaterial + R"(drive:
   table: [[0,1,0,0,0,1,0,0,0,1], [1,1.001,0,0,0,1,0,0,0,1], [2,1e300,0,0,0,1,0,0,0,1]]
-)", "d.yaml");
+)",
+                                       "d.yaml");
   const DriveRunResult r = run_drive(d, dir.path.string());
   EXPECT_FALSE(r.ok);
   EXPECT_HAS(r.error, "non-finite stress");

@@ -164,8 +164,11 @@ TEST(PointDriver, RecordEvery) {
 // the J2 return map is Lipschitz in the increment, so stresses agree to ~1e-12 of their scale.
 // Asserted: 1e-10 of the yield stress on every step, and the plastic strain to 1e-10 absolute.
 TEST(PointDriver, ReplaysSolverStyleHistory) {
-  const auto mat = make("j2_plasticity", {{"density", 7800.0}, {"bulk_modulus", 160e9}, {"shear_modulus", 80e9},
-                                          {"yield_stress", 400e6}, {"hardening_modulus", 1e9}});
+  const auto mat = make("j2_plasticity", {{"density", 7800.0},
+                                          {"bulk_modulus", 160e9},
+                                          {"shear_modulus", 80e9},
+                                          {"yield_stress", 400e6},
+                                          {"hardening_modulus", 1e9}});
   FieldStore s;
   declare_point_fields(s);
   mat->declare_fields(s);
@@ -269,8 +272,11 @@ TEST(PointDriver, UniaxialStressLegLinearElastic) {
 // Compression to 2 % log strain with H = E/100: the plastic strain is ~ 2 % minus the elastic part.
 TEST(PointDriver, UniaxialStressLegJ2) {
   const double E = 200e9, nu = 0.3, sy = 400e6, H = 2e9;
-  const auto mat = make("j2_plasticity", {{"density", 7800.0}, {"youngs_modulus", E}, {"poisson_ratio", nu},
-                                          {"yield_stress", sy}, {"hardening_modulus", H}});
+  const auto mat = make("j2_plasticity", {{"density", 7800.0},
+                                          {"youngs_modulus", E},
+                                          {"poisson_ratio", nu},
+                                          {"yield_stress", sy},
+                                          {"hardening_modulus", H}});
   DriveProgram p;
   DriveLeg g;
   g.duration = 1e-3;
@@ -411,8 +417,9 @@ TEST(PointDriver, NonFiniteStressIsAPhysicsError) {
 
 // The state of a model with state fields is recorded in the model's order, every step.
 TEST(PointDriver, RecordsStateAndWork) {
-  const auto mat = make("j2_plasticity", {{"density", 7800.0}, {"bulk_modulus", 160e9}, {"shear_modulus", 80e9},
-                                          {"yield_stress", 400e6}});
+  const auto mat =
+      make("j2_plasticity",
+           {{"density", 7800.0}, {"bulk_modulus", 160e9}, {"shear_modulus", 80e9}, {"yield_stress", 400e6}});
   DriveProgram p;
   p.table = {row(0, Mat3::identity()), row(1e-3, Mat3::diag(0.98, 1, 1))};
   p.substeps = 100;

@@ -41,8 +41,10 @@ TEST(TrackDeck, IdsAreReadAndResolved) {
 }
 
 TEST(TrackDeck, BadIds) {
-  EXPECT_NE(error_of("output: {track: {ids: [1, -2]}}\n").find("t.yaml:7:27: 'output.track.ids.1': expected a particle id (an integer >= 0), got '-2'"),
-            std::string::npos) << error_of("output: {track: {ids: [1, -2]}}\n");
+  EXPECT_NE(error_of("output: {track: {ids: [1, -2]}}\n")
+                .find("t.yaml:7:27: 'output.track.ids.1': expected a particle id (an integer >= 0), got '-2'"),
+            std::string::npos)
+      << error_of("output: {track: {ids: [1, -2]}}\n");
   EXPECT_NE(error_of("output: {track: {ids: [1.5]}}\n").find("got '1.5'"), std::string::npos);
   EXPECT_NE(error_of("output: {track: {ids: [4, 4]}}\n").find("particle id 4 is listed twice"), std::string::npos);
   EXPECT_NE(error_of("output: {track: {ids: 4}}\n").find("expected a list of particle ids"), std::string::npos);
