@@ -1,6 +1,7 @@
-// The `ballista` command line: run a deck, list what is registered.
+// The `ballista` command line: run a deck, drive a single material point, list what is registered.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -9,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/error.hpp"
+#include "driver/drive_run.hpp"
 #include "io/deck_reader.hpp"
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
@@ -79,6 +81,28 @@ int main(int argc, char** argv) {
   run->add_option("--threads", threads, "OpenMP threads (default: the deck's, else all cores)");
   run->add_option("--set", overrides, "override a deck value: key.path=value (repeatable)");
   run->add_flag("-q,--quiet", quiet, "no progress output");
+  bool track_failed = false;
+  run->add_flag("--track-failed", track_failed,
+                "if a particle fails, run the deck again from the start with that particle tracked "
+                "(output.track.ids; the run is deterministic for a given thread count), so that its "
+                "F-table tracks/particle_<id>.csv can be replayed with `ballista drive`");
+
+  auto* drive = app.add_subcommand("drive", "drive one material point through an F-table or strain/stress legs");
+  std::string drive_deck, drive_out;
+  std::vector<std::string> drive_overrides;
+  double scale = 1.0, noise = 0.0;
+  long seed = 0;
+  bool drive_quiet = false;
+  drive->add_option("deck", drive_deck, "YAML drive deck (materials + drive)")->required()->check(CLI::ExistingFile);
+  drive->add_option("-o,--output", drive_out, "results folder (default out/<deck name>)");
+  drive->add_option("--set", drive_overrides, "override a deck value: key.path=value (repeatable)");
+  auto* scale_opt =
+      drive->add_option("--scale", scale, "scale the table's deformation: F -> I + S (F - I) (drive.scale)");
+  auto* noise_opt = drive->add_option("--noise", noise,
+                                      "multiplicative noise of amplitude A on the table's increments (drive.noise)");
+  auto* seed_opt = drive->add_option("--seed", seed, "seed of the noise (drive.seed)")->check(CLI::NonNegativeNumber);
+  seed_opt->needs(noise_opt);
+  drive->add_flag("-q,--quiet", drive_quiet, "print nothing on success");
 
   auto* info = app.add_subcommand("info", "list registered solvers, shape functions and materials");
 
@@ -88,17 +112,62 @@ int main(int argc, char** argv) {
       print_info();
       return 0;
     }
+    if (*drive) {
+      // The perturbation flags are deck overrides, so resolved.yaml records them.
+      if (*scale_opt) drive_overrides.push_back("drive.scale=" + fmt::format("{:.17g}", scale));
+      if (*noise_opt) drive_overrides.push_back("drive.noise=" + fmt::format("{:.17g}", noise));
+      if (*seed_opt) drive_overrides.push_back("drive.seed=" + std::to_string(seed));
+      const ballista::DriveDeck dd = ballista::read_drive_deck(drive_deck, drive_overrides);
+      if (drive_out.empty()) drive_out = "out/" + std::filesystem::path(drive_deck).stem().string();
+      const ballista::DriveRunResult r = ballista::run_drive(dd, drive_out);
+      if (!r.ok) std::cerr << "drive failed: " << r.error << "\n";
+      if (!drive_quiet || !r.ok) {
+        const auto& s = r.last.sigma;
+        std::cout << (r.ok ? "completed" : "FAILED") << ": " << r.steps << " steps to t = " << r.last.t << " s, "
+                  << r.records << " records in " << fmt::format("{:.2f}", r.wall_seconds) << " s\n"
+                  << fmt::format("  final sigma (11 22 33 23 13 12) = {:.6g} {:.6g} {:.6g} {:.6g} {:.6g} {:.6g} Pa\n",
+                                 s(0, 0), s(1, 1), s(2, 2), s(1, 2), s(0, 2), s(0, 1))
+                  << "results in " << std::filesystem::absolute(drive_out).string() << "\n";
+      }
+      return r.ok ? 0 : 3;
+    }
     if (*run) {
-      const ballista::Scenario sc = ballista::read_deck(deck, overrides);
+      ballista::Scenario sc = ballista::read_deck(deck, overrides);
       if (out_dir.empty()) out_dir = "out/" + std::filesystem::path(deck).stem().string();
       ballista::RunOptions opt;
       opt.out_dir = out_dir;
       opt.threads = threads;
       opt.progress = !quiet;
-      const ballista::RunResult r = ballista::run_simulation(sc, opt);
-      std::cout << (r.ok ? "completed" : "FAILED") << ": " << r.steps << " steps to t = " << r.time
-                << " s in " << fmt::format("{:.2f}", r.wall_seconds) << " s ("
-                << fmt::format("{:.3g}", r.particle_steps_per_second) << " particle-steps/s)\n";
+      ballista::RunResult r = ballista::run_simulation(sc, opt);
+      const auto& tracked = sc.output.track;
+      if (!r.ok && track_failed && r.failed_particle >= 0 &&
+          std::find(tracked.begin(), tracked.end(), r.failed_particle) == tracked.end()) {
+        // Re-run from the start with the failing particle tracked: same deck, same thread count,
+        // so the run is bitwise the same up to the failure (docs/deck.md, output.track).
+        std::string ids;
+        for (auto id : tracked) ids += std::to_string(id) + ",";
+        ids += std::to_string(r.failed_particle);
+        const long first_step = r.failed_step;
+        const auto first_particle = r.failed_particle;
+        std::cerr << "re-running with output.track.ids = [" << ids << "] to record the history of particle "
+                  << first_particle << "\n";
+        overrides.push_back("output.track.ids=[" + ids + "]");
+        sc = ballista::read_deck(deck, overrides);
+        r = ballista::run_simulation(sc, opt);
+        if (r.ok || r.failed_particle != first_particle || r.failed_step != first_step)
+          std::cerr << "warning: the re-run did not fail the same way (particle " << r.failed_particle << " at step "
+                    << r.failed_step << ", first run: particle " << first_particle << " at step " << first_step
+                    << "): the run is not reproducible (different thread count?)\n";
+        else
+          std::cerr << "history of particle " << first_particle << " up to the failure: "
+                    << (std::filesystem::path(out_dir) / "tracks" /
+                        ("particle_" + std::to_string(first_particle) + ".csv"))
+                           .string()
+                    << " (replay: ballista drive with drive: {table: <that file>, substeps: 1})\n";
+      }
+      std::cout << (r.ok ? "completed" : "FAILED") << ": " << r.steps << " steps to t = " << r.time << " s in "
+                << fmt::format("{:.2f}", r.wall_seconds) << " s (" << fmt::format("{:.3g}", r.particle_steps_per_second)
+                << " particle-steps/s)\n";
       for (const auto& [name, value] : r.probes) std::cout << "  " << name << " = " << value << "\n";
       std::cout << "results in " << std::filesystem::absolute(out_dir).string() << "\n";
       return r.ok ? 0 : 3;

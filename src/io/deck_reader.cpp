@@ -14,6 +14,7 @@
 
 #include "io/deck_node.hpp"
 #include "io/deck_overrides.hpp"
+#include "io/material_reader.hpp"
 
 namespace ballista {
 
@@ -168,74 +169,7 @@ class Reader {
     DeckNode ms = root_.map("materials", true);
     const auto names = ms.entry_names();
     if (names.empty()) ms.fail("expected at least one material (name: {model: ..., parameters})");
-    for (const auto& name : names) {
-      DeckNode m = ms.entry(name);
-      MaterialSpec spec;
-      spec.name = name;
-      spec.mark = m.mark();
-      std::vector<std::string> models;
-      for (const auto& f : material_registry()) models.push_back(f.model);
-      spec.model = m.string("model");
-      const MaterialFactory* factory = find_material(spec.model);
-      if (!factory) {
-        std::string hint;
-        if (const std::string best = closest_name(spec.model, models); !best.empty())
-          hint = "; did you mean '" + best + "'?";
-        m.fail("model", "unknown material model '" + spec.model + "'" + hint +
-                            " (registered models: " + join_names(models) + ")");
-      }
-      // Parameters named "group.key" live in a sub-map of the material (eos: {...}).
-      std::map<std::string, DeckNode> groups;
-      auto node_of = [&](const std::string& param, std::string& key) -> DeckNode& {
-        const auto dot = param.find('.');
-        if (dot == std::string::npos) {
-          key = param;
-          return m;
-        }
-        key = param.substr(dot + 1);
-        const std::string group = param.substr(0, dot);
-        auto it = groups.find(group);
-        if (it == groups.end()) it = groups.emplace(group, m.map(group, false)).first;
-        return it->second;
-      };
-      for (const ParamSpec& p : factory->params) {
-        std::string key;
-        DeckNode& n = node_of(p.name, key);
-        if (!p.choices.empty()) {
-          spec.params.choices[p.name] = n.choice(key, p.default_choice, p.choices);
-          if (n.has(key)) spec.param_marks[p.name] = n.mark_of(key);
-          continue;
-        }
-        const NumberRange range{p.min, p.max, p.min_exclusive, p.max_exclusive, p.unit};
-        double v = 0.0;
-        if (p.required) {
-          v = n.number(key, range);
-        } else if (std::isnan(p.default_value)) {
-          const auto given = n.optional_number(key, range);
-          v = given ? *given : p.default_value;
-          if (!given) n.set_resolved(key, YAML::Node(YAML::NodeType::Null));
-        } else {
-          v = n.number(key, p.default_value, range);
-        }
-        spec.params[p.name] = v;
-        if (n.has(key)) spec.param_marks[p.name] = n.mark_of(key);
-      }
-      for (auto& [group, n] : groups) n.finish();
-      m.finish();
-      // Cross-checks of the model (e.g. exactly one pair of elastic constants).
-      try {
-        (void)factory->create(name, spec.params);
-      } catch (const ParamError& e) {
-        const std::string msg = "material '" + name + "' (" + spec.model + "): " + e.what();
-        std::string key;
-        node_of(e.param(), key).fail(key, msg);  // at the parameter, or at its map if it is absent
-      } catch (const DeckError&) {
-        throw;
-      } catch (const std::exception& e) {
-        m.fail("material '" + name + "' (" + spec.model + "): " + e.what());
-      }
-      sc_.materials.push_back(std::move(spec));
-    }
+    for (const auto& name : names) sc_.materials.push_back(read_material_spec(ms, name));
     ms.finish();
   }
 
@@ -461,7 +395,38 @@ class Reader {
     out.fields = o.strings("fields", {});
     out.domains = o.boolean("domains", false);
     out.history_every = static_cast<int>(o.integer("history_every", 10, 1, INT_MAX));
+    DeckNode tr = o.map("track", false);
+    out.track = particle_ids(tr, "ids");
+    out.track_mark = tr.mark_of("ids");
+    tr.finish();
     o.finish();
+  }
+
+  /// A list of distinct particle ids (integers >= 0); absent = empty.
+  std::vector<std::int64_t> particle_ids(DeckNode& n, const std::string& key) {
+    std::vector<std::int64_t> ids;
+    const YAML::Node v = n.raw(key);
+    YAML::Node out(YAML::NodeType::Sequence);
+    out.SetStyle(YAML::EmitterStyle::Flow);
+    if (v.IsDefined() && !v.IsNull()) {
+      if (!v.IsSequence()) n.fail(key, "expected a list of particle ids (integers >= 0)");
+      for (size_t i = 0; i < v.size(); ++i) {
+        const YAML::Node x = v[i];
+        const std::string path = n.child_path(key) + "." + std::to_string(i);
+        double d = 0.0;
+        if (!scalar_number(x, d) || d != std::floor(d) || d < 0.0 || d > 9e15)
+          deck_fail(*ctx_, path, x.Mark(),
+                    "expected a particle id (an integer >= 0), got " +
+                        (x.IsScalar() ? "'" + x.Scalar() + "'" : std::string("a list or map")));
+        const auto id = static_cast<std::int64_t>(d);
+        if (std::find(ids.begin(), ids.end(), id) != ids.end())
+          deck_fail(*ctx_, path, x.Mark(), "particle id " + std::to_string(id) + " is listed twice");
+        ids.push_back(id);
+        out.push_back(std::to_string(id));
+      }
+    }
+    n.set_resolved(key, out);
+    return ids;
   }
 
   std::shared_ptr<DeckContext> ctx_;

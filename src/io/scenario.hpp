@@ -122,7 +122,8 @@ struct OutputSpec {
   std::vector<std::string> fields;   ///< field names to write; empty = all
   bool domains = false;              ///< also write each particle's domain as a deformed hexahedron
   int history_every = 10;            ///< steps between history.csv rows
-  std::vector<std::int64_t> track;   ///< particle ids whose history is recorded (reserved)
+  std::vector<std::int64_t> track;   ///< output.track.ids: particle ids whose full history is recorded
+  DeckMark track_mark;               ///< where output.track.ids is (ids are checked against the seeding)
 };
 
 struct Scenario {

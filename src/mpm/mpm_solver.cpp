@@ -591,7 +591,7 @@ void MpmSolver::fail(Index p, const std::string& what) const {
      << " " << F(1, 2) << "; " << F(2, 0) << " " << F(2, 1) << " " << F(2, 2) << "], J = " << det(F)
      << "\n  stress = [" << s(0, 0) << " " << s(0, 1) << " " << s(0, 2) << "; " << s(1, 0) << " "
      << s(1, 1) << " " << s(1, 2) << "; " << s(2, 0) << " " << s(2, 1) << " " << s(2, 2) << "] Pa";
-  throw PhysicsError(os.str());
+  throw ParticleError(id[p], os.str());
 }
 
 template <int Dim, ShapeKind K>

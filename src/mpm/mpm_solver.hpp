@@ -33,6 +33,17 @@ struct GridData {
   }
 };
 
+/// A PhysicsError about one particle; carries its id so that the run can be repeated with that
+/// particle tracked (`ballista run --track-failed`, output.track.ids).
+class ParticleError : public PhysicsError {
+ public:
+  ParticleError(std::int64_t id, const std::string& message) : PhysicsError(message), id_(id) {}
+  std::int64_t id() const { return id_; }
+
+ private:
+  std::int64_t id_;
+};
+
 class MpmSolver final : public Solver {
  public:
   MpmSolver(const Scenario& scenario, std::vector<std::unique_ptr<Material>> materials,

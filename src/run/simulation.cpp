@@ -15,6 +15,7 @@
 #include "io/particle_writer.hpp"
 #include "io/summary_writer.hpp"
 #include "mpm/mpm_solver.hpp"
+#include "run/particle_tracker.hpp"
 #include "run/progress.hpp"
 
 namespace ballista {
@@ -75,6 +76,10 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     probe_body.push_back(pr.body.empty() ? -1 : body_index(sc, pr.body));
   }
   HistoryWriter history((fs::path(opt.out_dir) / "history.csv").string(), columns);
+  // Particle ids run 0 .. seeded - 1 over every body, active or waiting for activation.
+  std::int64_t seeded = static_cast<std::int64_t>(pts.size());
+  if (const auto* mpm = dynamic_cast<const MpmSolver*>(solver.get())) seeded += mpm->pending_points();
+  ParticleTracker tracker(sc, opt.out_dir, seeded);
   const Communicator comm;
 
   const EnergyTotals e0 = solver->energies();
@@ -112,6 +117,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   double next_output = interval;
   writer.write(solver->time(), solver->steps(), pts);
   history_row(0.0);
+  tracker.record(pts, solver->time(), solver->steps());
   Progress progress(end, opt.progress);
   const auto wall0 = std::chrono::steady_clock::now();
   double particle_steps = 0.0;
@@ -129,6 +135,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       min_dt = std::min(min_dt, dt);
       particle_steps += static_cast<double>(solver->points().size());
       solver->step(dt);
+      tracker.record(solver->points(), solver->time(), solver->steps());
       const bool at_output = solver->time() >= next_output * (1.0 - 1e-12);
       const bool at_end = solver->time() >= end * (1.0 - 1e-12);
       if (solver->steps() % std::max(1, sc.output.history_every) == 0 || at_output || at_end) {
@@ -152,6 +159,13 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     progress.finish();
     result.ok = false;
     result.error = err.what();
+    result.failed_step = solver->steps();
+    if (const auto* pe = dynamic_cast<const ParticleError*>(&err)) result.failed_particle = pe->id();
+    try {
+      tracker.record_failure(solver->points(), solver->time());
+    } catch (const std::exception& w) {
+      spdlog::error("could not record the failing step of the tracked particles: {}", w.what());
+    }
     spdlog::error("run stopped: {}", err.what());
     // The failing state goes to a new output file; earlier outputs stay untouched.
     try {
@@ -171,7 +185,12 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   const std::vector<double> pv = probe_values(e);
   SummaryWriter summary;
   summary["status"] = result.ok ? "completed" : "failed";
-  if (!result.ok) summary["error"] = result.error;
+  if (!result.ok) {
+    summary["error"] = result.error;
+    summary["failed_step"] = result.failed_step;
+    if (result.failed_particle >= 0) summary["failed_particle"] = result.failed_particle;
+  }
+  if (!sc.output.track.empty()) summary["tracked_particles"] = sc.output.track;
   summary["deck"] = sc.file;
   JsonValue& probes = summary["probes"];
   probes = JsonValue::object();

@@ -1,5 +1,6 @@
 #pragma once
 // The run loop of `ballista run`: deck -> solver -> outputs, histories, probes and summary.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -19,6 +20,8 @@ struct RunOptions {
 struct RunResult {
   bool ok = true;
   std::string error;            ///< PhysicsError message when !ok
+  std::int64_t failed_particle = -1;  ///< id of the particle the error is about (-1: none)
+  long failed_step = 0;         ///< step number of the failure (when !ok)
   long steps = 0;
   double time = 0.0;            ///< simulated time reached, s
   double wall_seconds = 0.0;
@@ -33,7 +36,7 @@ std::vector<std::unique_ptr<Material>> make_materials(const Scenario& sc);
 std::unique_ptr<Solver> make_solver(const Scenario& sc);
 
 /// Runs the scenario to its end time, writing resolved.yaml, particles_*.h5 + particles.xdmf,
-/// history.csv and summary.json to options.out_dir. A PhysicsError stops the run after the state
+/// history.csv, summary.json and (output.track.ids) tracks/particle_<id>*.csv to options.out_dir. A PhysicsError stops the run after the state
 /// is written to a new output file (earlier outputs stay intact) and is reported in the result
 /// and summary.json (status "failed").
 RunResult run_simulation(const Scenario& sc, const RunOptions& options);

@@ -13,6 +13,12 @@ Two modes:
           equals the summary's end time;
         * every deck probe and every --probe NAME is in summary.json and finite.
 
+  check_example.py drive --ballista BIN --deck DECK --out DIR [--set K=V ...]
+      Runs `BIN drive DECK -o DIR -q --set ...` (single-element driver) and checks: exit status 0,
+      summary.json with status "completed", resolved.yaml, and history.csv with the driver's columns
+      (step, t, F11..F33, sigma_*, sigma_bar_*, I1, sqrt_J2, pressure), at least two rows, every
+      value finite, times increasing, and as many rows as summary.json's statistics.records.
+
   check_example.py typo --ballista BIN --deck DECK --out DIR --key KEY --typo TYPO
       Copies DECK to DIR with the first `KEY:` misspelt as `TYPO:`, runs `BIN run` on it and
       checks that it exits non-zero without creating a results folder and that stderr names the
@@ -136,6 +142,58 @@ def run_mode(args):
     print("OK")
 
 
+def drive_mode(args):
+    if os.path.exists(args.out):
+        shutil.rmtree(args.out)
+    cmd = [args.ballista, "drive", args.deck, "-o", args.out, "-q"]
+    for s in args.set or []:
+        cmd += ["--set", s]
+    print("running: " + " ".join(cmd), flush=True)
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    sys.stdout.write(p.stdout)
+    sys.stderr.write(p.stderr)
+    if p.returncode != 0:
+        fail(f"ballista drive exited with status {p.returncode}")
+    summary_path = os.path.join(args.out, "summary.json")
+    if not os.path.isfile(summary_path):
+        fail("missing " + summary_path)
+    with open(summary_path) as f:
+        summary = json.load(f)
+    if summary.get("status") != "completed":
+        fail(f"summary status is {summary.get('status')!r}: {summary.get('error', '')}")
+    if not os.path.isfile(os.path.join(args.out, "resolved.yaml")):
+        fail("missing resolved.yaml")
+    path = os.path.join(args.out, "history.csv")
+    with open(path) as f:
+        lines = [l.rstrip("\n") for l in f if l.strip()]
+    if len(lines) < 3:
+        fail(f"{path}: expected a header and at least 2 rows, got {len(lines)} lines")
+    header = lines[0].split(",")
+    wanted = ["step", "t"] + [f"F{i}{j}" for i in (1, 2, 3) for j in (1, 2, 3)]
+    wanted += [f"sigma_{c}" for c in ("11", "22", "33", "23", "13", "12")]
+    wanted += [f"sigma_bar_{c}" for c in ("11", "22", "33", "23", "13", "12")]
+    wanted += ["I1", "sqrt_J2", "pressure"]
+    for col in wanted:
+        if col not in header:
+            fail(f"{path}: no column '{col}' (columns: {', '.join(header)})")
+    times = []
+    for i, line in enumerate(lines[1:], start=2):
+        cells = line.split(",")
+        if len(cells) != len(header):
+            fail(f"{path}:{i}: {len(cells)} values for {len(header)} columns")
+        for name, cell in zip(header, cells):
+            if not math.isfinite(float(cell)):
+                fail(f"{path}:{i}: column '{name}' is {cell}")
+        times.append(float(cells[header.index("t")]))
+    if any(b <= a for a, b in zip(times, times[1:])):
+        fail(f"{path}: times are not strictly increasing")
+    if len(lines) - 1 != summary["statistics"]["records"]:
+        fail(f"{path}: {len(lines) - 1} rows, summary.json says {summary['statistics']['records']} records")
+    print(f"history.csv: {len(lines) - 1} rows, {len(header)} columns, all finite; "
+          f"{summary['statistics']['steps']} steps")
+    print("OK")
+
+
 def typo_mode(args):
     os.makedirs(args.out, exist_ok=True)
     with open(args.deck) as f:
@@ -175,17 +233,19 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="mode", required=True)
     r = sub.add_parser("run")
+    d = sub.add_parser("drive")
     t = sub.add_parser("typo")
-    for p in (r, t):
+    for p in (r, d, t):
         p.add_argument("--ballista", required=True)
         p.add_argument("--deck", required=True)
         p.add_argument("--out", required=True)
     r.add_argument("--set", action="append", help="deck override key.path=value (repeatable)")
     r.add_argument("--probe", action="append", help="probe that must be present and finite")
+    d.add_argument("--set", action="append", help="deck override key.path=value (repeatable)")
     t.add_argument("--key", required=True, help="key to misspell (its first occurrence)")
     t.add_argument("--typo", required=True, help="the misspelling")
     args = ap.parse_args()
-    run_mode(args) if args.mode == "run" else typo_mode(args)
+    {"run": run_mode, "drive": drive_mode, "typo": typo_mode}[args.mode](args)
 
 
 if __name__ == "__main__":

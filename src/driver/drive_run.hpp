@@ -1,0 +1,25 @@
+#pragma once
+// `ballista drive`: a drive deck -> drive_point -> DIR/history.csv, summary.json, resolved.yaml.
+#include <string>
+
+#include "driver/drive_deck.hpp"
+
+namespace ballista {
+
+struct DriveRunResult {
+  bool ok = true;
+  std::string error;  ///< PhysicsError message when !ok (history.csv ends at the failing step)
+  long steps = 0;
+  size_t records = 0;
+  double wall_seconds = 0.0;
+  DriveRecord last;  ///< last record
+};
+
+/// Drives the deck's material through its program and writes, in out_dir (created):
+/// resolved.yaml (the deck with every default), history.csv (drive_history_columns, one row per
+/// record, shortest round-trip numbers) and summary.json (status, material, program, statistics,
+/// final state). A PhysicsError is reported in the result and the summary (status "failed");
+/// bad programs throw (Error / DeckError).
+DriveRunResult run_drive(const DriveDeck& deck, const std::string& out_dir);
+
+}  // namespace ballista

@@ -1,0 +1,77 @@
+#include "io/material_reader.hpp"
+
+#include <cmath>
+#include <map>
+
+namespace ballista {
+
+MaterialSpec read_material_spec(DeckNode& ms, const std::string& name) {
+  DeckNode m = ms.entry(name);
+  MaterialSpec spec;
+  spec.name = name;
+  spec.mark = m.mark();
+  std::vector<std::string> models;
+  for (const auto& f : material_registry()) models.push_back(f.model);
+  spec.model = m.string("model");
+  const MaterialFactory* factory = find_material(spec.model);
+  if (!factory) {
+    std::string hint;
+    if (const std::string best = closest_name(spec.model, models); !best.empty())
+      hint = "; did you mean '" + best + "'?";
+    m.fail("model",
+           "unknown material model '" + spec.model + "'" + hint + " (registered models: " + join_names(models) + ")");
+  }
+  // Parameters named "group.key" live in a sub-map of the material (eos: {...}).
+  std::map<std::string, DeckNode> groups;
+  auto node_of = [&](const std::string& param, std::string& key) -> DeckNode& {
+    const auto dot = param.find('.');
+    if (dot == std::string::npos) {
+      key = param;
+      return m;
+    }
+    key = param.substr(dot + 1);
+    const std::string group = param.substr(0, dot);
+    auto it = groups.find(group);
+    if (it == groups.end()) it = groups.emplace(group, m.map(group, false)).first;
+    return it->second;
+  };
+  for (const ParamSpec& p : factory->params) {
+    std::string key;
+    DeckNode& n = node_of(p.name, key);
+    if (!p.choices.empty()) {
+      spec.params.choices[p.name] = n.choice(key, p.default_choice, p.choices);
+      if (n.has(key)) spec.param_marks[p.name] = n.mark_of(key);
+      continue;
+    }
+    const NumberRange range{p.min, p.max, p.min_exclusive, p.max_exclusive, p.unit};
+    double v = 0.0;
+    if (p.required) {
+      v = n.number(key, range);
+    } else if (std::isnan(p.default_value)) {
+      const auto given = n.optional_number(key, range);
+      v = given ? *given : p.default_value;
+      if (!given) n.set_resolved(key, YAML::Node(YAML::NodeType::Null));
+    } else {
+      v = n.number(key, p.default_value, range);
+    }
+    spec.params[p.name] = v;
+    if (n.has(key)) spec.param_marks[p.name] = n.mark_of(key);
+  }
+  for (auto& [group, n] : groups) n.finish();
+  m.finish();
+  // Cross-checks of the model (e.g. exactly one pair of elastic constants).
+  try {
+    (void)factory->create(name, spec.params);
+  } catch (const ParamError& e) {
+    const std::string msg = "material '" + name + "' (" + spec.model + "): " + e.what();
+    std::string key;
+    node_of(e.param(), key).fail(key, msg);  // at the parameter, or at its map if it is absent
+  } catch (const DeckError&) {
+    throw;
+  } catch (const std::exception& e) {
+    m.fail("material '" + name + "' (" + spec.model + "): " + e.what());
+  }
+  return spec;
+}
+
+}  // namespace ballista

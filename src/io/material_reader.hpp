@@ -1,0 +1,17 @@
+#pragma once
+// One entry of a deck's `materials:` map (docs/deck.md, "materials"), shared by the run decks
+// (io/deck_reader) and the drive decks of the single-element driver (driver/drive_deck).
+#include <string>
+
+#include "io/deck_node.hpp"
+#include "io/scenario.hpp"
+
+namespace ballista {
+
+/// Reads the material `name` of the `materials:` map `materials`: its registered model, every
+/// parameter of the model (defaults filled; "group.key" parameters from the sub-map `group:`),
+/// and the model's own cross-checks (Model::make). Every problem is a DeckError at the offending
+/// key (file, line, column, key path).
+MaterialSpec read_material_spec(DeckNode& materials, const std::string& name);
+
+}  // namespace ballista
