@@ -21,8 +21,10 @@ ParticleTracker::ParticleTracker(const Scenario& sc, const std::string& out_dir,
                           " particles, ids 0.." + std::to_string(total_ids - 1) + ")");
   for (const auto& m : sc.materials) {
     std::vector<std::string> names;
+    // The instance's fields (they depend on the parameters, e.g. backstress only with kinematic
+    // hardening, damage only with a failure criterion), not the registry's full list.
     if (const MaterialFactory* f = find_material(m.model))
-      for (const auto& s : f->state_fields) names.push_back(s.name);
+      for (const auto& s : f->create(m.name, m.params)->state_fields()) names.push_back(s.name);
     state_names_.push_back(names);
   }
   if (!ids_.empty()) std::filesystem::create_directories(dir_);
