@@ -3,9 +3,41 @@
 #include <cmath>
 #include <map>
 
+#include "io/material_presets.hpp"
+
 namespace ballista {
 
+namespace {
+
+/// `preset: NAME` in a deck material: the preset's model and parameters (data/materials.yaml,
+/// docs/material_data.md) under the deck's own keys, which win. The deck's YAML is rewritten in
+/// place, so every later error still points at the deck's own line for keys the deck sets.
+void apply_preset(DeckNode& ms, const std::string& name) {
+  YAML::Node materials = ms.yaml();  // shares the deck document (yaml-cpp reference semantics)
+  YAML::Node mat = materials[name];
+  if (!mat.IsMap() || !mat["preset"]) return;
+  static const MaterialPresetLibrary library = MaterialPresetLibrary::load_default();
+  DeckNode m = ms.entry(name);
+  const std::string preset_name = m.string("preset");
+  const MaterialPreset* preset = library.find(preset_name);
+  if (!preset) {
+    std::string hint;
+    if (const std::string best = closest_name(preset_name, library.names()); !best.empty())
+      hint = "; did you mean '" + best + "'?";
+    m.fail("preset", "unknown material preset '" + preset_name + "'" + hint + " (presets in " + library.file() +
+                         ": " + join_names(library.names()) + ")");
+  }
+  try {
+    materials[name] = merge_preset_into(*preset, mat);
+  } catch (const Error& e) {
+    m.fail("preset", e.what());
+  }
+}
+
+}  // namespace
+
 MaterialSpec read_material_spec(DeckNode& ms, const std::string& name) {
+  apply_preset(ms, name);
   DeckNode m = ms.entry(name);
   MaterialSpec spec;
   spec.name = name;
