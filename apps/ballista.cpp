@@ -13,6 +13,7 @@
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
 #include "run/simulation.hpp"
+#include "verify/verify_command.hpp"
 
 namespace {
 
@@ -81,6 +82,8 @@ int main(int argc, char** argv) {
   run->add_flag("-q,--quiet", quiet, "no progress output");
 
   auto* info = app.add_subcommand("info", "list registered solvers, shape functions and materials");
+  ballista::VerifyCliOptions verify_opt;
+  auto* verify = ballista::add_verify_command(app, verify_opt);
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -88,6 +91,7 @@ int main(int argc, char** argv) {
       print_info();
       return 0;
     }
+    if (*verify) return ballista::run_verify_cli(verify_opt);
     if (*run) {
       const ballista::Scenario sc = ballista::read_deck(deck, overrides);
       if (out_dir.empty()) out_dir = "out/" + std::filesystem::path(deck).stem().string();
