@@ -96,8 +96,9 @@ def plot_a2(test, fig):
     ax2.plot([lo, hi], [sy, sy], color="tab:gray", ls="--", lw=1, label="initial yield surface")
     ax2.plot([lo, hi], [-sy, -sy], color="tab:gray", ls="--", lw=1)
     if scalar(test, "h_iso", 0.0) > 0 or scalar(test, "h_kin", 0.0) > 0:
-        beta, r = scalar(test, "final_backstress") * MPA, scalar(test, "final_radius") * MPA
-        ax2.plot([lo, hi], [beta + r, beta + r], color="tab:green", ls="-.", lw=1, label="final yield surface")
+        beta, r = scalar(test, "reversal_backstress") * MPA, scalar(test, "reversal_radius") * MPA
+        ax2.plot([lo, hi], [beta + r, beta + r], color="tab:green", ls="-.", lw=1,
+                 label="yield surface at the load reversal")
         ax2.plot([lo, hi], [beta - r, beta - r], color="tab:green", ls="-.", lw=1)
     ax2.set_xlim(lo, hi)
     ax2.set_xlabel("pressure $P = -I_1/3$ (MPa)")
@@ -143,7 +144,7 @@ def plot_a6_tangent(test, fig):
     ax1.set_xlabel("finite-difference tangent entry / max")
     ax1.set_ylabel("model tangent entry / max")
     ax1.set_title("{} {}".format(test["model"], test["test"]), fontsize=10)
-    ax1.legend(fontsize=7)
+    ax1.legend(fontsize=7, loc="lower right")
     ax1.grid(alpha=0.3)
     stamp(ax1, test)
     ax2 = fig.add_subplot(1, 2, 2)

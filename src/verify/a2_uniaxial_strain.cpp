@@ -181,7 +181,7 @@ VerifyCase run_a2(const MaterialFactory& f, A2Hardening h, const A2Problem& pb) 
     c.scalars.push_back({"reverse_centre_analytic", beta_an});
   }
 
-  // Plot series (every plot_every-th step and every row end), analytic yield events, final surface.
+  // Plot series (every plot_every-th step and every row end), analytic yield events, the surface at the reversal.
   std::vector<double> pe, ps11, ps22, pa11, pa22, pp, pq, pap, paq;
   for (size_t k = 0; k < n; ++k) {
     const bool row_end = k + 1 == n || (k > 0 && (e[k + 1] - e[k]) * (e[k] - e[k - 1]) <= 0.0);
@@ -207,11 +207,13 @@ VerifyCase run_a2(const MaterialFactory& f, A2Hardening h, const A2Problem& pb) 
   c.series = {{"e11", pe},      {"s11", ps11},     {"s22", ps22},     {"s11_an", pa11},  {"s22_an", pa22},
               {"pressure", pp}, {"q", pq},         {"pressure_an", pap}, {"q_an", paq},  {"yield_e11", ye},
               {"yield_s11", y11}, {"yield_s22", y22}, {"yield_pressure", yp}, {"yield_q", yq}};
+  // The yield surface at the load reversal (largest strain, t = 3): the second yield lies on it.
+  const size_t kmax = static_cast<size_t>(std::max_element(e.begin(), e.end()) - e.begin());
   c.scalars.insert(c.scalars.begin(), {{"yield_stress", sy},
                                         {"h_iso", jp.h_iso},
                                         {"h_kin", jp.h_kin},
-                                        {"final_backstress", an.beta.back()},
-                                        {"final_radius", an.radius.back()},
+                                        {"reversal_backstress", an.beta[kmax]},
+                                        {"reversal_radius", an.radius[kmax]},
                                         {"steps", static_cast<double>(res.steps)},
                                         {"strain_measure_bound", bound}});
   c.finish();

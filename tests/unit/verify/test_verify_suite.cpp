@@ -119,9 +119,8 @@ ParamValues mixed_without_two_thirds(double rho, double K, double G, double sy, 
 
 // A2 with kinematic hardening (thesis Fig. 4.6c) on a J2 model with Prager hardening: passes all
 // three variants (the combined return is exact on this path, like the isotropic one). With the 2/3
-// of d alpha = 2/3 H_kin d eps^p dropped, the model hardens faster (backstress 72 instead of
-// 50 MPa after the first plastic leg) and A2-kin fails (measured: stress error 2.1e-2 of the peak,
-// backstress 7.6 % of sigma_y0 off).
+// of d alpha = 2/3 H_kin d eps^p dropped, the backstress grows 1.5 times too fast and A2-kin
+// fails (measured: stress error 2.1e-2 of the peak, backstress 7.6 % of sigma_y0 off).
 TEST(VerifySuite, KinematicHardeningVariant) {
   MaterialFactory f = test::test_factory<test::TestJ2Mixed>();
   for (A2Hardening h : {A2Hardening::None, A2Hardening::Isotropic, A2Hardening::Kinematic}) {
