@@ -4,7 +4,7 @@
 // e = ln F11 (uniaxial_strain_j2.hpp): the exact solution of the rate equations, independent of
 // the step. The driver hands the model eq. 4.10 increments F_{n+1}/F_n - 1 (thesis seed 000), which
 // a hypoelastic model sums; that sum exceeds ln F11 by delta = sum |x - ln(1 + x)|, x = F_{n+1}/F_n - 1
-// (computed below from the program; 3e-8 for 1000 steps per row). No stress rate exceeds the
+// (computed below from the program; 2.9e-8 for 1000 steps per row). No stress rate exceeds the
 // constrained modulus M = K + 4G/3, so the stress differs from the analytic one by at most
 // M delta (7.6e-6 of the peak sigma11), yield events included (they shift by at most delta in e).
 // The radial return itself is exact on this proportional path (each step's plastic increment
