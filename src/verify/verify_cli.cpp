@@ -29,7 +29,12 @@ namespace ballista {
 
 namespace fs = std::filesystem;
 
-std::string verify_python() { return BALLISTA_PYTHON; }
+std::string verify_python() {
+  // The configured interpreter (CMake cache BALLISTA_PYTHON, as the tests use it); the environment
+  // variable of the same name overrides it (another Python, or a test of the error path).
+  const char* env = std::getenv("BALLISTA_PYTHON");
+  return env && *env ? std::string(env) : std::string(BALLISTA_PYTHON);
+}
 std::string verify_report_script() { return (fs::path(BALLISTA_SOURCE_DIR) / "tools" / "verify_report.py").string(); }
 
 namespace {
@@ -54,11 +59,13 @@ std::string make_verify_report(const std::string& out_dir) {
   const std::string py = verify_python(), script = verify_report_script();
   if (!fs::exists(py))
     return fmt::format("the report needs Python with matplotlib: interpreter {} (BALLISTA_PYTHON) does not exist; "
-                       "configure with -DBALLISTA_PYTHON=/path/to/python3 or use --no-report",
+                       "configure with -DBALLISTA_PYTHON=/path/to/python3, set BALLISTA_PYTHON in the environment, "
+                       "or use --no-report",
                        py);
   if (run_command(shell_quote(py) + " -c 'import matplotlib, numpy' >/dev/null 2>&1") != 0)
-    return fmt::format("the report needs matplotlib and numpy: {} cannot import them (Debian: apt install "
-                       "python3-matplotlib python3-numpy; or configure with -DBALLISTA_PYTHON=...; or use --no-report)",
+    return fmt::format("the report needs matplotlib and numpy: {} (BALLISTA_PYTHON) cannot import them (Debian: "
+                       "apt install python3-matplotlib python3-numpy; or point BALLISTA_PYTHON at another Python; "
+                       "or use --no-report)",
                        py);
   if (!fs::exists(script)) return "report script " + script + " not found (BALLISTA_SOURCE_DIR moved?)";
   const std::string json = (fs::path(out_dir) / "verify.json").string();

@@ -25,8 +25,8 @@ enum VerifyExit : int {
 
 int run_verify_cli(const VerifyCliOptions& options);
 
-/// The interpreter the report uses (BALLISTA_PYTHON, set by CMake) and the report script
-/// (tools/verify_report.py in the source tree).
+/// The interpreter the report uses (BALLISTA_PYTHON, set by CMake; the environment variable of the
+/// same name overrides it) and the report script (tools/verify_report.py in the source tree).
 std::string verify_python();
 std::string verify_report_script();
 

@@ -5,7 +5,8 @@ Asserts: exit status 0; OUT/verify.json parses; every test passed or is not appl
 reason (none failed); every model `ballista info` lists has all six tests (A1, A2, A2-iso, A2-kin,
 A6-objectivity, A6-tangent) and passed A6-objectivity (CATALOGUE A6 applies to every model);
 every test with a plot has a PNG; OUT/report.html exists and every image it references exists and
-is a PNG.
+is a PNG. Then, with BALLISTA_PYTHON pointing at a missing interpreter and at one without
+matplotlib: exit status 4, a message naming the interpreter and matplotlib, verify.json written.
 """
 import argparse
 import json
@@ -31,6 +32,28 @@ def registered_models(ballista):
         fail("`ballista info` has no Materials section")
     # Model lines are indented by exactly two spaces; parameters by six.
     return [m.group(1) for m in re.finditer(r"^  (\S+)  ", part[1], re.M)]
+
+
+def check_missing_python(a):
+    """Without a usable interpreter the tests still run and verify.json is written, the command
+    exits 4 and says what is missing: a non-existent BALLISTA_PYTHON, then one that cannot import
+    matplotlib (a stand-in script that fails every import)."""
+    out = a.out + "_nopython"
+    fake = os.path.join(out, "python_without_matplotlib")
+    os.makedirs(out, exist_ok=True)
+    with open(fake, "w") as f:
+        f.write("#!/bin/sh\nexit 1\n")
+    os.chmod(fake, 0o755)
+    for python, expect in [("/nonexistent/python3", "does not exist"), (fake, "cannot import")]:
+        env = dict(os.environ, BALLISTA_PYTHON=python)
+        r = subprocess.run([a.ballista, "verify", "-o", out, "--model", "linear_elastic", "--test", "A6-objectivity"],
+                           capture_output=True, text=True, env=env)
+        if r.returncode != 4:
+            fail("with BALLISTA_PYTHON={}: exit status {} (expected 4)".format(python, r.returncode))
+        if expect not in r.stderr or "matplotlib" not in r.stderr or python not in r.stderr:
+            fail("with BALLISTA_PYTHON={}: unclear message: {}".format(python, r.stderr.strip()))
+        if not os.path.isfile(os.path.join(out, "verify.json")):
+            fail("with BALLISTA_PYTHON={}: no verify.json".format(python))
 
 
 def main():
@@ -96,6 +119,7 @@ def main():
         with open(path, "rb") as f:
             if f.read(8) != b"\x89PNG\r\n\x1a\n":
                 fail(src + " is not a PNG")
+    check_missing_python(a)
     n_pass = sum(t["status"] == "pass" for t in tests)
     print("check_verify: OK: {} tests ({} passed, {} not applicable), {} models, {} PNGs, {:.1f} s".format(
         len(tests), n_pass, len(tests) - n_pass, len(models), len(images), secs))
