@@ -87,11 +87,11 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
+    if (*verify) return ballista::run_verify_cli(verify_opt);
     if (*info) {
       print_info();
       return 0;
     }
-    if (*verify) return ballista::run_verify_cli(verify_opt);
     if (*run) {
       const ballista::Scenario sc = ballista::read_deck(deck, overrides);
       if (out_dir.empty()) out_dir = "out/" + std::filesystem::path(deck).stem().string();
