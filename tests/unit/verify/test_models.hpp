@@ -148,6 +148,33 @@ struct TestJ2Mixed {
   }
 };
 
+/// Volumetric only, written in J: sigma_bar = K ln(J_{n+1}) I, with the tangent of a spin-free step
+/// (J_{n+1} = J_n det(I + eps), so d ln J / d eps = (I + eps)^-1). A kernel whose response depends on
+/// J (every equation of state) has this kind of tangent; the FD check must realise the perturbed
+/// steps without spin for it to hold (a6_tangent.cpp).
+struct TangentLogVolume {
+  static constexpr const char* kName = "test_tangent_log_volume";
+  struct Params {
+    double density, bulk;
+  };
+  static std::vector<ParamSpec> param_specs() { return test_specs({"density", "bulk"}); }
+  static Params make(const ParamValues& v) { return {v.at("density"), v.at("bulk")}; }
+  static ParamValues example_params() { return {{"density", 1000}, {"bulk", 2e9}}; }
+  static std::vector<StateFieldSpec> state_fields() { return {}; }
+  static void update(const Params& p, const PointKinematics& k, Mat3& s, double*, PointResult& res) {
+    const double pr = p.bulk * std::log(k.J_new);
+    s = Mat3::diag(pr, pr, pr);
+    if (!res.tangent) return;
+    const Mat3 eps = k.dt * k.D_bar;
+    const Mat3 inv = inverse(Mat3::identity() + eps);
+    static constexpr int I[6] = {0, 1, 2, 1, 0, 0}, J[6] = {0, 1, 2, 2, 2, 1};
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j)
+        res.tangent[6 * i + j] = i < 3 ? p.bulk * (j < 3 ? 1.0 : 2.0) * inv(I[j], J[j]) : 0.0;
+  }
+  static double wave_speed(const Params& p, const double*, double J) { return std::sqrt(p.bulk * J / p.density); }
+};
+
 /// Not objective: sigma_bar = K tr(e) I + 2G dev(e) with e = sym(F - I) of the *spatial* F, so a
 /// rigid rotation strains it. Must fail A1 and A6-objectivity.
 struct NonObjectiveElastic {
