@@ -69,9 +69,7 @@ TEST(A6Tangent, VolumetricTangentInJ) {
 
 // A model that leaves PointResult::tangent alone is "no tangent" (not applicable), not a failure.
 TEST(A6Tangent, ModelWithoutTangentIsNotApplicable) {
-  const MaterialFactory* f = find_material("j2_plasticity");
-  ASSERT_NE(f, nullptr);
-  const VerifyCase c = run_a6_tangent(*f);
+  const VerifyCase c = run_a6_tangent(test_factory<TestJ2Mixed>());
   EXPECT_EQ(c.status, VerifyStatus::NotApplicable);
   EXPECT_NE(c.reason.find("no tangent"), std::string::npos);
 }
