@@ -15,6 +15,7 @@
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
 #include "run/simulation.hpp"
+#include "verify/verify_command.hpp"
 
 namespace {
 
@@ -105,9 +106,12 @@ int main(int argc, char** argv) {
   drive->add_flag("-q,--quiet", drive_quiet, "print nothing on success");
 
   auto* info = app.add_subcommand("info", "list registered solvers, shape functions and materials");
+  ballista::VerifyCliOptions verify_opt;
+  auto* verify = ballista::add_verify_command(app, verify_opt);
 
   CLI11_PARSE(app, argc, argv);
   try {
+    if (*verify) return ballista::run_verify_cli(verify_opt);
     if (*info) {
       print_info();
       return 0;

@@ -1,0 +1,52 @@
+#include "verify/verify_case.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace ballista {
+
+const char* to_string(VerifyStatus s) {
+  switch (s) {
+    case VerifyStatus::Pass: return "pass";
+    case VerifyStatus::Fail: return "fail";
+    case VerifyStatus::NotApplicable: return "not_applicable";
+  }
+  return "?";
+}
+
+bool VerifyCase::check(std::string name, double value, double limit, bool at_least) {
+  // NaN fails either way (a non-finite result must never pass).
+  const bool ok = at_least ? value >= limit : value <= limit;
+  checks.push_back({std::move(name), value, limit, at_least, ok});
+  return ok;
+}
+
+void VerifyCase::finish() {
+  std::string failed;
+  for (const VerifyCheck& c : checks)
+    if (!c.pass)
+      failed += fmt::format("{}{} ({:.3g} {} {:.3g})", failed.empty() ? "" : "; ", c.name, c.value,
+                            c.at_least ? "<" : ">", c.limit);
+  if (checks.empty()) {
+    status = VerifyStatus::Fail;
+    if (reason.empty()) reason = "no check was made";
+  } else if (failed.empty()) {
+    status = VerifyStatus::Pass;
+  } else {
+    status = VerifyStatus::Fail;
+    reason = reason.empty() ? "failed: " + failed : reason + "; failed: " + failed;
+  }
+}
+
+VerifyCase VerifyCase::not_applicable(std::string model, std::string test, std::string title, std::string reason) {
+  VerifyCase c;
+  c.model = std::move(model);
+  c.test = std::move(test);
+  c.title = std::move(title);
+  c.status = VerifyStatus::NotApplicable;
+  c.reason = std::move(reason);
+  return c;
+}
+
+}  // namespace ballista
