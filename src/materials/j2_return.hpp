@@ -14,8 +14,9 @@
 //   trial         xi_tr = s_tr - alpha_n,  q_tr = sqrt(3/2)|xi_tr|,  N = xi_tr/|xi_tr|
 //   yield check   f_tr = q_tr - sigma_y(Delta = 0)
 //   flow          Delta eps^p = sqrt(3/2) Delta N = (3/2) (Delta/q_tr) xi_tr
-//   backstress    Delta alpha = (2/3) H_k Delta eps^p = H_k (Delta/q_tr) xi_tr  (Prager/Ziegler; Simo &
-//                 Hughes eq. for beta with H' = H_k), deviatoric by construction
+//   backstress    Delta alpha = (2/3) H_k Delta eps^p = H_k (Delta/q_tr) xi_tr  (Prager/Ziegler: the
+//                 backstress law of Simo & Hughes §3.3 with their kinematic modulus H' = H_k),
+//                 deviatoric by construction
 //   consistency   r(Delta) = q_tr - (3G + H_k) Delta - sigma_y(Delta) = 0
 //   update        s_{n+1} = s_tr - 3G (Delta/q_tr) xi_tr
 // sigma_y(Delta) is the flow stress at the end of the step: sigma_y0 + H (eps_p,n + Delta) in
