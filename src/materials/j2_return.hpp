@@ -195,7 +195,8 @@ inline Mat3 j2_compose_eos(const Eos& eos, const PointKinematics& k, const Mat3&
           dpH_deta = k0 * (1.0 + eos.s * eta) / (den * den * den);
         }
         // A(J) = p_H (1 - Gamma0 eta/2);  dA/dJ = -dp_H/deta (1 - Gamma0 eta/2) + Gamma0 p_H / 2.
-        const double dA = -dpH_deta * (1.0 - 0.5 * eos.gamma0 * eta) + 0.5 * eos.gamma0 * eos_hugoniot_pressure(eos, k.J_new);
+        const double pH = eos_hugoniot_pressure(eos, k.J_new);
+        const double dA = -dpH_deta * (1.0 - 0.5 * eos.gamma0 * eta) + 0.5 * eos.gamma0 * pH;
         const double den = 1.0 + 0.5 * eos.gamma0 * (k.J_new - k.J_old);
         // d J_{n+1} / d eps = J_n cof(I + eps) (symmetric for symmetric eps).
         const Mat3 Jc = k.J_old * cofactor(Mat3::identity() + eps);

@@ -19,7 +19,8 @@ std::string deck(const std::string& material) {
   return "simulation: {solver: mpm, dimension: axisymmetric, end_time: 1.0e-6}\n"
          "materials:\n" +
          material +
-         "grid: {lower: [0, 0], upper: [10.0e-3, 34.0e-3], cell_size: 1.0e-3, boundary: {x_min: symmetry, y_min: wall}}\n"
+         "grid: {lower: [0, 0], upper: [10.0e-3, 34.0e-3], cell_size: 1.0e-3,\n"
+         "       boundary: {x_min: symmetry, y_min: wall}}\n"
          "bodies:\n"
          "  - {name: bar, material: m, shape: {type: cylinder, center: [0, 0, 0], axis: y, radius: 3.2e-3, "
          "length: 32.4e-3}, velocity: [0, -227.0, 0]}\n";
