@@ -17,7 +17,7 @@
 //              Plasticity, Wiley 2008, Ch. 6)
 //
 // Kinematic hardening (linear Prager-Ziegler backstress) is independent of the law chosen here; it
-// lives in j2_return.hpp and j2_plasticity.cpp.
+// lives in j2_return.hpp and j2_plasticity.hpp.
 #include <cmath>
 #include <limits>
 #include <string>

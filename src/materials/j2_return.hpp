@@ -14,8 +14,9 @@
 //   trial         xi_tr = s_tr - alpha_n,  q_tr = sqrt(3/2)|xi_tr|,  N = xi_tr/|xi_tr|
 //   yield check   f_tr = q_tr - sigma_y(Delta = 0)
 //   flow          Delta eps^p = sqrt(3/2) Delta N = (3/2) (Delta/q_tr) xi_tr
-//   backstress    Delta alpha = (2/3) H_k Delta eps^p = H_k (Delta/q_tr) xi_tr  (Prager/Ziegler; Simo &
-//                 Hughes eq. for beta with H' = H_k), deviatoric by construction
+//   backstress    Delta alpha = (2/3) H_k Delta eps^p = H_k (Delta/q_tr) xi_tr  (Prager/Ziegler: the
+//                 backstress law of Simo & Hughes §3.3 with their kinematic modulus H' = H_k),
+//                 deviatoric by construction
 //   consistency   r(Delta) = q_tr - (3G + H_k) Delta - sigma_y(Delta) = 0
 //   update        s_{n+1} = s_tr - 3G (Delta/q_tr) xi_tr
 // sigma_y(Delta) is the flow stress at the end of the step: sigma_y0 + H (eps_p,n + Delta) in
@@ -30,6 +31,8 @@
 // with eps = D_bar dt, plus the pressure part of the equation of state (j2_compose_eos).
 #include <cfloat>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include "core/tensor.hpp"
 #include "materials/eos.hpp"
@@ -192,7 +195,8 @@ inline Mat3 j2_compose_eos(const Eos& eos, const PointKinematics& k, const Mat3&
           dpH_deta = k0 * (1.0 + eos.s * eta) / (den * den * den);
         }
         // A(J) = p_H (1 - Gamma0 eta/2);  dA/dJ = -dp_H/deta (1 - Gamma0 eta/2) + Gamma0 p_H / 2.
-        const double dA = -dpH_deta * (1.0 - 0.5 * eos.gamma0 * eta) + 0.5 * eos.gamma0 * eos_hugoniot_pressure(eos, k.J_new);
+        const double pH = eos_hugoniot_pressure(eos, k.J_new);
+        const double dA = -dpH_deta * (1.0 - 0.5 * eos.gamma0 * eta) + 0.5 * eos.gamma0 * pH;
         const double den = 1.0 + 0.5 * eos.gamma0 * (k.J_new - k.J_old);
         // d J_{n+1} / d eps = J_n cof(I + eps) (symmetric for symmetric eps).
         const Mat3 Jc = k.J_old * cofactor(Mat3::identity() + eps);
@@ -211,6 +215,17 @@ inline Mat3 j2_compose_eos(const Eos& eos, const PointKinematics& k, const Mat3&
   sigma(1, 1) -= p_new;
   sigma(2, 2) -= p_new;
   return sigma;
+}
+
+/// eos_param_specs() for the J2 family, with eos.min_pressure made optional without a number
+/// default ("not given" = no cutoff; make_eos reads it with number_or(-inf)). Its -inf default
+/// would be written into the resolved deck as -.inf, which the deck reader (finite numbers only)
+/// rejects when the resolved deck is read back (test DeckExamples.ExampleDecksParseAndResolveToThemselves).
+inline std::vector<ParamSpec> j2_family_eos_specs() {
+  std::vector<ParamSpec> specs = eos_param_specs();
+  for (ParamSpec& s : specs)
+    if (s.name == "eos.min_pressure") s.default_value = std::numeric_limits<double>::quiet_NaN();
+  return specs;
 }
 
 /// Splits sigma into its deviator (returned) and pressure p = -tr(sigma)/3.
