@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "driver/drive_run.hpp"
 #include "io/deck_reader.hpp"
+#include "io/material_presets.hpp"
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
 #include "run/simulation.hpp"
@@ -54,7 +55,7 @@ void print_info() {
   for (const auto& f : ballista::material_registry()) {
     std::cout << "  " << f.model << "  " << f.description << "\n";
     for (const auto& p : f.params)
-      std::cout << fmt::format("      {:<22} [{}] {}; {}{}\n", p.name, p.unit, p.description,
+      std::cout << fmt::format("      {:<30} [{}] {}; {}{}\n", p.name, p.unit, p.description,
                                format_default(p),
                                format_range(p).empty() ? "" : "; range " + format_range(p));
     if (!f.state_fields.empty()) {
@@ -62,6 +63,17 @@ void print_info() {
       for (const auto& s : f.state_fields) std::cout << " " << s.name << " [" << s.unit << "]";
       std::cout << "\n";
     }
+    std::cout << "      (a point holds the subset its parameters use; with a failure.criterion also damage [1] and\n"
+                 "       failed [1])\n";
+  }
+  // Cited parameter sets usable as `preset: NAME` in a deck material (docs/material_data.md).
+  try {
+    const auto lib = ballista::MaterialPresetLibrary::load_default();
+    std::cout << "\nMaterial presets (materials.<name>.preset; " << lib.file() << ")\n";
+    for (const auto& p : lib.presets())
+      std::cout << fmt::format("  {:<24} {:<14} {}\n", p.name, p.model, p.description);
+  } catch (const std::exception& e) {
+    std::cout << "\nMaterial presets: not available (" << e.what() << ")\n";
   }
 }
 
