@@ -163,14 +163,17 @@ struct JohnsonCook {
             {"specific_heat", 1.0}, {"taylor_quinney", 0.0}};
   }
 
-  /// All state fields the model can have (registry). The temperature field starts as NaN, meaning
-  /// "initial_temperature of the point's material": the first update replaces it, so materials
-  /// with different initial temperatures can share the field.
+  /// All state fields the model can have (registry); the temperature's initial value there is NaN
+  /// ("the material's initial_temperature").
   static std::vector<StateFieldSpec> state_fields() {
     return {{"eqps", "1", 0.0}, {"temperature", "K", std::numeric_limits<double>::quiet_NaN()}, eos_state_field()};
   }
+  /// The fields of one material: the temperature starts at its initial_temperature (solvers set it
+  /// per material with Material::initialise_state, since materials share the field). A NaN that
+  /// still reaches update() is replaced there as well.
   static std::vector<StateFieldSpec> state_fields(const Params& p) {
     std::vector<StateFieldSpec> f = state_fields();
+    f[1].initial = p.T_init;
     if (p.energy_slot < 0) f.pop_back();
     return f;
   }

@@ -151,6 +151,15 @@ class Material {
   void declare_fields(FieldStore& store) const {
     for (const auto& s : state_fields()) store.add_real(s.name, 1, s.unit, true, s.initial);
   }
+  /// Sets this material's state fields of points [begin, end) to their initial values. A field is
+  /// shared by every material that has it but starts per material (e.g. the temperature at each
+  /// material's initial_temperature), so a solver calls this for the points it seeds.
+  void initialise_state(FieldStore& store, Index begin, Index end) const {
+    for (const auto& s : state_fields()) {
+      double* f = store.real(s.name);
+      for (Index p = begin; p < end; ++p) f[p] = s.initial;
+    }
+  }
   /// Stress update of a batch of points (parallel inside; results independent of thread count).
   virtual void update(const MaterialBatch& batch) const = 0;
   /// Initial stress for a point with deformation gradient F and no history (e.g. a prestrained

@@ -94,6 +94,7 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
                       "unknown material '" + body.material + "'");
     const Index n0 = points_.size();
     seed_body(body, static_cast<int>(b), mi, *materials_[mi], sc.grid, dimension_, points_, next_id);
+    materials_[mi]->initialise_state(points_, n0, points_.size());
     activation.resize(points_.size(), body.activation_time);
     if (body.initial_state == "mms_axis_aligned") {
       // Start on the manufactured solution at t = 0 (CATALOGUE B1): velocity, F and stress.

@@ -30,8 +30,10 @@ def registered_models(ballista):
     part = out.split("\nMaterials (materials.<name>.model)\n", 1)
     if len(part) != 2:
         fail("`ballista info` has no Materials section")
-    # Model lines are indented by exactly two spaces; parameters by six.
-    return [m.group(1) for m in re.finditer(r"^  (\S+)  ", part[1], re.M)]
+    # The section ends at the next unindented heading (e.g. "Material presets"). Model lines are
+    # indented by exactly two spaces; parameters by six.
+    section = re.split(r"^\S", part[1], maxsplit=1, flags=re.M)[0]
+    return [m.group(1) for m in re.finditer(r"^  (\S+)  ", section, re.M)]
 
 
 def check_missing_python(a):

@@ -453,11 +453,12 @@ TEST(JohnsonCook, Parameters) {
     if (s.name == "specific_heat") EXPECT_EQ(s.unit, "J/(kg K)");
     if (s.name == "taylor_quinney") EXPECT_EQ(s.default_value, 0.9);
   }
-  // Temperature field: NaN until the first update, then initial_temperature (elastic step).
+  // Temperature field: starts at initial_temperature (the instance's state-field initial value)
+  // and stays there over an elastic step.
   ParamValues w = copper();
   w["initial_temperature"] = 350.0;
   PointDriver d("johnson_cook", w);
-  EXPECT_TRUE(std::isnan(d.state("temperature")));
+  EXPECT_EQ(d.state("temperature"), 350.0);
   d.advance(Mat3::diag(1.0001, 1, 1), 1e-6);
   EXPECT_EQ(d.state("temperature"), 350.0);
   EXPECT_EQ(d.state("eqps"), 0.0);
@@ -500,4 +501,24 @@ TEST(JohnsonCook, PointResultByProducts) {
   EXPECT_NEAR(res.homologous_temperature, (st[1] - kT0) / (kTm - kT0), 1e-15);
   EXPECT_GE(res.drucker_product, 0.0);
   EXPECT_NEAR(von_mises(sig), jc_flow(st[0], D / k.dt, 500.0), 1e-12 * von_mises(sig));
+}
+
+// Two materials share the temperature field but start at their own initial_temperature: the
+// solver calls Material::initialise_state for the points it seeds of each.
+TEST(JohnsonCook, InitialTemperaturePerMaterialInASharedStore) {
+  ParamValues a = copper(), b = copper();
+  a["initial_temperature"] = 300.0;
+  b["initial_temperature"] = 700.0;
+  const auto ma = make_material("johnson_cook", a), mb = make_material("johnson_cook", b);
+  FieldStore store;
+  ma->declare_fields(store);
+  mb->declare_fields(store);
+  store.resize(4);
+  ma->initialise_state(store, 0, 2);
+  mb->initialise_state(store, 2, 4);
+  const double* T = store.real("temperature");
+  EXPECT_EQ(T[0], 300.0);
+  EXPECT_EQ(T[1], 300.0);
+  EXPECT_EQ(T[2], 700.0);
+  EXPECT_EQ(T[3], 700.0);
 }
