@@ -4,24 +4,14 @@
 
 #include <fmt/format.h>
 
+#include "io/summary_writer.hpp"
+
 namespace ballista {
 
 std::string json_quote(const std::string& s) {
-  std::string out = "\"";
-  for (const char ch : s) {
-    const auto c = static_cast<unsigned char>(ch);
-    switch (ch) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\r': out += "\\r"; break;
-      default:
-        if (c < 0x20) out += fmt::format("\\u{:04x}", c);
-        else out += ch;  // UTF-8 passes through unchanged
-    }
-  }
-  return out + "\"";
+  std::string out;
+  json_escape_to(out, s);  // the run summary's escaping (io/summary_writer)
+  return out;
 }
 
 std::string json_number(double x) {
