@@ -9,10 +9,17 @@
 //   p_{n+1} = eos_update(p_n, J_n -> J_{n+1}, E, W_dev),  W_dev = J_mid s_mid : D_bar dt,
 // so the deviatoric elastic work enters the energy E that the Grüneisen term sees. eos.type linear
 // (the default) is the plain update above, unchanged (its pressure part is p_n - K tr(D_bar) dt).
+//
+// Algorithmic tangent (PointResult::tangent, d sigma_bar_{n+1}/d eps with eps = D_bar dt): the
+// deviatoric part is 2G I_dev; the pressure part is -K 1 (x) 1 for eos.type linear and, for
+// Mie-Grüneisen, the derivative of the closed-form eos_update including the energy coupling and the
+// deviatoric work, with J_{n+1} = J_n det(I + eps) (a spin-free increment): j2_compose_eos of
+// j2_return.hpp with the elastic deviatoric tangent (zero slope while the tension cutoff holds).
 #include <cmath>
 
 #include "materials/elastic_constants.hpp"
 #include "materials/eos.hpp"
+#include "materials/j2_return.hpp"
 #include "materials/material_adapter.hpp"
 
 namespace ballista {
@@ -49,23 +56,24 @@ struct LinearElastic {
     return {eos_state_field()};
   }
 
-  static void update(const Params& p, const PointKinematics& k, Mat3& s, double* state, PointResult&) {
+  static void update(const Params& p, const PointKinematics& k, Mat3& s, double* state, PointResult& res) {
     if (p.eos.kind == Eos::Kind::Linear) {
       const double lam = p.bulk - 2.0 * p.shear / 3.0;
       const double trD = trace(k.D_bar);
       s += k.dt * (2.0 * p.shear) * k.D_bar;
       const double iso = k.dt * lam * trD;
       s(0, 0) += iso; s(1, 1) += iso; s(2, 2) += iso;
+      // d sigma = 2G dev(d eps) + K tr(d eps) I (the eos.min_pressure cutoff does not apply here).
+      if (res.tangent) j2_write_tangent(res.tangent, elastic_tangent(p.shear), (-p.bulk) * Mat3::identity());
       return;
     }
     const double p_old = -trace(s) / 3.0;
+    const Mat3 eps = k.dt * k.D_bar;
     const Mat3 dev_old = deviator(s);
-    const Mat3 dev_new = dev_old + k.dt * (2.0 * p.shear) * deviator(k.D_bar);
-    // Deviatoric work per reference volume, J_mid s_mid : D_bar dt (trapezoidal, as eos_update).
-    const double dev_work = 0.5 * (k.J_old + k.J_new) * 0.5 * ddot(dev_old + dev_new, k.D_bar) * k.dt;
-    const double p_new = eos_update(p.eos, k, p_old, state[0], dev_work);
-    s = dev_new;
-    s(0, 0) -= p_new; s(1, 1) -= p_new; s(2, 2) -= p_new;
+    const Mat3 dev_new = dev_old + (2.0 * p.shear) * deviator(eps);
+    // Pressure from eos_update with the deviatoric work J_mid s_mid : eps (trapezoidal, as
+    // eos_update), sigma = s - p I, and the tangent if requested.
+    s = j2_compose_eos(p.eos, k, eps, p_old, dev_old, dev_new, state[0], true, elastic_tangent(p.shear), res);
   }
 
   /// Dilatational wave speed sqrt((K + 4G/3)/rho), rho = rho0/J; with Mie-Grüneisen K is the

@@ -6,6 +6,17 @@
 // stress directly, sigma_bar = R^T sigma R = [lambda ln J I + mu (C - I)] / J with C = F^T F
 // (R^T F F^T R = U U = C), and ignores D_bar and the stress at t_n. Objectivity is exact.
 // lambda = K - 2G/3, mu = G (small-strain limit is isotropic linear elasticity with K, G).
+//
+// Algorithmic tangent (PointResult::tangent, d sigma_bar_{n+1}/d eps, eps = D_bar dt), the exact
+// derivative of what the kernel computes for a spin-free increment F_{n+1} = R (I + eps) R^T F_n,
+// R = R_{n+1} its own polar rotation (the convention of material.hpp and the A6 check). Then
+// U_{n+1} = R^T F_{n+1} = A M with A = I + eps, M = R^T F_n; perturbing eps by d eps rotates R too,
+// dM = Omega M with Omega = -R^T dR skew, fixed by the symmetry of
+//   dU = d eps M + A Omega M                                   (3 linear equations for Omega),
+// and with C = U^2, J = det U:  dC = dU U + U dU,  dJ/J = tr(U^-1 dU) = tr(A^-1 d eps),
+//   d sigma_bar = [mu dC + lambda (dJ/J) I] / J - sigma_bar dJ/J
+// (differentiating sigma_bar = [lambda ln J I + mu (C - I)] / J). For F_n = I this is the
+// derivative of Bonet & Wood (2008) eq. 6.28 along U = I + eps, no rotation.
 #include <algorithm>
 #include <cmath>
 
@@ -47,8 +58,56 @@ struct NeoHookean {
     return stress_from(p, times_transpose(F, F), det(F));
   }
 
-  static void update(const Params& p, const PointKinematics& k, Mat3& s, double*, PointResult&) {
-    s = stress_from(p, transpose_times(k.F_new, k.F_new), det(k.F_new));
+  static void update(const Params& p, const PointKinematics& k, Mat3& s, double*, PointResult& res) {
+    const double J = det(k.F_new);
+    s = stress_from(p, transpose_times(k.F_new, k.F_new), J);
+    if (res.tangent) write_tangent(p, k, s, J, res.tangent);
+  }
+
+  /// Axial vector of the skew part of X: (X_32 - X_23, X_13 - X_31, X_21 - X_12).
+  static Vec3 axial_of_skew(const Mat3& X) { return {X(2, 1) - X(1, 2), X(0, 2) - X(2, 0), X(1, 0) - X(0, 1)}; }
+
+  /// The tangent of the header comment, 6x6 row-major, order 11, 22, 33, 23, 13, 12, tensor shears.
+  static void write_tangent(const Params& p, const PointKinematics& k, const Mat3& sigma_bar, double J, double* T) {
+    static constexpr int kA[6] = {0, 1, 2, 1, 0, 0};
+    static constexpr int kB[6] = {0, 1, 2, 2, 2, 1};
+    const Mat3 U = sym(transpose_times(k.R_new, k.F_new));
+    const Mat3 A = Mat3::identity() + k.dt * k.D_bar;
+    const Mat3 A_inv = inverse(A);
+    const Mat3 M = A_inv * U;
+    // Columns of the 3x3 map omega -> axial(skew(A Omega M)), Omega = [omega]_x.
+    Mat3 K;
+    for (int m = 0; m < 3; ++m) {
+      Mat3 Om;
+      const int a = (m + 1) % 3, b = (m + 2) % 3;  // [e_m]_x: Om(b, a) = 1, Om(a, b) = -1
+      Om(b, a) = 1.0;
+      Om(a, b) = -1.0;
+      const Vec3 col = axial_of_skew(A * Om * M);
+      for (int r = 0; r < 3; ++r) K(r, m) = col[r];
+    }
+    const Mat3 K_inv = inverse(K);
+    for (int j = 0; j < 6; ++j) {
+      Mat3 dE;
+      dE(kA[j], kB[j]) = 1.0;
+      dE(kB[j], kA[j]) = 1.0;
+      const Mat3 dEM = dE * M;
+      const Vec3 rhs = axial_of_skew(dEM);
+      Mat3 Om;
+      for (int m = 0; m < 3; ++m) {
+        double w = 0.0;
+        for (int r = 0; r < 3; ++r) w -= K_inv(m, r) * rhs[r];
+        const int a = (m + 1) % 3, b = (m + 2) % 3;
+        Om(b, a) += w;
+        Om(a, b) -= w;
+      }
+      const Mat3 dU = sym(dEM + A * Om * M);  // symmetric by construction; sym() removes round-off
+      const Mat3 dC = dU * U + U * dU;
+      const double dJ_J = ddot(A_inv, transpose(dE));  // tr(A^-1 dE)
+      Mat3 ds = (p.mu / J) * dC - dJ_J * sigma_bar;
+      const double iso = p.lambda * dJ_J / J;
+      ds(0, 0) += iso; ds(1, 1) += iso; ds(2, 2) += iso;
+      for (int i = 0; i < 6; ++i) T[6 * i + j] = ds(kA[i], kB[i]);
+    }
   }
 
   /// Longitudinal wave speed of the deformed material. From the spatial elasticity tensor of

@@ -18,9 +18,16 @@
 //     vapour pressure (2.3 kPa at 20 °C), i.e. about -1e5 Pa gauge (C.E. Brennen, Cavitation and
 //     Bubble Dynamics, Oxford 1995, §1.2-1.4; R.H. Cole, Underwater Explosions, Princeton 1948 on
 //     bulk cavitation). The cutoff holds p there while the fluid expands (no tension wave beyond).
+//
+// Algorithmic tangent (PointResult::tangent, d sigma_bar_{n+1}/d eps, eps = D_bar dt): pressure only,
+// sigma = -p I, so the shear rows are zero and rows 11, 22, 33 each equal -dp/d eps, the derivative of
+// the closed-form eos_update (Hugoniot term and energy coupling, J_{n+1} = J_n det(I + eps) for a
+// spin-free increment; zero while the cavitation cutoff holds p = p_min): j2_compose_eos of
+// j2_return.hpp with a zero deviatoric tangent.
 #include <cmath>
 
 #include "materials/eos.hpp"
+#include "materials/j2_return.hpp"
 #include "materials/material_adapter.hpp"
 
 namespace ballista {
@@ -79,10 +86,11 @@ struct Water {
 
   static std::vector<StateFieldSpec> state_fields() { return {eos_state_field()}; }
 
-  static void update(const Params& p, const PointKinematics& k, Mat3& s, double* state, PointResult&) {
+  static void update(const Params& p, const PointKinematics& k, Mat3& s, double* state, PointResult& res) {
     const double p_old = -trace(s) / 3.0;
-    const double p_new = eos_update(p.eos, k, p_old, state[0], 0.0);  // no deviatoric work
-    s = Mat3::diag(-p_new, -p_new, -p_new);
+    // No deviator (s_n = s_{n+1} = 0), hence no deviatoric work: p from eos_update, sigma = -p I.
+    const Mat3 zero;
+    s = j2_compose_eos(p.eos, k, k.dt * k.D_bar, p_old, zero, zero, state[0], true, DevTangent{}, res);
   }
 
   /// Bulk sound speed sqrt(K_s / rho), K_s the isentropic bulk modulus, rho = rho0 / J.

@@ -255,8 +255,14 @@ TEST(PointDriver, UniaxialStressLegLinearElastic) {
     const double d = std::exp(eps / N) - 1.0;
     SCOPED_TRACE("step " + std::to_string(n));
     EXPECT_NEAR(s.sigma(0, 0), E * n * d, 1e-8 * std::abs(E * e));
-    EXPECT_NEAR(s.sigma(1, 1), 0.0, 1e-10 * std::abs(E * e) * 1.0001);
-    EXPECT_NEAR(s.sigma(2, 2), 0.0, 1e-10 * std::abs(E * e) * 1.0001);
+    // The driver's convergence test (point_driver.cpp, solve_step) is max(1e-10 |sigma|, 1e-14 x the
+    // largest Jacobian entry), the latter the lateral modulus K + 4G/3 = E (1 - nu)/((1 + nu)(1 - 2 nu)):
+    // 2.7e-3 Pa, above 1e-10 |E e| at step 1; which side a residual of ~2.5e-3 Pa lands on depends
+    // on the compiler's FMA contraction of the adapter.
+    const double lateral_modulus = E * (1 - nu) / ((1 + nu) * (1 - 2 * nu));
+    const double lateral_tol = 1.0001 * std::max(1e-10 * std::abs(E * e), 1e-14 * lateral_modulus);
+    EXPECT_NEAR(s.sigma(1, 1), 0.0, lateral_tol);
+    EXPECT_NEAR(s.sigma(2, 2), 0.0, lateral_tol);
     EXPECT_NEAR(std::log(s.F(1, 1)), n * std::log(1.0 - nu * d), 1e-8 * std::abs(e));
     EXPECT_NEAR(std::log(s.F(2, 2)), n * std::log(1.0 - nu * d), 1e-8 * std::abs(e));
     EXPECT_NEAR(std::log(s.F(0, 0)), e, 1e-15);  // strain control: exact exp of the increments

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "material_driver.hpp"
+#include "tangent_check.hpp"
 #include "materials/eos.hpp"
 
 using namespace ballista;
@@ -134,4 +135,51 @@ TEST(Water, LinearEosIsAnAcousticFluid) {
   d.advance(c * Mat3::identity(), 1e-7);
   EXPECT_NEAR(pressure(d), -K * 3.0 * (c - 1.0), 1e-12 * K * 3e-3);
   EXPECT_NEAR(d.material().wave_speed(d.store(), 0, 1.0), 1482.0, 1e-12 * 1482.0);
+}
+
+// Algorithmic tangent against central differences of the update (tangent_check.hpp, spin-free
+// increments from a rotated F_n). Pressure only: rows 11, 22, 33 equal -dp/d eps, shear rows zero.
+// h = 1e-6: truncation h^2 |p^(3)|/|p'| < 1e-10, round-off 1e-16 |p| / (h |dp/d eps|) < 1e-11;
+// tolerance 1e-8 of max |T| (a dropped energy coupling Gamma0 p dJ/2 is ~1e-3 here and would fail).
+TEST(Water, TangentMatchesFiniteDifferencesAndIsPressureOnly) {
+  const Mat3 Q = rotation_about(Vec3{{0.0, 0.6, 0.8}}, 0.7);
+  const double e_c[6] = {-3e-3, -1e-3, -2e-3, 0.5e-3, -0.4e-3, 0.7e-3};
+  const double e_t[6] = {1e-5, 0.5e-5, 0.3e-5, 0.5e-5, -0.4e-5, 0.7e-5};  // J_{n+1} - 1 ~ 3e-5: p ~ -8e4 > p_min
+  struct Case {
+    const char* name;
+    double J_n, p_n, energy;
+    const double* eps;
+  };
+  // Shock-compressed (eta = 0.15, p ~ 0.7 GPa) and slightly expanded above the cutoff.
+  const Case cases[] = {{"compression", 0.85, 7e8, 5e7, e_c}, {"tension", 1.00001, -3e4, 0.0, e_t}};
+  for (const Case& c : cases) {
+    TangentPoint pt("water", {});
+    pt.set_F(std::cbrt(c.J_n) * Q);
+    pt.set_stress_bar(Mat3::diag(-c.p_n, -c.p_n, -c.p_n));
+    pt.set_state(kEosEnergyField, c.energy);
+    const TangentError e = fd_tangent_error(pt, sym6(c.eps), 1e-6, 1e-6);
+    std::printf("water %s: max |T_fd - T| / max|T| = %.2e, max |T| = %.3e Pa\n", c.name, e.rel_err, e.max_entry);
+    EXPECT_LT(e.rel_err, 1e-8) << c.name;
+    for (int j = 0; j < 6; ++j) {
+      EXPECT_EQ(e.T[j], e.T[6 + j]) << c.name;
+      EXPECT_EQ(e.T[j], e.T[12 + j]) << c.name;
+      for (int i = 3; i < 6; ++i) EXPECT_EQ(e.T[6 * i + j], 0.0) << c.name;
+    }
+    EXPECT_GT(e.T[0], 1e9) << c.name;  // compressing raises p: d sigma_11 / d eps_11 = -dp/d eps_11 > 0
+  }
+}
+
+TEST(Water, TangentIsZeroAtCavitationCutoff) {
+  // Expanding at the cutoff p = p_min = -1e5 Pa: the pressure stays at p_min whatever the
+  // increment, so the tangent is exactly zero and so is the change of the stress.
+  TangentPoint pt("water", {});
+  pt.set_F(std::cbrt(1.001) * Mat3::identity());
+  pt.set_stress_bar(Mat3::diag(1e5, 1e5, 1e5));
+  const double e0[6] = {1e-3, 1.2e-3, 0.9e-3, 0.1e-3, 0.0, -0.2e-3};
+  double T[36];
+  const Mat3 s = pt.step(sym6(e0), 1e-7, T);
+  EXPECT_EQ(s(0, 0), 1e5);
+  for (double t : T) EXPECT_EQ(t, 0.0);
+  const Mat3 sp = pt.step(sym6(e0) + 1e-6 * Mat3::identity(), 1e-7);
+  EXPECT_EQ(sp(0, 0), 1e5);
 }
