@@ -50,8 +50,7 @@ def plot_a1(test, fig):
     """Thesis Fig. 4.2: sigma_bar_11 and the spatial components against t."""
     ax = fig.add_subplot(1, 1, 1)
     t = series(test, "t")
-    ax.plot(t, series(test, "sbar11_fine"), color="0.75", lw=3, label=r"$\bar\sigma_{11}$ fine run, no extrapolation")
-    ax.plot(t, series(test, "sbar22_fine"), color="0.85", lw=3, label=r"$\bar\sigma_{22}$ fine run (eq. 4.10 error)")
+    ax.plot(t, series(test, "sbar22"), color="0.6", lw=1.0, label=r"$\bar\sigma_{22}$ computed (analytic 0)")
     for key, an, colour, label in [("sbar11", "sbar11_an", "tab:blue", r"$\bar\sigma_{11}$ (unrotated)"),
                                    ("sxx", "sxx_an", "tab:red", r"$\sigma_{xx}$"),
                                    ("syy", "syy_an", "tab:green", r"$\sigma_{yy}$"),

@@ -22,9 +22,11 @@
 //    first step starts from F_applied = F_0 with the model's initial_stress(F_0). With
 //    substeps = 1 and no angles, a table of a particle's F at every solver step replays that
 //    particle's stress history (thesis §4.2.1, Fig. 4.14) up to round-off in L.
-//    Note: eq. 4.10 is first order in a rotation increment: a rigid rotation dtheta per step adds
-//    sym(Q(dtheta) - I) = (cos dtheta - 1) to D dt in the plane of rotation (a spurious
-//    compression of dtheta^2/2 per step), so rotating tables need small steps (A1: 2 pi^2/N).
+//    Note: sym(L) dt would be first order in a rotation increment (a rigid rotation dtheta per
+//    step has sym(Q(dtheta) - I) = (cos dtheta - 1) in the plane of rotation); the adapter hands
+//    the model the midpoint increment of Hughes & Winget 1980 instead
+//    (materials/strain_increment.hpp), zero for a rigid rotation, so rotating tables need no
+//    special step size (A1 at N steps: O(theta G/(M N)) left, from unrotating at t_{n+1}).
 //
 //  * Legs (DriveProgram::legs). Each leg of `duration` takes `steps` equal steps. Every symmetric
 //    component (11, 22, 33, 23, 13, 12) is either
@@ -34,7 +36,8 @@
 //        the increments do not change (e.g. diagonal dE), the Hencky strain ln V then advances by
 //        exactly dE per step; with shear components the increments are integrated in the current
 //        configuration (ln V equals their sum only to second order). L = (exp(dE) - I)/dt per
-//        eq. 4.10 is symmetric (no spin).
+//        eq. 4.10 is symmetric (no spin); the model sees the midpoint increment 2 tanh(dE/2)
+//        per step for a diagonal dE (materials/strain_increment.hpp), dE + O(dE^3).
 //      - stress-controlled: `value` is the spatial Cauchy stress component (Pa) to reach at the
 //        end of the leg; it is driven linearly in time from its value at the start of the leg
 //        (so a target equal to the current value, e.g. 0 for the lateral components of uniaxial

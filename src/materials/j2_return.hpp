@@ -165,8 +165,10 @@ inline void j2_write_tangent(double* T, const DevTangent& t, const Mat3& g) {
 /// The deviatoric work over the step per reference volume is J_mid s_mid : eps with
 /// J_mid = (J_n + J_{n+1})/2, s_mid = (s_n + s_{n+1})/2 (the convention of eos.hpp).
 /// Fills res.tangent if non-null, with `dev` the deviatoric tangent of the step. The
-/// Mie-Grüneisen pressure depends on J_{n+1}; its tangent takes J_{n+1} = J_n det(I + eps), exact
-/// for an increment without spin (the FD check, and strain-driven increments).
+/// Mie-Grüneisen pressure depends on J_{n+1}; its tangent takes the spin-free step whose midpoint
+/// increment (the adapter's, materials/strain_increment.hpp) is eps, dF = (I - eps/2)^-1 (I + eps/2),
+/// so J_{n+1} = J_n det(I + eps/2)/det(I - eps/2): exact for an increment without spin (the FD
+/// check, and strain-driven increments).
 inline Mat3 j2_compose_eos(const Eos& eos, const PointKinematics& k, const Mat3& eps, double p_old,
                            const Mat3& s_old, const Mat3& s_new, double& energy, bool track_energy,
                            const DevTangent& dev, PointResult& res) {
@@ -198,8 +200,10 @@ inline Mat3 j2_compose_eos(const Eos& eos, const PointKinematics& k, const Mat3&
         const double pH = eos_hugoniot_pressure(eos, k.J_new);
         const double dA = -dpH_deta * (1.0 - 0.5 * eos.gamma0 * eta) + 0.5 * eos.gamma0 * pH;
         const double den = 1.0 + 0.5 * eos.gamma0 * (k.J_new - k.J_old);
-        // d J_{n+1} / d eps = J_n cof(I + eps) (symmetric for symmetric eps).
-        const Mat3 Jc = k.J_old * cofactor(Mat3::identity() + eps);
+        // d J_{n+1} / d eps = J_{n+1} ((I + eps/2)^-1 + (I - eps/2)^-1)/2 (d ln det A = A^-T : dA;
+        // symmetric for symmetric eps), J_{n+1} = J_n det(I + eps/2)/det(I - eps/2).
+        const Mat3 Ap = Mat3::identity() + 0.5 * eps, Am = Mat3::identity() - 0.5 * eps;
+        const Mat3 Jc = (0.5 * k.J_old * det(Ap) / det(Am)) * (inverse(Ap) + inverse(Am));
         // d(ds_{n+1} : eps)/d eps = Y = a dev(eps) + b (N : eps) N.
         const Mat3 Y = dev.a * deviator(eps) + (dev.b * ddot(dev.N, eps)) * dev.N;
         // dp = [(A' - Gamma0 (p_n + p_{n+1})/2) dJ + Gamma0 dW] / den,

@@ -8,12 +8,14 @@
 // lambda = K - 2G/3, mu = G (small-strain limit is isotropic linear elasticity with K, G).
 //
 // Algorithmic tangent (PointResult::tangent, d sigma_bar_{n+1}/d eps, eps = D_bar dt), the exact
-// derivative of what the kernel computes for a spin-free increment F_{n+1} = R (I + eps) R^T F_n,
-// R = R_{n+1} its own polar rotation (the convention of material.hpp and the A6 check). Then
-// U_{n+1} = R^T F_{n+1} = A M with A = I + eps, M = R^T F_n; perturbing eps by d eps rotates R too,
+// derivative of what the kernel computes for a spin-free increment F_{n+1} = R A R^T F_n,
+// R = R_{n+1} its own polar rotation (the convention of material.hpp and the A6 check), where A is
+// the stretch step whose midpoint increment (materials/strain_increment.hpp) is eps:
+// A = (I - eps/2)^-1 (I + eps/2), dA = (1/2)(I - eps/2)^-1 d eps (I + A). Then
+// U_{n+1} = R^T F_{n+1} = A M with M = R^T F_n; perturbing eps rotates R too,
 // dM = Omega M with Omega = -R^T dR skew, fixed by the symmetry of
-//   dU = d eps M + A Omega M                                   (3 linear equations for Omega),
-// and with C = U^2, J = det U:  dC = dU U + U dU,  dJ/J = tr(U^-1 dU) = tr(A^-1 d eps),
+//   dU = dA M + A Omega M                                      (3 linear equations for Omega),
+// and with C = U^2, J = det U:  dC = dU U + U dU,  dJ/J = tr(U^-1 dU) = tr(A^-1 dA),
 //   d sigma_bar = [mu dC + lambda (dJ/J) I] / J - sigma_bar dJ/J
 // (differentiating sigma_bar = [lambda ln J I + mu (C - I)] / J). For F_n = I this is the
 // derivative of Bonet & Wood (2008) eq. 6.28 along U = I + eps, no rotation.
@@ -22,6 +24,7 @@
 
 #include "materials/elastic_constants.hpp"
 #include "materials/material_adapter.hpp"
+#include "materials/strain_increment.hpp"
 
 namespace ballista {
 
@@ -72,8 +75,11 @@ struct NeoHookean {
     static constexpr int kA[6] = {0, 1, 2, 1, 0, 0};
     static constexpr int kB[6] = {0, 1, 2, 2, 2, 1};
     const Mat3 U = sym(transpose_times(k.R_new, k.F_new));
-    const Mat3 A = Mat3::identity() + k.dt * k.D_bar;
+    const Mat3 eps = k.dt * k.D_bar;
+    const Mat3 A = spin_free_step_for_increment(eps);
     const Mat3 A_inv = inverse(A);
+    const Mat3 half_inv = 0.5 * inverse(Mat3::identity() - 0.5 * eps);
+    const Mat3 I_plus_A = Mat3::identity() + A;
     const Mat3 M = A_inv * U;
     // Columns of the 3x3 map omega -> axial(skew(A Omega M)), Omega = [omega]_x.
     Mat3 K;
@@ -90,7 +96,8 @@ struct NeoHookean {
       Mat3 dE;
       dE(kA[j], kB[j]) = 1.0;
       dE(kB[j], kA[j]) = 1.0;
-      const Mat3 dEM = dE * M;
+      const Mat3 dA = half_inv * dE * I_plus_A;
+      const Mat3 dEM = dA * M;
       const Vec3 rhs = axial_of_skew(dEM);
       Mat3 Om;
       for (int m = 0; m < 3; ++m) {
@@ -102,7 +109,7 @@ struct NeoHookean {
       }
       const Mat3 dU = sym(dEM + A * Om * M);  // symmetric by construction; sym() removes round-off
       const Mat3 dC = dU * U + U * dU;
-      const double dJ_J = ddot(A_inv, transpose(dE));  // tr(A^-1 dE)
+      const double dJ_J = ddot(A_inv, transpose(dA));  // tr(A^-1 dA)
       Mat3 ds = (p.mu / J) * dC - dJ_J * sigma_bar;
       const double iso = p.lambda * dJ_J / J;
       ds(0, 0) += iso; ds(1, 1) += iso; ds(2, 2) += iso;

@@ -3,15 +3,18 @@
 // 23, 13, 12 with tensor shear strains).
 //
 // How the strain increment is perturbed. The 6x6 d sigma_bar / d eps is defined for a pure strain
-// increment: a spin-free step whose unrotated increment is eps. At a check step the point holds
-// (F_n, R_n, sigma_n, state_n) and the path's own step has eps0 = R^T sym(F_{n+1} F_n^-1 - I) R.
-// Each evaluation with eps = eps0 +- h E_j (E_j the unit tensor of component j) goes to
-//     F(eps) = R (I + eps) R^T F_n,   R = polar rotation of F(eps) (a fixed point, found by
-//                                      iterating R <- polar(R (I + eps) R^T F_n); it contracts by
-//                                      ~|eps| per iteration),
-// so L dt = R eps R^T is symmetric, the adapter's D_bar dt = R^T sym(L dt) R = eps exactly, and
-// J_{n+1} = J_n det(I + eps): every input of the kernel (D_bar, J, F_{n+1}, F_old) moves as in a
-// real spin-free step, so hypoelastic, EOS and hyperelastic kernels see the same perturbation.
+// increment: a spin-free step whose unrotated increment is eps. The adapter hands the model the
+// midpoint increment of dF = F_{n+1} F_n^-1 (Hughes & Winget 1980; materials/strain_increment.hpp),
+// sym(2 (dF - I)(dF + I)^-1), unrotated by R_{n+1}. At a check step the point holds
+// (F_n, R_n, sigma_n, state_n) and the path's own step has that increment eps0. Each evaluation
+// with eps = eps0 +- h E_j (E_j the unit tensor of component j) goes to
+//     F(eps) = R S(eps) R^T F_n,  S(eps) = (I - eps/2)^-1 (I + eps/2),  R = polar rotation of F(eps)
+//                                      (a fixed point, found by iterating
+//                                      R <- polar(R S R^T F_n); it contracts by ~|eps| per iteration),
+// S being the symmetric stretch whose midpoint increment is exactly eps; so L dt = R (S - I) R^T is
+// symmetric, the adapter's D_bar dt = R^T (R eps R^T) R = eps exactly, and J_{n+1} = J_n det(S):
+// every input of the kernel (D_bar, J, F_{n+1}, F_old) moves as in a real spin-free step, so
+// hypoelastic, EOS and hyperelastic kernels see the same perturbation.
 // (Holding R fixed instead would change the spin with eps and J by O(h |spin|), a 1e-5 effect on an
 // EOS tangent that is not part of d sigma_bar / d eps.)
 //
@@ -33,6 +36,7 @@
 #include <fmt/format.h>
 
 #include "core/polar.hpp"
+#include "materials/strain_increment.hpp"
 #include "verify/a6_objectivity.hpp"
 #include "verify/hook_material.hpp"
 #include "verify/point_batch.hpp"
@@ -53,11 +57,11 @@ Mat3 unit_sym(int k) {
   return E;
 }
 
-/// The spin-free step F = R (I + eps) R^T F_n with R its own polar rotation (see above); `guess`
+/// The spin-free step F = R S(eps) R^T F_n with R its own polar rotation (see above); `guess`
 /// starts the fixed-point iteration.
 Mat3 spin_free_step(const Mat3& F_n, const Mat3& eps, const Mat3& guess) {
   Mat3 R = guess;
-  const Mat3 A = Mat3::identity() + eps;
+  const Mat3 A = spin_free_step_for_increment(eps);
   for (int it = 0; it < 100; ++it) {
     const Mat3 R_next = polar_rotation(rotate(R, A) * F_n, R);
     const double change = frobenius(R_next - R);
@@ -79,7 +83,7 @@ TangentSample check_step(const Material& m, PointBatch& path_batch, Index p, con
   PointBatch b(m, 25);
   const Mat3 F_n = path_batch.F(p);
   const Mat3 R0 = polar_rotation(F_new, path_batch.R(p));
-  const Mat3 eps0 = unrotate_sym(R0, sym(F_new * inverse(F_n) - Mat3::identity()));
+  const Mat3 eps0 = unrotate_sym(R0, midpoint_strain_increment(F_new * inverse(F_n) - Mat3::identity()));
   Mat3 targets[25];
   targets[0] = spin_free_step(F_n, eps0, R0);
   for (int j = 0; j < 6; ++j) {

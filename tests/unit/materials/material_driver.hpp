@@ -122,6 +122,15 @@ inline double interp(const std::vector<double>& t, const std::vector<double>& y,
   return y.back();
 }
 
+/// The strain increment the adapter hands a model for a uniaxial step F11: F_prev -> F (stretch
+/// lambda = F / F_prev, x = lambda - 1): the midpoint increment 2 (lambda - 1)/(lambda + 1) =
+/// x / (1 + x/2) (materials/strain_increment.hpp, Hughes & Winget 1980), evaluated the way the
+/// adapter does, so sums of it match the model's to round-off. ln lambda + O(x^3/12).
+inline double stretch_increment(double F, double F_prev) {
+  const double x = F / F_prev - 1.0;
+  return x / (1.0 + 0.5 * x);
+}
+
 inline double rel_diff(const Mat3& A, const Mat3& B) {
   const double scale = std::max(frobenius(A), frobenius(B));
   return scale > 0 ? frobenius(A - B) / scale : 0.0;

@@ -5,9 +5,9 @@
 //
 // The state at t_n is (F_n, R_n = polar(F_n), sigma_bar_n, state fields). A strain increment eps is
 // applied as the spin-free step of CATALOGUE A6 (src/verify/a6_tangent.cpp):
-//   F_{n+1} = R (I + eps) R^T F_n,  R = polar rotation of F_{n+1} (fixed point),
-// so L dt = R eps R^T is symmetric, the adapter's D_bar dt = eps and J_{n+1} = J_n det(I + eps).
-// With F_n = I this is simply F_{n+1} = I + eps.
+//   F_{n+1} = R A R^T F_n,  A = (I - eps/2)^-1 (I + eps/2),  R = polar rotation of F_{n+1} (fixed
+// point), so L dt = R (A - I) R^T is symmetric and the adapter's midpoint increment
+// (materials/strain_increment.hpp) is D_bar dt = eps exactly; J_{n+1} = J_n det(A).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -15,6 +15,7 @@
 #include <string>
 
 #include "core/polar.hpp"
+#include "materials/strain_increment.hpp"
 #include "material_driver.hpp"
 
 namespace ballista::test {
@@ -53,7 +54,7 @@ class TangentPoint {
   /// Unrotated stress after one step of increment eps over dt; the tangent (36) if non-null.
   Mat3 step(const Mat3& eps, double dt, double* tangent = nullptr) {
     FieldStore s = base_;
-    const Mat3 A = Mat3::identity() + eps;
+    const Mat3 A = spin_free_step_for_increment(eps);
     Mat3 R = R_n_;
     for (int it = 0; it < 200; ++it) {  // R = polar(R A R^T F_n); contracts by ~|eps| per pass
       const Mat3 R_next = polar_rotation(rotate(R, A) * F_n_, R);

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "material_driver.hpp"
+#include "materials/strain_increment.hpp"
 #include "materials/failure.hpp"
 
 using namespace ballista;
@@ -34,8 +35,9 @@ Mat3 path_F(double F11, int n) {
 }
 
 /// Mean stress I1/3 of the hypoelastic kernel after one step from an isotropic stress m I:
-/// m + K tr(D) dt (tr D = tr L, rotation-invariant).
-double next_mean(double m, const Mat3& L, double dt) { return m + kK * trace(L) * dt; }
+/// m + K tr(D) dt, D dt the midpoint increment of G = dt L the adapter hands the kernel
+/// (materials/strain_increment.hpp; its trace is rotation-invariant).
+double next_mean(double m, const Mat3& L, double dt) { return m + kK * trace(midpoint_strain_increment(dt * L)); }
 
 }  // namespace
 

@@ -256,7 +256,8 @@ TEST(Failure, DruckerNeverTriggersWithHardeningOrPerfectPlasticity) {
 }
 
 // Max stress (eq. 6.10) with linear_elastic (no plasticity needed) in uniaxial strain: the von
-// Mises stress is |sigma11 - sigma22| = 2G |S_n|, S_n = sum (F_{k+1}/F_k - 1) (the hypoelastic
+// Mises stress is |sigma11 - sigma22| = 2G |S_n|, S_n = sum of the midpoint increments
+// 2 (F_{k+1}/F_k - 1)/(F_{k+1}/F_k + 1) (stretch_increment, material_driver.hpp; the hypoelastic
 // update of test_linear_elastic.cpp), so the point fails at the first n with 2G |S_n| > sigma_max;
 // damage before is 2G |S_n| / sigma_max (1e-9: the stress is computed with round-off of 1e-12
 // relative). Failure is permanent: unloading afterwards keeps failed = 1.
@@ -270,7 +271,7 @@ TEST(Failure, MaxStressTriggersAtTheAnalyticStep) {
   int n_expected = 0;
   for (int n = 1; n <= 400; ++n) {
     const double Fn = 1.0 + de * n;
-    S += Fn / F_prev - 1.0;
+    S += stretch_increment(Fn, F_prev);
     F_prev = Fn;
     const double q = 2.0 * G * std::abs(S);
     if (q > smax && n_expected == 0) {

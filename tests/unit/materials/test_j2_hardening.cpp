@@ -174,7 +174,7 @@ void run_uniaxial_strain(const ParamValues& v, bool kin, const std::vector<doubl
     const Mat3& s = d.stress();
     const double za = kin ? d.state("backstress_11") - d.state("backstress_22") : 0.0;
     out.push_back({F11, s(0, 0), s(1, 1), d.state("eqps"), za});
-    ref.step(F11 / F_prev - 1.0);
+    ref.step(stretch_increment(F11, F_prev));
     ref_out.push_back({F11, ref.s11(), ref.s22(), ref.e, ref.za});
     F_prev = F11;
   }
@@ -184,7 +184,8 @@ void run_uniaxial_strain(const ParamValues& v, bool kin, const std::vector<doubl
 
 // Uniaxial stress, monotonic tension to 5 % in 1000 steps, for every hardening variant. With
 // sigma22 = sigma33 = 0 the discrete update gives exactly (hypoelastic, linear in the increments):
-//   sigma11 = E (e - eps^p_11),  e = sum d11 = sum (F11_{n+1}/F11_n - 1),  eps^p_11 = eqps,
+//   sigma11 = E (e - eps^p_11),  e = sum d11 (the midpoint increments stretch_increment(F11_{n+1},
+//   F11_n) the adapter hands the model),  eps^p_11 = eqps,
 // and the return lands on the surface: sigma11 = sigma_y(eqps) + H_k eqps (the backstress
 // alpha11 = (2/3) H_k eps^p_11 shifts the uniaxial yield by (3/2) alpha11 = H_k eqps). Hence the
 // closed-form curve: e = sigma/E + eps_p with sigma = sigma_y(eps_p) + H_k eps_p, checked at every
@@ -199,7 +200,7 @@ TEST(J2Hardening, UniaxialStressClosedForm) {
     for (int n = 1; n <= N; ++n) {
       const double F11 = std::exp(e_max * n / N);
       u.step(F11, dt);
-      e += F11 / F_prev - 1.0;
+      e += stretch_increment(F11, F_prev);
       F_prev = F11;
       PointDriver& d = u.driver();
       const Mat3& s = d.stress();
@@ -408,11 +409,12 @@ TEST(J2Hardening, NewtonRobustness) {
       EXPECT_NEAR(von_mises(d.stress()), cases[c].flow(ep), 1e-12 * cases[c].flow(ep)) << c;
     }
     // Barely plastic: uniaxial strain to yield exactly (z = sigma_y0 at d = sigma_y0/(2G)) plus
-    // 1e-10 relative.
+    // 1e-10 relative. The stretch lambda = (1 + d/2)/(1 - d/2) has midpoint increment
+    // 2 (lambda - 1)/(lambda + 1) = d (materials/strain_increment.hpp).
     {
       PointDriver d("j2_plasticity", cases[c].v);
       const double d11 = kSy0 / (2 * kG) * (1 + 1e-10);
-      d.advance(Mat3::diag(1 + d11, 1, 1), 1e-6);
+      d.advance(Mat3::diag((1 + 0.5 * d11) / (1 - 0.5 * d11), 1, 1), 1e-6);
       const double ep = d.state("eqps");
       EXPECT_GT(ep, 0.0) << c;
       EXPECT_LT(ep, 1e-12) << c;

@@ -5,9 +5,11 @@
 //
 // Each evaluation starts from the same prescribed state (stress, eqps, backstress, energy,
 // temperature; F_n = I, R_n = I) and takes one step through the real adapter with
-// F_{n+1} = I + eps (eps symmetric), so L = eps/dt is symmetric, R_{n+1} = I (polar rotation of an
-// SPD matrix, to round-off), D_bar dt = eps exactly and J_{n+1} = det(I + eps), which is the
-// convention the tangent states (j2_return.hpp).
+// F_{n+1} = (I - eps/2)^-1 (I + eps/2) (eps symmetric; spin_free_step_for_increment), the symmetric
+// stretch whose midpoint increment (Hughes & Winget 1980, materials/strain_increment.hpp) is
+// exactly eps: L is symmetric, R_{n+1} = I (polar rotation of an SPD matrix, to round-off),
+// D_bar dt = eps to round-off and J_{n+1} = det F_{n+1}, which is the convention the tangent states
+// (j2_return.hpp: d sigma_bar / d eps for a spin-free step of increment eps).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +18,7 @@
 #include <vector>
 
 #include "material_driver.hpp"
+#include "materials/strain_increment.hpp"
 
 using namespace ballista;
 using namespace ballista::test;
@@ -43,7 +46,7 @@ class OneStep {
   /// Unrotated stress after one step of increment eps over dt; tangent (36) if non-null.
   Mat3 step(const Mat3& eps, double dt, double* tangent = nullptr) {
     last_ = base_;
-    const Mat3 F = Mat3::identity() + eps;
+    const Mat3 F = spin_free_step_for_increment(eps);
     last_.view<Mat3>("F")[0] = F;
     last_.view<Mat3>("L")[0] = (1.0 / dt) * (F - Mat3::identity());
     const Index idx = 0;

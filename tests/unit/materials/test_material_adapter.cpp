@@ -6,6 +6,7 @@
 #include <set>
 
 #include "material_driver.hpp"
+#include "materials/strain_increment.hpp"
 
 using namespace ballista;
 using namespace ballista::test;
@@ -112,19 +113,62 @@ TEST(MaterialAdapter, BatchTouchesOnlyItsPoints) {
   EXPECT_NO_THROW(d.material().update(b));
 }
 
-// The adapter stores the polar rotation of F_new in R and hands the kernel D_bar = R^T sym(L) R:
-// for F = Q diag(1+e, 1, 1) reached in one step from F = Q (R_old = Q), R_new = Q and the
-// linear-elastic stress is Q diag(M e, lambda e, lambda e) Q^T with e = D11 dt = e exactly.
-// Tolerance 1e-10: forming F_{n+1} F_n^{-1} - I loses digits to cancellation, 1e-16/e = 1e-12.
+// The adapter stores the polar rotation of F_new in R and hands the kernel D_bar = R^T D R with D dt
+// the midpoint increment sym(G (I + G/2)^-1), G = dt L (Hughes & Winget 1980): for F = Q diag(1+e,
+// 1, 1) reached in one step from F = Q (R_old = Q), R_new = Q and the linear-elastic stress is
+// Q diag(M d, lambda d, lambda d) Q^T with d = e/(1 + e/2) = 2 (lambda - 1)/(lambda + 1) (not e:
+// the two differ by e^2/2 = 5e-9, 5e-5 relative). Tolerance 1e-10: forming F_{n+1} F_n^{-1} - I
+// loses digits to cancellation, 1e-16/e = 1e-12.
 TEST(MaterialAdapter, RotationAndUnrotatedRate) {
   const double K = 10e9, G = 6e9, M = K + 4 * G / 3, lam = K - 2 * G / 3, e = 1e-4;
+  const double dm = e / (1 + 0.5 * e);
   PointDriver d("linear_elastic", elastic_kg(1000, K, G));
   const Mat3 Q = rotation_about(Vec3{{0.0, 0.6, 0.8}}, 1.3);
   d.F() = Q;
   d.R() = Q;
   d.advance(Q * Mat3::diag(1 + e, 1, 1), 1e-6);
   EXPECT_LT(frobenius(d.R() - Q), 1e-14);
-  EXPECT_LT(rel_diff(d.stress(), rotate(Q, Mat3::diag(M * e, lam * e, lam * e))), 1e-10);
+  EXPECT_LT(rel_diff(d.stress(), rotate(Q, Mat3::diag(M * dm, lam * dm, lam * dm))), 1e-10);
+  EXPECT_GT(rel_diff(d.stress(), rotate(Q, Mat3::diag(M * e, lam * e, lam * e))), 1e-5);  // not sym(L) dt
+}
+
+// The midpoint increment (materials/strain_increment.hpp) on random increments G (|G| ~ 0.1):
+// equals sym(2 (dF - I)(dF + I)^-1), dF = I + G (the two forms are algebraically equal: 1e-14 of
+// |G|, round-off of a 3x3 inverse); differs from sym(G) by O(|G|^2) (the leading term is
+// -sym(G^2)/2, so the remainder after it is O(|G|^3): < |G|^3 checked); is inverted by
+// spin_free_step_for_increment (symmetric eps -> dF symmetric, and back to eps to 1e-15).
+TEST(StrainIncrement, MidpointFormsAndInverse) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.1, 0.1);
+  for (int trial = 0; trial < 50; ++trial) {
+    Mat3 G;
+    for (double& a : G.a) a = u(rng);
+    const Mat3 I = Mat3::identity();
+    const Mat3 dF = I + G;
+    const Mat3 m = midpoint_strain_increment(G);
+    const double g = frobenius(G);
+    EXPECT_LT(frobenius(m - sym(2.0 * (dF - I) * inverse(dF + I))), 1e-14 * g) << trial;
+    EXPECT_LT(frobenius(m - (sym(G) - 0.5 * sym(G * G))), g * g * g) << trial;
+    const Mat3 eps = sym(G);
+    const Mat3 S = spin_free_step_for_increment(eps);
+    EXPECT_LT(frobenius(S - transpose(S)), 1e-16) << trial;
+    EXPECT_LT(frobenius(midpoint_strain_increment(S - I) - eps), 1e-15) << trial;
+  }
+}
+
+// A rigid rotation step has zero midpoint strain increment (the Cayley transform of a rotation is
+// skew), however large the step: from a prestressed state, a step F -> Q F with Q a 0.5 rad
+// rotation leaves the unrotated stress unchanged to round-off (1e-12 relative) and turns the spatial
+// stress with Q. With sym(L) dt the step would add (cos 0.5 - 1) = -0.12 of strain in the plane.
+TEST(MaterialAdapter, RigidRotationStepIsStrainFree) {
+  PointDriver d("linear_elastic", elastic_kg(1000, 10e9, 6e9));
+  const Mat3 F1{{1.001, 0.0003, 0, 0.0002, 0.9995, 0.0001, 0, 0.0004, 1.0007}};
+  d.advance(F1, 1e-6);
+  const Mat3 sb = d.stress_bar(), s = d.stress();
+  const Mat3 Q = rotation_about(Vec3{{0.36, 0.48, 0.8}}, 0.5);
+  d.advance(Q * F1, 1e-6);
+  EXPECT_LT(rel_diff(d.stress_bar(), sb), 1e-12);
+  EXPECT_LT(rel_diff(d.stress(), rotate(Q, s)), 1e-12);
 }
 
 // Results do not depend on the number of threads (each point is independent): bitwise equal.

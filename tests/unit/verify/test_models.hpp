@@ -149,7 +149,9 @@ struct TestJ2Mixed {
 };
 
 /// Volumetric only, written in J: sigma_bar = K ln(J_{n+1}) I, with the tangent of a spin-free step
-/// (J_{n+1} = J_n det(I + eps), so d ln J / d eps = (I + eps)^-1). A kernel whose response depends on
+/// whose midpoint increment (materials/strain_increment.hpp) is eps: dF = (I - eps/2)^-1 (I + eps/2),
+/// J_{n+1} = J_n det(I + eps/2) / det(I - eps/2), so d ln J / d eps = ((I + eps/2)^-1 +
+/// (I - eps/2)^-1)/2 (d ln det A = A^-T : dA). A kernel whose response depends on
 /// J (every equation of state) has this kind of tangent; the FD check must realise the perturbed
 /// steps without spin for it to hold (a6_tangent.cpp).
 struct TangentLogVolume {
@@ -166,7 +168,7 @@ struct TangentLogVolume {
     s = Mat3::diag(pr, pr, pr);
     if (!res.tangent) return;
     const Mat3 eps = k.dt * k.D_bar;
-    const Mat3 inv = inverse(Mat3::identity() + eps);
+    const Mat3 inv = 0.5 * (inverse(Mat3::identity() + 0.5 * eps) + inverse(Mat3::identity() - 0.5 * eps));
     static constexpr int I[6] = {0, 1, 2, 1, 0, 0}, J[6] = {0, 1, 2, 2, 2, 1};
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j)
