@@ -50,10 +50,13 @@ class TangentPoint {
   /// Unrotated stress at t_n (stored spatially, R_n sigma_bar R_n^T).
   void set_stress_bar(const Mat3& s) { base_.view<Mat3>("stress")[0] = rotate(R_n_, s); }
   void set_state(const std::string& name, double x) { base_.real(name)[0] = x; }
+  /// A state field after the last step().
+  double state_after(const std::string& name) const { return last_.real(name)[0]; }
 
   /// Unrotated stress after one step of increment eps over dt; the tangent (36) if non-null.
   Mat3 step(const Mat3& eps, double dt, double* tangent = nullptr) {
-    FieldStore s = base_;
+    last_ = base_;
+    FieldStore& s = last_;
     const Mat3 A = spin_free_step_for_increment(eps);
     Mat3 R = R_n_;
     for (int it = 0; it < 200; ++it) {  // R = polar(R A R^T F_n); contracts by ~|eps| per pass
@@ -84,7 +87,7 @@ class TangentPoint {
  private:
   SerialGuard serial_;
   std::unique_ptr<Material> mat_;
-  FieldStore base_;
+  FieldStore base_, last_;
   Mat3 F_n_, R_n_;
 };
 

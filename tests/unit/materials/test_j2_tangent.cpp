@@ -3,8 +3,9 @@
 // tangent the kernel writes into PointResult::tangent must equal central differences of the
 // stress update with respect to the strain increment of the step.
 //
-// Each evaluation starts from the same prescribed state (stress, eqps, backstress, energy,
-// temperature; F_n = I, R_n = I) and takes one step through the real adapter with
+// Each evaluation (TangentPoint, tangent_check.hpp, with F_n = I) starts from the same prescribed
+// state (stress, eqps, backstress, energy, temperature; R_n = I) and takes one step through the
+// real adapter with
 // F_{n+1} = (I - eps/2)^-1 (I + eps/2) (eps symmetric; spin_free_step_for_increment), the symmetric
 // stretch whose midpoint increment (Hughes & Winget 1980, materials/strain_increment.hpp) is
 // exactly eps: L is symmetric, R_{n+1} = I (polar rotation of an SPD matrix, to round-off),
@@ -17,93 +18,13 @@
 #include <string>
 #include <vector>
 
-#include "material_driver.hpp"
+#include "tangent_check.hpp"
 #include "materials/strain_increment.hpp"
 
 using namespace ballista;
 using namespace ballista::test;
 
 namespace {
-
-constexpr int kI[6] = {0, 1, 2, 1, 0, 0};
-constexpr int kJ[6] = {0, 1, 2, 2, 2, 1};
-
-/// A point of `model` in a prescribed state, stepped by a strain increment.
-class OneStep {
- public:
-  OneStep(const std::string& model, const ParamValues& v) : mat_(make_material(model, v)) {
-    for (auto name : {"F_old", "F", "L", "R", "stress"}) base_.add_real(name, 9, "1");
-    mat_->declare_fields(base_);
-    base_.resize(1);
-    base_.view<Mat3>("F_old")[0] = Mat3::identity();
-    base_.view<Mat3>("F")[0] = Mat3::identity();
-    base_.view<Mat3>("R")[0] = Mat3::identity();
-  }
-  void set_stress(const Mat3& s) { base_.view<Mat3>("stress")[0] = s; }
-  void set_state(const std::string& name, double x) { base_.real(name)[0] = x; }
-  double state_after(const std::string& name) const { return last_.real(name)[0]; }
-
-  /// Unrotated stress after one step of increment eps over dt; tangent (36) if non-null.
-  Mat3 step(const Mat3& eps, double dt, double* tangent = nullptr) {
-    last_ = base_;
-    const Mat3 F = spin_free_step_for_increment(eps);
-    last_.view<Mat3>("F")[0] = F;
-    last_.view<Mat3>("L")[0] = (1.0 / dt) * (F - Mat3::identity());
-    const Index idx = 0;
-    MaterialBatch b;
-    b.points = &idx;
-    b.count = 1;
-    b.F_old = last_.view<Mat3>("F_old");
-    b.F_new = last_.view<Mat3>("F");
-    b.L = last_.view<Mat3>("L");
-    b.R = last_.view<Mat3>("R");
-    b.stress = last_.view<Mat3>("stress");
-    b.store = &last_;
-    b.dt = dt;
-    b.tangent = tangent;
-    mat_->update(b);
-    const Mat3 R = last_.view<Mat3>("R")[0];
-    return unrotate(R, last_.view<Mat3>("stress")[0]);
-  }
-
- private:
-  SerialGuard serial_;
-  std::unique_ptr<Material> mat_;
-  FieldStore base_, last_;
-};
-
-Mat3 sym_from6(const double e[6]) {
-  Mat3 m;
-  for (int c = 0; c < 6; ++c) m(kI[c], kJ[c]) = m(kJ[c], kI[c]) = e[c];
-  return m;
-}
-
-struct TangentCheck {
-  double rel_err = 0.0;   ///< max |T_fd - T| / max |T|
-  double max_entry = 0.0; ///< max |T|, Pa
-};
-
-/// Central differences with step h on each tensor component of eps0 (shear columns perturb
-/// eps_ab and eps_ba together, the tensor-shear convention of the tangent).
-TangentCheck check_tangent(OneStep& pt, const Mat3& eps0, double dt, double h) {
-  double T[36];
-  pt.step(eps0, dt, T);
-  TangentCheck out;
-  for (double t : T) out.max_entry = std::max(out.max_entry, std::abs(t));
-  double err = 0.0;
-  for (int j = 0; j < 6; ++j) {
-    Mat3 E;
-    E(kI[j], kJ[j]) = 1.0;
-    E(kJ[j], kI[j]) = 1.0;
-    const Mat3 sp = pt.step(eps0 + h * E, dt), sm = pt.step(eps0 + (-h) * E, dt);
-    for (int i = 0; i < 6; ++i) {
-      const double fd = (sp(kI[i], kJ[i]) - sm(kI[i], kJ[i])) / (2.0 * h);
-      err = std::max(err, std::abs(fd - T[6 * i + j]));
-    }
-  }
-  out.rel_err = err / out.max_entry;
-  return out;
-}
 
 // Shared material data: steel-like elastic constants, sigma_y0 = 300 MPa (yield strain 1.9e-3).
 ParamValues base_j2() {
@@ -116,17 +37,17 @@ ParamValues base_j2() {
 // about four times the yield strain, so that every perturbed step stays plastic.
 Mat3 plastic_increment() {
   const double e[6] = {6e-3, -2.5e-3, -1.0e-3, 1.5e-3, -0.7e-3, 2.2e-3};
-  return sym_from6(e);
+  return sym6(e);
 }
 // A small increment (~1e-4) from a state well inside the yield surface: elastic.
 Mat3 elastic_increment() {
   const double e[6] = {1e-4, -0.3e-4, 0.5e-4, 0.2e-4, -0.4e-4, 0.1e-4};
-  return sym_from6(e);
+  return sym6(e);
 }
 // A start-of-step stress with pressure and a deviator of ~150 MPa (inside the initial surface).
 Mat3 start_stress() {
   const double s[6] = {-80e6, -250e6, -190e6, 40e6, -30e6, 60e6};
-  return sym_from6(s);
+  return sym6(s);
 }
 
 // Tolerance. The step h = 1e-7 is 1/20000 of the smallest plastic-increment scale (the trial
@@ -142,9 +63,9 @@ constexpr double kTol = 1e-6;
 }  // namespace
 
 TEST(J2Tangent, ElasticStep) {
-  OneStep pt("j2_plasticity", base_j2());
-  pt.set_stress(start_stress());
-  const TangentCheck c = check_tangent(pt, elastic_increment(), 1e-6, kH);
+  TangentPoint pt("j2_plasticity", base_j2());
+  pt.set_stress_bar(start_stress());
+  const TangentError c = fd_tangent_error(pt, elastic_increment(), 1e-6, kH);
   EXPECT_LT(c.rel_err, kTol);
   EXPECT_EQ(pt.state_after("eqps"), 0.0);  // the step really was elastic
 }
@@ -152,18 +73,18 @@ TEST(J2Tangent, ElasticStep) {
 TEST(J2Tangent, LinearIsotropicPlasticStep) {
   ParamValues v = base_j2();
   v["hardening_modulus"] = 2e9;
-  OneStep pt("j2_plasticity", v);
-  pt.set_stress(start_stress());
+  TangentPoint pt("j2_plasticity", v);
+  pt.set_stress_bar(start_stress());
   pt.set_state("eqps", 0.02);
-  const TangentCheck c = check_tangent(pt, plastic_increment(), 1e-6, kH);
+  const TangentError c = fd_tangent_error(pt, plastic_increment(), 1e-6, kH);
   EXPECT_LT(c.rel_err, kTol);
   EXPECT_GT(pt.state_after("eqps"), 0.02);
 }
 
 TEST(J2Tangent, PerfectPlasticityStep) {
-  OneStep pt("j2_plasticity", base_j2());
-  pt.set_stress(start_stress());
-  EXPECT_LT(check_tangent(pt, plastic_increment(), 1e-6, kH).rel_err, kTol);
+  TangentPoint pt("j2_plasticity", base_j2());
+  pt.set_stress_bar(start_stress());
+  EXPECT_LT(fd_tangent_error(pt, plastic_increment(), 1e-6, kH).rel_err, kTol);
 }
 
 TEST(J2Tangent, PowerLawPlasticStep) {
@@ -172,10 +93,10 @@ TEST(J2Tangent, PowerLawPlasticStep) {
     v.choices["hardening_law"] = "power_law";
     v["hardening_coefficient"] = 500e6;
     v["hardening_exponent"] = 0.3;
-    OneStep pt("j2_plasticity", v);
-    pt.set_stress(start_stress());
+    TangentPoint pt("j2_plasticity", v);
+    pt.set_stress_bar(start_stress());
     pt.set_state("eqps", e0);
-    const TangentCheck c = check_tangent(pt, plastic_increment(), 1e-6, kH);
+    const TangentError c = fd_tangent_error(pt, plastic_increment(), 1e-6, kH);
     EXPECT_LT(c.rel_err, kTol) << "eqps_n = " << e0;
   }
 }
@@ -186,10 +107,10 @@ TEST(J2Tangent, VocePlasticStep) {
   v["hardening_modulus"] = 1e9;
   v["saturation_stress"] = 200e6;
   v["saturation_rate"] = 20.0;
-  OneStep pt("j2_plasticity", v);
-  pt.set_stress(start_stress());
+  TangentPoint pt("j2_plasticity", v);
+  pt.set_stress_bar(start_stress());
   pt.set_state("eqps", 0.01);
-  EXPECT_LT(check_tangent(pt, plastic_increment(), 1e-6, kH).rel_err, kTol);
+  EXPECT_LT(fd_tangent_error(pt, plastic_increment(), 1e-6, kH).rel_err, kTol);
 }
 
 // Isotropic + kinematic, starting from a non-zero (deviatoric) backstress.
@@ -197,14 +118,14 @@ TEST(J2Tangent, IsotropicPlusKinematicPlasticStep) {
   ParamValues v = base_j2();
   v["hardening_modulus"] = 1e9;
   v["kinematic_modulus"] = 5e9;
-  OneStep pt("j2_plasticity", v);
-  pt.set_stress(start_stress());
+  TangentPoint pt("j2_plasticity", v);
+  pt.set_stress_bar(start_stress());
   pt.set_state("eqps", 0.03);
   const double a[6] = {60e6, -20e6, -40e6, 10e6, 5e6, -15e6};
   const char* names[6] = {"backstress_11", "backstress_22", "backstress_33",
                           "backstress_23", "backstress_13", "backstress_12"};
   for (int c = 0; c < 6; ++c) pt.set_state(names[c], a[c]);
-  const TangentCheck c = check_tangent(pt, plastic_increment(), 1e-6, kH);
+  const TangentError c = fd_tangent_error(pt, plastic_increment(), 1e-6, kH);
   EXPECT_LT(c.rel_err, kTol);
   EXPECT_NE(pt.state_after("backstress_12"), -15e6);
 }
@@ -223,16 +144,16 @@ TEST(J2Tangent, VoceKinematicMieGruneisen) {
   v["eos.sound_speed"] = 3940;
   v["eos.hugoniot_slope"] = 1.489;
   v["eos.gruneisen_gamma"] = 2.02;
-  OneStep pt("j2_plasticity", v);
-  pt.set_stress(start_stress());
+  TangentPoint pt("j2_plasticity", v);
+  pt.set_stress_bar(start_stress());
   pt.set_state("energy_density", 3e7);
   Mat3 eps = plastic_increment();
   for (int i = 0; i < 3; ++i) eps(i, i) -= 1e-2 / 3.0;
-  const TangentCheck c = check_tangent(pt, eps, 1e-6, kH);
+  const TangentError c = fd_tangent_error(pt, eps, 1e-6, kH);
   EXPECT_LT(c.rel_err, kTol);
   // The same check in tension (eta < 0 branch of the Hugoniot).
   for (int i = 0; i < 3; ++i) eps(i, i) += 2e-2 / 3.0;
-  EXPECT_LT(check_tangent(pt, eps, 1e-6, kH).rel_err, kTol);
+  EXPECT_LT(fd_tangent_error(pt, eps, 1e-6, kH).rel_err, kTol);
 }
 
 // Tension cutoff: while eos.min_pressure holds the pressure, dp/d eps = 0 (and the FD agrees).
@@ -240,14 +161,14 @@ TEST(J2Tangent, TensionCutoffHoldsPressure) {
   ParamValues v = base_j2();
   v.choices["eos.type"] = "linear";
   v["eos.min_pressure"] = -50e6;
-  OneStep pt("j2_plasticity", v);
-  pt.set_stress(Mat3::diag(40e6, 40e6, 40e6));  // p = -40 MPa
+  TangentPoint pt("j2_plasticity", v);
+  pt.set_stress_bar(Mat3::diag(40e6, 40e6, 40e6));  // p = -40 MPa
   Mat3 eps = elastic_increment();
   for (int i = 0; i < 3; ++i) eps(i, i) += 1e-3;  // K tr(eps) = 0.5 GPa: far past the cutoff
   double T[36];
   const Mat3 s = pt.step(eps, 1e-6, T);
   EXPECT_NEAR(-trace(s) / 3.0, -50e6, 1e-6);
-  EXPECT_LT(check_tangent(pt, eps, 1e-6, kH).rel_err, kTol);
+  EXPECT_LT(fd_tangent_error(pt, eps, 1e-6, kH).rel_err, kTol);
   // Volumetric column sums: d p/d tr(eps) = 0, so sum of the normal rows of a normal column is the
   // deviatoric part only, which is zero for a unit volumetric perturbation.
   double vol = 0.0;
@@ -264,20 +185,20 @@ TEST(J2Tangent, JohnsonCook) {
   ASSERT_NE(f->example, nullptr);
   ParamValues v = f->example();
   v["initial_temperature"] = 600.0;
-  OneStep pt("johnson_cook", v);
-  pt.set_stress(Mat3::diag(-1e8, -1.2e8, -0.9e8));
+  TangentPoint pt("johnson_cook", v);
+  pt.set_stress_bar(Mat3::diag(-1e8, -1.2e8, -0.9e8));
   pt.set_state("eqps", 0.1);
   pt.set_state("temperature", 600.0);
   // dt = 1e-5 s with Delta eps_p ~ 1e-2: rate ~ 1e3/s, ln(eps_dot*) ~ 7.
-  const TangentCheck c = check_tangent(pt, plastic_increment(), 1e-5, kH);
+  const TangentError c = fd_tangent_error(pt, plastic_increment(), 1e-5, kH);
   EXPECT_LT(c.rel_err, kTol);
   EXPECT_GT(pt.state_after("eqps"), 0.1);
   EXPECT_GT(pt.state_after("temperature"), 600.0);  // heated
   // From eps_p = 0 (infinite hardening slope at the first yield, n = 0.31).
   pt.set_state("eqps", 0.0);
-  EXPECT_LT(check_tangent(pt, plastic_increment(), 1e-5, kH).rel_err, kTol);
+  EXPECT_LT(fd_tangent_error(pt, plastic_increment(), 1e-5, kH).rel_err, kTol);
   // Elastic step.
-  pt.set_stress(Mat3::diag(-1e7, -1.1e7, -0.9e7));
-  EXPECT_LT(check_tangent(pt, (0.1) * elastic_increment(), 1e-5, kH * 0.1).rel_err, kTol);
+  pt.set_stress_bar(Mat3::diag(-1e7, -1.1e7, -0.9e7));
+  EXPECT_LT(fd_tangent_error(pt, (0.1) * elastic_increment(), 1e-5, kH * 0.1).rel_err, kTol);
   EXPECT_EQ(pt.state_after("eqps"), 0.0);
 }
