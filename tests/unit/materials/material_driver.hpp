@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <numbers>
+#include <random>
 #include <memory>
 #include <numeric>
 #include <optional>
@@ -114,6 +117,41 @@ class PointDriver {
   std::vector<Index> all_;
   double dt_ = 1.0;
 };
+
+/// CATALOGUE A6 objectivity paths: n pairs of points of `d` (which must hold 2n points) follow
+/// F_k(t) = I + t A_k, t = s/N, A_k entries uniform in +-amplitude. Point 2k is unrotated; point
+/// 2k+1 carries a superimposed rotation Q: constant (a random angle about a random axis, also its
+/// starting F and R) or, if `time_dependent`, 3 pi t about a random axis with L rotated as Q L_k.
+/// `after_step(s)` runs after every step. Draws from `rng` in a fixed order (A, axis, angle).
+inline void drive_rotated_pairs(PointDriver& d, int n, int N, double amplitude, double dt, bool time_dependent,
+                                std::mt19937& rng, std::uniform_real_distribution<double>& u,
+                                const std::function<void(int)>& after_step) {
+  std::vector<Mat3> A(n), Q0(n);
+  std::vector<Vec3> axis(n);
+  for (int k = 0; k < n; ++k) {
+    for (double& a : A[k].a) a = amplitude * u(rng);
+    axis[k] = Vec3{{u(rng), u(rng), u(rng)}};
+    axis[k] = (1.0 / norm(axis[k])) * axis[k];
+    Q0[k] = rotation_about(axis[k], 3.0 * u(rng));
+    if (!time_dependent) {
+      d.F(2 * k + 1) = Q0[k];
+      d.R(2 * k + 1) = Q0[k];
+    }
+  }
+  d.set_dt(dt);
+  for (int s = 1; s <= N; ++s) {
+    const double t = double(s) / N;
+    for (int k = 0; k < n; ++k) {
+      const Mat3 F = Mat3::identity() + t * A[k];
+      const Mat3 Q = time_dependent ? rotation_about(axis[k], 3.0 * std::numbers::pi * t) : Q0[k];
+      d.set_F(2 * k, F);
+      d.set_F(2 * k + 1, Q * F);
+      if (time_dependent) d.store().view<Mat3>("L")[2 * k + 1] = rotate(Q, d.store().view<Mat3>("L")[2 * k]);
+    }
+    d.step(dt);
+    after_step(s);
+  }
+}
 
 /// Piecewise-linear interpolation of a table (t_k, y_k) at t (t within the table).
 inline double interp(const std::vector<double>& t, const std::vector<double>& y, double x) {

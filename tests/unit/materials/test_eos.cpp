@@ -143,7 +143,9 @@ TEST(Eos, IsentropicCompressionConvergesSecondOrder) {
         EXPECT_LT(order, 2.1) << model << " N = " << N;
       }
       err_prev = err;
-      if (N == 160) EXPECT_LT(err, 1e-4 * p_exact) << model;
+      if (N == 160) {
+        EXPECT_LT(err, 1e-4 * p_exact) << model;
+      }
     }
   }
 }

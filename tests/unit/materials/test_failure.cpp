@@ -103,7 +103,9 @@ TEST(Failure, MeltTriggersAtTheMeltTemperatureScripted) {
   EXPECT_EQ(n_fail, 738);
   run_scripted(d, n_fail + 2, dt, [&](int n, double damage, double failed) {
     ASSERT_EQ(failed, n >= n_fail ? 1.0 : 0.0) << "step " << n;
-    if (n < n_fail) ASSERT_NEAR(damage, n * rate * dt, 1e-12);  // damage = T* before melting
+    if (n < n_fail) {
+      ASSERT_NEAR(damage, n * rate * dt, 1e-12);  // damage = T* before melting
+    }
   });
 }
 

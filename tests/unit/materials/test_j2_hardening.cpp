@@ -547,38 +547,12 @@ TEST(J2Hardening, ObjectivityEveryVariant) {
     for (int timedep = 0; timedep < 2; ++timedep) {
       const int n = 6, N = 400;
       PointDriver d("j2_plasticity", cases[c], 2 * n);
-      std::vector<Mat3> A(n), Q0(n);
-      std::vector<Vec3> axis(n);
-      for (int k = 0; k < n; ++k) {
-        for (double& a : A[k].a) a = 0.03 * u(rng);
-        axis[k] = Vec3{{u(rng), u(rng), u(rng)}};
-        axis[k] = (1.0 / norm(axis[k])) * axis[k];
-        Q0[k] = rotation_about(axis[k], 3.0 * u(rng));
-        if (!timedep) {
-          d.F(2 * k + 1) = Q0[k];
-          d.R(2 * k + 1) = Q0[k];
-        }
-      }
-      const double dt = 1e-6;
-      d.set_dt(dt);
-      for (int s = 1; s <= N; ++s) {
-        const double t = double(s) / N;
-        for (int k = 0; k < n; ++k) {
-          const Mat3 F = Mat3::identity() + t * A[k];
-          const Mat3 Q = timedep ? rotation_about(axis[k], 3.0 * std::numbers::pi * t) : Q0[k];
-          d.set_F(2 * k, F);
-          d.set_F(2 * k + 1, Q * F);
-          if (timedep) {
-            Mat3& L = d.store().view<Mat3>("L")[2 * k + 1];
-            L = rotate(Q, d.store().view<Mat3>("L")[2 * k]);
-          }
-        }
-        d.step(dt);
+      drive_rotated_pairs(d, n, N, 0.03, 1e-6, timedep, rng, u, [&](int s) {
         for (int k = 0; k < n; ++k) {
           const Mat3 sb0 = d.stress_bar(2 * k), sb1 = d.stress_bar(2 * k + 1);
           ASSERT_LE(frobenius(sb1 - sb0), 1e-10 * frobenius(sb0) + 1e-3) << c << " " << timedep << " " << k << " " << s;
         }
-      }
+      });
       for (int k = 0; k < n; ++k) {
         const double e0 = d.state("eqps", 2 * k);
         EXPECT_GT(e0, 0.0) << "case " << c << " path " << k << " should yield";

@@ -338,35 +338,12 @@ TEST(JohnsonCook, Objectivity) {
   for (int timedep = 0; timedep < 2; ++timedep) {
     const int n = 6, N = 300;
     PointDriver d("johnson_cook", v, 2 * n);
-    std::vector<Mat3> A(n), Q0(n);
-    std::vector<Vec3> axis(n);
-    for (int k = 0; k < n; ++k) {
-      for (double& a : A[k].a) a = 0.1 * u(rng);
-      axis[k] = Vec3{{u(rng), u(rng), u(rng)}};
-      axis[k] = (1.0 / norm(axis[k])) * axis[k];
-      Q0[k] = rotation_about(axis[k], 3.0 * u(rng));
-      if (!timedep) {
-        d.F(2 * k + 1) = Q0[k];
-        d.R(2 * k + 1) = Q0[k];
-      }
-    }
-    const double dt = 1e-7;
-    d.set_dt(dt);
-    for (int s = 1; s <= N; ++s) {
-      const double t = double(s) / N;
-      for (int k = 0; k < n; ++k) {
-        const Mat3 F = Mat3::identity() + t * A[k];
-        const Mat3 Q = timedep ? rotation_about(axis[k], 3.0 * std::numbers::pi * t) : Q0[k];
-        d.set_F(2 * k, F);
-        d.set_F(2 * k + 1, Q * F);
-        if (timedep) d.store().view<Mat3>("L")[2 * k + 1] = rotate(Q, d.store().view<Mat3>("L")[2 * k]);
-      }
-      d.step(dt);
+    drive_rotated_pairs(d, n, N, 0.1, 1e-7, timedep, rng, u, [&](int s) {
       for (int k = 0; k < n; ++k) {
         const Mat3 sb0 = d.stress_bar(2 * k), sb1 = d.stress_bar(2 * k + 1);
         ASSERT_LE(frobenius(sb1 - sb0), 1e-10 * frobenius(sb0) + 1e-3) << timedep << " " << k << " " << s;
       }
-    }
+    });
     for (int k = 0; k < n; ++k) {
       const double e0 = d.state("eqps", 2 * k);
       EXPECT_GT(e0, 0.0);
@@ -452,9 +429,15 @@ TEST(JohnsonCook, Parameters) {
   EXPECT_EQ(p.chi, 0.9);
   EXPECT_EQ(p.eos.kind, Eos::Kind::Linear);
   for (const ParamSpec& s : f->params) {
-    if (s.name == "reference_strain_rate") EXPECT_EQ(s.unit, "1/s");
-    if (s.name == "specific_heat") EXPECT_EQ(s.unit, "J/(kg K)");
-    if (s.name == "taylor_quinney") EXPECT_EQ(s.default_value, 0.9);
+    if (s.name == "reference_strain_rate") {
+      EXPECT_EQ(s.unit, "1/s");
+    }
+    if (s.name == "specific_heat") {
+      EXPECT_EQ(s.unit, "J/(kg K)");
+    }
+    if (s.name == "taylor_quinney") {
+      EXPECT_EQ(s.default_value, 0.9);
+    }
   }
   // Temperature field: starts at initial_temperature (the instance's state-field initial value)
   // and stays there over an elastic step.
