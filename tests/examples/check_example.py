@@ -109,10 +109,12 @@ def check_xdmf(out, end_time):
     print(f"particles.xdmf: {len(files)} outputs, {len(items)} datasets, all present")
 
 
-def run_mode(args):
+def run_ballista(args, command):
+    """Runs `ballista COMMAND deck -o out -q [--set ...]` into a fresh folder and returns its
+    summary.json, failing unless the run completed and wrote resolved.yaml."""
     if os.path.exists(args.out):
         shutil.rmtree(args.out)
-    cmd = [args.ballista, "run", args.deck, "-o", args.out, "-q"]
+    cmd = [args.ballista, command, args.deck, "-o", args.out, "-q"]
     for s in args.set or []:
         cmd += ["--set", s]
     print("running: " + " ".join(cmd), flush=True)
@@ -120,7 +122,7 @@ def run_mode(args):
     sys.stdout.write(p.stdout)
     sys.stderr.write(p.stderr)
     if p.returncode != 0:
-        fail(f"ballista exited with status {p.returncode}")
+        fail(f"ballista {command} exited with status {p.returncode}")
     summary_path = os.path.join(args.out, "summary.json")
     if not os.path.isfile(summary_path):
         fail("missing " + summary_path)
@@ -128,6 +130,13 @@ def run_mode(args):
         summary = json.load(f)
     if summary.get("status") != "completed":
         fail(f"summary status is {summary.get('status')!r}: {summary.get('error', '')}")
+    if not os.path.isfile(os.path.join(args.out, "resolved.yaml")):
+        fail("missing resolved.yaml")
+    return summary
+
+
+def run_mode(args):
+    summary = run_ballista(args, "run")
     probes = summary.get("probes", {})
     wanted = list(dict.fromkeys(list(probes) + (args.probe or [])))
     for name in wanted:
@@ -135,34 +144,13 @@ def run_mode(args):
         if v is None or not isinstance(v, (int, float)) or not math.isfinite(v):
             fail(f"probe '{name}' missing or not finite in summary.json: {v!r}")
         print(f"probe {name} = {v:.6g}")
-    if not os.path.isfile(os.path.join(args.out, "resolved.yaml")):
-        fail("missing resolved.yaml")
     check_history(os.path.join(args.out, "history.csv"), wanted)
     check_xdmf(args.out, summary["statistics"]["end_time"])
     print("OK")
 
 
 def drive_mode(args):
-    if os.path.exists(args.out):
-        shutil.rmtree(args.out)
-    cmd = [args.ballista, "drive", args.deck, "-o", args.out, "-q"]
-    for s in args.set or []:
-        cmd += ["--set", s]
-    print("running: " + " ".join(cmd), flush=True)
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    sys.stdout.write(p.stdout)
-    sys.stderr.write(p.stderr)
-    if p.returncode != 0:
-        fail(f"ballista drive exited with status {p.returncode}")
-    summary_path = os.path.join(args.out, "summary.json")
-    if not os.path.isfile(summary_path):
-        fail("missing " + summary_path)
-    with open(summary_path) as f:
-        summary = json.load(f)
-    if summary.get("status") != "completed":
-        fail(f"summary status is {summary.get('status')!r}: {summary.get('error', '')}")
-    if not os.path.isfile(os.path.join(args.out, "resolved.yaml")):
-        fail("missing resolved.yaml")
+    summary = run_ballista(args, "drive")
     path = os.path.join(args.out, "history.csv")
     with open(path) as f:
         lines = [l.rstrip("\n") for l in f if l.strip()]
