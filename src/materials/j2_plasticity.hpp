@@ -68,7 +68,7 @@ struct J2Plasticity {
     s.push_back({"kinematic_modulus", "Pa",
                  "linear kinematic (Prager) hardening modulus H_k: d alpha = (2/3) H_k d eps^p", false, 0.0, 0.0,
                  inf, false, false});
-    for (ParamSpec& e : j2_family_eos_specs()) s.push_back(std::move(e));
+    for (ParamSpec& e : eos_param_specs()) s.push_back(std::move(e));
     return s;
   }
 

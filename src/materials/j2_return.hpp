@@ -221,17 +221,6 @@ inline Mat3 j2_compose_eos(const Eos& eos, const PointKinematics& k, const Mat3&
   return sigma;
 }
 
-/// eos_param_specs() for the J2 family, with eos.min_pressure made optional without a number
-/// default ("not given" = no cutoff; make_eos reads it with number_or(-inf)). Its -inf default
-/// would be written into the resolved deck as -.inf, which the deck reader (finite numbers only)
-/// rejects when the resolved deck is read back (test DeckExamples.ExampleDecksParseAndResolveToThemselves).
-inline std::vector<ParamSpec> j2_family_eos_specs() {
-  std::vector<ParamSpec> specs = eos_param_specs();
-  for (ParamSpec& s : specs)
-    if (s.name == "eos.min_pressure") s.default_value = std::numeric_limits<double>::quiet_NaN();
-  return specs;
-}
-
 /// Splits sigma into its deviator (returned) and pressure p = -tr(sigma)/3.
 inline Mat3 split_pressure(const Mat3& sigma, double& p) {
   p = -trace(sigma) / 3.0;

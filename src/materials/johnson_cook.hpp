@@ -88,7 +88,7 @@ struct JohnsonCook {
          0.0, 1.0, false, false},
     };
     s.insert(s.end(), jc.begin(), jc.end());
-    for (ParamSpec& e : j2_family_eos_specs()) s.push_back(std::move(e));
+    for (ParamSpec& e : eos_param_specs()) s.push_back(std::move(e));
     return s;
   }
 
