@@ -171,6 +171,22 @@ class Material {
   virtual double max_signal_speed(const FieldStore& store, const Index* points, Index count) const = 0;
 };
 
+/// A pressure-dependent plasticity problem of the verification catalogue (A3 Drucker-Prager vertex,
+/// A4 hydrostat against a cap, A5 load-unload-reload with and without pore fluid): the parameters a
+/// geomaterial model is reduced to. Sign convention: tension positive, I1 = tr(sigma).
+struct GeoReduction {
+  double density = 0;       ///< kg/m^3
+  double bulk = 0;          ///< drained bulk modulus K, Pa (constant)
+  double shear = 0;         ///< shear modulus G, Pa (constant)
+  double peak_i1 = 0;       ///< tensile vertex of the linear Drucker-Prager surface on the I1 axis, Pa
+  double fslope = 0;        ///< its slope d sqrt(J2) / d(-I1)
+  double cap_ratio = 0;     ///< cap eccentricity CR (major I1 radius over minor sqrt(J2) radius)
+  double p0 = 0, p1 = 0, p3 = 0;  ///< crush curve (thesis seed 000 eq. 4.5-4.6); p3 = 0: no porosity, no cap
+  bool fixed_cap = false;   ///< cap frozen at p0 (no hardening)
+  double fluid_bulk = 0;    ///< pore-fluid bulk modulus, Pa (0: drained)
+  double pore_pressure0 = 0;  ///< initial pore pressure, Pa
+};
+
 /// How a model is made from the deck; one per registered model.
 struct MaterialFactory {
   std::string model;
@@ -189,6 +205,10 @@ struct MaterialFactory {
   /// return an empty ParamValues if the model lacks the requested hardening kind.
   ParamValues (*reduce_j2)(double density, double bulk, double shear, double yield, double h_iso,
                            double h_kin) = nullptr;
+  /// Parameters that reduce the model to a linear Drucker-Prager surface with an optional
+  /// elliptical cap, crush curve and pore fluid (A3-A5); null for models without pressure-dependent
+  /// strength.
+  ParamValues (*reduce_geo)(const GeoReduction& g) = nullptr;
 };
 
 /// Registered models, filled at static-initialisation time by one line per model file

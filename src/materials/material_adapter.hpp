@@ -209,6 +209,12 @@ constexpr auto verification_reduce_j2() -> ParamValues (*)(double, double, doubl
   else return nullptr;
 }
 
+template <class Model>
+constexpr auto verification_reduce_geo() -> ParamValues (*)(const GeoReduction&) {
+  if constexpr (requires { Model::reduce_to_geo(GeoReduction{}); }) return &Model::reduce_to_geo;
+  else return nullptr;
+}
+
 /// The registry entry of Model: its parameters plus the failure.* group shared by every model,
 /// its (static) state fields, and a create() that makes the kernel's Params, then the failure
 /// model (ParamError naming the key on bad input), and wraps both in a MaterialAdapter. Tests use
@@ -224,7 +230,8 @@ MaterialFactory material_factory(const char* description) {
         const FailureModel f = make_failure(v, model_capabilities<Model>());
         return std::make_unique<MaterialAdapter<Model>>(name, p, f);
       },
-      verification_example<Model>(), verification_reduce_elastic<Model>(), verification_reduce_j2<Model>()};
+      verification_example<Model>(), verification_reduce_elastic<Model>(), verification_reduce_j2<Model>(),
+      verification_reduce_geo<Model>()};
 }
 
 /// Registers Model under Model::kName; use once per model file at namespace scope.
