@@ -2,8 +2,6 @@
 // source, the numbers are SI-plausible and pass physics cross-checks that catch data-entry slips
 // (a wrong exponent, MPa typed as Pa, swapped columns), presets of registered models construct,
 // and deck keys override preset keys when a preset is merged into a deck material.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -11,6 +9,8 @@
 #include <map>
 #include <set>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "core/error.hpp"
 #include "io/material_presets.hpp"
@@ -77,10 +77,9 @@ Elastic elastic(const MaterialPreset& p) {
 
 // Parameter names of the models that are specified (issue 3 brief) but not registered on this
 // branch; once a model is registered its own ParamSpecs are used instead (test below).
-const std::set<std::string> kEosKeys{"eos.type", "eos.sound_speed", "eos.hugoniot_slope",
-                                     "eos.gruneisen_gamma", "eos.min_pressure"};
-const std::set<std::string> kElasticKeys{"density", "youngs_modulus", "poisson_ratio",
-                                         "bulk_modulus", "shear_modulus"};
+const std::set<std::string> kEosKeys{"eos.type", "eos.sound_speed", "eos.hugoniot_slope", "eos.gruneisen_gamma",
+                                     "eos.min_pressure"};
+const std::set<std::string> kElasticKeys{"density", "youngs_modulus", "poisson_ratio", "bulk_modulus", "shear_modulus"};
 std::set<std::string> johnson_cook_keys() {
   std::set<std::string> k = kElasticKeys;
   for (const char* n : {"jc_a",
@@ -143,8 +142,7 @@ std::set<std::string> water_keys() {
 }
 const std::map<std::string, std::set<std::string>> kWordChoices{
     {"eos.type", {"linear", "mie_gruneisen"}},
-    {"failure.criterion",
-     {"none", "johnson_cook_damage", "melt", "tepla", "drucker_stability", "max_stress"}},
+    {"failure.criterion", {"none", "johnson_cook_damage", "melt", "tepla", "drucker_stability", "max_stress"}},
     {"failure.erosion", {"none", "allow_no_tension", "allow_no_shear", "zero_stress"}},
     {"hardening_law", {"linear", "power_law", "voce"}},
     {"cap_evolution", {"crush_curve", "fixed"}}};
@@ -155,9 +153,8 @@ const std::map<std::string, std::set<std::string>> kWordChoices{
 
 TEST(MaterialPresets, FileParsesAndHoldsTheSeedMetals) {
   const auto& lib = library();
-  for (const char* name :
-       {"copper_ofhc_jc", "tungsten_alloy_jc", "steel_4340_jc", "steel_4130_jc", "steel_1018_jc",
-        "aluminium_2024_t351_jc", "aluminium_6061_t6_jc", "copper_taylor_b6_j2", "water"}) {
+  for (const char* name : {"copper_ofhc_jc", "tungsten_alloy_jc", "steel_4340_jc", "steel_4130_jc", "steel_1018_jc",
+                           "aluminium_2024_t351_jc", "aluminium_6061_t6_jc", "copper_taylor_b6_j2", "water"}) {
     const MaterialPreset* p = lib.find(name);
     ASSERT_NE(p, nullptr) << name;
     EXPECT_EQ(p->name, name);
@@ -170,16 +167,13 @@ TEST(MaterialPresets, FileParsesAndHoldsTheSeedMetals) {
     (void)lib.get("copper_ofhc");
     FAIL() << "expected an error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("did you mean 'copper_ofhc_jc'"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("did you mean 'copper_ofhc_jc'"), std::string::npos) << e.what();
   }
 }
 
 TEST(MaterialPresets, EveryPresetHasAModelSourcesAndKnownKeys) {
   const std::map<std::string, std::set<std::string>> unregistered{
-      {"johnson_cook", johnson_cook_keys()},
-      {"water", water_keys()},
-      {"geomodel", geomodel_keys()}};
+      {"johnson_cook", johnson_cook_keys()}, {"water", water_keys()}, {"geomodel", geomodel_keys()}};
   for (const auto& p : library().presets()) {
     SCOPED_TRACE(p.name);
     EXPECT_FALSE(p.model.empty());
@@ -198,10 +192,8 @@ TEST(MaterialPresets, EveryPresetHasAModelSourcesAndKnownKeys) {
     }
     if (find_material(p.model)) continue;  // checked against the model's own specs below
     const auto it = unregistered.find(p.model);
-    ASSERT_NE(it, unregistered.end())
-        << "model '" << p.model << "' is neither registered nor specified";
-    for (const auto& [k, v] : flatten_parameters(p.parameters))
-      EXPECT_TRUE(it->second.count(k)) << k;
+    ASSERT_NE(it, unregistered.end()) << "model '" << p.model << "' is neither registered nor specified";
+    for (const auto& [k, v] : flatten_parameters(p.parameters)) EXPECT_TRUE(it->second.count(k)) << k;
   }
 }
 
@@ -239,15 +231,15 @@ TEST(MaterialPresets, ValuesAreSIPlausible) {
       {"failure.d4", {-0.1, 0.1}},
       {"failure.d5", {0.0, 5.0}},
       // geomodel (rocks): PEAKI1 = I1 of the tensile vertex, a few MPa .. tens of MPa for rocks
-      {"peak_i1", {1e5, 1e9}},      // Pa
-      {"fslope", {0.0, 2.0}},       // d sqrt(J2) / d(-I1); 0.69 would be a 90 deg friction angle
-      {"stren", {1e6, 5e9}},        // Pa
-      {"yslope", {0.0, 1.0}},       //
-      {"cap_ratio", {0.1, 20.0}},   // Kayenta decks use 0.5 .. 6
-      {"crush_p0", {-2e10, -1e6}},  // Pa, I1 of the cap: compression, negative
-      {"crush_p1", {1e-12, 1e-6}},  // 1/Pa
-      {"crush_p3", {1e-3, 2.0}},    // -ln(1 - phi0): porosity 0.1 % .. 86 %
-      {"fluid_bulk_modulus", {1e8, 1e10}},  // Pa: gas-laden .. glycerol-like liquids; water 2.2 GPa
+      {"peak_i1", {1e5, 1e9}},                // Pa
+      {"fslope", {0.0, 2.0}},                 // d sqrt(J2) / d(-I1)
+      {"stren", {1e6, 5e9}},                  // Pa
+      {"yslope", {0.0, 1.0}},                 //
+      {"cap_ratio", {0.1, 20.0}},             // Kayenta decks use 0.5 .. 6
+      {"crush_p0", {-2e10, -1e6}},            // Pa, I1 of the cap: compression, negative
+      {"crush_p1", {1e-12, 1e-6}},            // 1/Pa
+      {"crush_p3", {1e-3, 2.0}},              // -ln(1 - phi0): porosity 0.1 % .. 86 %
+      {"fluid_bulk_modulus", {1e8, 1e10}},    // Pa: gas-laden .. glycerol-like liquids; water 2.2 GPa
       {"initial_pore_pressure", {0.0, 3e8}},  // Pa: ambient .. deep reservoir
       {"matrix_bulk_modulus", {1e9, 500e9}},  // Pa: grain moduli (quartz 37 GPa)
   };
@@ -283,8 +275,7 @@ TEST(MaterialPresets, BulkSoundSpeedAgreesWithHugoniotIntercept) {
     if (!std::isfinite(e.K)) continue;  // water: no elastic pair
     const double c_bulk = std::sqrt(e.K / num(p, "density"));
     const double c0 = num(p, "eos.sound_speed");
-    EXPECT_NEAR(c_bulk / c0, 1.0, 0.10)
-        << p.name << ": sqrt(K/rho) = " << c_bulk << " m/s, C0 = " << c0 << " m/s";
+    EXPECT_NEAR(c_bulk / c0, 1.0, 0.10) << p.name << ": sqrt(K/rho) = " << c_bulk << " m/s, C0 = " << c0 << " m/s";
     ++checked;
   }
   EXPECT_GE(checked, 6);
@@ -357,8 +348,7 @@ TEST(MaterialPresets, GruneisenGammaIsConsistentWithHugoniotSlopeForMetals) {
   for (const auto& p : library().presets()) {
     if (word(p, "eos.type") != "mie_gruneisen" || p.model == "water") continue;
     const double s = num(p, "eos.hugoniot_slope"), gamma = num(p, "eos.gruneisen_gamma");
-    EXPECT_NEAR(gamma / (2.0 * s - 1.0), 1.0, 0.25)
-        << p.name << ": s = " << s << ", Gamma0 = " << gamma;
+    EXPECT_NEAR(gamma / (2.0 * s - 1.0), 1.0, 0.25) << p.name << ": s = " << s << ", Gamma0 = " << gamma;
     ++checked;
   }
   EXPECT_GE(checked, 6);
@@ -374,8 +364,8 @@ TEST(MaterialPresets, JohnsonCookDamageConstantsArePlausible) {
     if (word(p, "failure.criterion") != "johnson_cook_damage") continue;
     SCOPED_TRACE(p.name);
     const double d1 = num(p, "failure.d1"), d2 = num(p, "failure.d2"), d3 = num(p, "failure.d3");
-    ASSERT_TRUE(std::isfinite(d1) && std::isfinite(d2) && std::isfinite(d3) &&
-                has(p, "failure.d4") && has(p, "failure.d5"));
+    ASSERT_TRUE(std::isfinite(d1) && std::isfinite(d2) && std::isfinite(d3) && has(p, "failure.d4") &&
+                has(p, "failure.d5"));
     EXPECT_LT(d3, 0.0);
     EXPECT_GT(d1 + d2, 0.0);  // sigma* = 0 (pure shear)
     const double eps_tension = d1 + d2 * std::exp(d3 / 3.0);
@@ -561,22 +551,19 @@ presets:
   } catch (const DeckError& e) {
     EXPECT_EQ(e.line(), 9);
     EXPECT_EQ(e.key_path(), "presets.typo.yield_strees");
-    EXPECT_NE(std::string(e.what()).find("did you mean 'yield_stress'"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("did you mean 'yield_stress'"), std::string::npos) << e.what();
   }
   // A required parameter the preset lacks is reported at the preset's name (line 12 here).
   MaterialPreset no_yield = lib.get("negative");
   // reset(), not operator=: a yaml-cpp assignment would overwrite the node shared with `lib`.
-  no_yield.parameters.reset(
-      YAML::Load("{density: 8930, youngs_modulus: 117e9, poisson_ratio: 0.35}"));
+  no_yield.parameters.reset(YAML::Load("{density: 8930, youngs_modulus: 117e9, poisson_ratio: 0.35}"));
   try {
     (void)preset_param_values(no_yield, j2->params);
     FAIL() << "expected an error";
   } catch (const DeckError& e) {
     EXPECT_EQ(e.line(), 12);
     EXPECT_EQ(e.key_path(), "presets.negative.yield_stress");
-    EXPECT_NE(std::string(e.what()).find("missing required parameter"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("missing required parameter"), std::string::npos) << e.what();
   }
   try {
     (void)preset_param_values(lib.get("negative"), j2->params);
@@ -598,11 +585,10 @@ TEST(MaterialPresets, DefaultPathIsTheSourceTreeUnlessTheEnvironmentOverrides) {
 
   test::TempDir dir;
   const auto file = dir.path / "mine.yaml";
-  std::ofstream(file)
-      << "schema_version: 1\npresets:\n  only:\n    model: linear_elastic\n"
-         "    parameters: {density: 1000, bulk_modulus: 2e9, shear_modulus: 1e9}\n"
-         "    sources: [{keys: [density, bulk_modulus, shear_modulus], cite: \"my own lab data\","
-         " confidence: seed}]\n";
+  std::ofstream(file) << "schema_version: 1\npresets:\n  only:\n    model: linear_elastic\n"
+                         "    parameters: {density: 1000, bulk_modulus: 2e9, shear_modulus: 1e9}\n"
+                         "    sources: [{keys: [density, bulk_modulus, shear_modulus], cite: \"my own lab data\","
+                         " confidence: seed}]\n";
   ::setenv(kMaterialPresetsEnv, file.c_str(), 1);
   EXPECT_EQ(default_material_presets_path(), file.string());
   EXPECT_EQ(MaterialPresetLibrary::load_default().names(), std::vector<std::string>{"only"});
@@ -675,9 +661,8 @@ TEST(MaterialPresetsFile, GoodMinimalFileParses) {
 TEST(MaterialPresetsFile, SyntaxErrorNamesFileAndLine) {
   // An unclosed flow list on line 8; yaml-cpp notices it at the next key (line 9, 1-based).
   try {
-    (void)MaterialPresetLibrary::parse(
-        one_preset(replace(kGood, "poisson_ratio: 0.35\n", "poisson_ratio: [0.35\n")),
-        "presets.yaml");
+    (void)MaterialPresetLibrary::parse(one_preset(replace(kGood, "poisson_ratio: 0.35\n", "poisson_ratio: [0.35\n")),
+                                       "presets.yaml");
     FAIL() << "expected an error";
   } catch (const DeckError& e) {
     EXPECT_EQ(e.file(), "presets.yaml");
@@ -698,15 +683,15 @@ TEST(MaterialPresetsFile, UnknownPresetKeySuggestsTheRightOne) {
 }
 
 TEST(MaterialPresetsFile, ParameterWithoutSource) {
-  expect_error(one_preset(replace(kGood, "keys: [density, youngs_modulus, poisson_ratio]",
-                                  "keys: [density, youngs_modulus]")),
-               {8, "presets.cu.parameters.poisson_ratio", "has no source"});
+  expect_error(
+      one_preset(replace(kGood, "keys: [density, youngs_modulus, poisson_ratio]", "keys: [density, youngs_modulus]")),
+      {8, "presets.cu.parameters.poisson_ratio", "has no source"});
 }
 
 TEST(MaterialPresetsFile, ParameterUnderTwoSources) {
-  expect_error(one_preset(kGood + "      - keys: [density]\n        cite: another handbook\n       "
-                                  " confidence: recalled\n"),
-               {6, "presets.cu.parameters.density", "listed under 2 sources"});
+  expect_error(
+      one_preset(kGood + "      - keys: [density]\n        cite: another handbook\n        confidence: recalled\n"),
+      {6, "presets.cu.parameters.density", "listed under 2 sources"});
 }
 
 TEST(MaterialPresetsFile, SourceKeyThatNamesNoParameter) {
@@ -724,14 +709,12 @@ TEST(MaterialPresetsFile, UnknownConfidenceAndCheckedWithoutVia) {
 
 TEST(MaterialPresetsFile, GroupsAreOneLevelMapsOfScalars) {
   const std::string with_eos =
-      replace(kGood, "      poisson_ratio: 0.35\n",
-              "      poisson_ratio: 0.35\n      eos:\n        type: {deep: 1}\n");
-  expect_error(one_preset(with_eos),
-               {10, "presets.cu.parameters.eos.type", "expected a number or a word"});
+      replace(kGood, "      poisson_ratio: 0.35\n", "      poisson_ratio: 0.35\n      eos:\n        type: {deep: 1}\n");
+  expect_error(one_preset(with_eos), {10, "presets.cu.parameters.eos.type", "expected a number or a word"});
   // A group covered by "eos.*" is accepted.
-  const std::string ok = replace(replace(kGood, "      poisson_ratio: 0.35\n",
-                                         "      poisson_ratio: 0.35\n      eos: {type: linear}\n"),
-                                 "poisson_ratio]", "poisson_ratio, eos.*]");
+  const std::string ok =
+      replace(replace(kGood, "      poisson_ratio: 0.35\n", "      poisson_ratio: 0.35\n      eos: {type: linear}\n"),
+              "poisson_ratio]", "poisson_ratio, eos.*]");
   const auto lib = MaterialPresetLibrary::parse(one_preset(ok), "presets.yaml");
   EXPECT_EQ(flatten_parameters(lib.get("cu").parameters).back().first, "eos.type");
 }
@@ -740,8 +723,7 @@ TEST(MaterialPresetsFile, DuplicatePresetAndWrongSchema) {
   expect_error(one_preset(kGood) + "  cu:\n" + kGood, {13, "presets.cu", "duplicate"});
   expect_error(replace(one_preset(kGood), "schema_version: 1", "schema_version: 2"),
                {1, "schema_version", "expected schema_version: 1"});
-  expect_error("schema_version: 1\npresets: {}\n",
-               {2, "presets", "expected a map of named presets"});
+  expect_error("schema_version: 1\npresets: {}\n", {2, "presets", "expected a map of named presets"});
 }
 
 // ---- merging a preset into a deck material -------------------------------------------------
@@ -775,8 +757,7 @@ failure: {erosion: zero_stress, d1: 0.6}
 
 TEST(MaterialPresetMerge, ElasticPairIsReplacedAsAWhole) {
   const MaterialPreset& cu = library().get("copper_ofhc_jc");  // gives bulk and shear moduli
-  const YAML::Node m =
-      merge_preset_into(cu, YAML::Load("{youngs_modulus: 1.2e11, poisson_ratio: 0.34}"));
+  const YAML::Node m = merge_preset_into(cu, YAML::Load("{youngs_modulus: 1.2e11, poisson_ratio: 0.34}"));
   EXPECT_FALSE(m["bulk_modulus"].IsDefined());
   EXPECT_FALSE(m["shear_modulus"].IsDefined());
   EXPECT_EQ(m["youngs_modulus"].as<double>(), 1.2e11);
@@ -794,11 +775,9 @@ TEST(MaterialPresetMerge, ModelMismatchAndNonMapGroupAreErrors) {
 // The path the deck reader will take: merge, then read the merged parameters for the model.
 TEST(MaterialPresetMerge, MergedTaylorCopperConstructsWithTheDeckOverride) {
   const MaterialPreset& b6 = library().get("copper_taylor_b6_j2");
-  const YAML::Node merged =
-      merge_preset_into(b6, YAML::Load("{preset: copper_taylor_b6_j2, yield_stress: 3.0e8}"));
+  const YAML::Node merged = merge_preset_into(b6, YAML::Load("{preset: copper_taylor_b6_j2, yield_stress: 3.0e8}"));
   MaterialPreset as_read = b6;
-  as_read.parameters.reset(
-      YAML::Node(YAML::NodeType::Map));  // rebind, do not overwrite the library's node
+  as_read.parameters.reset(YAML::Node(YAML::NodeType::Map));  // rebind, do not overwrite the library's node
   for (auto it = merged.begin(); it != merged.end(); ++it)
     if (it->first.as<std::string>() != "model") as_read.parameters[it->first] = it->second;
   const MaterialFactory* j2 = find_material("j2_plasticity");
@@ -807,6 +786,5 @@ TEST(MaterialPresetMerge, MergedTaylorCopperConstructsWithTheDeckOverride) {
   EXPECT_EQ(v.at("yield_stress"), 3.0e8);
   EXPECT_EQ(v.at("hardening_modulus"), 100.0e6);
   EXPECT_NE(j2->create("b6", v), nullptr);
-  EXPECT_EQ(num(library().get("copper_taylor_b6_j2"), "yield_stress"),
-            400.0e6);  // the library is untouched
+  EXPECT_EQ(num(library().get("copper_taylor_b6_j2"), "yield_stress"), 400.0e6);  // the library is untouched
 }
