@@ -66,8 +66,10 @@ HydroComparison compare_hydrostatic(const DriveResult& r, const HydroCapParams& 
     max_i1 = std::max(max_i1, std::abs(exact.i1()));
     shear = std::max(shear, c.sqrt_j2.back());
     if (i_evp >= 0) c.max_evp_error = std::max(c.max_evp_error, std::abs(evp - exact.evp()));
-    if (i_phi >= 0) c.max_phi_error = std::max(c.max_phi_error, std::abs(phi - exact.porosity()));
-    if (i_evp >= 0 && i_phi >= 0)
+    // Porosity from the first update on: records[0] holds the state fields' static initial values
+    // (StateFieldSpec::initial cannot depend on P3), which a model may overwrite only when it runs.
+    if (i_phi >= 0 && k > 0) c.max_phi_error = std::max(c.max_phi_error, std::abs(phi - exact.porosity()));
+    if (i_evp >= 0 && i_phi >= 0 && k > 0)
       c.phi_identity = std::max(c.phi_identity, std::abs(phi - p.curve.porosity(evp)));
     if (i_evp >= 0 && compacting && k > 0) {
       const double x = p.fixed_cap ? p.curve.p0 : p.curve.cap(evp);
@@ -89,7 +91,9 @@ void add_hydro_series(VerifyCase& c, const HydroComparison& h, const std::string
   std::vector<std::vector<double>> cols(8);
   for (size_t k = 0; k < h.t.size(); ++k) {
     if (k % static_cast<size_t>(every) != 0 && k + 1 != h.t.size()) continue;
-    const double v[8] = {h.ev[k], h.i1[k], h.i1_an[k], h.sqrt_j2[k], h.phi[k], h.phi_an[k], h.evp[k], h.evp_an[k]};
+    // records[0] porosity is the static initial value, not the model's (see compare_hydrostatic): not plotted.
+    const double phi = k == 0 ? std::nan("") : h.phi[k];
+    const double v[8] = {h.ev[k], h.i1[k], h.i1_an[k], h.sqrt_j2[k], phi, h.phi_an[k], h.evp[k], h.evp_an[k]};
     for (int j = 0; j < 8; ++j) cols[static_cast<size_t>(j)].push_back(v[j]);
   }
   const char* names[8] = {"ev", "i1", "i1_an", "sqrt_j2", "porosity", "porosity_an", "evp", "evp_an"};
