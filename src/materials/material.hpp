@@ -183,6 +183,15 @@ struct GeoReduction {
   double cap_ratio = 0;     ///< cap eccentricity CR (major I1 radius over minor sqrt(J2) radius)
   double p0 = 0, p1 = 0, p3 = 0;  ///< crush curve (thesis seed 000 eq. 4.5-4.6); p3 = 0: no porosity, no cap
   bool fixed_cap = false;   ///< cap frozen at p0 (no hardening)
+  /// Non-associativity: isotropic part of the plastic flow direction scaled by beta (1:
+  /// associative). The published analytic stresses of the A3 vertex test (Brannon &
+  /// Leelavanichkul 2010) need beta = 1/2: the test is designed so that on its second leg the
+  /// trial-stress rate is parallel to the return direction P = C:M, which in (z = I1/sqrt3,
+  /// r = sqrt(2 J2)) is (3K beta f_z, 2G f_r); with K = 10000, G = 3750, f_z/f_r = r0/z0 =
+  /// 1/sqrt3 and the leg's trial direction (dz, dr) = (400/sqrt3, 200), parallelism gives
+  /// beta = 0.5 exactly (beta = 1 would leave the stress moving along the surface instead of
+  /// dwelling).
+  double flow_beta = 1.0;
   double fluid_bulk = 0;    ///< pore-fluid bulk modulus, Pa (0: drained)
   double pore_pressure0 = 0;  ///< initial pore pressure, Pa
 };

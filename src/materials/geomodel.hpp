@@ -1,0 +1,502 @@
+#pragma once
+// Sandstone geomodel: Ballista's equivalent of the Arenisca model of the thesis seed 000
+// (§3.2, §4.1.1.3-4.1.1.4, §8.1.7): a two-surface plasticity model for porous, fluid-filled rock.
+//   - Limit surface: linear Drucker-Prager, sqrt(J2) = FSLOPE (PEAKI1 - I1) (eq. 4.2-4.4), or the
+//     pressure-saturating nonlinear form Ff = a1 - a3 exp(a2 I1) - a4 I1 (§8.1.7's "nonlinear
+//     Drucker-Prager"); fslope = 0 reduces it to von Mises (J2) with sqrt(J2) = stren.
+//   - Elliptical cap of eccentricity cap_ratio, at X on the hydrostat given by the crush curve of
+//     eq. 4.5-4.6 in the plastic volumetric strain evp: pore collapse moves it out (hardening),
+//     dilatation pulls it back (softening by porosity growth).
+//   - Non-associative flow: the isotropic part of the flow direction is scaled by flow_beta.
+//   - Nonlinear elasticity: K = B0 + B1 exp(-B2/|I1'|) in compression (B0 in tension), G constant,
+//     or from a pressure-dependent Poisson ratio (Arenisca 3 forms; Homel et al. 2016 §2.2).
+//   - Pore fluid (undrained): saturated bulk modulus by Biot-Gassmann, and the pore pressure from
+//     pore collapse as an isotropic backstress I1' = I1 + 3 pf (geomodel_surface.hpp).
+//   - Optional rate dependence: Duvaut-Lions overstress (Simo & Hughes, Computational
+//     Inelasticity, 1998, §2.7.3): sigma = (sigma_trial + (dt/tau) sigma_inviscid)/(1 + dt/tau) per
+//     substep, tau = T1 (strain rate x 1 s)^(-T2).
+// The formulas and their sources are in geomodel_surface.hpp; the return algorithm (transformed-
+// space closest point + consistency bisection, Homel, Guilkey & Brannon, Comput. Mech. 56 (2015)
+// 565-584) in geomodel_return.hpp and below.
+//
+// Kinematics as every hypoelastic Ballista model: the stress is integrated in the unrotated frame
+// with the midpoint strain increment eps = D_bar dt (material_adapter.hpp). The step is split into
+// n substeps (at most max_substeps) so that each trial-stress increment is a fraction of the yield
+// surface's size and the nonlinear bulk modulus changes little within one.
+//
+// Limits (docs/materials.md): no algorithmic tangent (explicit solvers do not need one; A6 tangent
+// is not applicable); elastic compression of the pore fluid stiffens the bulk response but only
+// the pore pressure from pore collapse shifts the yield surface (Homel et al.'s simplification);
+// no third-invariant (Lode) dependence, no shear softening or damage (thesis §8.1.6-8.1.7).
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "materials/geomodel_return.hpp"
+#include "materials/geomodel_surface.hpp"
+#include "materials/material_adapter.hpp"
+
+namespace ballista {
+
+struct Geomodel {
+  static constexpr const char* kName = "geomodel";
+  static constexpr bool kTracksPlasticStrain = true;
+
+  struct Params {
+    double density = 0;
+    double B0 = 0, B1 = 0, B2 = 1;  ///< bulk modulus law, Pa
+    double G0 = 0;                  ///< shear modulus, Pa
+    bool poisson = false;           ///< shear modulus from nu = nu_low + nu_gain exp(-B2/|I1'|)
+    double nu_low = 0, nu_gain = 0;
+    GeoLimit limit;
+    double cap_ratio = 0.5;
+    GeoCrushCurve crush;
+    double beta = 1.0;              ///< non-associativity
+    double Kf = 0, pf0 = 0, Km = 0; ///< pore fluid, initial pore pressure, matrix modulus (Pa)
+    double T1 = 0, T2 = 0;          ///< Duvaut-Lions relaxation time (s) and rate exponent
+    int max_substeps = 256;
+    // State layout: eqps, plastic_volumetric_strain, substeps, [porosity, cap_i1], [pore_pressure].
+    int slot_porosity = -1, slot_cap = -1, slot_pore_pressure = -1;
+
+    bool fluid() const { return Kf > 0.0; }
+    bool hardening() const { return (crush.active() && !crush.fixed) || fluid(); }
+  };
+
+  static std::vector<ParamSpec> param_specs() {
+    const double inf = std::numeric_limits<double>::infinity();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return {
+        {"density", "kg/m^3", "reference mass density rho0", true, 0.0, 0.0, inf, true, false},
+        {"bulk_modulus", "Pa", "B0: drained bulk modulus at low pressure and in tension", true, 0.0, 0.0, inf, true,
+         false},
+        {"bulk_modulus_gain", "Pa", "B1: extra bulk modulus at high pressure, K = B0 + B1 exp(-B2/|I1'|)", false, 0.0,
+         0.0, inf, false, false},
+        {"bulk_modulus_i1_scale", "Pa", "B2: |I1| scale of the bulk modulus transition", false, 1.0, 0.0, inf, true,
+         false},
+        {"shear_modulus", "Pa", "G0: shear modulus (replaced by the Poisson-ratio law if that is given)", true, 0.0,
+         0.0, inf, true, false},
+        {"poisson_ratio_low", "1", "G1: drained Poisson ratio at low pressure (with poisson_ratio_gain)", false, nan,
+         -1.0, 0.5, true, true},
+        {"poisson_ratio_gain", "1", "G2: nu = G1 + G2 exp(-B2/|I1'|), G = 1.5 K (1 - 2 nu)/(1 + nu)", false, nan, 0.0,
+         0.5, false, true},
+        {"peak_i1", "Pa", "PEAKI1: tensile vertex of the limit surface on the I1 axis (required if fslope > 0)", false,
+         nan, -inf, inf, false, false},
+        {"fslope", "1", "FSLOPE: slope d sqrt(J2)/d(-I1) of the limit surface at the vertex (0: von Mises)", false,
+         0.0, 0.0, inf, false, false},
+        {"stren", "Pa", "STREN: high-pressure limit of sqrt(J2) (nonlinear form); with fslope 0 the von Mises sqrt(J2)",
+         false, nan, 0.0, inf, true, false},
+        {"yslope", "1", "YSLOPE: high-pressure slope of the nonlinear limit surface", false, 0.0, 0.0, inf, false,
+         false},
+        {"cap_ratio", "1", "CR: cap eccentricity, I1 radius over sqrt(J2) radius of the elliptical cap", false, 0.5,
+         0.0, inf, true, false},
+        {"crush_p0", "Pa", "P0: cap position X (an I1, negative) at zero plastic volumetric strain", false, nan, -inf,
+         0.0, false, true},
+        {"crush_p1", "1/Pa", "P1: crush-curve rate, X = P0 + ln(1 + evp/P3)/P1 in compaction", false, nan, 0.0, inf,
+         true, false},
+        {"crush_p3", "1", "P3: -ln(1 - initial porosity), the plastic volume strain of full crush (0: no cap)", false,
+         0.0, 0.0, inf, false, false},
+        {"cap_evolution", "", "crush_curve: the cap follows the crush curve; fixed: the cap stays at P0", false, 0.0,
+         -inf, inf, false, false, {"crush_curve", "fixed"}, "crush_curve"},
+        {"flow_beta", "1", "non-associativity: isotropic part of the plastic flow scaled by beta (1: associative)",
+         false, 1.0, 0.0, 1.0, true, false},
+        {"fluid_bulk_modulus", "Pa", "Kf: pore-fluid bulk modulus (0: drained)", false, 0.0, 0.0, inf, false, false},
+        {"initial_pore_pressure", "Pa", "pf0: initial pore-fluid pressure", false, 0.0, 0.0, inf, false, false},
+        {"matrix_bulk_modulus", "Pa", "Km: grain (matrix) bulk modulus for Biot-Gassmann (default B0 + B1)", false, nan,
+         0.0, inf, true, false},
+        {"relaxation_time", "s", "T1: Duvaut-Lions relaxation time (0: rate independent)", false, 0.0, 0.0, inf, false,
+         false},
+        {"relaxation_rate_exponent", "1", "T2: tau = T1 (equivalent strain rate x 1 s)^(-T2)", false, 0.0, 0.0, inf,
+         false, false},
+        {"max_substeps", "1", "most substeps per step", false, 256.0, 1.0, 1e5, false, false},
+    };
+  }
+
+  static Params make(const ParamValues& v) {
+    Params p;
+    auto num = [&](const char* k, double d) { return v.number_or(k, d); };
+    p.density = v.at("density");
+    p.B0 = v.at("bulk_modulus");
+    p.B1 = num("bulk_modulus_gain", 0.0);
+    p.B2 = num("bulk_modulus_i1_scale", 1.0);
+    p.G0 = v.at("shear_modulus");
+    const bool g1 = v.given("poisson_ratio_low"), g2 = v.given("poisson_ratio_gain");
+    if (g1 != g2)
+      throw ParamError(g1 ? "poisson_ratio_gain" : "poisson_ratio_low",
+                       "poisson_ratio_low and poisson_ratio_gain go together");
+    p.poisson = g1;
+    if (p.poisson) {
+      p.nu_low = v.at("poisson_ratio_low");
+      p.nu_gain = v.at("poisson_ratio_gain");
+      if (!(p.nu_low + p.nu_gain < 0.5))
+        throw ParamError("poisson_ratio_gain", "poisson_ratio_low + poisson_ratio_gain must be < 0.5");
+    }
+    // Limit surface.
+    const double fslope = num("fslope", 0.0), stren = num("stren", NAN), yslope = num("yslope", 0.0);
+    const bool peak_given = v.given("peak_i1");
+    if (fslope == 0.0) {
+      if (std::isnan(stren))
+        throw ParamError("stren", "fslope 0 is von Mises: give stren, the yield stress in shear sqrt(J2)");
+      if (peak_given) throw ParamError("peak_i1", "peak_i1 needs fslope > 0 (a von Mises surface has no vertex)");
+    } else {
+      if (!peak_given) throw ParamError("peak_i1", "fslope > 0 needs peak_i1, the tensile vertex of the limit surface");
+      if (!std::isnan(stren)) {
+        const double peak = v.at("peak_i1");
+        if (!(yslope < fslope)) throw ParamError("yslope", "yslope must be smaller than fslope");
+        if (!(stren > yslope * peak)) throw ParamError("stren", "stren must exceed yslope * peak_i1");
+      } else if (yslope != 0.0) {
+        throw ParamError("yslope", "yslope needs stren (the nonlinear limit surface)");
+      }
+    }
+    p.limit = GeoLimit::make(peak_given ? v.at("peak_i1") : INFINITY, fslope, stren, yslope);
+    // Cap and crush curve.
+    p.cap_ratio = num("cap_ratio", 0.5);
+    p.crush.p3 = num("crush_p3", 0.0);
+    if (p.crush.active()) {
+      if (!v.given("crush_p0")) throw ParamError("crush_p0", "crush_p3 > 0 (porosity) needs crush_p0, the cap's I1");
+      if (!v.given("crush_p1")) throw ParamError("crush_p1", "crush_p3 > 0 (porosity) needs crush_p1");
+      p.crush.p0 = v.at("crush_p0");
+      p.crush.p1 = v.at("crush_p1");
+      if (!(p.crush.p0 < 0.0)) throw ParamError("crush_p0", "crush_p0 must be < 0 (compression)");
+      if (!(p.crush.p0 < p.limit.peak_i1)) throw ParamError("crush_p0", "crush_p0 must lie below peak_i1");
+    }
+    p.crush.fixed = v.choice("cap_evolution", "crush_curve") == "fixed";
+    p.beta = num("flow_beta", 1.0);
+    // Pore fluid.
+    p.Kf = num("fluid_bulk_modulus", 0.0);
+    p.pf0 = num("initial_pore_pressure", 0.0);
+    p.Km = num("matrix_bulk_modulus", p.B0 + p.B1);
+    if (p.fluid()) {
+      if (!p.crush.active())
+        throw ParamError("fluid_bulk_modulus", "a pore fluid needs porosity: give crush_p3 > 0 (and the crush curve)");
+      if (!(p.Km > p.Kf)) throw ParamError("matrix_bulk_modulus", "matrix_bulk_modulus must exceed fluid_bulk_modulus");
+      if (!(p.Km >= p.B0 + p.B1))
+        throw ParamError("matrix_bulk_modulus", "matrix_bulk_modulus must be >= bulk_modulus + bulk_modulus_gain");
+    } else if (p.pf0 != 0.0) {
+      throw ParamError("initial_pore_pressure", "initial_pore_pressure needs fluid_bulk_modulus > 0");
+    }
+    p.T1 = num("relaxation_time", 0.0);
+    p.T2 = num("relaxation_rate_exponent", 0.0);
+    p.max_substeps = static_cast<int>(num("max_substeps", 256.0));
+    int slot = 3;
+    if (p.crush.active()) {
+      p.slot_porosity = slot++;
+      p.slot_cap = slot++;
+    }
+    if (p.fluid()) p.slot_pore_pressure = slot++;
+    return p;
+  }
+
+  // ---- Verification hooks (MaterialFactory) ----
+  /// A saturated Berea-like sandstone with every feature on (A6 objectivity).
+  static ParamValues example_params() {
+    return {{"density", 2300.0},          {"bulk_modulus", 10e9},        {"bulk_modulus_gain", 8e9},
+            {"bulk_modulus_i1_scale", 3e8}, {"shear_modulus", 7e9},      {"peak_i1", 20e6},
+            {"fslope", 0.45},             {"stren", 150e6},             {"yslope", 0.05},
+            {"cap_ratio", 0.6},           {"crush_p0", -300e6},         {"crush_p1", 2e-9},
+            {"crush_p3", 0.2},            {"flow_beta", 0.8},           {"fluid_bulk_modulus", 2.2e9},
+            {"initial_pore_pressure", 0.0}, {"matrix_bulk_modulus", 37e9}};
+  }
+  /// Elastic: a von Mises surface no A1 path reaches, no cap.
+  static ParamValues reduce_to_elastic(double rho, double K, double G) {
+    return {{"density", rho}, {"bulk_modulus", K}, {"shear_modulus", G}, {"stren", 1e30}};
+  }
+  /// von Mises with sqrt(J2) = sigma_y/sqrt3; the model has no strain hardening of the limit surface.
+  static ParamValues reduce_to_j2(double rho, double K, double G, double sy, double h_iso, double h_kin) {
+    if (h_iso != 0.0 || h_kin != 0.0) return {};
+    return {{"density", rho}, {"bulk_modulus", K}, {"shear_modulus", G}, {"stren", sy / std::sqrt(3.0)}};
+  }
+  static ParamValues reduce_to_geo(const GeoReduction& g) {
+    ParamValues v{{"density", g.density}, {"bulk_modulus", g.bulk}, {"shear_modulus", g.shear},
+                  {"peak_i1", g.peak_i1}, {"fslope", g.fslope}, {"flow_beta", g.flow_beta}};
+    if (g.p3 > 0.0) {
+      v["cap_ratio"] = g.cap_ratio;
+      v["crush_p0"] = g.p0;
+      v["crush_p1"] = g.p1;
+      v["crush_p3"] = g.p3;
+      v.choices["cap_evolution"] = g.fixed_cap ? "fixed" : "crush_curve";
+    }
+    if (g.fluid_bulk > 0.0) {
+      v["fluid_bulk_modulus"] = g.fluid_bulk;
+      v["initial_pore_pressure"] = g.pore_pressure0;
+    }
+    return v;
+  }
+
+  // ---- State ----
+  static std::vector<StateFieldSpec> state_fields() {
+    return {{"eqps", "1", 0.0},         {"plastic_volumetric_strain", "1", 0.0}, {"substeps", "1", 0.0},
+            {"porosity", "1", 0.0},     {"cap_i1", "Pa", 0.0},                   {"pore_pressure", "Pa", 0.0}};
+  }
+  static std::vector<StateFieldSpec> state_fields(const Params& p) {
+    std::vector<StateFieldSpec> f{{"eqps", "1", 0.0}, {"plastic_volumetric_strain", "1", 0.0}, {"substeps", "1", 0.0}};
+    if (p.crush.active()) {
+      f.push_back({"porosity", "1", p.crush.initial_porosity()});
+      f.push_back({"cap_i1", "Pa", p.crush.p0});
+    }
+    if (p.fluid()) f.push_back({"pore_pressure", "Pa", p.pf0});
+    return f;
+  }
+
+  // ---- Constitutive pieces ----
+  /// Pore pressure at plastic volumetric strain evp (0 when drained).
+  static double pore_pressure(const Params& p, double evp) {
+    return p.fluid() ? geo_pore_pressure(evp, p.crush.initial_porosity(), p.pf0, p.Kf, p.Km) : 0.0;
+  }
+  /// The yield surface (in effective I1) at plastic volumetric strain evp.
+  static GeoSurface surface(const Params& p, double evp) {
+    GeoSurface s;
+    s.limit = p.limit;
+    if (p.crush.active()) {
+      s.X = p.crush.cap(evp);
+      s.kappa = geo_cap_kappa(p.limit, p.cap_ratio, s.X);
+    }
+    return s;
+  }
+  /// Tangent elastic moduli at effective I1 `i1e` (Arenisca 3 forms, Homel et al. 2016 §2.2):
+  /// drained K = B0 + B1 exp(-B2/|I1'|) in compression, B0 in tension; saturated by Biot-Gassmann
+  /// while the pore fluid carries pressure.
+  static void moduli(const Params& p, double i1e, double evp, double pf, double& K, double& G) {
+    const double e = i1e < 0.0 ? std::exp(p.B2 / i1e) : 0.0;  // exp(-B2/|I1'|)
+    const double Kd = p.B0 + p.B1 * e;
+    G = p.G0;
+    if (p.poisson) {
+      const double nu = p.nu_low + p.nu_gain * e;
+      G = 1.5 * Kd * (1.0 - 2.0 * nu) / (1.0 + nu);
+    }
+    K = (p.fluid() && pf > 0.0) ? biot_gassmann(Kd, p.Km, p.Kf, p.crush.porosity(evp)) : Kd;
+  }
+
+  /// Size of the yield surface against which a trial-stress increment is measured for substepping.
+  static double surface_size(const Params& p, const GeoSurface& s, double i1e) {
+    double L;
+    if (std::isfinite(s.hi()) && std::isfinite(s.lo()))
+      L = 0.5 * (s.hi() - s.lo());
+    else if (std::isfinite(s.hi()))
+      L = std::max(std::abs(s.hi()), 2.0 * p.limit.value(std::min(i1e, s.hi())));
+    else
+      L = 2.0 * p.limit.value(std::isfinite(s.kappa) ? s.kappa : i1e);
+    return std::max(L, 1e-9 * p.B0);
+  }
+
+  struct Substep {
+    Mat3 dep;            ///< plastic strain increment
+    double work = 0.0;   ///< effective stress : plastic strain increment, J/m^3
+    double d_eqps = 0.0;
+  };
+
+  /// Plastic volumetric strain increment of the non-hardening return from trial (I1_t, s_t) onto
+  /// the surface at evp; fills the returned point.
+  static double return_at(const Params& p, double evp, double c, double K, double I1_t, double rj2_t, GeoPoint& out,
+                          double& pf_out) {
+    pf_out = pore_pressure(p, evp);
+    const GeoSurface s = surface(p, evp);
+    const double i1e_t = I1_t + 3.0 * pf_out;
+    if (!(s.f(i1e_t, rj2_t) > 0.0)) {
+      out = {i1e_t, rj2_t};
+      return 0.0;
+    }
+    out = geo_closest_point(s, c, i1e_t, rj2_t);
+    const double I1_new = out.i1 - 3.0 * pf_out;
+    return (I1_t - I1_new) / (3.0 * K);
+  }
+
+  /// One substep of inviscid elastic-plastic update from sigma (total stress) with strain increment
+  /// deps. Returns false for an elastic substep.
+  static bool substep(const Params& p, Mat3& sigma, double& evp, const Mat3& deps, Substep& out) {
+    const double pf_n = pore_pressure(p, evp);
+    double K, G;
+    moduli(p, trace(sigma) + 3.0 * pf_n, evp, pf_n, K, G);
+    const double tr_e = trace(deps);
+    Mat3 sig_t = sigma + (2.0 * G) * deps;
+    const double iso = (K - 2.0 * G / 3.0) * tr_e;
+    sig_t(0, 0) += iso;
+    sig_t(1, 1) += iso;
+    sig_t(2, 2) += iso;
+    const double I1_t = trace(sig_t);
+    const Mat3 s_t = deviator(sig_t);
+    const double rj2_t = std::sqrt(0.5 * ddot(s_t, s_t));
+    const GeoSurface s0 = surface(p, evp);
+    if (!(s0.f(I1_t + 3.0 * pf_n, rj2_t) > 0.0) && !std::isnan(I1_t)) {
+      sigma = sig_t;
+      return false;
+    }
+    const double c = std::sqrt(1.5 * K * p.beta / G);
+    GeoPoint pt;
+    double pf;
+    const double d0 = return_at(p, evp, c, K, I1_t, rj2_t, pt, pf);
+    // With hardening, (pt, pf) become those of the consistent state; the increment itself is
+    // recomputed from the returned stress below.
+    if (p.hardening() && d0 != 0.0) consistent_increment(p, evp, c, K, I1_t, rj2_t, d0, pt, pf);
+    // Returned stress: the trial deviator scaled to the returned sqrt(J2), total I1 = I1' - 3 pf.
+    const double scale = rj2_t > 0.0 ? pt.rootj2 / rj2_t : 0.0;
+    const double mean = (pt.i1 - 3.0 * pf) / 3.0;
+    Mat3 sig = scale * s_t;
+    sig(0, 0) += mean;
+    sig(1, 1) += mean;
+    sig(2, 2) += mean;
+    // d_eps_p = C^-1 : (sigma_trial - sigma).
+    const Mat3 dev_p = ((1.0 - scale) / (2.0 * G)) * s_t;
+    out.dep = dev_p;
+    const double dv = (I1_t - trace(sig)) / (3.0 * K);
+    out.dep(0, 0) += dv / 3.0;
+    out.dep(1, 1) += dv / 3.0;
+    out.dep(2, 2) += dv / 3.0;
+    out.d_eqps = std::sqrt(2.0 / 3.0 * ddot(dev_p, dev_p));
+    Mat3 sig_eff = sig;
+    sig_eff(0, 0) += pf;
+    sig_eff(1, 1) += pf;
+    sig_eff(2, 2) += pf;
+    out.work = ddot(sig_eff, out.dep);
+    sigma = sig;
+    evp += dv;
+    return true;
+  }
+
+  /// Consistency bisection (Homel et al. 2015 §5): the plastic volumetric strain increment d with
+  /// d = (increment of the non-hardening return onto the surface at evp + d). phi(d) = inc(d) - d is
+  /// decreasing for a hardening cap and for pore pressure, so [d0, 0] brackets the root; Illinois
+  /// regula falsi. If the surface softens (a retracting cap overtaking the stress) the bracket is
+  /// widened; if no root is found the explicit increment d0 is kept.
+  static double consistent_increment(const Params& p, double evp, double c, double K, double I1_t, double rj2_t,
+                                     double d0, GeoPoint& pt, double& pf) {
+    auto phi = [&](double d, GeoPoint& q, double& pfq) { return return_at(p, evp + d, c, K, I1_t, rj2_t, q, pfq) - d; };
+    double a = 0.0, fa = d0;  // phi(0) = d0
+    double b = d0;
+    GeoPoint qb;
+    double pfb;
+    double fb = phi(b, qb, pfb);
+    for (int grow = 0; grow < 30 && (fa > 0.0) == (fb > 0.0) && fb != 0.0; ++grow) {
+      a = b;
+      fa = fb;
+      b *= 2.0;
+      fb = phi(b, qb, pfb);
+    }
+    if ((fa > 0.0) == (fb > 0.0) && fb != 0.0) return d0;  // no root: explicit increment (pt, pf from d0)
+    const double tol = 1e-13 * std::abs(d0) + 1e-300;
+    double m = b;
+    GeoPoint qm = qb;
+    double pfm = pfb;
+    double fm = fb;
+    int side = 0;
+    for (int it = 0; it < 100 && fm != 0.0 && std::abs(b - a) > tol; ++it) {
+      m = (a * fb - b * fa) / (fb - fa);
+      if (!(std::min(a, b) < m && m < std::max(a, b))) m = 0.5 * (a + b);
+      fm = phi(m, qm, pfm);
+      if ((fm > 0.0) == (fa > 0.0)) {
+        a = m;
+        fa = fm;
+        if (side == -1) fb *= 0.5;
+        side = -1;
+      } else {
+        b = m;
+        fb = fm;
+        if (side == 1) fa *= 0.5;
+        side = 1;
+      }
+    }
+    pt = qm;
+    pf = pfm;
+    return m;
+  }
+
+  static void update(const Params& p, const PointKinematics& k, Mat3& sigma, double* st, PointResult& res) {
+    const Mat3 eps = k.dt * k.D_bar;
+    const Mat3 sigma_n = sigma;
+    double eqps = st[0], evp = st[1];
+    // Substep count from the trial-stress increment against the surface size and the change of
+    // the bulk modulus over the step.
+    const double pf_n = pore_pressure(p, evp);
+    const double i1e = trace(sigma) + 3.0 * pf_n;
+    double K, G;
+    moduli(p, i1e, evp, pf_n, K, G);
+    const double tr_e = trace(eps);
+    const double dsig = std::sqrt(9.0 * K * K * tr_e * tr_e / 3.0 + 4.0 * G * G * ddot(deviator(eps), deviator(eps)));
+    const GeoSurface s = surface(p, evp);
+    double n_need = std::ceil(4.0 * dsig / surface_size(p, s, i1e));
+    if (p.B1 > 0.0) {
+      double K2, G2;
+      moduli(p, i1e + 3.0 * K * tr_e, evp, pf_n, K2, G2);
+      n_need = std::max(n_need, std::ceil(4.0 * std::abs(K2 - K) / K));
+    }
+    const int n = std::isfinite(n_need) ? static_cast<int>(std::clamp(n_need, 1.0, double(p.max_substeps)))
+                                        : p.max_substeps;
+    const Mat3 deps = (1.0 / n) * eps;
+    // Duvaut-Lions weight of the inviscid solution per substep (1: rate independent).
+    double w = 1.0;
+    if (p.T1 > 0.0) {
+      const double rate = std::sqrt(2.0 / 3.0 * ddot(k.D_bar, k.D_bar));
+      const double tau = p.T2 == 0.0 ? p.T1 : p.T1 * std::pow(rate, -p.T2);
+      const double r = (k.dt / n) / tau;
+      w = std::isfinite(tau) ? r / (1.0 + r) : 0.0;
+    }
+    Mat3 dep_sum{};
+    double work = 0.0, d_eqps = 0.0;
+    for (int i = 0; i < n; ++i) {
+      Substep sub;
+      if (w == 1.0) {
+        if (substep(p, sigma, evp, deps, sub)) {
+          dep_sum += sub.dep;
+          work += sub.work;
+          d_eqps += sub.d_eqps;
+        }
+        continue;
+      }
+      // Rate dependent: blend the elastic trial and the inviscid update (Simo & Hughes §2.7.3).
+      const Mat3 sig0 = sigma;
+      const double evp0 = evp;
+      Mat3 sig_inv = sigma;
+      if (!substep(p, sig_inv, evp, deps, sub)) {
+        sigma = sig_inv;
+        continue;
+      }
+      Mat3 sig_t = sig0;
+      double evp_t = evp0;
+      elastic_trial(p, sig_t, evp_t, deps);
+      sigma = (1.0 - w) * sig_t + w * sig_inv;
+      evp = evp0 + w * (evp - evp0);
+      dep_sum += w * sub.dep;
+      work += w * sub.work;
+      d_eqps += w * sub.d_eqps;
+    }
+    eqps += d_eqps;
+    st[0] = eqps;
+    st[1] = evp;
+    st[2] = n;
+    if (p.slot_porosity >= 0) {
+      st[p.slot_porosity] = p.crush.porosity(evp);
+      // After full crush there is no cap (X = -inf); the field keeps a finite marker, -DBL_MAX.
+      st[p.slot_cap] = std::max(p.crush.cap(evp), -std::numeric_limits<double>::max());
+    }
+    if (p.slot_pore_pressure >= 0) st[p.slot_pore_pressure] = pore_pressure(p, evp);
+    res.eqps = eqps;
+    res.delta_eqps = d_eqps;
+    res.plastic_work_density = work;
+    res.drucker_product = ddot(sigma - sigma_n, dep_sum);
+  }
+
+  /// Elastic trial of one substep (the moduli at its start).
+  static void elastic_trial(const Params& p, Mat3& sigma, double evp, const Mat3& deps) {
+    const double pf = pore_pressure(p, evp);
+    double K, G;
+    moduli(p, trace(sigma) + 3.0 * pf, evp, pf, K, G);
+    sigma += (2.0 * G) * deps;
+    const double iso = (K - 2.0 * G / 3.0) * trace(deps);
+    sigma(0, 0) += iso;
+    sigma(1, 1) += iso;
+    sigma(2, 2) += iso;
+  }
+
+  /// Dilatational wave speed with the stiffest moduli the state allows: K = B0 + B1 (saturated by
+  /// Biot-Gassmann at the current porosity with a pore fluid), G at its largest.
+  static double wave_speed(const Params& p, const double* state, double J) {
+    const double evp = state[1];
+    const double Kd = p.B0 + p.B1;
+    const double K = p.fluid() ? biot_gassmann(Kd, p.Km, p.Kf, p.crush.porosity(evp)) : Kd;
+    double G = p.G0;
+    if (p.poisson) G = std::max(1.5 * p.B0 * (1 - 2 * p.nu_low) / (1 + p.nu_low),
+                                1.5 * Kd * (1 - 2 * (p.nu_low + p.nu_gain)) / (1 + p.nu_low + p.nu_gain));
+    return std::sqrt((K + 4.0 * G / 3.0) * J / p.density);
+  }
+};
+
+}  // namespace ballista

@@ -1,0 +1,169 @@
+#pragma once
+// The yield surface, crush curve and pore-fluid laws of the sandstone geomodel (geomodel.hpp).
+// Pure functions of the parameters and the plastic volumetric strain; the return algorithm
+// (geomodel_return.hpp) and the verification tests use them.
+//
+// Sign convention: tension positive, I1 = tr(sigma), J2 = s:s/2. "Effective" quantities carry the
+// pore pressure as an isotropic backstress (Homel, Guilkey & Brannon, Acta Mech. 227 (2016)
+// 279-310, §2): I1' = I1 - zeta with zeta = -3 pf, i.e. I1' = I1 + 3 pf.
+//
+// Yield (Arenisca form; thesis seed 000 §4.1.1.3-4.1.1.4, Fig. 4.3):
+//   sqrt(J2) <= Ff(I1') Fc(I1')
+//   Ff(I1) = a1 - a3 exp(a2 I1) - a4 I1        limit (shear) surface, Fossum & Brannon, Kayenta
+//                                               (SAND2009-2282) eq. for Ff; linear Drucker-Prager
+//                                               Ff = FSLOPE (PEAKI1 - I1) is a2 = a3 = 0 and is
+//                                               thesis eq. 4.2-4.4 with FSLOPE = r0/(sqrt6 z0),
+//                                               PEAKI1 = sqrt3 z0.
+//   Fc(I1) = sqrt(1 - ((kappa - I1)/(kappa - X))^2) for X <= I1 < kappa, 1 for I1 >= kappa
+//                                               elliptical cap; its I1 radius is CR times its
+//                                               sqrt(J2) radius: kappa - X = CR Ff(kappa)
+//                                               (thesis Fig. 4.3; for linear Ff this is
+//                                               kappa = (X + CR FSLOPE PEAKI1)/(1 + CR FSLOPE)).
+// Crush curve, cap position X against plastic volumetric strain evp (thesis eq. 4.5-4.6; the
+// dilatation branch is the Arenisca 3 form, whose porosity is the second line of eq. 4.5):
+//   evp <= 0: X = P0 + ln(1 + evp/P3)/P1,    evp > 0: X = P0 (1 + evp)^(1/(P0 P1 P3))
+//   porosity phi = 1 - exp(-(P3 + evp))       (eq. 4.6; phi0 = 1 - exp(-P3))
+// Eliminating evp gives eq. 4.5 exactly: phi = 1 - exp(-P3 exp(P1 (X - P0))) in compaction.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ballista {
+
+/// Limit (shear) surface Ff(I1) = a1 - a3 exp(a2 I1) - a4 I1 (Kayenta/Arenisca form).
+struct GeoLimit {
+  double a1 = 0, a2 = 0, a3 = 0, a4 = 0;
+  double peak_i1 = std::numeric_limits<double>::infinity();  ///< Ff(peak_i1) = 0 (inf: no vertex)
+
+  double value(double i1) const { return a3 == 0.0 ? a1 - a4 * i1 : a1 - a3 * std::exp(a2 * i1) - a4 * i1; }
+  /// dFf/dI1 (<= 0).
+  double slope(double i1) const { return a3 == 0.0 ? -a4 : -a2 * a3 * std::exp(a2 * i1) - a4; }
+
+  /// Coefficients from the user parameters (derived here from Ff(PEAKI1) = 0, -Ff'(PEAKI1) =
+  /// FSLOPE, Ff -> STREN + YSLOPE |I1| as I1 -> -inf):
+  ///   fslope = 0:            von Mises, Ff = stren, no vertex;
+  ///   stren not given:       linear Drucker-Prager, a1 = FSLOPE PEAKI1, a4 = FSLOPE;
+  ///   stren given:           a1 = STREN, a4 = YSLOPE, a2 = (FSLOPE - YSLOPE)/(STREN - YSLOPE PEAKI1),
+  ///                          a3 = (STREN - YSLOPE PEAKI1) exp(-a2 PEAKI1).
+  static GeoLimit make(double peak_i1, double fslope, double stren, double yslope) {
+    GeoLimit f;
+    if (fslope == 0.0) {
+      f.a1 = stren;
+      return f;
+    }
+    f.peak_i1 = peak_i1;
+    if (std::isnan(stren)) {
+      f.a1 = fslope * peak_i1;
+      f.a4 = fslope;
+      return f;
+    }
+    f.a1 = stren;
+    f.a4 = yslope;
+    f.a2 = (fslope - yslope) / (stren - yslope * peak_i1);
+    f.a3 = (stren - yslope * peak_i1) * std::exp(-f.a2 * peak_i1);
+    return f;
+  }
+};
+
+/// Crush curve and porosity (thesis seed 000 eq. 4.5-4.6).
+struct GeoCrushCurve {
+  double p0 = 0, p1 = 0, p3 = 0;  ///< P0 (Pa, < 0), P1 (1/Pa), P3 = -ln(1 - phi0)
+  bool fixed = false;             ///< cap frozen at P0 (no hardening)
+
+  bool active() const { return p3 > 0.0; }
+  /// Cap position X(evp); -inf at full crush (evp <= -P3): no porosity left, no cap.
+  double cap(double evp) const {
+    if (fixed || evp == 0.0) return p0;
+    if (evp < 0.0) {
+      const double r = 1.0 + evp / p3;
+      return r > 0.0 ? p0 + std::log(r) / p1 : -std::numeric_limits<double>::infinity();
+    }
+    return p0 * std::pow(1.0 + evp, 1.0 / (p0 * p1 * p3));
+  }
+  /// Porosity phi = 1 - exp(-(P3 + evp)) (eq. 4.6), clamped at 0 past full crush and, after
+  /// extreme dilatation (P3 + evp > 37, where 1 - exp(-x) rounds to 1), at the largest double
+  /// below 1: the porosity of a body is < 1 however far it has been torn apart.
+  double porosity(double evp) const {
+    return std::clamp(-std::expm1(-(p3 + evp)), 0.0, 1.0 - std::numeric_limits<double>::epsilon() / 2);
+  }
+  double initial_porosity() const { return -std::expm1(-p3); }
+};
+
+/// The cap's branch point kappa: kappa - X = CR Ff(kappa). g(k) = k - X - CR Ff(k) is increasing
+/// and convex (Ff' <= 0, Ff'' <= 0), so Newton from kappa = PEAKI1 (g > 0) converges
+/// monotonically. Closed form for linear and constant Ff.
+inline double geo_cap_kappa(const GeoLimit& f, double cap_ratio, double X) {
+  if (!std::isfinite(X)) return X;
+  if (f.a3 == 0.0) return (X + cap_ratio * f.a1) / (1.0 + cap_ratio * f.a4);  // Ff linear in I1
+  double k = f.peak_i1;
+  for (int it = 0; it < 60; ++it) {
+    const double g = k - X - cap_ratio * f.value(k);
+    const double dk = g / (1.0 - cap_ratio * f.slope(k));
+    k -= dk;
+    if (std::abs(dk) <= 1e-15 * (std::abs(k) + std::abs(X))) break;
+  }
+  return k;
+}
+
+/// The whole yield surface at one state: sqrt(J2) <= g(I1') on [X, PEAKI1].
+struct GeoSurface {
+  GeoLimit limit;
+  double X = -std::numeric_limits<double>::infinity();      ///< cap tip (effective I1)
+  double kappa = -std::numeric_limits<double>::infinity();  ///< cap branch point
+
+  double lo() const { return X; }
+  double hi() const { return limit.peak_i1; }
+  /// Fc^2 (cap function squared); 1 outside the cap region.
+  double cap2(double i1) const {
+    if (i1 >= kappa) return 1.0;
+    const double u = (kappa - i1) / (kappa - X);
+    return std::max(0.0, 1.0 - u * u);
+  }
+  /// g(I1) = Ff Fc, the largest sqrt(J2) at this I1 (0 outside [X, PEAKI1]).
+  double radius(double i1) const {
+    if (!(i1 >= X && i1 <= limit.peak_i1)) return 0.0;
+    return std::max(0.0, limit.value(i1)) * std::sqrt(cap2(i1));
+  }
+  /// Yield function in stress units: sqrt(J2) - g(I1), +inf-like positive outside [X, PEAKI1].
+  double f(double i1, double rootj2) const {
+    if (i1 > limit.peak_i1) return rootj2 + (i1 - limit.peak_i1);
+    if (i1 < X) return rootj2 + (X - i1);
+    return rootj2 - radius(i1);
+  }
+};
+
+/// Undrained pore pressure pf(evp) of a saturated rock whose pore volume changes by the plastic
+/// volumetric strain: the matrix grains (Km) and the pore fluid (Kf) both compress under the
+/// pore-pressure change dp = pf - pf0 (logarithmic, constant moduli), and together fill the
+/// plastic volume (an engineering model after Homel et al. 2016, §3, solved here in closed
+/// implicit form rather than integrated):
+///   exp(evp) = (1 - phi0) exp(-dp/Km) + phi0 exp(-dp/Kf),   pf >= 0 (cavitation).
+/// The right side is decreasing and convex in dp, so Newton from dp = -pf0 (pf = 0) converges
+/// monotonically; if the left side exceeds the right at pf = 0 the fluid has cavitated.
+inline double geo_pore_pressure(double evp, double phi0, double pf0, double Kf, double Km) {
+  const double target = std::exp(evp);
+  auto rhs = [&](double dp, double& d) {
+    const double em = (1.0 - phi0) * std::exp(-dp / Km), ef = phi0 * std::exp(-dp / Kf);
+    d = -em / Km - ef / Kf;
+    return em + ef - target;
+  };
+  double dp = -pf0, d = 0.0;
+  if (rhs(dp, d) <= 0.0) return 0.0;
+  for (int it = 0; it < 100; ++it) {
+    const double g = rhs(dp, d);
+    const double step = g / d;
+    dp -= step;
+    if (std::abs(step) <= 1e-14 * (std::abs(dp) + pf0) + 1e-300) break;
+  }
+  return std::max(0.0, pf0 + dp);
+}
+
+/// Biot-Gassmann saturated bulk modulus (Gassmann 1951; e.g. Mavko, Mukerji & Dvorkin, The Rock
+/// Physics Handbook, §6.3): K_sat = Kd + (1 - Kd/Km)^2 / (phi/Kf + (1 - phi)/Km - Kd/Km^2).
+inline double biot_gassmann(double Kd, double Km, double Kf, double phi) {
+  const double b = 1.0 - Kd / Km;
+  const double den = phi / Kf + (1.0 - phi) / Km - Kd / (Km * Km);
+  return den > 0.0 ? Kd + b * b / den : Kd;
+}
+
+}  // namespace ballista

@@ -1,0 +1,286 @@
+// Geomodel (materials/geomodel*.hpp): the surface, crush-curve and pore-fluid laws against their
+// defining equations, the transformed-space return against closed forms, and single-element paths
+// against exact solutions.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "material_driver.hpp"
+#include "materials/geomodel.hpp"
+
+namespace ballista {
+namespace {
+
+using test::PointDriver;
+
+// Thesis seed 000 eq. 4.2-4.4: the linear surface r/r0 + z/z0 = 1 (r = sqrt(2 J2), z = I1/sqrt3)
+// is J2 + alpha (I1 - I1max)^2 = 0 with alpha = -r0^2/(6 z0^2), I1max = sqrt3 z0; the model's
+// FSLOPE = r0/(sqrt6 z0), PEAKI1 = sqrt3 z0 must describe the same set.
+TEST(GeomodelSurface, LinearLimitIsThesisEq42To44) {
+  const double r0 = 50.0, z0 = 50.0 * std::sqrt(3.0);
+  const GeoLimit f = GeoLimit::make(std::sqrt(3.0) * z0, r0 / (std::sqrt(6.0) * z0), NAN, 0.0);
+  const double alpha = -r0 * r0 / (6.0 * z0 * z0), i1max = std::sqrt(3.0) * z0;
+  for (double i1 : {-900.0, -450.0, 0.0, 100.0, 149.0}) {
+    const double j2 = f.value(i1) * f.value(i1);
+    EXPECT_NEAR(j2 + alpha * (i1 - i1max) * (i1 - i1max), 0.0, 1e-12 * (1.0 + j2)) << i1;
+    EXPECT_NEAR(std::sqrt(2.0 * j2) / r0 + (i1 / std::sqrt(3.0)) / z0, 1.0, 1e-14) << i1;
+  }
+}
+
+// The nonlinear form is fixed by Ff(PEAKI1) = 0, -Ff'(PEAKI1) = FSLOPE and the high-pressure
+// asymptote STREN + YSLOPE |I1| (geomodel_surface.hpp): checked to round-off.
+TEST(GeomodelSurface, NonlinearLimitMeetsItsDefiningConditions) {
+  const double peak = 20e6, fs = 0.45, st = 150e6, ys = 0.05;
+  const GeoLimit f = GeoLimit::make(peak, fs, st, ys);
+  EXPECT_NEAR(f.value(peak), 0.0, 1e-9 * st);
+  EXPECT_NEAR(-f.slope(peak), fs, 1e-13);
+  const double far = -1e11;  // exp(a2 I1) underflows: the asymptote holds exactly
+  EXPECT_NEAR(f.value(far), st + ys * std::abs(far), 1e-12 * f.value(far));
+  // The saturating form (YSLOPE = 0) tends to STREN.
+  const GeoLimit g = GeoLimit::make(peak, fs, st, 0.0);
+  EXPECT_NEAR(g.value(-1e11), st, 1e-6);
+  EXPECT_NEAR(-g.slope(peak), fs, 1e-13);
+}
+
+// kappa - X = CR Ff(kappa) (the cap's I1 radius is CR times its sqrt(J2) radius), for the
+// closed form (linear Ff) and the Newton solve (nonlinear Ff).
+TEST(GeomodelSurface, CapBranchPointSatisfiesTheCapRatio) {
+  for (const GeoLimit& f : {GeoLimit::make(30e6, 0.5, NAN, 0.0), GeoLimit::make(20e6, 0.45, 150e6, 0.05)}) {
+    for (double X : {-50e6, -300e6, -3e9}) {
+      const double k = geo_cap_kappa(f, 0.6, X);
+      EXPECT_NEAR(k - X, 0.6 * f.value(k), 1e-12 * std::abs(X)) << X;
+      EXPECT_GT(k, X);
+      EXPECT_LT(k, f.peak_i1);
+    }
+  }
+}
+
+// Crush curve: eliminating evp between X(evp) and eq. 4.6 must give thesis eq. 4.5 on both
+// branches, phi = 1 - exp(-P3 exp(P1 (X - P0))) (X < P0) and
+// phi = 1 - exp(1 - (X/P0)^(P0 P1 P3) - P3) (X >= P0); and X is C1 at evp = 0.
+TEST(GeomodelSurface, CrushCurveReproducesThesisEq45) {
+  GeoCrushCurve c;
+  c.p0 = -300e6;
+  c.p1 = 5e-9;
+  c.p3 = 0.2;
+  for (double evp : {-0.19, -0.1, -0.01, 0.0, 0.01, 0.3, 2.0}) {
+    const double X = c.cap(evp), phi = c.porosity(evp);
+    const double eq45 = X < c.p0 ? 1.0 - std::exp(-c.p3 * std::exp(c.p1 * (X - c.p0)))
+                                 : 1.0 - std::exp(1.0 - std::pow(X / c.p0, c.p0 * c.p1 * c.p3) - c.p3);
+    EXPECT_NEAR(phi, eq45, 1e-13) << evp;
+  }
+  EXPECT_NEAR(c.porosity(0.0), 1.0 - std::exp(-0.2), 1e-15);
+  const double h = 1e-7, slope_c = (c.cap(0.0) - c.cap(-h)) / h, slope_d = (c.cap(h) - c.cap(0.0)) / h;
+  EXPECT_NEAR(slope_c, 1.0 / (c.p1 * c.p3), 1e-5 / (c.p1 * c.p3));  // dX/devp = 1/(P1 P3) at 0
+  EXPECT_NEAR(slope_d, 1.0 / (c.p1 * c.p3), 1e-5 / (c.p1 * c.p3));
+  EXPECT_EQ(c.cap(-0.2), -INFINITY);  // full crush: no cap left
+  EXPECT_EQ(c.porosity(-0.25), 0.0);
+  EXPECT_LT(c.porosity(60.0), 1.0);   // torn apart, still < 1
+}
+
+// Pore pressure: the root of exp(evp) = (1-phi0) exp(-dp/Km) + phi0 exp(-dp/Kf), zero in
+// dilatation past the cavitation strain, and pf0 at evp = 0.
+TEST(GeomodelSurface, PorePressureSolvesTheSaturationEquation) {
+  const double phi0 = 0.18, Kf = 2.2e9, Km = 37e9;
+  for (double pf0 : {0.0, 20e6}) {
+    EXPECT_NEAR(geo_pore_pressure(0.0, phi0, pf0, Kf, Km), pf0, 1e-6);
+    for (double evp : {-0.001, -0.05, -0.15}) {
+      const double pf = geo_pore_pressure(evp, phi0, pf0, Kf, Km), dp = pf - pf0;
+      EXPECT_NEAR((1 - phi0) * std::exp(-dp / Km) + phi0 * std::exp(-dp / Kf), std::exp(evp), 1e-14) << evp;
+      EXPECT_GT(pf, pf0);
+    }
+  }
+  EXPECT_EQ(geo_pore_pressure(0.01, phi0, 0.0, Kf, Km), 0.0);  // dilatation of a fluid at 0: cavitated
+  // Small strain: dp = -evp / ((1-phi0)/Km + phi0/Kf) to first order.
+  const double e = -1e-6;
+  EXPECT_NEAR(geo_pore_pressure(e, phi0, 0.0, Kf, Km), -e / ((1 - phi0) / Km + phi0 / Kf), 1e-5 * 1e4);
+}
+
+// Biot-Gassmann limits: dry (Kf -> 0) gives Kd; an empty frame (Kd = 0) gives Wood's (Reuss)
+// average 1/(phi/Kf + (1-phi)/Km); stiff grains and Kd = Km leave K = Kd.
+TEST(GeomodelSurface, BiotGassmannLimits) {
+  EXPECT_NEAR(biot_gassmann(10e9, 37e9, 1e-3, 0.2), 10e9, 1e3);
+  EXPECT_NEAR(biot_gassmann(0.0, 37e9, 2.2e9, 0.2), 1.0 / (0.2 / 2.2e9 + 0.8 / 37e9), 1.0);
+  EXPECT_NEAR(biot_gassmann(37e9, 37e9, 2.2e9, 0.2), 37e9, 1.0);
+  EXPECT_GT(biot_gassmann(10e9, 37e9, 2.2e9, 0.2), 10e9);
+}
+
+// The return onto a linear Drucker-Prager cone (no cap) in transformed space has a closed form:
+// the projection of (zt, rt') on the line r' = c sqrt2 FSLOPE (PEAKI1 - sqrt3 z), or the vertex.
+TEST(GeomodelReturn, LinearConeMatchesTheClosedFormProjection) {
+  GeoSurface s;
+  s.limit = GeoLimit::make(150.0, 0.2357, NAN, 0.0);
+  const double c = 1.7;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double zp = 150.0 / std::sqrt(3.0), m = c * std::sqrt(2.0) * 0.2357 * std::sqrt(3.0);  // r' = m (zp - z)
+  int vertex = 0, face = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const double i1 = -1500.0 + 2500.0 * u(rng), rj2 = 600.0 * u(rng);
+    if (!(s.f(i1, rj2) > 0.0)) continue;
+    const GeoPoint p = geo_closest_point(s, c, i1, rj2);
+    // Closed form: foot of the perpendicular from (zt, rt') on the line through (zp, 0) with
+    // direction (-1, m)/sqrt(1+m^2), clipped at the vertex.
+    const double zt = i1 / std::sqrt(3.0), rt = c * std::sqrt(2.0) * rj2;
+    const double t = ((zt - zp) * -1.0 + rt * m) / (1.0 + m * m);
+    const double z = t > 0.0 ? zp - t : zp;
+    (t > 0.0 ? face : vertex)++;
+    EXPECT_NEAR(p.i1, std::sqrt(3.0) * z, 1e-9 * 1500.0) << i1 << " " << rj2;
+    EXPECT_NEAR(p.rootj2, s.radius(std::sqrt(3.0) * z), 1e-9 * 600.0);
+  }
+  EXPECT_GT(vertex, 50);  // both regimes were exercised
+  EXPECT_GT(face, 50);
+}
+
+// On the cap the returned point must be the closest: no surface sample is nearer (in the
+// transformed metric) than the returned point, to 1e-12 of the distance.
+TEST(GeomodelReturn, CapReturnIsTheClosestPoint) {
+  GeoSurface s;
+  s.limit = GeoLimit::make(20e6, 0.45, 150e6, 0.05);
+  s.X = -400e6;
+  s.kappa = geo_cap_kappa(s.limit, 0.6, s.X);
+  const double c = 1.3;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int k = 0; k < 300; ++k) {
+    const double i1 = -900e6 + 950e6 * u(rng), rj2 = 300e6 * u(rng);
+    if (!(s.f(i1, rj2) > 0.0)) continue;
+    const GeoPoint p = geo_closest_point(s, c, i1, rj2);
+    auto d2 = [&](double a, double b) {
+      const double dz = (a - i1) / std::sqrt(3.0), dr = c * std::sqrt(2.0) * (b - rj2);
+      return dz * dz + dr * dr;
+    };
+    const double best = d2(p.i1, p.rootj2);
+    for (int j = 0; j <= 20000; ++j) {
+      const double x = s.X + (s.limit.peak_i1 - s.X) * j / 20000.0;
+      ASSERT_GE(d2(x, s.radius(x)), best * (1.0 - 1e-9)) << "trial " << i1 << " " << rj2 << " sample " << x;
+    }
+    EXPECT_NEAR(p.rootj2, s.radius(p.i1), 1e-12 * 150e6);  // on the surface
+  }
+}
+
+ParamValues hydrostat_params() {
+  return {{"density", 2300.0}, {"bulk_modulus", 10e9}, {"shear_modulus", 7e9}, {"peak_i1", 30e6},
+          {"fslope", 0.5},     {"cap_ratio", 0.5},     {"crush_p0", -300e6}, {"crush_p1", 5e-9},
+          {"crush_p3", 0.2}};
+}
+
+// Hydrostatic compaction (CATALOGUE A4 with cap evolution): with constant K the exact state at
+// total volumetric strain ev is the root of ev = evp + X(evp)/(3K) (the stress sits at the cap
+// tip), whatever the step size; one large step and 200 small ones must both land on it.
+TEST(GeomodelPath, HydrostaticCompactionFollowsTheCrushCurveExactly) {
+  const Geomodel::Params prm = Geomodel::make(hydrostat_params());
+  for (int steps : {1, 7, 200}) {
+    PointDriver d("geomodel", hydrostat_params());
+    const double ev_end = -0.12;
+    for (int s = 1; s <= steps; ++s) {
+      const double ev = ev_end * s / steps;
+      d.advance(std::exp(ev / 3.0) * Mat3::identity(), 1e-3);
+    }
+    // Exact: the model's strain increments are midpoint ones; their sum over a hydrostatic path is
+    // sum 2(l-1)/(l+1) per axis, which we replay to get the model's own ev.
+    double ev = 0.0, Fp = 1.0;
+    for (int s = 1; s <= steps; ++s) {
+      const double F = std::exp(ev_end * s / steps / 3.0);
+      ev += 3.0 * test::stretch_increment(F, Fp);
+      Fp = F;
+    }
+    double lo = -0.2 + 1e-15, hi = 0.0;  // g(evp) = evp + X/(3K) - ev, increasing in evp
+    for (int it = 0; it < 200; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (mid + prm.crush.cap(mid) / (3.0 * prm.B0) - ev > 0.0 ? hi : lo) = mid;
+    }
+    const double evp = 0.5 * (lo + hi);
+    const Mat3 sb = d.stress_bar();
+    EXPECT_NEAR(trace(sb), prm.crush.cap(evp), 1e-9 * 300e6) << steps << " steps";
+    EXPECT_NEAR(d.state("plastic_volumetric_strain"), evp, 1e-10) << steps;
+    EXPECT_NEAR(d.state("porosity"), 1.0 - std::exp(-(0.2 + evp)), 1e-10) << steps;
+    EXPECT_NEAR(std::sqrt(0.5 * ddot(deviator(sb), deviator(sb))), 0.0, 1e-6);  // on the hydrostat
+  }
+}
+
+// A fixed cap (cap_evolution: fixed) holds the stress at I1 = P0 under further compaction; the
+// pores still collapse (evp = ev - P0/(3K)), only the cap does not harden, and the porosity
+// reported is eq. 4.6 of that evp.
+TEST(GeomodelPath, FixedCapDwellsAtP0) {
+  ParamValues v = hydrostat_params();
+  v.choices["cap_evolution"] = "fixed";
+  PointDriver d("geomodel", v);
+  for (int s = 1; s <= 100; ++s) d.advance(std::exp(-0.05 * s / 100 / 3.0) * Mat3::identity(), 1e-3);
+  EXPECT_NEAR(trace(d.stress_bar()), -300e6, 1e-9 * 300e6);
+  double ev = 0.0, Fp = 1.0;  // the model's own (midpoint) volumetric strain
+  for (int s = 1; s <= 100; ++s) {
+    const double F = std::exp(-0.05 * s / 100 / 3.0);
+    ev += 3.0 * test::stretch_increment(F, Fp);
+    Fp = F;
+  }
+  const double evp = ev + 300e6 / (3.0 * 10e9);
+  EXPECT_NEAR(d.state("plastic_volumetric_strain"), evp, 1e-12);
+  EXPECT_NEAR(d.state("porosity"), 1.0 - std::exp(-(0.2 + evp)), 1e-12);
+  EXPECT_EQ(d.state("cap_i1"), -300e6);
+}
+
+// Tension on the hydrostat reaches the vertex I1 = PEAKI1 and then dilates plastically (evp
+// grows by the imposed volumetric strain), pulling the cap back toward zero.
+TEST(GeomodelPath, HydrostaticTensionDilatesAtTheVertex) {
+  PointDriver d("geomodel", hydrostat_params());
+  for (int s = 1; s <= 100; ++s) d.advance(std::exp(0.02 * s / 100 / 3.0) * Mat3::identity(), 1e-3);
+  EXPECT_NEAR(trace(d.stress_bar()), 30e6, 1e-9 * 30e6);
+  const double ev_el = 30e6 / (3.0 * 10e9);
+  EXPECT_NEAR(d.state("plastic_volumetric_strain"), 0.02 - ev_el, 1e-5);  // midpoint vs log strain: O(1e-7)
+  EXPECT_GT(d.state("cap_i1"), -300e6);
+  EXPECT_GT(d.state("porosity"), 1.0 - std::exp(-0.2));
+}
+
+// Saturated pores stiffen hydrostatic compaction (thesis Fig. 4.13): more pressure, less
+// porosity loss, rising pore pressure.
+TEST(GeomodelPath, PoreFluidStiffensCompaction) {
+  ParamValues wet = hydrostat_params();
+  wet["fluid_bulk_modulus"] = 2.2e9;
+  wet["matrix_bulk_modulus"] = 37e9;
+  PointDriver dry("geomodel", hydrostat_params()), sat("geomodel", wet);
+  double pf_prev = 0.0;
+  for (int s = 1; s <= 100; ++s) {
+    const Mat3 F = std::exp(-0.1 * s / 100 / 3.0) * Mat3::identity();
+    dry.advance(F, 1e-3);
+    sat.advance(F, 1e-3);
+    EXPECT_GE(sat.state("pore_pressure"), pf_prev);
+    pf_prev = sat.state("pore_pressure");
+  }
+  EXPECT_LT(trace(sat.stress_bar()), 2.0 * trace(dry.stress_bar()));
+  EXPECT_GT(sat.state("porosity"), dry.state("porosity") + 0.01);
+  EXPECT_GT(pf_prev, 100e6);
+}
+
+// Bad input names the key.
+TEST(GeomodelParams, InconsistentParametersAreRejected) {
+  auto rejects = [](ParamValues v, const std::string& key) {
+    try {
+      Geomodel::make(v);
+    } catch (const ParamError& e) {
+      EXPECT_EQ(e.param(), key) << e.what();
+      return;
+    }
+    ADD_FAILURE() << "accepted; expected an error on " << key;
+  };
+  ParamValues v = hydrostat_params();
+  v.erase("peak_i1");
+  rejects(v, "peak_i1");
+  v = hydrostat_params();
+  v.erase("crush_p1");
+  rejects(v, "crush_p1");
+  v = hydrostat_params();
+  v["fslope"] = 0.0;
+  rejects(v, "stren");
+  v = hydrostat_params();
+  v["crush_p3"] = 0.0;
+  v["fluid_bulk_modulus"] = 2.2e9;
+  rejects(v, "fluid_bulk_modulus");
+  v = hydrostat_params();
+  v["poisson_ratio_low"] = 0.2;
+  rejects(v, "poisson_ratio_gain");
+}
+
+}  // namespace
+}  // namespace ballista
