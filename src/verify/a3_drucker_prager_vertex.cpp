@@ -67,12 +67,6 @@ VerifyCase run_a3(const MaterialFactory& f, const A3Problem& pb) {
   if (!f.reduce_geo)
     return VerifyCase::not_applicable(f.model, id, title,
                                       "model has no reduce_geo hook (reduction to linear Drucker-Prager + cap)");
-  // The published answer needs non-associative flow with beta = 1/2 (drucker_prager_triaxial.hpp);
-  // GeoReduction has no field for it, so it is set through the contract's deck key `flow_beta`.
-  if (!declares_param(f, "flow_beta"))
-    return VerifyCase::not_applicable(
-        f.model, id, title,
-        "the published solution needs non-associative flow (beta = 1/2) and the model declares no flow_beta");
   const auto wall0 = std::chrono::steady_clock::now();
   GeoReduction g;
   g.density = pb.density;
@@ -81,8 +75,11 @@ VerifyCase run_a3(const MaterialFactory& f, const A3Problem& pb) {
   g.peak_i1 = A3Reference::peak_i1();
   g.fslope = A3Reference::fslope();
   g.cap_ratio = 0.5;  // irrelevant: no cap (p3 = 0)
-  ParamValues v = f.reduce_geo(g);
-  v["flow_beta"] = A3Reference::kBeta;
+  g.flow_beta = A3Reference::kBeta;  // the published answer needs beta = 1/2 (drucker_prager_triaxial.hpp)
+  const ParamValues v = f.reduce_geo(g);
+  if (v.empty() && v.choices.empty())
+    return VerifyCase::not_applicable(f.model, id, title,
+                                      "reduce_geo returns no parameters for non-associative flow (beta = 1/2)");
   const auto mat = make_hook_material(f, v, "reduce_geo");
 
   VerifyCase c;
@@ -115,13 +112,6 @@ VerifyCase run_a3(const MaterialFactory& f, const A3Problem& pb) {
   for (size_t k = 0; k < errs.size(); ++k)
     c.check(fmt::format("published stress at t = {:g}", A3Reference::t()[k + 1]), errs[k], tol);
 
-  // Dwell: the stress stays at its t = 1.5 value up to t = 2 (same measure and tolerance).
-  const size_t k15 = record_at(res, 1.5), k2 = record_at(res, 2.0);
-  double dwell = 0.0;
-  for (size_t k = k15; k <= k2; ++k)
-    dwell = std::max(dwell, frobenius(res.records[k].sigma - res.records[k15].sigma) / frobenius(published(2)));
-  c.check("dwell: |sigma(t) - sigma(1.5)| / |sigma_published(1.5)| for t in [1.5, 2]", dwell, tol);
-
   // Admissibility at every step, and the exact solution along the whole path for the plot (and a
   // check: the same measure against the exact integrator fed the model's own ln F increments).
   const DruckerPragerParams dp = A3Reference::params();
@@ -129,6 +119,7 @@ VerifyCase run_a3(const MaterialFactory& f, const A3Problem& pb) {
   double overshoot = -std::numeric_limits<double>::infinity(), err_path = 0.0, scale_path = 0.0;
   std::vector<double> t, s11, s22, s33, i1, rj2, a11, a22, ai1, arj2;
   const size_t n = res.records.size();
+  std::vector<Mat3> exact_sigma(n);
   for (size_t k = 0; k < n; ++k) {
     const DriveRecord& r = res.records[k];
     if (k > 0) {
@@ -141,6 +132,7 @@ VerifyCase run_a3(const MaterialFactory& f, const A3Problem& pb) {
     const double limit = dp.limit(trace(s));
     overshoot = std::max(overshoot, limit > 0.0 ? sqrt_j2 / limit - 1.0 : std::numeric_limits<double>::infinity());
     const Mat3 an = Mat3::diag(exact.sigma11(), exact.sigma22(), exact.sigma22());
+    exact_sigma[k] = an;
     err_path = std::max(err_path, frobenius(s - an));
     scale_path = std::max(scale_path, frobenius(an));
     if (k % static_cast<size_t>(pb.plot_every) == 0 || k + 1 == n) {
@@ -157,6 +149,18 @@ VerifyCase run_a3(const MaterialFactory& f, const A3Problem& pb) {
     }
   }
   err_path /= scale_path;
+
+  // Dwell: the stress stays at its t = 1.5 value up to t = 2 (same measure and tolerance). Exactly
+  // so only at the row ends: inside the row the linearly interpolated F makes a ln-strain path that
+  // bows off the flow direction M, and the exact solution itself leaves the dwell point by a few
+  // 1e-3 before returning at t = 2 (path independence on the flat cone); reported as a scalar.
+  const size_t k15 = record_at(res, 1.5), k2 = record_at(res, 2.0);
+  double dwell = 0.0, wander = 0.0;
+  for (size_t k = k15; k <= k2; ++k) {
+    dwell = std::max(dwell, frobenius(res.records[k].sigma - res.records[k15].sigma) / frobenius(published(2)));
+    wander = std::max(wander, frobenius(exact_sigma[k] - exact_sigma[k15]) / frobenius(published(2)));
+  }
+  c.check("dwell: |sigma(t) - sigma(1.5)| / |sigma_published(1.5)| for t in [1.5, 2]", dwell, tol);
   // A return that ends on the surface leaves f at its solver tolerance (1e-10 relative or round-off);
   // 1e-6 admits iterative returns and catches a wrong surface, which the 1 % stress tolerance might not.
   c.check("sqrt(J2) <= Ff(I1) (1 + 1e-6) at every step: max sqrt(J2)/Ff - 1", overshoot, 1e-6);
@@ -180,6 +184,7 @@ VerifyCase run_a3(const MaterialFactory& f, const A3Problem& pb) {
                {"max_error_steps", max_err[2]},
                {"convergence_order", order},
                {"dwell_error", dwell},
+               {"dwell_exact_wander", wander},
                {"max_yield_overshoot", overshoot},
                {"strain_drift", midpoint_strain_drift(res, 0) + midpoint_strain_drift(res, 1)}};
   c.finish();

@@ -17,8 +17,8 @@ struct A3Problem {
   int plot_every = 10;      ///< plotted series keep every n-th step
 };
 
-/// Runs A3 on the model's reduce_geo parameters (with flow_beta = 1/2); not applicable without
-/// the hook or without a `flow_beta` parameter.
+/// Runs A3 on the model's reduce_geo parameters (GeoReduction::flow_beta = 1/2); not applicable
+/// without the hook, or if it returns no parameters (a model without non-associative flow).
 VerifyCase run_a3(const MaterialFactory& f, const A3Problem& problem = {});
 
 }  // namespace ballista

@@ -1,15 +1,18 @@
 // CATALOGUE A4 through the single-element driver (problem: a4_hydrostatic_cap.hpp).
 //
 // Tolerance. The exact response is a function of the total volumetric strain alone
-// (hydrostatic_crush.hpp): no step-size error for a model whose return enforces I1 = X(evp) at the
-// end of each step (it is exact up to its solver tolerance and the midpoint-vs-ln strain drift,
-// ~1e-12 here). A model that updates the cap explicitly (X of the start-of-step evp) lags by
-// about one step's cap movement, Delta X ~ 3K Delta ev X'/(3K + X') per step, i.e. 1e-3 of the
-// range of I1 with 1000 steps; the tolerance 1e-3 of the largest |I1| of each leg admits that and
-// catches any error in the crush curve, its branch, or the elastic split ev = evp + I1/(3K)
-// (percent-level). The plastic strain and porosity tolerances follow at fixed total strain:
-// an I1 error delta moves evp by delta/(3K), and the porosity (eq. 4.6) by at most as much.
-// The observed I1 errors at N/2 and N steps give the convergence order in the scalars.
+// (hydrostatic_crush.hpp): no step-size error for a return that enforces I1 = X(evp) at the end of
+// each step (the geomodel's consistency bisection, Homel et al. 2015, converges to 1e-13 of the
+// step's increment). What remains is solver tolerance and round-off accumulated over 1000 steps,
+// plus the midpoint-vs-ln strain drift (~1e-12): observed ~2e-8 of max |I1| on the geomodel. The
+// tolerance 1e-6 of the largest |I1| of each leg leaves a factor 50 over that and catches a crush
+// curve, branch or elastic split wrong by 1e-6, and a cap update lagging a step (an explicit
+// hardening update: ~3K Delta ev X'/(3K + X') per step, ~1e-3 of the range at 1000 steps), which
+// would be a visible first-order deviation from thesis eq. 4.5 rather than a round-off matter.
+// The plastic strain and porosity tolerances follow at fixed total strain: an I1 error delta moves
+// evp by delta/(3K), and the porosity (eq. 4.6) by at most as much.
+// The observed I1 errors at N/2 and N steps give the convergence order in the scalars (~0, or
+// noise, for a consistent return: there is no step error to converge).
 #include "verify/a4_hydrostatic_cap.hpp"
 
 #include <algorithm>
@@ -38,7 +41,7 @@ VerifyCase run_a4(const MaterialFactory& f, const A4Problem& pb) {
   c.test = id;
   c.title = title;
   c.plot = "a4";
-  const double tol = 1e-3, K3 = 3.0 * rock.bulk;
+  const double tol = 1e-6, K3 = 3.0 * rock.bulk;
 
   // (a) fixed cap.
   const auto fixed = make_hook_material(f, f.reduce_geo(rock.reduction(true)), "reduce_geo (fixed cap)");
@@ -63,9 +66,9 @@ VerifyCase run_a4(const MaterialFactory& f, const A4Problem& pb) {
   c.error_measure = "max over both runs and all steps of |I1 - exact| / max |exact I1|; exact = hydrostatic "
                     "response in ev = 3 ln lambda (elastic, cap dwell / crush curve)";
   c.tolerance_justification =
-      "exact response has no step error; 1e-3 admits an explicit cap update lagging one step (1000 steps) and "
-      "catches a wrong crush curve, branch or elastic split (percent level); evp and porosity: the same at fixed "
-      "total strain, delta I1/(3K)";
+      "exact response has no step error for a consistent (implicit) cap return: 1e-6 is 50x the observed solver "
+      "and round-off level (2e-8) and catches a crush curve, branch or elastic split wrong by 1e-6 and a one-step "
+      "cap lag (1e-3); evp and porosity: the same at fixed total strain, delta I1/(3K)";
   c.check("(a) fixed cap: I1 vs exact (elastic, then dwell at P0)", ha.max_i1_error, tol);
   c.check("(a) fixed cap: dwell, |I1 - P0| / |P0| on the cap", dwell, tol);
   c.check("(a) on the hydrostat: max sqrt(J2) / max |I1| (isotropic model: round-off)", ha.max_shear, 1e-9);

@@ -4,12 +4,6 @@
 
 namespace ballista {
 
-bool declares_param(const MaterialFactory& f, const std::string& name) {
-  for (const ParamSpec& p : f.params)
-    if (p.name == name) return true;
-  return false;
-}
-
 int state_index(const DriveResult& r, const std::string& name) {
   for (size_t k = 0; k < r.state_names.size(); ++k)
     if (r.state_names[k] == name) return static_cast<int>(k);

@@ -9,9 +9,6 @@
 
 namespace ballista {
 
-/// True if the model declares a (numeric or word) parameter of that name.
-bool declares_param(const MaterialFactory& f, const std::string& name);
-
 /// Index of state field `name` in the driver's records, or -1 if the model has no such field.
 int state_index(const DriveResult& r, const std::string& name);
 

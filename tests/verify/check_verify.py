@@ -4,8 +4,7 @@
 Asserts: exit status 0; OUT/verify.json parses; every test passed or is not applicable with a
 reason (none failed); every model `ballista info` lists has all ten tests (A1, A2, A2-iso, A2-kin,
 A3, A4, A5, A5-fluid, A6-objectivity, A6-tangent) and passed A6-objectivity (CATALOGUE A6 applies to
-every model); A3-A5 are not applicable only with a reason naming the missing hook (reduce_geo) or
-parameter (flow_beta);
+every model); A3-A5 are not applicable only with a reason naming the hook (reduce_geo);
 every test with a plot has a PNG; OUT/report.html exists and every image it references exists and
 is a PNG. Then, with BALLISTA_PYTHON pointing at a missing interpreter and at one without
 matplotlib: exit status 4, a message naming the interpreter and matplotlib, verify.json written.
@@ -107,7 +106,7 @@ def main():
         if missing:
             fail("model {} lacks tests {}".format(m, missing))
         for x in GEO_TESTS:
-            if have[x]["status"] == "not_applicable" and not re.search(r"reduce_geo|flow_beta", have[x]["reason"]):
+            if have[x]["status"] == "not_applicable" and not re.search(r"reduce_geo", have[x]["reason"]):
                 fail("model {} {}: not applicable for an unexpected reason ({})".format(m, x, have[x]["reason"]))
         if have["A6-objectivity"]["status"] != "pass":
             fail("model {}: A6-objectivity must run and pass for every model ({})".format(

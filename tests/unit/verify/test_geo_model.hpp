@@ -2,8 +2,9 @@
 // A test-only pressure-dependent model for the A3-A5 suite tests: hypoelastic, linear
 // Drucker-Prager cone with non-associative flow (beta), closed-form return (exact on the flat
 // cone), and a crush-curve cap that acts on the hydrostat only (enough for A4/A5, which never
-// leave it). Variants: 0 correct; 1 ignores flow_beta (associative flow: A3 must fail); 2 uses a
-// crush curve with P1 doubled (A4/A5 must fail). Not registered; the state fields follow the
+// leave it). Variants: 0 correct; 1 ignores GeoReduction::flow_beta (associative flow: A3 must fail); 2 uses a
+// crush curve with P1 doubled (A4/A5 must fail); 3 updates the cap explicitly (the stress returns to
+// the start-of-step cap X(evp_n): a one-step lag, first order, which A4/A5 must notice). Not registered; the state fields follow the
 // geomodel contract (notes4/geomodel_spec.md).
 #include <cmath>
 
@@ -32,7 +33,7 @@ struct TestGeoHydro {
   }
   static ParamValues with_variant(const GeoReduction& g, int variant) {
     return {{"density", g.density}, {"bulk_modulus", g.bulk}, {"shear_modulus", g.shear}, {"peak_i1", g.peak_i1},
-            {"fslope", g.fslope},   {"flow_beta", 1.0},       {"crush_p0", g.p0},         {"crush_p1", g.p1},
+            {"fslope", g.fslope},   {"flow_beta", g.flow_beta},       {"crush_p0", g.p0},         {"crush_p1", g.p1},
             {"crush_p3", g.p3},     {"fixed_cap", g.fixed_cap ? 1.0 : 0.0}, {"variant", static_cast<double>(variant)}};
   }
   static ParamValues reduce_to_geo(const GeoReduction& g) { return with_variant(g, 0); }
@@ -65,8 +66,13 @@ struct TestGeoHydro {
       const double x = p.fixed > 0.0 ? p.p0 : c.cap(st[0]);
       if (i1 < x) {
         const double ev = st[0] + i1 / (3.0 * K);  // total volumetric strain (constant K)
-        st[0] = p.fixed > 0.0 ? ev - p.p0 / (3.0 * K) : solve_compaction(c, K, ev, st[0]);
-        i1 = p.fixed > 0.0 ? p.p0 : c.cap(st[0]);
+        if (p.variant == 3 && p.fixed <= 0.0) {
+          st[0] = ev - x / (3.0 * K);  // stress to the old cap, all excess strain plastic
+          i1 = x;
+        } else {
+          st[0] = p.fixed > 0.0 ? ev - p.p0 / (3.0 * K) : solve_compaction(c, K, ev, st[0]);
+          i1 = p.fixed > 0.0 ? p.p0 : c.cap(st[0]);
+        }
       }
       st[1] = -std::expm1(-(p.p3 + st[0]));
     }
