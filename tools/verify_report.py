@@ -213,7 +213,7 @@ def plot_a5_fluid(test, fig):
     ax1.set_xlabel(r"compressive volumetric strain $-\varepsilon_v$")
     ax1.set_ylabel("pressure $-I_1/3$ (MPa)")
     ax1.set_title("{} {}: fluid-filled pores (Fig. 4.13)".format(test["model"], test["test"]), fontsize=10)
-    ax1.legend(fontsize=7, loc="upper left")
+    ax1.legend(fontsize=7, loc="upper left", bbox_to_anchor=(0.0, 0.93))
     ax1.grid(alpha=0.3)
     stamp(ax1, test)
     ax2 = fig.add_subplot(1, 2, 2)
