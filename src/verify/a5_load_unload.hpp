@@ -18,7 +18,7 @@ namespace ballista {
 struct A5Problem {
   GeoSandstone rock;
   double evp3 = -0.05;            ///< plastic volumetric strain at the end of the first compaction (phi 0.2 -> 0.159)
-  double evp5 = 0.03;             ///< after dilatation (phi -> 0.222 > phi0: the dilatation branch of X)
+  double evp5 = 0.03;             ///< after dilatation: phi 0.224 > phi0, cap X = -57.9 MPa (dilatation branch)
   double final_fraction = 0.01;   ///< porosity left at 7, fraction of phi0 (near-full crush)
   double fluid_bulk = 2.2e9;      ///< water, Pa (A5-fluid)
   int substeps = 1000;            ///< driver steps per row

@@ -2,10 +2,11 @@
 // A test-only pressure-dependent model for the A3-A5 suite tests: hypoelastic, linear
 // Drucker-Prager cone with non-associative flow (beta), closed-form return (exact on the flat
 // cone), and a crush-curve cap that acts on the hydrostat only (enough for A4/A5, which never
-// leave it). Variants: 0 correct; 1 ignores GeoReduction::flow_beta (associative flow: A3 must fail); 2 uses a
-// crush curve with P1 doubled (A4/A5 must fail); 3 updates the cap explicitly (the stress returns to
-// the start-of-step cap X(evp_n): a one-step lag, first order, which A4/A5 must notice). Not registered; the state fields follow the
-// geomodel contract (notes4/geomodel_spec.md).
+// leave it). Variants: 0 correct; 1 ignores GeoReduction::flow_beta (associative flow: A3 must
+// fail); 2 uses a crush curve with P1 doubled (A4/A5 must fail); 3 updates the cap explicitly
+// (the stress returns to the start-of-step cap X(evp_n): a one-step lag, first order, which A4/A5
+// must notice). Not registered; the state fields follow the geomodel contract
+// (notes4/geomodel_spec.md).
 #include <cmath>
 
 #include "materials/material_adapter.hpp"

@@ -25,7 +25,8 @@ MaterialFactory geo_factory(int variant) {
 
 std::string describe(const VerifyCase& c) {
   std::string s = c.reason;
-  for (const auto& ch : c.checks) s += "\n  " + ch.name + ": " + std::to_string(ch.value) + " vs " + std::to_string(ch.limit);
+  for (const auto& ch : c.checks)
+    s += "\n  " + ch.name + ": " + std::to_string(ch.value) + " vs " + std::to_string(ch.limit);
   return s;
 }
 
@@ -75,7 +76,9 @@ TEST(VerifyGeo, NotApplicableWithoutHookOrNonAssociativeFlow) {
   }
   // A model whose hook cannot express beta = 1/2 returns no parameters: A3 is not applicable.
   MaterialFactory g = geo_factory(0);
-  g.reduce_geo = [](const GeoReduction& r) { return r.flow_beta == 1.0 ? test::TestGeoHydro::reduce_to_geo(r) : ParamValues{}; };
+  g.reduce_geo = [](const GeoReduction& r) {
+    return r.flow_beta == 1.0 ? test::TestGeoHydro::reduce_to_geo(r) : ParamValues{};
+  };
   const VerifyCase c = run_a3(g);
   EXPECT_EQ(c.status, VerifyStatus::NotApplicable);
   EXPECT_NE(c.reason.find("non-associative"), std::string::npos) << c.reason;
