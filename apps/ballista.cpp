@@ -70,8 +70,10 @@ void print_info() {
   try {
     const auto lib = ballista::MaterialPresetLibrary::load_default();
     std::cout << "\nMaterial presets (materials.<name>.preset; " << lib.file() << ")\n";
+    size_t width = 0;  // the name column fits the longest name
+    for (const auto& p : lib.presets()) width = std::max(width, p.name.size());
     for (const auto& p : lib.presets())
-      std::cout << fmt::format("  {:<24} {:<14} {}\n", p.name, p.model, p.description);
+      std::cout << fmt::format("  {:<{}} {:<14} {}\n", p.name, width, p.model, p.description);
   } catch (const std::exception& e) {
     std::cout << "\nMaterial presets: not available (" << e.what() << ")\n";
   }

@@ -266,16 +266,38 @@ struct Geomodel {
     K = (p.fluid() && pf > 0.0) ? biot_gassmann(Kd, p.Km, p.Kf, p.crush.porosity(evp)) : Kd;
   }
 
+  /// The yield function sqrt(J2) - Ff Fc at effective I1 `i1e` for cap position X, as
+  /// GeoSurface::f, without solving for kappa unless the point is under the cap: since
+  /// k - X - CR Ff(k) increases with k, I1' >= kappa exactly when I1' - X >= CR Ff(I1').
+  static double yield_value(const Params& p, double X, double i1e, double rj2) {
+    const double peak = p.limit.peak_i1;
+    if (i1e > peak) return rj2 + (i1e - peak);
+    if (i1e < X) return rj2 + (X - i1e);
+    const double ff = std::max(0.0, p.limit.value(i1e));
+    if (!std::isfinite(X) || i1e - X >= p.cap_ratio * ff) return rj2 - ff;
+    const double kappa = geo_cap_kappa(p.limit, p.cap_ratio, X);
+    const double u = (kappa - i1e) / (kappa - X);
+    return rj2 - ff * std::sqrt(std::max(0.0, 1.0 - u * u));
+  }
+
   /// Size of the yield surface against which a trial-stress increment is measured for substepping.
-  static double surface_size(const Params& p, const GeoSurface& s, double i1e) {
+  /// Half its extent along the hydrostat, or where that is unbounded, the larger of |PEAKI1| and
+  /// twice the shear strength at the current I1 (von Mises: twice sqrt(J2) at yield).
+  static double surface_size(const Params& p, double X, double i1e) {
+    const double hi = p.limit.peak_i1;
     double L;
-    if (std::isfinite(s.hi()) && std::isfinite(s.lo()))
-      L = 0.5 * (s.hi() - s.lo());
-    else if (std::isfinite(s.hi()))
-      L = std::max(std::abs(s.hi()), 2.0 * p.limit.value(std::min(i1e, s.hi())));
+    if (std::isfinite(hi) && std::isfinite(X))
+      L = 0.5 * (hi - X);
+    else if (std::isfinite(hi))
+      L = std::max(std::abs(hi), 2.0 * p.limit.value(std::min(i1e, hi)));
     else
-      L = 2.0 * p.limit.value(std::isfinite(s.kappa) ? s.kappa : i1e);
+      L = 2.0 * p.limit.a1;
     return std::max(L, 1e-9 * p.B0);
+  }
+
+  /// Cap position at evp (-inf without a cap).
+  static double cap_at(const Params& p, double evp) {
+    return p.crush.active() ? p.crush.cap(evp) : -std::numeric_limits<double>::infinity();
   }
 
   struct Substep {
@@ -289,23 +311,25 @@ struct Geomodel {
   static double return_at(const Params& p, double evp, double c, double K, double I1_t, double rj2_t, GeoPoint& out,
                           double& pf_out) {
     pf_out = pore_pressure(p, evp);
-    const GeoSurface s = surface(p, evp);
     const double i1e_t = I1_t + 3.0 * pf_out;
-    if (!(s.f(i1e_t, rj2_t) > 0.0)) {
+    if (!(yield_value(p, cap_at(p, evp), i1e_t, rj2_t) > 0.0)) {
       out = {i1e_t, rj2_t};
       return 0.0;
     }
-    out = geo_closest_point(s, c, i1e_t, rj2_t);
+    out = geo_closest_point(surface(p, evp), c, i1e_t, rj2_t);
     const double I1_new = out.i1 - 3.0 * pf_out;
     return (I1_t - I1_new) / (3.0 * K);
   }
 
   /// One substep of inviscid elastic-plastic update from sigma (total stress) with strain increment
   /// deps. Returns false for an elastic substep.
-  static bool substep(const Params& p, Mat3& sigma, double& evp, const Mat3& deps, Substep& out) {
-    const double pf_n = pore_pressure(p, evp);
-    double K, G;
-    moduli(p, trace(sigma) + 3.0 * pf_n, evp, pf_n, K, G);
+  /// `pf_n`, K, G: pore pressure and moduli at the start of the substep (computed if K <= 0).
+  static bool substep(const Params& p, Mat3& sigma, double& evp, const Mat3& deps, Substep& out, double pf_n = 0.0,
+                      double K = 0.0, double G = 0.0) {
+    if (!(K > 0.0)) {
+      pf_n = pore_pressure(p, evp);
+      moduli(p, trace(sigma) + 3.0 * pf_n, evp, pf_n, K, G);
+    }
     const double tr_e = trace(deps);
     Mat3 sig_t = sigma + (2.0 * G) * deps;
     const double iso = (K - 2.0 * G / 3.0) * tr_e;
@@ -315,8 +339,7 @@ struct Geomodel {
     const double I1_t = trace(sig_t);
     const Mat3 s_t = deviator(sig_t);
     const double rj2_t = std::sqrt(0.5 * ddot(s_t, s_t));
-    const GeoSurface s0 = surface(p, evp);
-    if (!(s0.f(I1_t + 3.0 * pf_n, rj2_t) > 0.0) && !std::isnan(I1_t)) {
+    if (!(yield_value(p, cap_at(p, evp), I1_t + 3.0 * pf_n, rj2_t) > 0.0) && !std::isnan(I1_t)) {
       sigma = sig_t;
       return false;
     }
@@ -324,10 +347,10 @@ struct Geomodel {
     GeoPoint pt;
     double pf;
     const double d0 = return_at(p, evp, c, K, I1_t, rj2_t, pt, pf);
-    // With hardening, (pt, pf) become those of the consistent state; the increment itself is
-    // recomputed from the returned stress below.
-    if (p.hardening() && d0 != 0.0) consistent_increment(p, evp, c, K, I1_t, rj2_t, d0, pt, pf);
-    // Returned stress: the trial deviator scaled to the returned sqrt(J2), total I1 = I1' - 3 pf.
+    // With hardening the surface moves with evp: solve for the consistent increment, and return
+    // onto the surface of the final state, so that the stress always lies on the surface of its
+    // own internal state (pt, pf are those of that return).
+    const double d = (p.hardening() && d0 != 0.0) ? consistent_increment(p, evp, c, K, I1_t, rj2_t, d0, pt, pf) : d0;
     const double scale = rj2_t > 0.0 ? pt.rootj2 / rj2_t : 0.0;
     const double mean = (pt.i1 - 3.0 * pf) / 3.0;
     Mat3 sig = scale * s_t;
@@ -348,55 +371,76 @@ struct Geomodel {
     sig_eff(2, 2) += pf;
     out.work = ddot(sig_eff, out.dep);
     sigma = sig;
-    evp += dv;
+    // The state's evp is the one whose surface holds the stress; it equals evp + dv to the
+    // tolerance of the consistency iteration.
+    evp += d;
     return true;
   }
 
   /// Consistency bisection (Homel et al. 2015 §5): the plastic volumetric strain increment d with
   /// d = (increment of the non-hardening return onto the surface at evp + d). phi(d) = inc(d) - d is
-  /// decreasing for a hardening cap and for pore pressure, so [d0, 0] brackets the root; Illinois
-  /// regula falsi. If the surface softens (a retracting cap overtaking the stress) the bracket is
-  /// widened; if no root is found the explicit increment d0 is kept.
+  /// decreasing for a hardening cap and for pore pressure, so [d0, 0] brackets the root. If the
+  /// surface softens (a retracting cap overtaking the stress) the bracket is widened; if no root is
+  /// found, d0 is kept. The iteration runs in u = ln(P3 + evp) where the crush curve is
+  /// logarithmic (X = P0 + (u - ln P3)/P1 in compaction), so that it stays well conditioned up to
+  /// full crush (evp -> -P3), and otherwise in evp itself; Illinois regula falsi, at most 80 steps.
+  /// Fills (pt, pf) with the return onto the surface of the returned increment.
   static double consistent_increment(const Params& p, double evp, double c, double K, double I1_t, double rj2_t,
                                      double d0, GeoPoint& pt, double& pf) {
-    auto phi = [&](double d, GeoPoint& q, double& pfq) { return return_at(p, evp + d, c, K, I1_t, rj2_t, q, pfq) - d; };
-    double a = 0.0, fa = d0;  // phi(0) = d0
-    double b = d0;
-    GeoPoint qb;
-    double pfb;
-    double fb = phi(b, qb, pfb);
+    const bool logv = p.crush.active() && d0 < 0.0;
+    const double P3 = p.crush.p3;
+    // Map between the increment d and the iteration variable x.
+    auto to_d = [&](double x) { return logv ? std::exp(x) - P3 - evp : x; };
+    auto to_x = [&](double d) { return logv ? std::log(std::max(P3 + evp + d, 1e-300)) : d; };
+    auto phi = [&](double x, GeoPoint& q, double& pfq) {
+      const double d = to_d(x);
+      return return_at(p, evp + d, c, K, I1_t, rj2_t, q, pfq) - d;
+    };
+    double a = to_x(0.0), fa = d0;  // phi(0) = d0
+    double b = to_x(d0);
+    GeoPoint q;
+    double pfq;
+    double fb = phi(b, q, pfq);
     for (int grow = 0; grow < 30 && (fa > 0.0) == (fb > 0.0) && fb != 0.0; ++grow) {
       a = b;
       fa = fb;
-      b *= 2.0;
-      fb = phi(b, qb, pfb);
+      b = to_x(2.0 * to_d(b));
+      fb = phi(b, q, pfq);
     }
-    if ((fa > 0.0) == (fb > 0.0) && fb != 0.0) return d0;  // no root: explicit increment (pt, pf from d0)
-    const double tol = 1e-13 * std::abs(d0) + 1e-300;
-    double m = b;
-    GeoPoint qm = qb;
-    double pfm = pfb;
-    double fm = fb;
+    double x = b, fx = fb;
+    GeoPoint qx = q;  // the return at x (kept to skip a final re-evaluation)
+    double pfx = pfq;
+    if ((fa > 0.0) == (fb > 0.0) && fb != 0.0) {
+      x = to_x(d0);  // no root: the explicit increment
+      const double d = to_d(x);
+      return_at(p, evp + d, c, K, I1_t, rj2_t, pt, pf);
+      return d;
+    }
+    // Tolerance on the increment: 1e-10 of it, but not below 1e-14 (1 + |evp|), the noise floor of
+    // the return (closest point to ~1e-13 of the stress, divided by K): the state stays on its own
+    // surface regardless (the final return is onto the surface at the returned increment).
+    const double tol = std::max(1e-10 * std::abs(d0), 1e-14 * (1.0 + std::abs(evp)));
     int side = 0;
-    for (int it = 0; it < 100 && fm != 0.0 && std::abs(b - a) > tol; ++it) {
-      m = (a * fb - b * fa) / (fb - fa);
-      if (!(std::min(a, b) < m && m < std::max(a, b))) m = 0.5 * (a + b);
-      fm = phi(m, qm, pfm);
-      if ((fm > 0.0) == (fa > 0.0)) {
-        a = m;
-        fa = fm;
+    for (int it = 0; it < 80 && std::abs(fx) > tol && std::abs(to_d(b) - to_d(a)) > tol; ++it) {
+      x = (a * fb - b * fa) / (fb - fa);
+      if (!(std::min(a, b) < x && x < std::max(a, b))) x = 0.5 * (a + b);
+      fx = phi(x, qx, pfx);
+      if (std::abs(fx) <= tol) break;
+      if ((fx > 0.0) == (fa > 0.0)) {
+        a = x;
+        fa = fx;
         if (side == -1) fb *= 0.5;
         side = -1;
       } else {
-        b = m;
-        fb = fm;
+        b = x;
+        fb = fx;
         if (side == 1) fa *= 0.5;
         side = 1;
       }
     }
-    pt = qm;
-    pf = pfm;
-    return m;
+    pt = qx;
+    pf = pfx;
+    return to_d(x);
   }
 
   static void update(const Params& p, const PointKinematics& k, Mat3& sigma, double* st, PointResult& res) {
@@ -405,18 +449,19 @@ struct Geomodel {
     double eqps = st[0], evp = st[1];
     // Substep count from the trial-stress increment against the surface size and the change of
     // the bulk modulus over the step.
-    const double pf_n = pore_pressure(p, evp);
+    // The pore pressure of the state (stored with a fluid: the value pore_pressure(evp) written at
+    // the end of the previous step, which saves its Newton solve on every elastic step).
+    const double pf_n = p.slot_pore_pressure >= 0 ? st[p.slot_pore_pressure] : 0.0;
     const double i1e = trace(sigma) + 3.0 * pf_n;
     double K, G;
     moduli(p, i1e, evp, pf_n, K, G);
     const double tr_e = trace(eps);
     const double dsig = std::sqrt(9.0 * K * K * tr_e * tr_e / 3.0 + 4.0 * G * G * ddot(deviator(eps), deviator(eps)));
-    const GeoSurface s = surface(p, evp);
-    double n_need = std::ceil(4.0 * dsig / surface_size(p, s, i1e));
+    double n_need = std::ceil(dsig / surface_size(p, cap_at(p, evp), i1e));
     if (p.B1 > 0.0) {
       double K2, G2;
       moduli(p, i1e + 3.0 * K * tr_e, evp, pf_n, K2, G2);
-      n_need = std::max(n_need, std::ceil(4.0 * std::abs(K2 - K) / K));
+      n_need = std::max(n_need, std::ceil(4.0 * std::abs(K2 - K) / K));  // K changes < 25 % per substep
     }
     const int n = std::isfinite(n_need) ? static_cast<int>(std::clamp(n_need, 1.0, double(p.max_substeps)))
                                         : p.max_substeps;
@@ -434,7 +479,8 @@ struct Geomodel {
     for (int i = 0; i < n; ++i) {
       Substep sub;
       if (w == 1.0) {
-        if (substep(p, sigma, evp, deps, sub)) {
+        const bool plastic = n == 1 ? substep(p, sigma, evp, deps, sub, pf_n, K, G) : substep(p, sigma, evp, deps, sub);
+        if (plastic) {
           dep_sum += sub.dep;
           work += sub.work;
           d_eqps += sub.d_eqps;

@@ -43,19 +43,20 @@ struct SurfaceDistance {
   /// D'(z)/2 = (z - zt) + (h - rt) h'; -inf at the cap tip (h' = +inf) when rt > 0.
   double slope(double z) const {
     const double i1 = std::sqrt(3.0) * z;
-    const double ff = std::max(0.0, s.limit.value(i1));
-    double gp;  // dg/dI1
+    double fv, fd;
+    s.limit.value_slope(i1, fv, fd);
+    const double ff = std::max(0.0, fv);
+    double gp, fc = 1.0;  // dg/dI1 and the cap function
     if (i1 >= s.kappa) {
-      gp = s.limit.slope(i1);
+      gp = fd;
     } else {
-      const double fc = std::sqrt(s.cap2(i1));
+      fc = std::sqrt(s.cap2(i1));
       const double w = s.kappa - s.X;
-      gp = s.limit.slope(i1) * fc + (fc > 0.0 ? ff * (s.kappa - i1) / (w * w * fc) : INFINITY);
+      gp = fd * fc + (fc > 0.0 ? ff * (s.kappa - i1) / (w * w * fc) : INFINITY);
     }
-    const double hp = c * std::sqrt(6.0) * gp;
-    const double hz = c * std::sqrt(2.0) * ff * std::sqrt(s.cap2(i1));
-    if (std::isinf(hp)) return hz - rt < 0.0 ? -INFINITY : INFINITY;
-    return (z - zt) + (hz - rt) * hp;
+    const double hz = c * std::sqrt(2.0) * ff * fc;
+    if (std::isinf(gp)) return hz - rt < 0.0 ? -INFINITY : INFINITY;
+    return (z - zt) + (hz - rt) * c * std::sqrt(6.0) * gp;
   }
 };
 

@@ -38,6 +38,17 @@ struct GeoLimit {
   double value(double i1) const { return a3 == 0.0 ? a1 - a4 * i1 : a1 - a3 * std::exp(a2 * i1) - a4 * i1; }
   /// dFf/dI1 (<= 0).
   double slope(double i1) const { return a3 == 0.0 ? -a4 : -a2 * a3 * std::exp(a2 * i1) - a4; }
+  /// Ff and dFf/dI1 with one exponential.
+  void value_slope(double i1, double& v, double& d) const {
+    if (a3 == 0.0) {
+      v = a1 - a4 * i1;
+      d = -a4;
+      return;
+    }
+    const double e = a3 * std::exp(a2 * i1);
+    v = a1 - e - a4 * i1;
+    d = -a2 * e - a4;
+  }
 
   /// Coefficients from the user parameters (derived here from Ff(PEAKI1) = 0, -Ff'(PEAKI1) =
   /// FSLOPE, Ff -> STREN + YSLOPE |I1| as I1 -> -inf):
