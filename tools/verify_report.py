@@ -6,7 +6,10 @@ Usage: verify_report.py DIR/verify.json   -> DIR/report.html and DIR/plots/<mode
 Figures follow the thesis (seed 000) style: A1 as Fig. 4.2 (unrotated sigma_11 and spatial
 sigma_xx, sigma_yy, sigma_xy against t), A2 as Fig. 4.5 (sigma_11 and sigma_22 against eps_11 with
 the yield points) next to Fig. 4.6 (meridional profile sigma_11 - sigma_22 against pressure with the
-yield surface dashed), A6 as the rotated-vs-unrotated histories and the tangent scatter.
+yield surface dashed), A3 as Fig. 4.9 (stresses against t with the published points, meridional
+path with the Drucker-Prager line), A4/A5 as Fig. 4.10c-4.12 (I1 against volumetric strain, porosity
+against I1 with the crush curve), A5-fluid as Fig. 4.13 (drained vs saturated pressure-volume
+curves), A6 as the rotated-vs-unrotated histories and the tangent scatter.
 Run with the interpreter CMake found (BALLISTA_PYTHON, /usr/bin/python3); needs numpy, matplotlib.
 """
 import html
@@ -108,6 +111,120 @@ def plot_a2(test, fig):
     ax2.grid(alpha=0.3)
 
 
+def plot_a3(test, fig):
+    """Thesis Fig. 4.9: S11, S22 against t with the published points, and the meridional path
+    sqrt(J2) against I1 with the Drucker-Prager line."""
+    ax1 = fig.add_subplot(1, 2, 1)
+    t = series(test, "t")
+    ax1.plot(t, series(test, "s11"), color="tab:blue", lw=1.5, label=r"$\sigma_{11}$ computed")
+    ax1.plot(t, series(test, "s22"), color="tab:red", lw=1.5, label=r"$\sigma_{22} = \sigma_{33}$ computed")
+    ax1.plot(t, series(test, "s11_an"), color="k", lw=0.8, ls="--", label="exact (ln F path)")
+    ax1.plot(t, series(test, "s22_an"), color="k", lw=0.8, ls="--")
+    tt = series(test, "table_t")
+    ax1.plot(tt, series(test, "table_s11"), "o", mfc="none", color="tab:blue", label="published (Brannon & L. 2010)")
+    ax1.plot(tt, series(test, "table_s22"), "s", mfc="none", color="tab:red")
+    ax1.set_xlabel("t (s)")
+    ax1.set_ylabel("stress (Pa)")
+    ax1.set_title("{} {}: Drucker-Prager vertex test (Fig. 4.9)".format(test["model"], test["test"]), fontsize=10)
+    ax1.legend(fontsize=7, loc="lower right")
+    ax1.grid(alpha=0.3)
+    stamp(ax1, test)
+    ax2 = fig.add_subplot(1, 2, 2)
+    i1 = series(test, "i1")
+    ax2.plot(i1, series(test, "sqrt_j2"), color="tab:purple", lw=1.5, label="stress path, computed")
+    ax2.plot(series(test, "i1_an"), series(test, "sqrt_j2_an"), color="k", lw=0.8, ls="--", label="exact")
+    peak, fs = scalar(test, "peak_i1"), scalar(test, "fslope")
+    lo = min(np.min(i1), 0.0) * 1.1 if i1.size else -1.0
+    ax2.plot([lo, peak], [fs * (peak - lo), 0.0], color="tab:gray", ls="--", lw=1,
+             label=r"$\sqrt{J_2} = $ FSLOPE (PEAKI1 $- I_1$)")
+    ax2.set_xlabel("$I_1$ (Pa)")
+    ax2.set_ylabel(r"$\sqrt{J_2}$ (Pa)")
+    ax2.set_title("meridional profile", fontsize=10)
+    ax2.legend(fontsize=7, loc="upper right")
+    ax2.grid(alpha=0.3)
+
+
+def _crush_panel(ax, test, prefix=""):
+    """Porosity against I1 with the analytic crush curve (thesis eq. 4.5, Fig. 4.11)."""
+    ax.plot(series(test, prefix + "i1") * MPA, series(test, prefix + "porosity"), color="tab:red", lw=1.5,
+            label="porosity, computed")
+    ax.plot(series(test, prefix + "i1_an") * MPA, series(test, prefix + "porosity_an"), color="k", lw=0.8, ls="--",
+            label="exact")
+    ax.plot(series(test, "curve_i1") * MPA, series(test, "curve_porosity"), color="tab:green", lw=2, ls=":",
+            label="crush curve (eq. 4.5)")
+    ax.set_xlabel("$I_1$ (MPa)")
+    ax.set_ylabel("porosity")
+    ax.legend(fontsize=7, loc="upper left")
+    ax.grid(alpha=0.3)
+
+
+def plot_a4(test, fig):
+    """Thesis Fig. 4.10c (fixed cap dwell) and Fig. 4.11 (porosity on the crush curve)."""
+    ax1 = fig.add_subplot(1, 2, 1)
+    for prefix, colour, label in [("fixed_", "tab:blue", "fixed cap"), ("", "tab:red", "evolving cap")]:
+        ev = series(test, prefix + "ev")
+        ax1.plot(ev, series(test, prefix + "i1") * MPA, color=colour, lw=1.5, label=label + ", computed")
+        ax1.plot(ev, series(test, prefix + "i1_an") * MPA, color="k", lw=0.8, ls="--")
+    ax1.plot([], [], color="k", lw=0.8, ls="--", label="exact")
+    ax1.axhline(scalar(test, "p0") * MPA, color="tab:gray", ls=":", lw=1, label="$P_0$")
+    ax1.set_xlabel(r"volumetric strain $\varepsilon_v = 3 \ln\lambda$")
+    ax1.set_ylabel("$I_1$ (MPa)")
+    ax1.set_title("{} {}: hydrostatic compression".format(test["model"], test["test"]), fontsize=10)
+    ax1.legend(fontsize=7, loc="lower left")
+    ax1.grid(alpha=0.3)
+    stamp(ax1, test)
+    ax2 = fig.add_subplot(1, 2, 2)
+    _crush_panel(ax2, test)
+    ax2.set_title("porosity on the crush curve (Fig. 4.11)", fontsize=10)
+
+
+def plot_a5(test, fig):
+    """Thesis Fig. 4.12: I1 against volumetric strain through the load-unload-reload cycle, and
+    porosity against I1 with the crush curve."""
+    ax1 = fig.add_subplot(1, 2, 1)
+    ev = series(test, "ev")
+    ax1.plot(ev, series(test, "i1") * MPA, color="tab:blue", lw=1.5, label="computed")
+    ax1.plot(ev, series(test, "i1_an") * MPA, color="k", lw=0.8, ls="--", label="exact")
+    ax1.axhline(scalar(test, "peak_i1") * MPA, color="tab:gray", ls=":", lw=1, label="PEAKI1")
+    ax1.set_xlabel(r"volumetric strain $\varepsilon_v = 3 \ln\lambda$")
+    ax1.set_ylabel("$I_1$ (MPa)")
+    ax1.set_title("{} {}: hydrostatic load-unload (Fig. 4.12)".format(test["model"], test["test"]), fontsize=10)
+    ax1.legend(fontsize=7, loc="lower right")
+    ax1.grid(alpha=0.3)
+    stamp(ax1, test)
+    ax2 = fig.add_subplot(1, 2, 2)
+    _crush_panel(ax2, test)
+    ax2.axhline(scalar(test, "phi0"), color="tab:gray", ls=":", lw=1)
+    ax2.set_title("porosity against $I_1$", fontsize=10)
+
+
+def plot_a5_fluid(test, fig):
+    """Thesis Fig. 4.13: pressure against volumetric strain drained and saturated, and porosity."""
+    ax1 = fig.add_subplot(1, 2, 1)
+    for prefix, colour, label in [("dry_", "tab:blue", "drained"), ("wet_", "tab:red", "water-saturated")]:
+        ax1.plot(-series(test, prefix + "ev"), -series(test, prefix + "i1") / 3 * MPA, color=colour, lw=1.5,
+                 label=label + ", computed")
+    ax1.plot(-series(test, "dry_ev"), -series(test, "dry_i1_an") / 3 * MPA, color="k", lw=0.8, ls="--",
+             label="drained, exact")
+    ev = -series(test, "wet_ev")
+    pf = series(test, "wet_pore_pressure")
+    if pf.size == ev.size:
+        ax1.plot(ev, pf * MPA, color="tab:cyan", lw=1.2, ls="-.", label="pore pressure (saturated)")
+    ax1.set_xlabel(r"compressive volumetric strain $-\varepsilon_v$")
+    ax1.set_ylabel("pressure $-I_1/3$ (MPa)")
+    ax1.set_title("{} {}: fluid-filled pores (Fig. 4.13)".format(test["model"], test["test"]), fontsize=10)
+    ax1.legend(fontsize=7, loc="upper left", bbox_to_anchor=(0.0, 0.93))
+    ax1.grid(alpha=0.3)
+    stamp(ax1, test)
+    ax2 = fig.add_subplot(1, 2, 2)
+    for prefix, colour, label in [("dry_", "tab:blue", "drained"), ("wet_", "tab:red", "water-saturated")]:
+        ax2.plot(-series(test, prefix + "ev"), series(test, prefix + "porosity"), color=colour, lw=1.5, label=label)
+    ax2.set_xlabel(r"compressive volumetric strain $-\varepsilon_v$")
+    ax2.set_ylabel("porosity")
+    ax2.legend(fontsize=7)
+    ax2.grid(alpha=0.3)
+
+
 def plot_a6_objectivity(test, fig):
     ax1 = fig.add_subplot(1, 2, 1)
     n = series(test, "step")
@@ -162,6 +279,8 @@ def plot_a6_tangent(test, fig):
 # Plot kind -> (function, figure size in inches, left/right margins). Fixed margins instead of
 # tight_layout, which took half the report's time.
 PLOTS = {"a1": (plot_a1, (7, 4.5), (0.11, 0.97)), "a2": (plot_a2, (12, 4.8), (0.07, 0.98)),
+         "a3": (plot_a3, (12, 4.8), (0.07, 0.98)), "a4": (plot_a4, (12, 4.8), (0.07, 0.98)),
+         "a5": (plot_a5, (12, 4.8), (0.07, 0.98)), "a5_fluid": (plot_a5_fluid, (12, 4.8), (0.07, 0.98)),
          "a6_objectivity": (plot_a6_objectivity, (12, 4.5), (0.07, 0.98)),
          "a6_tangent": (plot_a6_tangent, (11, 4.5), (0.07, 0.98))}
 

@@ -7,12 +7,15 @@
 #include "core/parallel.hpp"
 #include "verify/a1_frame_indifference.hpp"
 #include "verify/a2_uniaxial_strain.hpp"
+#include "verify/a3_drucker_prager_vertex.hpp"
+#include "verify/a4_hydrostatic_cap.hpp"
+#include "verify/a5_load_unload.hpp"
 #include "verify/a6_objectivity.hpp"
 
 namespace ballista {
 
 const std::vector<std::string>& verify_test_ids() {
-  static const std::vector<std::string> ids{"A1", "A2", "A2-iso", "A2-kin", "A6-objectivity", "A6-tangent"};
+  static const std::vector<std::string> ids{"A1", "A2", "A2-iso", "A2-kin", "A3", "A4", "A5", "A5-fluid", "A6-objectivity", "A6-tangent"};
   return ids;
 }
 
@@ -21,6 +24,10 @@ VerifyCase run_verify_test(const MaterialFactory& f, const std::string& test) {
   if (test == "A2") return run_a2(f, A2Hardening::None);
   if (test == "A2-iso") return run_a2(f, A2Hardening::Isotropic);
   if (test == "A2-kin") return run_a2(f, A2Hardening::Kinematic);
+  if (test == "A3") return run_a3(f);
+  if (test == "A4") return run_a4(f);
+  if (test == "A5") return run_a5(f);
+  if (test == "A5-fluid") return run_a5_fluid(f);
   if (test == "A6-objectivity") return run_a6_objectivity(f);
   if (test == "A6-tangent") return run_a6_tangent(f);
   throw Error("unknown verification test '" + test + "'");

@@ -1,7 +1,8 @@
 #pragma once
 // The single-element verification suite of `ballista verify`: CATALOGUE A1, A2 (no, isotropic and
-// kinematic hardening) and A6 (objectivity, tangent) for every registered model, through the
-// model's verification hooks (MaterialFactory::example, reduce_elastic, reduce_j2).
+// kinematic hardening), A3-A5 (Drucker-Prager vertex, hydrostatic cap, load-unload and pore fluid)
+// and A6 (objectivity, tangent) for every registered model, through the model's verification hooks
+// (MaterialFactory::example, reduce_elastic, reduce_j2, reduce_geo).
 #include <string>
 #include <vector>
 
