@@ -337,8 +337,15 @@ struct Geomodel {
     sig_t(1, 1) += iso;
     sig_t(2, 2) += iso;
     const double I1_t = trace(sig_t);
-    const Mat3 s_t = deviator(sig_t);
-    const double rj2_t = std::sqrt(0.5 * ddot(s_t, s_t));
+    Mat3 s_t = deviator(sig_t);
+    double rj2_t = std::sqrt(0.5 * ddot(s_t, s_t));
+    // A deviator at the round-off level of the stress (1e-13 of |I1|: a hydrostatic path) is taken
+    // as zero: its direction is noise, and a return to a point near the cap tip would otherwise
+    // scale that noise up into a spurious shear stress and a shifted I1.
+    if (rj2_t <= 1e-13 * std::abs(I1_t)) {
+      rj2_t = 0.0;
+      s_t = Mat3{};
+    }
     if (!(yield_value(p, cap_at(p, evp), I1_t + 3.0 * pf_n, rj2_t) > 0.0) && !std::isnan(I1_t)) {
       sigma = sig_t;
       return false;
@@ -354,9 +361,10 @@ struct Geomodel {
     const double scale = rj2_t > 0.0 ? pt.rootj2 / rj2_t : 0.0;
     const double mean = (pt.i1 - 3.0 * pf) / 3.0;
     Mat3 sig = scale * s_t;
-    sig(0, 0) += mean;
-    sig(1, 1) += mean;
-    sig(2, 2) += mean;
+    const double shift = mean - trace(sig) / 3.0;  // keeps tr(sig) = 3 mean whatever the rounding of s_t
+    sig(0, 0) += shift;
+    sig(1, 1) += shift;
+    sig(2, 2) += shift;
     // d_eps_p = C^-1 : (sigma_trial - sigma).
     const Mat3 dev_p = ((1.0 - scale) / (2.0 * G)) * s_t;
     out.dep = dev_p;
