@@ -53,6 +53,9 @@ struct Geomodel {
     GeoCrushCurve crush;
     double beta = 1.0;              ///< non-associativity
     double Kf = 0, pf0 = 0, Km = 0; ///< pore fluid, initial pore pressure, matrix modulus (Pa)
+    /// Plastic volumetric strain beyond which the pore fluid has cavitated (pf = 0): the rock is
+    /// then drained; below it the fluid is held and the bulk modulus is Biot-Gassmann's.
+    double ev_cavitation = 0;
     double T1 = 0, T2 = 0;          ///< Duvaut-Lions relaxation time (s) and rate exponent
     int max_substeps = 256;
     // State layout: eqps, plastic_volumetric_strain, substeps, [porosity, cap_i1], [pore_pressure].
@@ -177,6 +180,11 @@ struct Geomodel {
     p.T1 = num("relaxation_time", 0.0);
     p.T2 = num("relaxation_rate_exponent", 0.0);
     p.max_substeps = static_cast<int>(num("max_substeps", 256.0));
+    if (p.fluid()) {
+      // Plastic dilatation at which the pore pressure reaches zero (geo_pore_pressure with pf = 0).
+      const double phi0 = p.crush.initial_porosity();
+      p.ev_cavitation = std::log((1.0 - phi0) * std::exp(p.pf0 / p.Km) + phi0 * std::exp(p.pf0 / p.Kf));
+    }
     int slot = 3;
     if (p.crush.active()) {
       p.slot_porosity = slot++;
@@ -254,7 +262,7 @@ struct Geomodel {
   }
   /// Tangent elastic moduli at effective I1 `i1e` (Arenisca 3 forms, Homel et al. 2016 §2.2):
   /// drained K = B0 + B1 exp(-B2/|I1'|) in compression, B0 in tension; saturated by Biot-Gassmann
-  /// while the pore fluid carries pressure.
+  /// while the pore fluid is held (not cavitated: evp <= ev_cavitation), elastic loading included.
   static void moduli(const Params& p, double i1e, double evp, double pf, double& K, double& G) {
     const double e = i1e < 0.0 ? std::exp(p.B2 / i1e) : 0.0;  // exp(-B2/|I1'|)
     const double Kd = p.B0 + p.B1 * e;
@@ -263,7 +271,8 @@ struct Geomodel {
       const double nu = p.nu_low + p.nu_gain * e;
       G = 1.5 * Kd * (1.0 - 2.0 * nu) / (1.0 + nu);
     }
-    K = (p.fluid() && pf > 0.0) ? biot_gassmann(Kd, p.Km, p.Kf, p.crush.porosity(evp)) : Kd;
+    (void)pf;  // the fluid's state enters through evp
+    K = (p.fluid() && evp <= p.ev_cavitation) ? biot_gassmann(Kd, p.Km, p.Kf, p.crush.porosity(evp)) : Kd;
   }
 
   /// The yield function sqrt(J2) - Ff Fc at effective I1 `i1e` for cap position X, as
@@ -323,14 +332,17 @@ struct Geomodel {
 
   /// One substep of inviscid elastic-plastic update from sigma (total stress) with strain increment
   /// deps. Returns false for an elastic substep.
-  /// `pf_n`, K, G: pore pressure and moduli at the start of the substep (computed if K <= 0).
-  static bool substep(const Params& p, Mat3& sigma, double& evp, const Mat3& deps, Substep& out, double pf_n = 0.0,
-                      double K = 0.0, double G = 0.0) {
-    if (!(K > 0.0)) {
-      pf_n = pore_pressure(p, evp);
-      moduli(p, trace(sigma) + 3.0 * pf_n, evp, pf_n, K, G);
-    }
+  /// `pf_n`: the pore pressure at the start of the substep (computed if negative). The moduli are
+  /// taken at the midpoint of the elastic trial (explicit midpoint rule: second order in the
+  /// step for the pressure-dependent bulk modulus, against first order at the start point).
+  static bool substep(const Params& p, Mat3& sigma, double& evp, const Mat3& deps, Substep& out,
+                      double pf_n = -1.0) {
+    if (pf_n < 0.0) pf_n = pore_pressure(p, evp);
     const double tr_e = trace(deps);
+    double K, G;
+    const double i1e_n = trace(sigma) + 3.0 * pf_n;
+    moduli(p, i1e_n, evp, pf_n, K, G);
+    if (p.B1 > 0.0) moduli(p, i1e_n + 1.5 * K * tr_e, evp, pf_n, K, G);
     Mat3 sig_t = sigma + (2.0 * G) * deps;
     const double iso = (K - 2.0 * G / 3.0) * tr_e;
     sig_t(0, 0) += iso;
@@ -487,7 +499,7 @@ struct Geomodel {
     for (int i = 0; i < n; ++i) {
       Substep sub;
       if (w == 1.0) {
-        const bool plastic = n == 1 ? substep(p, sigma, evp, deps, sub, pf_n, K, G) : substep(p, sigma, evp, deps, sub);
+        const bool plastic = n == 1 ? substep(p, sigma, evp, deps, sub, pf_n) : substep(p, sigma, evp, deps, sub);
         if (plastic) {
           dep_sum += sub.dep;
           work += sub.work;
@@ -533,6 +545,7 @@ struct Geomodel {
     const double pf = pore_pressure(p, evp);
     double K, G;
     moduli(p, trace(sigma) + 3.0 * pf, evp, pf, K, G);
+    if (p.B1 > 0.0) moduli(p, trace(sigma) + 3.0 * pf + 1.5 * K * trace(deps), evp, pf, K, G);  // as substep()
     sigma += (2.0 * G) * deps;
     const double iso = (K - 2.0 * G / 3.0) * trace(deps);
     sigma(0, 0) += iso;
