@@ -12,6 +12,7 @@
 #include <random>
 
 #include "core/parallel.hpp"
+#include "material_batch_fixture.hpp"
 #include "io/material_presets.hpp"
 #include "materials/material.hpp"
 
@@ -30,22 +31,17 @@ void BM_Geomodel(benchmark::State& state, std::string preset_name, Load load) {
   set_threads(1);
   const Index n = 20000;
   auto mat = find_material("geomodel")->create("rock", preset(preset_name));
-  FieldStore s;
-  for (auto name : {"F", "R", "L", "stress"}) s.add_real(name, 9, "1");
-  s.add_real("volume0", 1, "m^3", true, 1e-9);
-  s.add_real("internal_energy", 1, "J");
-  s.add_real("plastic_work", 1, "J");
-  mat->declare_fields(s);
-  s.resize(n);
+  bench::MaterialBatchFixture fx(*mat, n);
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<Index> pts(n);
   const double dt = 1e-7;
   // Strain rates: 1e2 1/s keeps every step elastic (1e-5 strain per step, alternating sign);
   // 1e5 1/s shears 1 % per step; compaction 2e3 1/s volumetric (2e-4 per step).
   const double rate = load == Load::Elastic ? 1e2 : load == Load::Shear ? 1e5 : 2e3;
+  // Start confined at a mean stress of -50 MPa (compaction: at the cap, I1 = P0, so every step is
+  // plastic from the first).
+  const double mean = load == Load::Compaction ? -1.14e9 / 3.0 : -50e6;
   for (Index p = 0; p < n; ++p) {
-    pts[p] = p;
     Mat3 L;
     if (load == Load::Compaction) {
       L = (-rate / 3.0) * Mat3::identity();
@@ -53,26 +49,12 @@ void BM_Geomodel(benchmark::State& state, std::string preset_name, Load load) {
     } else {
       for (double& a : L.a) a = rate * u(rng);
     }
-    s.view<Mat3>("L")[p] = L;
-    s.view<Mat3>("F")[p] = Mat3::identity() + dt * L;
-    s.view<Mat3>("R")[p] = Mat3::identity();
-    // Start confined at a mean stress of -50 MPa (compaction: at the cap, I1 = P0, so every step
-    // is plastic from the first).
-    const double mean = load == Load::Compaction ? -1.14e9 / 3.0 : -50e6;
-    s.view<Mat3>("stress")[p] = mean * Mat3::identity();
+    fx.L()[p] = L;
+    fx.F()[p] = Mat3::identity() + dt * L;
+    fx.stress()[p] = mean * Mat3::identity();
   }
-  MaterialBatch b;
-  b.points = pts.data();
-  b.count = n;
-  b.F_new = s.view<Mat3>("F");
-  b.L = s.view<Mat3>("L");
-  b.R = s.view<Mat3>("R");
-  b.stress = s.view<Mat3>("stress");
-  b.store = &s;
-  b.dt = dt;
-  b.volume0 = s.real("volume0");
-  b.internal_energy = s.real("internal_energy");
-  b.plastic_energy = s.real("plastic_work");
+  const MaterialBatch b = fx.batch(dt);
+  FieldStore& s = fx.store;
   Mat3* L = s.view<Mat3>("L");
   double plastic = 0.0;
   for (auto _ : state) {
@@ -84,7 +66,6 @@ void BM_Geomodel(benchmark::State& state, std::string preset_name, Load load) {
   // items_per_second = point updates per second; ns per point update = 1e9 / items_per_second.
   state.SetItemsProcessed(static_cast<std::int64_t>(n) * state.iterations());
   state.counters["mean_plastic_strain"] = plastic / n;
-
   state.counters["mean_substeps"] = [&] {
     double m = 0;
     for (Index p = 0; p < n; ++p) m += s.real("substeps")[p];

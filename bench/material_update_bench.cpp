@@ -8,6 +8,7 @@
 #include <random>
 
 #include "core/parallel.hpp"
+#include "material_batch_fixture.hpp"
 #include "materials/material.hpp"
 
 namespace {
@@ -40,37 +41,17 @@ void BM_MaterialUpdate(benchmark::State& state, std::string model, ParamValues v
   // johnson_cook: the OFHC copper example (Mie-Grüneisen EOS, heating, rate term).
   if (model == "johnson_cook") v = find_material(model)->example();
   auto mat = find_material(model)->create("m", v);
-  FieldStore s;
-  for (auto name : {"F", "R", "L", "stress"}) s.add_real(name, 9, "1");
-  s.add_real("volume0", 1, "m^3", true, 1e-9);
-  s.add_real("internal_energy", 1, "J");
-  s.add_real("plastic_work", 1, "J");
-  mat->declare_fields(s);
-  s.resize(n);
+  bench::MaterialBatchFixture fx(*mat, n);
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<Index> pts(n);
   const double dt = 1e-8;
   for (Index p = 0; p < n; ++p) {
-    pts[p] = p;
     Mat3 L;
     for (double& a : L.a) a = strain_rate * u(rng);
-    s.view<Mat3>("L")[p] = L;
-    s.view<Mat3>("F")[p] = Mat3::identity() + dt * L;
-    s.view<Mat3>("R")[p] = Mat3::identity();
+    fx.L()[p] = L;
+    fx.F()[p] = Mat3::identity() + dt * L;
   }
-  MaterialBatch b;
-  b.points = pts.data();
-  b.count = n;
-  b.F_new = s.view<Mat3>("F");
-  b.L = s.view<Mat3>("L");
-  b.R = s.view<Mat3>("R");
-  b.stress = s.view<Mat3>("stress");
-  b.store = &s;
-  b.dt = dt;
-  b.volume0 = s.real("volume0");
-  b.internal_energy = s.real("internal_energy");
-  b.plastic_energy = s.real("plastic_work");
+  const MaterialBatch b = fx.batch(dt);
   for (auto _ : state) mat->update(b);
   // items_per_second = point updates per second; ns per point update = 1e9 / items_per_second.
   state.SetItemsProcessed(static_cast<std::int64_t>(n) * state.iterations());

@@ -32,6 +32,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/illinois.hpp"
 #include "materials/geomodel_return.hpp"
 #include "materials/geomodel_surface.hpp"
 #include "materials/material_adapter.hpp"
@@ -427,37 +428,20 @@ struct Geomodel {
       b = to_x(2.0 * to_d(b));
       fb = phi(b, q, pfq);
     }
-    double x = b, fx = fb;
-    GeoPoint qx = q;  // the return at x (kept to skip a final re-evaluation)
-    double pfx = pfq;
     if ((fa > 0.0) == (fb > 0.0) && fb != 0.0) {
-      x = to_x(d0);  // no root: the explicit increment
-      const double d = to_d(x);
+      const double d = d0;  // no root: the explicit increment
       return_at(p, evp + d, c, K, I1_t, rj2_t, pt, pf);
       return d;
     }
     // Tolerance on the increment: 1e-10 of it, but not below 1e-14 (1 + |evp|), the noise floor of
     // the return (closest point to ~1e-13 of the stress, divided by K): the state stays on its own
-    // surface regardless (the final return is onto the surface at the returned increment).
+    // surface regardless (the returned point is the last evaluated one, whose return is kept).
     const double tol = std::max(1e-10 * std::abs(d0), 1e-14 * (1.0 + std::abs(evp)));
-    int side = 0;
-    for (int it = 0; it < 80 && std::abs(fx) > tol && std::abs(to_d(b) - to_d(a)) > tol; ++it) {
-      x = (a * fb - b * fa) / (fb - fa);
-      if (!(std::min(a, b) < x && x < std::max(a, b))) x = 0.5 * (a + b);
-      fx = phi(x, qx, pfx);
-      if (std::abs(fx) <= tol) break;
-      if ((fx > 0.0) == (fa > 0.0)) {
-        a = x;
-        fa = fx;
-        if (side == -1) fb *= 0.5;
-        side = -1;
-      } else {
-        b = x;
-        fb = fx;
-        if (side == 1) fa *= 0.5;
-        side = 1;
-      }
-    }
+    GeoPoint qx = q;
+    double pfx = pfq;
+    auto phi_keep = [&](double x) { return phi(x, qx, pfx); };
+    // xtol in x: for the log variable, dx = dd / (P3 + evp + d) >= dd.
+    const double x = illinois_root(phi_keep, a, fa, b, fb, tol, tol, 80);
     pt = qx;
     pf = pfx;
     return to_d(x);

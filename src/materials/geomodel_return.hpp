@@ -15,10 +15,11 @@
 //
 // The closest point is found without gradients of the yield function at the corners: the
 // distance is sampled along the surface, then the stationarity condition D'(z) = 0 is solved by
-// the Illinois variant of regula falsi in the bracket around the best sample. The vertex
+// the Illinois variant of regula falsi (core/illinois.hpp) in the bracket around the best sample. The vertex
 // (PEAKI1) and the cap tip (X) are ordinary end points of the search interval.
 #include <cmath>
 
+#include "core/illinois.hpp"
 #include "materials/geomodel_surface.hpp"
 
 namespace ballista {
@@ -59,33 +60,6 @@ struct SurfaceDistance {
     return (z - zt) + (hz - rt) * c * std::sqrt(6.0) * gp;
   }
 };
-
-/// Root of D' in [a, b] with D'(a) <= 0 <= D'(b): Illinois regula falsi (superlinear), bisection
-/// when an end value is infinite.
-inline double stationary_point(const SurfaceDistance& d, double a, double fa, double b, double fb, double tol) {
-  int side = 0;
-  double m = 0.5 * (a + b);
-  for (int it = 0; it < 100; ++it) {
-    const bool finite = std::isfinite(fa) && std::isfinite(fb) && fb != fa;
-    m = finite ? (a * fb - b * fa) / (fb - fa) : 0.5 * (a + b);
-    if (!(m > a && m < b)) m = 0.5 * (a + b);
-    const double fm = d.slope(m);
-    if (fm == 0.0 || b - a <= tol) return m;
-    if (fm < 0.0) {
-      a = m;
-      fa = fm;
-      if (side == -1) fb *= 0.5;
-      side = -1;
-    } else {
-      b = m;
-      fb = fm;
-      if (side == 1) fa *= 0.5;
-      side = 1;
-    }
-    if (b - a <= tol) return 0.5 * (a + b);
-  }
-  return m;
-}
 
 }  // namespace geo_detail
 
@@ -135,7 +109,7 @@ inline GeoPoint geo_closest_point(const GeoSurface& s, double c, double i1_t, do
   else if (fb <= 0.0 && best == kSamples - 1)
     z = zb;  // minimum at the upper end (the vertex, or the end of the search interval)
   else if (fa <= 0.0 && fb >= 0.0)
-    z = geo_detail::stationary_point(d, za, fa, zb, fb, tol);
+    z = illinois_root([&](double x) { return d.slope(x); }, za, fa, zb, fb, tol, 0.0);
   else
     z = a0 + best * dz;  // no sign change (non-smooth sample): keep the best sample
   const double i1 = s3 * z;

@@ -66,7 +66,7 @@ VerifyCase run_a3(const MaterialFactory& f, const A3Problem& pb) {
       "FSLOPE = 0.2357, beta = 1/2";
   if (!f.reduce_geo)
     return VerifyCase::not_applicable(f.model, id, title,
-                                      "model has no reduce_geo hook (reduction to linear Drucker-Prager + cap)");
+                                      kNoGeoHookReason);
   const auto wall0 = std::chrono::steady_clock::now();
   GeoReduction g;
   g.density = pb.density;
@@ -82,11 +82,7 @@ VerifyCase run_a3(const MaterialFactory& f, const A3Problem& pb) {
                                       "reduce_geo returns no parameters for non-associative flow (beta = 1/2)");
   const auto mat = make_hook_material(f, v, "reduce_geo");
 
-  VerifyCase c;
-  c.model = f.model;
-  c.test = id;
-  c.title = title;
-  c.plot = "a3";
+  VerifyCase c = VerifyCase::begin(f.model, id, title, "a3");
 
   // Three step counts: headline N, and N/4, N/2 for the observed convergence.
   const int N = pb.substeps;

@@ -33,14 +33,10 @@ VerifyCase run_a4(const MaterialFactory& f, const A4Problem& pb) {
       "the crush curve, porosity per thesis eq. 4.5-4.6 (K = 10 GPa, P0 = -90 MPa, phi0 = 0.2)";
   if (!f.reduce_geo)
     return VerifyCase::not_applicable(f.model, id, title,
-                                      "model has no reduce_geo hook (reduction to linear Drucker-Prager + cap)");
+                                      kNoGeoHookReason);
   const auto wall0 = std::chrono::steady_clock::now();
   const GeoSandstone& rock = pb.rock;
-  VerifyCase c;
-  c.model = f.model;
-  c.test = id;
-  c.title = title;
-  c.plot = "a4";
+  VerifyCase c = VerifyCase::begin(f.model, id, title, "a4");
   const double tol = 1e-6, K3 = 3.0 * rock.bulk;
 
   // (a) fixed cap.
@@ -89,22 +85,9 @@ VerifyCase run_a4(const MaterialFactory& f, const A4Problem& pb) {
   add_hydro_series(c, ha, "fixed_", pb.plot_every);
   add_hydro_series(c, hb, "", pb.plot_every);
   // The analytic crush curve (eq. 4.5) for the porosity-vs-I1 plot.
-  std::vector<double> ci1, cphi;
-  const double i1_lo = 1.2 * hb.i1_an.back();
-  for (int k = 0; k <= 100; ++k) {
-    const double x = rock.p0 + (i1_lo - rock.p0) * k / 100.0;
-    ci1.push_back(x);
-    cphi.push_back(rock.curve().porosity_at_cap(x));
-  }
-  c.series.push_back({"curve_i1", ci1});
-  c.series.push_back({"curve_porosity", cphi});
-  c.scalars = {{"p0", rock.p0},
-               {"p1", rock.p1},
-               {"p3", rock.p3()},
-               {"peak_i1", rock.peak_i1},
-               {"bulk", rock.bulk},
-               {"phi0", rock.phi0},
-               {"steps", static_cast<double>(pb.substeps)},
+  rock.add_crush_curve(c, rock.p0, 1.2 * hb.i1_an.back(), 100);
+  c.scalars = rock.scalars();
+  c.scalars.insert(c.scalars.end(), {{"steps", static_cast<double>(pb.substeps)},
                {"fixed_i1_error", ha.max_i1_error},
                {"evolving_i1_error", hb.max_i1_error},
                {"evolving_i1_error_half_steps", hb2.max_i1_error},
@@ -112,7 +95,7 @@ VerifyCase run_a4(const MaterialFactory& f, const A4Problem& pb) {
                {"evp_error", hb.max_evp_error},
                {"porosity_error", hb.max_phi_error},
                {"final_porosity", hb.phi.back()},
-               {"final_porosity_an", hb.phi_an.back()}};
+               {"final_porosity_an", hb.phi_an.back()}});
   c.finish();
   c.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return c;

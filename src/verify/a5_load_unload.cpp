@@ -45,14 +45,10 @@ VerifyCase run_a5(const MaterialFactory& f, const A5Problem& pb) {
   const std::string id = "A5";
   if (!f.reduce_geo)
     return VerifyCase::not_applicable(f.model, id, a5_title(),
-                                      "model has no reduce_geo hook (reduction to linear Drucker-Prager + cap)");
+                                      kNoGeoHookReason);
   const auto wall0 = std::chrono::steady_clock::now();
   const GeoSandstone& rock = pb.rock;
-  VerifyCase c;
-  c.model = f.model;
-  c.test = id;
-  c.title = a5_title();
-  c.plot = "a5";
+  VerifyCase c = VerifyCase::begin(f.model, id, a5_title(), "a5");
   const auto mat = make_hook_material(f, f.reduce_geo(rock.reduction(false)), "reduce_geo");
   const std::vector<double> rows = pb.rows_t(), ev = pb.rows_ev();
   const DriveResult r = drive_hydrostatic(*mat, rows, ev, pb.substeps);
@@ -103,31 +99,18 @@ VerifyCase run_a5(const MaterialFactory& f, const A5Problem& pb) {
   }
   add_hydro_series(c, h, "", pb.plot_every);
   // The crush curve (eq. 4.5, both branches) over the I1 range of the test.
-  std::vector<double> ci1, cphi;
-  const double lo = 1.05 * h.i1_an[k_end3], hi = rock.curve().cap(1.5 * pb.evp5);
-  for (int k = 0; k <= 200; ++k) {
-    const double x = hi + (lo - hi) * k / 200.0;
-    ci1.push_back(x);
-    cphi.push_back(rock.curve().porosity_at_cap(x));
-  }
-  c.series.push_back({"curve_i1", ci1});
-  c.series.push_back({"curve_porosity", cphi});
+  rock.add_crush_curve(c, rock.curve().cap(1.5 * pb.evp5), 1.05 * h.i1_an[k_end3], 200);
   std::vector<double> row_ev(ev.begin(), ev.end());
   c.series.push_back({"rows_ev", row_ev});
-  c.scalars = {{"p0", rock.p0},
-               {"p1", rock.p1},
-               {"p3", rock.p3()},
-               {"peak_i1", rock.peak_i1},
-               {"bulk", rock.bulk},
-               {"phi0", rock.phi0},
-               {"steps_per_row", static_cast<double>(pb.substeps)},
+  c.scalars = rock.scalars();
+  c.scalars.insert(c.scalars.end(), {{"steps_per_row", static_cast<double>(pb.substeps)},
                {"i1_error_half_steps", h2.max_i1_error},
                {"convergence_order", std::log2(h2.max_i1_error / h.max_i1_error)},
                {"evp_error", h.max_evp_error},
                {"porosity_error", h.max_phi_error},
                {"porosity_at_5", h.phi[k_end2]},
                {"final_porosity", h.phi[k_end3]},
-               {"final_porosity_an", h.phi_an[k_end3]}};
+               {"final_porosity_an", h.phi_an[k_end3]}});
   c.finish();
   c.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return c;
@@ -141,14 +124,10 @@ VerifyCase run_a5_fluid(const MaterialFactory& f, const A5Problem& pb) {
       pb.fluid_bulk / 1e9);
   if (!f.reduce_geo)
     return VerifyCase::not_applicable(f.model, id, title,
-                                      "model has no reduce_geo hook (reduction to linear Drucker-Prager + cap)");
+                                      kNoGeoHookReason);
   const auto wall0 = std::chrono::steady_clock::now();
   const GeoSandstone& rock = pb.rock;
-  VerifyCase c;
-  c.model = f.model;
-  c.test = id;
-  c.title = title;
-  c.plot = "a5_fluid";
+  VerifyCase c = VerifyCase::begin(f.model, id, title, "a5_fluid");
   const std::vector<double> rows{0.0, 1.0}, ev{0.0, pb.rows_ev()[1]};
   const auto dry = make_hook_material(f, f.reduce_geo(rock.reduction(false)), "reduce_geo (drained)");
   const auto wet = make_hook_material(f, f.reduce_geo(rock.reduction(false, pb.fluid_bulk)), "reduce_geo (saturated)");

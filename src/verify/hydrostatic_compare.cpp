@@ -9,6 +9,21 @@ namespace ballista {
 
 double GeoSandstone::p3() const { return -std::log1p(-phi0); }
 
+std::vector<std::pair<std::string, double>> GeoSandstone::scalars() const {
+  return {{"p0", p0}, {"p1", p1}, {"p3", p3()}, {"peak_i1", peak_i1}, {"bulk", bulk}, {"phi0", phi0}};
+}
+
+void GeoSandstone::add_crush_curve(VerifyCase& c, double i1_from, double i1_to, int n) const {
+  std::vector<double> ci1, cphi;
+  for (int k = 0; k <= n; ++k) {
+    const double x = i1_from + (i1_to - i1_from) * k / n;
+    ci1.push_back(x);
+    cphi.push_back(curve().porosity_at_cap(x));
+  }
+  c.series.push_back({"curve_i1", ci1});
+  c.series.push_back({"curve_porosity", cphi});
+}
+
 GeoReduction GeoSandstone::reduction(bool fixed_cap, double fluid_bulk) const {
   GeoReduction g;
   g.density = density;

@@ -2,6 +2,7 @@
 // A driven hydrostatic history (CATALOGUE A4, A5) against the exact response of
 // hydrostatic_crush.hpp, step by step, and the sandstone-like parameter set those tests use.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "driver/point_driver.hpp"
@@ -29,6 +30,11 @@ struct GeoSandstone {
   /// Total volumetric strain at which the drained exact response reaches plastic volumetric
   /// strain evp on the compaction (or dilatation) branch: evp + X(evp)/(3K).
   double ev_on_cap(double evp) const { return evp + curve().cap(evp) / (3.0 * bulk); }
+  /// Its parameters as plot/record scalars (p0, p1, p3, peak_i1, bulk, phi0).
+  std::vector<std::pair<std::string, double>> scalars() const;
+  /// Adds the analytic crush curve (thesis eq. 4.5) as series curve_i1 / curve_porosity, n + 1
+  /// points from I1 = i1_from to i1_to, for the porosity-vs-I1 plots.
+  void add_crush_curve(VerifyCase& c, double i1_from, double i1_to, int n) const;
 };
 
 /// Step-by-step comparison of a hydrostatic drive with the exact response.

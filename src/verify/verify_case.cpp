@@ -1,6 +1,7 @@
 #include "verify/verify_case.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -46,6 +47,15 @@ VerifyCase VerifyCase::not_applicable(std::string model, std::string test, std::
   c.title = std::move(title);
   c.status = VerifyStatus::NotApplicable;
   c.reason = std::move(reason);
+  return c;
+}
+
+VerifyCase VerifyCase::begin(std::string model, std::string test, std::string title, std::string plot) {
+  VerifyCase c;
+  c.model = std::move(model);
+  c.test = std::move(test);
+  c.title = std::move(title);
+  c.plot = std::move(plot);
   return c;
 }
 

@@ -48,6 +48,8 @@ struct VerifyCase {
   /// failing checks listed in `reason`).
   void finish();
   static VerifyCase not_applicable(std::string model, std::string test, std::string title, std::string reason);
+  /// A case about to be run: model, test id, title and plot kind set, no checks yet.
+  static VerifyCase begin(std::string model, std::string test, std::string title, std::string plot);
 };
 
 }  // namespace ballista

@@ -1,0 +1,40 @@
+#pragma once
+// Bracketed scalar root finding by the Illinois variant of regula falsi (Dowell & Jarratt, BIT 11
+// (1971) 168-174): the false-position point, with the retained end's function value halved when
+// the same end is kept twice, which restores superlinear convergence (order ~1.44) while the root
+// stays bracketed. A false-position point outside the bracket, or an infinite end value, falls
+// back to bisection.
+#include <algorithm>
+#include <cmath>
+
+namespace ballista {
+
+/// Root of f in the bracket [a, b] (either order) with fa = f(a) and fb = f(b) of opposite signs
+/// (or one zero). Stops when |f(x)| <= ftol, when the bracket is narrower than xtol, or after
+/// max_it evaluations. Returns the last point at which f was evaluated (b if none was), so that
+/// a caller whose f records side results at each call can use those of the returned point.
+template <class F>
+double illinois_root(F&& f, double a, double fa, double b, double fb, double xtol, double ftol, int max_it = 100) {
+  double x = b, fx = fb;
+  int side = 0;
+  for (int it = 0; it < max_it && std::abs(fx) > ftol && std::abs(b - a) > xtol; ++it) {
+    const bool finite = std::isfinite(fa) && std::isfinite(fb) && fb != fa;
+    x = finite ? (a * fb - b * fa) / (fb - fa) : 0.5 * (a + b);
+    if (!(std::min(a, b) < x && x < std::max(a, b))) x = 0.5 * (a + b);
+    fx = f(x);
+    if ((fx > 0.0) == (fa > 0.0)) {
+      a = x;
+      fa = fx;
+      if (side == -1) fb *= 0.5;
+      side = -1;
+    } else {
+      b = x;
+      fb = fx;
+      if (side == 1) fa *= 0.5;
+      side = 1;
+    }
+  }
+  return x;
+}
+
+}  // namespace ballista
