@@ -248,8 +248,10 @@ struct Geomodel {
 
   // ---- Constitutive pieces ----
   /// Pore pressure at plastic volumetric strain evp (0 when drained).
-  static double pore_pressure(const Params& p, double evp) {
-    return p.fluid() ? geo_pore_pressure(evp, p.crush.initial_porosity(), p.pf0, p.Kf, p.Km) : 0.0;
+  /// `guess` >= 0: a nearby value to start the Newton solve from (e.g. the state's last value).
+  static double pore_pressure(const Params& p, double evp, double guess = -1.0) {
+    if (!p.fluid() || evp >= p.ev_cavitation) return 0.0;  // drained, or cavitated
+    return geo_pore_pressure(evp, p.crush.initial_porosity(), p.pf0, p.Kf, p.Km, std::max(guess, 0.0));
   }
   /// The yield surface (in effective I1) at plastic volumetric strain evp.
   static GeoSurface surface(const Params& p, double evp) {
@@ -265,7 +267,7 @@ struct Geomodel {
   /// drained K = B0 + B1 exp(-B2/|I1'|) in compression, B0 in tension; saturated by Biot-Gassmann
   /// while the pore fluid is held (not cavitated: evp <= ev_cavitation), elastic loading included.
   static void moduli(const Params& p, double i1e, double evp, double pf, double& K, double& G) {
-    const double e = i1e < 0.0 ? std::exp(p.B2 / i1e) : 0.0;  // exp(-B2/|I1'|)
+    const double e = (i1e < 0.0 && (p.B1 > 0.0 || p.poisson)) ? std::exp(p.B2 / i1e) : 0.0;  // exp(-B2/|I1'|)
     const double Kd = p.B0 + p.B1 * e;
     G = p.G0;
     if (p.poisson) {
@@ -318,15 +320,18 @@ struct Geomodel {
 
   /// Plastic volumetric strain increment of the non-hardening return from trial (I1_t, s_t) onto
   /// the surface at evp; fills the returned point.
+  /// `out` and `pf_out` come in as guesses from an earlier return of the same trial (out.i1 NaN:
+  /// none), which speed up the closest-point search and the pore-pressure solve.
   static double return_at(const Params& p, double evp, double c, double K, double I1_t, double rj2_t, GeoPoint& out,
                           double& pf_out) {
-    pf_out = pore_pressure(p, evp);
+    pf_out = pore_pressure(p, evp, pf_out);  // in: a guess (the caller's latest value)
     const double i1e_t = I1_t + 3.0 * pf_out;
-    if (!(yield_value(p, cap_at(p, evp), i1e_t, rj2_t) > 0.0)) {
+    const GeoSurface s = surface(p, evp);
+    if (!(s.f(i1e_t, rj2_t) > 0.0)) {
       out = {i1e_t, rj2_t};
       return 0.0;
     }
-    out = geo_closest_point(surface(p, evp), c, i1e_t, rj2_t);
+    out = geo_closest_point(s, c, i1e_t, rj2_t, out.i1);
     const double I1_new = out.i1 - 3.0 * pf_out;
     return (I1_t - I1_new) / (3.0 * K);
   }
@@ -364,8 +369,8 @@ struct Geomodel {
       return false;
     }
     const double c = std::sqrt(1.5 * K * p.beta / G);
-    GeoPoint pt;
-    double pf;
+    GeoPoint pt{std::numeric_limits<double>::quiet_NaN(), 0.0};  // no closest-point guess yet
+    double pf = pf_n;  // guess for the pore-pressure solves
     const double d0 = return_at(p, evp, c, K, I1_t, rj2_t, pt, pf);
     // With hardening the surface moves with evp: solve for the consistent increment, and return
     // onto the surface of the final state, so that the stress always lies on the surface of its
@@ -419,8 +424,8 @@ struct Geomodel {
     };
     double a = to_x(0.0), fa = d0;  // phi(0) = d0
     double b = to_x(d0);
-    GeoPoint q;
-    double pfq;
+    GeoPoint q = pt;  // in: the guesses of the non-hardening return (closest point, pore pressure)
+    double pfq = pf;
     double fb = phi(b, q, pfq);
     for (int grow = 0; grow < 30 && (fa > 0.0) == (fb > 0.0) && fb != 0.0; ++grow) {
       a = b;
@@ -517,7 +522,7 @@ struct Geomodel {
       // After full crush there is no cap (X = -inf); the field keeps a finite marker, -DBL_MAX.
       st[p.slot_cap] = std::max(p.crush.cap(evp), -std::numeric_limits<double>::max());
     }
-    if (p.slot_pore_pressure >= 0) st[p.slot_pore_pressure] = pore_pressure(p, evp);
+    if (p.slot_pore_pressure >= 0) st[p.slot_pore_pressure] = pore_pressure(p, evp, pf_n);
     res.eqps = eqps;
     res.delta_eqps = d_eqps;
     res.plastic_work_density = work;

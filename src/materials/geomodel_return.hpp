@@ -18,6 +18,7 @@
 // the Illinois variant of regula falsi (core/illinois.hpp) in the bracket around the best sample. The vertex
 // (PEAKI1) and the cap tip (X) are ordinary end points of the search interval.
 #include <cmath>
+#include <limits>
 
 #include "core/illinois.hpp"
 #include "materials/geomodel_surface.hpp"
@@ -65,8 +66,12 @@ struct SurfaceDistance {
 
 /// Closest point of the surface `s` to the trial point (effective I1 `i1_t`, sqrt(J2) `rj2_t`) in
 /// the space scaled by c = sqrt(3 K beta / (2 G)). The caller has checked that the trial point
-/// is outside (s.f > 0).
-inline GeoPoint geo_closest_point(const GeoSurface& s, double c, double i1_t, double rj2_t) {
+/// is outside (s.f > 0). `hint_i1` (NaN: none) is the I1 of the closest point to the same trial on
+/// a nearby surface (the consistency iteration moves the surface a little at a time): the search
+/// first brackets the stationary point in a small interval around it, growing 8x per try, and
+/// falls back to sampling the whole interval if that fails.
+inline GeoPoint geo_closest_point(const GeoSurface& s, double c, double i1_t, double rj2_t,
+                                  double hint_i1 = std::numeric_limits<double>::quiet_NaN()) {
   const double s3 = std::sqrt(3.0), s2 = std::sqrt(2.0);
   const double zt = i1_t / s3, rt = c * s2 * rj2_t;
   const double zlo = s.lo() / s3, zhi = s.hi() / s3;
@@ -86,6 +91,20 @@ inline GeoPoint geo_closest_point(const GeoSurface& s, double c, double i1_t, do
   const double a0 = std::max(zlo, zt - d0), b0 = std::min(zhi, zt + d0);
   geo_detail::SurfaceDistance d{s, c, zt, rt};
   if (!(b0 > a0)) return {s3 * a0, s.radius(s3 * a0)};
+  const double tol = 1e-13 * (std::abs(zt) + d0 + std::abs(a0) + std::abs(b0));
+  auto on_surface = [&](double z) { return GeoPoint{s3 * z, s.radius(s3 * z)}; };
+  const double zh = hint_i1 / s3;
+  if (zh > a0 && zh < b0) {  // false for a NaN hint
+    double w = 1e-3 * (b0 - a0);
+    for (int k = 0; k < 4; ++k, w *= 8.0) {
+      const double za = std::max(a0, zh - w), zb = std::min(b0, zh + w);
+      const double fa = d.slope(za), fb = d.slope(zb);
+      if (za == a0 && fa >= 0.0) return on_surface(za);
+      if (zb == b0 && fb <= 0.0) return on_surface(zb);
+      if (fa <= 0.0 && fb >= 0.0)
+        return on_surface(illinois_root([&](double x) { return d.slope(x); }, za, fa, zb, fb, tol, 0.0));
+    }
+  }
   // Sample, then refine around the best sample.
   constexpr int kSamples = 12;
   const double dz = (b0 - a0) / (kSamples - 1);
@@ -99,7 +118,6 @@ inline GeoPoint geo_closest_point(const GeoSurface& s, double c, double i1_t, do
       best = k;
     }
   }
-  const double tol = 1e-13 * (std::abs(zt) + d0 + std::abs(a0) + std::abs(b0));
   const double za = best == 0 ? a0 : a0 + (best - 1) * dz;
   const double zb = best == kSamples - 1 ? b0 : std::min(b0, a0 + (best + 1) * dz);
   double fa = d.slope(za), fb = d.slope(zb);
@@ -112,8 +130,7 @@ inline GeoPoint geo_closest_point(const GeoSurface& s, double c, double i1_t, do
     z = illinois_root([&](double x) { return d.slope(x); }, za, fa, zb, fb, tol, 0.0);
   else
     z = a0 + best * dz;  // no sign change (non-smooth sample): keep the best sample
-  const double i1 = s3 * z;
-  return {i1, s.radius(i1)};
+  return on_surface(z);
 }
 
 }  // namespace ballista

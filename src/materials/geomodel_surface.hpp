@@ -108,8 +108,10 @@ inline double geo_cap_kappa(const GeoLimit& f, double cap_ratio, double X) {
   if (f.a3 == 0.0) return (X + cap_ratio * f.a1) / (1.0 + cap_ratio * f.a4);  // Ff linear in I1
   double k = f.peak_i1;
   for (int it = 0; it < 60; ++it) {
-    const double g = k - X - cap_ratio * f.value(k);
-    const double dk = g / (1.0 - cap_ratio * f.slope(k));
+    double v, dv;
+    f.value_slope(k, v, dv);
+    const double g = k - X - cap_ratio * v;
+    const double dk = g / (1.0 - cap_ratio * dv);
     k -= dk;
     if (std::abs(dk) <= 1e-15 * (std::abs(k) + std::abs(X))) break;
   }
@@ -150,20 +152,26 @@ struct GeoSurface {
 /// implicit form rather than integrated):
 ///   exp(evp) = (1 - phi0) exp(-dp/Km) + phi0 exp(-dp/Kf),   pf >= 0 (cavitation).
 /// The right side is decreasing and convex in dp, so Newton from dp = -pf0 (pf = 0) converges
-/// monotonically; if the left side exceeds the right at pf = 0 the fluid has cavitated.
-inline double geo_pore_pressure(double evp, double phi0, double pf0, double Kf, double Km) {
+/// monotonically; if the left side exceeds the right at pf = 0 the fluid has cavitated. With a
+/// guess `guess` >= 0 of pf (a caller that knows the fluid holds pressure, i.e. evp below the
+/// cavitation strain), Newton starts there: from the right of the root its first step lands on
+/// the left (the tangent of a convex function lies below it; an overshoot past pf = 0 is cut back
+/// to pf = 0), then it converges monotonically.
+inline double geo_pore_pressure(double evp, double phi0, double pf0, double Kf, double Km, double guess = -1.0) {
   const double target = std::exp(evp);
   auto rhs = [&](double dp, double& d) {
     const double em = (1.0 - phi0) * std::exp(-dp / Km), ef = phi0 * std::exp(-dp / Kf);
     d = -em / Km - ef / Kf;
     return em + ef - target;
   };
-  double dp = -pf0, d = 0.0;
-  if (rhs(dp, d) <= 0.0) return 0.0;
+  double dp = guess >= 0.0 ? guess - pf0 : -pf0, d = 0.0;
+  if (guess < 0.0 && rhs(dp, d) <= 0.0) return 0.0;
   for (int it = 0; it < 100; ++it) {
     const double g = rhs(dp, d);
     const double step = g / d;
-    dp -= step;
+    // Never left of pf = 0: the root lies right of it (the fluid holds pressure), so a step from a
+    // far-right guess that overshoots is cut back to a point from which Newton is monotone.
+    dp = std::max(dp - step, -pf0);
     if (std::abs(step) <= 1e-14 * (std::abs(dp) + pf0) + 1e-300) break;
   }
   return std::max(0.0, pf0 + dp);
