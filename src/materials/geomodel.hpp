@@ -320,8 +320,8 @@ struct Geomodel {
 
   /// Plastic volumetric strain increment of the non-hardening return from trial (I1_t, s_t) onto
   /// the surface at evp; fills the returned point.
-  /// `out` and `pf_out` come in as guesses from an earlier return of the same trial (out.i1 NaN:
-  /// none), which speed up the closest-point search and the pore-pressure solve.
+  /// `pf_out` comes in as a guess from an earlier solve (e.g. of the same trial), which speeds up
+  /// the pore-pressure Newton solve.
   static double return_at(const Params& p, double evp, double c, double K, double I1_t, double rj2_t, GeoPoint& out,
                           double& pf_out) {
     pf_out = pore_pressure(p, evp, pf_out);  // in: a guess (the caller's latest value)
@@ -331,7 +331,7 @@ struct Geomodel {
       out = {i1e_t, rj2_t};
       return 0.0;
     }
-    out = geo_closest_point(s, c, i1e_t, rj2_t, out.i1);
+    out = geo_closest_point(s, c, i1e_t, rj2_t);
     const double I1_new = out.i1 - 3.0 * pf_out;
     return (I1_t - I1_new) / (3.0 * K);
   }
@@ -369,13 +369,15 @@ struct Geomodel {
       return false;
     }
     const double c = std::sqrt(1.5 * K * p.beta / G);
-    GeoPoint pt{std::numeric_limits<double>::quiet_NaN(), 0.0};  // no closest-point guess yet
+    GeoPoint pt;
     double pf = pf_n;  // guess for the pore-pressure solves
     const double d0 = return_at(p, evp, c, K, I1_t, rj2_t, pt, pf);
     // With hardening the surface moves with evp: solve for the consistent increment, and return
     // onto the surface of the final state, so that the stress always lies on the surface of its
     // own internal state (pt, pf are those of that return).
-    const double d = (p.hardening() && d0 != 0.0) ? consistent_increment(p, evp, c, K, I1_t, rj2_t, d0, pt, pf) : d0;
+    const double d = (p.hardening() && d0 != 0.0 && !on_unmoved_limit_surface(p, evp, evp + d0, pt))
+                         ? consistent_increment(p, evp, c, K, I1_t, rj2_t, d0, pt, pf)
+                         : d0;
     const double scale = rj2_t > 0.0 ? pt.rootj2 / rj2_t : 0.0;
     const double mean = (pt.i1 - 3.0 * pf) / 3.0;
     Mat3 sig = scale * s_t;
@@ -399,8 +401,23 @@ struct Geomodel {
     sigma = sig;
     // The state's evp is the one whose surface holds the stress; it equals evp + dv to the
     // tolerance of the consistency iteration.
+    if (p.crush.active() && evp + d < -p.crush.p3 - 1e-9) fprintf(stderr, "DBG evp %.6g d0 %.6g d %.6g pt.i1 %.6g I1_t %.6g rj2_t %.6g X %.6g\n", evp, d0, d, pt.i1, I1_t, rj2_t, cap_at(p, evp));
     evp += d;
     return true;
+  }
+
+  /// True if, drained, the returned point lies on the limit-surface part (I1' > kappa) of both the
+  /// surface it was returned to (at evp_old) and the one at the updated strain evp_new: there the
+  /// surface does not depend on evp, so the point is also the closest point of the updated surface
+  /// (the elastic region is convex and the surface around the point is unchanged: a local closest
+  /// point of a convex set is the global one) and the non-hardening increment is consistent.
+  static bool on_unmoved_limit_surface(const Params& p, double evp_old, double evp_new, const GeoPoint& pt) {
+    if (p.fluid()) return false;  // the pore pressure moves the whole surface
+    auto kappa = [&](double evp) {
+      const double X = cap_at(p, evp);
+      return std::isfinite(X) ? geo_cap_kappa(p.limit, p.cap_ratio, X) : X;
+    };
+    return pt.i1 > kappa(evp_old) && pt.i1 > kappa(evp_new);
   }
 
   /// Consistency bisection (Homel et al. 2015 §5): the plastic volumetric strain increment d with
@@ -424,8 +441,8 @@ struct Geomodel {
     };
     double a = to_x(0.0), fa = d0;  // phi(0) = d0
     double b = to_x(d0);
-    GeoPoint q = pt;  // in: the guesses of the non-hardening return (closest point, pore pressure)
-    double pfq = pf;
+    GeoPoint q;
+    double pfq = pf;  // in: the pore-pressure guess (that of the non-hardening return)
     double fb = phi(b, q, pfq);
     for (int grow = 0; grow < 30 && (fa > 0.0) == (fb > 0.0) && fb != 0.0; ++grow) {
       a = b;

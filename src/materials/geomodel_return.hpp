@@ -19,6 +19,7 @@
 // (PEAKI1) and the cap tip (X) are ordinary end points of the search interval.
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "core/illinois.hpp"
 #include "materials/geomodel_surface.hpp"
@@ -66,12 +67,15 @@ struct SurfaceDistance {
 
 /// Closest point of the surface `s` to the trial point (effective I1 `i1_t`, sqrt(J2) `rj2_t`) in
 /// the space scaled by c = sqrt(3 K beta / (2 G)). The caller has checked that the trial point
-/// is outside (s.f > 0). `hint_i1` (NaN: none) is the I1 of the closest point to the same trial on
-/// a nearby surface (the consistency iteration moves the surface a little at a time): the search
-/// first brackets the stationary point in a small interval around it, growing 8x per try, and
-/// falls back to sampling the whole interval if that fails.
-inline GeoPoint geo_closest_point(const GeoSurface& s, double c, double i1_t, double rj2_t,
-                                  double hint_i1 = std::numeric_limits<double>::quiet_NaN()) {
+/// is outside (s.f > 0).
+///
+/// The distance along the surface can have more than one local minimum: a trial point beyond a
+/// thin cap (a nearly crushed rock) has one near the cap tip and one on the limit surface, where
+/// the trial lies behind the face. The search therefore samples the slope D' at points dense at
+/// the cap tip (uniform in the ellipse's angle on the cap, I1 = kappa - (kappa - X) cos theta) and
+/// uniform on the limit surface, refines every bracket where D' goes from - to + by Illinois
+/// regula falsi, adds an end of the interval where D' points outward, and keeps the nearest.
+inline GeoPoint geo_closest_point(const GeoSurface& s, double c, double i1_t, double rj2_t) {
   const double s3 = std::sqrt(3.0), s2 = std::sqrt(2.0);
   const double zt = i1_t / s3, rt = c * s2 * rj2_t;
   const double zlo = s.lo() / s3, zhi = s.hi() / s3;
@@ -90,47 +94,48 @@ inline GeoPoint geo_closest_point(const GeoSurface& s, double c, double i1_t, do
     d0 = rt - c * s2 * s.radius(i1_t);
   const double a0 = std::max(zlo, zt - d0), b0 = std::min(zhi, zt + d0);
   geo_detail::SurfaceDistance d{s, c, zt, rt};
-  if (!(b0 > a0)) return {s3 * a0, s.radius(s3 * a0)};
-  const double tol = 1e-13 * (std::abs(zt) + d0 + std::abs(a0) + std::abs(b0));
   auto on_surface = [&](double z) { return GeoPoint{s3 * z, s.radius(s3 * z)}; };
-  const double zh = hint_i1 / s3;
-  if (zh > a0 && zh < b0) {  // false for a NaN hint
-    double w = 1e-3 * (b0 - a0);
-    for (int k = 0; k < 4; ++k, w *= 8.0) {
-      const double za = std::max(a0, zh - w), zb = std::min(b0, zh + w);
-      const double fa = d.slope(za), fb = d.slope(zb);
-      if (za == a0 && fa >= 0.0) return on_surface(za);
-      if (zb == b0 && fb <= 0.0) return on_surface(zb);
-      if (fa <= 0.0 && fb >= 0.0)
-        return on_surface(illinois_root([&](double x) { return d.slope(x); }, za, fa, zb, fb, tol, 0.0));
+  if (!(b0 > a0)) return on_surface(a0);
+  const double tol = 1e-13 * (std::abs(zt) + d0 + std::abs(a0) + std::abs(b0));
+  // Sample points: the interval's ends, the cap in equal steps of its ellipse angle, the limit
+  // surface in equal steps of I1 (kCap + kLimit + 2 at most, sorted by construction).
+  constexpr int kCap = 8, kLimit = 8;
+  double z[kCap + kLimit + 2];
+  int n = 0;
+  z[n++] = a0;
+  const double zk = std::isfinite(s.kappa) ? s.kappa / s3 : -INFINITY;
+  if (zk > a0) {
+    for (int j = 1; j <= kCap; ++j) {
+      const double i1 = s.kappa - (s.kappa - s.X) * std::cos(0.5 * std::numbers::pi * j / kCap);
+      const double zj = i1 / s3;
+      if (zj > z[n - 1] && zj < b0) z[n++] = zj;
     }
   }
-  // Sample, then refine around the best sample.
-  constexpr int kSamples = 12;
-  const double dz = (b0 - a0) / (kSamples - 1);
-  int best = 0;
-  double dbest = INFINITY;
-  for (int k = 0; k < kSamples; ++k) {
-    const double z = k == kSamples - 1 ? b0 : a0 + k * dz;
-    const double v = d.dist2(z);
-    if (v < dbest) {
-      dbest = v;
-      best = k;
-    }
+  const double zl = std::max(a0, zk);
+  for (int j = 1; j < kLimit; ++j) {
+    const double zj = zl + (b0 - zl) * j / kLimit;
+    if (zj > z[n - 1] && zj < b0) z[n++] = zj;
   }
-  const double za = best == 0 ? a0 : a0 + (best - 1) * dz;
-  const double zb = best == kSamples - 1 ? b0 : std::min(b0, a0 + (best + 1) * dz);
-  double fa = d.slope(za), fb = d.slope(zb);
-  double z;
-  if (fa >= 0.0 && best == 0)
-    z = za;  // minimum at the lower end
-  else if (fb <= 0.0 && best == kSamples - 1)
-    z = zb;  // minimum at the upper end (the vertex, or the end of the search interval)
-  else if (fa <= 0.0 && fb >= 0.0)
-    z = illinois_root([&](double x) { return d.slope(x); }, za, fa, zb, fb, tol, 0.0);
-  else
-    z = a0 + best * dz;  // no sign change (non-smooth sample): keep the best sample
-  return on_surface(z);
+  z[n++] = b0;
+  double f[kCap + kLimit + 2];
+  for (int k = 0; k < n; ++k) f[k] = d.slope(z[k]);
+  // Candidates: the ends if D' points out of the interval there, and each - to + bracket.
+  double best_z = a0, best = INFINITY;
+  auto consider = [&](double zc) {
+    const double v = d.dist2(zc);
+    if (v < best) {
+      best = v;
+      best_z = zc;
+    }
+  };
+  if (f[0] >= 0.0) consider(a0);
+  if (f[n - 1] <= 0.0) consider(b0);
+  for (int k = 0; k + 1 < n; ++k)
+    if (f[k] <= 0.0 && f[k + 1] >= 0.0)
+      consider(illinois_root([&](double x) { return d.slope(x); }, z[k], f[k], z[k + 1], f[k + 1], tol, 0.0));
+  if (!(best < INFINITY))  // no stationary point bracketed (cannot happen for a smooth D): best sample
+    for (int k = 0; k < n; ++k) consider(z[k]);
+  return on_surface(best_z);
 }
 
 }  // namespace ballista

@@ -133,31 +133,48 @@ TEST(GeomodelReturn, LinearConeMatchesTheClosedFormProjection) {
   EXPECT_GT(face, 50);
 }
 
-// On the cap the returned point must be the closest: no surface sample is nearer (in the
-// transformed metric) than the returned point, to 1e-12 of the distance.
-TEST(GeomodelReturn, CapReturnIsTheClosestPoint) {
-  GeoSurface s;
-  s.limit = GeoLimit::make(20e6, 0.45, 150e6, 0.05);
-  s.X = -400e6;
-  s.kappa = geo_cap_kappa(s.limit, 0.6, s.X);
-  const double c = 1.3;
+// The returned point must be the closest: no surface sample is nearer (in the transformed
+// metric) than the returned point, to 1e-9 of the distance. Surfaces: a nonlinear limit surface
+// with a moderate cap, and a linear one with a thin cap far out (a nearly crushed rock, where the
+// distance along the surface has a second local minimum on the limit face behind which the trial
+// lies: the case an earlier 12-point uniform sampling got wrong), for several scalings c and
+// trials all around, beyond the cap tip included.
+TEST(GeomodelReturn, ReturnIsTheClosestPoint) {
+  struct Case {
+    GeoLimit limit;
+    double X, cap_ratio, i1_lo, i1_hi, rj2_hi;
+  };
+  const Case cases[] = {{GeoLimit::make(20e6, 0.45, 150e6, 0.05), -400e6, 0.6, -900e6, 50e6, 300e6},
+                        {GeoLimit::make(30e6, 0.5, NAN, 0.0), -2.464e9, 0.5, -3.2e9, 50e6, 1.5e9}};
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (int k = 0; k < 300; ++k) {
-    const double i1 = -900e6 + 950e6 * u(rng), rj2 = 300e6 * u(rng);
-    if (!(s.f(i1, rj2) > 0.0)) continue;
-    const GeoPoint p = geo_closest_point(s, c, i1, rj2);
-    auto d2 = [&](double a, double b) {
-      const double dz = (a - i1) / std::sqrt(3.0), dr = c * std::sqrt(2.0) * (b - rj2);
-      return dz * dz + dr * dr;
-    };
-    const double best = d2(p.i1, p.rootj2);
-    for (int j = 0; j <= 20000; ++j) {
-      const double x = s.X + (s.limit.peak_i1 - s.X) * j / 20000.0;
-      ASSERT_GE(d2(x, s.radius(x)), best * (1.0 - 1e-9)) << "trial " << i1 << " " << rj2 << " sample " << x;
+  int tested = 0;
+  for (const Case& k : cases) {
+    GeoSurface s;
+    s.limit = k.limit;
+    s.X = k.X;
+    s.kappa = geo_cap_kappa(s.limit, k.cap_ratio, s.X);
+    for (double c : {0.7, 1.3, 1.8, 2.6}) {
+      for (int t = 0; t < 80; ++t) {
+        const double i1 = k.i1_lo + (k.i1_hi - k.i1_lo) * u(rng), rj2 = k.rj2_hi * u(rng);
+        if (!(s.f(i1, rj2) > 0.0)) continue;
+        ++tested;
+        const GeoPoint p = geo_closest_point(s, c, i1, rj2);
+        auto d2 = [&](double a, double b) {
+          const double dz = (a - i1) / std::sqrt(3.0), dr = c * std::sqrt(2.0) * (b - rj2);
+          return dz * dz + dr * dr;
+        };
+        const double best = d2(p.i1, p.rootj2);
+        for (int j = 0; j <= 20000; ++j) {
+          const double x = s.X + (s.limit.peak_i1 - s.X) * j / 20000.0;
+          ASSERT_GE(d2(x, s.radius(x)), best * (1.0 - 1e-9)) << "c " << c << " trial " << i1 << " " << rj2
+                                                              << " returned " << p.i1 << " sample " << x;
+        }
+        EXPECT_NEAR(p.rootj2, s.radius(p.i1), 1e-12 * k.rj2_hi);  // on the surface
+      }
     }
-    EXPECT_NEAR(p.rootj2, s.radius(p.i1), 1e-12 * 150e6);  // on the surface
   }
+  EXPECT_GT(tested, 300);
 }
 
 ParamValues hydrostat_params() {
