@@ -266,7 +266,7 @@ struct Geomodel {
   /// Tangent elastic moduli at effective I1 `i1e` (Arenisca 3 forms, Homel et al. 2016 §2.2):
   /// drained K = B0 + B1 exp(-B2/|I1'|) in compression, B0 in tension; saturated by Biot-Gassmann
   /// while the pore fluid is held (not cavitated: evp <= ev_cavitation), elastic loading included.
-  static void moduli(const Params& p, double i1e, double evp, double pf, double& K, double& G) {
+  static void moduli(const Params& p, double i1e, double evp, double& K, double& G) {
     const double e = (i1e < 0.0 && (p.B1 > 0.0 || p.poisson)) ? std::exp(p.B2 / i1e) : 0.0;  // exp(-B2/|I1'|)
     const double Kd = p.B0 + p.B1 * e;
     G = p.G0;
@@ -274,7 +274,6 @@ struct Geomodel {
       const double nu = p.nu_low + p.nu_gain * e;
       G = 1.5 * Kd * (1.0 - 2.0 * nu) / (1.0 + nu);
     }
-    (void)pf;  // the fluid's state enters through evp
     K = (p.fluid() && evp <= p.ev_cavitation) ? biot_gassmann(Kd, p.Km, p.Kf, p.crush.porosity(evp)) : Kd;
   }
 
@@ -347,8 +346,8 @@ struct Geomodel {
     const double tr_e = trace(deps);
     double K, G;
     const double i1e_n = trace(sigma) + 3.0 * pf_n;
-    moduli(p, i1e_n, evp, pf_n, K, G);
-    if (p.B1 > 0.0) moduli(p, i1e_n + 1.5 * K * tr_e, evp, pf_n, K, G);
+    moduli(p, i1e_n, evp, K, G);
+    if (p.B1 > 0.0) moduli(p, i1e_n + 1.5 * K * tr_e, evp, K, G);
     Mat3 sig_t = sigma + (2.0 * G) * deps;
     const double iso = (K - 2.0 * G / 3.0) * tr_e;
     sig_t(0, 0) += iso;
@@ -401,7 +400,6 @@ struct Geomodel {
     sigma = sig;
     // The state's evp is the one whose surface holds the stress; it equals evp + dv to the
     // tolerance of the consistency iteration.
-    if (p.crush.active() && evp + d < -p.crush.p3 - 1e-9) fprintf(stderr, "DBG evp %.6g d0 %.6g d %.6g pt.i1 %.6g I1_t %.6g rj2_t %.6g X %.6g\n", evp, d0, d, pt.i1, I1_t, rj2_t, cap_at(p, evp));
     evp += d;
     return true;
   }
@@ -480,13 +478,13 @@ struct Geomodel {
     const double pf_n = p.slot_pore_pressure >= 0 ? st[p.slot_pore_pressure] : 0.0;
     const double i1e = trace(sigma) + 3.0 * pf_n;
     double K, G;
-    moduli(p, i1e, evp, pf_n, K, G);
+    moduli(p, i1e, evp, K, G);
     const double tr_e = trace(eps);
     const double dsig = std::sqrt(9.0 * K * K * tr_e * tr_e / 3.0 + 4.0 * G * G * ddot(deviator(eps), deviator(eps)));
     double n_need = std::ceil(dsig / surface_size(p, cap_at(p, evp), i1e));
     if (p.B1 > 0.0) {
       double K2, G2;
-      moduli(p, i1e + 3.0 * K * tr_e, evp, pf_n, K2, G2);
+      moduli(p, i1e + 3.0 * K * tr_e, evp, K2, G2);
       n_need = std::max(n_need, std::ceil(4.0 * std::abs(K2 - K) / K));  // K changes < 25 % per substep
     }
     const int n = std::isfinite(n_need) ? static_cast<int>(std::clamp(n_need, 1.0, double(p.max_substeps)))
@@ -550,8 +548,8 @@ struct Geomodel {
   static void elastic_trial(const Params& p, Mat3& sigma, double evp, const Mat3& deps) {
     const double pf = pore_pressure(p, evp);
     double K, G;
-    moduli(p, trace(sigma) + 3.0 * pf, evp, pf, K, G);
-    if (p.B1 > 0.0) moduli(p, trace(sigma) + 3.0 * pf + 1.5 * K * trace(deps), evp, pf, K, G);  // as substep()
+    moduli(p, trace(sigma) + 3.0 * pf, evp, K, G);
+    if (p.B1 > 0.0) moduli(p, trace(sigma) + 3.0 * pf + 1.5 * K * trace(deps), evp, K, G);  // as substep()
     sigma += (2.0 * G) * deps;
     const double iso = (K - 2.0 * G / 3.0) * trace(deps);
     sigma(0, 0) += iso;
