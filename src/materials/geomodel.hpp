@@ -471,12 +471,12 @@ struct Geomodel {
     const Mat3 eps = k.dt * k.D_bar;
     const Mat3 sigma_n = sigma;
     double eqps = st[0], evp = st[1];
-    // Substep count from the trial-stress increment against the surface size and the change of
-    // the bulk modulus over the step.
     // The pore pressure of the state (stored with a fluid: the value pore_pressure(evp) written at
     // the end of the previous step, which saves its Newton solve on every elastic step).
     const double pf_n = p.slot_pore_pressure >= 0 ? st[p.slot_pore_pressure] : 0.0;
     const double i1e = trace(sigma) + 3.0 * pf_n;
+    // Substep count from the trial-stress increment against the surface size and the change of
+    // the bulk modulus over the step.
     double K, G;
     moduli(p, i1e, evp, K, G);
     const double tr_e = trace(eps);
@@ -520,8 +520,7 @@ struct Geomodel {
         continue;
       }
       Mat3 sig_t = sig0;
-      double evp_t = evp0;
-      elastic_trial(p, sig_t, evp_t, deps);
+      elastic_trial(p, sig_t, evp0, deps);
       sigma = (1.0 - w) * sig_t + w * sig_inv;
       evp = evp0 + w * (evp - evp0);
       dep_sum += w * sub.dep;
@@ -544,7 +543,7 @@ struct Geomodel {
     res.drucker_product = ddot(sigma - sigma_n, dep_sum);
   }
 
-  /// Elastic trial of one substep (the moduli at its start).
+  /// Elastic trial of one substep, with the moduli taken as in substep().
   static void elastic_trial(const Params& p, Mat3& sigma, double evp, const Mat3& deps) {
     const double pf = pore_pressure(p, evp);
     double K, G;
