@@ -110,7 +110,7 @@ std::set<std::string> johnson_cook_keys() {
   k.insert(kEosKeys.begin(), kEosKeys.end());
   return k;
 }
-// The geomodel's deck keys (contract /work/notes4/geomodel_spec.md, issue 4).
+// The geomodel's deck keys (docs/materials.md, "geomodel").
 std::set<std::string> geomodel_keys() {
   return {"density",
           "bulk_modulus",
