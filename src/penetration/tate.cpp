@@ -83,7 +83,17 @@ TateRun integrate_tate(const TateInput& in, const TateOptions& opt) {
   }
   while (run.steps < opt.max_steps) {
     const Rhs f{in, rigid};
-    const double h = std::min(dt, opt.t_end - t);
+    // Step control: the nominal dt, but at most 1/steps_per_transit of the time over which the
+    // current rates would consume the rod (L/|dL/dt|) or stop it (V0/|dV/dt|). Near the end of
+    // erosion L decays exponentially and dV/dt ~ 1/L grows; a fixed dt would lose accuracy there.
+    // Every limit scales with 1/steps_per_transit, so halving it halves every step (order studies).
+    const Vec rate = f(y);
+    const double n = std::max(opt.steps_per_transit, 1);
+    double h = dt;
+    // (With Y = 0 the rod is consumed at a constant rate, RK4 is exact, and L reaches 0: no limit.)
+    if (in.Y > 0 && rate[1] < 0 && y[1] > 0) h = std::min(h, y[1] / -rate[1] / n);
+    if (rate[0] < 0) h = std::min(h, in.V0 / -rate[0] / n);
+    h = std::min(h, opt.t_end - t);
     const Vec trial = rk4_step(f, y, h);
     // Which event, if any, this step crosses (the first in the step is found by bisection below).
     auto crossed = [&](const Vec& z, double hz) {
