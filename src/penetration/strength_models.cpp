@@ -38,6 +38,7 @@ SteadyPenetration eichelberger(const EichelbergerInput& in) {
   require_positive("eichelberger", "rho_t", in.rho_t, "kg/m^3");
   require_finite("eichelberger", "R", in.R, "Pa");
   require_finite("eichelberger", "Y", in.Y, "Pa");
+  require_non_negative("eichelberger", "V", in.V, "m/s");
   const double sigma = in.R - in.Y;  // eq. 3.7
   const InterfaceSolution s = solve_interface(in.lambda * in.rho_p, in.rho_t, sigma, in.V);  // eq. 3.6
   if (s.regime == InterfaceRegime::kNoPenetration) return {0.0, 0.0, s.regime};
@@ -76,6 +77,7 @@ GroveResult grove(const GroveInput& in) {
   require_positive("grove", "rho_t", in.rho_t, "kg/m^3");
   require_finite("grove", "R", in.R, "Pa");
   require_finite("grove", "Y", in.Y, "Pa");
+  require_non_negative("grove", "V", in.V, "m/s");
   if (in.rho_d > in.rho_s)
     throw Error(fmt::format("grove: rho_d = {:g} must not exceed rho_s = {:g} [kg/m^3] (porosity >= 0)", in.rho_d,
                             in.rho_s));
