@@ -53,6 +53,11 @@ TEST(ModelCatalog, DefaultsAreFilledAndEvaluationMatchesLibrary) {
   bp::ModelArgs args;
   args.params = p;
   const auto out = m.evaluate(args);
-  for (const auto& o : out)
-    if (o.key == "P") EXPECT_NEAR(o.value, bp::birkhoff_depth(0.1, 8960, 2300), 1e-14);  // R = Y: eq. 3.2
+  int found = 0;
+  for (const auto& o : out) {
+    if (o.key != "P") continue;
+    ++found;
+    EXPECT_NEAR(o.value, bp::birkhoff_depth(0.1, 8960, 2300), 1e-14);  // R = Y: eq. 3.2
+  }
+  EXPECT_EQ(found, 1);
 }
