@@ -1,8 +1,8 @@
 #include "penetration/harvey.hpp"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "core/error.hpp"
 #include "penetration/interface_balance.hpp"
@@ -25,8 +25,8 @@ HarveyResult harvey_depth(const HarveyInput& in) {
   const double a = 0.0967 * std::pow(phi_percent, 0.428);  // eq. 3.17
   const double b = ucs < 30000 ? 0.7336 - 1.813e-5 * ucs   // eq. 3.18, sigma_ucs < 30000 psi
                                : 3.33 * std::exp(-9.55e-5 * ucs);
-  const double P_eff = Pc - a * Pp;                         // eq. 3.16 (see header)
-  const double F_BI = ucs + b * P_eff;                      // eq. 3.15 [psi]
+  const double P_eff = Pc - a * Pp;                                   // eq. 3.16 (see header)
+  const double F_BI = ucs + b * P_eff;                                // eq. 3.15 [psi]
   const double depth = in.P_ref * std::exp(alpha0 * (10000 - F_BI));  // eq. 3.14
   return {depth, F_BI * kPascalPerPsi, P_eff * kPascalPerPsi, a, b};
 }

@@ -8,12 +8,12 @@ namespace ballista::penetration {
 inline constexpr double kPascalPerPsi = 6894.757293168361;  // 1 psi = 0.45359237 kgf / (0.0254 m)^2
 
 struct HarveyInput {
-  double P_ref = 0;       ///< depth in a formation with F_BI = 10000 psi [m]
-  double alpha0 = 0;      ///< charge coefficient [1/Pa] (published in 1/psi: alpha0_psi = alpha0 * kPascalPerPsi)
-  double sigma_ucs = 0;   ///< unconfined compressive strength [Pa]
-  double P_c = 0;         ///< confining stress (overburden) [Pa]
-  double P_p = 0;         ///< pore fluid pressure [Pa]
-  double porosity = 0;    ///< porosity phi as a fraction in [0, 1] (eq. 3.17 uses percent)
+  double P_ref = 0;      ///< depth in a formation with F_BI = 10000 psi [m]
+  double alpha0 = 0;     ///< charge coefficient [1/Pa] (published in 1/psi: alpha0_psi = alpha0 * kPascalPerPsi)
+  double sigma_ucs = 0;  ///< unconfined compressive strength [Pa]
+  double P_c = 0;        ///< confining stress (overburden) [Pa]
+  double P_p = 0;        ///< pore fluid pressure [Pa]
+  double porosity = 0;   ///< porosity phi as a fraction in [0, 1] (eq. 3.17 uses percent)
 };
 
 struct HarveyResult {

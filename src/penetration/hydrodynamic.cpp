@@ -1,8 +1,8 @@
 #include "penetration/hydrodynamic.hpp"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "core/error.hpp"
 #include "penetration/interface_balance.hpp"
@@ -13,8 +13,8 @@ namespace {
 void require_lambda(const char* model, double lambda) {
   // eq. 3.3: lambda ranges from 1 (continuous jet) to 2 (fully particulated jet).
   if (!(lambda >= 1 && lambda <= 2))
-    throw Error(fmt::format("{}: lambda = {:g} must lie in [1, 2] (1 continuous jet, 2 fully particulated) [1]",
-                            model, lambda));
+    throw Error(fmt::format("{}: lambda = {:g} must lie in [1, 2] (1 continuous jet, 2 fully particulated) [1]", model,
+                            lambda));
 }
 }  // namespace
 

@@ -1,8 +1,8 @@
 #include "penetration/interface_balance.hpp"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "core/error.hpp"
 
@@ -10,9 +10,12 @@ namespace ballista::penetration {
 
 std::string to_string(InterfaceRegime r) {
   switch (r) {
-    case InterfaceRegime::kEroding: return "eroding";
-    case InterfaceRegime::kNoPenetration: return "no_penetration";
-    case InterfaceRegime::kRigid: return "rigid";
+    case InterfaceRegime::kEroding:
+      return "eroding";
+    case InterfaceRegime::kNoPenetration:
+      return "no_penetration";
+    case InterfaceRegime::kRigid:
+      return "rigid";
   }
   return "unknown";
 }
@@ -22,13 +25,11 @@ void require_finite(const char* model, const char* name, double x, const char* u
 }
 
 void require_positive(const char* model, const char* name, double x, const char* unit) {
-  if (!(std::isfinite(x) && x > 0))
-    throw Error(fmt::format("{}: {} = {:g} must be > 0 [{}]", model, name, x, unit));
+  if (!(std::isfinite(x) && x > 0)) throw Error(fmt::format("{}: {} = {:g} must be > 0 [{}]", model, name, x, unit));
 }
 
 void require_non_negative(const char* model, const char* name, double x, const char* unit) {
-  if (!(std::isfinite(x) && x >= 0))
-    throw Error(fmt::format("{}: {} = {:g} must be >= 0 [{}]", model, name, x, unit));
+  if (!(std::isfinite(x) && x >= 0)) throw Error(fmt::format("{}: {} = {:g} must be >= 0 [{}]", model, name, x, unit));
 }
 
 InterfaceSolution solve_interface(double k, double rho_t, double sigma, double V) {

@@ -13,7 +13,7 @@ struct ModelParam {
   std::string unit;
   std::string description;
   bool required = true;
-  double default_value = 0;  ///< used when not required and not given (unless optional_no_default)
+  double default_value = 0;          ///< used when not required and not given (unless optional_no_default)
   bool optional_no_default = false;  ///< not required and absent means "not given" (outputs that need it are skipped)
 };
 

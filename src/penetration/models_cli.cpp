@@ -1,9 +1,9 @@
 #include "penetration/models_cli.hpp"
 
+#include <fmt/format.h>
+
 #include <iostream>
 #include <map>
-
-#include <fmt/format.h>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
@@ -19,7 +19,9 @@ std::string quote(const std::string& s) {
   json_escape_to(out, s);  // the run summary's escaping (io/summary_writer)
   return out;
 }
-std::string number(double x) { return std::isfinite(x) ? fmt::format("{}", x) : "null"; }
+std::string number(double x) {
+  return std::isfinite(x) ? fmt::format("{}", x) : "null";
+}
 
 void print_list() {
   for (const ModelEntry& m : penetration_models()) {
@@ -116,8 +118,10 @@ int run_models_cli(const ModelsCliOptions& o) {
   for (size_t i = 0; i < rows.size(); ++i) {
     if (cases.size() > 1) std::cout << fmt::format("V = {:g} m/s\n", cases[i].at("V"));
     for (const ModelOutput& out : rows[i]) {
-      if (!out.text.empty()) std::cout << fmt::format("  {:<18} {}\n", out.key, out.text);
-      else std::cout << fmt::format("  {:<18} {:.8g} {}\n", out.key, out.value, out.unit);
+      if (!out.text.empty())
+        std::cout << fmt::format("  {:<18} {}\n", out.key, out.text);
+      else
+        std::cout << fmt::format("  {:<18} {:.8g} {}\n", out.key, out.value, out.unit);
     }
   }
 
@@ -142,7 +146,8 @@ int run_models_cli(const ModelsCliOptions& o) {
       j += "}, \"outputs\": {";
       f = true;
       for (const auto& out : rows[i]) {
-        j += std::string(f ? "" : ", ") + quote(out.key) + ": " + (out.text.empty() ? number(out.value) : quote(out.text));
+        j += std::string(f ? "" : ", ") + quote(out.key) + ": " +
+             (out.text.empty() ? number(out.value) : quote(out.text));
         f = false;
       }
       j += std::string("}}") + (i + 1 < rows.size() ? "," : "") + "\n";

@@ -1,8 +1,8 @@
 #include "penetration/orphal_anderson.hpp"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "core/error.hpp"
 #include "penetration/interface_balance.hpp"
@@ -11,7 +11,8 @@ namespace ballista::penetration {
 
 LinearFit fit_orphal_anderson(const std::vector<double>& V, const std::vector<double>& U) {
   if (V.size() != U.size())
-    throw Error(fmt::format("orphal-anderson fit: {} velocities V but {} penetration velocities U", V.size(), U.size()));
+    throw Error(
+        fmt::format("orphal-anderson fit: {} velocities V but {} penetration velocities U", V.size(), U.size()));
   if (V.size() < 2) throw Error("orphal-anderson fit: needs at least two (V, U) pairs");
   const double n = static_cast<double>(V.size());
   double mv = 0, mu = 0;
@@ -38,7 +39,7 @@ LinearFit fit_orphal_anderson(const std::vector<double>& V, const std::vector<do
 double orphal_anderson_strength_difference(double a, double b, double rho_p, double rho_t, double V) {
   require_positive("orphal-anderson", "rho_p", rho_p, "kg/m^3");
   require_positive("orphal-anderson", "rho_t", rho_t, "kg/m^3");
-  const double w = (1 - b) * V - a, U = a + b * V;  // V - U with U of eq. 5.2
+  const double w = (1 - b) * V - a, U = a + b * V;   // V - U with U of eq. 5.2
   return 0.5 * rho_p * w * w - 0.5 * rho_t * U * U;  // eq. 3.9 solved for R - Y (= eq. 5.3)
 }
 
@@ -51,9 +52,10 @@ double orphal_anderson_curvature(double b, double rho_p, double rho_t) {
 double orphal_anderson_extremum_velocity(double a, double b, double rho_p, double rho_t) {
   const double den = orphal_anderson_curvature(b, rho_p, rho_t);  // eq. 5.4 denominator = eq. 5.5
   if (den == 0)
-    throw Error(fmt::format("orphal-anderson: b = {:g} makes eq. 5.5 zero (hydrodynamic slope): R - Y is linear in V, "
-                            "no extremum",
-                            b));
+    throw Error(
+        fmt::format("orphal-anderson: b = {:g} makes eq. 5.5 zero (hydrodynamic slope): R - Y is linear in V, "
+                    "no extremum",
+                    b));
   return (a * rho_p - (rho_p - rho_t) * a * b) / den;  // eq. 5.4
 }
 

@@ -1,8 +1,8 @@
 #include "penetration/pack_evans_fit.hpp"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "core/error.hpp"
 
@@ -26,7 +26,7 @@ double pack_evans_extract_penalty(const PackEvansObservation& o) {
   require_positive("pack-evans-fit", "lambda", o.lambda, "1");
   const double q = (o.P - o.r) / o.L, ratio = o.rho_t / (o.lambda * o.rho_p);
   if (o.form == PackEvansForm::kPenaltyOutsideRoot) return 1 - std::sqrt(ratio) * q;  // eq. 6.15 (lambda = 1 there)
-  return 1 - ratio * q * q;                                                            // eq. 3.5 solved for x
+  return 1 - ratio * q * q;                                                           // eq. 3.5 solved for x
 }
 
 double pack_evans_extract_alpha(const PackEvansObservation& o) {

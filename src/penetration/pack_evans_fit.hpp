@@ -6,14 +6,14 @@
 namespace ballista::penetration {
 
 struct PackEvansObservation {
-  double P = 0;        ///< observed depth [m]
-  double r = 0;        ///< channel radius [m]
-  double L = 0;        ///< jet/rod length [m]
-  double lambda = 1;   ///< particulation factor [1] (given when extracting alpha)
-  double rho_p = 0;    ///< penetrator density [kg/m^3]
-  double rho_t = 0;    ///< target density [kg/m^3]
-  double sigma_y = 0;  ///< target yield strength [Pa] (alpha only)
-  double V = 0;        ///< impact velocity [m/s] (alpha only)
+  double P = 0;                                             ///< observed depth [m]
+  double r = 0;                                             ///< channel radius [m]
+  double L = 0;                                             ///< jet/rod length [m]
+  double lambda = 1;                                        ///< particulation factor [1] (given when extracting alpha)
+  double rho_p = 0;                                         ///< penetrator density [kg/m^3]
+  double rho_t = 0;                                         ///< target density [kg/m^3]
+  double sigma_y = 0;                                       ///< target yield strength [Pa] (alpha only)
+  double V = 0;                                             ///< impact velocity [m/s] (alpha only)
   PackEvansForm form = PackEvansForm::kPenaltyOutsideRoot;  ///< §6.4 uses the penalty outside the root
 };
 

@@ -1,10 +1,10 @@
 #include "penetration/tate.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "core/error.hpp"
 
@@ -19,8 +19,8 @@ void validate(const TateInput& in) {
   require_positive("tate", "V", in.V0, "m/s");
   // A rigid rod (Y > R) decelerates as dV/dt = -(R + rho_t V^2/2)/(rho_p L): with R = 0 it never stops.
   if (in.Y > in.R && !(in.R > 0))
-    throw Error(fmt::format("tate: R = {:g} Pa must be > 0 when Y = {:g} Pa > R (the rigid rod would never stop)",
-                            in.R, in.Y));
+    throw Error(
+        fmt::format("tate: R = {:g} Pa must be > 0 when Y = {:g} Pa > R (the rigid rod would never stop)", in.R, in.Y));
 }
 
 InterfaceSolution tate_penetration_velocity(const TateInput& in, double V) {
@@ -45,7 +45,9 @@ struct Rhs {
 };
 
 Vec rk4_step(const Rhs& f, const Vec& y, double h) {
-  auto axpy = [](const Vec& a, double s, const Vec& b) { return Vec{a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]}; };
+  auto axpy = [](const Vec& a, double s, const Vec& b) {
+    return Vec{a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]};
+  };
   const Vec k1 = f(y), k2 = f(axpy(y, h / 2, k1)), k3 = f(axpy(y, h / 2, k2)), k4 = f(axpy(y, h, k3));
   Vec out;
   for (int i = 0; i < 3; ++i) out[i] = y[i] + h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
@@ -61,7 +63,7 @@ TateRun integrate_tate(const TateInput& in, const TateOptions& opt) {
   const double dt = opt.dt > 0 ? opt.dt : in.L0 / in.V0 / std::max(opt.steps_per_transit, 1);
   const double A = 2 * (in.R - in.Y) / in.rho_p, mu2 = in.rho_t / in.rho_p;
   // Event functions, positive while the current phase goes on.
-  auto g_u = [&](const Vec& y) { return y[0] * y[0] - A; };           // U > 0 (R > Y)
+  auto g_u = [&](const Vec& y) { return y[0] * y[0] - A; };            // U > 0 (R > Y)
   auto g_rigid = [&](const Vec& y) { return mu2 * y[0] * y[0] + A; };  // V - U > 0 (Y > R)
   auto g_l = [](const Vec& y) { return y[1]; };
   auto g_v = [](const Vec& y) { return y[0]; };
@@ -139,11 +141,14 @@ TateRun integrate_tate(const TateInput& in, const TateOptions& opt) {
     run.final = state(y, t);
     if (ev == Event::kUZero) run.final.U = 0;
     if (opt.record_history) run.history.push_back(run.final);
-    run.stop_reason = ev == Event::kUZero ? "U = 0" : ev == Event::kLZero ? "L = 0" : ev == Event::kVZero ? "V = 0" : "t_end";
+    run.stop_reason = ev == Event::kUZero   ? "U = 0"
+                      : ev == Event::kLZero ? "L = 0"
+                      : ev == Event::kVZero ? "V = 0"
+                                            : "t_end";
     return run;
   }
-  throw Error(fmt::format("tate: no end of penetration after {} steps of {:g} s (raise max_steps or dt)",
-                          opt.max_steps, dt));
+  throw Error(
+      fmt::format("tate: no end of penetration after {} steps of {:g} s (raise max_steps or dt)", opt.max_steps, dt));
 }
 
 }  // namespace ballista::penetration

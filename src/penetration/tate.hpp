@@ -32,11 +32,11 @@ void validate(const TateInput& in);
 InterfaceSolution tate_penetration_velocity(const TateInput& in, double V);
 
 struct TateState {
-  double t = 0;  ///< time since impact [s]
-  double V = 0;  ///< rod (tail) velocity [m/s]
-  double U = 0;  ///< penetration velocity [m/s]
-  double L = 0;  ///< rod length [m]
-  double P = 0;  ///< depth [m]
+  double t = 0;        ///< time since impact [s]
+  double V = 0;        ///< rod (tail) velocity [m/s]
+  double U = 0;        ///< penetration velocity [m/s]
+  double L = 0;        ///< rod length [m]
+  double P = 0;        ///< depth [m]
   bool rigid = false;  ///< true once the rod no longer erodes (Y > R only)
 };
 

@@ -1,8 +1,8 @@
 #include "penetration/walters_segletes.hpp"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "core/error.hpp"
 #include "penetration/quadrature.hpp"
@@ -31,7 +31,10 @@ struct Exact {
       };
       return F(in.V0) - F(V);
     }
-    auto w = [&](double v) { const double sv = s(v); return (v * sv + A) / (v + sv); };  // = v - U(v)
+    auto w = [&](double v) {
+      const double sv = s(v);
+      return (v * sv + A) / (v + sv);
+    };  // = v - U(v)
     return quad(w, V, in.V0);
   }
   /// L(V) = L0 exp(-(rho_p/Y) int_V^V0 (v - U) dv).
@@ -62,8 +65,8 @@ double walters_segletes_final_velocity(const TateInput& in) {
   validate(in);
   if (in.Y == 0) return in.V0;
   const double A = 2 * (in.R - in.Y) / in.rho_p;
-  if (A > 0) return std::sqrt(A);                                  // U = 0: eq. 3.9 with U = 0
-  if (A < 0) return std::sqrt(2 * (in.Y - in.R) / in.rho_t);       // U = V: eq. 3.9 with U = V
+  if (A > 0) return std::sqrt(A);                             // U = 0: eq. 3.9 with U = 0
+  if (A < 0) return std::sqrt(2 * (in.Y - in.R) / in.rho_t);  // U = V: eq. 3.9 with U = V
   return 0;
 }
 
@@ -72,8 +75,8 @@ TateState walters_segletes_at_velocity(const TateInput& in, double V) {
   if (!(in.Y > 0)) throw Error("walters-segletes: Y must be > 0 (with Y = 0 the rod velocity is constant)");
   const double V_end = walters_segletes_final_velocity(in);
   if (!(V >= V_end && V <= in.V0))
-    throw Error(fmt::format("walters-segletes: V = {:g} m/s outside the eroding phase [{:g}, {:g}] m/s", V, V_end,
-                            in.V0));
+    throw Error(
+        fmt::format("walters-segletes: V = {:g} m/s outside the eroding phase [{:g}, {:g}] m/s", V, V_end, in.V0));
   return Exact(in).at(V);
 }
 
@@ -98,10 +101,16 @@ TateState walters_segletes_at_time(const TateInput& in, double t) {
   double lo = V_end, hi = in.V0, V = in.V0 - (in.V0 - V_end) * t / end.t;
   for (int it = 0; it < 100; ++it) {
     const double tv = ex.at(V).t;
-    if (tv > t) lo = V; else hi = V;
+    if (tv > t)
+      lo = V;
+    else
+      hi = V;
     double next = V + (tv - t) * in.Y / (in.rho_p * ex.L(V));
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (std::abs(next - V) <= 1e-14 * in.V0) { V = next; break; }
+    if (std::abs(next - V) <= 1e-14 * in.V0) {
+      V = next;
+      break;
+    }
     V = next;
   }
   return ex.at(V);

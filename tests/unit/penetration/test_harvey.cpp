@@ -1,7 +1,7 @@
 // Harvey stressed-rock correlation (thesis seed 000 eq. 3.14-3.18), field units inside.
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "core/error.hpp"
 #include "penetration/harvey.hpp"

@@ -1,8 +1,8 @@
 // Hydrodynamic penetration (thesis seed 000 eq. 3.1-3.4) against hand-computed values and the
 // hydrodynamic column of thesis Table 5.3.
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "core/error.hpp"
 #include "penetration/hydrodynamic.hpp"
@@ -31,9 +31,14 @@ TEST(Hydrodynamic, ThesisTable53HydrodynamicColumn) {
   //  19.235 g/cm^3,  73.54 mm: sqrt(19235/2300) = 2.891893 -> 212.670 mm = 21.267 cm (printed 21.27)
   //  24.044 g/cm^3,  58.83 mm: sqrt(24044/2300) = 3.233251 -> 190.212 mm = 19.021 cm (printed 19.02)
   //  38.470 g/cm^3,  36.78 mm: sqrt(38470/2300) = 4.089754 -> 150.421 mm = 15.042 cm (printed 15.04)
-  struct Row { double rho_gcc, L_mm, P_cm; };
-  const Row rows[] = {{9.618, 147.08, 30.08}, {14.426, 98.05, 24.56}, {19.235, 73.54, 21.27},
-                      {24.044, 58.83, 19.02}, {38.470, 36.78, 15.04}};
+  struct Row {
+    double rho_gcc, L_mm, P_cm;
+  };
+  const Row rows[] = {{9.618, 147.08, 30.08},
+                      {14.426, 98.05, 24.56},
+                      {19.235, 73.54, 21.27},
+                      {24.044, 58.83, 19.02},
+                      {38.470, 36.78, 15.04}};
   for (const Row& r : rows) {
     const double P = bp::birkhoff_depth(r.L_mm * 1e-3, r.rho_gcc * 1e3, 2300);
     // Tolerance: half a unit of the printed 0.01 cm, plus the printed length's own rounding

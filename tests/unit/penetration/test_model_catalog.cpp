@@ -1,8 +1,8 @@
 // The model table behind `ballista models`: names, parameter checking, defaults, and that an
 // evaluation by name returns the library function's value.
-#include <string>
-
 #include <gtest/gtest.h>
+
+#include <string>
 
 #include "core/error.hpp"
 #include "penetration/hydrodynamic.hpp"
@@ -34,7 +34,9 @@ TEST(ModelCatalog, NamesAreUniqueAndEveryParameterHasAUnit) {
 
 TEST(ModelCatalog, ParameterErrorsNameTheParameter) {
   const auto& tate = bp::find_penetration_model("tate");
-  EXPECT_NE(error_of([&] { bp::resolve_model_params(tate, {{"L", 0.1}, {"bogus", 1}}); }).find("'bogus'"),
+  EXPECT_NE(error_of([&] {
+              bp::resolve_model_params(tate, {{"L", 0.1}, {"bogus", 1}});
+            }).find("'bogus'"),
             std::string::npos);
   EXPECT_NE(error_of([&] { bp::resolve_model_params(tate, {{"L", 0.1}}); }).find("'rho_p'"), std::string::npos);
   EXPECT_NE(error_of([] { bp::find_penetration_model("tait"); }).find("tate"), std::string::npos);  // lists names
@@ -47,8 +49,8 @@ TEST(ModelCatalog, ParameterErrorsNameTheParameter) {
 
 TEST(ModelCatalog, DefaultsAreFilledAndEvaluationMatchesLibrary) {
   const auto& m = bp::find_penetration_model("eichelberger");
-  const auto p = bp::resolve_model_params(m, {{"L", 0.1}, {"rho_p", 8960}, {"rho_t", 2300}, {"R", 0}, {"Y", 0},
-                                              {"V", 5000}});
+  const auto p =
+      bp::resolve_model_params(m, {{"L", 0.1}, {"rho_p", 8960}, {"rho_t", 2300}, {"R", 0}, {"Y", 0}, {"V", 5000}});
   EXPECT_EQ(p.at("lambda"), 1);  // default
   bp::ModelArgs args;
   args.params = p;

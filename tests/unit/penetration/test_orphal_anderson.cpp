@@ -1,8 +1,8 @@
 // Orphal-Anderson fit and its strength difference (thesis seed 000 eq. 5.2-5.5).
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "core/error.hpp"
 #include "penetration/orphal_anderson.hpp"
@@ -41,7 +41,8 @@ TEST(OrphalAnderson, StrengthDifferenceMatchesPrintedEquation53) {
   for (double a : {-300.0, 0.0, 250.0})
     for (double b : {0.3, 0.634, 0.8})
       for (double V : {1500.0, 3300.0}) {
-        const double printed = (a * a + 2 * a * b * V + b * b * V * V) * (rp - rt) / 2 - a * rp * V - (b - 0.5) * rp * V * V;
+        const double printed =
+            (a * a + 2 * a * b * V + b * b * V * V) * (rp - rt) / 2 - a * rp * V - (b - 0.5) * rp * V * V;
         EXPECT_NEAR(bp::orphal_anderson_strength_difference(a, b, rp, rt, V), printed, 1e-12 * rp * V * V);
       }
   // Hydrodynamic law (a = 0, b = hydrodynamic slope): R - Y = 0 at every V.

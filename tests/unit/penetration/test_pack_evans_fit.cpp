@@ -1,8 +1,8 @@
 // Pack-Evans coefficient extraction (thesis seed 000 eq. 6.15-6.16) against thesis Tables
 // 6.5-6.7, and round trips through the depth of eq. 3.5.
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "core/error.hpp"
 #include "penetration/pack_evans_fit.hpp"

@@ -1,8 +1,8 @@
 // Strength-corrected jet models (thesis seed 000 eq. 3.5-3.13): limits that reduce to Birkhoff,
 // the interface balances they solve, and hand-computed values.
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "core/error.hpp"
 #include "penetration/hydrodynamic.hpp"

@@ -1,9 +1,9 @@
 // Alekseevskii-Tate (thesis seed 000 eq. 3.9): the steady root against the textbook quadratic
 // formula, and the RK4 time integration against the Walters-Segletes exact solution.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
-
-#include <gtest/gtest.h>
 
 #include "core/error.hpp"
 #include "penetration/hydrodynamic.hpp"
@@ -15,7 +15,9 @@ namespace bp = ballista::penetration;
 namespace {
 // Tungsten-alloy rod into armour steel, a classical Tate set: R > Y, so the rod stops
 // penetrating (U = 0) at V = sqrt(2 (R - Y)/rho_p) = 630.7 m/s.
-bp::TateInput tungsten_into_steel() { return {0.1, 17600, 7850, 5.0e9, 1.5e9, 1500}; }
+bp::TateInput tungsten_into_steel() {
+  return {0.1, 17600, 7850, 5.0e9, 1.5e9, 1500};
+}
 }  // namespace
 
 TEST(Tate, SteadyVelocityMatchesQuadraticFormula) {
@@ -84,10 +86,11 @@ TEST(Tate, FinalDepthMatchesWaltersSegletes) {
   const bp::TateState ex = bp::walters_segletes_final(in);
   const auto run = bp::integrate_tate(in);  // default: 200 steps per L0/V0
   EXPECT_EQ(run.stop_reason, "U = 0");
-  std::printf("Tate final (%ld steps): P = %.9f m, rel. error %.2e; L = %.3e m, error %.2e m; t = %.6e s, rel. "
-              "error %.2e\n",
-              run.steps, run.final.P, std::abs(run.final.P / ex.P - 1), run.final.L, std::abs(run.final.L - ex.L),
-              run.final.t, std::abs(run.final.t / ex.t - 1));
+  std::printf(
+      "Tate final (%ld steps): P = %.9f m, rel. error %.2e; L = %.3e m, error %.2e m; t = %.6e s, rel. "
+      "error %.2e\n",
+      run.steps, run.final.P, std::abs(run.final.P / ex.P - 1), run.final.L, std::abs(run.final.L - ex.L), run.final.t,
+      std::abs(run.final.t / ex.t - 1));
   // The event is located on the RK4 map and the step control follows the exponential decay of L
   // at the end of erosion (L_end ~ 1e-3 L0 here), so the end state keeps the 4th order: at
   // 200 steps per L0/V0 the observed errors are ~1e-14 relative (1460 steps); 1e-10 leaves margin
@@ -106,19 +109,22 @@ TEST(Tate, StrongRodErodesThenPenetratesRigidly) {
   const bp::TateState ex = bp::walters_segletes_final(in);
   const bp::TateState* onset = nullptr;
   for (const auto& s : run.history)
-    if (s.rigid) { onset = &s; break; }
+    if (s.rigid) {
+      onset = &s;
+      break;
+    }
   ASSERT_NE(onset, nullptr);
   EXPECT_NEAR(onset->V, std::sqrt(2 * (in.Y - in.R) / in.rho_t), 1e-9 * in.V0);
   EXPECT_NEAR(onset->P, ex.P, 1e-8 * ex.P);
   EXPECT_NEAR(onset->L, ex.L, 1e-8 * in.L0);
-  EXPECT_GT(run.final.P, onset->P);  // rigid penetration adds depth
+  EXPECT_GT(run.final.P, onset->P);       // rigid penetration adds depth
   EXPECT_NEAR(run.final.L, onset->L, 0);  // a rigid rod does not erode
 }
 
 TEST(Tate, RejectsBadInput) {
-  EXPECT_THROW(bp::integrate_tate({0, 17600, 7850, 5e9, 1.5e9, 1500}), ballista::Error);    // L0
-  EXPECT_THROW(bp::integrate_tate({0.1, 17600, 7850, -1, 1.5e9, 1500}), ballista::Error);   // R < 0
-  EXPECT_THROW(bp::integrate_tate({0.1, 17600, 7850, 0, 1.5e9, 1500}), ballista::Error);    // rigid, R = 0
+  EXPECT_THROW(bp::integrate_tate({0, 17600, 7850, 5e9, 1.5e9, 1500}), ballista::Error);        // L0
+  EXPECT_THROW(bp::integrate_tate({0.1, 17600, 7850, -1, 1.5e9, 1500}), ballista::Error);       // R < 0
+  EXPECT_THROW(bp::integrate_tate({0.1, 17600, 7850, 0, 1.5e9, 1500}), ballista::Error);        // rigid, R = 0
   EXPECT_THROW(bp::walters_segletes_at_velocity(tungsten_into_steel(), 100), ballista::Error);  // past the end
 }
 
@@ -127,8 +133,8 @@ TEST(Tate, ExactSolutionBranchesAgreeWithIntegration) {
   // quadrature branch near mu = 1 (rho_p = rho_t), each against RK4 at 200 steps per transit
   // (observed ~1e-13 in the tungsten case; 1e-9 relative leaves room for these harder cases).
   const bp::TateInput cases[] = {
-      {0.1, 7850, 7850, 3e9, 1e9, 2000},    // mu = 1: quadrature branch
-      {0.1, 2700, 7850, 3e9, 0.4e9, 2500},  // aluminium into steel: mu^2 > 1, c < 0
+      {0.1, 7850, 7850, 3e9, 1e9, 2000},       // mu = 1: quadrature branch
+      {0.1, 2700, 7850, 3e9, 0.4e9, 2500},     // aluminium into steel: mu^2 > 1, c < 0
       {0.1, 17600, 2700, 0.5e9, 1.5e9, 1500},  // Y > R: 1 - mu^2 > 0, A < 0, ends at rigid onset
   };
   for (const auto& in : cases) {
@@ -136,7 +142,10 @@ TEST(Tate, ExactSolutionBranchesAgreeWithIntegration) {
     const auto run = bp::integrate_tate(in);
     const bp::TateState* end = &run.final;
     for (const auto& s : run.history)
-      if (s.rigid) { end = &s; break; }
+      if (s.rigid) {
+        end = &s;
+        break;
+      }
     EXPECT_NEAR(end->P, ex.P, 1e-9 * ex.P) << "rho_p " << in.rho_p;
     EXPECT_NEAR(end->L, ex.L, 1e-9 * in.L0) << "rho_p " << in.rho_p;
     EXPECT_NEAR(end->t, ex.t, 1e-9 * ex.t) << "rho_p " << in.rho_p;
