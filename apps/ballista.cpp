@@ -15,6 +15,7 @@
 #include "io/material_presets.hpp"
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
+#include "penetration/models_command.hpp"
 #include "run/simulation.hpp"
 #include "verify/verify_command.hpp"
 
@@ -122,10 +123,13 @@ int main(int argc, char** argv) {
   auto* info = app.add_subcommand("info", "list registered solvers, shape functions and materials");
   ballista::VerifyCliOptions verify_opt;
   auto* verify = ballista::add_verify_command(app, verify_opt);
+  ballista::penetration::ModelsCliOptions models_opt;
+  auto* models = ballista::add_models_command(app, models_opt);
 
   CLI11_PARSE(app, argc, argv);
   try {
     if (*verify) return ballista::run_verify_cli(verify_opt);
+    if (*models) return ballista::penetration::run_models_cli(models_opt);
     if (*info) {
       print_info();
       return 0;

@@ -1,0 +1,102 @@
+#include "penetration/strength_models.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace ballista::penetration {
+
+double pack_evans_penalty(const PackEvansInput& in) {
+  require_positive("pack-evans", "rho_p", in.rho_p, "kg/m^3");
+  require_positive("pack-evans", "V", in.V, "m/s");
+  require_non_negative("pack-evans", "alpha", in.alpha, "1");
+  require_non_negative("pack-evans", "sigma_y", in.sigma_y, "Pa");
+  return in.alpha * in.sigma_y / (in.rho_p * in.V * in.V);  // eq. 3.5, sigma_y / (rho_p V^2) scaled by alpha
+}
+
+double pack_evans_depth(const PackEvansInput& in) {
+  require_non_negative("pack-evans", "L", in.L, "m");
+  require_positive("pack-evans", "lambda", in.lambda, "1");
+  require_positive("pack-evans", "rho_t", in.rho_t, "kg/m^3");
+  require_non_negative("pack-evans", "r", in.r, "m");
+  const double x = pack_evans_penalty(in);
+  if (x > 1)
+    throw Error(
+        fmt::format("pack-evans: the penalty alpha sigma_y / (rho_p V^2) = {:g} exceeds 1: the strength "
+                    "term of eq. 3.5 leaves no real depth (raise V or lower alpha, sigma_y)",
+                    x));
+  const double ratio = in.lambda * in.rho_p / in.rho_t;
+  if (in.form == PackEvansForm::kPenaltyInsideRoot) return in.L * std::sqrt(ratio * (1 - x)) + in.r;  // eq. 3.5
+  return in.L * std::sqrt(ratio) * (1 - x) + in.r;  // the form eq. 6.15-6.16 invert
+}
+
+SteadyPenetration eichelberger(const EichelbergerInput& in) {
+  require_non_negative("eichelberger", "L", in.L, "m");
+  require_positive("eichelberger", "lambda", in.lambda, "1");
+  require_positive("eichelberger", "rho_p", in.rho_p, "kg/m^3");
+  require_positive("eichelberger", "rho_t", in.rho_t, "kg/m^3");
+  require_finite("eichelberger", "R", in.R, "Pa");
+  require_finite("eichelberger", "Y", in.Y, "Pa");
+  require_non_negative("eichelberger", "V", in.V, "m/s");
+  const double sigma = in.R - in.Y;                                                          // eq. 3.7
+  const InterfaceSolution s = solve_interface(in.lambda * in.rho_p, in.rho_t, sigma, in.V);  // eq. 3.6
+  if (s.regime == InterfaceRegime::kNoPenetration) return {0.0, 0.0, s.regime};
+  if (s.regime == InterfaceRegime::kRigid)
+    throw Error(
+        fmt::format("eichelberger: rho_t V^2 = {:g} Pa <= 2 (Y - R) = {:g} Pa: the jet does not erode "
+                    "(U = V) and eq. 3.8 does not apply",
+                    in.rho_t * in.V * in.V, 2 * (in.Y - in.R)));
+  const double w = in.V - s.U;
+  // eq. 3.8; the argument equals (U/(V-U))^2 rho_t/rho_t by eq. 3.6, so it is >= 0 here.
+  const double arg = in.lambda * in.rho_p / in.rho_t - 2 * sigma / (in.rho_t * w * w);
+  return {s.U, in.L * std::sqrt(std::max(arg, 0.0)), s.regime};
+}
+
+double gladkikh_depth(double L, double rho_p, double rho_t, double V_tip, double V_tail) {
+  require_non_negative("gladkikh", "L", L, "m");
+  require_positive("gladkikh", "rho_p", rho_p, "kg/m^3");
+  require_positive("gladkikh", "rho_t", rho_t, "kg/m^3");
+  require_positive("gladkikh", "V_tail", V_tail, "m/s");
+  require_positive("gladkikh", "V_tip", V_tip, "m/s");
+  const double G = V_tip / V_tail;  // Gamma of eq. 3.10
+  if (!(G > 1))
+    throw Error(fmt::format("gladkikh: V_tip/V_tail = {:g} must be > 1: eq. 3.10 needs a velocity gradient", G));
+  const double g = std::sqrt(rho_p / rho_t);                                        // gamma of eq. 3.10
+  const double bracket = ((2 + g) * G - 2 * (1 + g) * std::sqrt(G + g)) / (G - 1);  // eq. 3.10
+  if (!(bracket > 0))
+    throw Error(
+        fmt::format("gladkikh: eq. 3.10 gives no positive depth for V_tip/V_tail = {:g} and "
+                    "sqrt(rho_p/rho_t) = {:g} (bracket {:g}); use a larger velocity ratio",
+                    G, g, bracket));
+  return L * g * bracket;
+}
+
+GroveResult grove(const GroveInput& in) {
+  require_non_negative("grove", "L", in.L, "m");
+  require_positive("grove", "rho_d", in.rho_d, "kg/m^3");
+  require_positive("grove", "rho_s", in.rho_s, "kg/m^3");
+  require_positive("grove", "rho_t", in.rho_t, "kg/m^3");
+  require_finite("grove", "R", in.R, "Pa");
+  require_finite("grove", "Y", in.Y, "Pa");
+  require_non_negative("grove", "V", in.V, "m/s");
+  if (in.rho_d > in.rho_s)
+    throw Error(
+        fmt::format("grove: rho_d = {:g} must not exceed rho_s = {:g} [kg/m^3] (porosity >= 0)", in.rho_d, in.rho_s));
+  const double phi = 1 - in.rho_d / in.rho_s;  // porosity, below eq. 3.12
+  const double sigma = in.R - in.Y;
+  const double k = in.rho_d * (1 + phi);  // eq. 3.11 = eq. 3.12: k (V-U)^2 = rho_t U^2 + 2 sigma
+  const InterfaceSolution s = solve_interface(k, in.rho_t, sigma, in.V);
+  if (s.regime == InterfaceRegime::kNoPenetration) return {phi, {0.0, 0.0, s.regime}};
+  if (s.regime == InterfaceRegime::kRigid)
+    throw Error(
+        fmt::format("grove: rho_t V^2 = {:g} Pa <= 2 (Y - R) = {:g} Pa: the jet does not erode and "
+                    "eq. 3.13 does not apply",
+                    in.rho_t * in.V * in.V, 2 * (in.Y - in.R)));
+  const double w = in.V - s.U;
+  const double arg = k / in.rho_t - 2 * sigma / (in.rho_t * w * w);  // eq. 3.13
+  return {phi, {s.U, in.L * std::sqrt(std::max(arg, 0.0)), s.regime}};
+}
+
+}  // namespace ballista::penetration
