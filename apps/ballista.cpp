@@ -17,6 +17,7 @@
 #include "mpm/shape_functions.hpp"
 #include "penetration/models_command.hpp"
 #include "run/simulation.hpp"
+#include "run/sweep_command.hpp"
 #include "verify/verify_command.hpp"
 
 namespace {
@@ -125,11 +126,14 @@ int main(int argc, char** argv) {
   auto* verify = ballista::add_verify_command(app, verify_opt);
   ballista::penetration::ModelsCliOptions models_opt;
   auto* models = ballista::add_models_command(app, models_opt);
+  ballista::SweepCliOptions sweep_opt;
+  auto* sweep = ballista::add_sweep_command(app, sweep_opt);
 
   CLI11_PARSE(app, argc, argv);
   try {
     if (*verify) return ballista::run_verify_cli(verify_opt);
     if (*models) return ballista::penetration::run_models_cli(models_opt);
+    if (*sweep) return ballista::run_sweep_cli(sweep_opt, argv[0]);
     if (*info) {
       print_info();
       return 0;
