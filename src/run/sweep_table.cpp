@@ -21,7 +21,8 @@ std::string trim(const std::string& s) {
   throw Error("--vary '" + text + "': " + what + " (expected key.path=value1,value2,...)");
 }
 
-void flatten_into(const YAML::Node& n, const std::string& prefix, std::vector<std::pair<std::string, SweepCell>>& out) {
+void flatten_into(const YAML::Node& n, const std::string& prefix,
+                  std::vector<std::pair<std::string, SweepCell>>& out) {
   switch (n.Type()) {
     case YAML::NodeType::Map:
       for (const auto& kv : n) {
@@ -30,15 +31,19 @@ void flatten_into(const YAML::Node& n, const std::string& prefix, std::vector<st
       }
       return;
     case YAML::NodeType::Sequence:
-      for (size_t i = 0; i < n.size(); ++i) flatten_into(n[i], prefix + "." + std::to_string(i), out);
+      for (size_t i = 0; i < n.size(); ++i)
+        flatten_into(n[i], prefix + "." + std::to_string(i), out);
       return;
     case YAML::NodeType::Scalar: {
-      // A quoted JSON string has the non-specific tag "!"; keep it a string even if it looks numeric.
-      SweepCell c = n.Tag() == "!" ? SweepCell{n.Scalar(), SweepCell::Kind::String} : sweep_cell(n.Scalar());
+      // A quoted JSON string has the non-specific tag "!"; keep it a string even if it looks
+      // numeric.
+      SweepCell c =
+          n.Tag() == "!" ? SweepCell{n.Scalar(), SweepCell::Kind::String} : sweep_cell(n.Scalar());
       out.emplace_back(prefix, std::move(c));
       return;
     }
-    default: return;  // null / undefined: an empty cell
+    default:
+      return;  // null / undefined: an empty cell
   }
 }
 
@@ -59,8 +64,10 @@ JsonValue cell_json(const SweepCell& c) {
       std::from_chars(c.text.data(), c.text.data() + c.text.size(), v);
       return JsonValue(v);
     }
-    case SweepCell::Kind::Bool: return JsonValue(c.text == "true");
-    case SweepCell::Kind::String: return JsonValue(c.text);
+    case SweepCell::Kind::Bool:
+      return JsonValue(c.text == "true");
+    case SweepCell::Kind::String:
+      return JsonValue(c.text);
   }
   return JsonValue();
 }
@@ -83,7 +90,8 @@ SweepAxis parse_vary(const std::string& text) {
   std::string cur;
   const auto finish = [&] {
     const std::string v = trim(cur);
-    if (v.empty()) vary_error(text, "empty value (value " + std::to_string(axis.values.size() + 1) + ")");
+    if (v.empty())
+      vary_error(text, "empty value (value " + std::to_string(axis.values.size() + 1) + ")");
     axis.values.push_back(v);
     cur.clear();
   };
@@ -113,7 +121,8 @@ std::vector<SweepAxis> parse_vary_options(const std::vector<std::string>& texts)
   std::set<std::string> keys;
   for (const auto& t : texts) {
     SweepAxis a = parse_vary(t);
-    if (!keys.insert(a.key).second) throw Error("--vary '" + t + "': key '" + a.key + "' is varied twice");
+    if (!keys.insert(a.key).second)
+      throw Error("--vary '" + t + "': key '" + a.key + "' is varied twice");
     axes.push_back(std::move(a));
   }
   return axes;
@@ -121,7 +130,8 @@ std::vector<SweepAxis> parse_vary_options(const std::vector<std::string>& texts)
 
 std::vector<std::vector<std::string>> sweep_product(const std::vector<SweepAxis>& axes) {
   std::vector<std::vector<std::string>> runs{{}};
-  for (const SweepAxis& a : axes) {  // each axis multiplies the runs so far; the last varies fastest
+  for (const SweepAxis& a :
+       axes) {  // each axis multiplies the runs so far; the last varies fastest
     std::vector<std::vector<std::string>> next;
     next.reserve(runs.size() * a.values.size());
     for (const auto& prefix : runs)
@@ -139,12 +149,13 @@ SweepCell sweep_cell(const std::string& text) {
   double v = 0;
   const char* end = text.data() + text.size();
   const auto r = std::from_chars(text.data(), end, v);
-  if (!text.empty() && r.ec == std::errc() && r.ptr == end && std::isfinite(v)) return {text, SweepCell::Kind::Number};
+  if (!text.empty() && r.ec == std::errc() && r.ptr == end && std::isfinite(v))
+    return {text, SweepCell::Kind::Number};
   return {text, SweepCell::Kind::String};
 }
 
-std::vector<std::pair<std::string, SweepCell>> flatten_summary(const YAML::Node& summary,
-                                                               const std::vector<std::string>& skip) {
+std::vector<std::pair<std::string, SweepCell>> flatten_summary(
+    const YAML::Node& summary, const std::vector<std::string>& skip) {
   std::vector<std::pair<std::string, SweepCell>> out;
   if (!summary.IsMap()) return out;
   for (const auto& kv : summary) {
@@ -188,7 +199,8 @@ std::string SweepTable::csv() const {
   out += '\n';
   for (const SweepRow& r : rows_) {
     out += std::to_string(r.index);
-    for (size_t a = 0; a < axes_.size(); ++a) out += "," + csv_field(a < r.values.size() ? r.values[a] : "");
+    for (size_t a = 0; a < axes_.size(); ++a)
+      out += "," + csv_field(a < r.values.size() ? r.values[a] : "");
     out += "," + csv_field(r.status) + "," + csv_field(r.error);
     for (const auto& c : sum) {
       out += ',';
@@ -219,7 +231,8 @@ JsonValue SweepTable::json() const {
   for (const SweepRow& r : rows_) {
     JsonValue& o = runs.push_back(JsonValue::object());
     o["run"] = r.index;
-    for (size_t a = 0; a < axes_.size(); ++a) o[axes_[a].key] = a < r.values.size() ? cell_json(sweep_cell(r.values[a])) : JsonValue();
+    for (size_t a = 0; a < axes_.size(); ++a)
+      o[axes_[a].key] = a < r.values.size() ? cell_json(sweep_cell(r.values[a])) : JsonValue();
     o["status"] = r.status;
     o["error"] = r.error.empty() ? JsonValue() : JsonValue(r.error);
     for (const auto& c : sum) {

@@ -2,12 +2,12 @@
 // The parameter study of `ballista sweep` (docs/sweep.md), independent of how runs are executed:
 // the --vary axes and their Cartesian product, the flattening of a run's summary.json into
 // scalar cells, and the table of all runs written as sweep.csv and sweep.json.
+#include <yaml-cpp/yaml.h>
+
 #include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <yaml-cpp/yaml.h>
 
 #include "io/summary_writer.hpp"
 
@@ -40,21 +40,23 @@ struct SweepCell {
   Kind kind = Kind::String;
 };
 
-/// Classifies a value text: a finite number (whole text) -> Number, true/false -> Bool, else String.
+/// Classifies a value text: a finite number (whole text) -> Number, true/false -> Bool, else
+/// String.
 SweepCell sweep_cell(const std::string& text);
 
 /// Flattens a parsed summary.json into (column, cell) pairs: nested keys joined by dots
 /// (probes.max_eqps, energy.kinetic), array elements by index (tracked_particles.0), JSON null
-/// skipped (it is an empty cell), quoted strings kept as strings. Keys listed in `skip` (top level) are left out.
-std::vector<std::pair<std::string, SweepCell>> flatten_summary(const YAML::Node& summary,
-                                                               const std::vector<std::string>& skip = {});
+/// skipped (it is an empty cell), quoted strings kept as strings. Keys listed in `skip` (top level)
+/// are left out.
+std::vector<std::pair<std::string, SweepCell>> flatten_summary(
+    const YAML::Node& summary, const std::vector<std::string>& skip = {});
 
 /// One run of the sweep as it appears in the table.
 struct SweepRow {
-  int index = 0;                    ///< run number k (folder run_<k>)
-  std::vector<std::string> values;  ///< one per axis
-  std::string status;               ///< "completed" or "failed"
-  std::string error;                ///< why it failed (empty when completed)
+  int index = 0;                                           ///< run number k (folder run_<k>)
+  std::vector<std::string> values;                         ///< one per axis
+  std::string status;                                      ///< "completed" or "failed"
+  std::string error;                                       ///< why it failed (empty when completed)
   std::vector<std::pair<std::string, SweepCell>> scalars;  ///< the flattened summary.json
 };
 
