@@ -52,8 +52,7 @@ std::string log_tail(const fs::path& log, size_t max_lines = 3) {
 /// Starts `exe run deck -o dir -q --set ...` with stdout and stderr going to dir/log.txt.
 pid_t launch(const std::string& exe, const std::string& deck, const SweepRunSpec& r) {
   fs::create_directories(r.dir);
-  fs::remove(r.dir /
-             "summary.json");  // a summary left by an earlier sweep must not be read as this run's
+  fs::remove(r.dir / "summary.json");  // a summary left by an earlier sweep must not be read as this run's
   std::vector<std::string> args{exe, "run", deck, "-o", r.dir.string(), "-q"};
   for (const auto& o : r.overrides) {
     args.push_back("--set");
@@ -65,8 +64,7 @@ pid_t launch(const std::string& exe, const std::string& deck, const SweepRunSpec
   const std::string log = (r.dir / "log.txt").string();
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                   0644);
+  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
   pid_t pid = 0;
   const int rc = posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
@@ -112,17 +110,14 @@ int sweep_threads_per_run(int cores, int jobs) {
 }
 
 SweepPlan plan_sweep(const SweepOptions& o) {
-  if (o.jobs < 1)
-    throw Error("--jobs " + std::to_string(o.jobs) +
-                ": expected a positive number of runs at a time");
+  if (o.jobs < 1) throw Error("--jobs " + std::to_string(o.jobs) + ": expected a positive number of runs at a time");
   SweepPlan plan;
   plan.axes = parse_vary_options(o.vary);
   if (plan.axes.empty()) throw Error("sweep: give at least one --vary key.path=value1,value2,...");
   std::vector<std::string> varied_keys;
   for (const auto& a : plan.axes) varied_keys.push_back(a.key + "=x");
   if (o.jobs > 1 && !sets_threads(o.set, o.deck) && !sets_threads(varied_keys, o.deck)) {
-    const int cores =
-        o.cores > 0 ? o.cores : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int cores = o.cores > 0 ? o.cores : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     plan.threads_per_run = sweep_threads_per_run(cores, o.jobs);
   }
   const auto combos = sweep_product(plan.axes);
@@ -132,18 +127,14 @@ SweepPlan plan_sweep(const SweepOptions& o) {
     r.values = combos[k];
     // Order: threads first, so an explicit --set simulation.threads would win; then --set, then the
     // varied values.
-    if (plan.threads_per_run > 0)
-      r.overrides.push_back("simulation.threads=" + std::to_string(plan.threads_per_run));
+    if (plan.threads_per_run > 0) r.overrides.push_back("simulation.threads=" + std::to_string(plan.threads_per_run));
     r.overrides.insert(r.overrides.end(), o.set.begin(), o.set.end());
-    for (size_t a = 0; a < plan.axes.size(); ++a)
-      r.overrides.push_back(plan.axes[a].key + "=" + r.values[a]);
+    for (size_t a = 0; a < plan.axes.size(); ++a) r.overrides.push_back(plan.axes[a].key + "=" + r.values[a]);
     r.dir = o.out_dir / ("run_" + std::to_string(k));
-    try {
-      (void)read_deck(
-          o.deck, r.overrides);  // validate only: a bad key or value stops the sweep before any run
+    try {  // validate only: a bad key or value stops the sweep before any run
+      (void)read_deck(o.deck, r.overrides);
     } catch (const DeckError& e) {
-      throw SweepDeckError("run " + std::to_string(k) + " (" + describe(plan.axes, r.values) +
-                           "): " + e.what());
+      throw SweepDeckError("run " + std::to_string(k) + " (" + describe(plan.axes, r.values) + "): " + e.what());
     }
     plan.runs.push_back(std::move(r));
   }
@@ -155,12 +146,11 @@ SweepTable run_sweep(const SweepOptions& o) {
   if (o.executable.empty()) throw Error("sweep: no executable to run the decks with");
   const size_t n = plan.runs.size();
   if (!o.quiet)
-    std::cout << fmt::format(
-                     "sweep: {} runs, {} at a time{} -> {}\n", n, std::min<size_t>(n, o.jobs),
-                     plan.threads_per_run > 0
-                         ? fmt::format(", simulation.threads = {} each", plan.threads_per_run)
-                         : "",
-                     o.out_dir.string())
+    std::cout << fmt::format("sweep: {} runs, {} at a time{} -> {}\n", n, std::min<size_t>(n, o.jobs),
+                             plan.threads_per_run > 0
+                                 ? fmt::format(", simulation.threads = {} each", plan.threads_per_run)
+                                 : "",
+                             o.out_dir.string())
               << std::flush;
   std::vector<SweepRow> rows(n);
   std::map<pid_t, size_t> running;
@@ -171,10 +161,8 @@ SweepTable run_sweep(const SweepOptions& o) {
       pid_t pid = -1;
       try {
         pid = launch(o.executable, o.deck, plan.runs[next]);
-      } catch (
-          const std::exception& e) {  // this run cannot start: record it, go on with the others
-        rows[next] =
-            SweepRow{plan.runs[next].index, plan.runs[next].values, "failed", e.what(), {}};
+      } catch (const std::exception& e) {  // this run cannot start: record it, go on with the others
+        rows[next] = SweepRow{plan.runs[next].index, plan.runs[next].values, "failed", e.what(), {}};
         ++next;
         ++done;
         continue;
@@ -195,14 +183,11 @@ SweepTable run_sweep(const SweepOptions& o) {
     rows[it->second] = collect(r, status);
     ++done;
     if (!o.quiet) {
-      const double s =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - started[pid]).count();
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started[pid]).count();
       const SweepRow& row = rows[it->second];
-      std::cout << fmt::format("[{}/{}] run_{} {}: {} in {:.1f} s{}\n", done, n, r.index,
-                               describe(plan.axes, r.values), row.status, s,
-                               row.error.empty()
-                                   ? ""
-                                   : " (" + row.error.substr(0, row.error.find('\n')) + ")")
+      std::cout << fmt::format("[{}/{}] run_{} {}: {} in {:.1f} s{}\n", done, n, r.index, describe(plan.axes, r.values),
+                               row.status, s,
+                               row.error.empty() ? "" : " (" + row.error.substr(0, row.error.find('\n')) + ")")
                 << std::flush;
     }
     running.erase(it);

@@ -16,19 +16,17 @@ namespace ballista {
 
 /// An analysis of the finished table, run after sweep.csv/json are written, given the table and
 /// the sweep folder (e.g., later, the U = a + bV fit and U-V plots of an impact-velocity sweep).
-using SweepPostStep =
-    std::function<void(const SweepTable& table, const std::filesystem::path& out_dir)>;
+using SweepPostStep = std::function<void(const SweepTable& table, const std::filesystem::path& out_dir)>;
 
 struct SweepOptions {
   std::string deck;               ///< the base deck
   std::vector<std::string> vary;  ///< "key.path=v1,v2,..." (one axis each)
-  std::vector<std::string>
-      set;  ///< "key.path=value" applied to every run (before the varied values)
+  std::vector<std::string> set;   ///< "key.path=value" applied to every run (before the varied values)
   std::filesystem::path out_dir;  ///< sweep folder: run_<k>/, sweep.csv, sweep.json
   int jobs = 1;                   ///< runs at a time
-  int cores = 0;           ///< cores to share among jobs (0: std::thread::hardware_concurrency)
-  bool quiet = false;      ///< no per-run lines on stdout
-  std::string executable;  ///< the ballista binary that runs each deck
+  int cores = 0;                  ///< cores to share among jobs (0: std::thread::hardware_concurrency)
+  bool quiet = false;             ///< no per-run lines on stdout
+  std::string executable;         ///< the ballista binary that runs each deck
   std::vector<SweepPostStep> post_steps;
 };
 

@@ -21,8 +21,7 @@ std::string trim(const std::string& s) {
   throw Error("--vary '" + text + "': " + what + " (expected key.path=value1,value2,...)");
 }
 
-void flatten_into(const YAML::Node& n, const std::string& prefix,
-                  std::vector<std::pair<std::string, SweepCell>>& out) {
+void flatten_into(const YAML::Node& n, const std::string& prefix, std::vector<std::pair<std::string, SweepCell>>& out) {
   switch (n.Type()) {
     case YAML::NodeType::Map:
       for (const auto& kv : n) {
@@ -31,14 +30,12 @@ void flatten_into(const YAML::Node& n, const std::string& prefix,
       }
       return;
     case YAML::NodeType::Sequence:
-      for (size_t i = 0; i < n.size(); ++i)
-        flatten_into(n[i], prefix + "." + std::to_string(i), out);
+      for (size_t i = 0; i < n.size(); ++i) flatten_into(n[i], prefix + "." + std::to_string(i), out);
       return;
     case YAML::NodeType::Scalar: {
       // A quoted JSON string has the non-specific tag "!"; keep it a string even if it looks
       // numeric.
-      SweepCell c =
-          n.Tag() == "!" ? SweepCell{n.Scalar(), SweepCell::Kind::String} : sweep_cell(n.Scalar());
+      SweepCell c = n.Tag() == "!" ? SweepCell{n.Scalar(), SweepCell::Kind::String} : sweep_cell(n.Scalar());
       out.emplace_back(prefix, std::move(c));
       return;
     }
@@ -90,8 +87,7 @@ SweepAxis parse_vary(const std::string& text) {
   std::string cur;
   const auto finish = [&] {
     const std::string v = trim(cur);
-    if (v.empty())
-      vary_error(text, "empty value (value " + std::to_string(axis.values.size() + 1) + ")");
+    if (v.empty()) vary_error(text, "empty value (value " + std::to_string(axis.values.size() + 1) + ")");
     axis.values.push_back(v);
     cur.clear();
   };
@@ -121,8 +117,7 @@ std::vector<SweepAxis> parse_vary_options(const std::vector<std::string>& texts)
   std::set<std::string> keys;
   for (const auto& t : texts) {
     SweepAxis a = parse_vary(t);
-    if (!keys.insert(a.key).second)
-      throw Error("--vary '" + t + "': key '" + a.key + "' is varied twice");
+    if (!keys.insert(a.key).second) throw Error("--vary '" + t + "': key '" + a.key + "' is varied twice");
     axes.push_back(std::move(a));
   }
   return axes;
@@ -130,8 +125,7 @@ std::vector<SweepAxis> parse_vary_options(const std::vector<std::string>& texts)
 
 std::vector<std::vector<std::string>> sweep_product(const std::vector<SweepAxis>& axes) {
   std::vector<std::vector<std::string>> runs{{}};
-  for (const SweepAxis& a :
-       axes) {  // each axis multiplies the runs so far; the last varies fastest
+  for (const SweepAxis& a : axes) {  // each axis multiplies the runs so far; the last varies fastest
     std::vector<std::vector<std::string>> next;
     next.reserve(runs.size() * a.values.size());
     for (const auto& prefix : runs)
@@ -149,13 +143,12 @@ SweepCell sweep_cell(const std::string& text) {
   double v = 0;
   const char* end = text.data() + text.size();
   const auto r = std::from_chars(text.data(), end, v);
-  if (!text.empty() && r.ec == std::errc() && r.ptr == end && std::isfinite(v))
-    return {text, SweepCell::Kind::Number};
+  if (!text.empty() && r.ec == std::errc() && r.ptr == end && std::isfinite(v)) return {text, SweepCell::Kind::Number};
   return {text, SweepCell::Kind::String};
 }
 
-std::vector<std::pair<std::string, SweepCell>> flatten_summary(
-    const YAML::Node& summary, const std::vector<std::string>& skip) {
+std::vector<std::pair<std::string, SweepCell>> flatten_summary(const YAML::Node& summary,
+                                                               const std::vector<std::string>& skip) {
   std::vector<std::pair<std::string, SweepCell>> out;
   if (!summary.IsMap()) return out;
   for (const auto& kv : summary) {
@@ -199,8 +192,7 @@ std::string SweepTable::csv() const {
   out += '\n';
   for (const SweepRow& r : rows_) {
     out += std::to_string(r.index);
-    for (size_t a = 0; a < axes_.size(); ++a)
-      out += "," + csv_field(a < r.values.size() ? r.values[a] : "");
+    for (size_t a = 0; a < axes_.size(); ++a) out += "," + csv_field(a < r.values.size() ? r.values[a] : "");
     out += "," + csv_field(r.status) + "," + csv_field(r.error);
     for (const auto& c : sum) {
       out += ',';

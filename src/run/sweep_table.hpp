@@ -48,8 +48,8 @@ SweepCell sweep_cell(const std::string& text);
 /// (probes.max_eqps, energy.kinetic), array elements by index (tracked_particles.0), JSON null
 /// skipped (it is an empty cell), quoted strings kept as strings. Keys listed in `skip` (top level)
 /// are left out.
-std::vector<std::pair<std::string, SweepCell>> flatten_summary(
-    const YAML::Node& summary, const std::vector<std::string>& skip = {});
+std::vector<std::pair<std::string, SweepCell>> flatten_summary(const YAML::Node& summary,
+                                                               const std::vector<std::string>& skip = {});
 
 /// One run of the sweep as it appears in the table.
 struct SweepRow {

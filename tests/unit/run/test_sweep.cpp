@@ -32,18 +32,15 @@ const std::string kDeck = std::string(BALLISTA_SOURCE_DIR) + "/examples/elastic_
 TEST(SweepVary, SplitsValuesOutsideBracketsAndQuotes) {
   const SweepAxis a = parse_vary(" bodies.0.velocity = [0,-100,0], [0,-200,0] ,{a: 1, b: 2},'x,y'");
   EXPECT_EQ(a.key, "bodies.0.velocity");
-  EXPECT_EQ(a.values,
-            (std::vector<std::string>{"[0,-100,0]", "[0,-200,0]", "{a: 1, b: 2}", "'x,y'"}));
+  EXPECT_EQ(a.values, (std::vector<std::string>{"[0,-100,0]", "[0,-200,0]", "{a: 1, b: 2}", "'x,y'"}));
   EXPECT_EQ(parse_vary("materials.cu.yield_stress=4e8").values, std::vector<std::string>{"4e8"});
 }
 
 TEST(SweepVary, MalformedOptionsNameTheOption) {
-  EXPECT_NE(error_of({"simulation.cfl"}).find("--vary 'simulation.cfl': no '='"),
-            std::string::npos);
+  EXPECT_NE(error_of({"simulation.cfl"}).find("--vary 'simulation.cfl': no '='"), std::string::npos);
   EXPECT_NE(error_of({"=1,2"}).find("empty key path"), std::string::npos);
   EXPECT_NE(error_of({"a..b=1"}).find("empty component"), std::string::npos);
-  EXPECT_NE(error_of({"simulation.cfl= "}).find("--vary 'simulation.cfl= ': empty value list"),
-            std::string::npos);
+  EXPECT_NE(error_of({"simulation.cfl= "}).find("--vary 'simulation.cfl= ': empty value list"), std::string::npos);
   EXPECT_NE(error_of({"simulation.cfl=0.1,,0.2"}).find("empty value (value 2)"), std::string::npos);
   EXPECT_NE(error_of({"simulation.cfl=0.1,"}).find("empty value (value 2)"), std::string::npos);
   EXPECT_NE(error_of({"v=[1,2"}).find("unbalanced"), std::string::npos);
@@ -71,9 +68,8 @@ TEST(SweepTable, FlattensSummaryKeepingKinds) {
   const auto f = flatten_summary(s, {"status"});
   std::vector<std::string> names;
   for (const auto& [n, c] : f) names.push_back(n);
-  EXPECT_EQ(names, (std::vector<std::string>{"deck", "tracked_particles.0", "tracked_particles.1",
-                                             "probes.max_eqps", "statistics.steps",
-                                             "statistics.solver", "statistics.ok",
+  EXPECT_EQ(names, (std::vector<std::string>{"deck", "tracked_particles.0", "tracked_particles.1", "probes.max_eqps",
+                                             "statistics.steps", "statistics.solver", "statistics.ok",
                                              "statistics.label"}));  // null min_dt: no cell
   EXPECT_EQ(f[3].second.kind, SweepCell::Kind::Number);
   EXPECT_EQ(f[3].second.text, "0.25");
@@ -98,9 +94,8 @@ TEST(SweepTable, UnionOfColumnsAndFailedRuns) {
          "particle 3 left the grid, at \"x\"\n  position [1, 2]",
          {{"probes.a", sweep_cell("2.5")}, {"failed_step", sweep_cell("7")}}});
   EXPECT_EQ(t.failed(), 1);
-  EXPECT_EQ(t.columns(),
-            (std::vector<std::string>{"run", "bodies.0.velocity", "materials.m.density", "status",
-                                      "error", "probes.a", "statistics.steps", "failed_step"}));
+  EXPECT_EQ(t.columns(), (std::vector<std::string>{"run", "bodies.0.velocity", "materials.m.density", "status", "error",
+                                                   "probes.a", "statistics.steps", "failed_step"}));
   const std::string expected =
       "run,bodies.0.velocity,materials.m.density,status,error,probes.a,statistics.steps,failed_"
       "step\n"
@@ -144,8 +139,8 @@ TEST(SweepPlan, ThreadsPerRunAndOverrideOrder) {
   EXPECT_EQ(p.threads_per_run, 3);
   EXPECT_EQ(p.runs[1].dir, std::filesystem::path("sweep_out/run_1"));
   EXPECT_EQ(p.runs[1].overrides,
-            (std::vector<std::string>{"simulation.threads=3", "grid.cell_size=0.1",
-                                      "simulation.cfl=0.1", "materials.soft.youngs_modulus=2000"}));
+            (std::vector<std::string>{"simulation.threads=3", "grid.cell_size=0.1", "simulation.cfl=0.1",
+                                      "materials.soft.youngs_modulus=2000"}));
   o.set.push_back("simulation.threads=1");  // the user's choice is left alone
   EXPECT_EQ(plan_sweep(o).threads_per_run, 0);
   o.set.pop_back();
