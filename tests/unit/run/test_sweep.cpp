@@ -176,3 +176,42 @@ TEST(SweepPlan, BadDeckOfAnyCombinationStopsBeforeRunning) {
   o.jobs = 0;
   EXPECT_THROW(plan_sweep(o), Error);
 }
+
+TEST(SweepRun, FailedChildrenAreRecordedAndPostStepsSeeTheTable) {
+  // /bin/sh given "run DECK ..." cannot open a script named "run": every run exits non-zero without
+  // a summary.json, so each row must say failed with the exit status and the end of its log.
+  test::TempDir dir;
+  SweepOptions o;
+  o.deck = kDeck;
+  o.vary = {"simulation.cfl=0.1,0.2,0.3"};
+  o.out_dir = dir.path / "s";
+  o.jobs = 2;
+  o.quiet = true;
+  o.executable = "/bin/sh";
+  int post_calls = 0;
+  o.post_steps.push_back([&](const SweepTable& t, const std::filesystem::path& out) {
+    ++post_calls;
+    EXPECT_EQ(t.rows().size(), 3u);
+    EXPECT_TRUE(std::filesystem::exists(out / "sweep.csv"));  // the table is written before post steps
+  });
+  const SweepTable t = run_sweep(o);
+  EXPECT_EQ(post_calls, 1);
+  ASSERT_EQ(t.rows().size(), 3u);
+  EXPECT_EQ(t.failed(), 3);
+  for (int k = 0; k < 3; ++k) {
+    const SweepRow& r = t.rows()[k];
+    EXPECT_EQ(r.index, k);  // rows in run order whatever order the children finish in
+    EXPECT_EQ(r.values[0], std::vector<std::string>({"0.1", "0.2", "0.3"})[k]);
+    EXPECT_EQ(r.status, "failed");
+    EXPECT_NE(r.error.find("exit status"), std::string::npos) << r.error;
+    EXPECT_NE(r.error.find("run"), std::string::npos) << r.error;  // sh's own message, from log.txt
+    EXPECT_TRUE(r.scalars.empty());
+  }
+  EXPECT_EQ(t.columns(), (std::vector<std::string>{"run", "simulation.cfl", "status", "error"}));
+
+  o.executable = (dir.path / "no_such_binary").string();  // cannot start: recorded, not thrown
+  o.post_steps.clear();
+  const SweepTable t2 = run_sweep(o);
+  EXPECT_EQ(t2.failed(), 3);
+  EXPECT_NE(t2.rows()[0].error.find("no_such_binary"), std::string::npos) << t2.rows()[0].error;
+}
