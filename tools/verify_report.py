@@ -158,6 +158,16 @@ def _crush_panel(ax, test, prefix=""):
     ax.grid(alpha=0.3)
 
 
+def _finish_hydrostat_axis(ax, test, title, legend_loc):
+    """Labels, title, legend, grid and pass/fail stamp of an I1-against-volumetric-strain panel."""
+    ax.set_xlabel(r"volumetric strain $\varepsilon_v = 3 \ln\lambda$")
+    ax.set_ylabel("$I_1$ (MPa)")
+    ax.set_title("{} {}: {}".format(test["model"], test["test"], title), fontsize=10)
+    ax.legend(fontsize=7, loc=legend_loc)
+    ax.grid(alpha=0.3)
+    stamp(ax, test)
+
+
 def plot_a4(test, fig):
     """Thesis Fig. 4.10c (fixed cap dwell) and Fig. 4.11 (porosity on the crush curve)."""
     ax1 = fig.add_subplot(1, 2, 1)
@@ -167,12 +177,7 @@ def plot_a4(test, fig):
         ax1.plot(ev, series(test, prefix + "i1_an") * MPA, color="k", lw=0.8, ls="--")
     ax1.plot([], [], color="k", lw=0.8, ls="--", label="exact")
     ax1.axhline(scalar(test, "p0") * MPA, color="tab:gray", ls=":", lw=1, label="$P_0$")
-    ax1.set_xlabel(r"volumetric strain $\varepsilon_v = 3 \ln\lambda$")
-    ax1.set_ylabel("$I_1$ (MPa)")
-    ax1.set_title("{} {}: hydrostatic compression".format(test["model"], test["test"]), fontsize=10)
-    ax1.legend(fontsize=7, loc="lower left")
-    ax1.grid(alpha=0.3)
-    stamp(ax1, test)
+    _finish_hydrostat_axis(ax1, test, "hydrostatic compression", "lower left")
     ax2 = fig.add_subplot(1, 2, 2)
     _crush_panel(ax2, test)
     ax2.set_title("porosity on the crush curve (Fig. 4.11)", fontsize=10)
@@ -186,12 +191,7 @@ def plot_a5(test, fig):
     ax1.plot(ev, series(test, "i1") * MPA, color="tab:blue", lw=1.5, label="computed")
     ax1.plot(ev, series(test, "i1_an") * MPA, color="k", lw=0.8, ls="--", label="exact")
     ax1.axhline(scalar(test, "peak_i1") * MPA, color="tab:gray", ls=":", lw=1, label="PEAKI1")
-    ax1.set_xlabel(r"volumetric strain $\varepsilon_v = 3 \ln\lambda$")
-    ax1.set_ylabel("$I_1$ (MPa)")
-    ax1.set_title("{} {}: hydrostatic load-unload (Fig. 4.12)".format(test["model"], test["test"]), fontsize=10)
-    ax1.legend(fontsize=7, loc="lower right")
-    ax1.grid(alpha=0.3)
-    stamp(ax1, test)
+    _finish_hydrostat_axis(ax1, test, "hydrostatic load-unload (Fig. 4.12)", "lower right")
     ax2 = fig.add_subplot(1, 2, 2)
     _crush_panel(ax2, test)
     ax2.axhline(scalar(test, "phi0"), color="tab:gray", ls=":", lw=1)

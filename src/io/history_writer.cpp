@@ -9,9 +9,7 @@
 
 namespace ballista {
 
-namespace {
-/// Quotes a CSV header cell if it contains a separator, quote or line break.
-std::string csv_cell(const std::string& s) {
+std::string csv_quote(const std::string& s) {
   if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
   std::string out = "\"";
   for (char c : s) {
@@ -20,6 +18,8 @@ std::string csv_cell(const std::string& s) {
   }
   return out + "\"";
 }
+
+namespace {
 
 /// Shortest text that reads back as exactly `v`; "nan", "inf", "-inf" for non-finite values.
 void append_number(std::string& line, double v) {
@@ -41,7 +41,7 @@ HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> columns)
   std::string header;
   for (size_t k = 0; k < columns_.size(); ++k) {
     if (k) header += ',';
-    header += csv_cell(columns_[k]);
+    header += csv_quote(columns_[k]);
   }
   header += '\n';
   if (std::fputs(header.c_str(), file_) < 0 || std::fflush(file_) != 0) {

@@ -10,6 +10,10 @@
 
 namespace ballista {
 
+/// A CSV field (RFC 4180): as is, or in double quotes with inner quotes doubled if it contains a
+/// separator, quote or line break.
+std::string csv_quote(const std::string& s);
+
 class HistoryWriter {
  public:
   /// Creates (truncates) `path` and writes the header; throws Error if it cannot be opened.

@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/history_writer.hpp"
 
 namespace ballista {
 
@@ -42,16 +43,6 @@ void flatten_into(const YAML::Node& n, const std::string& prefix, std::vector<st
     default:
       return;  // null / undefined: an empty cell
   }
-}
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) {
-    if (c == '"') q += '"';
-    q += c;
-  }
-  return q + '"';
 }
 
 JsonValue cell_json(const SweepCell& c) {
@@ -188,17 +179,17 @@ std::string SweepTable::csv() const {
   const std::vector<std::string> cols = columns();
   const std::vector<std::string> sum = summary_columns();
   std::string out;
-  for (size_t k = 0; k < cols.size(); ++k) out += (k ? "," : "") + csv_field(cols[k]);
+  for (size_t k = 0; k < cols.size(); ++k) out += (k ? "," : "") + csv_quote(cols[k]);
   out += '\n';
   for (const SweepRow& r : rows_) {
     out += std::to_string(r.index);
-    for (size_t a = 0; a < axes_.size(); ++a) out += "," + csv_field(a < r.values.size() ? r.values[a] : "");
-    out += "," + csv_field(r.status) + "," + csv_field(r.error);
+    for (size_t a = 0; a < axes_.size(); ++a) out += "," + csv_quote(a < r.values.size() ? r.values[a] : "");
+    out += "," + csv_quote(r.status) + "," + csv_quote(r.error);
     for (const auto& c : sum) {
       out += ',';
       for (const auto& [name, cell] : r.scalars)
         if (name == c) {
-          out += csv_field(cell.text);
+          out += csv_quote(cell.text);
           break;
         }
     }
