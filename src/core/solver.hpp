@@ -39,6 +39,10 @@ class Solver {
   virtual EnergyTotals energies() const = 0;
   /// Multiplier turning per-point sums into physical totals (2 pi in axisymmetric runs).
   virtual double reporting_scale() const = 0;
+  /// Starts stage `stage` (0 = first; preparation stages, then the main stage) at the current
+  /// time: bodies activated by that stage start their clocks now, and the grid damping becomes
+  /// `damping` (1/s, thesis seed 000 eq. 5.1).
+  virtual void begin_stage(int stage, double damping) = 0;
 };
 
 }  // namespace ballista

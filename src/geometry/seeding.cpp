@@ -11,6 +11,7 @@ void declare_point_fields(FieldStore& p) {
   p.add_int("id", 1, "1");
   p.add_int("body", 1, "1");
   p.add_int("material", 1, "1");
+  p.add_int("segment", 1, "1");  // piece of a segmented rod or discrete jet (0 for plain bodies)
   p.add_real("x", 3, "m");
   p.add_real("x0", 3, "m");
   p.add_real("v", 3, "m/s");

@@ -82,6 +82,8 @@ class DeckNode {
   bool has(const std::string& key) const;
   const YAML::Node& yaml() const { return node_; }
   const std::string& file() const { return ctx_->file; }
+  /// The deck's context, for errors about values inside custom structures (deck_fail).
+  const DeckContext& context() const { return *ctx_; }
 
   /// Where this node is (its own position, or its parent's if it is absent).
   DeckMark mark() const;

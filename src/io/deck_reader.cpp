@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -14,6 +15,7 @@
 #include "io/deck_node.hpp"
 #include "io/deck_overrides.hpp"
 #include "io/material_reader.hpp"
+#include "io/penetrator_reader.hpp"
 
 namespace ballista {
 
@@ -40,7 +42,8 @@ const char* axis_name(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : axi
 
 namespace {
 
-const std::vector<std::string> kSections{"simulation", "mpm", "grid", "materials", "bodies", "loads", "probes", "output"};
+const std::vector<std::string> kSections{"simulation", "mpm",    "grid",        "materials", "stages",
+                                         "bodies",     "loads",  "probes",      "penetration", "output"};
 const std::vector<std::string> kFaces{"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
 const std::vector<std::string> kFaceBCs{"free", "fixed", "symmetry", "wall"};
 const std::vector<std::string> kEnergies{"kinetic", "internal", "plastic", "external", "total"};
@@ -87,9 +90,12 @@ class Reader {
     mpm();
     grid();
     materials();
+    stages();
     bodies();
     loads();
     probes();
+    check_stage_bodies();
+    penetration();
     output();
     std::ostringstream os;
     os << "# Fully resolved deck (every default filled) of " << ctx_->file << ", written by ballista.\n";
@@ -250,11 +256,30 @@ class Reader {
       body.material = b.string("material");
       if (std::find(materials.begin(), materials.end(), body.material) == materials.end())
         b.fail("material", "unknown material '" + body.material + "'" + suggest(body.material, materials));
-      DeckNode s = b.map("shape", true);
-      body.shape = shape(s);
       body.particles_per_cell = static_cast<int>(b.integer("particles_per_cell", 2, 1, 8));
-      body.velocity = b.vector("velocity", Vec3{}, vmin());
       body.activation_time = b.number("activation_time", 0.0, NumberRange::non_negative("s"));
+      // Exactly one of shape (a plain body), rod or jet (penetrators made of segments).
+      const int given = int(b.has("shape")) + int(b.has("rod")) + int(b.has("jet"));
+      if (given != 1)
+        b.fail("expected exactly one of shape (a solid), rod (a solid or segmented rod) or jet (a discrete "
+               "shaped-charge jet), got " + std::to_string(given));
+      if (b.has("shape")) {
+        DeckNode s = b.map("shape", true);
+        body.shape = shape(s);
+        body.velocity = b.vector("velocity", Vec3{}, vmin());
+        b.allow("rod");
+        b.allow("jet");
+      } else {
+        if (b.has("velocity"))
+          b.fail("velocity", "a rod or jet gets its velocity from its speed (rod) or segment table (jet)");
+        DeckNode pn = b.map(b.has("rod") ? "rod" : "jet", true);
+        if (b.has("rod")) read_rod(pn, sc_.simulation.dimension, sc_.grid, body);
+        else read_jet(pn, sc_.simulation.dimension, sc_.grid, body);
+        b.allow("shape");
+        b.allow("velocity");
+      }
+      // Penetrators are fired in the main stage; other bodies start with the first stage.
+      body.activation_stage = stage_ref(b, "activation_stage", body.penetrator.kind.empty() ? 0 : static_cast<int>(sc_.stages.size()));
       body.initial_state = b.choice("initial_state", "none", {"none", "mms_axis_aligned"});
       b.finish();
       Vec3 lo, hi;
@@ -328,7 +353,11 @@ class Reader {
       DeckNode l = ls.element(i);
       LoadSpec load;
       load.mark = l.mark();
-      load.type = l.choice("type", {"body_force", "pressure", "mms_axis_aligned"});
+      load.type = l.choice("type", {"body_force", "pressure", "confinement", "mms_axis_aligned"});
+      if (load.type == "confinement") {
+        confinement(l, load);
+        continue;
+      }
       if (load.type == "body_force") {
         load.body = body_ref(l, false);
         load.acceleration = l.vector("acceleration", vmin());
@@ -353,6 +382,35 @@ class Reader {
       l.finish();
       sc_.loads.push_back(std::move(load));
     }
+  }
+
+  /// `confinement` (thesis seed 000 §5.1, Table 5.1): the overburden on a cylinder, pressure
+  /// `radial` on its outer surface and `axial` on its top and bottom (both default to `pressure`),
+  /// expanded into three pressure loads with the same curve.
+  void confinement(DeckNode& l, LoadSpec load) {
+    load.body = body_ref(l, true);
+    const BodySpec* body = find_body(load.body);
+    if (body->shape.type != "cylinder" || !body->segments.empty())
+      l.fail("body", "a confinement acts on a cylinder (outer, top and bottom surfaces); body '" + load.body +
+                         "' is a " + (body->segments.empty() ? body->shape.type : body->penetrator.kind));
+    if (sc_.simulation.dimension == Dimension::PlaneStrain && body->shape.axis == 2)
+      l.fail("body", "a plane-strain disk has no top and bottom; use pressure loads");
+    const double p = l.number("pressure", 0.0, NumberRange::non_negative("Pa"));
+    const double radial = l.number("radial", p, NumberRange::non_negative("Pa"));
+    const double axial = l.number("axial", p, NumberRange::non_negative("Pa"));
+    load.curve = curve(l);
+    l.finish();
+    load.type = "pressure";
+    for (const char* surface : {"outer", "top", "bottom"}) {
+      load.surface = surface;
+      load.pressure = load.surface == "outer" ? radial : axial;
+      sc_.loads.push_back(load);
+    }
+    // The stress it should produce in equilibrium, for stages that wait for it.
+    Vec3 stress;
+    for (int d = 0; d < 3; ++d) stress[d] = d == body->shape.axis ? -axial : -radial;
+    if (sc_.simulation.dimension == Dimension::Axisymmetric) stress = Vec3{{-radial, -axial, -radial}};
+    confinement_stress_[load.body] = stress;
   }
 
   void probes() {
@@ -385,6 +443,104 @@ class Reader {
       p.finish();
       sc_.probes.push_back(std::move(probe));
     }
+  }
+
+  /// Index of the stage named by `key` (a name under `stages`, or `main`); `fallback` if absent.
+  int stage_ref(DeckNode& n, const std::string& key, int fallback) {
+    std::vector<std::string> names;
+    for (const auto& st : sc_.stages) names.push_back(st.name);
+    names.push_back("main");
+    const std::string dflt = names.at(static_cast<size_t>(fallback));
+    const std::string name = n.choice(key, dflt, names);
+    return static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin());
+  }
+
+  /// Preparation stages (thesis seed 000 §5.1): each ends after a fixed duration or when its
+  /// criterion holds (stress_equilibrium: every particle of the body within +-tolerance of the
+  /// requested stress), with its own grid damping (eq. 5.1).
+  void stages() {
+    DeckNode ss = root_.list("stages", false);
+    for (size_t i = 0; i < ss.size(); ++i) {
+      DeckNode n = ss.element(i);
+      StageSpec st;
+      st.mark = n.mark();
+      st.name = n.string("name");
+      if (st.name == "main") n.fail("name", "'main' is the name of the final stage (simulation.end_time); choose another");
+      for (const auto& other : sc_.stages)
+        if (other.name == st.name) n.fail("name", "duplicate stage name '" + st.name + "'");
+      st.damping = n.number("damping", 0.0, NumberRange::non_negative("1/s"));
+      if (n.has("until")) {
+        DeckNode u = n.map("until", true);
+        st.until = u.choice("type", {"stress_equilibrium"});
+        st.body = u.string("body");  // checked against the bodies once they are read
+        st.body_mark = u.mark_of("body");
+        // Requested stress: given, or (checked once the loads are read) that of the body's confinement.
+        st.stress_given = u.has("stress");
+        if (st.stress_given) st.stress = u.vector("stress", 3);
+        else u.allow("stress");
+        st.tolerance = u.number("tolerance", 0.05, NumberRange::between(0.0, 1.0, true, true));
+        st.check_every = static_cast<int>(u.integer("check_every", 10, 1, INT_MAX));
+        u.finish();
+        st.min_duration = n.number("min_duration", 0.0, NumberRange::non_negative("s"));
+        st.max_duration = n.number("max_duration", NumberRange::positive("s"));
+        if (st.min_duration > st.max_duration)
+          n.fail("min_duration", "expected min_duration <= max_duration (" + format_number(st.max_duration) + " s)");
+        n.allow("duration");
+        if (n.has("duration")) n.fail("duration", "a stage ends either after a duration or by its `until` criterion, not both");
+      } else {
+        n.allow("until");
+        st.duration = n.number("duration", NumberRange::positive("s"));
+        n.allow("min_duration");
+        n.allow("max_duration");
+      }
+      n.finish();
+      sc_.stages.push_back(std::move(st));
+    }
+  }
+
+  void check_stage_bodies() {
+    for (StageSpec& st : sc_.stages) {
+      if (st.until.empty()) continue;
+      const DeckMark& m = st.body_mark;
+      if (!find_body(st.body))
+        throw DeckError(m.file, m.line, m.column, m.key_path,
+                        "unknown body '" + st.body + "'" + suggest(st.body, body_names()));
+      if (st.stress_given) continue;
+      const auto c = confinement_stress_.find(st.body);
+      if (c == confinement_stress_.end())
+        throw DeckError(m.file, m.line, m.column, m.key_path,
+                        "body '" + st.body + "' has no confinement load: give until.stress [xx, yy, zz] (Pa)");
+      st.stress = c->second;
+    }
+  }
+
+  /// Penetration measurements (thesis seed 000 ch. 5, §7.2): the penetrator must be a rod or jet.
+  void penetration() {
+    if (!root_.has("penetration")) return;  // (an empty map would re-read as a section to fill)
+    DeckNode n = root_.map("penetration", true);
+    PenetrationSpec& pe = sc_.penetration;
+    pe.enabled = true;
+    pe.mark = n.mark();
+    pe.penetrator = n.string("penetrator");
+    const BodySpec* pb = find_body(pe.penetrator);
+    if (!pb) n.fail("penetrator", "unknown body '" + pe.penetrator + "'" + suggest(pe.penetrator, body_names()));
+    if (pb->penetrator.kind.empty())
+      n.fail("penetrator", "body '" + pe.penetrator + "' is not a rod or jet (give it `rod:` or `jet:` instead of `shape:`)");
+    pe.target = n.string("target");
+    const BodySpec* tb = find_body(pe.target);
+    if (!tb) n.fail("target", "unknown body '" + pe.target + "'" + suggest(pe.target, body_names()));
+    if (tb == pb) n.fail("target", "the target must differ from the penetrator");
+    // Default surface: the target's face towards the incoming penetrator.
+    Vec3 lo, hi;
+    shape_bounds(tb->shape, lo, hi);
+    const PenetratorSpec& ps = pb->penetrator;
+    const double face = ps.direction < 0 ? hi[ps.axis] : lo[ps.axis];
+    pe.surface = n.number("surface", face, NumberRange::any("m"));
+    pe.axis_radius = n.number("axis_radius", sc_.grid.cell_size, NumberRange::positive("m"));
+    pe.stop_tolerance = n.number("stop_tolerance", sc_.grid.cell_size, NumberRange::positive("m"));
+    pe.rate_half_window = static_cast<int>(n.integer("rate_half_window", 3, 1, 1000));
+    pe.channel_bins = static_cast<int>(n.integer("channel_bins", 0, 0, 100000));
+    n.finish();
   }
 
   void output() {
@@ -431,6 +587,7 @@ class Reader {
   std::shared_ptr<DeckContext> ctx_;
   DeckNode root_;
   Scenario sc_;
+  std::map<std::string, Vec3> confinement_stress_;  ///< body -> equilibrium stress of its confinement load
 };
 
 }  // namespace

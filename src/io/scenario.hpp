@@ -84,14 +84,36 @@ struct ShapeSpec {
   double length = 0.0;    ///< cylinder/tube length along axis, m
 };
 
+/// One piece of a body with its own shape, velocity and activation (a segment of a segmented
+/// rod or of the discrete shaped-charge jet of thesis seed 000 §5.1, Fig. 5.2).
+struct SegmentSpec {
+  ShapeSpec shape;               ///< a cylinder along the penetrator's axis
+  Vec3 velocity;                 ///< m/s
+  double activation_time = 0.0;  ///< s after the start of the body's activation stage
+};
+
+/// Geometry of a rod or jet body (`rod:` / `jet:` in the deck).
+struct PenetratorSpec {
+  std::string kind;      ///< "rod" or "jet"; empty for a plain `shape:` body
+  int axis = 1;          ///< axis of flight
+  double direction = -1; ///< +1: flies towards +axis, -1: towards -axis
+  Vec3 nose;             ///< m: centre of the leading face (rod) or of the insertion plane (jet)
+  double length = 0.0;   ///< m: total length of penetrator material (sum of segment lengths)
+  double diameter = 0.0; ///< m: rod diameter; jet: mass-weighted mean segment diameter
+  double speed = 0.0;    ///< m/s: speed of the leading segment
+};
+
 struct BodySpec {
   std::string name;
   std::string material;
-  ShapeSpec shape;
+  ShapeSpec shape;               ///< plain bodies; for rods and jets the first segment's shape
   int particles_per_cell = 2;    ///< per direction
   Vec3 velocity;                 ///< initial velocity, m/s
-  double activation_time = 0.0;  ///< s; the body is inert and invisible before it
+  double activation_time = 0.0;  ///< s after the start of the activation stage; inert and invisible before
+  int activation_stage = 0;      ///< index of the stage that starts the activation clock (stages.size() = main)
   std::string initial_state = "none";  ///< none | mms_axis_aligned
+  PenetratorSpec penetrator;     ///< rod / jet description (kind empty for plain bodies)
+  std::vector<SegmentSpec> segments;  ///< rods and jets: the pieces seeded (empty for plain bodies)
   DeckMark mark;
 };
 
@@ -126,6 +148,37 @@ struct OutputSpec {
   DeckMark track_mark;               ///< where output.track.ids is (ids are checked against the seeding)
 };
 
+/// A preparation stage run before the main stage (thesis seed 000 §5.1: the overburden is
+/// ramped and damped to equilibrium, then the damping is released and the penetrator fired).
+struct StageSpec {
+  std::string name;
+  double damping = 0.0;        ///< 1/s, grid damping during the stage (thesis eq. 5.1)
+  double duration = 0.0;       ///< s: fixed length (0: ends by the criterion)
+  double min_duration = 0.0;   ///< s: the criterion is not checked before this
+  double max_duration = 0.0;   ///< s: the criterion must hold by then, or the run stops
+  std::string until;           ///< "" (fixed duration) | "stress_equilibrium"
+  std::string body;            ///< stress_equilibrium: the body checked
+  Vec3 stress;                 ///< Pa: requested diagonal Cauchy stress (xx, yy, zz; axisym rr, zz, theta)
+  bool stress_given = false;   ///< false: taken from the body's confinement load
+  double tolerance = 0.05;     ///< relative band around the requested stress (thesis: +-5 %)
+  int check_every = 10;        ///< steps between checks
+  DeckMark mark, body_mark;
+};
+
+/// Penetration measurements (thesis seed 000 ch. 5, §7.2): depth and rate against time,
+/// penetrator kinetic energy, channel profile.
+struct PenetrationSpec {
+  bool enabled = false;
+  std::string penetrator;      ///< a rod or jet body
+  std::string target;          ///< body whose struck face is the depth origin
+  double surface = 0.0;        ///< m: axial coordinate of the target's struck face
+  double axis_radius = 0.0;    ///< m: radius around the axis used to find the cavity tip (0: one cell)
+  double stop_tolerance = 0.0; ///< m: depth change below which penetration has stopped (0: one cell)
+  int rate_half_window = 3;    ///< samples each side of the local-polynomial derivative
+  int channel_bins = 0;        ///< bins of the channel profile (0: one per cell of the final depth)
+  DeckMark mark;
+};
+
 struct Scenario {
   std::string file;               ///< deck path
   SimulationSpec simulation;
@@ -135,6 +188,8 @@ struct Scenario {
   std::vector<BodySpec> bodies;
   std::vector<LoadSpec> loads;
   std::vector<ProbeSpec> probes;
+  std::vector<StageSpec> stages;  ///< preparation stages before the main stage
+  PenetrationSpec penetration;
   OutputSpec output;
   std::string resolved_yaml;      ///< the deck with every default filled, as YAML text
 };

@@ -84,6 +84,7 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   for (const auto& m : materials_) m->declare_fields(points_);
   std::int64_t next_id = 0;
   std::vector<double> activation;
+  std::vector<int> activation_stage;
   for (size_t b = 0; b < sc.bodies.size(); ++b) {
     const BodySpec& body = sc.bodies[b];
     int mi = -1;
@@ -93,9 +94,24 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
       throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path + ".material",
                       "unknown material '" + body.material + "'");
     const Index n0 = points_.size();
-    seed_body(body, static_cast<int>(b), mi, *materials_[mi], sc.grid, dimension_, points_, next_id);
+    if (body.segments.empty()) {
+      seed_body(body, static_cast<int>(b), mi, *materials_[mi], sc.grid, dimension_, points_, next_id);
+      activation.resize(points_.size(), body.activation_time);
+    } else {
+      // Rods and jets: each segment with its own shape, velocity and activation time.
+      for (size_t k = 0; k < body.segments.size(); ++k) {
+        BodySpec piece = body;
+        piece.shape = body.segments[k].shape;
+        piece.velocity = body.segments[k].velocity;
+        const Index s0 = points_.size();
+        seed_body(piece, static_cast<int>(b), mi, *materials_[mi], sc.grid, dimension_, points_, next_id);
+        auto* seg = points_.ints("segment");
+        for (Index p = s0; p < points_.size(); ++p) seg[p] = static_cast<int>(k);
+        activation.resize(points_.size(), body.segments[k].activation_time);
+      }
+    }
+    activation_stage.resize(points_.size(), body.activation_stage);
     materials_[mi]->initialise_state(points_, n0, points_.size());
-    activation.resize(points_.size(), body.activation_time);
     if (body.initial_state == "mms_axis_aligned") {
       // Start on the manufactured solution at t = 0 (CATALOGUE B1): velocity, F and stress.
       const mms::AxisAligned mms;
@@ -132,11 +148,14 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   // Bodies with a later activation time wait in pending_.
   std::vector<Index> later;
   std::vector<char> keep(points_.size(), 1);
+  stage_start_.assign(sc.stages.size() + 1, std::numeric_limits<double>::infinity());
+  stage_start_[0] = 0.0;
   for (Index p = 0; p < points_.size(); ++p)
-    if (activation[p] > 0.0) {
+    if (activation[p] > 0.0 || activation_stage[p] > 0) {
       later.push_back(p);
       keep[p] = 0;
       pending_activation_.push_back(activation[p]);
+      pending_stage_.push_back(activation_stage[p]);
     }
   pending_ = points_.empty_like();
   if (!later.empty()) {
@@ -144,6 +163,13 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     points_.compact(keep);
   }
   sort_by_cell();
+}
+
+void MpmSolver::begin_stage(int stage, double damping) {
+  if (stage < 0 || stage >= static_cast<int>(stage_start_.size()))
+    throw Error("stage index " + std::to_string(stage) + " out of range");
+  stage_start_[stage] = time_;
+  damping_ = damping;
 }
 
 double MpmSolver::reporting_scale() const {
@@ -179,12 +205,15 @@ void MpmSolver::activate_pending() {
   std::vector<Index> now;
   std::vector<char> keep(pending_.size(), 1);
   std::vector<double> still;
+  std::vector<int> still_stage;
   for (Index p = 0; p < pending_.size(); ++p) {
-    if (pending_activation_[p] <= time_) {
+    // Activation times count from the start of the body's activation stage (infinite until then).
+    if (stage_start_[pending_stage_[p]] + pending_activation_[p] <= time_) {
       now.push_back(p);
       keep[p] = 0;
     } else {
       still.push_back(pending_activation_[p]);
+      still_stage.push_back(pending_stage_[p]);
     }
   }
   if (now.empty()) return;
@@ -192,6 +221,7 @@ void MpmSolver::activate_pending() {
   pending_.compact(keep);
   groups_dirty_ = true;
   pending_activation_.swap(still);
+  pending_stage_.swap(still_stage);
   sort_by_cell();
 }
 

@@ -57,6 +57,7 @@ class MpmSolver final : public Solver {
   FieldStore& points() override { return points_; }
   EnergyTotals energies() const override;
   double reporting_scale() const override;
+  void begin_stage(int stage, double damping) override;
 
   const GridData& grid() const { return grid_; }
   const std::vector<std::unique_ptr<Material>>& materials() const { return materials_; }
@@ -98,7 +99,9 @@ class MpmSolver final : public Solver {
   int box_first_[3], box_last_[3];  ///< node index range of the physical box per axis
   FieldStore points_;
   FieldStore pending_;          ///< seeded points of bodies not yet active
-  std::vector<double> pending_activation_;  ///< activation time of each pending point
+  std::vector<double> pending_activation_;  ///< activation time of each pending point (from its stage start)
+  std::vector<int> pending_stage_;          ///< stage whose start begins each pending point's clock
+  std::vector<double> stage_start_;         ///< s: start time of each stage (infinite until it begins)
   std::vector<Vec3> fext_;      ///< external force on each point this step, N
   std::vector<Vec3> displacement_;  ///< MUSL: dt * grid velocity at each point this step, m
   bool groups_dirty_ = true;    ///< material_points_ must be rebuilt (points reordered/removed)

@@ -7,6 +7,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "analysis/penetration_probe.hpp"
 #include "analysis/probes.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -17,6 +18,7 @@
 #include "mpm/mpm_solver.hpp"
 #include "run/particle_tracker.hpp"
 #include "run/progress.hpp"
+#include "run/stage_criterion.hpp"
 
 namespace ballista {
 
@@ -75,6 +77,14 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     columns.push_back(pr.name);
     probe_body.push_back(pr.body.empty() ? -1 : body_index(sc, pr.body));
   }
+  // Stages: the preparation stages of the deck, then the main stage (index nstages).
+  const int nstages = static_cast<int>(sc.stages.size());
+  if (nstages > 0) columns.push_back("stage");
+  std::unique_ptr<PenetrationProbe> penetration;
+  if (sc.penetration.enabled) {
+    penetration = std::make_unique<PenetrationProbe>(sc);
+    for (const auto& c : penetration->columns()) columns.push_back(c);
+  }
   HistoryWriter history((fs::path(opt.out_dir) / "history.csv").string(), columns);
   // Particle ids run 0 .. seeded - 1 over every body, active or waiting for activation.
   std::int64_t seeded = static_cast<std::int64_t>(pts.size());
@@ -99,6 +109,8 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     energy_scale = std::max(energy_scale, std::abs(e.kinetic) + std::abs(e.internal) + std::abs(e.external));
     return energy_scale > 0 ? std::abs(e.total() - total0) / energy_scale : 0.0;
   };
+  int stage = 0;              // current stage; nstages = main
+  double stage_start = 0.0;   // s, start of the current stage
   auto history_row = [&](double dt) {
     const EnergyTotals e = solver->energies();
     const double drift = drift_of(e);
@@ -107,21 +119,65 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
                                e.momentum[0], e.momentum[1], e.momentum[2], e.removed_mass,
                                e.removed_energy};
     for (double v : probe_values(e)) row.push_back(v);
+    if (nstages > 0) row.push_back(stage);
+    if (penetration)
+      for (double v : penetration->sample(solver->points(), stage == nstages, solver->time() - stage_start,
+                                          solver->reporting_scale()))
+        row.push_back(v);
     history.row(row);
     return drift;
   };
+  JsonValue stage_log = JsonValue::array();
 
   RunResult result;
-  const double end = sc.simulation.end_time;
-  const double interval = sc.output.interval > 0 ? sc.output.interval : end;
-  double next_output = interval;
+  // The end time and output times are known once the main stage starts (stage_start + end_time).
+  double end = nstages > 0 ? std::numeric_limits<double>::infinity() : sc.simulation.end_time;
+  const double interval = sc.output.interval > 0 ? sc.output.interval : sc.simulation.end_time;
+  double next_output = nstages > 0 ? end : interval;
   writer.write(solver->time(), solver->steps(), pts);
+  if (nstages > 0) {
+    solver->begin_stage(0, sc.stages[0].damping);
+    spdlog::info("stage '{}' begins (damping {} 1/s)", sc.stages[0].name, sc.stages[0].damping);
+  }
   history_row(0.0);
   tracker.record(pts, solver->time(), solver->steps());
-  Progress progress(end, opt.progress);
+  std::unique_ptr<Progress> progress;
+  if (nstages == 0) progress = std::make_unique<Progress>(end, opt.progress);
   const auto wall0 = std::chrono::steady_clock::now();
   double particle_steps = 0.0;
   double dt = 0.0;
+  // Ends the current preparation stage: log it, snapshot the particles, start the next stage.
+  auto next_stage = [&](const std::string& how, const EquilibriumCheck* check) {
+    const StageSpec& st = sc.stages[stage];
+    JsonValue rec = JsonValue::object();
+    rec["name"] = st.name;
+    rec["start_time"] = stage_start;
+    rec["end_time"] = solver->time();
+    rec["ended_by"] = how;
+    rec["damping"] = st.damping;
+    if (check) {
+      rec["worst_deviation"] = check->worst;
+      rec["worst_particle"] = check->worst_id;
+      rec["fraction_within"] = check->within;
+    }
+    stage_log.push_back(rec);
+    spdlog::info("stage '{}' ended at t = {:.4g} s ({}){}", st.name, solver->time(), how,
+                 check ? ": " + describe_equilibrium(st, *check) : std::string());
+    history_row(dt);
+    writer.write(solver->time(), solver->steps(), solver->points());
+    ++stage;
+    stage_start = solver->time();
+    const double damping = stage < nstages ? sc.stages[stage].damping : sc.simulation.damping;
+    solver->begin_stage(stage, damping);
+    if (stage < nstages) {
+      spdlog::info("stage '{}' begins (damping {} 1/s)", sc.stages[stage].name, damping);
+    } else {
+      end = stage_start + sc.simulation.end_time;
+      next_output = std::min(end, stage_start + interval);
+      progress = std::make_unique<Progress>(end, opt.progress);
+      spdlog::info("main stage begins at t = {:.4g} s (damping {} 1/s), runs to {:.4g} s", stage_start, damping, end);
+    }
+  };
   try {
     // Stop within a relative round-off of the end time instead of taking a sliver step.
     while (solver->time() < end * (1.0 - 1e-12)) {
@@ -130,12 +186,42 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       if (!(dt > 0.0) || !std::isfinite(dt))
         throw PhysicsError("time step collapsed (dt = " + std::to_string(dt) + " s) at step " +
                            std::to_string(solver->steps()));
-      // Land exactly on output times and the end time.
+      // Land exactly on output times, the end time and the end of a fixed-length stage.
       dt = std::min({dt, end - solver->time(), next_output - solver->time()});
+      if (stage < nstages) {
+        const StageSpec& st = sc.stages[stage];
+        const double stage_end = stage_start + (st.until.empty() ? st.duration : st.max_duration);
+        dt = std::min(dt, stage_end - solver->time());
+      }
       min_dt = std::min(min_dt, dt);
       particle_steps += static_cast<double>(solver->points().size());
       solver->step(dt);
       tracker.record(solver->points(), solver->time(), solver->steps());
+      if (stage < nstages) {
+        const int stage_before = stage;
+        const StageSpec& st = sc.stages[stage];
+        const double elapsed = solver->time() - stage_start;
+        if (st.until.empty()) {
+          if (elapsed >= st.duration * (1.0 - 1e-12)) next_stage("duration", nullptr);
+        } else {
+          const bool last_chance = elapsed >= st.max_duration * (1.0 - 1e-12);
+          if ((elapsed >= st.min_duration && solver->steps() % st.check_every == 0) || last_chance) {
+            const EquilibriumCheck c =
+                check_stress_equilibrium(st, body_index(sc, st.body), solver->points());
+            if (c.satisfied && elapsed >= st.min_duration) {
+              next_stage(st.until, &c);
+            } else if (last_chance) {
+              throw PhysicsError("stage '" + st.name + "' did not reach stress equilibrium within its max_duration of " +
+                                 std::to_string(st.max_duration) + " s (step " + std::to_string(solver->steps()) +
+                                 "): " + describe_equilibrium(st, c) +
+                                 "; raise max_duration, or tune the damping (thesis seed 000 §5.1: near-critical damping)");
+            }
+          }
+        }
+        if (stage == stage_before && solver->steps() % std::max(1, sc.output.history_every) == 0)
+          worst_drift = std::max(worst_drift, history_row(dt));
+        continue;
+      }
       const bool at_output = solver->time() >= next_output * (1.0 - 1e-12);
       const bool at_end = solver->time() >= end * (1.0 - 1e-12);
       if (solver->steps() % std::max(1, sc.output.history_every) == 0 || at_output || at_end) {
@@ -152,11 +238,11 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
         next_output += interval;
         if (next_output > end) next_output = end;
       }
-      progress.update(solver->time(), solver->steps(), dt);
+      progress->update(solver->time(), solver->steps(), dt);
     }
     writer.write(solver->time(), solver->steps(), solver->points());
   } catch (const PhysicsError& err) {
-    progress.finish();
+    if (progress) progress->finish();
     result.ok = false;
     result.error = err.what();
     result.failed_step = solver->steps();
@@ -174,7 +260,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       spdlog::error("could not write the failing state: {}", w.what());
     }
   }
-  progress.finish();
+  if (progress) progress->finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
   const EnergyTotals e = solver->energies();
@@ -197,6 +283,17 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   for (size_t k = 0; k < sc.probes.size(); ++k) {
     probes[sc.probes[k].name] = pv[k];
     result.probes.emplace_back(sc.probes[k].name, pv[k]);
+  }
+  if (nstages > 0) {
+    summary["stages"] = stage_log;
+    summary["main_stage_start"] = stage == nstages ? JsonValue(stage_start) : JsonValue();
+  }
+  if (penetration) {
+    try {
+      penetration->finish(solver->points(), opt.out_dir, sc.simulation.end_time, summary["penetration"]);
+    } catch (const std::exception& w) {
+      spdlog::error("penetration analysis failed: {}", w.what());
+    }
   }
   JsonValue& st = summary["statistics"];
   st = JsonValue::object();

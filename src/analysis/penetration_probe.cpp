@@ -1,0 +1,214 @@
+#include "analysis/penetration_probe.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "analysis/penetration_series.hpp"
+#include "core/error.hpp"
+#include "io/history_writer.hpp"
+#include "penetration/hydrodynamic.hpp"
+
+namespace ballista {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double density_of(const Scenario& sc, const std::string& material) {
+  for (const auto& m : sc.materials)
+    if (m.name == material) return m.params.number_or("density", 0.0);
+  return 0.0;
+}
+
+}  // namespace
+
+PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
+  if (!spec_.enabled) throw Error("PenetrationProbe needs a penetration section");
+  penetrator_ = body_index(sc, spec_.penetrator);
+  target_ = body_index(sc, spec_.target);
+  const BodySpec& pb = sc.bodies.at(penetrator_);
+  const PenetratorSpec& ps = pb.penetrator;
+  axis_ = ps.axis;
+  direction_ = ps.direction;
+  surface_ = spec_.surface;
+  line_point_ = ps.nose;
+  nd_ = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
+  segments_ = std::max<int>(1, static_cast<int>(pb.segments.size()));
+  rho_p_ = density_of(sc, pb.material);
+  rho_t_ = density_of(sc, sc.bodies.at(target_).material);
+  length_ = ps.length;
+  speed_ = ps.speed;
+  cell_ = sc.grid.cell_size;
+}
+
+double PenetrationProbe::lateral_of(const Vec3& x) const {
+  if (nd_ == 2) return axis_ == 1 ? std::abs(x[0] - line_point_[0]) : std::abs(x[1] - line_point_[1]);
+  double r2 = 0.0;
+  for (int k = 0; k < 3; ++k)
+    if (k != axis_) r2 += (x[k] - line_point_[k]) * (x[k] - line_point_[k]);
+  return std::sqrt(r2);
+}
+
+std::vector<std::string> PenetrationProbe::columns() const {
+  std::vector<std::string> c = {"penetration_time", "penetration_depth", "cavity_depth", "penetrator_kinetic_energy"};
+  for (int k = 0; k < segments_; ++k) c.push_back("segment_kinetic_energy_" + std::to_string(k));
+  return c;
+}
+
+double PenetrationProbe::penetrator_depth(const FieldStore& pts) const {
+  const auto* bid = pts.ints("body");
+  const auto* x = pts.view<Vec3>("x");
+  double deepest = 0.0;
+  for (Index p = 0; p < pts.size(); ++p)
+    if (bid[p] == penetrator_) deepest = std::max(deepest, depth_of(x[p]));
+  return deepest;
+}
+
+double PenetrationProbe::cavity_depth(const FieldStore& pts) const {
+  const auto* bid = pts.ints("body");
+  const auto* x = pts.view<Vec3>("x");
+  const auto* F = pts.view<Mat3>("F");
+  const auto* half = pts.view<Vec3>("half_size");
+  double tip = std::numeric_limits<double>::infinity(), bottom = 0.0;
+  for (Index p = 0; p < pts.size(); ++p) {
+    if (bid[p] != target_) continue;
+    // Extent of the deformed domain along the axis: |F_a,j| h_j summed (the domain is F times a box).
+    double reach = 0.0;
+    for (int j = 0; j < nd_; ++j) reach += std::abs(F[p](axis_, j)) * half[p][j];
+    const double d = depth_of(x[p]);
+    bottom = std::max(bottom, d + reach);
+    // Material ejected above the face (d < 0) is not the cavity's floor.
+    if (d >= 0.0 && lateral_of(x[p]) < spec_.axis_radius) tip = std::min(tip, std::max(0.0, d - reach));
+  }
+  return std::isfinite(tip) ? tip : bottom;
+}
+
+std::vector<double> PenetrationProbe::sample(const FieldStore& pts, bool fired, double t, double scale) {
+  std::vector<double> seg(static_cast<size_t>(segments_), 0.0);
+  const auto* bid = pts.ints("body");
+  const auto* sid = pts.ints("segment");
+  const auto* v = pts.view<Vec3>("v");
+  const auto* m = pts.real("mass");
+  for (Index p = 0; p < pts.size(); ++p)
+    if (bid[p] == penetrator_) {
+      const auto k = static_cast<size_t>(std::clamp<std::int64_t>(sid[p], 0, segments_ - 1));
+      seg[k] += 0.5 * m[p] * dot(v[p], v[p]) * scale;
+    }
+  double total = 0.0;
+  for (double e : seg) total += e;
+  double depth = 0.0, cavity = 0.0;
+  if (fired) {
+    depth = penetrator_depth(pts);
+    cavity = cavity_depth(pts);
+    if (t_.empty() || t > t_.back()) {
+      t_.push_back(t);
+      depth_.push_back(depth);
+      cavity_.push_back(cavity);
+    }
+  }
+  std::vector<double> row = {fired ? t : kNaN, depth, cavity, total};
+  row.insert(row.end(), seg.begin(), seg.end());
+  return row;
+}
+
+void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir, double main_duration, JsonValue& out) {
+  namespace fs = std::filesystem;
+  out = JsonValue::object();
+  out["penetrator"] = spec_.penetrator;
+  out["target"] = spec_.target;
+  out["impact_velocity"] = speed_;
+  out["penetrator_density"] = rho_p_;
+  out["target_density"] = rho_t_;
+  out["penetrator_length"] = length_;
+  out["segments"] = segments_;
+  out["surface"] = surface_;
+
+  // Rates by a smoothing local quadratic (thesis §7.2 differentiates with a local Lagrange
+  // polynomial; a least-squares one over 2w+1 samples also damps the sampling noise).
+  const int w = spec_.rate_half_window;
+  std::vector<double> rate(t_.size(), kNaN), cavity_rate(t_.size(), kNaN);
+  if (static_cast<int>(t_.size()) >= 2 * w + 1) {
+    rate = local_polynomial_derivative(t_, depth_, w, 2);
+    cavity_rate = local_polynomial_derivative(t_, cavity_, w, 2);
+  }
+  {
+    HistoryWriter csv((fs::path(out_dir) / "penetration.csv").string(), {"time", "depth", "cavity_depth", "rate", "cavity_rate"});
+    for (size_t i = 0; i < t_.size(); ++i) csv.row({t_[i], depth_[i], cavity_[i], rate[i], cavity_rate[i]});
+  }
+  const double final_depth = depth_.empty() ? 0.0 : depth_.back();
+  out["final_depth"] = final_depth;
+  out["final_cavity_depth"] = cavity_.empty() ? 0.0 : cavity_.back();
+  double max_depth = 0.0;
+  for (double d : depth_) max_depth = std::max(max_depth, d);
+  out["max_depth"] = max_depth;
+  // Stopped: the depth changes by less than stop_tolerance over at least the last tenth of the run.
+  const double stop = t_.size() >= 2 ? penetration_stop_time(t_, depth_, spec_.stop_tolerance, 0.1 * main_duration) : kNaN;
+  out["stop_time"] = std::isfinite(stop) ? JsonValue(stop) : JsonValue();
+  const SteadyFit fit = t_.size() >= 5 ? steady_state_fit(t_, depth_, rate) : SteadyFit{};
+  out["steady_rate"] = fit.ok ? JsonValue(fit.slope) : JsonValue();
+  JsonValue& sf = out["steady_fit"];
+  sf = JsonValue::object();
+  if (fit.ok) {
+    sf["intercept"] = fit.intercept;
+    sf["t_begin"] = fit.t_begin;
+    sf["t_end"] = fit.t_end;
+    sf["r2"] = fit.r2;
+    sf["points"] = fit.points;
+  }
+  // Hydrodynamic theory (thesis eq. 3.1-3.4): U_h and the Birkhoff depth L sqrt(rho_p/rho_t);
+  // a segmented penetrator also gets the fully particulated bound (lambda = 2, eq. 3.4).
+  const bool have = rho_p_ > 0 && rho_t_ > 0;
+  const double uh = have ? penetration::hydrodynamic_penetration_velocity(speed_, rho_p_, rho_t_) : kNaN;
+  out["hydrodynamic_rate"] = uh;
+  out["rate_over_hydrodynamic"] = fit.ok && uh > 0 ? JsonValue(fit.slope / uh) : JsonValue();
+  const double ph = have ? penetration::birkhoff_depth(length_, rho_p_, rho_t_) : kNaN;
+  out["hydrodynamic_depth"] = ph;
+  JsonValue& an = out["analytic"];
+  an = JsonValue::array();
+  if (have) {
+    JsonValue b = JsonValue::object();
+    b["name"] = "hydrodynamic (Birkhoff, eq. 3.2)";
+    b["depth"] = ph;
+    an.push_back(b);
+    if (segments_ > 1) {
+      JsonValue q = JsonValue::object();
+      q["name"] = "particulated, lambda = 2 (eq. 3.4)";
+      q["depth"] = penetration::particulated_jet_depth(length_, 2.0, rho_p_, rho_t_);
+      an.push_back(q);
+    }
+  }
+
+  // Final channel: for each depth bin, the smallest distance from the line of flight of target
+  // material (inner edge of the particle domains) down to the cavity tip.
+  const auto* bid = pts.ints("body");
+  const auto* x = pts.view<Vec3>("x");
+  const auto* F = pts.view<Mat3>("F");
+  const auto* half = pts.view<Vec3>("half_size");
+  std::vector<double> dd, rr;
+  const int lat = axis_ == 1 ? 0 : 1;  // a lateral direction (exact in 2D; 3D uses the radial extent below)
+  for (Index p = 0; p < pts.size(); ++p) {
+    if (bid[p] != target_) continue;
+    double reach = 0.0;
+    for (int j = 0; j < nd_; ++j) reach += std::abs(F[p](lat, j)) * half[p][j];
+    dd.push_back(depth_of(x[p]));
+    rr.push_back(std::max(0.0, lateral_of(x[p]) - reach));
+  }
+  const double channel_depth = std::max(out.at("final_cavity_depth").as_number(), max_depth);
+  const int bins = spec_.channel_bins > 0 ? spec_.channel_bins : std::max(1, static_cast<int>(std::ceil(channel_depth / cell_)));
+  double max_radius = 0.0;
+  {
+    HistoryWriter csv((fs::path(out_dir) / "channel.csv").string(), {"depth", "radius"});
+    if (channel_depth > 0 && !dd.empty()) {
+      const ChannelProfile prof = channel_profile(dd, rr, channel_depth, bins);
+      for (size_t i = 0; i < prof.depth.size(); ++i) {
+        csv.row({prof.depth[i], prof.radius[i]});
+        if (std::isfinite(prof.radius[i])) max_radius = std::max(max_radius, prof.radius[i]);
+      }
+    }
+  }
+  out["max_channel_radius"] = max_radius;
+}
+
+}  // namespace ballista

@@ -1,0 +1,58 @@
+#pragma once
+// Penetration measurements of a run with a `penetration:` section (thesis seed 000 ch. 5 and
+// §7.2, Figs. 7.4-7.7): depth of the deepest penetrator particle and of the cavity tip against
+// time since firing, rate of penetration by a smoothing local-polynomial derivative, steady-state
+// linear fit, stop time, penetrator kinetic energy (total and per segment) and the final channel
+// radius profile, with the hydrodynamic predictions of eq. 3.1-3.4 for comparison.
+#include <string>
+#include <vector>
+
+#include "core/field_store.hpp"
+#include "io/scenario.hpp"
+#include "io/summary_writer.hpp"
+
+namespace ballista {
+
+class PenetrationProbe {
+ public:
+  /// Reads the penetration section, the penetrator's segments and the two densities.
+  explicit PenetrationProbe(const Scenario& sc);
+
+  /// History columns: penetration_time, penetration_depth, cavity_depth,
+  /// penetrator_kinetic_energy, segment_kinetic_energy_<k> (k = 0 .. segments-1).
+  std::vector<std::string> columns() const;
+
+  /// Values of those columns for the current points. `fired` is false during preparation stages
+  /// (time and depths are then NaN and 0, nothing is recorded); otherwise the sample at
+  /// `time_since_fire` (s) joins the series the summary is computed from.
+  /// `scale` turns per-point sums into physical totals (2 pi in axisymmetric runs).
+  std::vector<double> sample(const FieldStore& points, bool fired, double time_since_fire, double scale);
+
+  /// Writes penetration.csv (time, depth, cavity_depth, rate, cavity_rate) and channel.csv
+  /// (depth, radius) into out_dir and fills `out` (the summary's "penetration" object).
+  void finish(const FieldStore& points, const std::string& out_dir, double main_duration, JsonValue& out);
+
+  /// Depth below the target's struck face along the direction of flight, m (negative above it).
+  double depth_of(const Vec3& x) const { return direction_ * (x[axis_] - surface_); }
+  /// Distance from the line of flight, m (the radius x in axisymmetric runs).
+  double lateral_of(const Vec3& x) const;
+
+  /// Depth of the deepest penetrator particle (>= 0), m.
+  double penetrator_depth(const FieldStore& points) const;
+  /// Depth of the cavity tip, m: the top of the shallowest target material within axis_radius
+  /// of the line of flight and below the face; the full target depth once nothing is left there
+  /// (perforation).
+  double cavity_depth(const FieldStore& points) const;
+
+ private:
+  PenetrationSpec spec_;
+  int penetrator_ = -1, target_ = -1;  ///< body indices
+  int axis_ = 1, nd_ = 3;
+  double direction_ = -1.0, surface_ = 0.0;
+  Vec3 line_point_;                    ///< a point on the line of flight
+  int segments_ = 1;
+  double rho_p_ = 0.0, rho_t_ = 0.0, length_ = 0.0, speed_ = 0.0, cell_ = 0.0;
+  std::vector<double> t_, depth_, cavity_;
+};
+
+}  // namespace ballista
