@@ -203,7 +203,7 @@ def plot_energy(out_dir, hist):
             ax.plot(t, hist[h], "-", color=c, lw=1.0, label=f"segment {k}" if n <= SEGMENT_LEGEND_MAX else None)
         if n > SEGMENT_LEGEND_MAX:
             sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(0, n - 1))
-            fig.colorbar(sm, ax=ax, label="segment index (0 = tip)")
+            fig.colorbar(sm, ax=ax, label="segment index")
     if "penetrator_kinetic_energy" in hist:
         ax.plot(t, hist["penetrator_kinetic_energy"], "k-", lw=1.8, label="penetrator total")
     ax.set_xlabel(xlabel)

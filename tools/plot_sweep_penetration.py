@@ -83,7 +83,7 @@ def main(argv):
     ax.set_ylabel("U / U_h [-]")
     ax.set_xlim(left=0)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")
+    ax.legend(fontsize=8, loc="best")
     ax.set_title("Normalised penetration velocity (thesis Fig. 5.12)")
     fig.tight_layout()
     fig.savefig(os.path.join(argv[1], "penetration_u_over_uh.png"), dpi=120)

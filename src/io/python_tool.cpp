@@ -1,11 +1,10 @@
 #include "io/python_tool.hpp"
 
-#include <cstdlib>
-#include <filesystem>
-
+#include <fmt/format.h>
 #include <sys/wait.h>
 
-#include <fmt/format.h>
+#include <cstdlib>
+#include <filesystem>
 
 #ifndef BALLISTA_PYTHON
 #define BALLISTA_PYTHON "/usr/bin/python3"
@@ -52,15 +51,21 @@ std::string run_python_tool(const std::string& script_name, const std::vector<st
   const std::string hint = skip_hint.empty() ? "" : ", " + skip_hint;
   const std::string or_hint = skip_hint.empty() ? "" : "; " + skip_hint;
   if (!fs::exists(py))
-    return fmt::format("{} needs Python with matplotlib: interpreter {} (BALLISTA_PYTHON) does not exist; "
-                       "configure with -DBALLISTA_PYTHON=/path/to/python3, set BALLISTA_PYTHON in the environment{}",
-                       what, py, hint);
+    return fmt::format(
+        "{} needs Python with matplotlib: interpreter {} (BALLISTA_PYTHON) does not exist; "
+        "configure with -DBALLISTA_PYTHON=/path/to/python3, set BALLISTA_PYTHON in the "
+        "environment{}",
+        what, py, hint);
   if (run_command(shell_quote(py) + " -c 'import matplotlib, numpy' >/dev/null 2>&1") != 0)
-    return fmt::format("{} needs matplotlib and numpy: {} (BALLISTA_PYTHON) cannot import them (Debian: "
-                       "apt install python3-matplotlib python3-numpy; or point BALLISTA_PYTHON at another Python{})",
-                       what, py, or_hint);
-  const std::string noun = what.rfind("the ", 0) == 0 ? what.substr(4) : what;  // "the report" -> "report script"
-  if (!fs::exists(script)) return noun + " script " + script + " not found (BALLISTA_SOURCE_DIR moved?)";
+    return fmt::format(
+        "{} needs matplotlib and numpy: {} (BALLISTA_PYTHON) cannot import them (Debian: "
+        "apt install python3-matplotlib python3-numpy; or point BALLISTA_PYTHON at another "
+        "Python{})",
+        what, py, or_hint);
+  const std::string noun =
+      what.rfind("the ", 0) == 0 ? what.substr(4) : what;  // "the report" -> "report script"
+  if (!fs::exists(script))
+    return noun + " script " + script + " not found (BALLISTA_SOURCE_DIR moved?)";
   std::string cmd = shell_quote(py) + " " + shell_quote(script);
   std::string shown = py + " " + script;
   for (const std::string& a : args) {

@@ -5,7 +5,7 @@
 namespace ballista {
 
 std::string make_penetration_plots(const std::string& out_dir) {
-  return run_python_tool("plot_penetration.py", {out_dir}, "the penetration plots");
+  return run_python_tool("plot_penetration.py", {out_dir}, "the penetration plot");
 }
 
 }  // namespace ballista

@@ -6,9 +6,9 @@
 
 namespace ballista {
 
-/// Runs tools/plot_penetration.py OUT_DIR with the BALLISTA_PYTHON interpreter (io/python_tool.hpp).
-/// Returns an empty string on success, else what is missing or how the script failed; a failure
-/// here is meant as a warning (the run itself is complete).
+/// Runs tools/plot_penetration.py OUT_DIR with the BALLISTA_PYTHON interpreter
+/// (io/python_tool.hpp). Returns an empty string on success, else what is missing or how the script
+/// failed; a failure here is meant as a warning (the run itself is complete).
 std::string make_penetration_plots(const std::string& out_dir);
 
 }  // namespace ballista

@@ -31,7 +31,9 @@ std::optional<double> density(const SweepRow& row, const std::string& column) {
   return v && *v > 0 ? v : std::nullopt;
 }
 
-JsonValue json_of(const std::optional<double>& v) { return v ? JsonValue(*v) : JsonValue(); }
+JsonValue json_of(const std::optional<double>& v) {
+  return v ? JsonValue(*v) : JsonValue();
+}
 
 }  // namespace
 
@@ -40,8 +42,10 @@ std::optional<SweepPenetrationFit> sweep_penetration_fit(const SweepTable& table
   std::vector<double> V, U;
   for (const SweepRow& row : table.rows()) {
     if (row.status != "completed") continue;  // a failed run has no steady rate to fit
-    const auto v = number(row, "penetration.impact_velocity"), u = number(row, "penetration.steady_rate");
-    if (!v || !u) return std::nullopt;  // not an impact-velocity study (or a run without a steady state)
+    const auto v = number(row, "penetration.impact_velocity"),
+               u = number(row, "penetration.steady_rate");
+    if (!v || !u)
+      return std::nullopt;  // not an impact-velocity study (or a run without a steady state)
     SweepPenetrationPoint p;
     p.run = row.index;
     p.V = *v;
@@ -56,12 +60,14 @@ std::optional<SweepPenetrationFit> sweep_penetration_fit(const SweepTable& table
     V.push_back(p.V);
     U.push_back(p.U);
   }
-  if (std::set<double>(V.begin(), V.end()).size() < 2) return std::nullopt;  // eq. 5.2 needs two velocities
+  if (std::set<double>(V.begin(), V.end()).size() < 2)
+    return std::nullopt;  // eq. 5.2 needs two velocities
   f.fit = penetration::fit_orphal_anderson(V, U);
   const double a = f.fit.a, b = f.fit.b;
   for (SweepPenetrationPoint& p : f.points)
     if (p.rho_p && p.rho_t)
-      p.R_minus_Y = penetration::orphal_anderson_strength_difference(a, b, *p.rho_p, *p.rho_t, p.V);  // eq. 5.3
+      p.R_minus_Y = penetration::orphal_anderson_strength_difference(a, b, *p.rho_p, *p.rho_t,
+                                                                     p.V);  // eq. 5.3
 
   // Eq. 5.4-5.5 are properties of the fitted line for one penetrator/target pair: only when every
   // run has the same densities.
@@ -112,7 +118,8 @@ JsonValue sweep_penetration_json(const SweepPenetrationFit& f) {
 bool write_sweep_penetration(const SweepTable& table, const fs::path& out_dir) {
   const auto f = sweep_penetration_fit(table);
   if (!f) return false;
-  write_file_atomic((out_dir / "sweep_penetration.json").string(), sweep_penetration_json(*f).dump(2) + "\n");
+  write_file_atomic((out_dir / "sweep_penetration.json").string(),
+                    sweep_penetration_json(*f).dump(2) + "\n");
   return true;
 }
 
@@ -124,10 +131,13 @@ SweepPostStep sweep_penetration_post_step() {
       std::cerr << "sweep: warning: U = a + bV fit not written: " << e.what() << "\n";
       return;
     }
-    const std::string err =
-        run_python_tool("plot_sweep_penetration.py", {out_dir.string()}, "the sweep penetration plots");
-    if (!err.empty()) std::cerr << "sweep: warning: penetration plots not written: " << err << "\n";
-    else std::cout << "U = a + bV fit in " << fs::absolute(out_dir / "sweep_penetration.json").string() << "\n";
+    const std::string err = run_python_tool("plot_sweep_penetration.py", {out_dir.string()},
+                                            "the sweep penetration plot");
+    if (!err.empty())
+      std::cerr << "sweep: warning: penetration plots not written: " << err << "\n";
+    else
+      std::cout << "U = a + bV fit in " << fs::absolute(out_dir / "sweep_penetration.json").string()
+                << "\n";
   };
 }
 

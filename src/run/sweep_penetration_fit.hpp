@@ -19,21 +19,21 @@ namespace ballista {
 /// One completed run of the study. Density-dependent values are empty when the summary lacks
 /// penetration.penetrator_density or penetration.target_density.
 struct SweepPenetrationPoint {
-  int run = 0;                             ///< run number k
-  double V = 0;                            ///< impact velocity [m/s]
-  double U = 0;                            ///< steady penetration rate [m/s]
-  std::optional<double> rho_p, rho_t;      ///< penetrator, target density [kg/m^3]
-  std::optional<double> U_h;               ///< hydrodynamic rate V / (1 + sqrt(rho_t/rho_p)) [m/s] (eq. 3.1)
-  std::optional<double> R_minus_Y;         ///< eq. 5.3 with the fitted a, b [Pa]
+  int run = 0;                         ///< run number k
+  double V = 0;                        ///< impact velocity [m/s]
+  double U = 0;                        ///< steady penetration rate [m/s]
+  std::optional<double> rho_p, rho_t;  ///< penetrator, target density [kg/m^3]
+  std::optional<double> U_h;  ///< hydrodynamic rate V / (1 + sqrt(rho_t/rho_p)) [m/s] (eq. 3.1)
+  std::optional<double> R_minus_Y;  ///< eq. 5.3 with the fitted a, b [Pa]
 };
 
 struct SweepPenetrationFit {
   penetration::LinearFit fit;  ///< U = a + b V, eq. 5.2
   std::vector<SweepPenetrationPoint> points;
-  std::optional<double> rho_p, rho_t;              ///< the densities if every run has the same ones
-  std::optional<double> curvature;                 ///< d^2(R-Y)/dV^2, eq. 5.5 [kg/m^3] (common densities)
-  std::optional<double> extremum_velocity;         ///< V_m, eq. 5.4 [m/s] (none when eq. 5.5 is zero)
-  std::optional<double> hydrodynamic_slope;        ///< b making eq. 5.5 zero, 1/(1+sqrt(rho_t/rho_p))
+  std::optional<double> rho_p, rho_t;        ///< the densities if every run has the same ones
+  std::optional<double> curvature;           ///< d^2(R-Y)/dV^2, eq. 5.5 [kg/m^3] (common densities)
+  std::optional<double> extremum_velocity;   ///< V_m, eq. 5.4 [m/s] (none when eq. 5.5 is zero)
+  std::optional<double> hydrodynamic_slope;  ///< b making eq. 5.5 zero, 1/(1+sqrt(rho_t/rho_p))
 };
 
 /// The fit of a table, or nothing when the table is not an impact-velocity study: no completed

@@ -1,6 +1,7 @@
 // The U = a + bV post step of `ballista sweep` (run/sweep_penetration_fit.hpp, thesis seed 000
 // §5.2, eq. 5.2-5.5) on synthetic tables: an exact line is recovered, R - Y, V_m and the curvature
 // match hand-computed values, and a table that is not an impact-velocity study writes nothing.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
@@ -8,8 +9,6 @@
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "run/sweep_penetration_fit.hpp"
 #include "run/sweep_table.hpp"
@@ -22,14 +21,17 @@ namespace {
 // Copper jet into sandstone (thesis §5.2 densities) with a made-up line U = 600 m/s + 0.55 V.
 constexpr double kRhoP = 8960, kRhoT = 2200, kA = 600, kB = 0.55;
 
-SweepCell num(double v) { return sweep_cell(fmt::format("{:.17g}", v)); }
+SweepCell num(double v) {
+  return sweep_cell(fmt::format("{:.17g}", v));
+}
 
 SweepRow penetration_row(int k, double V, double U, bool densities = true) {
   SweepRow r;
   r.index = k;
   r.values = {fmt::format("{}", V)};
   r.status = "completed";
-  r.scalars = {{"energy.kinetic", num(1.0)}, {"penetration.impact_velocity", num(V)},
+  r.scalars = {{"energy.kinetic", num(1.0)},
+               {"penetration.impact_velocity", num(V)},
                {"penetration.steady_rate", num(U)}};
   if (densities) {
     r.scalars.push_back({"penetration.penetrator_density", num(kRhoP)});
@@ -44,7 +46,8 @@ SweepTable exact_line_table() {
     const double V = 1000.0 * (k + 1);
     t.add(penetration_row(k, V, kA + kB * V));
   }
-  SweepRow failed;  // a failed run has no summary: it is left out of the fit, not a reason to skip it
+  SweepRow
+      failed;  // a failed run has no summary: it is left out of the fit, not a reason to skip it
   failed.index = 4;
   failed.values = {"5000"};
   failed.status = "failed";
@@ -69,7 +72,8 @@ TEST(SweepPenetrationFit, RecoversAnExactLineAndEq53To54) {
   const SweepPenetrationPoint& p = f->points[1];
   EXPECT_EQ(p.V, 2000.0);
   ASSERT_TRUE(p.R_minus_Y.has_value());
-  EXPECT_NEAR(*p.R_minus_Y, -2.7758e9, 2.7758e9 * 1e-12);  // round-off of a, b propagated (relative 1e-12)
+  EXPECT_NEAR(*p.R_minus_Y, -2.7758e9,
+              2.7758e9 * 1e-12);  // round-off of a, b propagated (relative 1e-12)
   // U_h = V / (1 + sqrt(rho_t/rho_p)), eq. 3.1.
   ASSERT_TRUE(p.U_h.has_value());
   EXPECT_NEAR(*p.U_h, 2000.0 / (1 + std::sqrt(kRhoT / kRhoP)), 1e-9);
@@ -132,7 +136,8 @@ TEST(SweepPenetrationFit, HydrodynamicSlopeHasNoExtremum) {
 
 TEST(SweepPenetrationFit, TablesThatAreNotAStudyWriteNothing) {
   test::TempDir dir("sweep_pen");
-  SweepTable plain({{"materials.soft.youngs_modulus", {"1000", "2000"}}});  // no penetration columns
+  SweepTable plain(
+      {{"materials.soft.youngs_modulus", {"1000", "2000"}}});  // no penetration columns
   for (int k = 0; k < 2; ++k) {
     SweepRow r;
     r.index = k;
@@ -157,4 +162,15 @@ TEST(SweepPenetrationFit, TablesThatAreNotAStudyWriteNothing) {
   r.scalars.erase(r.scalars.begin() + 2);  // penetration.steady_rate
   missing_rate.add(r);
   EXPECT_FALSE(sweep_penetration_fit(missing_rate).has_value());
+}
+
+TEST(SweepPenetrationFit, PostStepDrawsBothFigures) {
+  // The JSON written by C++ is what tools/plot_sweep_penetration.py reads (~1 s of Python).
+  test::TempDir dir("sweep_pen");
+  sweep_penetration_post_step()(exact_line_table(), dir.path);
+  for (const char* png : {"penetration_u_vs_v.png", "penetration_u_over_uh.png"}) {
+    const std::string data = test::slurp(dir.path / png);
+    ASSERT_GT(data.size(), 1000u) << png << " not written";
+    EXPECT_EQ(data.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << png;
+  }
 }
