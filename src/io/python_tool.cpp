@@ -62,10 +62,8 @@ std::string run_python_tool(const std::string& script_name, const std::vector<st
         "apt install python3-matplotlib python3-numpy; or point BALLISTA_PYTHON at another "
         "Python{})",
         what, py, or_hint);
-  const std::string noun =
-      what.rfind("the ", 0) == 0 ? what.substr(4) : what;  // "the report" -> "report script"
-  if (!fs::exists(script))
-    return noun + " script " + script + " not found (BALLISTA_SOURCE_DIR moved?)";
+  const std::string noun = what.rfind("the ", 0) == 0 ? what.substr(4) : what;  // "the report" -> "report script"
+  if (!fs::exists(script)) return noun + " script " + script + " not found (BALLISTA_SOURCE_DIR moved?)";
   std::string cmd = shell_quote(py) + " " + shell_quote(script);
   std::string shown = py + " " + script;
   for (const std::string& a : args) {

@@ -19,8 +19,7 @@ std::string python_tool_path(const std::string& script_name);
 /// `what` names the product in the messages ("the report"), `skip_hint` how to do without it
 /// ("or use --no-report"; empty: no hint).
 std::string run_python_tool(const std::string& script_name, const std::vector<std::string>& args,
-                            const std::string& what = "the plot",
-                            const std::string& skip_hint = "");
+                            const std::string& what = "the plot", const std::string& skip_hint = "");
 
 /// A single-quoted shell word.
 std::string shell_quote(const std::string& s);

@@ -42,10 +42,8 @@ std::optional<SweepPenetrationFit> sweep_penetration_fit(const SweepTable& table
   std::vector<double> V, U;
   for (const SweepRow& row : table.rows()) {
     if (row.status != "completed") continue;  // a failed run has no steady rate to fit
-    const auto v = number(row, "penetration.impact_velocity"),
-               u = number(row, "penetration.steady_rate");
-    if (!v || !u)
-      return std::nullopt;  // not an impact-velocity study (or a run without a steady state)
+    const auto v = number(row, "penetration.impact_velocity"), u = number(row, "penetration.steady_rate");
+    if (!v || !u) return std::nullopt;  // not an impact-velocity study (or a run without a steady state)
     SweepPenetrationPoint p;
     p.run = row.index;
     p.V = *v;
@@ -60,8 +58,7 @@ std::optional<SweepPenetrationFit> sweep_penetration_fit(const SweepTable& table
     V.push_back(p.V);
     U.push_back(p.U);
   }
-  if (std::set<double>(V.begin(), V.end()).size() < 2)
-    return std::nullopt;  // eq. 5.2 needs two velocities
+  if (std::set<double>(V.begin(), V.end()).size() < 2) return std::nullopt;  // eq. 5.2 needs two velocities
   f.fit = penetration::fit_orphal_anderson(V, U);
   const double a = f.fit.a, b = f.fit.b;
   for (SweepPenetrationPoint& p : f.points)
@@ -73,8 +70,7 @@ std::optional<SweepPenetrationFit> sweep_penetration_fit(const SweepTable& table
   // run has the same densities.
   bool common = true;
   for (const SweepPenetrationPoint& p : f.points)
-    common = common && p.rho_p && p.rho_t && *p.rho_p == *f.points.front().rho_p &&
-             *p.rho_t == *f.points.front().rho_t;
+    common = common && p.rho_p && p.rho_t && *p.rho_p == *f.points.front().rho_p && *p.rho_t == *f.points.front().rho_t;
   if (common) {
     const double rp = *f.points.front().rho_p, rt = *f.points.front().rho_t;
     f.rho_p = rp;
@@ -118,8 +114,7 @@ JsonValue sweep_penetration_json(const SweepPenetrationFit& f) {
 bool write_sweep_penetration(const SweepTable& table, const fs::path& out_dir) {
   const auto f = sweep_penetration_fit(table);
   if (!f) return false;
-  write_file_atomic((out_dir / "sweep_penetration.json").string(),
-                    sweep_penetration_json(*f).dump(2) + "\n");
+  write_file_atomic((out_dir / "sweep_penetration.json").string(), sweep_penetration_json(*f).dump(2) + "\n");
   return true;
 }
 
@@ -131,13 +126,12 @@ SweepPostStep sweep_penetration_post_step() {
       std::cerr << "sweep: warning: U = a + bV fit not written: " << e.what() << "\n";
       return;
     }
-    const std::string err = run_python_tool("plot_sweep_penetration.py", {out_dir.string()},
-                                            "the sweep penetration plot");
+    const std::string err =
+        run_python_tool("plot_sweep_penetration.py", {out_dir.string()}, "the sweep penetration plot");
     if (!err.empty())
       std::cerr << "sweep: warning: penetration plots not written: " << err << "\n";
     else
-      std::cout << "U = a + bV fit in " << fs::absolute(out_dir / "sweep_penetration.json").string()
-                << "\n";
+      std::cout << "U = a + bV fit in " << fs::absolute(out_dir / "sweep_penetration.json").string() << "\n";
   };
 }
 

@@ -23,8 +23,8 @@ struct SweepPenetrationPoint {
   double V = 0;                        ///< impact velocity [m/s]
   double U = 0;                        ///< steady penetration rate [m/s]
   std::optional<double> rho_p, rho_t;  ///< penetrator, target density [kg/m^3]
-  std::optional<double> U_h;  ///< hydrodynamic rate V / (1 + sqrt(rho_t/rho_p)) [m/s] (eq. 3.1)
-  std::optional<double> R_minus_Y;  ///< eq. 5.3 with the fitted a, b [Pa]
+  std::optional<double> U_h;           ///< hydrodynamic rate V / (1 + sqrt(rho_t/rho_p)) [m/s] (eq. 3.1)
+  std::optional<double> R_minus_Y;     ///< eq. 5.3 with the fitted a, b [Pa]
 };
 
 struct SweepPenetrationFit {

@@ -1,10 +1,10 @@
 #include "verify/verify_cli.hpp"
 
-#include <fmt/format.h>
-
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+
+#include <fmt/format.h>
 
 #include "core/parallel.hpp"
 #include "io/atomic_file.hpp"
@@ -21,16 +21,12 @@ namespace ballista {
 
 namespace fs = std::filesystem;
 
-std::string verify_python() {
-  return python_interpreter();
-}
-std::string verify_report_script() {
-  return python_tool_path("verify_report.py");
-}
+std::string verify_python() { return python_interpreter(); }
+std::string verify_report_script() { return python_tool_path("verify_report.py"); }
 
 std::string make_verify_report(const std::string& out_dir) {
-  return run_python_tool("verify_report.py", {(fs::path(out_dir) / "verify.json").string()},
-                         "the report", "or use --no-report");
+  return run_python_tool("verify_report.py", {(fs::path(out_dir) / "verify.json").string()}, "the report",
+                         "or use --no-report");
 }
 
 int run_verify_cli(const VerifyCliOptions& o) {
@@ -40,8 +36,7 @@ int run_verify_cli(const VerifyCliOptions& o) {
   so.tests = o.tests;
   so.threads = o.threads;
   const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<MaterialFactory> factories =
-      material_registry();  // a copy: read once, on this thread
+  const std::vector<MaterialFactory> factories = material_registry();  // a copy: read once, on this thread
   const std::vector<VerifyCase> cases = run_verify_suite(factories, so);
   VerifyRunInfo info;
   info.version = BALLISTA_VERSION;
@@ -52,23 +47,19 @@ int run_verify_cli(const VerifyCliOptions& o) {
 
   int n_fail = 0, n_pass = 0, n_na = 0;
   for (const VerifyCase& c : cases) {
-    if (c.status == VerifyStatus::Fail)
-      ++n_fail;
-    else if (c.status == VerifyStatus::Pass)
-      ++n_pass;
-    else
-      ++n_na;
+    if (c.status == VerifyStatus::Fail) ++n_fail;
+    else if (c.status == VerifyStatus::Pass) ++n_pass;
+    else ++n_na;
     if (o.quiet && c.status != VerifyStatus::Fail) continue;
     std::cout << fmt::format("{:<16} {:<15} {:<15} ", c.model, c.test, to_string(c.status));
     if (c.status == VerifyStatus::NotApplicable)
       std::cout << c.reason << "\n";
     else
-      std::cout << fmt::format("max rel error {:9.2e}  tolerance {:8.1e}{}\n", c.max_rel_error,
-                               c.tolerance, c.status == VerifyStatus::Fail ? "  " + c.reason : "");
+      std::cout << fmt::format("max rel error {:9.2e}  tolerance {:8.1e}{}\n", c.max_rel_error, c.tolerance,
+                               c.status == VerifyStatus::Fail ? "  " + c.reason : "");
   }
-  std::cout << fmt::format("verify: {} passed, {} failed, {} not applicable in {:.1f} s; {}\n",
-                           n_pass, n_fail, n_na, info.wall_seconds,
-                           fs::absolute(json_path).string());
+  std::cout << fmt::format("verify: {} passed, {} failed, {} not applicable in {:.1f} s; {}\n", n_pass, n_fail, n_na,
+                           info.wall_seconds, fs::absolute(json_path).string());
   int status = n_fail > 0 ? kVerifyTestFailed : kVerifyAllPassed;
   if (o.report) {
     const std::string err = make_verify_report(o.out_dir);

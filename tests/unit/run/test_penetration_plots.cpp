@@ -17,8 +17,7 @@ TEST(PenetrationPlots, FolderWithoutHistoryIsAnError) {
   test::TempDir dir("pen_plots");
   const std::string err = make_penetration_plots(dir.path.string());
   EXPECT_NE(err.find("plot_penetration.py"), std::string::npos) << err;
-  EXPECT_NE(err.find("failed with status 2"), std::string::npos)
-      << err;  // the script's "no history.csv" status
+  EXPECT_NE(err.find("failed with status 2"), std::string::npos) << err;  // the script's "no history.csv" status
 }
 
 TEST(PenetrationPlots, MissingInterpreterIsNamed) {
@@ -27,8 +26,7 @@ TEST(PenetrationPlots, MissingInterpreterIsNamed) {
   const std::string err = make_penetration_plots(dir.path.string());
   EXPECT_EQ(python_interpreter(), "/nonexistent/python3");
   ::unsetenv("BALLISTA_PYTHON");
-  EXPECT_NE(err.find("/nonexistent/python3 (BALLISTA_PYTHON) does not exist"), std::string::npos)
-      << err;
+  EXPECT_NE(err.find("/nonexistent/python3 (BALLISTA_PYTHON) does not exist"), std::string::npos) << err;
   EXPECT_NE(err.find("the penetration plot needs"), std::string::npos) << err;
 }
 

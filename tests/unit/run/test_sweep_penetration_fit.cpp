@@ -30,9 +30,8 @@ SweepRow penetration_row(int k, double V, double U, bool densities = true) {
   r.index = k;
   r.values = {fmt::format("{}", V)};
   r.status = "completed";
-  r.scalars = {{"energy.kinetic", num(1.0)},
-               {"penetration.impact_velocity", num(V)},
-               {"penetration.steady_rate", num(U)}};
+  r.scalars = {
+      {"energy.kinetic", num(1.0)}, {"penetration.impact_velocity", num(V)}, {"penetration.steady_rate", num(U)}};
   if (densities) {
     r.scalars.push_back({"penetration.penetrator_density", num(kRhoP)});
     r.scalars.push_back({"penetration.target_density", num(kRhoT)});
@@ -46,8 +45,7 @@ SweepTable exact_line_table() {
     const double V = 1000.0 * (k + 1);
     t.add(penetration_row(k, V, kA + kB * V));
   }
-  SweepRow
-      failed;  // a failed run has no summary: it is left out of the fit, not a reason to skip it
+  SweepRow failed;  // a failed run has no summary: it is left out of the fit, not a reason to skip it
   failed.index = 4;
   failed.values = {"5000"};
   failed.status = "failed";
@@ -136,8 +134,7 @@ TEST(SweepPenetrationFit, HydrodynamicSlopeHasNoExtremum) {
 
 TEST(SweepPenetrationFit, TablesThatAreNotAStudyWriteNothing) {
   test::TempDir dir("sweep_pen");
-  SweepTable plain(
-      {{"materials.soft.youngs_modulus", {"1000", "2000"}}});  // no penetration columns
+  SweepTable plain({{"materials.soft.youngs_modulus", {"1000", "2000"}}});  // no penetration columns
   for (int k = 0; k < 2; ++k) {
     SweepRow r;
     r.index = k;
