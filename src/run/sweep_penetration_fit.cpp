@@ -61,10 +61,9 @@ std::optional<SweepPenetrationFit> sweep_penetration_fit(const SweepTable& table
   if (std::set<double>(V.begin(), V.end()).size() < 2) return std::nullopt;  // eq. 5.2 needs two velocities
   f.fit = penetration::fit_orphal_anderson(V, U);
   const double a = f.fit.a, b = f.fit.b;
-  for (SweepPenetrationPoint& p : f.points)
+  for (SweepPenetrationPoint& p : f.points)  // R - Y implied by the fitted line at each V, eq. 5.3
     if (p.rho_p && p.rho_t)
-      p.R_minus_Y = penetration::orphal_anderson_strength_difference(a, b, *p.rho_p, *p.rho_t,
-                                                                     p.V);  // eq. 5.3
+      p.R_minus_Y = penetration::orphal_anderson_strength_difference(a, b, *p.rho_p, *p.rho_t, p.V);
 
   // Eq. 5.4-5.5 are properties of the fitted line for one penetrator/target pair: only when every
   // run has the same densities.
