@@ -118,12 +118,12 @@ def plot_depth(out_dir, series, p):
         tt = np.linspace(0.0, float(np.nanmax(t)), 50)
         ax.plot(tt * US, uh * tt * MM, ":", color="tab:green", lw=1.4, label=f"hydrodynamic U_h t, U_h = {uh:.0f} m/s")
     lines = []
-    hd = number(p, "hydrodynamic_depth")
-    if hd is not None:
-        lines.append(("hydrodynamic depth L√(ρp/ρt)", hd))
     for a in p.get("analytic") or []:
         if number(a, "depth") is not None:
             lines.append((str(a.get("name", "analytic")), number(a, "depth")))
+    hd = number(p, "hydrodynamic_depth")
+    if hd is not None and not any(abs(d - hd) <= 1e-9 * abs(hd) for _, d in lines):  # not already in `analytic`
+        lines.insert(0, ("hydrodynamic depth L√(ρp/ρt)", hd))
     colours = plt.cm.tab10(np.linspace(0.3, 1.0, max(len(lines), 1)))
     for (name, depth), c in zip(lines, colours):
         ax.axhline(depth * MM, color=c, lw=0.9, ls="-.", label=f"{name}: {depth * MM:.1f} mm")
