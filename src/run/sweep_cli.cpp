@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "run/sweep.hpp"
+#include "run/sweep_penetration_fit.hpp"
 
 namespace ballista {
 
@@ -17,6 +18,7 @@ int run_sweep_cli(const SweepCliOptions& c, const std::string& argv0) {
   o.out_dir = c.out_dir.empty() ? fs::path("out") / (fs::path(c.deck).stem().string() + "_sweep") : fs::path(c.out_dir);
   o.jobs = c.jobs;
   o.quiet = c.quiet;
+  o.post_steps.push_back(sweep_penetration_post_step());  // U = a + bV when the runs measure penetration
   std::error_code ec;
   const fs::path self = fs::read_symlink("/proc/self/exe", ec);  // the running binary, whatever the PATH
   o.executable = ec ? fs::absolute(argv0).string() : self.string();
