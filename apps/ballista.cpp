@@ -16,6 +16,7 @@
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
 #include "penetration/models_command.hpp"
+#include "run/penetration_plots.hpp"
 #include "run/simulation.hpp"
 #include "run/sweep_command.hpp"
 #include "verify/verify_command.hpp"
@@ -98,6 +99,8 @@ int main(int argc, char** argv) {
   run->add_option("--threads", threads, "OpenMP threads (default: the deck's, else all cores)");
   run->add_option("--set", overrides, "override a deck value: key.path=value (repeatable)");
   run->add_flag("-q,--quiet", quiet, "no progress output");
+  bool no_plots = false;
+  run->add_flag("--no-plots", no_plots, "do not draw the penetration figures (PNG) of a deck with a penetration section");
   bool track_failed = false;
   run->add_flag("--track-failed", track_failed,
                 "if a particle fails, run the deck again from the start with that particle tracked "
@@ -195,6 +198,15 @@ int main(int argc, char** argv) {
                 << fmt::format("{:.2f}", r.wall_seconds) << " s (" << fmt::format("{:.3g}", r.particle_steps_per_second)
                 << " particle-steps/s)\n";
       for (const auto& [name, value] : r.probes) std::cout << "  " << name << " = " << value << "\n";
+      if (sc.penetration.enabled && !no_plots) {
+        // Figures of the penetration run (thesis seed 000 Figs. 7.4-7.7), also after a failure:
+        // what ran is worth seeing. A missing Python is a warning, not a failed run.
+        const std::string err = ballista::make_penetration_plots(out_dir);
+        if (err.empty())
+          std::cout << "  figures: penetration_depth.png, penetration_rate.png, penetrator_energy.png, channel_profile.png\n";
+        else
+          std::cerr << "warning: no penetration figures: " << err << " (--no-plots skips them)\n";
+      }
       std::cout << "results in " << std::filesystem::absolute(out_dir).string() << "\n";
       return r.ok ? 0 : 3;
     }

@@ -20,8 +20,9 @@ struct EnergyTotals {
   double removed_mass = 0.0;   ///< kg carried off by deleted particles
   double removed_energy = 0.0; ///< J (kinetic + internal) carried off by deleted particles
   Vec3 removed_momentum;       ///< kg m/s carried off by deleted particles
-  /// Energy balance: kinetic + internal + removed - external; constant in an exact solution.
-  double total() const { return kinetic + internal + removed_energy - external; }
+  double inserted_energy = 0.0;  ///< J (kinetic + internal) brought in by bodies activated after t = 0
+  /// Energy balance: kinetic + internal + removed - external - inserted; constant in an exact solution.
+  double total() const { return kinetic + internal + removed_energy - external - inserted_energy; }
 };
 
 class Solver {

@@ -53,15 +53,14 @@ SegmentSpec make_segment(const PenetratorSpec& p, double lead, double radius, do
   return s;
 }
 
-/// Fails unless the segment lies inside the grid box (a jet segment is inserted whole).
+/// Fails unless the segment lies inside the grid box along its axis (a jet segment is inserted
+/// whole) and its axis lies inside the box (across the axis a symmetry plane or the axisymmetric
+/// axis may cut the segment: only the part inside the grid is seeded).
 void check_inside_grid(DeckNode& n, const std::string& key, const SegmentSpec& s, const GridSpec& g, int nd,
                        const std::string& what) {
   for (int d = 0; d < nd; ++d) {
-    double lo = s.shape.center[d] - s.shape.radius, hi = s.shape.center[d] + s.shape.radius;
-    if (d == s.shape.axis) {
-      lo = s.shape.center[d];
-      hi = lo + s.shape.length;
-    }
+    double lo = s.shape.center[d], hi = s.shape.center[d];
+    if (d == s.shape.axis) hi = lo + s.shape.length;
     if (lo < g.lower[d] - 1e-12 || hi > g.upper[d] + 1e-12)
       n.fail(key, what + " spans " + format_number(lo) + " to " + format_number(hi) + " m in " + axis_name(d) +
                       ", outside the grid (" + format_number(g.lower[d]) + " to " + format_number(g.upper[d]) + ")");

@@ -217,6 +217,14 @@ void MpmSolver::activate_pending() {
     }
   }
   if (now.empty()) return;
+  // Their kinetic and internal energy enters the energy balance as work done from outside (a
+  // jet segment inserted at its velocity, thesis seed 000 §5.1), so the drift stays meaningful.
+  {
+    const auto* v = pending_.view<Vec3>("v");
+    const auto* m = pending_.real("mass");
+    const auto* e = pending_.real("internal_energy");
+    for (Index p : now) inserted_energy_ += 0.5 * m[p] * dot(v[p], v[p]) + e[p];
+  }
   points_.append_from(pending_, now);
   pending_.compact(keep);
   groups_dirty_ = true;
@@ -306,9 +314,13 @@ void MpmSolver::compute_external_forces() {
   const Index n = points_.size();
   if (scenario_.loads.empty()) {  // no loads: no external-force array, no external work
     fext_.clear();
+    ftrac_.clear();
+    surface_forces_.clear();
     return;
   }
   fext_.assign(n, Vec3{});
+  ftrac_.clear();
+  surface_forces_.clear();
   const auto* mass = points_.real("mass");
   const auto* bid = points_.ints("body");
   for (size_t k = 0; k < scenario_.loads.size(); ++k) {
@@ -321,14 +333,27 @@ void MpmSolver::compute_external_forces() {
         if (body < 0 || bid[p] == body) fext_[p] += mass[p] * acc;
       });
     } else if (load.type == "pressure") {
-      // Traction -p n da on the current surface, n da = J F^-T N dA0 (Nanson's formula).
+      // Traction -p n da on the current surface, n da = J F^-T N dA0 (Nanson's formula). It acts
+      // at the particle's face on the surface, x_p + F (N o half), not at its centre: a force at
+      // the centre puts part of the load on the node inside the boundary cell, whose stress then
+      // equilibrates only (1 - w) of the traction (a quarter short with two particles per cell,
+      // the surface-layer error of thesis seed 000 §5.1's particle point loads).
       const auto* F = points_.view<Mat3>("F");
+      const auto* x = points_.view<Vec3>("x");
+      const auto* half = points_.view<Vec3>("half_size");
       const auto* area = points_.view<Vec3>("load_area_" + std::to_string(k));
       const double pr = scale * load.pressure;
-      for_each(0, n, [&](Index p) {
-        if (area[p][0] == 0.0 && area[p][1] == 0.0 && area[p][2] == 0.0) return;
-        fext_[p] += (-pr) * (cofactor(F[p]) * area[p]);
-      });
+      if (ftrac_.size() != static_cast<size_t>(n)) ftrac_.assign(n, Vec3{});
+      for (Index p = 0; p < n; ++p) {
+        if (area[p][0] == 0.0 && area[p][1] == 0.0 && area[p][2] == 0.0) continue;
+        const Vec3 f = (-pr) * (cofactor(F[p]) * area[p]);
+        const double a = norm(area[p]);
+        Vec3 offset;
+        for (int i = 0; i < 3; ++i) offset[i] = area[p][i] / a * half[p][i];
+        fext_[p] += f;
+        ftrac_[p] += f;
+        surface_forces_.push_back({x[p] + F[p] * offset, f});
+      }
     } else if (load.type == "mms_axis_aligned") {
       const mms::AxisAligned mms;
       const auto* x0 = points_.view<Vec3>("x0");
@@ -359,7 +384,17 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
   });
   const bool axisym = dimension_ == Dimension::Axisymmetric;
   const bool has_ext = !fext_.empty();
+  const bool has_trac = !momentum_only && !ftrac_.empty();
   const int nslab = static_cast<int>(slab_start_.size()) - 1;
+  if (has_trac) {
+    // Tractions at the surface points, with the kernel's weights there (serial: few points).
+    Stencil<Dim> st;
+    for (const SurfaceForce& sf : surface_forces_) {
+      if constexpr (K == ShapeKind::BSpline3) bspline3_stencil<Dim>(g, sf.point, st);
+      else linear_stencil<Dim>(g, sf.point, st);
+      for (int k = 0; k < st.count; ++k) gf[st.node[k]] += st.w[k] * sf.force;
+    }
+  }
   for (int color = 0; color < 2; ++color) {
 #pragma omp parallel for schedule(dynamic, 1) if (points_.size() > kParallelThreshold)
     for (int s = color; s < nslab; s += 2) {
@@ -377,7 +412,8 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
         // adds the hoop term -V_p sigma_tt N_I / r_p to the radial force (per-radian volume).
         const Mat3 Vs = vol[p] * stress[p];
         const double hoop = axisym ? vol[p] * stress[p](2, 2) / x[p][0] : 0.0;
-        const Vec3 fe = has_ext ? fext_[p] : Vec3{};
+        // Surface tractions are spread from their own points below.
+        const Vec3 fe = has_ext ? (has_trac ? fext_[p] - ftrac_[p] : fext_[p]) : Vec3{};
         for (int k = 0; k < st.count; ++k) {
           const Index I = st.node[k];
           const double w = st.w[k];
@@ -703,6 +739,7 @@ EnergyTotals MpmSolver::energies() const {
   e.removed_mass = k * removed_mass_;
   e.removed_energy = k * removed_energy_;
   e.removed_momentum = k * removed_momentum_;
+  e.inserted_energy = k * comm_.sum(inserted_energy_);
   return e;
 }
 

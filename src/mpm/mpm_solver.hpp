@@ -102,7 +102,13 @@ class MpmSolver final : public Solver {
   std::vector<double> pending_activation_;  ///< activation time of each pending point (from its stage start)
   std::vector<int> pending_stage_;          ///< stage whose start begins each pending point's clock
   std::vector<double> stage_start_;         ///< s: start time of each stage (infinite until it begins)
-  std::vector<Vec3> fext_;      ///< external force on each point this step, N
+  std::vector<Vec3> fext_;      ///< external force on each point this step, N (all loads; for the work)
+  std::vector<Vec3> ftrac_;     ///< the surface-traction part of fext_, N (spread from surface points)
+  struct SurfaceForce {
+    Vec3 point;  ///< m: where the traction acts (the particle's face on the loaded surface)
+    Vec3 force;  ///< N
+  };
+  std::vector<SurfaceForce> surface_forces_;
   std::vector<Vec3> displacement_;  ///< MUSL: dt * grid velocity at each point this step, m
   bool groups_dirty_ = true;    ///< material_points_ must be rebuilt (points reordered/removed)
   Index first_bad_ = 0, first_out_ = 0;  ///< lowest inverted / escaped point of the step (or n)
@@ -122,6 +128,7 @@ class MpmSolver final : public Solver {
   long steps_ = 0;
   double external_work_ = 0.0;  ///< per-point sum (not yet scaled)
   double removed_mass_ = 0.0, removed_energy_ = 0.0;
+  double inserted_energy_ = 0.0;  ///< per-point sum of the energy of activated points (this rank)
   Vec3 removed_momentum_;
   std::vector<std::string> load_area_fields_;
 };

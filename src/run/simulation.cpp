@@ -71,7 +71,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   std::vector<std::string> columns = {"time", "step", "dt", "kinetic_energy", "internal_energy",
                                       "plastic_work", "external_work", "total_energy", "energy_drift",
                                       "mass", "momentum_x", "momentum_y", "momentum_z",
-                                      "removed_mass", "removed_energy"};
+                                      "removed_mass", "removed_energy", "inserted_energy"};
   std::vector<int> probe_body;
   for (const auto& pr : sc.probes) {
     columns.push_back(pr.name);
@@ -117,7 +117,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     std::vector<double> row = {solver->time(), static_cast<double>(solver->steps()), dt, e.kinetic,
                                e.internal, e.plastic, e.external, e.total(), drift, e.mass,
                                e.momentum[0], e.momentum[1], e.momentum[2], e.removed_mass,
-                               e.removed_energy};
+                               e.removed_energy, e.inserted_energy};
     for (double v : probe_values(e)) row.push_back(v);
     if (nstages > 0) row.push_back(stage);
     if (penetration)
@@ -186,6 +186,9 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       if (!(dt > 0.0) || !std::isfinite(dt))
         throw PhysicsError("time step collapsed (dt = " + std::to_string(dt) + " s) at step " +
                            std::to_string(solver->steps()));
+      // The smallest stable step is what a collapsing time step shows (thesis ch. 6), not the
+      // slivers taken to land on output and end times.
+      min_dt = std::min(min_dt, dt);
       // Land exactly on output times, the end time and the end of a fixed-length stage.
       dt = std::min({dt, end - solver->time(), next_output - solver->time()});
       if (stage < nstages) {
@@ -193,7 +196,6 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
         const double stage_end = stage_start + (st.until.empty() ? st.duration : st.max_duration);
         dt = std::min(dt, stage_end - solver->time());
       }
-      min_dt = std::min(min_dt, dt);
       particle_steps += static_cast<double>(solver->points().size());
       solver->step(dt);
       tracker.record(solver->points(), solver->time(), solver->steps());
@@ -318,6 +320,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   en["mass"] = e.mass;
   en["removed_mass"] = e.removed_mass;
   en["removed_energy"] = e.removed_energy;
+  en["inserted_energy"] = e.inserted_energy;
   summary.write((fs::path(opt.out_dir) / "summary.json").string());
   return result;
 }

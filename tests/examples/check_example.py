@@ -59,7 +59,8 @@ def check_history(path, probes):
             fail(f"{path}:{i}: {len(cells)} values for {len(header)} columns")
         for name, cell in zip(header, cells):
             v = float(cell)
-            if not math.isfinite(v):
+            # penetration_time is "nan" before the main stage fires the penetrator (docs/deck.md).
+            if not math.isfinite(v) and not (name == "penetration_time" and cell == "nan"):
                 fail(f"{path}:{i}: column '{name}' is {cell}")
     print(f"history.csv: {len(lines) - 1} rows, {len(header)} columns, all finite")
 
