@@ -115,8 +115,11 @@ def plot_depth(out_dir, series, p):
         ax.plot(tt * US, (intercept + rate * tt) * MM, "--", color="tab:red", lw=1.2, label=lab)
     uh = number(p, "hydrodynamic_rate")
     if uh is not None:
-        tt = np.linspace(0.0, float(np.nanmax(t)), 50)
-        ax.plot(tt * US, uh * tt * MM, ":", color="tab:green", lw=1.4, label=f"hydrodynamic U_h t, U_h = {uh:.0f} m/s")
+        # From the moment the penetrator reaches the target (summary arrival_time, else t = 0).
+        ta = number(p, "arrival_time")
+        ta = 0.0 if ta is None else ta
+        tt = np.linspace(ta, float(np.nanmax(t)), 50)
+        ax.plot(tt * US, uh * (tt - ta) * MM, ":", color="tab:green", lw=1.4, label=f"hydrodynamic U_h (t - t_arrival), U_h = {uh:.0f} m/s")
     lines = []
     for a in p.get("analytic") or []:
         if number(a, "depth") is not None:

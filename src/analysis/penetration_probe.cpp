@@ -143,6 +143,14 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   double max_depth = 0.0;
   for (double d : depth_) max_depth = std::max(max_depth, d);
   out["max_depth"] = max_depth;
+  // Arrival: the first sample with penetrator material below the target's face.
+  JsonValue arrival;
+  for (size_t i = 0; i < t_.size(); ++i)
+    if (depth_[i] > 0.0) {
+      arrival = i > 0 ? t_[i - 1] : t_[i];
+      break;
+    }
+  out["arrival_time"] = arrival;
   // Stopped: the depth changes by less than stop_tolerance over at least the last tenth of the run.
   const double stop = t_.size() >= 2 ? penetration_stop_time(t_, depth_, spec_.stop_tolerance, 0.1 * main_duration) : kNaN;
   out["stop_time"] = std::isfinite(stop) ? JsonValue(stop) : JsonValue();
