@@ -8,6 +8,7 @@
 #include "analysis/penetration_series.hpp"
 #include "core/error.hpp"
 #include "io/history_writer.hpp"
+#include "materials/failure.hpp"
 #include "penetration/hydrodynamic.hpp"
 
 namespace ballista {
@@ -71,9 +72,12 @@ double PenetrationProbe::cavity_depth(const FieldStore& pts) const {
   const auto* x = pts.view<Vec3>("x");
   const auto* F = pts.view<Mat3>("F");
   const auto* half = pts.view<Vec3>("half_size");
+  const double* failed = pts.has(kFailedField) ? pts.real(kFailedField) : nullptr;
   double tip = std::numeric_limits<double>::infinity(), bottom = 0.0;
   for (Index p = 0; p < pts.size(); ++p) {
     if (bid[p] != target_) continue;
+    // Eroded (failed) material is debris in the channel, not its floor or wall.
+    if (failed && failed[p] > 0.0) continue;
     // Extent of the deformed domain along the axis: |F_a,j| h_j summed (the domain is F times a box).
     double reach = 0.0;
     for (int j = 0; j < nd_; ++j) reach += std::abs(F[p](axis_, j)) * half[p][j];
@@ -196,8 +200,9 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   const auto* half = pts.view<Vec3>("half_size");
   std::vector<double> dd, rr;
   const int lat = axis_ == 1 ? 0 : 1;  // a lateral direction (exact in 2D; 3D uses the radial extent below)
+  const double* failed = pts.has(kFailedField) ? pts.real(kFailedField) : nullptr;
   for (Index p = 0; p < pts.size(); ++p) {
-    if (bid[p] != target_) continue;
+    if (bid[p] != target_ || (failed && failed[p] > 0.0)) continue;
     double reach = 0.0;
     for (int j = 0; j < nd_; ++j) reach += std::abs(F[p](lat, j)) * half[p][j];
     dd.push_back(depth_of(x[p]));

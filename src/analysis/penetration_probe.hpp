@@ -39,9 +39,9 @@ class PenetrationProbe {
 
   /// Depth of the deepest penetrator particle (>= 0), m.
   double penetrator_depth(const FieldStore& points) const;
-  /// Depth of the cavity tip, m: the top of the shallowest target material within axis_radius
-  /// of the line of flight and below the face; the full target depth once nothing is left there
-  /// (perforation).
+  /// Depth of the cavity tip, m: the top of the shallowest intact (not failed) target material
+  /// within axis_radius of the line of flight and below the face; the full target depth once
+  /// nothing is left there (perforation). The channel profile also skips failed (eroded) debris.
   double cavity_depth(const FieldStore& points) const;
 
  private:
