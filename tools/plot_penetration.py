@@ -94,6 +94,17 @@ def depth_series(hist, pen):
     return None
 
 
+
+def save(fig, ax, out_dir, name, title):
+    """Grid, legend (if anything is labelled), title; writes OUT_DIR/name and closes the figure."""
+    ax.grid(alpha=0.3)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=8, loc="best")
+    ax.set_title(title)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out_dir, name), dpi=120)
+    plt.close(fig)
+
 def plot_depth(out_dir, series, p):
     if series is None:
         note("penetration_depth.png skipped: no depth data (penetration.csv or history.csv penetration_depth)")
@@ -134,12 +145,7 @@ def plot_depth(out_dir, series, p):
     ax.set_ylabel("depth below target surface [mm]")
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="best")
-    ax.set_title("Penetration depth (thesis Fig. 7.4)")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out_dir, "penetration_depth.png"), dpi=120)
-    plt.close(fig)
+    save(fig, ax, out_dir, "penetration_depth.png", "Penetration depth (thesis Fig. 7.4)")
 
 
 def plot_rate(out_dir, pen, p):
@@ -165,12 +171,7 @@ def plot_rate(out_dir, pen, p):
     ax.set_xlabel("time since firing [µs]")
     ax.set_ylabel("penetration rate [m/s]")
     ax.set_xlim(left=0)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="best")
-    ax.set_title("Penetration rate (thesis Fig. 7.5)")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out_dir, "penetration_rate.png"), dpi=120)
-    plt.close(fig)
+    save(fig, ax, out_dir, "penetration_rate.png", "Penetration rate (thesis Fig. 7.5)")
 
 
 def segment_columns(hist):
@@ -211,13 +212,7 @@ def plot_energy(out_dir, hist):
         ax.plot(t, hist["penetrator_kinetic_energy"], "k-", lw=1.8, label="penetrator total")
     ax.set_xlabel(xlabel)
     ax.set_ylabel("kinetic energy [J]")
-    ax.grid(alpha=0.3)
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend(fontsize=8, loc="best")
-    ax.set_title("Penetrator kinetic energy (thesis Figs. 7.6-7.7)")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out_dir, "penetrator_energy.png"), dpi=120)
-    plt.close(fig)
+    save(fig, ax, out_dir, "penetrator_energy.png", "Penetrator kinetic energy (thesis Figs. 7.6-7.7)")
 
 
 def plot_channel(out_dir, ch, p):
@@ -233,12 +228,7 @@ def plot_channel(out_dir, ch, p):
     ax.set_ylabel("channel radius [mm]")
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="best")
-    ax.set_title("Final perforation channel profile")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out_dir, "channel_profile.png"), dpi=120)
-    plt.close(fig)
+    save(fig, ax, out_dir, "channel_profile.png", "Final perforation channel profile")
 
 
 def main(argv):
