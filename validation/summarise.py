@@ -78,6 +78,7 @@ def density(out):
         rows.append((rho, pen(s, "penetrator_length"), pen(s, "max_depth"), pen(s, "hydrodynamic_depth")))
     if not rows:
         return
+    rows.sort()
     print("### Depth against rod density at fixed mass (thesis Table 5.3)\n")
     print("| ρ_p [kg/m³] | L [mm] | P [mm] | P_hydro [mm] | P/P_hydro | thesis P/P_hydro (none, ZeroStress) |")
     print("|---|---|---|---|---|---|")
