@@ -127,6 +127,16 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     history.row(row);
     return drift;
   };
+  // A history row, the worst drift so far and the drift guard (simulation.energy_drift_limit).
+  auto record_history = [&](double step_dt) {
+    const double drift = history_row(step_dt);
+    worst_drift = std::max(worst_drift, drift);
+    if (sc.simulation.energy_drift_limit > 0 && drift > sc.simulation.energy_drift_limit)
+      throw PhysicsError("energy drift " + std::to_string(drift) + " exceeds the limit " +
+                         std::to_string(sc.simulation.energy_drift_limit) + " at step " +
+                         std::to_string(solver->steps()) + " (t = " + std::to_string(solver->time()) +
+                         " s): the run is blowing up");
+  };
   JsonValue stage_log = JsonValue::array();
 
   RunResult result;
@@ -163,7 +173,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     stage_log.push_back(rec);
     spdlog::info("stage '{}' ended at t = {:.4g} s ({}){}", st.name, solver->time(), how,
                  check ? ": " + describe_equilibrium(st, *check) : std::string());
-    history_row(dt);
+    record_history(dt);
     writer.write(solver->time(), solver->steps(), solver->points());
     ++stage;
     stage_start = solver->time();
@@ -221,20 +231,12 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
           }
         }
         if (stage == stage_before && solver->steps() % std::max(1, sc.output.history_every) == 0)
-          worst_drift = std::max(worst_drift, history_row(dt));
+          record_history(dt);
         continue;
       }
       const bool at_output = solver->time() >= next_output * (1.0 - 1e-12);
       const bool at_end = solver->time() >= end * (1.0 - 1e-12);
-      if (solver->steps() % std::max(1, sc.output.history_every) == 0 || at_output || at_end) {
-        const double drift = history_row(dt);
-        worst_drift = std::max(worst_drift, drift);
-        if (sc.simulation.energy_drift_limit > 0 && drift > sc.simulation.energy_drift_limit)
-          throw PhysicsError("energy drift " + std::to_string(drift) + " exceeds the limit " +
-                             std::to_string(sc.simulation.energy_drift_limit) + " at step " +
-                             std::to_string(solver->steps()) + " (t = " + std::to_string(solver->time()) +
-                             " s): the run is blowing up");
-      }
+      if (solver->steps() % std::max(1, sc.output.history_every) == 0 || at_output || at_end) record_history(dt);
       if (at_output && !at_end) {
         writer.write(solver->time(), solver->steps(), solver->points());
         next_output += interval;
