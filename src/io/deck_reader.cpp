@@ -479,6 +479,7 @@ class Reader {
         if (st.stress_given) st.stress = u.vector("stress", 3);
         else u.allow("stress");
         st.tolerance = u.number("tolerance", 0.05, NumberRange::between(0.0, 1.0, true, true));
+        st.fraction = u.number("fraction", 1.0, NumberRange::between(0.0, 1.0, true, false));
         st.check_every = static_cast<int>(u.integer("check_every", 10, 1, INT_MAX));
         u.finish();
         st.min_duration = n.number("min_duration", 0.0, NumberRange::non_negative("s"));

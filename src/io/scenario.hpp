@@ -161,6 +161,7 @@ struct StageSpec {
   Vec3 stress;                 ///< Pa: requested diagonal Cauchy stress (xx, yy, zz; axisym rr, zz, theta)
   bool stress_given = false;   ///< false: taken from the body's confinement load
   double tolerance = 0.05;     ///< relative band around the requested stress (thesis: +-5 %)
+  double fraction = 1.0;       ///< share of the body's particles that must be in the band (thesis: all)
   int check_every = 10;        ///< steps between checks
   DeckMark mark, body_mark;
 };

@@ -141,6 +141,7 @@ TEST(Stages, EquilibriumNotReachedStopsTheRunNamingTheWorstParticle) {
   ASSERT_FALSE(r.ok);
   EXPECT_NE(r.error.find("stage 'overburden' did not reach stress equilibrium"), std::string::npos) << r.error;
   EXPECT_NE(r.error.find("the worst, particle"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("of the 800 particles of body 'target'"), std::string::npos) << r.error;
   const YAML::Node sum = YAML::LoadFile((dir.path / "summary.json").string());
   EXPECT_EQ(sum["status"].as<std::string>(), "failed");
 }
