@@ -1,5 +1,6 @@
 #pragma once
 // What the run loop needs from any discretisation (MPM today; peridynamics and OTM later).
+#include <cstdint>
 #include <string>
 
 #include "core/field_store.hpp"
@@ -25,6 +26,15 @@ struct EnergyTotals {
   double total() const { return kinetic + internal + removed_energy - external - inserted_energy; }
 };
 
+/// The point that sets the stable time step (largest c + |v|): for diagnosing a collapsing step.
+struct StepLimiter {
+  std::int64_t id = -1;        ///< particle id (-1: none)
+  int body = -1;               ///< body index in deck order
+  double wave_speed = 0.0;     ///< m/s, its dilatational wave speed
+  double speed = 0.0;          ///< m/s, |v|
+  double J = 1.0;              ///< det F
+};
+
 class Solver {
  public:
   virtual ~Solver() = default;
@@ -44,6 +54,8 @@ class Solver {
   /// time: bodies activated by that stage start their clocks now, and the grid damping becomes
   /// `damping` (1/s, thesis seed 000 eq. 5.1).
   virtual void begin_stage(int stage, double damping) = 0;
+  /// The point with the largest c + |v| now (one pass over the points; call it rarely).
+  virtual StepLimiter step_limiter() const { return {}; }
 };
 
 }  // namespace ballista

@@ -191,6 +191,28 @@ double MpmSolver::stable_dt() {
   return dt;
 }
 
+StepLimiter MpmSolver::step_limiter() const {
+  // Serial and per point through the virtual wave_speed: only for diagnostics (the run loop
+  // calls it when the stable step reaches a new low).
+  StepLimiter out;
+  const auto* id = points_.ints("id");
+  const auto* bid = points_.ints("body");
+  const auto* mat = points_.ints("material");
+  const auto* v = points_.view<Vec3>("v");
+  const auto* F = points_.view<Mat3>("F");
+  double best = -1.0;
+  for (Index p = 0; p < points_.size(); ++p) {
+    const double J = det(F[p]);
+    const double c = materials_[mat[p]]->wave_speed(points_, p, J);
+    const double s = norm(v[p]);
+    if (c + s > best) {
+      best = c + s;
+      out = {id[p], static_cast<int>(bid[p]), c, s, J};
+    }
+  }
+  return out;
+}
+
 void MpmSolver::ensure_material_groups() {
   if (!groups_dirty_) return;
   material_points_.resize(materials_.size());

@@ -58,6 +58,7 @@ class MpmSolver final : public Solver {
   EnergyTotals energies() const override;
   double reporting_scale() const override;
   void begin_stage(int stage, double damping) override;
+  StepLimiter step_limiter() const override;
 
   const GridData& grid() const { return grid_; }
   const std::vector<std::unique_ptr<Material>>& materials() const { return materials_; }

@@ -96,6 +96,8 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   const double total0 = e0.total();
   double energy_scale = std::abs(e0.kinetic) + std::abs(e0.internal) + std::abs(e0.external);
   double worst_drift = 0.0, min_dt = std::numeric_limits<double>::infinity();
+  StepLimiter limiter;  // the point that set the smallest stable step (to within 10 %)
+  double limiter_dt = std::numeric_limits<double>::infinity(), limiter_time = 0.0;
 
   auto probe_values = [&](const EnergyTotals& e) {
     std::vector<double> v;
@@ -198,6 +200,12 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
                            std::to_string(solver->steps()));
       // The smallest stable step is what a collapsing time step shows (thesis ch. 6), not the
       // slivers taken to land on output and end times.
+      if (dt < 0.9 * limiter_dt) {
+        // A new low of the stable step (by 10 %): remember which point sets it.
+        limiter = solver->step_limiter();
+        limiter_dt = dt;
+        limiter_time = solver->time();
+      }
       min_dt = std::min(min_dt, dt);
       // Land exactly on output times, the end time and the end of a fixed-length stage.
       dt = std::min({dt, end - solver->time(), next_output - solver->time()});
@@ -311,6 +319,17 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   st["particle_steps_per_second"] = result.particle_steps_per_second;
   st["min_dt"] = std::isfinite(min_dt) ? min_dt : 0.0;
   st["worst_energy_drift"] = worst_drift;
+  if (limiter.id >= 0) {
+    JsonValue& lim = st["min_dt_set_by"];
+    lim = JsonValue::object();
+    lim["particle"] = limiter.id;
+    lim["body"] = limiter.body >= 0 && limiter.body < static_cast<int>(sc.bodies.size()) ? sc.bodies[limiter.body].name : "";
+    lim["time"] = limiter_time;
+    lim["dt"] = limiter_dt;
+    lim["wave_speed"] = limiter.wave_speed;
+    lim["speed"] = limiter.speed;
+    lim["J"] = limiter.J;
+  }
   JsonValue& en = summary["energy"];
   en = JsonValue::object();
   en["initial_total"] = total0;
