@@ -4,15 +4,16 @@
 #   density     depth against rod density at fixed mass (thesis Table 5.3)         ballista run x5
 #   confinement depth against confinement, drained and saturated (Table 5.5)       ballista sweep
 #   segmented   solid against segmented rod into the 4130 billet (Table 6.5)       ballista sweep
+#   resolution  grid convergence of depth and rate, 2 / 1 / 0.5 mm (~15 min)       ballista sweep
 # then summarise.py writes validation_summary.md (the tables of docs/validation.md).
 # Usage: validation/run_penetration_validation.sh [BUILD_DIR] [OUT_DIR] [study ...]
-# About 25 minutes on 2 cores for all studies.
+# About 40 minutes on 2 cores for all studies.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-build}
 out=${2:-out/validation}
 shift $(( $# > 2 ? 2 : $# )) || true
-studies=${*:-velocity density confinement segmented}
+studies=${*:-velocity density confinement segmented resolution}
 bin="$build/ballista"
 deck="$here/rod_sandstone_reduced.yaml"
 mkdir -p "$out"
@@ -41,7 +42,9 @@ for s in $studies; do
         --vary loads.0.pressure=0,34.48e6,103.4e6 || note confinement ;;
     segmented)
       "$bin" sweep "$here/../examples/rod_billet_4130_mpm.yaml" -o "$out/segmented" --vary bodies.1.rod.segment_ld=0,0.5 || note segmented ;;
-    *) echo "unknown study '$s' (velocity, density, confinement, segmented)" >&2; exit 2 ;;
+    resolution)
+      "$bin" sweep "$deck" -o "$out/resolution" --vary grid.cell_size=2e-3,1e-3,0.5e-3 || note resolution ;;
+    *) echo "unknown study '$s' (velocity, density, confinement, segmented, resolution)" >&2; exit 2 ;;
   esac
 done
 /usr/bin/python3 "$here/summarise.py" "$out" > "$out/validation_summary.md"

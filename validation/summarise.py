@@ -166,10 +166,28 @@ def segmented(out):
             print(f"\n- segmented rod deeper than the solid rod: {check(seg > solid)}\n")
 
 
+def resolution(out):
+    runs = sweep_runs(os.path.join(out, "resolution"))
+    rows = sorted(((float(v.get("grid.cell_size")), pen(s, "max_depth"), pen(s, "steady_rate")) for v, s in runs),
+                  reverse=True)
+    if len(rows) < 3 or any(r[1] is None or r[2] is None for r in rows):
+        return
+    print("### Grid convergence (unconfined, 3.3 km/s)\n")
+    print("| cell size [mm] | depth [mm] | U [m/s] |\n|---|---|---|")
+    for h, P, U in rows:
+        print(f"| {h * 1e3:g} | {P * 1e3:.2f} | {U:.0f} |")
+    for name, k in (("depth", 1), ("rate", 2)):
+        d1, d2 = rows[1][k] - rows[0][k], rows[2][k] - rows[1][k]
+        ok = d1 != 0 and d2 != 0 and d1 / d2 > 0
+        order = math.log(d1 / d2, rows[0][0] / rows[1][0]) if ok else None
+        print(f"\n- observed order of the {name} (three grids): {fmt(order, 1, 2)}")
+    print()
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "out/validation"
     print(f"## Penetration validation ({out})\n")
-    for study in (velocity, density, confinement, segmented):
+    for study in (velocity, density, confinement, segmented, resolution):
         study(out)
 
 
