@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "analysis/axis_distance.hpp"
 #include "analysis/penetration_series.hpp"
 #include "core/error.hpp"
 #include "io/history_writer.hpp"
@@ -44,13 +45,7 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
   cell_ = sc.grid.cell_size;
 }
 
-double PenetrationProbe::lateral_of(const Vec3& x) const {
-  if (nd_ == 2) return axis_ == 1 ? std::abs(x[0] - line_point_[0]) : std::abs(x[1] - line_point_[1]);
-  double r2 = 0.0;
-  for (int k = 0; k < 3; ++k)
-    if (k != axis_) r2 += (x[k] - line_point_[k]) * (x[k] - line_point_[k]);
-  return std::sqrt(r2);
-}
+double PenetrationProbe::lateral_of(const Vec3& x) const { return distance_from_axis(x, line_point_, axis_, nd_); }
 
 std::vector<std::string> PenetrationProbe::columns() const {
   std::vector<std::string> c = {"penetration_time", "penetration_depth", "cavity_depth", "penetrator_kinetic_energy"};

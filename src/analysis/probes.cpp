@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "analysis/axis_distance.hpp"
 #include "core/error.hpp"
 
 namespace ballista {
@@ -21,15 +22,6 @@ void for_each_corner(const Vec3& x, const Mat3& F, const Vec3& half, int nd, Fn&
                   nd == 3 ? (c & 4 ? 1.0 : -1.0) * half[2] : 0.0}};
     f(x + F * s);
   }
-}
-
-/// Distance of y from the axis through c along `axis`; in 2D axisymmetric runs the radius is x.
-double radial_distance(const Vec3& y, const Vec3& c, int axis, int nd) {
-  if (nd == 2) return axis == 1 ? std::abs(y[0] - c[0]) : std::abs(y[1] - c[1]);
-  double r2 = 0.0;
-  for (int k = 0; k < 3; ++k)
-    if (k != axis) r2 += (y[k] - c[k]) * (y[k] - c[k]);
-  return std::sqrt(r2);
 }
 
 }  // namespace
@@ -83,7 +75,7 @@ double evaluate_probe(const ProbeSpec& pr, int body, const FieldStore& points,
     for (Index p = 0; p < n; ++p) {
       if (!selected(p) || std::abs(x[p][pr.axis] - pr.plane) > pr.distance) continue;
       for_each_corner(x[p], F[p], half[p], nd, [&](const Vec3& y) {
-        rmax = std::max(rmax, radial_distance(y, pr.center, pr.axis, nd));
+        rmax = std::max(rmax, distance_from_axis(y, pr.center, pr.axis, nd));
       });
     }
     rmax = comm.max(rmax);
