@@ -40,6 +40,8 @@ const char* face_bc_name(FaceBC bc) {
 
 const char* axis_name(int axis) { return axis == 0 ? "x" : axis == 1 ? "y" : axis == 2 ? "z" : "?"; }
 
+int axis_from(const std::string& name) { return name == "x" ? 0 : name == "y" ? 1 : 2; }
+
 namespace {
 
 const std::vector<std::string> kSections{"simulation", "mpm",    "grid",        "materials", "stages",
@@ -56,7 +58,6 @@ FaceBC face_bc_from(const std::string& s) {
   return FaceBC::Free;
 }
 
-int axis_from(const std::string& s) { return s == "x" ? 0 : s == "y" ? 1 : 2; }
 
 /// Axis-aligned bounding box of a shape in the directions used.
 void shape_bounds(const ShapeSpec& s, Vec3& lo, Vec3& hi) {

@@ -22,5 +22,7 @@ const char* dimension_name(Dimension d);
 const char* face_bc_name(FaceBC bc);
 /// "x", "y" or "z".
 const char* axis_name(int axis);
+/// 0, 1 or 2 for "x", "y" or "z" (a name already checked against the axes).
+int axis_from(const std::string& name);
 
 }  // namespace ballista

@@ -24,7 +24,7 @@ void read_axis(DeckNode& n, Dimension dim, const std::string& point_key, Penetra
   const bool two_d = dim != Dimension::ThreeD;
   const std::vector<std::string> axes = two_d ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"};
   const std::string ax = n.choice("axis", "y", axes);
-  p.axis = ax == "x" ? 0 : ax == "y" ? 1 : 2;
+  p.axis = axis_from(ax);
   const double d = n.number("direction", -1.0, NumberRange::any());
   if (d != 1.0 && d != -1.0) n.fail("direction", "expected 1 (flies towards +" + ax + ") or -1 (towards -" + ax + "), got " + format_number(d));
   p.direction = d;

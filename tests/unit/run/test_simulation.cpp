@@ -39,15 +39,6 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
-/// The output files particles_*.h5 in order.
-std::vector<fs::path> h5_files(const fs::path& dir) {
-  std::vector<fs::path> out;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().extension() == ".h5") out.push_back(e.path());
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 /// Reads /time and the number of points (rows of /x) of one output file; false if unreadable.
 bool read_h5(const fs::path& file, double& time, hsize_t& npoints) {
   const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -100,7 +91,7 @@ TEST(RunSimulation, CompletedRunLandsOnOutputTimesAndReportsClosedFormProbes) {
   EXPECT_NEAR(r.time, 1.0e-3, 1e-15);
   EXPECT_GT(r.steps, 10);
   // First output, every 2.5e-4 s, and the last: t = 0, 2.5e-4, 5e-4, 7.5e-4, 1e-3.
-  const auto files = h5_files(dir.path);
+  const auto files = test::h5_files(dir.path);
   ASSERT_EQ(files.size(), 5u);
   for (size_t k = 0; k < files.size(); ++k) {
     double t = -1;
@@ -185,7 +176,7 @@ TEST(RunSimulation, InvertedParticleStopsTheRunAndKeepsEarlierOutputs) {
   EXPECT_EQ(s["status"].as<std::string>(), "failed");
   EXPECT_EQ(s["error"].as<std::string>(), r.error);
   // Earlier outputs are complete, readable and at their times; the failing state is one more.
-  const auto files = h5_files(dir.path);
+  const auto files = test::h5_files(dir.path);
   ASSERT_GE(files.size(), 3u) << "the deck should produce at least two outputs before failing";
   for (size_t k = 0; k + 1 < files.size(); ++k) {
     double t = -1;
@@ -209,7 +200,7 @@ TEST(RunSimulation, FailingStateIsLabelledWithTheStepThatFailed) {
   ballista::test::TempDir dir{"ballista_run"};
   const RunResult r = run_simulation(parse_deck(kPuttyDeck, "putty.yaml"), options(dir.path));
   ASSERT_FALSE(r.ok);
-  const auto files = h5_files(dir.path);
+  const auto files = test::h5_files(dir.path);
   ASSERT_GE(files.size(), 2u);
   double t_last = -1, t_fail = -1;
   hsize_t n = 0;

@@ -71,14 +71,6 @@ std::vector<double> read_dataset(const fs::path& file, const char* name, hsize_t
   return out;
 }
 
-std::vector<fs::path> outputs(const fs::path& dir) {
-  std::vector<fs::path> out;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().extension() == ".h5") out.push_back(e.path());
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 TEST(Stages, StressDeviationIsRelativePerComponent) {
   Mat3 s;
   s(0, 0) = -21e6;  // 5 % off -20 MPa
@@ -110,7 +102,7 @@ TEST(Stages, OverburdenReachesEquilibriumThenTheRodIsFired) {
 
   // Independent check on the snapshot written at the end of the stage (output 1): every target
   // particle within 5 % of [-20, -30, -20] MPa, and the rod not yet there.
-  const auto files = outputs(dir.path);
+  const auto files = test::h5_files(dir.path);
   ASSERT_EQ(files.size(), 3u);  // start, end of the overburden stage, end of the run
   hsize_t n = 0, nb = 0;
   const auto stress = read_dataset(files[1], "/stress", n);
