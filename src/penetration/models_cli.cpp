@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <iostream>
 #include <map>
 
@@ -62,6 +63,7 @@ std::vector<std::pair<std::string, double>> parse_model_params(const std::vector
     }
     if (used == 0 || used != text.size())
       throw Error(fmt::format("--param '{}': value '{}' of '{}' is not a number (SI units, e.g. 1.5e9)", s, text, key));
+    if (!std::isfinite(v)) throw Error(fmt::format("--param '{}': {} must be a finite number", s, key));
     out.emplace_back(key, v);
   }
   return out;
@@ -108,6 +110,15 @@ int run_models_cli(const ModelsCliOptions& o) {
     args.params = c;
     try {
       rows.push_back(m.evaluate(args));
+      // A result that is not a number is an error, never a success (overflow of extreme inputs).
+      for (const ModelOutput& out : rows.back())
+        if (out.text.empty() && !std::isfinite(out.value)) {
+          std::string params;
+          for (const auto& [k, v] : c) params += fmt::format("{}{}={:g}", params.empty() ? "" : ", ", k, v);
+          throw Error(fmt::format("{}: result {} is {} (not a finite number) for {}: the inputs are outside the "
+                                  "range where the model can be evaluated in double precision",
+                                  m.name, out.key, out.value, params));
+        }
     } catch (const Error& e) {
       if (cases.size() > 1) throw Error(fmt::format("V = {:g} m/s: {}", c.at("V"), e.what()));
       throw;

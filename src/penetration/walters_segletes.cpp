@@ -27,7 +27,9 @@ struct Exact {
     if (std::abs(1 - mu2) >= 1e-3) {
       auto F = [&](double v) {
         const double sv = s(v);
-        return (v * sv / 2 + c / (2 * mu) * std::log(mu * v + sv) - mu2 * v * v / 2) / (1 - mu2);
+        // c ln(mu v + s) -> 0 as c -> 0 (R = Y: s = mu v, and ln 0 at v = 0 would give 0 * inf = NaN).
+        const double log_term = c == 0 ? 0.0 : c / (2 * mu) * std::log(mu * v + sv);
+        return (v * sv / 2 + log_term - mu2 * v * v / 2) / (1 - mu2);
       };
       return F(in.V0) - F(V);
     }

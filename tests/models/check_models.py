@@ -60,6 +60,28 @@ def main():
         if o["stop"] != "U = 0" or abs(o["P"] - o["P_erosion_exact"]) > 1e-9 * o["P_erosion_exact"]:
             sys.exit(f"FAIL: tate outputs {o}")
 
+    # Issue 11 regressions. R = Y used to hang (a NaN quadrature tolerance); it must finish quickly
+    # with the closed-form depth P = (L0 - L_f)/mu, mu = sqrt(rho_t/rho_p) (tests/unit/penetration).
+    L0, rho_p, rho_t, V0, RY = 0.07354, 19235.0, 2300.0, 3300.0, 1e9
+    mu = math.sqrt(rho_t / rho_p)
+    Lf = L0 * math.exp(-mu * rho_p * V0 * V0 / (2 * (1 + mu) * RY))
+    js = os.path.join(a.out, "tate_r_eq_y.json")
+    try:
+        subprocess.run([b, "models", "tate", "-p", f"L={L0}", "-p", f"rho_p={rho_p}", "-p", f"rho_t={rho_t}",
+                        "-p", f"V={V0}", "-p", f"R={RY}", "-p", f"Y={RY}", "--json", js], check=True, timeout=20,
+                       capture_output=True)
+    except subprocess.TimeoutExpired:
+        sys.exit("FAIL: tate with R = Y hangs")
+    o = json.load(open(js))["results"][0]["outputs"]
+    if abs(o["P_erosion_exact"] - (L0 - Lf) / mu) > 1e-9 * L0:
+        sys.exit(f"FAIL: tate R = Y exact depth {o['P_erosion_exact']} m, closed form {(L0 - Lf) / mu} m")
+    # A result that overflows is an error naming the result, not a '-nan' success.
+    p = run([b, "models", "eichelberger", "-p", "L=0.07354", "-p", "rho_p=19235", "-p", "rho_t=2300",
+             "-p", "V=1e308", "-p", "R=1e9", "-p", "Y=1e9"], expect_ok=False)
+    if "not a finite number" not in p.stderr or "nan" in p.stdout.lower():
+        sys.exit(f"FAIL: eichelberger V=1e308: stdout {p.stdout!r} stderr {p.stderr!r}")
+    run([b, "models", "birkhoff", "-p", "L=inf", "-p", "rho_p=19235", "-p", "rho_t=2300"], expect_ok=False)
+
     # Bad input: the error names the offending option or parameter.
     for args, word in [(["tate", "-p", "rho_p=abc"], "rho_p"), (["tate", "-p", "L=0.1", "-p", "bogus=1"], "bogus"),
                        (["birkhoff", "-p", "L=0.1", "-p", "rho_p=-1", "-p", "rho_t=2300"], "rho_p"),

@@ -151,3 +151,22 @@ TEST(Tate, ExactSolutionBranchesAgreeWithIntegration) {
     EXPECT_NEAR(end->t, ex.t, 1e-9 * ex.t) << "rho_p " << in.rho_p;
   }
 }
+
+// Issue 11 regression (a hang): R = Y makes c = (1 - mu^2) A = 0 and the closed-form erosion
+// integral took c ln(mu v + s) = 0 * ln 0 = NaN at v = 0, which made the quadrature tolerance NaN.
+// With R = Y the interface is hydrodynamic, U = V/(1 + mu), mu = sqrt(rho_t/rho_p), so
+// dL/dV = (dL/dt)/(dV/dt) = mu rho_p V L/((1 + mu) Y) and dP/dV = U rho_p L/Y; from V0 down to 0:
+// L_f = L0 exp(-mu rho_p V0^2/(2 (1 + mu) Y)) and P = (L0 - L_f)/mu, the Birkhoff depth
+// (thesis eq. 3.2) of the eroded length.
+TEST(Tate, EqualStrengthsHaveClosedFormFinalState) {
+  const bp::TateInput in{0.07354, 19235, 2300, 1e9, 1e9, 3300};
+  const double mu = std::sqrt(in.rho_t / in.rho_p);
+  const double Lf = in.L0 * std::exp(-mu * in.rho_p * in.V0 * in.V0 / (2 * (1 + mu) * in.Y));
+  const bp::TateState ws = bp::walters_segletes_final(in);
+  EXPECT_EQ(ws.V, 0.0);
+  EXPECT_NEAR(ws.L, Lf, 1e-10 * Lf);  // closed-form erosion integral: round-off only
+  EXPECT_NEAR(ws.P, (in.L0 - Lf) / mu, 1e-10 * in.L0);  // quadrature tolerance 1e-13 relative, summed
+  // The RK4 integration stops too ("V = 0"), at the same depth to its step control's accuracy.
+  const bp::TateRun run = bp::integrate_tate(in, {});
+  EXPECT_NEAR(run.final.P, ws.P, 1e-4 * ws.P);
+}
