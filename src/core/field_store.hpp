@@ -52,6 +52,12 @@ class FieldStore {
   }
 
   const std::vector<FieldInfo>& fields() const { return info_; }
+  /// Bytes one point occupies over every declared field (8 per component).
+  double bytes_per_point() const {
+    double b = 0.0;
+    for (const auto& f : info_) b += 8.0 * f.ncomp;
+    return b;
+  }
   const FieldInfo& info(const std::string& name) const;
 
   /// Reorders every field: new point i is old point order[i].

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "geometry/shape.hpp"
 
 namespace ballista {
@@ -27,6 +29,68 @@ void declare_point_fields(FieldStore& p) {
   p.add_real("plastic_work", 1, "J");
 }
 
+namespace {
+
+/// Lattice points of a body that fall outside the grid box without a symmetry plane to excuse them.
+struct ClippedLattice {
+  Index count = 0;
+  bool face[6] = {false, false, false, false, false, false};  ///< faces crossed (x_min .. z_max)
+};
+
+/// True if x is inside the grid box. A point outside counts as clipped unless it lies beyond a
+/// `symmetry` face whose mirror image is also in the shape (a body cut by its own symmetry plane,
+/// e.g. the quarter Taylor bar): that half is represented by the boundary condition, not lost.
+bool lattice_point_in_grid(const Vec3& x, const GridSpec& grid, int nd, const ShapeSpec& shape,
+                           ClippedLattice& clipped) {
+  bool inside = true, excused = true;
+  bool crossed[6] = {false, false, false, false, false, false};
+  Vec3 mirror = x;
+  for (int a = 0; a < nd; ++a) {
+    int f = -1;
+    if (x[a] <= grid.lower[a]) f = 2 * a;
+    if (x[a] >= grid.upper[a]) f = 2 * a + 1;
+    if (f < 0) continue;
+    inside = false;
+    crossed[f] = true;
+    if (grid.faces[f] != FaceBC::Symmetry) excused = false;
+    const double plane = (f % 2) ? grid.upper[a] : grid.lower[a];
+    mirror[a] = 2.0 * plane - x[a];
+  }
+  if (inside) return true;
+  if (excused && shape_contains(shape, mirror, nd)) return false;
+  ++clipped.count;
+  for (int f = 0; f < 6; ++f) clipped.face[f] = clipped.face[f] || crossed[f];
+  return false;
+}
+
+/// Seeding outside the grid would silently lose mass (issue 11): a deck error naming the body,
+/// the faces it crosses, its extent against the box and the share of the body that would be lost.
+[[noreturn]] void throw_clipped_body(const BodySpec& body, const GridSpec& grid, int nd, const ClippedLattice& c,
+                                     Index kept) {
+  static const char* names[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
+  static const char axes[3] = {'x', 'y', 'z'};
+  Vec3 lo, hi;
+  shape_bounds(body.shape, nd, lo, hi);
+  std::string faces, extent;
+  for (int f = 0; f < 2 * nd; ++f) {
+    if (!c.face[f]) continue;
+    const int a = f / 2;
+    faces += (faces.empty() ? "" : ", ") + std::string(names[f]);
+    const double over = (f % 2) ? hi[a] - grid.upper[a] : grid.lower[a] - lo[a];
+    extent += fmt::format("; along {} the body spans [{:g}, {:g}] m, the grid [{:g}, {:g}] m ({:g} m outside)",
+                          axes[a], lo[a], hi[a], grid.lower[a], grid.upper[a], over);
+  }
+  const double share = static_cast<double>(c.count) / static_cast<double>(c.count + kept);
+  throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path,
+                  fmt::format("body '{}' is partly outside the grid (beyond {}): {} of its {} lattice points "
+                              "({:.1f} % of the body) would not be seeded{}; enlarge the grid box or move the body "
+                              "(only a body cut by a symmetry face, and mirror-symmetric about it, may extend past "
+                              "the box)",
+                              body.name, faces, c.count, c.count + kept, 100.0 * share, extent));
+}
+
+}  // namespace
+
 Index seed_body(const BodySpec& body, int body_index, int material_index, const Material& material,
                 const GridSpec& grid, Dimension dim, FieldStore& points, std::int64_t& next_id) {
   const int nd = dim == Dimension::ThreeD ? 3 : 2;
@@ -42,18 +106,18 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
     last[k] = static_cast<int>(std::ceil((hi[k] - grid.lower[k]) / dx));
   }
   std::vector<Vec3> pos;
+  ClippedLattice clipped;
   for (int k = first[2]; k <= last[2]; ++k)
     for (int j = first[1]; j <= last[1]; ++j)
       for (int i = first[0]; i <= last[0]; ++i) {
         Vec3 x{{grid.lower[0] + (i + 0.5) * dx, grid.lower[1] + (j + 0.5) * dx,
                 nd == 3 ? grid.lower[2] + (k + 0.5) * dx : 0.0}};
         if (nd == 2 && k != first[2]) continue;
-        bool inside_grid = true;
-        for (int a = 0; a < nd; ++a)
-          if (x[a] <= grid.lower[a] || x[a] >= grid.upper[a]) inside_grid = false;
-        if (dim == Dimension::Axisymmetric && !(x[0] > 0.0)) inside_grid = false;  // r > 0 only
-        if (inside_grid && shape_contains(body.shape, x, nd)) pos.push_back(x);
+        if (dim == Dimension::Axisymmetric && !(x[0] > 0.0)) continue;  // r > 0 only: not a clip
+        if (!shape_contains(body.shape, x, nd)) continue;
+        if (lattice_point_in_grid(x, grid, nd, body.shape, clipped)) pos.push_back(x);
       }
+  if (clipped.count > 0) throw_clipped_body(body, grid, nd, clipped, static_cast<Index>(pos.size()));
   if (pos.empty())
     throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path,
                     "body '" + body.name + "' has no particles inside the grid: check its shape, the grid box and cell_size");
@@ -91,6 +155,25 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
     mass[p] = material.density() * vol0[p];
     half[p] = Vec3{{0.5 * dx, 0.5 * dx, nd == 3 ? 0.5 * dx : 0.0}};
   }
+  return n;
+}
+
+double lattice_point_bound(const BodySpec& body, const GridSpec& grid, Dimension dim) {
+  const int nd = dim == Dimension::ThreeD ? 3 : 2;
+  const double dx = grid.cell_size / body.particles_per_cell;
+  auto bound = [&](const ShapeSpec& shape) {
+    Vec3 lo, hi;
+    shape_bounds(shape, nd, lo, hi);
+    double n = 1.0;
+    for (int a = 0; a < nd; ++a) {
+      const double extent = std::min(hi[a], grid.upper[a]) - std::max(lo[a], grid.lower[a]);
+      n *= extent > 0.0 ? std::floor(extent / dx) + 1.0 : 0.0;
+    }
+    return n;
+  };
+  if (body.segments.empty()) return bound(body.shape);
+  double n = 0.0;
+  for (const auto& s : body.segments) n += bound(s.shape);
   return n;
 }
 

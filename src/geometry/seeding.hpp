@@ -16,6 +16,11 @@ void declare_point_fields(FieldStore& points);
 Index seed_body(const BodySpec& body, int body_index, int material_index, const Material& material,
                 const GridSpec& grid, Dimension dim, FieldStore& points, std::int64_t& next_id);
 
+/// Upper bound of the points seed_body would create for `body` (its segments for rods and jets):
+/// the lattice points of its bounding box inside the grid box. Cheap; used to estimate memory
+/// before anything is allocated.
+double lattice_point_bound(const BodySpec& body, const GridSpec& grid, Dimension dim);
+
 /// Marks the points of `body` lying within one point spacing of the named surface for pressure
 /// load k: field "load_area_<k>" gets the reference area vector N dA0 (outward normal times the
 /// point's share of the surface; per radian in axisymmetric runs). Returns the number marked.

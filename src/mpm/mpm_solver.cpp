@@ -6,9 +6,12 @@
 #include <numbers>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "analysis/mms_axis_aligned.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "core/system_memory.hpp"
 #include "geometry/seeding.hpp"
 
 namespace ballista {
@@ -46,6 +49,22 @@ inline void stencil_of(const GridGeometry& g, const Vec3& x, const Vec3& half, c
 
 }  // namespace
 
+void MpmSolver::check_memory(const Scenario& sc, double nodes) const {
+  // Refuse a run that cannot fit before allocating it (issue 11). Per node: mass and four Vec3
+  // arrays of GridNodes. Per point: every declared field, plus the solver's per-point scratch
+  // (external and traction forces, MUSL displacement: 3 Vec3; slab and sort indices: ~5 words).
+  // The point count is the bodies' bounding-box lattice, an upper bound.
+  constexpr double kBytesPerNode = sizeof(double) + 4 * sizeof(Vec3);
+  const double bytes_per_point = points_.bytes_per_point() + 3 * sizeof(Vec3) + 5 * sizeof(Index);
+  double points = 0.0;
+  for (const auto& body : sc.bodies) points += lattice_point_bound(body, sc.grid, dimension_);
+  const double needed = nodes * kBytesPerNode + points * bytes_per_point;
+  require_memory(needed,
+                 fmt::format("{:.3g} grid nodes x {:g} B + up to {:.3g} points x {:g} B", nodes, kBytesPerNode, points,
+                             bytes_per_point),
+                 sc.file, "grid.cell_size");
+}
+
 MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials,
                      Communicator comm)
     : scenario_(sc), materials_(std::move(materials)), comm_(comm) {
@@ -76,12 +95,13 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
       box_first_[a] = box_last_[a] = 0;
     }
   }
-  grid_.resize(g.node_count());
   slab_axis_ = dim_ - 1;
 
   // Points: common fields, every material's state fields, then the bodies.
   declare_point_fields(points_);
   for (const auto& m : materials_) m->declare_fields(points_);
+  check_memory(sc, static_cast<double>(g.node_count()));
+  grid_.resize(g.node_count());
   std::int64_t next_id = 0;
   std::vector<double> activation;
   std::vector<int> activation_stage;

@@ -81,6 +81,8 @@ class MpmSolver final : public Solver {
   void update_stress(double dt);
   void update_grid(double dt);
   void apply_velocity_bcs(std::vector<Vec3>& vel);
+  /// Throws a DeckError if the grid and the bodies' points cannot fit in the memory available.
+  void check_memory(const Scenario& sc, double nodes) const;
   void handle_exits();
   [[noreturn]] void fail(Index p, const std::string& what) const;
   int stencil_reach_now() const;

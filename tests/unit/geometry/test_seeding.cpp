@@ -317,13 +317,47 @@ TEST(Seeding, IdsAreUniqueAndConsecutiveAcrossBodies) {
   EXPECT_EQ(s->body_count[1], 4 * 2 * 6);
 }
 
-TEST(Seeding, BodyPartlyOutsideTheGridIsClippedToTheGrid) {
-  // Only lattice points strictly inside the grid box are seeded.
-  const auto s = seed(deck("plane_strain", kGrid2,
-                           "  - {name: a, material: m, particles_per_cell: 1, shape: {type: box, lower: [1.5, 0.5], upper: [2.5, 1.0]}}\n"));
+TEST(Seeding, BodyPartlyOutsideTheGridIsAnErrorNamingTheBodyAndTheOverlap) {
+  // Issue 11: clipping used to be silent (a Taylor bar lost half its mass and reported a NaN foot
+  // radius). Half of this box (x in [2, 2.5] of [1.5, 2.5]) lies beyond x_max.
+  try {
+    seed(deck("plane_strain", kGrid2,
+              "  - {name: a, material: m, particles_per_cell: 1, shape: {type: box, lower: [1.5, 0.5], upper: [2.5, 1.0]}}\n"));
+    FAIL() << "a body partly outside the grid was seeded";
+  } catch (const DeckError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("body 'a' is partly outside the grid (beyond x_max)"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("16 of its 32 lattice points (50.0 %"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("0.5 m outside"), std::string::npos) << msg;
+    EXPECT_EQ(e.key_path(), "bodies.0");
+  }
+}
+
+TEST(Seeding, BodyCutByItsOwnSymmetryPlaneSeedsTheHalfInside) {
+  // A box symmetric about x = 0 on a grid whose x_min face (x = 0) is a symmetry plane: the half
+  // at x < 0 is represented by the boundary condition, so exactly the inside half is seeded.
+  const std::string grid = "{lower: [0, 0], upper: [2, 2], cell_size: 0.125, boundary: {x_min: symmetry}}";
+  const auto s = seed(deck("plane_strain", grid,
+                           "  - {name: a, material: m, particles_per_cell: 1, shape: {type: box, lower: [-0.5, 0.5], upper: [0.5, 1.0]}}\n"));
   EXPECT_EQ(s->pts.size(), 4 * 4);
-  const auto* x = s->pts.view<Vec3>("x");
-  for (Index p = 0; p < s->pts.size(); ++p) EXPECT_LT(x[p][0], 2.0);
+  // Not symmetric about the plane (x in [-0.75, 0.5]): the extra quarter beyond it would be lost.
+  EXPECT_THROW(seed(deck("plane_strain", grid,
+                         "  - {name: a, material: m, particles_per_cell: 1, shape: {type: box, lower: [-0.75, 0.5], upper: [0.5, 1.0]}}\n")),
+               DeckError);
+  // The same symmetric box beside a free face is an error.
+  EXPECT_THROW(seed(deck("plane_strain", kGrid2,
+                         "  - {name: a, material: m, particles_per_cell: 1, shape: {type: box, lower: [-0.5, 0.5], upper: [0.5, 1.0]}}\n")),
+               DeckError);
+}
+
+TEST(Seeding, LatticePointBoundCoversTheSeededPoints) {
+  // The memory estimate's point count is an upper bound: the bounding-box lattice (here a sphere of
+  // radius 0.3 in a 1/16 lattice: box 0.6/0.0625 + 1 = 10.6 -> 10 per axis).
+  const auto s = seed(deck("3d", kGrid3,
+                           "  - {name: a, material: m, particles_per_cell: 2, shape: {type: sphere, center: [0.5, 0.5, 0.5], radius: 0.3}}\n"));
+  const double bound = lattice_point_bound(s->sc.bodies[0], s->sc.grid, s->sc.simulation.dimension);
+  EXPECT_GE(bound, static_cast<double>(s->pts.size()));
+  EXPECT_EQ(bound, 10.0 * 10.0 * 10.0);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1,0 +1,24 @@
+#pragma once
+// What memory the machine has, for refusing a run that cannot fit before it allocates
+// (issue 11: a 210 GB grid died with a bare std::bad_alloc).
+#include <cstdint>
+#include <string>
+
+namespace ballista {
+
+struct SystemMemory {
+  double total_bytes = 0.0;      ///< physical memory (MemTotal)
+  double available_bytes = 0.0;  ///< what can be allocated without swapping (MemAvailable)
+};
+
+/// Reads /proc/meminfo (Linux); falls back to sysconf page counts. Zero when unknown.
+SystemMemory system_memory();
+
+/// "1.23 GB" style figure (decimal units).
+std::string format_bytes(double bytes);
+
+/// Throws a DeckError (file, key) if `needed_bytes` exceed the memory available now, with the
+/// figure, the breakdown `what` and the machine's memory. A machine whose memory is unknown passes.
+void require_memory(double needed_bytes, const std::string& what, const std::string& file, const std::string& key);
+
+}  // namespace ballista
