@@ -5,6 +5,13 @@
 
 namespace ballista {
 
+/// `text` cut to at most `limit` characters, the cut marked with the full length, so that a
+/// huge bad value (a 200 kB scalar) is not echoed whole in an error message.
+inline std::string shorten(const std::string& text, std::size_t limit = 80) {
+  if (text.size() <= limit) return text;
+  return text.substr(0, limit) + "... (" + std::to_string(text.size()) + " characters)";
+}
+
 /// Base of every error Ballista reports to the user.
 class Error : public std::runtime_error {
  public:
@@ -27,7 +34,9 @@ class DeckError : public Error {
                             const std::string& message) {
     std::string where = file.empty() ? std::string("<deck>") : file;
     if (line > 0) where += ":" + std::to_string(line) + ":" + std::to_string(column);
-    return where + ": " + (key.empty() ? std::string() : "'" + key + "': ") + message;
+    // Keys and messages may echo deck text: bounded (values are shortened where they are quoted;
+    // this is the backstop).
+    return where + ": " + (key.empty() ? std::string() : "'" + shorten(key, 200) + "': ") + shorten(message, 2000);
   }
   std::string file_;
   int line_;

@@ -14,6 +14,7 @@
 #include "driver/ftable_csv.hpp"
 #include "driver/perturb.hpp"
 #include "io/deck_node.hpp"
+#include "io/text_file.hpp"
 #include "io/deck_overrides.hpp"
 #include "io/material_reader.hpp"
 
@@ -197,13 +198,7 @@ class DriveReader {
 
 DriveDeck parse_drive_deck(const std::string& yaml_text, const std::string& file_name,
                            const std::vector<std::string>& overrides, const std::string& base_dir) {
-  YAML::Node doc;
-  try {
-    doc = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw DeckError(file_name, e.mark.line >= 0 ? e.mark.line + 1 : 0, e.mark.column >= 0 ? e.mark.column + 1 : 0, "",
-                    "invalid YAML: " + e.msg);
-  }
+  YAML::Node doc = load_deck_document(yaml_text, file_name);
   auto ctx = std::make_shared<DeckContext>();
   ctx->file = file_name;
   if (doc.IsDefined() && !doc.IsNull() && !doc.IsMap())
@@ -215,13 +210,9 @@ DriveDeck parse_drive_deck(const std::string& yaml_text, const std::string& file
 }
 
 DriveDeck read_drive_deck(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw DeckError(path, 0, 0, "", std::string("cannot open the deck file: ") + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw DeckError(path, 0, 0, "", "cannot read the deck file");
+  const std::string text = read_input_file(path, "", "the deck file");
   const std::string dir = std::filesystem::path(path).parent_path().string();
-  return parse_drive_deck(text.str(), path, overrides, dir.empty() ? "." : dir);
+  return parse_drive_deck(text, path, overrides, dir.empty() ? "." : dir);
 }
 
 }  // namespace ballista

@@ -4,8 +4,10 @@
 #include <charconv>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 
 #include "core/error.hpp"
+#include "io/text_file.hpp"
 
 namespace ballista {
 
@@ -48,8 +50,7 @@ bool parse_double(const std::string& s, double& x) {
 }  // namespace
 
 FTableFile read_ftable_csv(const std::string& path, const std::string& key_path) {
-  std::ifstream in(path);
-  if (!in) throw DeckError(path, 0, 0, key_path, std::string("cannot open the F-table file: ") + std::strerror(errno));
+  std::istringstream in(read_input_file(path, key_path, "the F-table file"));
   FTableFile out;
   std::string line;
   int lineno = 0;

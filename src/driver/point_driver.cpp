@@ -168,7 +168,12 @@ class Driver {
     b.internal_energy = s.real("internal_energy");
     b.plastic_energy = s.real("plastic_work");
     mat_.update(b);
-    return all_finite(b.stress[0]) && all_finite(F[0]);
+    // Garbage is a failure, never a completed drive (issue 11: a compressive leg underflowed J to 0
+    // and the drive completed): the stress, F, J > 0 and every state variable must hold.
+    if (!all_finite(b.stress[0]) || !all_finite(F[0]) || !(det(F[0]) > 0.0)) return false;
+    for (const auto& n : result_.state_names)
+      if (!std::isfinite(s.real(n)[0])) return false;
+    return true;
   }
 
   /// Appends a record of `s` at t_ if this step is due (or forced).
@@ -228,7 +233,7 @@ class Driver {
   [[noreturn]] void fail_nonfinite(const Snapshot& before, const Snapshot& after, double t_new,
                                    const std::string& where) const {
     std::ostringstream os;
-    os << "drive: non-finite stress or F after the material update (" << mat_.name() << ", model " << mat_.model()
+    os << "drive: non-finite stress, F or state, or J <= 0, after the material update (" << mat_.name() << ", model " << mat_.model()
        << ") at step " << step_ + 1 << " (t = " << num(t_new) << " s" << where << ")\n"
        << "  F_n     = " << mat_text(before.F) << ", J = " << num(det(before.F))
        << "\n  F_n+1   = " << mat_text(after.F) << ", J = " << num(det(after.F))

@@ -58,6 +58,51 @@ std::string format_number(double x) {
   return std::string(buf, r.ptr);
 }
 
+namespace {
+
+/// Throws on the first tagged node; counts nodes (through aliases) against kMaxDeckNodes.
+void check_deck_nodes(const YAML::Node& n, const std::string& file, long& visited) {
+  if (++visited > kMaxDeckNodes)
+    throw DeckError(file, n.Mark().line + 1, n.Mark().column + 1, "",
+                    "the deck expands to more than " + std::to_string(kMaxDeckNodes) +
+                        " YAML nodes (aliases referring to aliases?); a deck that large is refused");
+  // yaml-cpp: "?" = plain untagged node, "!" = quoted scalar (non-specific tag); anything else was
+  // written as a tag in the deck.
+  const std::string& tag = n.Tag();
+  if (!tag.empty() && tag != "?" && tag != "!")
+    throw DeckError(file, n.Mark().line + 1, n.Mark().column + 1, "",
+                    "YAML tag '" + shorten(tag) + "' is not supported in a deck (Ballista reads plain values; "
+                    "remove the tag)");
+  if (n.IsMap()) {
+    for (auto it = n.begin(); it != n.end(); ++it) {
+      check_deck_nodes(it->first, file, visited);
+      check_deck_nodes(it->second, file, visited);
+    }
+  } else if (n.IsSequence()) {
+    for (auto it = n.begin(); it != n.end(); ++it) check_deck_nodes(*it, file, visited);
+  }
+}
+
+}  // namespace
+
+YAML::Node load_deck_document(const std::string& yaml_text, const std::string& file_name) {
+  std::vector<YAML::Node> docs;
+  try {
+    docs = YAML::LoadAll(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw DeckError(file_name, e.mark.line >= 0 ? e.mark.line + 1 : 0, e.mark.column >= 0 ? e.mark.column + 1 : 0,
+                    "", "invalid YAML: " + e.msg);
+  }
+  if (docs.size() > 1)
+    throw DeckError(file_name, docs[1].Mark().line + 1, docs[1].Mark().column + 1, "",
+                    "the file holds " + std::to_string(docs.size()) +
+                        " YAML documents (separated by '---'); a deck is one document");
+  if (docs.empty()) return YAML::Node();
+  long visited = 0;
+  check_deck_nodes(docs[0], file_name, visited);
+  return docs[0];
+}
+
 bool scalar_number(const YAML::Node& v, double& x) {
   if (!v.IsScalar() || v.Tag() == "!") return false;
   const std::string& s = v.Scalar();
@@ -160,7 +205,7 @@ const char* kind(const YAML::Node& v) {
 /// "expected X, got Y" where Y describes a non-scalar or quotes the scalar.
 std::string got(const YAML::Node& v) {
   if (const char* k = kind(v)) return std::string(", got ") + k;
-  return ", got '" + v.Scalar() + "'";
+  return ", got '" + shorten(v.Scalar()) + "'";
 }
 
 }  // namespace
@@ -235,7 +280,7 @@ YAML::Node DeckNode::require(const std::string& key, const char* what) const {
       for (const auto& u : unread)
         if (closest_name(u, {key}) == key)
           deck_fail(*ctx_, child_path(u), key_mark(u),
-                    "unknown key '" + u + "' in " + where + "; did you mean '" + key + "'?");
+                    "unknown key '" + shorten(u) + "' in " + where + "; did you mean '" + key + "'?");
     }
     deck_fail(*ctx_, child_path(key), anchor_,
               "missing required key '" + key + "' in " + where + " (expected " + what + ")");
@@ -283,7 +328,7 @@ std::vector<std::string> DeckNode::entry_names() {
     if (!it->first.IsScalar()) deck_fail(*ctx_, path_, it->first.Mark(), "expected a name as the key");
     const std::string name = it->first.Scalar();
     if (std::find(names.begin(), names.end(), name) != names.end())
-      deck_fail(*ctx_, child_path(name), it->first.Mark(), "duplicate name '" + name + "' in " + path_);
+      deck_fail(*ctx_, child_path(name), it->first.Mark(), "duplicate name '" + shorten(name) + "' in " + path_);
     names.push_back(name);
     known_->push_back(name);
   }
@@ -503,10 +548,10 @@ void DeckNode::finish() const {
     const std::string& name = k.Scalar();
     const std::string where = path_.empty() ? std::string("the deck") : path_;
     if (std::find(seen.begin(), seen.end(), name) != seen.end())
-      deck_fail(*ctx_, child_path(name), k.Mark(), "duplicate key '" + name + "' in " + where);
+      deck_fail(*ctx_, child_path(name), k.Mark(), "duplicate key '" + shorten(name) + "' in " + where);
     seen.push_back(name);
     if (std::find(known_->begin(), known_->end(), name) == known_->end())
-      deck_fail(*ctx_, child_path(name), k.Mark(), "unknown key '" + name + "' in " + where + suggest(name, *known_));
+      deck_fail(*ctx_, child_path(name), k.Mark(), "unknown key '" + shorten(name) + "' in " + where + suggest(name, *known_));
   }
 }
 

@@ -33,6 +33,13 @@ std::string join_names(const std::vector<std::string>& names);
 /// Shortest text that reads back as exactly `x` (0.3, 8e-05, 1.17e+11); ".inf"/".nan" in YAML style.
 std::string format_number(double x);
 
+/// Parses the text of a deck: exactly one YAML document (a second one is an error, not silently
+/// ignored), no tags (`!custom`, `!!str`: Ballista gives them no meaning, so they are refused),
+/// and at most kMaxDeckNodes nodes counted through aliases (an alias bomb is refused before
+/// anything expands it). Syntax errors become DeckErrors with the line and column.
+YAML::Node load_deck_document(const std::string& yaml_text, const std::string& file_name);
+inline constexpr long kMaxDeckNodes = 1'000'000;
+
 /// Reads a plain (unquoted) YAML scalar as a finite number ("1e9", "+2", "-0.5"); false otherwise.
 bool scalar_number(const YAML::Node& v, double& x);
 

@@ -13,6 +13,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "io/deck_node.hpp"
+#include "io/text_file.hpp"
 #include "io/deck_overrides.hpp"
 #include "io/material_reader.hpp"
 #include "io/penetrator_reader.hpp"
@@ -125,6 +126,7 @@ class Reader {
     sim.cfl = s.number("cfl", 0.3, NumberRange::between(0.0, 1.0, true, false));
     sim.max_dt = s.number("max_dt", 0.0, NumberRange::non_negative("s"));
     sim.max_steps = s.integer("max_steps", 0, 0, kLongMax);
+    sim.step_limit = s.integer("step_limit", 10'000'000, 1, kLongMax);
     sim.damping = s.number("damping", 0.0, NumberRange::non_negative("1/s"));
     sim.energy_drift_limit = s.number("energy_drift_limit", 0.0, NumberRange::non_negative());
     sim.on_particle_exit = s.choice("on_particle_exit", "stop", {"stop", "delete"});
@@ -314,7 +316,7 @@ class Reader {
           double value = 0.0;
           if (!scalar_number(x, value))
             deck_fail(*ctx_, path + "." + std::to_string(k), x.Mark(),
-                      "expected a number, got " + (x.IsScalar() ? "'" + x.Scalar() + "'" : std::string("a list or map")));
+                      "expected a number, got " + (x.IsScalar() ? "'" + shorten(x.Scalar()) + "'" : std::string("a list or map")));
           tv[k] = value;
         }
         if (!c.t.empty() && !(tv[0] > c.t.back()))
@@ -435,6 +437,13 @@ class Reader {
         probe.plane = p.number("plane", 0.0, NumberRange::any("m"));
         probe.distance = p.number("distance", NumberRange::positive("m"));
         probe.center = p.vector("center", Vec3{}, vmin());
+        // The axis must cross the grid box: off-axis coordinates of the centre inside it (a centre
+        // at 1e308 gave a foot radius of 1e308 or inf, issue 11).
+        for (int d = 0; d < ndim(); ++d)
+          if (d != probe.axis && !(probe.center[d] >= sc_.grid.lower[d] && probe.center[d] <= sc_.grid.upper[d]))
+            p.fail("center", std::string("the probe's axis must pass through the grid box: ") + axis_name(d) + " = " +
+                                 format_number(probe.center[d]) + " m is outside [" +
+                                 format_number(sc_.grid.lower[d]) + ", " + format_number(sc_.grid.upper[d]) + "] m");
       } else if (probe.type == "field_max") {
         probe.body = body_ref(p, false);
         probe.field = p.string("field");
@@ -552,6 +561,18 @@ class Reader {
     out.fields = o.strings("fields", {});
     out.domains = o.boolean("domains", false);
     out.history_every = static_cast<int>(o.integer("history_every", 10, 1, INT_MAX));
+    out.max_outputs = o.integer("max_outputs", 1000, 1, kLongMax);
+    if (out.interval > 0.0) {
+      // Particle files of the run: the first, one per interval of the main stage, one per
+      // preparation stage and the last (issue 11: 1e-12 s gave one 300 kB file per step).
+      const double planned = std::ceil(sc_.simulation.end_time / out.interval) + 2.0 + sc_.stages.size();
+      if (planned > static_cast<double>(out.max_outputs))
+        o.fail("interval", "an output every " + format_number(out.interval) + " s over end_time " +
+                               format_number(sc_.simulation.end_time) + " s writes about " + format_number(planned) +
+                               " particle files, more than output.max_outputs = " +
+                               std::to_string(out.max_outputs) +
+                               "; lengthen the interval, or raise output.max_outputs to insist");
+    }
     DeckNode tr = o.map("track", false);
     out.track = particle_ids(tr, "ids");
     out.track_mark = tr.mark_of("ids");
@@ -574,7 +595,7 @@ class Reader {
         if (!scalar_number(x, d) || d != std::floor(d) || d < 0.0 || d > 9e15)
           deck_fail(*ctx_, path, x.Mark(),
                     "expected a particle id (an integer >= 0), got " +
-                        (x.IsScalar() ? "'" + x.Scalar() + "'" : std::string("a list or map")));
+                        (x.IsScalar() ? "'" + shorten(x.Scalar()) + "'" : std::string("a list or map")));
         const auto id = static_cast<std::int64_t>(d);
         if (std::find(ids.begin(), ids.end(), id) != ids.end())
           deck_fail(*ctx_, path, x.Mark(), "particle id " + std::to_string(id) + " is listed twice");
@@ -596,13 +617,7 @@ class Reader {
 
 Scenario parse_deck(const std::string& yaml_text, const std::string& file_name,
                     const std::vector<std::string>& overrides) {
-  YAML::Node doc;
-  try {
-    doc = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw DeckError(file_name, e.mark.line >= 0 ? e.mark.line + 1 : 0, e.mark.column >= 0 ? e.mark.column + 1 : 0,
-                    "", "invalid YAML: " + e.msg);
-  }
+  YAML::Node doc = load_deck_document(yaml_text, file_name);
   auto ctx = std::make_shared<DeckContext>();
   ctx->file = file_name;
   if (doc.IsDefined() && !doc.IsNull() && !doc.IsMap())
@@ -614,12 +629,7 @@ Scenario parse_deck(const std::string& yaml_text, const std::string& file_name,
 }
 
 Scenario read_deck(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw DeckError(path, 0, 0, "", std::string("cannot open the deck file: ") + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw DeckError(path, 0, 0, "", "cannot read the deck file");
-  return parse_deck(text.str(), path, overrides);
+  return parse_deck(read_input_file(path, "", "the deck file"), path, overrides);
 }
 
 }  // namespace ballista

@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "io/deck_reader.hpp"
+#include "io/text_file.hpp"
 
 namespace ballista {
 
@@ -98,8 +99,9 @@ std::vector<Row> file_rows(DeckNode& jet) {
   const std::string name = jet.string("file");
   fs::path path(name);
   if (path.is_relative()) path = fs::path(jet.file()).parent_path() / path;
-  std::ifstream in(path);
-  if (!in) jet.fail("file", "cannot open the jet table '" + path.string() + "'");
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) jet.fail("file", "cannot open the jet table '" + path.string() + "'");
+  std::istringstream in(read_input_file(path.string(), jet.child_path("file"), "the jet table"));
   jet.set_resolved("file", YAML::Node(fs::absolute(path).lexically_normal().string()));
   std::vector<Row> rows;
   std::string line;
@@ -113,19 +115,22 @@ std::vector<Row> file_rows(DeckNode& jet) {
     if (!(is >> first) || first[0] == '#') continue;
     std::vector<double> x;
     std::istringstream all(line);
-    std::string tok;
+    std::string tok, bad;
     bool numeric = true;
     while (all >> tok) {
       char* end = nullptr;
       const double d = std::strtod(tok.c_str(), &end);
-      if (end == tok.c_str() || *end != '\0' || !std::isfinite(d)) numeric = false;
+      if (end == tok.c_str() || *end != '\0') numeric = false;
+      else if (!std::isfinite(d) && bad.empty()) bad = tok;  // a number, but not a finite one
       x.push_back(d);
     }
-    if (!numeric && rows.empty() && line_no == 1) continue;  // header
+    if (!numeric && rows.empty() && line_no == 1) continue;  // header (names, not numbers)
     DeckMark m{path.string(), jet.child_path("file"), line_no, 1};
     if (!numeric || x.size() != 4)
       throw DeckError(m.file, line_no, 1, m.key_path,
                       "expected 4 numbers per row: radius (m), length (m), velocity (m/s), insert_time (s)");
+    if (!bad.empty())
+      throw DeckError(m.file, line_no, 1, m.key_path, "expected finite numbers, got '" + shorten(bad) + "'");
     rows.push_back({x[0], x[1], x[2], x[3], m});
   }
   if (rows.empty()) jet.fail("file", "the jet table '" + path.string() + "' has no rows");

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include <fmt/format.h>
+
 namespace ballista {
 
 namespace {
@@ -142,7 +144,7 @@ FailureModel make_failure(const ParamValues& v, ModelCapabilities caps) {
       if (!(m.initial_porosity >= 0.0 && m.initial_porosity < m.critical_porosity))
         throw ParamError("failure.initial_porosity",
                          "failure.initial_porosity must be >= 0 and below failure.critical_porosity (" +
-                             std::to_string(m.critical_porosity) + ")");
+                             fmt::format("{:.6g}", m.critical_porosity) + ")");
       if (!(m.nucleation_porosity >= 0.0))
         throw ParamError("failure.nucleation_porosity", "failure.nucleation_porosity must be >= 0");
       break;

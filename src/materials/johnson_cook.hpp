@@ -34,6 +34,8 @@
 // eos.hpp). State: eqps, temperature (K) [, energy_density with eos.type mie_gruneisen].
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "materials/elastic_constants.hpp"
 #include "materials/j2_return.hpp"
 #include "materials/material_adapter.hpp"
@@ -119,7 +121,7 @@ struct JohnsonCook {
     p.T_melt = need("melt_temperature");
     if (!(p.T_melt > p.T_ref))
       throw ParamError("melt_temperature", "melt_temperature must exceed reference_temperature (" +
-                                               std::to_string(p.T_ref) + " K)");
+                                               fmt::format("{:.6g}", p.T_ref) + " K)");
     p.T_init = v.number_or("initial_temperature", p.T_ref);
     if (!(p.T_init > 0.0)) throw ParamError("initial_temperature", "initial_temperature must be > 0 K");
     p.cp = need("specific_heat");

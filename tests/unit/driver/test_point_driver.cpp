@@ -437,6 +437,26 @@ TEST(PointDriver, NonFiniteStressIsAPhysicsError) {
   }
 }
 
+// Issue 11: a compressive leg of strain -800 (F11 = e^-800 underflows to 0) completed with J = 0.
+// Now J <= 0 after an update is a PhysicsError like a non-finite stress.
+TEST(PointDriver, CollapsedVolumeIsAPhysicsError) {
+  const auto mat = elastic(2e9, 1e9);
+  DriveProgram p;
+  DriveLeg g;
+  g.duration = 1.0;
+  g.steps = 10;
+  g.value[0] = -800.0;
+  p.legs = {g};
+  try {
+    drive_point(*mat, p);
+    FAIL() << "expected a PhysicsError";
+  } catch (const PhysicsError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("J <= 0"), std::string::npos) << m;
+    EXPECT_NE(m.find("leg 0"), std::string::npos) << m;
+  }
+}
+
 // The state of a model with state fields is recorded in the model's order, every step.
 TEST(PointDriver, RecordsStateAndWork) {
   const auto mat =
