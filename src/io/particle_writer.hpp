@@ -1,6 +1,7 @@
 #pragma once
 // Particle output: one HDF5 file per output time (dir/particles_NNNNNN.h5) plus an XDMF 3 index
-// (dir/particles.xdmf, rewritten atomically after every output) that ParaView opens as a time
+// (dir/particles.xdmf: created atomically at the first output, then each output's grid is written
+// in place over the closing tags, so an output costs the same however long the series) that ParaView opens as a time
 // series. Each .h5 holds /time, /step, one dataset per field (N x ncomp, or N for one component;
 // real fields as float64, int fields as int64, with a "unit" attribute), /vertex_cells (0..N-1,
 // the Polyvertex connectivity) and, with domains, /domain_points and /domain_cells: each
@@ -24,7 +25,7 @@ class ParticleWriter {
   void write(double time, long step, const FieldStore& points);
 
   /// Number of outputs written so far.
-  int count() const { return static_cast<int>(entries_.size()); }
+  int count() const { return count_; }
   /// Path of the XDMF index.
   std::string xdmf_path() const;
   /// Path of output number `index`.
@@ -35,7 +36,11 @@ class ParticleWriter {
   std::vector<std::string> fields_;
   bool domains_;
   int dim_;
-  std::vector<std::string> entries_;  // XDMF grid of each output so far
+  /// Appends one output's XDMF grid to the index (the first output creates it).
+  void append_xdmf(const std::string& grid);
+
+  int count_ = 0;                 // outputs written
+  std::size_t xdmf_body_end_ = 0;  // byte offset of the index's footer (where the next grid goes)
 };
 
 }  // namespace ballista

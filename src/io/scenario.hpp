@@ -42,7 +42,10 @@ struct SimulationSpec {
   double end_time = 0.0;            ///< s
   double cfl = 0.3;                 ///< Courant number (0, 1]
   double max_dt = 0.0;              ///< s; 0 = no cap
-  long max_steps = 0;               ///< 0 = unlimited
+  long max_steps = 0;               ///< 0 = unlimited: the run ends (completed) after this many steps
+  /// A run whose estimated step count (simulated time / first stable step) exceeds this is refused
+  /// before it starts, and one that reaches it stops with a diagnostic (a collapsed step).
+  long step_limit = 10'000'000;
   double damping = 0.0;             ///< 1/s; grid acceleration a - c v (dynamic relaxation)
   double energy_drift_limit = 0.0;  ///< stop if |E_total - E0| / max(E0, E_scale) exceeds this; 0 = off
   std::string on_particle_exit = "stop";  ///< "stop" or "delete"
@@ -144,6 +147,7 @@ struct OutputSpec {
   std::vector<std::string> fields;   ///< field names to write; empty = all
   bool domains = false;              ///< also write each particle's domain as a deformed hexahedron
   int history_every = 10;            ///< steps between history.csv rows
+  long max_outputs = 1000;           ///< more planned particle files than this is a deck error
   std::vector<std::int64_t> track;   ///< output.track.ids: particle ids whose full history is recorded
   DeckMark track_mark;               ///< where output.track.ids is (ids are checked against the seeding)
 };

@@ -91,6 +91,21 @@ void json_escape_to(std::string& out, const std::string& s) {
   out += '"';
 }
 
+std::vector<std::string> non_finite_numbers(const JsonValue& v, const std::string& prefix) {
+  std::vector<std::string> out;
+  const auto join = [&](const std::string& key) { return prefix.empty() ? key : prefix + "." + key; };
+  if (v.kind() == JsonValue::Kind::Number && !std::isfinite(v.as_number())) {
+    out.push_back(prefix + " = " + (std::isnan(v.as_number()) ? "nan" : v.as_number() > 0 ? "inf" : "-inf"));
+  } else if (v.kind() == JsonValue::Kind::Object) {
+    for (const std::string& k : v.keys())
+      for (auto& s : non_finite_numbers(v.at(k), join(k))) out.push_back(std::move(s));
+  } else if (v.kind() == JsonValue::Kind::Array) {
+    for (std::size_t i = 0; i < v.size(); ++i)
+      for (auto& s : non_finite_numbers(v.at(i), join(std::to_string(i)))) out.push_back(std::move(s));
+  }
+  return out;
+}
+
 JsonValue& JsonValue::operator[](const std::string& key) {
   if (kind_ == Kind::Null) kind_ = Kind::Object;
   if (kind_ != Kind::Object) kind_error(kind_, "object");

@@ -71,6 +71,11 @@ class JsonValue {
   std::vector<JsonValue> items_;   // array elements or object values
 };
 
+/// Every number in `v` that is NaN or infinite (written as null), as "key.path = value", key
+/// paths joined by '.' below `prefix`. A result that is not available is an explicit null and is
+/// not listed; a non-finite number is garbage that a run must not report as a success.
+std::vector<std::string> non_finite_numbers(const JsonValue& v, const std::string& prefix = "");
+
 /// Appends `s` to `out` as a quoted, escaped JSON string.
 void json_escape_to(std::string& out, const std::string& s);
 

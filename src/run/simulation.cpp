@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "analysis/penetration_probe.hpp"
@@ -13,6 +14,7 @@
 #include "core/parallel.hpp"
 #include "io/atomic_file.hpp"
 #include "io/history_writer.hpp"
+#include "io/output_folder.hpp"
 #include "io/particle_writer.hpp"
 #include "io/summary_writer.hpp"
 #include "mpm/mpm_solver.hpp"
@@ -41,6 +43,33 @@ std::unique_ptr<Solver> make_solver(const Scenario& sc) {
 
 namespace {
 
+/// "particle 12 of body 'bar' (wave speed 4000 m/s, speed 200 m/s, J 0.98)".
+std::string describe_limiter(const Scenario& sc, const StepLimiter& l) {
+  if (l.id < 0) return "no particle";
+  const std::string body =
+      l.body >= 0 && l.body < static_cast<int>(sc.bodies.size()) ? " of body '" + sc.bodies[l.body].name + "'" : "";
+  return fmt::format("particle {}{} (wave speed {:.4g} m/s, speed {:.4g} m/s, J {:.4g})", l.id, body, l.wave_speed,
+                     l.speed, l.J);
+}
+
+/// Refuses a run whose estimated step count (simulated time / first stable step) exceeds
+/// simulation.step_limit (issue 11: cfl 1e-12 or max_dt 1e-300 gave an ETA of 1e11 s).
+void check_step_estimate(const Scenario& sc, Solver& solver) {
+  double span = sc.simulation.end_time;  // simulated time: the main stage plus the longest stages
+  for (const StageSpec& st : sc.stages) span += st.until.empty() ? st.duration : st.max_duration;
+  const double dt = solver.stable_dt();
+  if (!(dt > 0.0) || !std::isfinite(dt)) return;  // the loop's own check reports it with its step
+  const double steps = span / dt;
+  if (steps <= static_cast<double>(sc.simulation.step_limit)) return;
+  throw DeckError(sc.file, 0, 0, "simulation.step_limit",
+                  fmt::format("the run would take about {:.3g} steps ({:.6g} s of simulated time at a stable step of "
+                              "{:.3g} s, set by {}; cfl {:g}, max_dt {:g} s), more than simulation.step_limit = {}; "
+                              "check cfl, max_dt, the moduli and the cell size, or raise simulation.step_limit to "
+                              "insist",
+                              steps, span, dt, describe_limiter(sc, solver.step_limiter()), sc.simulation.cfl,
+                              sc.simulation.max_dt, sc.simulation.step_limit));
+}
+
 /// Output fields: the deck's list (validated against the points) or all.
 std::vector<std::string> output_fields(const Scenario& sc, const FieldStore& points) {
   for (const auto& f : sc.output.fields)
@@ -56,7 +85,8 @@ std::vector<std::string> output_fields(const Scenario& sc, const FieldStore& poi
 
 RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   namespace fs = std::filesystem;
-  fs::create_directories(opt.out_dir);
+  if (const int removed = prepare_run_folder(opt.out_dir))
+    spdlog::info("removed {} output files of an earlier run from {}", removed, opt.out_dir);
   write_file_atomic((fs::path(opt.out_dir) / "resolved.yaml").string(), sc.resolved_yaml);
   const int threads = opt.threads > 0 ? opt.threads : sc.simulation.threads;
   if (threads > 0) set_threads(threads);
@@ -91,6 +121,8 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   if (const auto* mpm = dynamic_cast<const MpmSolver*>(solver.get())) seeded += mpm->pending_points();
   ParticleTracker tracker(sc, opt.out_dir, seeded);
   const Communicator comm;
+
+  check_step_estimate(sc, *solver);
 
   const EnergyTotals e0 = solver->energies();
   const double total0 = e0.total();
@@ -134,10 +166,9 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     const double drift = history_row(step_dt);
     worst_drift = std::max(worst_drift, drift);
     if (sc.simulation.energy_drift_limit > 0 && drift > sc.simulation.energy_drift_limit)
-      throw PhysicsError("energy drift " + std::to_string(drift) + " exceeds the limit " +
-                         std::to_string(sc.simulation.energy_drift_limit) + " at step " +
-                         std::to_string(solver->steps()) + " (t = " + std::to_string(solver->time()) +
-                         " s): the run is blowing up");
+      throw PhysicsError(fmt::format("energy drift {:.6g} exceeds the limit {:.6g} at step {} (t = {:.6g} s): the "
+                                     "run is blowing up",
+                                     drift, sc.simulation.energy_drift_limit, solver->steps(), solver->time()));
   };
   JsonValue stage_log = JsonValue::array();
 
@@ -193,11 +224,19 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   try {
     // Stop within a relative round-off of the end time instead of taking a sliver step.
     while (solver->time() < end * (1.0 - 1e-12)) {
-      if (sc.simulation.max_steps > 0 && solver->steps() >= sc.simulation.max_steps) break;
+      if (sc.simulation.max_steps > 0 && solver->steps() >= sc.simulation.max_steps) {
+        spdlog::warn("simulation.max_steps = {} reached at t = {:.6g} s of {:.6g} s: the run ends early",
+                     sc.simulation.max_steps, solver->time(), end);
+        break;
+      }
       dt = solver->stable_dt();
       if (!(dt > 0.0) || !std::isfinite(dt))
-        throw PhysicsError("time step collapsed (dt = " + std::to_string(dt) + " s) at step " +
-                           std::to_string(solver->steps()));
+        throw PhysicsError(fmt::format("time step collapsed (dt = {:.6g} s) at step {}", dt, solver->steps()));
+      if (solver->steps() >= sc.simulation.step_limit)
+        throw PhysicsError(fmt::format(
+            "the run reached simulation.step_limit = {} steps at t = {:.6g} s of {:.6g} s (dt = {:.6g} s, set by {}): "
+            "the time step has collapsed; raise simulation.step_limit to insist",
+            sc.simulation.step_limit, solver->time(), end, dt, describe_limiter(sc, solver->step_limiter())));
       // The smallest stable step is what a collapsing time step shows (thesis ch. 6), not the
       // slivers taken to land on output and end times.
       if (dt < 0.9 * limiter_dt) {
@@ -232,7 +271,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
               next_stage(st.until, &c);
             } else if (last_chance) {
               throw PhysicsError("stage '" + st.name + "' did not reach stress equilibrium within its max_duration of " +
-                                 std::to_string(st.max_duration) + " s (step " + std::to_string(solver->steps()) +
+                                 fmt::format("{:.6g}", st.max_duration) + " s (step " + std::to_string(solver->steps()) +
                                  "): " + describe_equilibrium(st, c) +
                                  "; raise max_duration, or tune the damping (thesis seed 000 §5.1: near-critical damping)");
             }
@@ -342,6 +381,20 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   en["removed_mass"] = e.removed_mass;
   en["removed_energy"] = e.removed_energy;
   en["inserted_energy"] = e.inserted_energy;
+  // A number that is not a number is garbage, never a success (issue 11): the run is failed and
+  // the summary says which values (they are written as null).
+  const std::vector<std::string> bad = non_finite_numbers(summary.root());
+  if (!bad.empty() && result.ok) {
+    std::string list;
+    for (size_t k = 0; k < bad.size() && k < 8; ++k) list += (k ? "; " : "") + bad[k];
+    if (bad.size() > 8) list += fmt::format("; and {} more", bad.size() - 8);
+    result.ok = false;
+    result.error = "non-finite results at the end of the run: " + list +
+                   " (a probe that selects no particle, or a value that overflowed; see the deck's probes)";
+    spdlog::error("run failed: {}", result.error);
+    summary["status"] = "failed";
+    summary["error"] = result.error;
+  }
   summary.write((fs::path(opt.out_dir) / "summary.json").string());
   return result;
 }

@@ -439,3 +439,30 @@ TEST(OutputParticles, RejectsBadRequests) {
   EXPECT_THROW(r.write(0.0, 0, reserved), Error);
   EXPECT_EQ(count_tmp(d.path), 0);  // failed writes leave no temporaries
 }
+
+// Issue 11: the index is appended in place, not rewritten. After 200 outputs it is one valid XDMF
+// document with 200 grids whose references all resolve, and the last output's append wrote only
+// its own grid: the file grew by the same amount for the 2nd and the 200th output.
+TEST(OutputParticles, LongSeriesIndexStaysValidAndGrowsLinearly) {
+  ballista::test::TempDir d{"ballista_output"};
+  FieldStore s = make_points(2);
+  ParticleWriter w(d.path.string(), {"eqps"}, false, 3);
+  const fs::path xdmf = d.path / "particles.xdmf";
+  std::vector<std::uintmax_t> sizes;
+  for (int k = 0; k < 200; ++k) {
+    w.write(1e-6 * k, k, s);
+    sizes.push_back(fs::file_size(xdmf));
+  }
+  const std::string text = slurp(xdmf);
+  EXPECT_EQ(xml_problem(text), "");
+  size_t grids = 0;
+  for (size_t at = text.find("<Grid Name=\"particles\" GridType=\"Uniform\">"); at != std::string::npos;
+       at = text.find("<Grid Name=\"particles\" GridType=\"Uniform\">", at + 1))
+    ++grids;
+  EXPECT_EQ(grids, 200u);
+  EXPECT_EQ(check_references(xdmf), 200 * 3);  // vertex_cells, x, eqps per output
+  // Grids of outputs 1..9 and 100..199 differ in length only through their numbers' digits
+  // (index, time and file name: a few bytes each), not by the size of the series (~700 B/output).
+  EXPECT_LE(sizes[199] - sizes[198], sizes[2] - sizes[1] + 64);
+  EXPECT_EQ(text.substr(text.size() - 8), "</Xdmf>\n");
+}
