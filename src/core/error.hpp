@@ -1,5 +1,6 @@
 #pragma once
 // Error types. Each carries enough context for the user to find the cause without a debugger.
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -48,6 +49,18 @@ class DeckError : public Error {
 class PhysicsError : public Error {
  public:
   using Error::Error;
+};
+
+/// A PhysicsError about one point (particle, peridynamic point, material point); carries its
+/// global id so that the run can be repeated with that point tracked (`ballista run
+/// --track-failed`, output.track.ids).
+class ParticleError : public PhysicsError {
+ public:
+  ParticleError(std::int64_t id, const std::string& message) : PhysicsError(message), id_(id) {}
+  std::int64_t id() const { return id_; }
+
+ private:
+  std::int64_t id_;
 };
 
 }  // namespace ballista

@@ -47,6 +47,8 @@ class Solver {
   virtual long steps() const = 0;
   /// The points of this rank (fields named as the output datasets).
   virtual FieldStore& points() = 0;
+  /// Points seeded but not active yet (bodies with a later activation); ids run over both.
+  virtual Index pending_points() const { return 0; }
   virtual EnergyTotals energies() const = 0;
   /// Multiplier turning per-point sums into physical totals (2 pi in axisymmetric runs).
   virtual double reporting_scale() const = 0;

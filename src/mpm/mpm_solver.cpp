@@ -49,146 +49,68 @@ inline void stencil_of(const GridGeometry& g, const Vec3& x, const Vec3& half, c
 
 }  // namespace
 
-void MpmSolver::check_memory(const Scenario& sc, double nodes) const {
-  // Refuse a run that cannot fit before allocating it (issue 11). Per node: mass and four Vec3
-  // arrays of GridNodes. Per point: every declared field, plus the solver's per-point scratch
-  // (external and traction forces, MUSL displacement: 3 Vec3; slab and sort indices: ~5 words).
-  // The point count is the bodies' bounding-box lattice, an upper bound.
-  constexpr double kBytesPerNode = sizeof(double) + 4 * sizeof(Vec3);
-  const double bytes_per_point = points_.bytes_per_point() + 3 * sizeof(Vec3) + 5 * sizeof(Index);
-  double points = 0.0;
-  for (const auto& body : sc.bodies) points += lattice_point_bound(body, sc.grid, dimension_);
-  const double needed = nodes * kBytesPerNode + points * bytes_per_point;
-  require_memory(needed,
-                 fmt::format("{:.3g} grid nodes x {:g} B + up to {:.3g} points x {:g} B", nodes, kBytesPerNode, points,
-                             bytes_per_point),
-                 sc.file, "grid.cell_size");
+MpmSolver::GridLayout MpmSolver::layout_grid(const Scenario& sc, int ghost) {
+  // Grid block: the physical box plus ghost node layers so every stencil stays in the block.
+  GridLayout L;
+  const Dimension dimension = sc.simulation.dimension;
+  const int dim = axis_count(dimension);
+  const double h = sc.grid.cell_size;
+  GridGeometry& g = L.geom;
+  g.h = h;
+  g.dim = dim;
+  for (int a = 0; a < 3; ++a) {
+    if (a < dim) {
+      const int cells = static_cast<int>(std::ceil((sc.grid.upper[a] - sc.grid.lower[a]) / h - 1e-9));
+      L.box_lower[a] = sc.grid.lower[a];
+      L.box_upper[a] = sc.grid.lower[a] + cells * h;
+      g.origin[a] = sc.grid.lower[a] - ghost * h;
+      g.nodes[a] = cells + 1 + 2 * ghost;
+      L.box_first[a] = ghost;
+      L.box_last[a] = ghost + cells;
+    } else {
+      L.box_lower[a] = L.box_upper[a] = g.origin[a] = 0.0;
+      g.nodes[a] = 1;
+      L.box_first[a] = L.box_last[a] = 0;
+    }
+  }
+  return L;
 }
 
-MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials,
-                     Communicator comm)
-    : scenario_(sc), materials_(std::move(materials)), comm_(comm) {
+namespace {
+// Grid storage per node: mass and the four Vec3 arrays of GridData (for the memory estimate).
+constexpr double kBytesPerNode = sizeof(double) + 4 * sizeof(Vec3);
+
+double grid_bytes(const GridGeometry& g) { return static_cast<double>(g.node_count()) * kBytesPerNode; }
+}  // namespace
+
+MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials, Communicator comm)
+    : scenario_(sc),
+      comm_(comm),
+      layout_(layout_grid(sc, kGhostLayers)),
+      pts_(sc, std::move(materials), SeedLattice{sc.grid, 0}, grid_bytes(layout_.geom),
+           fmt::format("{:.3g} grid nodes x {:g} B", static_cast<double>(layout_.geom.node_count()), kBytesPerNode),
+           comm),
+      points_(pts_.store()) {
   dimension_ = sc.simulation.dimension;
   dim_ = axis_count(dimension_);
   shape_ = parse_shape_kind(sc.mpm.shape_function);
   musl_ = sc.mpm.update == "musl";
   flip_ = sc.mpm.flip;
   damping_ = sc.simulation.damping;
-
-  // Grid block: the physical box plus ghost node layers so every stencil stays in the block.
-  const double h = sc.grid.cell_size;
-  GridGeometry& g = grid_.geom;
-  g.h = h;
-  g.dim = dim_;
+  grid_.geom = layout_.geom;
   for (int a = 0; a < 3; ++a) {
-    if (a < dim_) {
-      const int cells = static_cast<int>(std::ceil((sc.grid.upper[a] - sc.grid.lower[a]) / h - 1e-9));
-      box_lower_[a] = sc.grid.lower[a];
-      box_upper_[a] = sc.grid.lower[a] + cells * h;
-      g.origin[a] = sc.grid.lower[a] - ghost_ * h;
-      g.nodes[a] = cells + 1 + 2 * ghost_;
-      box_first_[a] = ghost_;
-      box_last_[a] = ghost_ + cells;
-    } else {
-      box_lower_[a] = box_upper_[a] = g.origin[a] = 0.0;
-      g.nodes[a] = 1;
-      box_first_[a] = box_last_[a] = 0;
-    }
+    box_lower_[a] = layout_.box_lower[a];
+    box_upper_[a] = layout_.box_upper[a];
+    box_first_[a] = layout_.box_first[a];
+    box_last_[a] = layout_.box_last[a];
   }
   slab_axis_ = dim_ - 1;
-
-  // Points: common fields, every material's state fields, then the bodies.
-  declare_point_fields(points_);
-  for (const auto& m : materials_) m->declare_fields(points_);
-  check_memory(sc, static_cast<double>(g.node_count()));
-  grid_.resize(g.node_count());
-  std::int64_t next_id = 0;
-  std::vector<double> activation;
-  std::vector<int> activation_stage;
-  for (size_t b = 0; b < sc.bodies.size(); ++b) {
-    const BodySpec& body = sc.bodies[b];
-    int mi = -1;
-    for (size_t m = 0; m < materials_.size(); ++m)
-      if (materials_[m]->name() == body.material) mi = static_cast<int>(m);
-    if (mi < 0)
-      throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path + ".material",
-                      "unknown material '" + body.material + "'");
-    const Index n0 = points_.size();
-    if (body.segments.empty()) {
-      seed_body(body, static_cast<int>(b), mi, *materials_[mi], sc.grid, dimension_, points_, next_id);
-      activation.resize(points_.size(), body.activation_time);
-    } else {
-      // Rods and jets: each segment with its own shape, velocity and activation time.
-      for (size_t k = 0; k < body.segments.size(); ++k) {
-        BodySpec piece = body;
-        piece.shape = body.segments[k].shape;
-        piece.velocity = body.segments[k].velocity;
-        const Index s0 = points_.size();
-        seed_body(piece, static_cast<int>(b), mi, *materials_[mi], sc.grid, dimension_, points_, next_id);
-        auto* seg = points_.ints("segment");
-        for (Index p = s0; p < points_.size(); ++p) seg[p] = static_cast<int>(k);
-        activation.resize(points_.size(), body.segments[k].activation_time);
-      }
-    }
-    activation_stage.resize(points_.size(), body.activation_stage);
-    materials_[mi]->initialise_state(points_, n0, points_.size());
-    if (body.initial_state == "mms_axis_aligned") {
-      // Start on the manufactured solution at t = 0 (CATALOGUE B1): velocity, F and stress.
-      const mms::AxisAligned mms;
-      auto* x0 = points_.view<Vec3>("x0");
-      auto* v = points_.view<Vec3>("v");
-      auto* F = points_.view<Mat3>("F");
-      auto* R = points_.view<Mat3>("R");
-      auto* stress = points_.view<Mat3>("stress");
-      auto* vol = points_.real("volume");
-      const auto* vol0 = points_.real("volume0");
-      auto* x = points_.view<Vec3>("x");
-      for (Index p = n0; p < points_.size(); ++p) {
-        // The lattice is the reference configuration X; the body starts displaced by u(X, 0).
-        x[p] = x0[p] + mms.displacement(x0[p], 0.0);
-        v[p] = mms.velocity(x0[p], 0.0);
-        F[p] = mms.F(x0[p], 0.0);
-        R[p] = Mat3::identity();  // F is diagonal and positive: no rotation
-        stress[p] = materials_[mi]->initial_stress(F[p]);
-        vol[p] = vol0[p] * det(F[p]);
-      }
-    }
-  }
-  for (size_t k = 0; k < sc.loads.size(); ++k) {
-    const LoadSpec& load = sc.loads[k];
-    if (load.type != "pressure") continue;
-    const int bi = body_index(sc, load.body);
-    const Index marked = mark_pressure_surface(load, static_cast<int>(k), sc.bodies.at(bi), bi, h,
-                                               dimension_, points_);
-    if (marked == 0)
-      throw DeckError(load.mark.file, load.mark.line, load.mark.column, load.mark.key_path + ".surface",
-                      "no particle of body '" + load.body + "' lies on surface '" + load.surface + "'");
-    load_area_fields_.push_back("load_area_" + std::to_string(k));
-  }
-  // Bodies with a later activation time wait in pending_.
-  std::vector<Index> later;
-  std::vector<char> keep(points_.size(), 1);
-  stage_start_.assign(sc.stages.size() + 1, std::numeric_limits<double>::infinity());
-  stage_start_[0] = 0.0;
-  for (Index p = 0; p < points_.size(); ++p)
-    if (activation[p] > 0.0 || activation_stage[p] > 0) {
-      later.push_back(p);
-      keep[p] = 0;
-      pending_activation_.push_back(activation[p]);
-      pending_stage_.push_back(activation_stage[p]);
-    }
-  pending_ = points_.empty_like();
-  if (!later.empty()) {
-    pending_.append_from(points_, later);
-    points_.compact(keep);
-  }
+  grid_.resize(grid_.geom.node_count());
   sort_by_cell();
 }
 
 void MpmSolver::begin_stage(int stage, double damping) {
-  if (stage < 0 || stage >= static_cast<int>(stage_start_.size()))
-    throw Error("stage index " + std::to_string(stage) + " out of range");
-  stage_start_[stage] = time_;
+  pts_.begin_stage(stage, time_);
   damping_ = damping;
 }
 
@@ -198,12 +120,7 @@ double MpmSolver::reporting_scale() const {
 
 double MpmSolver::stable_dt() {
   // dt = CFL h / max_p (c_p + |v_p|)  (Courant condition with the dilatational wave speed).
-  ensure_material_groups();
-  double local_max = 0.0;
-  for (size_t m = 0; m < materials_.size(); ++m)
-    local_max = std::max(local_max, materials_[m]->max_signal_speed(
-                                        points_, material_points_[m].data(),
-                                        static_cast<Index>(material_points_[m].size())));
+  const double local_max = pts_.max_signal_speed();
   const double speed = comm_.max(local_max);
   double dt = speed > 0.0 ? scenario_.simulation.cfl * grid_.geom.h / speed
                           : scenario_.simulation.end_time;
@@ -214,65 +131,11 @@ double MpmSolver::stable_dt() {
 StepLimiter MpmSolver::step_limiter() const {
   // Serial and per point through the virtual wave_speed: only for diagnostics (the run loop
   // calls it when the stable step reaches a new low).
-  StepLimiter out;
-  const auto* id = points_.ints("id");
-  const auto* bid = points_.ints("body");
-  const auto* mat = points_.ints("material");
-  const auto* v = points_.view<Vec3>("v");
-  const auto* F = points_.view<Mat3>("F");
-  double best = -1.0;
-  for (Index p = 0; p < points_.size(); ++p) {
-    const double J = det(F[p]);
-    const double c = materials_[mat[p]]->wave_speed(points_, p, J);
-    const double s = norm(v[p]);
-    if (c + s > best) {
-      best = c + s;
-      out = {id[p], static_cast<int>(bid[p]), c, s, J};
-    }
-  }
-  return out;
-}
-
-void MpmSolver::ensure_material_groups() {
-  if (!groups_dirty_) return;
-  material_points_.resize(materials_.size());
-  for (auto& list : material_points_) list.clear();  // keeps capacity: no allocation per sort
-  const auto* mat = points_.ints("material");
-  for (Index p = 0; p < points_.size(); ++p) material_points_[mat[p]].push_back(p);
-  groups_dirty_ = false;
+  return pts_.step_limiter();
 }
 
 void MpmSolver::activate_pending() {
-  if (pending_.size() == 0) return;
-  std::vector<Index> now;
-  std::vector<char> keep(pending_.size(), 1);
-  std::vector<double> still;
-  std::vector<int> still_stage;
-  for (Index p = 0; p < pending_.size(); ++p) {
-    // Activation times count from the start of the body's activation stage (infinite until then).
-    if (stage_start_[pending_stage_[p]] + pending_activation_[p] <= time_) {
-      now.push_back(p);
-      keep[p] = 0;
-    } else {
-      still.push_back(pending_activation_[p]);
-      still_stage.push_back(pending_stage_[p]);
-    }
-  }
-  if (now.empty()) return;
-  // Their kinetic and internal energy enters the energy balance as work done from outside (a
-  // jet segment inserted at its velocity, thesis seed 000 §5.1), so the drift stays meaningful.
-  {
-    const auto* v = pending_.view<Vec3>("v");
-    const auto* m = pending_.real("mass");
-    const auto* e = pending_.real("internal_energy");
-    for (Index p : now) inserted_energy_ += 0.5 * m[p] * dot(v[p], v[p]) + e[p];
-  }
-  points_.append_from(pending_, now);
-  pending_.compact(keep);
-  groups_dirty_ = true;
-  pending_activation_.swap(still);
-  pending_stage_.swap(still_stage);
-  sort_by_cell();
+  if (pts_.activate(time_)) sort_by_cell();
 }
 
 void MpmSolver::sort_by_cell() {
@@ -298,7 +161,7 @@ void MpmSolver::sort_by_cell() {
   order.resize(n);
   for (Index p = 0; p < n; ++p) order[start[key[p]]++] = p;
   points_.permute(order);
-  groups_dirty_ = true;
+  pts_.mark_reordered();
 }
 
 int MpmSolver::stencil_reach_now() const {
@@ -352,60 +215,6 @@ void MpmSolver::build_slabs() {
   for (Index p = 0; p < n; ++p) slab_points_[slab_fill_[slab[p]]++] = p;
 }
 
-void MpmSolver::compute_external_forces() {
-  const Index n = points_.size();
-  if (scenario_.loads.empty()) {  // no loads: no external-force array, no external work
-    fext_.clear();
-    ftrac_.clear();
-    surface_forces_.clear();
-    return;
-  }
-  fext_.assign(n, Vec3{});
-  ftrac_.clear();
-  surface_forces_.clear();
-  const auto* mass = points_.real("mass");
-  const auto* bid = points_.ints("body");
-  for (size_t k = 0; k < scenario_.loads.size(); ++k) {
-    const LoadSpec& load = scenario_.loads[k];
-    const double scale = load.curve.at(time_);
-    const int body = body_index(scenario_, load.body);  // -1: every body
-    if (load.type == "body_force") {
-      const Vec3 acc = scale * load.acceleration;
-      for_each(0, n, [&](Index p) {
-        if (body < 0 || bid[p] == body) fext_[p] += mass[p] * acc;
-      });
-    } else if (load.type == "pressure") {
-      // Traction -p n da on the current surface, n da = J F^-T N dA0 (Nanson's formula). It acts
-      // at the particle's face on the surface, x_p + F (N o half), not at its centre: a force at
-      // the centre puts part of the load on the node inside the boundary cell, whose stress then
-      // equilibrates only (1 - w) of the traction (a quarter short with two particles per cell,
-      // the surface-layer error of thesis seed 000 §5.1's particle point loads).
-      const auto* F = points_.view<Mat3>("F");
-      const auto* x = points_.view<Vec3>("x");
-      const auto* half = points_.view<Vec3>("half_size");
-      const auto* area = points_.view<Vec3>("load_area_" + std::to_string(k));
-      const double pr = scale * load.pressure;
-      if (ftrac_.size() != static_cast<size_t>(n)) ftrac_.assign(n, Vec3{});
-      for (Index p = 0; p < n; ++p) {
-        if (area[p][0] == 0.0 && area[p][1] == 0.0 && area[p][2] == 0.0) continue;
-        const Vec3 f = (-pr) * (cofactor(F[p]) * area[p]);
-        const double a = norm(area[p]);
-        Vec3 offset;
-        for (int i = 0; i < 3; ++i) offset[i] = area[p][i] / a * half[p][i];
-        fext_[p] += f;
-        ftrac_[p] += f;
-        surface_forces_.push_back({x[p] + F[p] * offset, f});
-      }
-    } else if (load.type == "mms_axis_aligned") {
-      const mms::AxisAligned mms;
-      const auto* x0 = points_.view<Vec3>("x0");
-      for_each(0, n, [&](Index p) {
-        if (body < 0 || bid[p] == body) fext_[p] += mass[p] * mms.body_force(x0[p], time_);
-      });
-    }
-  }
-}
-
 template <int Dim, ShapeKind K>
 void MpmSolver::particles_to_grid(bool momentum_only) {
   const GridGeometry& g = grid_.geom;
@@ -425,13 +234,15 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
     gp[i] = Vec3{};
   });
   const bool axisym = dimension_ == Dimension::Axisymmetric;
-  const bool has_ext = !fext_.empty();
-  const bool has_trac = !momentum_only && !ftrac_.empty();
+  const std::vector<Vec3>& fext = loads_.total();
+  const std::vector<Vec3>& ftrac = loads_.traction();
+  const bool has_ext = !fext.empty();
+  const bool has_trac = !momentum_only && !ftrac.empty();
   const int nslab = static_cast<int>(slab_start_.size()) - 1;
   if (has_trac) {
     // Tractions at the surface points, with the kernel's weights there (serial: few points).
     Stencil<Dim> st;
-    for (const SurfaceForce& sf : surface_forces_) {
+    for (const PointLoads::SurfaceForce& sf : loads_.surface_forces()) {
       if constexpr (K == ShapeKind::BSpline3) bspline3_stencil<Dim>(g, sf.point, st);
       else linear_stencil<Dim>(g, sf.point, st);
       for (int k = 0; k < st.count; ++k) gf[st.node[k]] += st.w[k] * sf.force;
@@ -455,7 +266,7 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
         const Mat3 Vs = vol[p] * stress[p];
         const double hoop = axisym ? vol[p] * stress[p](2, 2) / x[p][0] : 0.0;
         // Surface tractions are spread from their own points below.
-        const Vec3 fe = has_ext ? (has_trac ? fext_[p] - ftrac_[p] : fext_[p]) : Vec3{};
+        const Vec3 fe = has_ext ? (has_trac ? fext[p] - ftrac[p] : fext[p]) : Vec3{};
         for (int k = 0; k < st.count; ++k) {
           const Index I = st.node[k];
           const double w = st.w[k];
@@ -567,7 +378,8 @@ void MpmSolver::grid_to_particles(double dt) {
   const Vec3* vn = grid_.velocity_new.data();
   const Vec3* ga = grid_.accel.data();
   const bool axisym = dimension_ == Dimension::Axisymmetric;
-  const bool has_ext = !fext_.empty();
+  const std::vector<Vec3>& fext = loads_.total();
+  const bool has_ext = !fext.empty();
   const bool defer = musl_;  // MUSL: L, F and positions after the second projection
   const double flip = flip_;
   const Index n = points_.size();
@@ -594,7 +406,7 @@ void MpmSolver::grid_to_particles(double dt) {
     const Vec3 v_old = v[p];
     // FLIP/PIC blend: flip (v + dt a) + (1 - flip) v_grid (Brackbill & Ruppel 1986 FLIP).
     v[p] = flip * (v_old + dt * acc) + (1.0 - flip) * vg;
-    if (has_ext) o[0] += dot(fext_[p], 0.5 * (v_old + v[p]));
+    if (has_ext) o[0] += dot(fext[p], 0.5 * (v_old + v[p]));
     // Positions move with the grid velocity (x += dt sum N_I v_I).
     if (defer) {
       displacement_[p] = dt * vg;
@@ -636,32 +448,6 @@ void MpmSolver::velocity_gradient_from_grid(double dt) {
   first_out_ = out.load();
 }
 
-void MpmSolver::update_stress(double dt) {
-  const Index n = points_.size();
-  ensure_material_groups();
-  std::atomic<Index> bad_stress{n};
-  for (size_t m = 0; m < materials_.size(); ++m) {
-    MaterialBatch b;
-    b.points = material_points_[m].data();
-    b.count = static_cast<Index>(material_points_[m].size());
-    if (b.count == 0) continue;
-    b.F_old = nullptr;  // recovered from F_new and L inside the adapter
-    b.F_new = F_;
-    b.L = L_;
-    b.R = points_.view<Mat3>("R");
-    b.stress = points_.view<Mat3>("stress");
-    b.store = &points_;
-    b.dt = dt;
-    // Energy: dE = dt <V> <sigma> : D (trapezoidal stress power); plastic dissipation from the model.
-    b.volume0 = vol0_;
-    b.internal_energy = points_.real("internal_energy");
-    b.plastic_energy = points_.real("plastic_work");
-    b.first_bad = &bad_stress;
-    materials_[m]->update(b);
-  }
-  if (bad_stress.load() < n) fail(bad_stress.load(), "non-finite stress after the material update");
-}
-
 void MpmSolver::handle_exits() {
   const Index n = points_.size();
   if (first_out_ >= n) return;
@@ -672,42 +458,16 @@ void MpmSolver::handle_exits() {
   for (Index p = 0; p < n; ++p)
     for (int a = 0; a < dim_; ++a)
       if (!(x[p][a] >= box_lower_[a] && x[p][a] <= box_upper_[a])) keep[p] = 0;
-  const auto* v = points_.view<Vec3>("v");
-  const auto* mass = points_.real("mass");
-  const auto* eint = points_.real("internal_energy");
-  for (Index p = 0; p < n; ++p) {
-    if (keep[p]) continue;
-    removed_mass_ += mass[p];
-    removed_momentum_ += mass[p] * v[p];
-    removed_energy_ += 0.5 * mass[p] * dot(v[p], v[p]) + eint[p];
-  }
-  points_.compact(keep);
-  groups_dirty_ = true;
+  pts_.remove(keep);
 }
 
-void MpmSolver::fail(Index p, const std::string& what) const {
-  std::ostringstream os;
-  os.precision(6);
-  const auto* id = points_.ints("id");
-  const auto* bid = points_.ints("body");
-  const Vec3& x = points_.view<Vec3>("x")[p];
-  const Mat3& F = points_.view<Mat3>("F")[p];
-  const Mat3& s = points_.view<Mat3>("stress")[p];
-  os << "particle " << id[p] << " of body '" << scenario_.bodies.at(bid[p]).name << "' " << what
-     << " at step " << steps_ << " (t = " << time_ << " s)\n"
-     << "  position [" << x[0] << ", " << x[1] << ", " << x[2] << "] m\n"
-     << "  F = [" << F(0, 0) << " " << F(0, 1) << " " << F(0, 2) << "; " << F(1, 0) << " " << F(1, 1)
-     << " " << F(1, 2) << "; " << F(2, 0) << " " << F(2, 1) << " " << F(2, 2) << "], J = " << det(F)
-     << "\n  stress = [" << s(0, 0) << " " << s(0, 1) << " " << s(0, 2) << "; " << s(1, 0) << " "
-     << s(1, 1) << " " << s(1, 2) << "; " << s(2, 0) << " " << s(2, 1) << " " << s(2, 2) << "] Pa";
-  throw ParticleError(id[p], os.str());
-}
+void MpmSolver::fail(Index p, const std::string& what) const { pts_.fail(p, what, steps_, time_); }
 
 template <int Dim, ShapeKind K>
 void MpmSolver::step_impl(double dt) {
   bind_fields();
   build_slabs();
-  compute_external_forces();
+  loads_.compute(scenario_, points_, time_);
   particles_to_grid<Dim, K>(false);
   update_grid(dt);
   grid_to_particles<Dim, K>(dt);
@@ -728,7 +488,7 @@ void MpmSolver::step_impl(double dt) {
   ++steps_;
   if (first_bad_ < points_.size())
     fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0 or NaN)");
-  update_stress(dt);
+  pts_.update_stress(dt, steps_, time_);
 }
 
 void MpmSolver::bind_fields() {
@@ -752,37 +512,6 @@ void MpmSolver::step(double dt) {
   handle_exits();
 }
 
-EnergyTotals MpmSolver::energies() const {
-  const auto* v = points_.view<Vec3>("v");
-  const auto* mass = points_.real("mass");
-  const auto* eint = points_.real("internal_energy");
-  const auto* wp = points_.real("plastic_work");
-  double s[7];
-  deterministic_sum<7>(0, points_.size(), [&](Index p, double* o) {
-    const double m = mass[p];
-    o[0] += 0.5 * m * dot(v[p], v[p]);
-    o[1] += eint[p];
-    o[2] += wp[p];
-    o[3] += m;
-    o[4] += m * v[p][0];
-    o[5] += m * v[p][1];
-    o[6] += m * v[p][2];
-  }, s);
-  comm_.sum(s, 7);
-  const double k = reporting_scale();
-  EnergyTotals e;
-  e.kinetic = k * s[0];
-  e.internal = k * s[1];
-  e.plastic = k * s[2];
-  e.mass = k * s[3];
-  // Axisymmetric: only the axial momentum of a body of revolution is non-zero in total.
-  e.momentum = Vec3{{dimension_ == Dimension::Axisymmetric ? 0.0 : s[4], k * s[5], k * s[6]}};
-  e.external = k * external_work_;
-  e.removed_mass = k * removed_mass_;
-  e.removed_energy = k * removed_energy_;
-  e.removed_momentum = k * removed_momentum_;
-  e.inserted_energy = k * comm_.sum(inserted_energy_);
-  return e;
-}
+EnergyTotals MpmSolver::energies() const { return pts_.energies(reporting_scale(), external_work_); }
 
 }  // namespace ballista

@@ -117,8 +117,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   }
   HistoryWriter history((fs::path(opt.out_dir) / "history.csv").string(), columns);
   // Particle ids run 0 .. seeded - 1 over every body, active or waiting for activation.
-  std::int64_t seeded = static_cast<std::int64_t>(pts.size());
-  if (const auto* mpm = dynamic_cast<const MpmSolver*>(solver.get())) seeded += mpm->pending_points();
+  const std::int64_t seeded = static_cast<std::int64_t>(pts.size() + solver->pending_points());
   ParticleTracker tracker(sc, opt.out_dir, seeded);
   const Communicator comm;
 

@@ -1,0 +1,37 @@
+#pragma once
+// External loads on points, shared by every solver: body forces (gravity), surface pressure with
+// load curves (Nanson-mapped onto the current surface), and the manufactured body force of
+// CATALOGUE B1. Recomputed at the start of each step.
+#include <vector>
+
+#include "core/field_store.hpp"
+#include "core/tensor.hpp"
+#include "io/scenario.hpp"
+
+namespace ballista {
+
+class PointLoads {
+ public:
+  /// A surface traction and the point where it acts (the point's face on the loaded surface).
+  struct SurfaceForce {
+    Vec3 point;  ///< m
+    Vec3 force;  ///< N
+  };
+
+  /// Forces of every load of `sc` on the points at `time`. Without loads nothing is allocated.
+  void compute(const Scenario& sc, const FieldStore& points, double time);
+
+  /// External force on each point this step, N (all loads; empty if the deck has no loads).
+  const std::vector<Vec3>& total() const { return fext_; }
+  /// The surface-traction part of total() (empty if no pressure load acts).
+  const std::vector<Vec3>& traction() const { return ftrac_; }
+  /// Each surface traction with its point of action.
+  const std::vector<SurfaceForce>& surface_forces() const { return surface_forces_; }
+
+ private:
+  std::vector<Vec3> fext_;
+  std::vector<Vec3> ftrac_;
+  std::vector<SurfaceForce> surface_forces_;
+};
+
+}  // namespace ballista

@@ -1,0 +1,296 @@
+#include "points/point_set.hpp"
+
+#include <fmt/format.h>
+
+#include <atomic>
+#include <limits>
+#include <sstream>
+
+#include "analysis/mms_axis_aligned.hpp"
+#include "core/error.hpp"
+#include "core/parallel.hpp"
+#include "core/system_memory.hpp"
+#include "geometry/seeding.hpp"
+
+namespace ballista {
+
+PointSet::PointSet(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials, const SeedLattice& lattice,
+                   double solver_bytes, const std::string& memory_what, Communicator comm)
+    : scenario_(sc), materials_(std::move(materials)), comm_(comm) {
+  const Dimension dim = sc.simulation.dimension;
+  GridSpec grid = lattice.box;
+  // Points: common fields, then every material's state fields.
+  declare_point_fields(points_);
+  for (const auto& m : materials_) m->declare_fields(points_);
+
+  // Refuse a run that cannot fit before allocating it (issue 11). Per point: every declared field
+  // plus a solver's per-point scratch (~3 Vec3 and 5 indices). The point count is the bodies'
+  // bounding-box lattice, an upper bound.
+  {
+    const double bytes_per_point = points_.bytes_per_point() + 3 * sizeof(Vec3) + 5 * sizeof(Index);
+    double npoints = 0.0;
+    for (BodySpec body : sc.bodies) {
+      if (lattice.override_ppc > 0) body.particles_per_cell = lattice.override_ppc;
+      npoints += lattice_point_bound(body, grid, dim);
+    }
+    require_memory(solver_bytes + npoints * bytes_per_point,
+                   fmt::format("{}up to {:.3g} points x {:g} B", memory_what.empty() ? "" : memory_what + " + ",
+                               npoints, bytes_per_point),
+                   sc.file, "grid.cell_size");
+  }
+
+  std::int64_t next_id = 0;
+  std::vector<double> activation;
+  std::vector<int> activation_stage;
+  for (size_t b = 0; b < sc.bodies.size(); ++b) {
+    BodySpec body = sc.bodies[b];
+    if (lattice.override_ppc > 0) body.particles_per_cell = lattice.override_ppc;
+    int mi = -1;
+    for (size_t m = 0; m < materials_.size(); ++m)
+      if (materials_[m]->name() == body.material) mi = static_cast<int>(m);
+    if (mi < 0)
+      throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path + ".material",
+                      "unknown material '" + body.material + "'");
+    const Index n0 = points_.size();
+    if (body.segments.empty()) {
+      seed_body(body, static_cast<int>(b), mi, *materials_[mi], grid, dim, points_, next_id);
+      activation.resize(points_.size(), body.activation_time);
+    } else {
+      // Rods and jets: each segment with its own shape, velocity and activation time.
+      for (size_t k = 0; k < body.segments.size(); ++k) {
+        BodySpec piece = body;
+        piece.shape = body.segments[k].shape;
+        piece.velocity = body.segments[k].velocity;
+        const Index s0 = points_.size();
+        seed_body(piece, static_cast<int>(b), mi, *materials_[mi], grid, dim, points_, next_id);
+        auto* seg = points_.ints("segment");
+        for (Index p = s0; p < points_.size(); ++p) seg[p] = static_cast<int>(k);
+        activation.resize(points_.size(), body.segments[k].activation_time);
+      }
+    }
+    activation_stage.resize(points_.size(), body.activation_stage);
+    materials_[mi]->initialise_state(points_, n0, points_.size());
+    if (body.initial_state == "mms_axis_aligned") {
+      // Start on the manufactured solution at t = 0 (CATALOGUE B1): velocity, F and stress.
+      const mms::AxisAligned mms;
+      auto* x0 = points_.view<Vec3>("x0");
+      auto* v = points_.view<Vec3>("v");
+      auto* F = points_.view<Mat3>("F");
+      auto* R = points_.view<Mat3>("R");
+      auto* stress = points_.view<Mat3>("stress");
+      auto* vol = points_.real("volume");
+      const auto* vol0 = points_.real("volume0");
+      auto* x = points_.view<Vec3>("x");
+      for (Index p = n0; p < points_.size(); ++p) {
+        // The lattice is the reference configuration X; the body starts displaced by u(X, 0).
+        x[p] = x0[p] + mms.displacement(x0[p], 0.0);
+        v[p] = mms.velocity(x0[p], 0.0);
+        F[p] = mms.F(x0[p], 0.0);
+        R[p] = Mat3::identity();  // F is diagonal and positive: no rotation
+        stress[p] = materials_[mi]->initial_stress(F[p]);
+        vol[p] = vol0[p] * det(F[p]);
+      }
+    }
+  }
+  for (size_t k = 0; k < sc.loads.size(); ++k) {
+    const LoadSpec& load = sc.loads[k];
+    if (load.type != "pressure") continue;
+    const int bi = body_index(sc, load.body);
+    BodySpec body = sc.bodies.at(bi);
+    if (lattice.override_ppc > 0) body.particles_per_cell = lattice.override_ppc;
+    const Index marked =
+        mark_pressure_surface(load, static_cast<int>(k), body, bi, grid.cell_size, dim, points_);
+    if (marked == 0)
+      throw DeckError(load.mark.file, load.mark.line, load.mark.column, load.mark.key_path + ".surface",
+                      "no particle of body '" + load.body + "' lies on surface '" + load.surface + "'");
+    load_area_fields_.push_back("load_area_" + std::to_string(k));
+  }
+  // Bodies with a later activation time wait in pending_.
+  std::vector<Index> later;
+  std::vector<char> keep(points_.size(), 1);
+  stage_start_.assign(sc.stages.size() + 1, std::numeric_limits<double>::infinity());
+  stage_start_[0] = 0.0;
+  for (Index p = 0; p < points_.size(); ++p)
+    if (activation[p] > 0.0 || activation_stage[p] > 0) {
+      later.push_back(p);
+      keep[p] = 0;
+      pending_activation_.push_back(activation[p]);
+      pending_stage_.push_back(activation_stage[p]);
+    }
+  pending_ = points_.empty_like();
+  if (!later.empty()) {
+    pending_.append_from(points_, later);
+    points_.compact(keep);
+  }
+}
+
+void PointSet::begin_stage(int stage, double time) {
+  if (stage < 0 || stage >= static_cast<int>(stage_start_.size()))
+    throw Error("stage index " + std::to_string(stage) + " out of range");
+  stage_start_[stage] = time;
+}
+
+bool PointSet::activate(double time) {
+  if (pending_.size() == 0) return false;
+  std::vector<Index> now;
+  std::vector<char> keep(pending_.size(), 1);
+  std::vector<double> still;
+  std::vector<int> still_stage;
+  for (Index p = 0; p < pending_.size(); ++p) {
+    // Activation times count from the start of the body's activation stage (infinite until then).
+    if (stage_start_[pending_stage_[p]] + pending_activation_[p] <= time) {
+      now.push_back(p);
+      keep[p] = 0;
+    } else {
+      still.push_back(pending_activation_[p]);
+      still_stage.push_back(pending_stage_[p]);
+    }
+  }
+  if (now.empty()) return false;
+  // Their kinetic and internal energy enters the energy balance as work done from outside (a
+  // jet segment inserted at its velocity, thesis seed 000 §5.1), so the drift stays meaningful.
+  {
+    const auto* v = pending_.view<Vec3>("v");
+    const auto* m = pending_.real("mass");
+    const auto* e = pending_.real("internal_energy");
+    for (Index p : now) inserted_energy_ += 0.5 * m[p] * dot(v[p], v[p]) + e[p];
+  }
+  points_.append_from(pending_, now);
+  pending_.compact(keep);
+  groups_dirty_ = true;
+  pending_activation_.swap(still);
+  pending_stage_.swap(still_stage);
+  return true;
+}
+
+const std::vector<std::vector<Index>>& PointSet::material_groups() {
+  if (!groups_dirty_) return material_points_;
+  material_points_.resize(materials_.size());
+  for (auto& list : material_points_) list.clear();  // keeps capacity: no allocation per sort
+  const auto* mat = points_.ints("material");
+  for (Index p = 0; p < points_.size(); ++p) material_points_[mat[p]].push_back(p);
+  groups_dirty_ = false;
+  return material_points_;
+}
+
+double PointSet::max_signal_speed() {
+  const auto& groups = material_groups();
+  double local_max = 0.0;
+  for (size_t m = 0; m < materials_.size(); ++m)
+    local_max = std::max(local_max, materials_[m]->max_signal_speed(points_, groups[m].data(),
+                                                                    static_cast<Index>(groups[m].size())));
+  return local_max;
+}
+
+StepLimiter PointSet::step_limiter() const {
+  StepLimiter out;
+  const auto* id = points_.ints("id");
+  const auto* bid = points_.ints("body");
+  const auto* mat = points_.ints("material");
+  const auto* v = points_.view<Vec3>("v");
+  const auto* F = points_.view<Mat3>("F");
+  double best = -1.0;
+  for (Index p = 0; p < points_.size(); ++p) {
+    const double J = det(F[p]);
+    const double c = materials_[mat[p]]->wave_speed(points_, p, J);
+    const double s = norm(v[p]);
+    if (c + s > best) {
+      best = c + s;
+      out = {id[p], static_cast<int>(bid[p]), c, s, J};
+    }
+  }
+  return out;
+}
+
+void PointSet::update_stress(double dt, long step, double time) {
+  const Index n = points_.size();
+  const auto& groups = material_groups();
+  std::atomic<Index> bad_stress{n};
+  for (size_t m = 0; m < materials_.size(); ++m) {
+    MaterialBatch b;
+    b.points = groups[m].data();
+    b.count = static_cast<Index>(groups[m].size());
+    if (b.count == 0) continue;
+    b.F_old = nullptr;  // recovered from F_new and L inside the adapter
+    b.F_new = points_.view<Mat3>("F");
+    b.L = points_.view<Mat3>("L");
+    b.R = points_.view<Mat3>("R");
+    b.stress = points_.view<Mat3>("stress");
+    b.store = &points_;
+    b.dt = dt;
+    // Energy: dE = dt <V> <sigma> : D (trapezoidal stress power); plastic dissipation from the model.
+    b.volume0 = points_.real("volume0");
+    b.internal_energy = points_.real("internal_energy");
+    b.plastic_energy = points_.real("plastic_work");
+    b.first_bad = &bad_stress;
+    materials_[m]->update(b);
+  }
+  if (bad_stress.load() < n) fail(bad_stress.load(), "non-finite stress after the material update", step, time);
+}
+
+void PointSet::remove(const std::vector<char>& keep) {
+  const Index n = points_.size();
+  const auto* v = points_.view<Vec3>("v");
+  const auto* mass = points_.real("mass");
+  const auto* eint = points_.real("internal_energy");
+  for (Index p = 0; p < n; ++p) {
+    if (keep[p]) continue;
+    removed_mass_ += mass[p];
+    removed_momentum_ += mass[p] * v[p];
+    removed_energy_ += 0.5 * mass[p] * dot(v[p], v[p]) + eint[p];
+  }
+  points_.compact(keep);
+  groups_dirty_ = true;
+}
+
+void PointSet::fail(Index p, const std::string& what, long step, double time) const {
+  std::ostringstream os;
+  os.precision(6);
+  const auto* id = points_.ints("id");
+  const auto* bid = points_.ints("body");
+  const Vec3& x = points_.view<Vec3>("x")[p];
+  const Mat3& F = points_.view<Mat3>("F")[p];
+  const Mat3& s = points_.view<Mat3>("stress")[p];
+  os << "particle " << id[p] << " of body '" << scenario_.bodies.at(bid[p]).name << "' " << what << " at step "
+     << step << " (t = " << time << " s)\n"
+     << "  position [" << x[0] << ", " << x[1] << ", " << x[2] << "] m\n"
+     << "  F = [" << F(0, 0) << " " << F(0, 1) << " " << F(0, 2) << "; " << F(1, 0) << " " << F(1, 1) << " "
+     << F(1, 2) << "; " << F(2, 0) << " " << F(2, 1) << " " << F(2, 2) << "], J = " << det(F) << "\n  stress = ["
+     << s(0, 0) << " " << s(0, 1) << " " << s(0, 2) << "; " << s(1, 0) << " " << s(1, 1) << " " << s(1, 2) << "; "
+     << s(2, 0) << " " << s(2, 1) << " " << s(2, 2) << "] Pa";
+  throw ParticleError(id[p], os.str());
+}
+
+EnergyTotals PointSet::energies(double k, double external_work) const {
+  const auto* v = points_.view<Vec3>("v");
+  const auto* mass = points_.real("mass");
+  const auto* eint = points_.real("internal_energy");
+  const auto* wp = points_.real("plastic_work");
+  double s[7];
+  deterministic_sum<7>(0, points_.size(), [&](Index p, double* o) {
+    const double m = mass[p];
+    o[0] += 0.5 * m * dot(v[p], v[p]);
+    o[1] += eint[p];
+    o[2] += wp[p];
+    o[3] += m;
+    o[4] += m * v[p][0];
+    o[5] += m * v[p][1];
+    o[6] += m * v[p][2];
+  }, s);
+  comm_.sum(s, 7);
+  EnergyTotals e;
+  e.kinetic = k * s[0];
+  e.internal = k * s[1];
+  e.plastic = k * s[2];
+  e.mass = k * s[3];
+  // Axisymmetric: only the axial momentum of a body of revolution is non-zero in total.
+  e.momentum = Vec3{{scenario_.simulation.dimension == Dimension::Axisymmetric ? 0.0 : s[4], k * s[5], k * s[6]}};
+  e.external = k * external_work;
+  e.removed_mass = k * removed_mass_;
+  e.removed_energy = k * removed_energy_;
+  e.removed_momentum = k * removed_momentum_;
+  e.inserted_energy = k * comm_.sum(inserted_energy_);
+  return e;
+}
+
+}  // namespace ballista

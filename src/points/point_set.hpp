@@ -1,0 +1,94 @@
+#pragma once
+// What every discretisation shares about its points (MPM particles, peridynamic points, OTM
+// material points), so that a solver owns only its own discretisation: seeding the scenario's
+// bodies and segments on a lattice, activation by time and stage, material groups and the stress
+// update through the material library, removal with its mass, momentum and energy booked,
+// failure diagnostics naming the point, and the energy totals.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/communicator.hpp"
+#include "core/field_store.hpp"
+#include "core/solver.hpp"
+#include "io/scenario.hpp"
+#include "materials/material.hpp"
+
+namespace ballista {
+
+/// The lattice the bodies are seeded on: sub-cell centres lattice.lower + (i + 1/2) dx with
+/// dx = lattice.cell_size / particles_per_cell (each body's own, unless override_ppc > 0), inside
+/// the box lattice.lower .. lattice.upper (whose face conditions excuse symmetry-plane cuts).
+struct SeedLattice {
+  GridSpec box;
+  int override_ppc = 0;  ///< > 0: every body seeded with this many points per cell and direction
+};
+
+class PointSet {
+ public:
+  /// Declares the common and material fields, checks that the points (plus `solver_bytes` of the
+  /// solver's own storage) fit in memory, seeds every body, applies initial states, marks the
+  /// pressure surfaces and moves bodies with a later activation into the pending store.
+  PointSet(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials, const SeedLattice& lattice,
+           double solver_bytes, const std::string& memory_what, Communicator comm = {});
+
+  FieldStore& store() { return points_; }
+  const FieldStore& store() const { return points_; }
+  const Scenario& scenario() const { return scenario_; }
+  const std::vector<std::unique_ptr<Material>>& materials() const { return materials_; }
+  /// Names of the per-load surface fields ("load_area_<k>") of the pressure loads.
+  const std::vector<std::string>& load_area_fields() const { return load_area_fields_; }
+
+  // ---- activation --------------------------------------------------------------------------
+  /// Number of points seeded but not yet active.
+  Index pending() const { return pending_.size(); }
+  /// Starts the clock of stage `stage` at `time` (bodies activated by it count from now).
+  void begin_stage(int stage, double time);
+  /// Moves pending points whose activation time has come into the store (appended at the end),
+  /// booking their kinetic and internal energy as inserted. True if any point was added.
+  bool activate(double time);
+
+  // ---- material groups and the stress update -----------------------------------------------
+  /// The points have been reordered or removed: material groups are rebuilt before next use.
+  void mark_reordered() { groups_dirty_ = true; }
+  /// Indices of the points of each material, in point order.
+  const std::vector<std::vector<Index>>& material_groups();
+  /// Largest c + |v| over this rank's points (c the dilatational wave speed of each material).
+  double max_signal_speed();
+  /// The point with the largest c + |v| (serial, through the virtual wave speed: diagnostics).
+  StepLimiter step_limiter() const;
+  /// Stress update of every point through its material, from F (already at t_{n+1}) and L over dt;
+  /// stress power and plastic work accumulate in internal_energy and plastic_work. A non-finite
+  /// stress stops the run with fail().
+  void update_stress(double dt, long step, double time);
+
+  // ---- removal and diagnostics -------------------------------------------------------------
+  /// Keeps the points with keep[p] != 0; the others' mass, momentum and kinetic + internal energy
+  /// are booked as removed.
+  void remove(const std::vector<char>& keep);
+  /// Throws a ParticleError naming point p (id, body, position, F, J, stress), the step and time.
+  [[noreturn]] void fail(Index p, const std::string& what, long step, double time) const;
+
+  // ---- energies ----------------------------------------------------------------------------
+  /// Totals over every rank: per-point sums times `scale` (2 pi in axisymmetric runs), with the
+  /// solver's external work (per-point sum) and the removal and insertion bookkeeping.
+  EnergyTotals energies(double scale, double external_work) const;
+
+ private:
+  Scenario scenario_;
+  std::vector<std::unique_ptr<Material>> materials_;
+  Communicator comm_;
+  FieldStore points_;
+  FieldStore pending_;                      ///< seeded points of bodies not yet active
+  std::vector<double> pending_activation_;  ///< activation time of each pending point (from its stage start)
+  std::vector<int> pending_stage_;          ///< stage whose start begins each pending point's clock
+  std::vector<double> stage_start_;         ///< s: start time of each stage (infinite until it begins)
+  std::vector<std::vector<Index>> material_points_;  ///< indices per material
+  bool groups_dirty_ = true;
+  std::vector<std::string> load_area_fields_;
+  double removed_mass_ = 0.0, removed_energy_ = 0.0;
+  Vec3 removed_momentum_;
+  double inserted_energy_ = 0.0;  ///< per-point sum of the energy of activated points (this rank)
+};
+
+}  // namespace ballista
