@@ -15,6 +15,7 @@
 #include "io/material_presets.hpp"
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
+#include "points/solver_registry.hpp"
 #include "penetration/models_command.hpp"
 #include "run/penetration_plots.hpp"
 #include "run/simulation.hpp"
@@ -42,15 +43,17 @@ std::string format_range(const ballista::ParamSpec& p) {
 }
 
 void print_info() {
-  std::cout << "Ballista " << BALLISTA_VERSION << "\n\nSolvers\n";
-  std::cout << "  mpm  explicit material point method (Sulsky et al. 1994; USL / modified USL,\n"
-               "       FLIP/PIC blend); dimensions 3d, plane_strain, axisymmetric\n"
-               "      shape_function         [-] linear | gimp | cpdi | bspline3; default linear\n"
-               "      update                 [-] usl | musl; default musl (robust against cell-crossing at free surfaces)\n"
-               "      flip                   [1] FLIP fraction of the velocity update (1 FLIP, 0 PIC); default 1; range 0 <= x <= 1\n"
-               "      sort_every             [steps] steps between particle sorts by cell (0 = never); default 20\n"
-               "      simulation.cfl         [1] Courant number of dt = cfl h / max(c + |v|); default 0.3; range 0 < x <= 1\n"
-               "      simulation.damping     [1/s] grid damping a - c v (dynamic relaxation); default 0\n";
+  std::cout << "Ballista " << BALLISTA_VERSION << "\n\nSolvers (simulation.solver; parameters in the section named)\n";
+  for (const auto& f : ballista::solver_registry()) {
+    std::string dims;
+    for (const auto& d : f.dimensions) dims += (dims.empty() ? "" : ", ") + d;
+    std::cout << "  " << f.name << "  " << f.description << "; dimensions " << dims << "\n";
+    for (const auto& p : f.params)
+      std::cout << fmt::format("      {:<30} [{}] {}; {}{}\n", f.section + "." + p.name, p.unit, p.description,
+                               format_default(p), format_range(p).empty() ? "" : "; range " + format_range(p));
+  }
+  std::cout << "  (every solver) simulation.cfl [1] Courant number of the stable step; default 0.3; range 0 < x <= 1\n"
+               "  (every solver) simulation.damping [1/s] damping a - c v (dynamic relaxation); default 0\n";
   std::cout << "\nShape functions (mpm.shape_function)\n";
   for (const auto& n : ballista::shape_kind_names())
     std::cout << "  " << n << "  " << ballista::shape_kind_description(ballista::parse_shape_kind(n)) << "\n";

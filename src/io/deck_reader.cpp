@@ -17,6 +17,7 @@
 #include "io/deck_overrides.hpp"
 #include "io/material_reader.hpp"
 #include "io/penetrator_reader.hpp"
+#include "points/solver_registry.hpp"
 
 namespace ballista {
 
@@ -45,8 +46,8 @@ int axis_from(const std::string& name) { return name == "x" ? 0 : name == "y" ? 
 
 namespace {
 
-const std::vector<std::string> kSections{"simulation", "mpm",    "grid",        "materials", "stages",
-                                         "bodies",     "loads",  "probes",      "penetration", "output"};
+const std::vector<std::string> kSections{"simulation", "grid",   "materials", "stages", "bodies",
+                                         "loads",      "probes", "penetration", "output"};
 const std::vector<std::string> kFaces{"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
 const std::vector<std::string> kFaceBCs{"free", "fixed", "symmetry", "wall"};
 const std::vector<std::string> kEnergies{"kinetic", "internal", "plastic", "external", "total"};
@@ -87,9 +88,10 @@ class Reader {
     // Unknown sections first: a misspelt section name is better reported as such than as a
     // missing required section.
     for (const auto& s : kSections) root_.allow(s);
+    for (const auto& f : solver_registry()) root_.allow(f.section);
     root_.finish();
     simulation();
-    mpm();
+    solver_section();
     grid();
     materials();
     stages();
@@ -117,8 +119,13 @@ class Reader {
   void simulation() {
     DeckNode s = root_.map("simulation", true);
     SimulationSpec& sim = sc_.simulation;
-    sim.solver = s.choice("solver", "mpm", {"mpm"});
+    std::vector<std::string> solvers;
+    for (const auto& f : solver_registry()) solvers.push_back(f.name);
+    sim.solver = s.choice("solver", solvers.empty() ? std::string() : solvers.front(), solvers);
     const std::string dim = s.choice("dimension", "3d", {"3d", "plane_strain", "axisymmetric"});
+    const SolverFactory& solver = *find_solver(sim.solver);
+    if (std::find(solver.dimensions.begin(), solver.dimensions.end(), dim) == solver.dimensions.end())
+      s.fail("dimension", "solver '" + sim.solver + "' runs in " + join_names(solver.dimensions) + ", not '" + dim + "'");
     sim.dimension = dim == "plane_strain" ? Dimension::PlaneStrain
                     : dim == "axisymmetric" ? Dimension::Axisymmetric
                                             : Dimension::ThreeD;
@@ -134,14 +141,18 @@ class Reader {
     s.finish();
   }
 
-  void mpm() {
-    DeckNode m = root_.map("mpm", false);
-    MpmSpec& mp = sc_.mpm;
-    mp.shape_function = m.choice("shape_function", "linear", {"linear", "gimp", "cpdi", "bspline3"});
-    mp.update = m.choice("update", "musl", {"usl", "musl"});
-    mp.flip = m.number("flip", 1.0, NumberRange::between(0.0, 1.0));
-    mp.sort_every = static_cast<int>(m.integer("sort_every", 20, 0, INT_MAX));
-    m.finish();
+  /// The chosen solver's own section, against the parameters it registered; another solver's
+  /// section is an error (it would be ignored).
+  void solver_section() {
+    const SolverFactory& solver = *find_solver(sc_.simulation.solver);
+    for (const auto& f : solver_registry())
+      if (f.section != solver.section && root_.has(f.section))
+        root_.fail(f.section, "section '" + f.section + "' belongs to solver '" + f.name +
+                                  "', but simulation.solver is '" + solver.name + "'");
+    DeckNode n = root_.map(solver.section, false);
+    std::map<std::string, DeckMark> marks;
+    for (const ParamSpec& p : solver.params) read_param(n, p.name, p, sc_.solver_params, marks);
+    n.finish();
   }
 
   /// Fails unless upper > lower in every direction used.

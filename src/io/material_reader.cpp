@@ -1,5 +1,6 @@
 #include "io/material_reader.hpp"
 
+#include <climits>
 #include <cmath>
 #include <map>
 
@@ -36,6 +37,34 @@ void apply_preset(DeckNode& ms, const std::string& name) {
 
 }  // namespace
 
+void read_param(DeckNode& n, const std::string& key, const ParamSpec& p, ParamValues& out,
+                std::map<std::string, DeckMark>& marks) {
+  if (n.has(key)) marks[p.name] = n.mark_of(key);
+  if (!p.choices.empty()) {
+    out.choices[p.name] = n.choice(key, p.default_choice, p.choices);
+    return;
+  }
+  if (p.integer) {
+    const long lo = std::isinf(p.min) ? LONG_MIN : static_cast<long>(p.min);
+    const long hi = std::isinf(p.max) ? LONG_MAX : static_cast<long>(p.max);
+    out[p.name] = static_cast<double>(p.required ? n.integer(key, lo, hi)
+                                                 : n.integer(key, static_cast<long>(p.default_value), lo, hi));
+    return;
+  }
+  const NumberRange range{p.min, p.max, p.min_exclusive, p.max_exclusive, p.unit};
+  double v = 0.0;
+  if (p.required) {
+    v = n.number(key, range);
+  } else if (std::isnan(p.default_value)) {
+    const auto given = n.optional_number(key, range);
+    v = given ? *given : p.default_value;
+    if (!given) n.set_resolved(key, YAML::Node(YAML::NodeType::Null));
+  } else {
+    v = n.number(key, p.default_value, range);
+  }
+  out[p.name] = v;
+}
+
 MaterialSpec read_material_spec(DeckNode& ms, const std::string& name) {
   apply_preset(ms, name);
   DeckNode m = ms.entry(name);
@@ -70,24 +99,7 @@ MaterialSpec read_material_spec(DeckNode& ms, const std::string& name) {
   for (const ParamSpec& p : factory->params) {
     std::string key;
     DeckNode& n = node_of(p.name, key);
-    if (!p.choices.empty()) {
-      spec.params.choices[p.name] = n.choice(key, p.default_choice, p.choices);
-      if (n.has(key)) spec.param_marks[p.name] = n.mark_of(key);
-      continue;
-    }
-    const NumberRange range{p.min, p.max, p.min_exclusive, p.max_exclusive, p.unit};
-    double v = 0.0;
-    if (p.required) {
-      v = n.number(key, range);
-    } else if (std::isnan(p.default_value)) {
-      const auto given = n.optional_number(key, range);
-      v = given ? *given : p.default_value;
-      if (!given) n.set_resolved(key, YAML::Node(YAML::NodeType::Null));
-    } else {
-      v = n.number(key, p.default_value, range);
-    }
-    spec.params[p.name] = v;
-    if (n.has(key)) spec.param_marks[p.name] = n.mark_of(key);
+    read_param(n, key, p, spec.params, spec.param_marks);
   }
   for (auto& [group, n] : groups) n.finish();
   m.finish();

@@ -1,12 +1,19 @@
 #pragma once
 // One entry of a deck's `materials:` map (docs/deck.md, "materials"), shared by the run decks
 // (io/deck_reader) and the drive decks of the single-element driver (driver/drive_deck).
+#include <map>
 #include <string>
 
 #include "io/deck_node.hpp"
 #include "io/scenario.hpp"
 
 namespace ballista {
+
+/// Reads parameter `p` from `key` of the map `n` into `out` (a choice, an integer or a number;
+/// required, optional or defaulted as the spec says, the default recorded in the resolved deck),
+/// and its mark into `marks` if the key is given. Shared by materials and solver sections.
+void read_param(DeckNode& n, const std::string& key, const ParamSpec& p, ParamValues& out,
+                std::map<std::string, DeckMark>& marks);
 
 /// Reads the material `name` of the `materials:` map `materials`: its registered model, every
 /// parameter of the model (defaults filled; "group.key" parameters from the sub-map `group:`),

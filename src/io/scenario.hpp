@@ -37,7 +37,7 @@ struct LoadCurve {
 };
 
 struct SimulationSpec {
-  std::string solver = "mpm";
+  std::string solver = "mpm";       ///< a registered solver (points/solver_registry.hpp)
   Dimension dimension = Dimension::ThreeD;
   double end_time = 0.0;            ///< s
   double cfl = 0.3;                 ///< Courant number (0, 1]
@@ -50,13 +50,6 @@ struct SimulationSpec {
   double energy_drift_limit = 0.0;  ///< stop if |E_total - E0| / max(E0, E_scale) exceeds this; 0 = off
   std::string on_particle_exit = "stop";  ///< "stop" or "delete"
   int threads = 0;                  ///< 0 = OpenMP default
-};
-
-struct MpmSpec {
-  std::string shape_function = "linear";  ///< linear | gimp | cpdi | bspline3
-  std::string update = "musl";            ///< usl | musl (MUSL is the robust default)
-  double flip = 1.0;                      ///< FLIP fraction in [0,1]; 1 = pure FLIP, 0 = PIC
-  int sort_every = 20;                    ///< steps between particle sorts by cell
 };
 
 struct GridSpec {
@@ -187,7 +180,9 @@ struct PenetrationSpec {
 struct Scenario {
   std::string file;               ///< deck path
   SimulationSpec simulation;
-  MpmSpec mpm;
+  /// The solver's own deck section (its name is the solver's registered section, e.g. `mpm`),
+  /// read against the parameters the solver registered (points/solver_registry.hpp).
+  ParamValues solver_params;
   GridSpec grid;
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;

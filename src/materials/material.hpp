@@ -44,6 +44,8 @@ struct ParamSpec {
   /// value is then a string in ParamValues::choices and default_choice is used when absent.
   std::vector<std::string> choices = {};
   std::string default_choice = {};
+  /// A whole number (read as an integer from the deck: no decimal point), e.g. mpm.sort_every.
+  bool integer = false;
   /// Names containing a dot ("eos.hugoniot_slope", "failure.criterion") are read from a sub-map
   /// of the material in the deck (eos: {hugoniot_slope: 1.49}).
 };

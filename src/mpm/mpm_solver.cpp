@@ -13,6 +13,7 @@
 #include "core/parallel.hpp"
 #include "core/system_memory.hpp"
 #include "geometry/seeding.hpp"
+#include "points/solver_registry.hpp"
 
 namespace ballista {
 
@@ -93,9 +94,10 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
       points_(pts_.store()) {
   dimension_ = sc.simulation.dimension;
   dim_ = axis_count(dimension_);
-  shape_ = parse_shape_kind(sc.mpm.shape_function);
-  musl_ = sc.mpm.update == "musl";
-  flip_ = sc.mpm.flip;
+  shape_ = parse_shape_kind(sc.solver_params.choices.at("shape_function"));
+  musl_ = sc.solver_params.choices.at("update") == "musl";
+  flip_ = sc.solver_params.at("flip");
+  sort_every_ = static_cast<int>(sc.solver_params.at("sort_every"));
   damping_ = sc.simulation.damping;
   grid_.geom = layout_.geom;
   for (int a = 0; a < 3; ++a) {
@@ -501,7 +503,7 @@ void MpmSolver::bind_fields() {
 
 void MpmSolver::step(double dt) {
   activate_pending();
-  if (scenario_.mpm.sort_every > 0 && steps_ % scenario_.mpm.sort_every == 0) sort_by_cell();
+  if (sort_every_ > 0 && steps_ % sort_every_ == 0) sort_by_cell();
   const bool three = dim_ == 3;
   switch (shape_) {
     case ShapeKind::Linear: three ? step_impl<3, ShapeKind::Linear>(dt) : step_impl<2, ShapeKind::Linear>(dt); break;
@@ -514,4 +516,33 @@ void MpmSolver::step(double dt) {
 
 EnergyTotals MpmSolver::energies() const { return pts_.energies(reporting_scale(), external_work_); }
 
+namespace {
+
+std::unique_ptr<Solver> make_mpm(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials) {
+  return std::make_unique<MpmSolver>(sc, std::move(materials));
+}
+
+std::vector<ParamSpec> mpm_params() {
+  ParamSpec shape{"shape_function", "-", "particle-grid shape functions (docs/deck.md)", false, 0};
+  shape.choices = shape_kind_names();
+  shape.default_choice = "linear";
+  ParamSpec update{"update", "-", "usl or musl (modified USL: robust against cell-crossing at free surfaces)", false, 0};
+  update.choices = {"usl", "musl"};
+  update.default_choice = "musl";
+  ParamSpec flip{"flip", "1", "FLIP fraction of the velocity update (1 FLIP, 0 PIC)", false, 1.0, 0.0, 1.0};
+  ParamSpec sort{"sort_every", "steps", "steps between particle sorts by cell (0 = never)", false, 20, 0, 2147483647.0};
+  sort.integer = true;
+  return {shape, update, flip, sort};
+}
+
+}  // namespace
+
 }  // namespace ballista
+
+BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
+    "mpm",
+    "explicit material point method (Sulsky et al. 1994; USL / modified USL, FLIP/PIC blend; thesis seed 000)",
+    {"3d", "plane_strain", "axisymmetric"},
+    "mpm",
+    ballista::mpm_params(),
+    &ballista::make_mpm})

@@ -92,6 +92,7 @@ class MpmSolver final : public Solver {
   ShapeKind shape_;
   bool musl_;
   double flip_;
+  int sort_every_ = 20;  ///< steps between particle sorts (0 = never)
   double damping_;
   GridData grid_;
   Vec3 box_lower_, box_upper_;  ///< physical grid box (without ghost layers)

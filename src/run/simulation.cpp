@@ -17,7 +17,7 @@
 #include "io/output_folder.hpp"
 #include "io/particle_writer.hpp"
 #include "io/summary_writer.hpp"
-#include "mpm/mpm_solver.hpp"
+#include "points/solver_registry.hpp"
 #include "run/particle_tracker.hpp"
 #include "run/progress.hpp"
 #include "run/stage_criterion.hpp"
@@ -37,8 +37,13 @@ std::vector<std::unique_ptr<Material>> make_materials(const Scenario& sc) {
 }
 
 std::unique_ptr<Solver> make_solver(const Scenario& sc) {
-  if (sc.simulation.solver == "mpm") return std::make_unique<MpmSolver>(sc, make_materials(sc));
-  throw Error("unknown solver '" + sc.simulation.solver + "' (available: mpm)");
+  const SolverFactory* f = find_solver(sc.simulation.solver);
+  if (!f) {
+    std::string names;
+    for (const auto& s : solver_registry()) names += (names.empty() ? "" : ", ") + s.name;
+    throw Error("unknown solver '" + sc.simulation.solver + "' (registered: " + names + ")");
+  }
+  return f->create(sc, make_materials(sc));
 }
 
 namespace {

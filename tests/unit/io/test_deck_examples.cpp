@@ -41,7 +41,7 @@ TEST(DeckExamples, DocsCompleteExampleParses) {
   } catch (const Error& e) {
     FAIL() << e.what();
   }
-  EXPECT_EQ(s.mpm.shape_function, "gimp");
+  EXPECT_EQ(s.solver_params.choices.at("shape_function"), "gimp");
   EXPECT_EQ(s.grid.faces[4], FaceBC::Symmetry);
   EXPECT_EQ(s.bodies.at(0).velocity[1], -227.0);
   EXPECT_EQ(s.loads.at(1).curve.t.size(), 3u);

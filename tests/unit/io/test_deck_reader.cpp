@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "io/deck_node.hpp"
 #include "io/deck_reader.hpp"
+#include "points/solver_registry.hpp"
 
 using namespace ballista;
 
@@ -108,10 +109,10 @@ void expect_same_scenario(const Scenario& a, const Scenario& b) {
   EXPECT_EQ(a.simulation.energy_drift_limit, b.simulation.energy_drift_limit);
   EXPECT_EQ(a.simulation.on_particle_exit, b.simulation.on_particle_exit);
   EXPECT_EQ(a.simulation.threads, b.simulation.threads);
-  EXPECT_EQ(a.mpm.shape_function, b.mpm.shape_function);
-  EXPECT_EQ(a.mpm.update, b.mpm.update);
-  EXPECT_EQ(a.mpm.flip, b.mpm.flip);
-  EXPECT_EQ(a.mpm.sort_every, b.mpm.sort_every);
+  EXPECT_EQ(a.solver_params.choices.at("shape_function"), b.solver_params.choices.at("shape_function"));
+  EXPECT_EQ(a.solver_params.choices.at("update"), b.solver_params.choices.at("update"));
+  EXPECT_EQ(a.solver_params.at("flip"), b.solver_params.at("flip"));
+  EXPECT_EQ(a.solver_params.at("sort_every"), b.solver_params.at("sort_every"));
   expect_same_vec(a.grid.lower, b.grid.lower);
   expect_same_vec(a.grid.upper, b.grid.upper);
   EXPECT_EQ(a.grid.cell_size, b.grid.cell_size);
@@ -194,10 +195,10 @@ TEST(DeckReader, ValidDeckResolvesWithDefaults) {
   EXPECT_EQ(s.simulation.on_particle_exit, "stop");
   EXPECT_EQ(s.simulation.threads, 0);
   // mpm
-  EXPECT_EQ(s.mpm.shape_function, "linear");
-  EXPECT_EQ(s.mpm.update, "musl");
-  EXPECT_EQ(s.mpm.flip, 1.0);
-  EXPECT_EQ(s.mpm.sort_every, 20);
+  EXPECT_EQ(s.solver_params.choices.at("shape_function"), "linear");
+  EXPECT_EQ(s.solver_params.choices.at("update"), "musl");
+  EXPECT_EQ(s.solver_params.at("flip"), 1.0);
+  EXPECT_EQ(s.solver_params.at("sort_every"), 20);
   // grid
   EXPECT_EQ(s.grid.lower[0], -0.01);
   EXPECT_EQ(s.grid.upper[1], 0.04);
@@ -494,6 +495,22 @@ TEST(DeckReader, UnknownModelListsRegisteredNames) {
   EXPECT_EQ(e3.line(), line_of(kDeck, "copper:"));
 }
 
+// The solver and its section come from the solver registry (points/solver_registry.hpp).
+TEST(DeckReader, SolverAndItsSectionComeFromTheRegistry) {
+  const DeckError e = parse_error(deck_with("  dimension: 3d\n", "  dimension: 3d\n  solver: peridynamic\n"));
+  EXPECT_EQ(e.key_path(), "simulation.solver");
+  std::string all;
+  for (const auto& f : solver_registry()) all += (all.empty() ? "" : ", ") + f.name;
+  EXPECT_TRUE(contains(e.what(), "expected one of: " + all)) << e.what();
+  // The section's parameters are typed by their specs: sort_every is an integer.
+  const DeckError e2 = parse_error(deck_with("  update: musl\n", "  update: musl\n  sort_every: 2.5\n"));
+  EXPECT_EQ(e2.key_path(), "mpm.sort_every");
+  const Scenario s = parse_deck(deck_with("  update: musl\n", "  update: usl\n  shape_function: gimp\n"), "d.yaml");
+  EXPECT_EQ(s.solver_params.choices.at("update"), "usl");
+  EXPECT_EQ(s.solver_params.choices.at("shape_function"), "gimp");
+  EXPECT_EQ(s.solver_params.at("sort_every"), 20.0);
+}
+
 TEST(DeckReader, UnknownMaterialParameterSuggestsClosest) {
   const std::string d = deck_with("density: 8930", "density: 8930\n    shear_modulu: 4e10");
   const DeckError e = parse_error(d);
@@ -652,8 +669,8 @@ TEST(DeckOverrides, SetNestedValues) {
 TEST(DeckOverrides, CreateMissingSectionsAndKeys) {
   const std::string d = deck_with("mpm:\n  update: musl\n", "");
   const Scenario s = parse_deck(d, "deck.yaml", {"mpm.flip=0.5", "simulation.max_steps=100"});
-  EXPECT_EQ(s.mpm.flip, 0.5);
-  EXPECT_EQ(s.mpm.update, "musl");  // the default, filled in the section the override created
+  EXPECT_EQ(s.solver_params.at("flip"), 0.5);
+  EXPECT_EQ(s.solver_params.choices.at("update"), "musl");  // the default, filled in the section the override created
   EXPECT_EQ(s.simulation.max_steps, 100);
 
   // A required key missing from a section that only an override created.

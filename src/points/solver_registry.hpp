@@ -1,0 +1,39 @@
+#pragma once
+// Registry of discretisations, like the material registry: each solver registers itself from its
+// own file (BALLISTA_REGISTER_SOLVER) with its name (simulation.solver), the dimensions it runs,
+// its deck section and that section's parameters. The deck reader, `ballista info` and
+// make_solver read the registry, so no other file names a solver.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/solver.hpp"
+#include "io/scenario.hpp"
+#include "materials/material.hpp"
+
+namespace ballista {
+
+struct SolverFactory {
+  std::string name;                     ///< simulation.solver
+  std::string description;              ///< one line with its source
+  std::vector<std::string> dimensions;  ///< of "3d", "plane_strain", "axisymmetric"
+  std::string section;                  ///< deck section of its parameters (read into Scenario::solver_params)
+  std::vector<ParamSpec> params;        ///< the section's keys (units, defaults, ranges, choices)
+  std::unique_ptr<Solver> (*create)(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials) = nullptr;
+};
+
+/// Registered solvers in name order, filled at static-initialisation time.
+const std::vector<SolverFactory>& solver_registry();
+const SolverFactory* find_solver(const std::string& name);
+bool register_solver(SolverFactory factory);
+
+}  // namespace ballista
+
+#define BALLISTA_SOLVER_CONCAT_(a, b) a##b
+#define BALLISTA_SOLVER_CONCAT(a, b) BALLISTA_SOLVER_CONCAT_(a, b)
+/// Registers a solver from its own .cpp: BALLISTA_REGISTER_SOLVER(SolverFactory{...}).
+#define BALLISTA_REGISTER_SOLVER(...)                                                          \
+  namespace {                                                                                  \
+  [[maybe_unused]] const bool BALLISTA_SOLVER_CONCAT(ballista_solver_registered_, __LINE__) = \
+      ::ballista::register_solver(__VA_ARGS__);                                                \
+  }
