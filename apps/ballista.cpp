@@ -96,7 +96,7 @@ int main(int argc, char** argv) {
   bool quiet = false;
   run->add_option("deck", deck, "YAML deck file")->required()->check(CLI::ExistingFile);
   run->add_option("-o,--output", out_dir, "results folder (default out/<deck name>)");
-  run->add_option("--threads", threads, "OpenMP threads (default: the deck's, else all cores)");
+  run->add_option("--threads", threads, "OpenMP threads (default: the deck's, else all cores; at most the cores)");
   run->add_option("--set", overrides, "override a deck value: key.path=value (repeatable)");
   run->add_flag("-q,--quiet", quiet, "no progress output");
   bool no_plots = false;
