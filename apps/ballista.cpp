@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/error.hpp"
+#include "core/threads.hpp"
 #include "driver/drive_run.hpp"
 #include "io/deck_reader.hpp"
 #include "io/material_presets.hpp"
@@ -85,6 +86,9 @@ void print_info() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // OpenMP threads sleep instead of spinning while they wait, unless the user chose a policy: may
+  // re-execute this program (libgomp reads its environment before main; docs/performance.md).
+  ballista::ensure_omp_wait_policy(argv);
   CLI::App app{"Ballista: solids under extreme deformation (MPM; peridynamics and OTM planned)"};
   app.set_version_flag("--version", std::string("ballista ") + BALLISTA_VERSION);
   app.require_subcommand(1);

@@ -1,5 +1,10 @@
 #include "core/threads.hpp"
 
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
 #include <thread>
 
 #include <spdlog/spdlog.h>
@@ -11,6 +16,11 @@
 #endif
 
 namespace ballista {
+
+namespace {
+/// Set in the environment of the re-executed image: never re-execute twice.
+constexpr const char* kReexecGuard = "BALLISTA_OMP_REEXEC";
+}  // namespace
 
 int available_cores() {
 #ifdef _OPENMP
@@ -34,6 +44,21 @@ int request_threads(int n, const char* source) {
     spdlog::warn("{} = {} is more than the {} cores available: using {} threads", source, n, cores, used);
   set_threads(used);
   return max_threads();
+}
+
+void ensure_omp_wait_policy(char** argv) {
+  if (std::getenv(kReexecGuard)) {
+    unsetenv(kReexecGuard);  // keep it out of the environment of the processes we start
+    return;
+  }
+  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;  // the user's choice
+  if (setenv(kOmpWaitDefault.name, kOmpWaitDefault.value, 1) != 0 || setenv(kReexecGuard, "1", 1) != 0) return;
+  execv("/proc/self/exe", argv);
+  const int err = errno;
+  unsetenv(kReexecGuard);
+  spdlog::warn("could not re-execute with {}={} ({}): OpenMP threads spin while they wait, which is slow when "
+               "other processes share the cores; set {} yourself",
+               kOmpWaitDefault.name, kOmpWaitDefault.value, std::strerror(err), kOmpWaitDefault.name);
 }
 
 }  // namespace ballista
