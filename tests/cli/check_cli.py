@@ -7,6 +7,7 @@
    check reads the policy in effect from libgomp itself, not from our code. A user's policy is left
    alone (one image, the user's spin count); the runs of a sweep inherit the policy.
 2. --threads 100000 and simulation.threads above the cores: clamped, with a warning naming both.
+3. --seed outside 0..2^63-1 is rejected with the message of the deck key drive.seed.
 """
 import argparse
 import json
@@ -111,6 +112,31 @@ def check_thread_clamp(b, examples, out):
             fail("--threads 1 did not run on 1 thread")
 
 
+def check_seed(b, examples, out):
+    deck = os.path.join(examples, "drive_a1_frame_indifference.yaml")
+    base = [b, "drive", deck, "--set", "drive.substeps=10", "--noise", "0.01", "-q"]
+
+    def error_line(p):
+        return p.stderr.strip().splitlines()[-1] if p.stderr.strip() else ""
+
+    for bad in ("99999999999999999999", "9223372036854775808", "-1", "1.5", ""):
+        o = os.path.join(out, "seed_bad")
+        cli = run(base + ["-o", o, "--seed", bad], 2, clean_env())
+        deck_key = run(base + ["-o", o, "--set", "drive.seed=" + (bad or "''")], 2, clean_env())
+        # The same message as the deck key, which names the key and the value given.
+        if error_line(cli) != error_line(deck_key):
+            fail(f"--seed {bad}: '{error_line(cli)}' differs from drive.seed's '{error_line(deck_key)}'")
+        if "drive.seed" not in error_line(cli) or bad not in error_line(cli):
+            fail(f"--seed {bad}: the error does not name drive.seed and the value: {error_line(cli)}")
+    for good in ("0", "42", "9223372036854775807"):
+        o = os.path.join(out, "seed_" + good)
+        run(base + ["-o", o, "--seed", good], 0, clean_env())
+        with open(os.path.join(o, "resolved.yaml")) as f:
+            text = f.read()
+        if not re.search(r"^\s*seed: " + good + r"\s*$", text, re.M):
+            fail(f"--seed {good}: resolved.yaml does not record seed {good}:\n{text}")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--ballista", required=True)
@@ -121,6 +147,7 @@ def main():
     os.makedirs(a.out)
     check_wait_policy(a.ballista, a.examples, a.out)
     check_thread_clamp(a.ballista, a.examples, a.out)
+    check_seed(a.ballista, a.examples, a.out)
     print("ok")
 
 
