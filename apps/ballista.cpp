@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/error.hpp"
+#include "core/threads.hpp"
 #include "driver/drive_run.hpp"
 #include "io/deck_reader.hpp"
 #include "io/material_presets.hpp"
@@ -88,6 +89,9 @@ void print_info() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // OpenMP threads sleep instead of spinning while they wait, unless the user chose a policy: may
+  // re-execute this program (libgomp reads its environment before main; docs/performance.md).
+  ballista::ensure_omp_wait_policy(argv);
   CLI::App app{"Ballista: solids under extreme deformation (MPM; peridynamics and OTM planned)"};
   app.set_version_flag("--version", std::string("ballista ") + BALLISTA_VERSION);
   app.require_subcommand(1);
@@ -99,7 +103,7 @@ int main(int argc, char** argv) {
   bool quiet = false;
   run->add_option("deck", deck, "YAML deck file")->required()->check(CLI::ExistingFile);
   run->add_option("-o,--output", out_dir, "results folder (default out/<deck name>)");
-  run->add_option("--threads", threads, "OpenMP threads (default: the deck's, else all cores)");
+  run->add_option("--threads", threads, "OpenMP threads (default: the deck's, else all cores; at most the cores)");
   run->add_option("--set", overrides, "override a deck value: key.path=value (repeatable)");
   run->add_flag("-q,--quiet", quiet, "no progress output");
   bool no_plots = false;
@@ -114,7 +118,7 @@ int main(int argc, char** argv) {
   std::string drive_deck, drive_out;
   std::vector<std::string> drive_overrides;
   double scale = 1.0, noise = 0.0;
-  long seed = 0;
+  std::string seed;  // validated as the deck key drive.seed, with its message (one check, one wording)
   bool drive_quiet = false;
   drive->add_option("deck", drive_deck, "YAML drive deck (materials + drive)")->required()->check(CLI::ExistingFile);
   drive->add_option("-o,--output", drive_out, "results folder (default out/<deck name>)");
@@ -123,7 +127,7 @@ int main(int argc, char** argv) {
       drive->add_option("--scale", scale, "scale the table's deformation: F -> I + S (F - I) (drive.scale)");
   auto* noise_opt = drive->add_option("--noise", noise,
                                       "multiplicative noise of amplitude A on the table's increments (drive.noise)");
-  auto* seed_opt = drive->add_option("--seed", seed, "seed of the noise (drive.seed)")->check(CLI::NonNegativeNumber);
+  auto* seed_opt = drive->add_option("--seed", seed, "seed of the noise (drive.seed; 0 <= seed < 2^63)");
   seed_opt->needs(noise_opt);
   drive->add_flag("-q,--quiet", drive_quiet, "print nothing on success");
 
@@ -148,7 +152,7 @@ int main(int argc, char** argv) {
       // The perturbation flags are deck overrides, so resolved.yaml records them.
       if (*scale_opt) drive_overrides.push_back("drive.scale=" + fmt::format("{:.17g}", scale));
       if (*noise_opt) drive_overrides.push_back("drive.noise=" + fmt::format("{:.17g}", noise));
-      if (*seed_opt) drive_overrides.push_back("drive.seed=" + std::to_string(seed));
+      if (*seed_opt) drive_overrides.push_back("drive.seed=" + (seed.empty() ? "''" : seed));  // '' fails, not 0
       const ballista::DriveDeck dd = ballista::read_drive_deck(drive_deck, drive_overrides);
       if (drive_out.empty()) drive_out = "out/" + std::filesystem::path(drive_deck).stem().string();
       const ballista::DriveRunResult r = ballista::run_drive(dd, drive_out);

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/threads.hpp"  // request_threads: a user's thread count, clamped to the cores
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -21,6 +23,8 @@ inline int max_threads() {
   return 1;
 #endif
 }
+/// Sets the OpenMP thread count exactly (n <= 0: unchanged), also above the cores (tests use it to
+/// compare thread counts); user requests go through request_threads.
 inline void set_threads(int n) {
 #ifdef _OPENMP
   if (n > 0) omp_set_num_threads(n);

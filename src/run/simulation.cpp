@@ -93,8 +93,8 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   if (const int removed = prepare_run_folder(opt.out_dir))
     spdlog::info("removed {} output files of an earlier run from {}", removed, opt.out_dir);
   write_file_atomic((fs::path(opt.out_dir) / "resolved.yaml").string(), sc.resolved_yaml);
-  const int threads = opt.threads > 0 ? opt.threads : sc.simulation.threads;
-  if (threads > 0) set_threads(threads);
+  request_threads(opt.threads > 0 ? opt.threads : sc.simulation.threads,  // clamped to the cores present
+                  opt.threads > 0 ? "--threads" : "simulation.threads");
 
   std::unique_ptr<Solver> solver = make_solver(sc);
   FieldStore& pts = solver->points();
