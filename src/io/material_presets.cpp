@@ -124,7 +124,7 @@ class PresetParser {
     check_keys(n, path, {});
     for (auto it = n.begin(); it != n.end(); ++it) {
       const std::string k = path + "." + it->first.as<std::string>();
-      const YAML::Node& v = it->second;
+      const YAML::Node v = it->second;  // a copy (a handle): it-> yields a temporary
       if (v.IsMap()) {
         if (v.size() == 0) fail(k, it->first, "empty parameter group");
         check_keys(v, k, {});
@@ -315,7 +315,7 @@ YAML::Node merge_preset_into(const MaterialPreset& preset, const YAML::Node& dec
 
   for (auto it = preset.parameters.begin(); it != preset.parameters.end(); ++it) {
     const std::string key = it->first.as<std::string>();
-    const YAML::Node& value = it->second;
+    const YAML::Node value = it->second;  // a copy (a handle): it-> yields a temporary
     if (deck_elastic && std::find(elastic.begin(), elastic.end(), key) != elastic.end()) continue;
     if (value.IsMap()) {
       YAML::Node group(YAML::NodeType::Map);

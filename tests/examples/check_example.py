@@ -209,6 +209,9 @@ def typo_mode(args):
     print(f"exit status {p.returncode}; stderr: {p.stderr.strip()}")
     if p.returncode == 0:
         fail("ballista accepted a deck with an unknown key")
+    # make test-sanitize: a UBSan abort also exits non-zero (ASan reports go to files there).
+    if "runtime error:" in p.stderr:
+        fail("UndefinedBehaviorSanitizer report in the failing run")
     where = f"{deck}:{line_no}:{col}:"
     for needle in [where, f"'{args.typo}'", f"did you mean '{args.key}'"]:
         if needle not in p.stderr:

@@ -17,6 +17,9 @@ def run(cmd, expect_ok=True):
         sys.exit(f"FAIL: {' '.join(cmd)} exited {p.returncode}: {p.stderr}")
     if not expect_ok and p.returncode == 0:
         sys.exit(f"FAIL: {' '.join(cmd)} succeeded but should have failed")
+    # make test-sanitize: a UBSan abort exits non-zero too (ASan reports go to files there).
+    if "runtime error:" in p.stderr:
+        sys.exit(f"FAIL: {' '.join(cmd)}: UndefinedBehaviorSanitizer report:\n{p.stderr}")
     return p
 
 

@@ -23,6 +23,9 @@ def run(cmd, expect):
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != expect:
         fail(f"{' '.join(cmd)} exited {p.returncode}, expected {expect}:\n{p.stdout}\n{p.stderr}")
+    # make test-sanitize: a UBSan abort exits non-zero too (ASan reports go to files there).
+    if "runtime error:" in p.stderr:
+        fail(f"{' '.join(cmd)}: UndefinedBehaviorSanitizer report:\n{p.stderr}")
     return p
 
 
