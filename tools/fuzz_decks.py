@@ -503,6 +503,19 @@ def tree_mutation(rng, tree, kind, protect=()):
         except (KeyError, IndexError, TypeError):
             return "swap failed", None
         return f"{_dotted(a)} = value of {_dotted(b)}", _dotted(a)
+    if kind == "scale_number":
+        # a plausible but unusual value: the deck stays valid more often and reaches the solver
+        leaves = [(p, v) for p, v in paths if _is_number(v)]
+        if not leaves:
+            return tree_mutation(rng, tree, "extreme_value", protect)
+        p, v = rng.choice(leaves)
+        f = rng.choice([-1, 0, 1e-6, 1e-3, 0.1, 0.5, 0.99, 1.01, 2, 10, 1e3, 1e6])
+        x = float(v) * f
+        if p[-1] in WORK_KEYS:
+            x = min(abs(x), 1e4)
+        new = repr(int(x)) if re.fullmatch(r"[-+]?\d+", v) and abs(x) < 1e15 else repr(x)
+        _set(tree, p, new)
+        return f"{_dotted(p)} = {new} ({v} x {f:g})", _dotted(p)
     if kind == "long_string":
         p, v = rng.choice(paths)
         _set(tree, p, long_string(rng))
@@ -526,8 +539,9 @@ def _is_float_text(s):
     return any(c in s.lower() for c in ".en") or "inf" in s.lower()
 
 
-TREE_KINDS = ["delete_key", "wrong_type", "extreme_value", "extreme_value", "unknown_key", "list_shape",
-              "swap_values", "long_string", "deep_nesting", "custom_tag"]
+TREE_KINDS = ["delete_key", "wrong_type", "extreme_value", "extreme_value", "extreme_value", "unknown_key",
+              "list_shape", "swap_values", "long_string", "deep_nesting", "custom_tag", "scale_number",
+              "scale_number", "scale_number", "scale_number"]
 TEXT_KINDS = ["truncate", "garbage", "alias_bomb", "multi_document", "duplicate_key", "tag_document", "bad_indent",
               "empty", "nul_bytes", "bad_utf8", "crlf_tabs"]
 
@@ -982,7 +996,7 @@ def make_case(index, seed, sources, case_dir, ballista, baseline=None):
 NONFINITE_TOKEN = re.compile(r"(?<![A-Za-z0-9_])[-+]?(nan|inf|infinity)(?![A-Za-z0-9_])", re.IGNORECASE)
 UNCAUGHT = ["terminate called", "what():", "Assertion `", "assertion failed", "AddressSanitizer",
             "runtime error:", "UndefinedBehaviorSanitizer", "Segmentation fault", "core dumped", "stack smashing",
-            "double free", "free(): invalid", "malloc(): ", "corrupted size", "std::bad_alloc"]
+            "double free", "free(): invalid", "malloc(): ", "corrupted size"]
 # summary.json keys that are null when not applicable (no impact, no steady phase, no stages).
 NULL_OK = {"main_stage_start", "arrival_time", "stop_time", "steady_rate", "rate_over_hydrodynamic",
            "penetration_time", "min_dt_set_by"}
@@ -1029,6 +1043,8 @@ def check_json_file(fn, found):
 def check_outputs(stdout, out_dir, extra_json):
     found = []
     for line in stdout.splitlines():
+        if line.startswith("[") or line.startswith("results in "):  # log lines, not results
+            continue
         if "=" in line or re.match(r"^\s+\S+\s+\S", line):
             rhs = line.split("=", 1)[1] if "=" in line else line
             if NONFINITE_TOKEN.search(rhs):
@@ -1262,7 +1278,7 @@ def main():
     ap.add_argument("--only", type=int, nargs="*", help="run only these case indices")
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--time-limit", type=float, default=20.0, help="seconds per case before it counts as a hang")
-    ap.add_argument("--mem-limit-mb", type=int, default=4096, help="address-space limit per case")
+    ap.add_argument("--mem-limit-mb", type=int, default=3072, help="address-space limit per case")
     ap.add_argument("--max-output-mb", type=int, default=300, help="output size per case before runaway_output")
     ap.add_argument("--max-error-chars", type=int, default=2000, help="longest acceptable stderr")
     ap.add_argument("--source", action="append", help="only sources whose name contains this (repeatable)")
