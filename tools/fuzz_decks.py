@@ -510,6 +510,8 @@ def tree_mutation(rng, tree, kind, protect=()):
             return tree_mutation(rng, tree, "extreme_value", protect)
         p, v = rng.choice(leaves)
         f = rng.choice([-1, 0, 1e-6, 1e-3, 0.1, 0.5, 0.99, 1.01, 2, 10, 1e3, 1e6])
+        if p[-1] in ("cell_size", "particles_per_cell") and 0 < f < 1:
+            f = 1 / f  # a finer resolution is only a longer (valid) run; coarser and degenerate values are kept
         x = float(v) * f
         if p[-1] in WORK_KEYS:
             x = min(abs(x), 1e4)
@@ -543,7 +545,12 @@ TREE_KINDS = ["delete_key", "wrong_type", "extreme_value", "extreme_value", "ext
               "list_shape", "swap_values", "long_string", "deep_nesting", "custom_tag", "scale_number",
               "scale_number", "scale_number", "scale_number"]
 TEXT_KINDS = ["truncate", "garbage", "alias_bomb", "multi_document", "duplicate_key", "tag_document", "bad_indent",
-              "empty", "nul_bytes", "bad_utf8", "crlf_tabs"]
+              "empty", "nul_bytes", "bad_utf8", "crlf_tabs", "recursive_alias", "parser_killer"]
+# Inputs that made YAML parsers loop, exhaust memory or crash (yaml-cpp issues #2, #499, #793, #938,
+# #1040; "," alone loops in yaml-cpp 0.7 LoadAll).
+PARSER_KILLERS = [",", ",\n", "[:", "{:", "[[:", "{!\xdb:", "{# ke\ny{:", "- !+(.,.)", "bad YAML: [", "? ,", "[", "{",
+                  "&a [*a]", "*a", "!<!> x", "- - - - - - - -", "a: &a\n  b: *a\n", ": :", "--- |\n  x\n ---",
+                  "\"\\u", "'", "%YAML 9.9\n---\na: 1"]
 
 
 def text_mutation(rng, text, kind):
@@ -625,6 +632,31 @@ def text_mutation(rng, text, kind):
         i = rng.randrange(len(b) + 1)
         return b[:i] + rng.choice([b"\xff\xfe", b"\xc3", b"\xed\xa0\x80", b"\xef\xbb\xbf"]) + b[i:], \
             f"invalid UTF-8 at {i}"
+    if kind == "recursive_alias":
+        # an anchor referenced inside its own definition: a recursive node
+        tl = text.splitlines()
+        keylines = [i for i, l in enumerate(tl) if re.match(r"^\s*[A-Za-z_]\w*:", l)]
+        form = rng.randrange(3)
+        if not keylines:
+            return b"&r [*r]\n", "recursive alias document"
+        i = rng.choice(keylines)
+        m = re.match(r"^(\s*)([A-Za-z_]\w*:)", tl[i])
+        if form == 0:
+            tl[i] = m.group(1) + m.group(2) + " &r [1, *r]"
+        elif form == 1:
+            tl[i] = m.group(1) + m.group(2) + " &r {x: *r}"
+        else:
+            tl.insert(i + 1, m.group(1) + "  fuzz_self: *r")
+            tl[i] = m.group(1) + m.group(2) + " &r"
+        return ("\n".join(tl) + "\n").encode(), f"recursive alias at line {i + 1} (form {form})"
+    if kind == "parser_killer":
+        k = rng.choice(PARSER_KILLERS).encode("latin-1")
+        op = rng.randrange(3)
+        if op == 0:
+            return k, f"known parser killer {k!r}"
+        if op == 1:
+            return k + b"\n" + b, f"known parser killer {k!r} prepended"
+        return b + b"\n---\n" + k + b"\n", f"known parser killer {k!r} as a second document"
     if kind == "crlf_tabs":
         return text.replace("\n", "\r\n").replace("  ", "\t").encode(), "CRLF line ends and tabs"
     raise ValueError(kind)
