@@ -22,7 +22,7 @@ address-space limit and an output-size limit. Outcomes:
   rejected           exit 1/2/3 (or another small status) with a message;
   failures:          signal (killed by a signal), uncaught ('terminate called', sanitizer or assertion
                      text), hang (time limit), nonfinite_success (exit 0 with nan/inf/null numbers),
-                     error_too_long (stderr longer than --max-error-chars), silent_failure (non-zero
+                     error_too_long (stderr over --max-error-chars, 4000), silent_failure (non-zero
                      exit without any message), runaway_output (output folder over --max-output-mb).
 The output folder gets results.jsonl (one line per case), summary.json and summary.md, and for
 every failing case cases/<id>/ with the mutated input files, repro.sh (the exact command line) and
@@ -1179,7 +1179,7 @@ def run_case(case, case_dir, a):
         stdout = f.read(2_000_000).decode("utf-8", "replace")
     with open(se_path, "rb") as f:
         stderr = f.read(2_000_000).decode("utf-8", "replace")
-    stderr_len = os.path.getsize(se_path)
+    stderr_len = len(stderr) if os.path.getsize(se_path) < 2_000_000 else os.path.getsize(se_path)
     if status is None:
         if any(s in stderr for s in UNCAUGHT):
             status = "uncaught"
@@ -1217,7 +1217,7 @@ def run_case(case, case_dir, a):
             else:
                 status = "rejected"
         if status in ("ok", "rejected") and stderr_len > a.max_error_chars:
-            status, detail = "error_too_long", f"stderr {stderr_len} bytes"
+            status, detail = "error_too_long", f"stderr {stderr_len} characters"
     msg = (stderr.strip() or stdout.strip()).splitlines()
     return {"class": status, "detail": detail[:1000], "exit": rc, "wall": round(wall, 3),
             "message": (msg[-1] if msg else "")[:300]}
@@ -1312,7 +1312,8 @@ def main():
     ap.add_argument("--time-limit", type=float, default=20.0, help="seconds per case before it counts as a hang")
     ap.add_argument("--mem-limit-mb", type=int, default=3072, help="address-space limit per case")
     ap.add_argument("--max-output-mb", type=int, default=300, help="output size per case before runaway_output")
-    ap.add_argument("--max-error-chars", type=int, default=2000, help="longest acceptable stderr")
+    ap.add_argument("--max-error-chars", type=int, default=4000,
+                    help="longest acceptable stderr in characters (an echoed bad value cut to ~2000 fits)")
     ap.add_argument("--source", action="append", help="only sources whose name contains this (repeatable)")
     ap.add_argument("--baseline", action="store_true",
                     help="also run every source unmutated first; each must be ok (else class baseline_failed)")
