@@ -23,7 +23,11 @@ address-space limit and an output-size limit. Outcomes:
   failures:          signal (killed by a signal), uncaught ('terminate called', sanitizer or assertion
                      text), hang (time limit), nonfinite_success (exit 0 with nan/inf/null numbers),
                      error_too_long (stderr over --max-error-chars, 4000), silent_failure (non-zero
-                     exit without any message), runaway_output (output folder over --max-output-mb).
+                     exit without any message), runaway_output (output folder over --max-output-mb),
+                     out_of_memory (std::bad_alloc under --mem-limit-mb: an unbounded allocation or a
+                     size check that ignores the process's limit), ignored_input (exit 0 although the
+                     input had a duplicate or unknown key, a custom tag, a second document or a table
+                     row the summary does not count), baseline_failed (see --baseline).
 The output folder gets results.jsonl (one line per case), summary.json and summary.md, and for
 every failing case cases/<id>/ with the mutated input files, repro.sh (the exact command line) and
 the captured stdout/stderr. Case k depends only on (--seed, k): `--only k` reruns one case.
@@ -50,7 +54,7 @@ import time
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 FAILURE_CLASSES = ["signal", "uncaught", "hang", "nonfinite_success", "error_too_long", "silent_failure",
-                   "runaway_output", "ignored_input", "baseline_failed"]
+                   "runaway_output", "out_of_memory", "ignored_input", "baseline_failed"]
 CORE_TAGS = ("!!str", "!!int", "!!float", "!!map", "!!seq", "!!bool", "!!null")
 ALL_CLASSES = ["ok", "rejected"] + FAILURE_CLASSES
 
@@ -1184,6 +1188,10 @@ def run_case(case, case_dir, a):
         if any(s in stderr for s in UNCAUGHT):
             status = "uncaught"
             detail = next(s for s in UNCAUGHT if s in stderr)
+        elif "bad_alloc" in stderr or "Cannot allocate memory" in stderr:
+            # the address-space limit (--mem-limit-mb) was hit: either an unbounded allocation or a
+            # size check that missed (one that honours getrlimit(RLIMIT_AS) refuses the deck cleanly)
+            status, detail = "out_of_memory", f"allocation failed under {a.mem_limit_mb} MB (exit {rc})"
         elif rc < 0:
             try:
                 detail = signal.Signals(-rc).name
