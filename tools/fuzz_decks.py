@@ -1339,6 +1339,8 @@ def main():
             sys.exit("fuzz_decks: no source matches --source")
     os.makedirs(a.out, exist_ok=True)
     cases_root = os.path.join(a.out, "cases")
+    if not a.only and os.path.isdir(cases_root):  # a full run starts clean: no stale reproducers
+        shutil.rmtree(cases_root)
     os.makedirs(cases_root, exist_ok=True)
     indices = a.only if a.only else list(range(a.first, a.first + a.cases))
     if a.baseline:
