@@ -1308,7 +1308,7 @@ def write_summary(a, results, wall, done, total):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0],
+    ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--ballista", default=os.path.join(REPO, "build", "ballista"))
     ap.add_argument("--out", default="out/fuzz")
