@@ -1215,6 +1215,8 @@ def run_case(case, case_dir, a):
                     pass
             if bad:
                 status, detail = "nonfinite_success", "; ".join(bad[:5])
+                if ignored:
+                    detail += " | also exit 0 although: " + "; ".join(ignored)[:300]
             elif ignored:
                 status, detail = "ignored_input", "exit 0 although: " + "; ".join(ignored)[:500]
             else:
