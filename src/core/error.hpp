@@ -33,7 +33,7 @@ class DeckError : public Error {
  private:
   static std::string format(const std::string& file, int line, int column, const std::string& key,
                             const std::string& message) {
-    std::string where = file.empty() ? std::string("<deck>") : file;
+    std::string where = file.empty() ? std::string("<deck>") : shorten(file, 300);
     if (line > 0) where += ":" + std::to_string(line) + ":" + std::to_string(column);
     // Keys and messages may echo deck text: bounded (values are shortened where they are quoted;
     // this is the backstop).

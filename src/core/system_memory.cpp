@@ -1,6 +1,9 @@
 #include "core/system_memory.hpp"
 
+#include <sys/resource.h>
 #include <unistd.h>
+
+#include <algorithm>
 
 #include <fmt/format.h>
 
@@ -29,6 +32,19 @@ SystemMemory system_memory() {
     if (avail > 0 && size > 0) m.available_bytes = static_cast<double>(avail) * size;
   }
   if (m.available_bytes <= 0.0) m.available_bytes = m.total_bytes;
+  // A process address-space limit (ulimit -v) caps what this process can allocate, whatever the
+  // machine has: take what is left of it (the limit minus the current virtual size).
+  rlimit lim{};
+  if (getrlimit(RLIMIT_AS, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY) {
+    double vm = 0.0;
+    std::ifstream st("/proc/self/status");
+    std::string l;
+    while (std::getline(st, l))
+      if (l.rfind("VmSize:", 0) == 0) vm = std::stod(l.substr(7)) * 1024.0;
+    const double left = static_cast<double>(lim.rlim_cur) - vm;
+    m.process_limit_bytes = static_cast<double>(lim.rlim_cur);
+    m.available_bytes = std::min(m.available_bytes, std::max(left, 0.0));
+  }
   return m;
 }
 
@@ -43,10 +59,13 @@ void require_memory(double needed_bytes, const std::string& what, const std::str
   const SystemMemory m = system_memory();
   if (m.available_bytes <= 0.0 || needed_bytes <= m.available_bytes) return;
   throw DeckError(file, 0, 0, key,
-                  fmt::format("the run needs about {} ({}) but this machine has {} available ({} in all); "
+                  fmt::format("the run needs about {} ({}) but this machine has {} available ({} in all{}); "
                               "coarsen the resolution or shrink the grid box",
                               format_bytes(needed_bytes), what, format_bytes(m.available_bytes),
-                              format_bytes(m.total_bytes)));
+                              format_bytes(m.total_bytes),
+                              m.process_limit_bytes > 0.0
+                                  ? "; the process is limited to " + format_bytes(m.process_limit_bytes) + " (ulimit -v)"
+                                  : std::string()));
 }
 
 }  // namespace ballista

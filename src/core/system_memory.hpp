@@ -8,7 +8,9 @@ namespace ballista {
 
 struct SystemMemory {
   double total_bytes = 0.0;      ///< physical memory (MemTotal)
-  double available_bytes = 0.0;  ///< what can be allocated without swapping (MemAvailable)
+  double available_bytes = 0.0;  ///< what can be allocated without swapping (MemAvailable), or less
+                                 ///< if the process's address space is limited
+  double process_limit_bytes = 0.0;  ///< RLIMIT_AS (ulimit -v) if set, else 0
 };
 
 /// Reads /proc/meminfo (Linux); falls back to sysconf page counts. Zero when unknown.

@@ -1,6 +1,9 @@
 #include "driver/drive_run.hpp"
 
 #include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
 #include <filesystem>
 
 #include "driver/drive_history.hpp"
@@ -35,6 +38,16 @@ DriveRunResult run_drive(const DriveDeck& deck, const std::string& out_dir) {
   res.steps = r.steps;
   res.records = r.records.size();
   res.last = r.records.back();
+  // Finite stresses whose invariants overflow (moduli near 1e308) are garbage too (issue 11).
+  for (const DriveRecord& rec : r.records) {
+    if (!res.ok) break;
+    if (!std::isfinite(von_mises(rec.sigma)) || !std::isfinite(trace(rec.sigma))) {
+      res.ok = false;
+      res.error = fmt::format("drive: the stress invariants are not finite at step {} (t = {:.6g} s; von Mises {}, "
+                              "trace {}): the material's moduli or the strains are beyond double precision",
+                              rec.step, rec.t, von_mises(rec.sigma), trace(rec.sigma));
+    }
+  }
   write_drive_history((fs::path(out_dir) / "history.csv").string(), r);
 
   SummaryWriter summary;
@@ -81,6 +94,13 @@ DriveRunResult run_drive(const DriveDeck& deck, const std::string& out_dir) {
   for (size_t k = 0; k < r.state_names.size() && k < last.state.size(); ++k) state[r.state_names[k]] = last.state[k];
   fin["plastic_work_total"] = last.plastic_work_total;
   fin["internal_energy"] = last.internal_energy;
+  // Backstop: any other number that is not a number fails the drive, never a success.
+  if (const auto bad = non_finite_numbers(summary.root()); res.ok && !bad.empty()) {
+    res.ok = false;
+    res.error = "drive: non-finite results: " + bad.front() + (bad.size() > 1 ? fmt::format(" and {} more", bad.size() - 1) : "");
+    summary["status"] = "failed";
+    summary["error"] = res.error;
+  }
   summary.write((fs::path(out_dir) / "summary.json").string());
   return res;
 }

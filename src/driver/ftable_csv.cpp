@@ -60,6 +60,8 @@ FTableFile read_ftable_csv(const std::string& path, const std::string& key_path)
   while (std::getline(in, line)) {
     ++lineno;
     const auto cells = split_cells(line);
+    if (cells.empty() && line.find_first_not_of(" \t\r") != std::string::npos)
+      throw DeckError(path, lineno, 1, key_path, "a row of separators without numbers (expected " + what + ")");
     if (cells.empty() || cells[0].text[0] == '#') continue;
     double x = 0.0;
     if (header_allowed && !parse_double(cells[0].text, x)) {

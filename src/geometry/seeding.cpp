@@ -34,6 +34,7 @@ namespace {
 /// Lattice points of a body that fall outside the grid box without a symmetry plane to excuse them.
 struct ClippedLattice {
   Index count = 0;
+  bool sampled = false;  ///< count estimated from a strided sample of a huge bounding box
   bool face[6] = {false, false, false, false, false, false};  ///< faces crossed (x_min .. z_max)
 };
 
@@ -82,11 +83,12 @@ bool lattice_point_in_grid(const Vec3& x, const GridSpec& grid, int nd, const Sh
   }
   const double share = static_cast<double>(c.count) / static_cast<double>(c.count + kept);
   throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path,
-                  fmt::format("body '{}' is partly outside the grid (beyond {}): {} of its {} lattice points "
+                  fmt::format("body '{}' is partly outside the grid (beyond {}): {}{} of its {} lattice points "
                               "({:.1f} % of the body) would not be seeded{}; enlarge the grid box or move the body "
                               "(only a body cut by a symmetry face, and mirror-symmetric about it, may extend past "
                               "the box)",
-                              body.name, faces, c.count, c.count + kept, 100.0 * share, extent));
+                              body.name, faces, c.sampled ? "about " : "", c.count, c.count + kept, 100.0 * share,
+                              extent));
 }
 
 }  // namespace
@@ -102,21 +104,53 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
   // Lattice aligned with the grid: sub-cell centres grid.lower + (i + 1/2) dx.
   int first[3] = {0, 0, 0}, last[3] = {0, 0, 0};
   for (int k = 0; k < nd; ++k) {
-    first[k] = static_cast<int>(std::floor((lo[k] - grid.lower[k]) / dx));
-    last[k] = static_cast<int>(std::ceil((hi[k] - grid.lower[k]) / dx));
+    // Clamped so that a body of absurd size cannot overflow the index (it is reported as clipped).
+    first[k] = static_cast<int>(std::clamp(std::floor((lo[k] - grid.lower[k]) / dx), -1.0e9, 1.0e9));
+    last[k] = static_cast<int>(std::clamp(std::ceil((hi[k] - grid.lower[k]) / dx), -1.0e9, 1.0e9));
+  }
+  auto site = [&](int i, int j, int k) {
+    return Vec3{{grid.lower[0] + (i + 0.5) * dx, grid.lower[1] + (j + 0.5) * dx,
+                 nd == 3 ? grid.lower[2] + (k + 0.5) * dx : 0.0}};
+  };
+  auto in_box = [&](const Vec3& x) {
+    for (int a = 0; a < nd; ++a)
+      if (x[a] <= grid.lower[a] || x[a] >= grid.upper[a]) return false;
+    return true;
+  };
+  // Seeding: the shape's lattice inside the grid box (index ranges clipped to the box plus one
+  // layer, so a body far larger than the grid costs only the grid's lattice).
+  int from[3] = {first[0], first[1], first[2]}, to[3] = {last[0], last[1], last[2]};
+  for (int a = 0; a < nd; ++a) {
+    from[a] = std::max(from[a], -1);
+    to[a] = std::min(to[a], static_cast<int>(std::ceil((grid.upper[a] - grid.lower[a]) / dx)) + 1);
   }
   std::vector<Vec3> pos;
+  for (int k = from[2]; k <= to[2]; ++k)
+    for (int j = from[1]; j <= to[1]; ++j)
+      for (int i = from[0]; i <= to[0]; ++i) {
+        const Vec3 x = site(i, j, k);
+        if (dim == Dimension::Axisymmetric && !(x[0] > 0.0)) continue;  // r > 0 only
+        if (in_box(x) && shape_contains(body.shape, x, nd)) pos.push_back(x);
+      }
+  // Clipping: lattice points of the shape outside the box (issue 11). Every one is visited while
+  // the bounding box has at most kExhaustive lattice points; beyond that a regular sample with
+  // stride s per axis is taken and the count scaled by s^nd (a body that large is outside anyway).
+  constexpr double kExhaustive = 2.0e7;
+  double sites = 1.0;
+  for (int a = 0; a < nd; ++a) sites *= static_cast<double>(last[a] - first[a] + 1);
+  const int stride = sites <= kExhaustive ? 1 : static_cast<int>(std::ceil(std::pow(sites / kExhaustive, 1.0 / nd)));
   ClippedLattice clipped;
-  for (int k = first[2]; k <= last[2]; ++k)
-    for (int j = first[1]; j <= last[1]; ++j)
-      for (int i = first[0]; i <= last[0]; ++i) {
-        Vec3 x{{grid.lower[0] + (i + 0.5) * dx, grid.lower[1] + (j + 0.5) * dx,
-                nd == 3 ? grid.lower[2] + (k + 0.5) * dx : 0.0}};
-        if (nd == 2 && k != first[2]) continue;
+  for (int k = first[2]; k <= last[2]; k += (nd == 3 ? stride : 1))
+    for (int j = first[1]; j <= last[1]; j += stride)
+      for (int i = first[0]; i <= last[0]; i += stride) {
+        const Vec3 x = site(i, j, k);
+        if (in_box(x)) continue;
         if (dim == Dimension::Axisymmetric && !(x[0] > 0.0)) continue;  // r > 0 only: not a clip
         if (!shape_contains(body.shape, x, nd)) continue;
-        if (lattice_point_in_grid(x, grid, nd, body.shape, clipped)) pos.push_back(x);
+        lattice_point_in_grid(x, grid, nd, body.shape, clipped);
       }
+  clipped.count *= static_cast<Index>(std::pow(static_cast<double>(stride), nd));
+  clipped.sampled = stride > 1;
   if (clipped.count > 0) throw_clipped_body(body, grid, nd, clipped, static_cast<Index>(pos.size()));
   if (pos.empty())
     throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path,

@@ -3,6 +3,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <map>
+#include <sstream>
+
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/parser.h>
 
 namespace ballista {
 
@@ -60,47 +65,110 @@ std::string format_number(double x) {
 
 namespace {
 
-/// Throws on the first tagged node; counts nodes (through aliases) against kMaxDeckNodes.
-void check_deck_nodes(const YAML::Node& n, const std::string& file, long& visited) {
-  if (++visited > kMaxDeckNodes)
-    throw DeckError(file, n.Mark().line + 1, n.Mark().column + 1, "",
-                    "the deck expands to more than " + std::to_string(kMaxDeckNodes) +
-                        " YAML nodes (aliases referring to aliases?); a deck that large is refused");
-  // yaml-cpp: "?" = plain untagged node, "!" = quoted scalar (non-specific tag); anything else was
-  // written as a tag in the deck.
-  const std::string& tag = n.Tag();
-  if (!tag.empty() && tag != "?" && tag != "!")
-    throw DeckError(file, n.Mark().line + 1, n.Mark().column + 1, "",
-                    "YAML tag '" + shorten(tag) + "' is not supported in a deck (Ballista reads plain values; "
-                    "remove the tag)");
-  if (n.IsMap()) {
-    for (auto it = n.begin(); it != n.end(); ++it) {
-      check_deck_nodes(it->first, file, visited);
-      check_deck_nodes(it->second, file, visited);
-    }
-  } else if (n.IsSequence()) {
-    for (auto it = n.begin(); it != n.end(); ++it) check_deck_nodes(*it, file, visited);
+/// One pass over the parser's events (nothing is built, no alias is expanded): at most one
+/// document, no tags, no alias inside its own anchor, and at most kMaxDeckNodes nodes counted
+/// through aliases (each alias counts the size of what it refers to).
+class DeckEventCheck : public YAML::EventHandler {
+ public:
+  explicit DeckEventCheck(std::string file) : file_(std::move(file)) {}
+
+  void OnDocumentStart(const YAML::Mark& mark) override {
+    if (++documents_ > 1)
+      fail(mark, "the file holds more than one YAML document (separated by '---'); a deck is one document");
   }
-}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& mark, YAML::anchor_t anchor) override { leaf(mark, anchor); }
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t anchor) override {
+    for (const Frame& f : stack_)
+      if (f.anchor == anchor && anchor != YAML::NullAnchor)
+        fail(mark, "an alias refers to the collection that contains it (a recursive alias)");
+    const auto it = sizes_.find(anchor);
+    add(mark, it == sizes_.end() ? 1.0 : it->second);
+  }
+  void OnScalar(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor, const std::string&) override {
+    check_tag(mark, tag);
+    leaf(mark, anchor);
+  }
+  void OnSequenceStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
+                       YAML::EmitterStyle::value) override {
+    open(mark, tag, anchor);
+  }
+  void OnSequenceEnd() override { close(); }
+  void OnMapStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
+                  YAML::EmitterStyle::value) override {
+    open(mark, tag, anchor);
+  }
+  void OnMapEnd() override { close(); }
+
+ private:
+  struct Frame {
+    YAML::anchor_t anchor;
+    double nodes;  ///< nodes inside, aliases expanded
+    YAML::Mark mark;
+  };
+  [[noreturn]] void fail(const YAML::Mark& mark, const std::string& message) const {
+    throw DeckError(file_, mark.line + 1, mark.column + 1, "", message);
+  }
+  void check_tag(const YAML::Mark& mark, const std::string& tag) const {
+    // "?" = plain untagged node, "!" = quoted scalar (non-specific tag); anything else was
+    // written as a tag in the deck.
+    if (!tag.empty() && tag != "?" && tag != "!")
+      fail(mark, "YAML tag '" + shorten(tag) + "' is not supported in a deck (Ballista reads plain values; "
+                 "remove the tag)");
+  }
+  void add(const YAML::Mark& mark, double n) {
+    total_ += n;
+    if (total_ > static_cast<double>(kMaxDeckNodes))
+      fail(mark, "the deck expands to more than " + std::to_string(kMaxDeckNodes) +
+                     " YAML nodes (aliases referring to aliases?); a deck that large is refused");
+    if (!stack_.empty()) stack_.back().nodes += n;
+  }
+  void leaf(const YAML::Mark& mark, YAML::anchor_t anchor) {
+    if (anchor != YAML::NullAnchor) sizes_[anchor] = 1.0;
+    add(mark, 1.0);
+  }
+  void open(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor) {
+    check_tag(mark, tag);
+    if (stack_.size() >= kMaxDepth) fail(mark, "the deck nests deeper than " + std::to_string(kMaxDepth) + " levels");
+    add(mark, 1.0);
+    stack_.push_back({anchor, 0.0, mark});
+  }
+  void close() {
+    const Frame f = stack_.back();
+    stack_.pop_back();
+    if (f.anchor != YAML::NullAnchor) sizes_[f.anchor] = f.nodes + 1.0;
+    // The collection's contents count in its parent too (the collection itself was counted at open).
+    if (!stack_.empty()) stack_.back().nodes += f.nodes;
+  }
+
+  static constexpr size_t kMaxDepth = 200;
+  std::string file_;
+  int documents_ = 0;
+  double total_ = 0.0;
+  std::vector<Frame> stack_;
+  std::map<YAML::anchor_t, double> sizes_;
+};
 
 }  // namespace
 
 YAML::Node load_deck_document(const std::string& yaml_text, const std::string& file_name) {
-  std::vector<YAML::Node> docs;
+  const auto syntax = [&](const YAML::Exception& e) {
+    return DeckError(file_name, e.mark.line >= 0 ? e.mark.line + 1 : 0, e.mark.column >= 0 ? e.mark.column + 1 : 0,
+                     "", "invalid YAML: " + e.msg);
+  };
   try {
-    docs = YAML::LoadAll(yaml_text);
+    // Checks first, on the event stream: a second document is found by asking for it once (not by
+    // YAML::LoadAll, which never returns on some malformed input, yaml-cpp issue 1040).
+    std::istringstream in(yaml_text);
+    YAML::Parser parser(in);
+    DeckEventCheck check(file_name);
+    if (parser.HandleNextDocument(check)) parser.HandleNextDocument(check);
+    return YAML::Load(yaml_text);
+  } catch (const DeckError&) {
+    throw;
   } catch (const YAML::Exception& e) {
-    throw DeckError(file_name, e.mark.line >= 0 ? e.mark.line + 1 : 0, e.mark.column >= 0 ? e.mark.column + 1 : 0,
-                    "", "invalid YAML: " + e.msg);
+    throw syntax(e);
   }
-  if (docs.size() > 1)
-    throw DeckError(file_name, docs[1].Mark().line + 1, docs[1].Mark().column + 1, "",
-                    "the file holds " + std::to_string(docs.size()) +
-                        " YAML documents (separated by '---'); a deck is one document");
-  if (docs.empty()) return YAML::Node();
-  long visited = 0;
-  check_deck_nodes(docs[0], file_name, visited);
-  return docs[0];
 }
 
 bool scalar_number(const YAML::Node& v, double& x) {

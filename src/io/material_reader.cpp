@@ -3,6 +3,7 @@
 #include <climits>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "io/material_presets.hpp"
 
@@ -19,6 +20,11 @@ void apply_preset(DeckNode& ms, const std::string& name) {
   if (!mat.IsMap() || !mat["preset"]) return;
   static const MaterialPresetLibrary library = MaterialPresetLibrary::load_default();
   DeckNode m = ms.entry(name);
+  // The merge below rebuilds the map: a duplicate key must be caught before it disappears.
+  std::set<std::string> seen;
+  for (auto it = mat.begin(); it != mat.end(); ++it)
+    if (it->first.IsScalar() && !seen.insert(it->first.Scalar()).second)
+      m.fail(it->first.Scalar(), "duplicate key '" + shorten(it->first.Scalar()) + "' in materials." + name);
   const std::string preset_name = m.string("preset");
   const MaterialPreset* preset = library.find(preset_name);
   if (!preset) {

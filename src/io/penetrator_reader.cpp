@@ -108,8 +108,12 @@ std::vector<Row> file_rows(DeckNode& jet) {
   int line_no = 0;
   while (std::getline(in, line)) {
     ++line_no;
+    const bool blank = line.find_first_not_of(" \t\r") == std::string::npos;
     for (char& c : line)
       if (c == ',' || c == ';' || c == '\t' || c == '\r') c = ' ';
+    if (!blank && line.find_first_not_of(' ') == std::string::npos)
+      throw DeckError(path.string(), line_no, 1, jet.child_path("file"),
+                      "a row of separators without numbers (expected radius, length, velocity, insert_time)");
     std::istringstream is(line);
     std::string first;
     if (!(is >> first) || first[0] == '#') continue;

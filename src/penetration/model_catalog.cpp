@@ -232,7 +232,7 @@ const ModelEntry& find_penetration_model(const std::string& name) {
     if (m.name == name) return m;
     names += (names.empty() ? "" : ", ") + m.name;
   }
-  throw Error(fmt::format("unknown model '{}'; models: {} (or 'list')", name, names));
+  throw Error(fmt::format("unknown model '{}'; models: {} (or 'list')", shorten(name), names));
 }
 
 std::map<std::string, double> resolve_model_params(const ModelEntry& model,
@@ -242,7 +242,7 @@ std::map<std::string, double> resolve_model_params(const ModelEntry& model,
   for (const auto& [k, v] : given) {
     bool known = false;
     for (const auto& p : model.params) known = known || p.key == k;
-    if (!known) throw Error(fmt::format("{}: unknown parameter '{}'; parameters: {}", model.name, k, keys));
+    if (!known) throw Error(fmt::format("{}: unknown parameter '{}'; parameters: {}", model.name, shorten(k), keys));
     if (!std::isfinite(v)) throw Error(fmt::format("{}: parameter '{}' = {} is not a finite number", model.name, k, v));
   }
   std::map<std::string, double> out;

@@ -52,7 +52,7 @@ std::vector<std::pair<std::string, double>> parse_model_params(const std::vector
   for (const std::string& s : params) {
     const auto eq = s.find('=');
     if (eq == std::string::npos || eq == 0)
-      throw Error(fmt::format("--param '{}': expected key=value (for instance --param rho_p=17600)", s));
+      throw Error(fmt::format("--param '{}': expected key=value (for instance --param rho_p=17600)", shorten(s)));
     const std::string key = s.substr(0, eq), text = s.substr(eq + 1);
     size_t used = 0;
     double v = 0;
@@ -62,8 +62,8 @@ std::vector<std::pair<std::string, double>> parse_model_params(const std::vector
       used = 0;
     }
     if (used == 0 || used != text.size())
-      throw Error(fmt::format("--param '{}': value '{}' of '{}' is not a number (SI units, e.g. 1.5e9)", s, text, key));
-    if (!std::isfinite(v)) throw Error(fmt::format("--param '{}': {} must be a finite number", s, key));
+      throw Error(fmt::format("--param '{}': value '{}' of '{}' is not a number (SI units, e.g. 1.5e9)", shorten(s), shorten(text), shorten(key)));
+    if (!std::isfinite(v)) throw Error(fmt::format("--param '{}': {} must be a finite number", shorten(s), shorten(key)));
     out.emplace_back(key, v);
   }
   return out;
@@ -79,7 +79,7 @@ int run_models_cli(const ModelsCliOptions& o) {
   const ModelEntry& m = find_penetration_model(o.model);
   std::map<std::string, double> given;
   for (const auto& [k, v] : parse_model_params(o.params)) {
-    if (given.count(k)) throw Error(fmt::format("--param {}: given twice", k));
+    if (given.count(k)) throw Error(fmt::format("--param {}: given twice", shorten(k)));
     given[k] = v;
   }
   ModelArgs args;
