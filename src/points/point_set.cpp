@@ -27,7 +27,8 @@ PointSet::PointSet(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   // plus a solver's per-point scratch (~3 Vec3 and 5 indices). The point count is the bodies'
   // bounding-box lattice, an upper bound.
   {
-    const double bytes_per_point = points_.bytes_per_point() + 3 * sizeof(Vec3) + 5 * sizeof(Index);
+    const double bytes_per_point =
+        points_.bytes_per_point() + 3 * sizeof(Vec3) + 5 * sizeof(Index) + lattice.solver_bytes_per_point;
     double npoints = 0.0;
     for (BodySpec body : sc.bodies) {
       if (lattice.override_ppc > 0) body.particles_per_cell = lattice.override_ppc;

@@ -22,6 +22,7 @@ namespace ballista {
 struct SeedLattice {
   GridSpec box;
   int override_ppc = 0;  ///< > 0: every body seeded with this many points per cell and direction
+  double solver_bytes_per_point = 0.0;  ///< the solver's own storage per point (bonds), for the memory estimate
 };
 
 class PointSet {

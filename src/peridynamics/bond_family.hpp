@@ -1,0 +1,43 @@
+#pragma once
+// Bond families of bond-based peridynamics (Silling 2000; Silling & Askari, Comput. Struct. 83
+// (2005) 1526): every pair of points closer than the horizon delta in the reference configuration.
+// Built once from the reference positions by cell binning (cells of size delta: O(N) pairs
+// tested, never O(N^2)). Stored in compressed rows, each bond in the rows of both of its ends, so
+// that the force loop writes only its own point (no atomics, results independent of the thread
+// count); a bond is broken for both ends because the breaking criterion is symmetric.
+#include <cstdint>
+#include <vector>
+
+#include "core/parallel.hpp"
+#include "core/tensor.hpp"
+
+namespace ballista::pd {
+
+/// Partial-volume correction of a neighbour cut by the horizon sphere: the share of the
+/// neighbour's cell inside the horizon, taken linear in the bond length across one lattice
+/// spacing dx (the simple "partial volume" algorithm reviewed by Seleson, CMAME 282 (2014) 184;
+/// the form LAMMPS PERI uses): 1 for |xi| <= delta - dx/2, (delta + dx/2 - |xi|)/dx beyond.
+/// Bonds end at the horizon (|xi| <= delta), so the factor never falls below about 1/2.
+double partial_volume_factor(double xi, double delta, double dx);
+
+struct BondFamily {
+  std::vector<Index> offset;         ///< row start of each point (size n + 1)
+  std::vector<std::int32_t> other;   ///< the other end of each bond
+  std::vector<double> length0;       ///< reference length |xi|, m
+  std::vector<float> volume_factor;  ///< partial-volume correction (1 if off)
+  std::vector<std::uint8_t> broken;  ///< 1 once the bond has failed (never heals)
+
+  Index points() const { return static_cast<Index>(offset.size()) - 1; }
+  Index bonds() const { return static_cast<Index>(other.size()); }  ///< each bond counted at both ends
+  /// Bytes of bond storage per (one-ended) bond.
+  static constexpr double kBytesPerBond = sizeof(std::int32_t) + sizeof(double) + sizeof(float) + 1;
+};
+
+/// Families of the n reference positions x0 with horizon delta; `dx` is the lattice spacing used
+/// by the partial-volume correction (0: no correction). With `body` given, only points of the same
+/// body are bonded (bodies are separate objects that meet through contact). Neighbours within each
+/// row are in increasing index order. `dim` is 2 or 3 (in 2D the z components are ignored).
+BondFamily build_bond_family(const Vec3* x0, Index n, double delta, double dx, int dim,
+                             const std::int64_t* body = nullptr);
+
+}  // namespace ballista::pd

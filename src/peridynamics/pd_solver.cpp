@@ -1,0 +1,334 @@
+#include "peridynamics/pd_solver.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "core/error.hpp"
+#include "geometry/seeding.hpp"
+#include "points/solver_registry.hpp"
+
+namespace ballista {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// A DeckError at a key of the peridynamics section (the solver checks what the specs cannot).
+[[noreturn]] void section_error(const Scenario& sc, const std::string& key, const std::string& message) {
+  throw DeckError(sc.file, 0, 0, "peridynamics." + key, message);
+}
+
+}  // namespace
+
+ProbedModuli probe_moduli(const Material& material) {
+  // One point, driven by a volumetric and then (from the start again) a shear velocity gradient
+  // over dt = 1 s: for any model, at the reference state and for an increment of 1e-7 far inside
+  // the elastic range, sigma = K tr(eps) I + 2 G dev(eps) to O(1e-7).
+  constexpr double e = 1e-7;
+  auto drive = [&](const Mat3& L) {
+    FieldStore s;
+    declare_point_fields(s);
+    material.declare_fields(s);
+    s.resize(1);
+    material.initialise_state(s, 0, 1);
+    s.real("mass")[0] = material.density();
+    s.real("volume0")[0] = 1.0;
+    s.real("volume")[0] = 1.0;
+    s.view<Mat3>("R")[0] = Mat3::identity();
+    Mat3& F = s.view<Mat3>("F")[0];
+    F = (Mat3::identity() + L) * Mat3::identity();
+    s.view<Mat3>("L")[0] = L;
+    static const Index kPoint[1] = {0};
+    MaterialBatch b;
+    b.points = kPoint;
+    b.count = 1;
+    b.F_new = s.view<Mat3>("F");
+    b.L = s.view<Mat3>("L");
+    b.R = s.view<Mat3>("R");
+    b.stress = s.view<Mat3>("stress");
+    b.store = &s;
+    b.dt = 1.0;
+    material.update(b);
+    return s.view<Mat3>("stress")[0];
+  };
+  // The adapter's midpoint increment of G = dt L is D dt = sym(G (I + G/2)^-1) (strain_increment.hpp).
+  const double eps_vol = e / (1.0 + 0.5 * e);
+  const Mat3 sv = drive(Mat3::diag(e, e, e));
+  Mat3 shear;
+  shear(0, 1) = shear(1, 0) = e;
+  const Mat3 ss = drive(shear);
+  ProbedModuli m;
+  m.bulk = (sv(0, 0) + sv(1, 1) + sv(2, 2)) / (9.0 * eps_vol);
+  m.shear = ss(0, 1) / (2.0 * e);
+  return m;
+}
+
+PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials, Communicator comm)
+    : scenario_(sc),
+      comm_(comm),
+      // Every body on the lattice of spacing grid.cell_size (one point per cell); bonds cost
+      // ~(4/3 pi m^3) bonds of 17 B per point (m = 3: ~1.9 kB).
+      pts_(sc, std::move(materials),
+           SeedLattice{sc.grid, 1,
+                       4.0 / 3.0 * std::numbers::pi *
+                           std::pow(std::isnan(sc.solver_params.at("m")) ? 3.0 : sc.solver_params.at("m"), 3) *
+                           pd::BondFamily::kBytesPerBond},
+           0.0, "", comm),
+      points_(pts_.store()) {
+  const ParamValues& P = sc.solver_params;
+  dx_ = sc.grid.cell_size;
+  const bool m_given = P.given("m"), h_given = P.given("horizon");
+  if (m_given && h_given) section_error(sc, "horizon", "give the horizon or m (horizon = m x lattice spacing), not both");
+  delta_ = h_given ? P.at("horizon") : (m_given ? P.at("m") : 3.0) * dx_;
+  if (!(delta_ >= dx_))
+    section_error(sc, h_given ? "horizon" : "m",
+                  fmt::format("the horizon {:g} m must be at least the lattice spacing grid.cell_size = {:g} m", delta_, dx_));
+  if (P.given("critical_stretch") && P.given("fracture_energy"))
+    section_error(sc, "fracture_energy", "give critical_stretch or fracture_energy, not both");
+  alpha_ = P.at("stretch_alpha");
+  dt_safety_ = P.at("dt_safety");
+  damping_ = sc.simulation.damping;
+  if (sc.simulation.dimension != Dimension::ThreeD)
+    section_error(sc, "", "only 3d runs are implemented (plane stress and plane strain come next)");
+  if (pts_.pending() > 0)
+    section_error(sc, "", "bodies with a later activation (activation_time, activation_stage, rods, jets) are not "
+                          "supported by the peridynamics solver yet: their bonds would have to be built on arrival");
+  if (sc.simulation.on_particle_exit != "stop")
+    section_error(sc, "", "simulation.on_particle_exit: delete is not supported by the peridynamics solver yet");
+
+  // Bond constants per material pair: c = 18 K/(pi delta^4) (Silling & Askari 2005 eq. 22) for each
+  // material, two materials' bond as their two half-bonds in series (harmonic mean); the critical
+  // stretch of a mixed bond is the smaller one.
+  const auto& mats = pts_.materials();
+  nmat_ = static_cast<int>(mats.size());
+  std::vector<double> c(nmat_), s0(nmat_);
+  for (int a = 0; a < nmat_; ++a) {
+    const ProbedModuli mod = probe_moduli(*mats[a]);
+    if (!(mod.bulk > 0.0) || !std::isfinite(mod.bulk))
+      throw DeckError(sc.file, 0, 0, "materials." + mats[a]->name(),
+                      fmt::format("peridynamics needs a positive bulk modulus; material '{}' gives {:g} Pa",
+                                  mats[a]->name(), mod.bulk));
+    c[a] = 18.0 * mod.bulk / (std::numbers::pi * std::pow(delta_, 4));
+    if (P.given("critical_stretch"))
+      s0[a] = P.at("critical_stretch");
+    else if (P.given("fracture_energy"))
+      s0[a] = std::sqrt(5.0 * P.at("fracture_energy") / (9.0 * mod.bulk * delta_));  // S&A 2005 eq. 25
+    else
+      s0[a] = kInf;
+  }
+  c_.resize(static_cast<size_t>(nmat_ * nmat_));
+  s00_.resize(c_.size());
+  for (int a = 0; a < nmat_; ++a)
+    for (int b = 0; b < nmat_; ++b) {
+      c_[a * nmat_ + b] = 2.0 * c[a] * c[b] / (c[a] + c[b]);
+      s00_[a * nmat_ + b] = std::min(s0[a], s0[b]);
+    }
+
+  // Fields of this solver: damage (output) and the acceleration of the last force evaluation.
+  points_.add_real("damage", 1, "1");
+  points_.add_real("pd_accel", 3, "m/s^2", false);
+  const Index n = points_.size();
+  const auto* x0 = points_.view<Vec3>("x0");
+  const bool correct = P.choices.at("volume_correction") == "partial";
+  bonds_ = pd::build_bond_family(x0, n, delta_, correct ? dx_ : 0.0, 3, points_.ints("body"));
+  s0_.assign(static_cast<size_t>(n), kInf);
+  const auto* mat = points_.ints("material");
+  for (Index p = 0; p < n; ++p) {
+    double s = kInf;
+    for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k)
+      s = std::min(s, s00_[mat[p] * nmat_ + mat[bonds_.other[k]]]);
+    s0_[p] = s;  // the first step breaks at s00 (no previous stretch yet)
+  }
+  dissipated_.assign(static_cast<size_t>(n), 0.0);
+  // Stable step of each point (Silling & Askari 2005 eq. 17): dt < sqrt(2 rho / sum_j V_j c/|xi|).
+  dt_point_.assign(static_cast<size_t>(n), kInf);
+  const auto* vol0 = points_.real("volume0");
+  const auto* mass = points_.real("mass");
+  for_each(0, n, [&](Index p) {
+    double sum = 0.0;
+    for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k) {
+      const Index q = bonds_.other[k];
+      sum += vol0[q] * bonds_.volume_factor[k] * c_[mat[p] * nmat_ + mat[q]] / bonds_.length0[k];
+    }
+    const double rho = mass[p] / vol0[p];
+    if (sum > 0.0) dt_point_[p] = std::sqrt(2.0 * rho / sum);
+  });
+  compute_forces();
+}
+
+void PdSolver::refresh() { compute_forces(); }
+
+void PdSolver::begin_stage(int stage, double damping) {
+  pts_.begin_stage(stage, time_);
+  damping_ = damping;
+}
+
+double PdSolver::stable_dt() {
+  double dt = kInf;
+  for (double d : dt_point_) dt = std::min(dt, d);
+  dt = comm_.min(dt_safety_ * dt);
+  if (!std::isfinite(dt)) dt = scenario_.simulation.end_time;  // no bonds at all: free flight
+  if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
+  return dt;
+}
+
+void PdSolver::compute_forces() {
+  const Index n = points_.size();
+  const auto* x = points_.view<Vec3>("x");
+  const auto* vol0 = points_.real("volume0");
+  const auto* mass = points_.real("mass");
+  const auto* mat = points_.ints("material");
+  auto* acc = points_.view<Vec3>("pd_accel");
+  auto* damage = points_.real("damage");
+  auto* eint = points_.real("internal_energy");
+  auto* wdis = points_.real("plastic_work");
+  std::vector<double> s0_next(static_cast<size_t>(n));
+  // Forces of the intact bonds; a bond stretched beyond min(s0_i, s0_j) breaks. Each point writes
+  // only its own row and its own outputs; both rows of a bond see the same stretch and the same
+  // min(s0_i, s0_j), so they break together.
+  for_each(0, n, [&](Index p) {
+    Vec3 f;
+    double energy = 0.0, vol_all = 0.0, vol_broken = 0.0, dis = 0.0;
+    double smin_term = -kInf;
+    const double rho = mass[p] / vol0[p];
+    for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k) {
+      const Index q = bonds_.other[k];
+      const double w = bonds_.volume_factor[k] * vol0[q];
+      vol_all += w;
+      if (bonds_.broken[k]) {
+        vol_broken += w;
+        continue;
+      }
+      const Vec3 y = x[q] - x[p];
+      const double r = norm(y), r0 = bonds_.length0[k];
+      const double s = (r - r0) / r0;
+      const double cpq = c_[mat[p] * nmat_ + mat[q]];
+      // Energy density of point p: w_p = 1/2 sum_j (1/2 c s^2 |xi|) V_j (Silling & Askari 2005 eq. 21).
+      const double pair = 0.5 * cpq * s * s * r0 * w;
+      if (s > std::min(s0_[p], s0_[q])) {
+        // Failure against the previous step's s0 (LAMMPS PERI's rule). The bond's energy is
+        // dissipated, half of the pair's to each end, and it exerts no force from now on (LAMMPS
+        // still applies it this step; dropping it keeps the energy balance exact).
+        bonds_.broken[k] = 1;
+        vol_broken += w;
+        dis += 0.5 * pair * vol0[p];
+        continue;
+      }
+      // f = c s (y/|y|) per unit volume of each end (seed 001 "Microelastic material").
+      if (r > 0.0) f += (cpq * s * w / r) * y;
+      energy += 0.5 * pair;
+      smin_term = std::max(smin_term, -alpha_ * s);  // s0_new = s00 - alpha s_min (LAMMPS PERI)
+    }
+    acc[p] = (1.0 / rho) * f;
+    damage[p] = vol_all > 0.0 ? vol_broken / vol_all : 0.0;
+    dissipated_[p] += dis;
+    eint[p] = energy * vol0[p] + dissipated_[p];
+    wdis[p] = dissipated_[p];
+    double s00 = kInf;
+    for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k)
+      s00 = std::min(s00, s00_[mat[p] * nmat_ + mat[bonds_.other[k]]]);
+    s0_next[p] = alpha_ > 0.0 && std::isfinite(smin_term) ? s00 + smin_term : s00;
+  });
+  s0_.swap(s0_next);
+}
+
+void PdSolver::step(double dt) {
+  // Velocity Verlet (Silling & Askari 2005 §4 use the explicit central difference; Verlet is the
+  // same scheme with synchronised velocities): v_{n+1/2} = v_n + dt/2 a_n, x_{n+1} = x_n + dt
+  // v_{n+1/2}, a_{n+1} from the bonds at x_{n+1}, v_{n+1} = v_{n+1/2} + dt/2 a_{n+1}. External
+  // forces enter a with the loads of the step's start and end.
+  const Index n = points_.size();
+  auto* x = points_.view<Vec3>("x");
+  auto* v = points_.view<Vec3>("v");
+  const auto* mass = points_.real("mass");
+  loads_.compute(scenario_, points_, time_);
+  const std::vector<Vec3> f0 = loads_.total();
+  const bool has_ext = !f0.empty();
+  const double c = damping_;
+  std::vector<Vec3> v_half(static_cast<size_t>(n));
+  {
+    const auto* acc = points_.view<Vec3>("pd_accel");
+    for_each(0, n, [&](Index p) {
+      Vec3 a = acc[p] - c * v[p];
+      if (has_ext) a += (1.0 / mass[p]) * f0[p];
+      v[p] += (0.5 * dt) * a;
+      v_half[p] = v[p];
+      x[p] += dt * v[p];
+    });
+  }
+  compute_forces();
+  time_ += dt;
+  ++steps_;
+  loads_.compute(scenario_, points_, time_);
+  const std::vector<Vec3>& f1 = loads_.total();
+  const auto* acc = points_.view<Vec3>("pd_accel");
+  // Damping with the half-step velocity (explicit), as in the first half.
+  for_each(0, n, [&](Index p) {
+    Vec3 a = acc[p] - c * v[p];
+    if (has_ext) a += (1.0 / mass[p]) * f1[p];
+    v[p] += (0.5 * dt) * a;
+  });
+  // Work of the external and damping forces over the step: force (trapezoidal in time) times the
+  // displacement dt v_{n+1/2}, exact for a constant force.
+  if (has_ext || c > 0.0) {
+    double w[1];
+    deterministic_sum<1>(0, n, [&](Index p, double* o) {
+      if (has_ext) o[0] += dot(0.5 * (f0[p] + f1[p]), v_half[p]);
+      o[0] -= c * mass[p] * dot(v_half[p], v_half[p]);
+    }, w);
+    external_work_ += dt * comm_.sum(w[0]);
+  }
+  // Checks: a non-finite position or velocity, or a point leaving the grid box, stops the run.
+  const GridSpec& g = scenario_.grid;
+  for (Index p = 0; p < n; ++p) {
+    if (!all_finite(x[p]) || !all_finite(v[p])) pts_.fail(p, "has a non-finite position or velocity", steps_, time_);
+    for (int a = 0; a < 3; ++a)
+      if (!(x[p][a] >= g.lower[a] && x[p][a] <= g.upper[a]))
+        pts_.fail(p, "left the grid box (the peridynamic domain)", steps_, time_);
+  }
+}
+
+EnergyTotals PdSolver::energies() const { return pts_.energies(1.0, external_work_); }
+
+Index PdSolver::broken_bonds() const {
+  Index k = 0;
+  for (auto b : bonds_.broken) k += b;
+  return k / 2;  // each bond is stored at both of its ends
+}
+
+namespace {
+
+std::unique_ptr<Solver> make_pd(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials) {
+  return std::make_unique<PdSolver>(sc, std::move(materials));
+}
+
+std::vector<ParamSpec> pd_params() {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  ParamSpec m{"m", "1", "horizon over lattice spacing (default 3; give m or horizon)", false, nan, 1.0, 20.0};
+  ParamSpec horizon{"horizon", "m", "horizon delta (instead of m)", false, nan, 0.0, kInf, true};
+  ParamSpec vc{"volume_correction", "-", "partial-volume correction of neighbours cut by the horizon", false, 0};
+  vc.choices = {"partial", "none"};
+  vc.default_choice = "partial";
+  ParamSpec s0{"critical_stretch", "1", "bond critical stretch s00 (or fracture_energy; neither: no failure)", false,
+               nan, 0.0, kInf, true};
+  ParamSpec g0{"fracture_energy", "J/m^2", "fracture energy G0, s00 = sqrt(5 G0/(9 K delta))", false, nan, 0.0, kInf,
+               true};
+  ParamSpec alpha{"stretch_alpha", "1", "s0 = s00 - alpha s_min (LAMMPS PERI)", false, 0.0, 0.0, kInf};
+  ParamSpec safety{"dt_safety", "1", "fraction of the Silling-Askari stable time step", false, 0.8, 0.0, 1.0, true};
+  return {m, horizon, vc, s0, g0, alpha, safety};
+}
+
+}  // namespace
+
+}  // namespace ballista
+
+BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
+    "peridynamics",
+    "bond-based peridynamics, PMB bonds with critical stretch (Silling & Askari 2005; EMU, seed 001)",
+    {"3d"},
+    "peridynamics",
+    ballista::pd_params(),
+    &ballista::make_pd})

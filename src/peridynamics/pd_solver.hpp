@@ -1,0 +1,94 @@
+#pragma once
+// Bond-based peridynamics (Silling, JMPS 48 (2000) 175; Silling & Askari, Comput. Struct. 83
+// (2005) 1526), the discretisation of Sandia's EMU code (seed 001_65d50031991c2cdb.txt: "EMU
+// numerical method"): points on a regular lattice, each interacting with every point of its
+// family (within the horizon delta) through a pairwise force; explicit velocity Verlet.
+//
+// Material model (seed 001, "Microelastic material"): the prototype microelastic brittle (PMB)
+// bond, f = c s (eta + xi)/|eta + xi| per unit volume squared, s = (|eta + xi| - |xi|)/|xi|,
+// c = 18 K/(pi delta^4) in 3D (Silling & Askari 2005 eq. 22). K is the bulk modulus of the point's
+// material from the shared library (probed through its own kernel). A bond breaks for good when
+// its stretch exceeds s0 = min(s0_i, s0_j), s0_i = s00 - alpha s_min,i (LAMMPS PERI's rule, the
+// previous step's smallest stretch of point i), s00 given or from the fracture energy G0:
+// s00 = sqrt(5 G0/(9 K delta)) (Silling & Askari 2005 eq. 25). Damage of a point is the
+// volume-weighted fraction of its broken bonds (seed 001, "Damage").
+//
+// The points layer (seeding, loads, removal, energies, diagnostics) is shared with MPM: this file
+// owns only the bonds, the force and the time integration.
+#include <memory>
+#include <vector>
+
+#include "core/communicator.hpp"
+#include "core/solver.hpp"
+#include "io/scenario.hpp"
+#include "materials/material.hpp"
+#include "peridynamics/bond_family.hpp"
+#include "points/point_loads.hpp"
+#include "points/point_set.hpp"
+
+namespace ballista {
+
+/// Bulk and shear modulus of a library material at its reference state, probed by driving one
+/// point through its own kernel with tiny volumetric and shear strain increments.
+struct ProbedModuli {
+  double bulk = 0.0;   ///< Pa
+  double shear = 0.0;  ///< Pa
+};
+ProbedModuli probe_moduli(const Material& material);
+
+class PdSolver final : public Solver {
+ public:
+  PdSolver(const Scenario& scenario, std::vector<std::unique_ptr<Material>> materials, Communicator comm = {});
+
+  const char* name() const override { return "peridynamics"; }
+  double stable_dt() override;
+  void step(double dt) override;
+  double time() const override { return time_; }
+  long steps() const override { return steps_; }
+  FieldStore& points() override { return points_; }
+  Index pending_points() const override { return pts_.pending(); }
+  EnergyTotals energies() const override;
+  double reporting_scale() const override { return 1.0; }
+  void begin_stage(int stage, double damping) override;
+  StepLimiter step_limiter() const override { return pts_.step_limiter(); }
+
+  const pd::BondFamily& bonds() const { return bonds_; }
+  double horizon() const { return delta_; }
+  double lattice_spacing() const { return dx_; }
+  /// Micromodulus c of the bond between points of materials a and b, N/m^6.
+  double micromodulus(int a, int b) const { return c_[a * nmat_ + b]; }
+  /// Critical stretch s00 of the bond between materials a and b (infinite: no failure).
+  double critical_stretch(int a, int b) const { return s00_[a * nmat_ + b]; }
+  /// Bonds broken so far (each counted once).
+  Index broken_bonds() const;
+  /// Re-evaluates the bond forces, energies and damage at the current positions without advancing
+  /// time (after positions were set from outside, e.g. by a test imposing a deformation).
+  void refresh();
+
+ private:
+  /// Bond forces (per unit mass, into field pd_accel), stretches, failures, s0 for the next step,
+  /// damage and the per-point bond energies.
+  void compute_forces();
+
+  Scenario scenario_;
+  Communicator comm_;
+  PointSet pts_;
+  FieldStore& points_;
+  PointLoads loads_;
+  pd::BondFamily bonds_;
+  double dx_ = 0.0, delta_ = 0.0;
+  int nmat_ = 0;
+  std::vector<double> c_;    ///< micromodulus per material pair, N/m^6
+  std::vector<double> s00_;  ///< critical stretch per material pair (inf: no failure)
+  double alpha_ = 0.0;       ///< s0 = s00 - alpha s_min
+  double dt_safety_ = 0.8;   ///< fraction of the Silling-Askari stable step
+  double damping_ = 0.0;     ///< 1/s: a - c v (dynamic relaxation, stages)
+  std::vector<double> dt_point_;  ///< Silling-Askari stable step of each point (reference), s
+  std::vector<double> s0_;         ///< current critical stretch of each point
+  std::vector<double> dissipated_; ///< J: energy of the broken bonds, half of each to each end
+  double time_ = 0.0;
+  long steps_ = 0;
+  double external_work_ = 0.0;
+};
+
+}  // namespace ballista
