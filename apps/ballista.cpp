@@ -218,10 +218,10 @@ int main(int argc, char** argv) {
       return r.ok ? 0 : 3;
     }
   } catch (const ballista::DeckError& e) {
-    std::cerr << "deck error: " << ballista::shorten(e.what(), 4000) << "\n";
+    std::cerr << "deck error: " << ballista::shorten(e.what(), 2500) << "\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "error: " << ballista::shorten(e.what(), 4000) << "\n";
+    std::cerr << "error: " << ballista::shorten(e.what(), 2500) << "\n";
     return 1;
   }
   return 0;

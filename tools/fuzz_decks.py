@@ -834,7 +834,7 @@ def table_rows(data):
     rows = [l for l in rows if l and not l.startswith("#")]
     if rows:
         try:
-            float(rows[0].split(",")[0])
+            float(re.split(r"[,;\s]+", rows[0])[0])
         except ValueError:
             rows = rows[1:]
     return len(rows)

@@ -32,6 +32,17 @@ std::string error_of(const std::string& text) {
   return "";
 }
 
+/// An axisymmetric deck whose jet reads its segments from the CSV file `table`.
+std::string jet_deck(const std::string& table) {
+  return "simulation: {dimension: axisymmetric, end_time: 1.0e-5}\n"
+         "grid: {lower: [0, 0], upper: [0.02, 0.2], cell_size: 1.0e-3}\n"
+         "materials:\n  w: {model: linear_elastic, density: 17600, youngs_modulus: 350e9, poisson_ratio: 0.3}\n"
+         "bodies:\n"
+         "  - {name: target, material: w, shape: {type: cylinder, center: [0, 0], axis: y, radius: 0.015, length: 0.05}}\n"
+         "  - name: pen\n    material: w\n    jet: {face: [0, 0.05], insert_distance: 0.01, standoff: 0.03, file: " +
+         table + "}\n";
+}
+
 }  // namespace
 
 TEST(DeckHostile, TheCleanDeckParses) { EXPECT_NO_THROW(parse_deck(kDeck, "clean.yaml")); }
@@ -97,15 +108,7 @@ TEST(DeckHostile, RowsOfSeparatorsAreErrorsNotBlankLines) {
   ballista::test::TempDir dir{"ballista_hostile"};
   const fs::path table = dir.path / "jet.csv";
   std::ofstream(table) << "1.0e-3, 4.0e-3, 7000, 0\n,,,\n";
-  const std::string text =
-      "simulation: {dimension: axisymmetric, end_time: 1.0e-5}\n"
-      "grid: {lower: [0, 0], upper: [0.02, 0.2], cell_size: 1.0e-3}\n"
-      "materials:\n  w: {model: linear_elastic, density: 17600, youngs_modulus: 350e9, poisson_ratio: 0.3}\n"
-      "bodies:\n"
-      "  - {name: target, material: w, shape: {type: cylinder, center: [0, 0], axis: y, radius: 0.015, length: 0.05}}\n"
-      "  - name: pen\n    material: w\n    jet: {face: [0, 0.05], insert_distance: 0.01, standoff: 0.03, file: " +
-      table.string() + "}\n";
-  const std::string e = error_of(text);
+  const std::string e = error_of(jet_deck(table.string()));
   EXPECT_NE(e.find("jet.csv:2:"), std::string::npos) << e;
   EXPECT_NE(e.find("separators without numbers"), std::string::npos) << e;
 }
@@ -152,15 +155,7 @@ TEST(DeckHostile, JetTableRowWithInfinityIsNamed) {
   ballista::test::TempDir dir{"ballista_hostile"};
   const fs::path table = dir.path / "jet.csv";
   std::ofstream(table) << "1.0e-3, 4.0e-3, inf, 0\n";
-  const std::string text =
-      "simulation: {dimension: axisymmetric, end_time: 1.0e-5}\n"
-      "grid: {lower: [0, 0], upper: [0.02, 0.2], cell_size: 1.0e-3}\n"
-      "materials:\n  w: {model: linear_elastic, density: 17600, youngs_modulus: 350e9, poisson_ratio: 0.3}\n"
-      "bodies:\n"
-      "  - {name: target, material: w, shape: {type: cylinder, center: [0, 0], axis: y, radius: 0.015, length: 0.05}}\n"
-      "  - name: pen\n    material: w\n    jet: {face: [0, 0.05], insert_distance: 0.01, standoff: 0.03, file: " +
-      table.string() + "}\n";
-  const std::string e = error_of(text);
+  const std::string e = error_of(jet_deck(table.string()));
   EXPECT_NE(e.find("jet.csv:1:"), std::string::npos) << e;
   EXPECT_NE(e.find("expected finite numbers, got 'inf'"), std::string::npos) << e;
 }
