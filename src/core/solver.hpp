@@ -2,6 +2,8 @@
 // What the run loop needs from any discretisation (MPM today; peridynamics and OTM later).
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/field_store.hpp"
 #include "core/tensor.hpp"
@@ -35,6 +37,13 @@ struct StepLimiter {
   double J = 1.0;              ///< det F
 };
 
+/// A table a solver adds to a run's results, written as `<name>.csv` in the results folder.
+struct ResultTable {
+  std::string name;                        ///< file stem, e.g. "fragments"
+  std::vector<std::string> columns;        ///< header
+  std::vector<std::vector<double>> rows;   ///< one value per column
+};
+
 class Solver {
  public:
   virtual ~Solver() = default;
@@ -58,6 +67,10 @@ class Solver {
   virtual void begin_stage(int stage, double damping) = 0;
   /// The point with the largest c + |v| now (one pass over the points; call it rarely).
   virtual StepLimiter step_limiter() const { return {}; }
+  /// Results of this discretisation at the end of a run, for summary.json ("solver_results").
+  virtual std::vector<std::pair<std::string, double>> result_values() const { return {}; }
+  /// Tables of this discretisation written at the end of a run (e.g. fragments.csv).
+  virtual std::vector<ResultTable> result_tables() const { return {}; }
 };
 
 }  // namespace ballista

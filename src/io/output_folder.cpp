@@ -14,7 +14,7 @@ namespace {
 bool is_run_output(const std::string& name) {
   static const std::regex pattern(
       R"((particles_\d+\.h5|particles\.xdmf|history\.csv|summary\.json|resolved\.yaml|penetration\.csv|)"
-      R"(channel\.csv|penetration_depth\.png|penetration_rate\.png|penetrator_energy\.png|channel_profile\.png)"
+      R"(channel\.csv|fragments\.csv|penetration_depth\.png|penetration_rate\.png|penetrator_energy\.png|channel_profile\.png)"
       R"(|.*\.tmp))");
   return std::regex_match(name, pattern);
 }

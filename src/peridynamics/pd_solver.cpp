@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "geometry/seeding.hpp"
+#include "peridynamics/fragments.hpp"
 #include "points/solver_registry.hpp"
 
 namespace ballista {
@@ -297,6 +298,32 @@ Index PdSolver::broken_bonds() const {
   Index k = 0;
   for (auto b : bonds_.broken) k += b;
   return k / 2;  // each bond is stored at both of its ends
+}
+
+std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
+  const std::vector<pd::Fragment> frags = pd::find_fragments(bonds_, points_);
+  double total = 0.0, dmax = 0.0;
+  for (const auto& f : frags) total += f.mass;
+  const auto* damage = points_.real("damage");
+  for (Index p = 0; p < points_.size(); ++p) dmax = std::max(dmax, damage[p]);
+  return {{"broken_bonds", static_cast<double>(broken_bonds())},
+          {"fragment_count", static_cast<double>(frags.size())},
+          {"largest_fragment_mass", frags.empty() ? 0.0 : frags.front().mass},
+          {"mean_fragment_mass", frags.empty() ? 0.0 : total / static_cast<double>(frags.size())},
+          {"max_damage", dmax}};
+}
+
+std::vector<ResultTable> PdSolver::result_tables() const {
+  ResultTable t{"fragments",
+                {"fragment", "points", "mass", "x", "y", "z", "vx", "vy", "vz", "speed", "kinetic_energy"},
+                {}};
+  const std::vector<pd::Fragment> frags = pd::find_fragments(bonds_, points_);
+  for (size_t k = 0; k < frags.size(); ++k) {
+    const pd::Fragment& f = frags[k];
+    t.rows.push_back({static_cast<double>(k), static_cast<double>(f.points), f.mass, f.center[0], f.center[1],
+                      f.center[2], f.velocity[0], f.velocity[1], f.velocity[2], norm(f.velocity), f.kinetic_energy});
+  }
+  return {t};
 }
 
 namespace {

@@ -51,6 +51,10 @@ class PdSolver final : public Solver {
   double reporting_scale() const override { return 1.0; }
   void begin_stage(int stage, double damping) override;
   StepLimiter step_limiter() const override { return pts_.step_limiter(); }
+  /// broken_bonds, fragment_count, largest_fragment_mass (kg), mean_fragment_mass (kg), max_damage.
+  std::vector<std::pair<std::string, double>> result_values() const override;
+  /// fragments.csv: one row per fragment, largest first (peridynamics/fragments.hpp).
+  std::vector<ResultTable> result_tables() const override;
 
   const pd::BondFamily& bonds() const { return bonds_; }
   double horizon() const { return delta_; }

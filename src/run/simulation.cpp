@@ -350,6 +350,20 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       spdlog::error("penetration analysis failed: {}", w.what());
     }
   }
+  // What the discretisation itself reports (peridynamics: fragments and broken bonds).
+  try {
+    if (const auto values = solver->result_values(); !values.empty()) {
+      JsonValue& sr = summary["solver_results"];
+      sr = JsonValue::object();
+      for (const auto& [k, v] : values) sr[k] = v;
+    }
+    for (const ResultTable& t : solver->result_tables()) {
+      HistoryWriter csv((fs::path(opt.out_dir) / (t.name + ".csv")).string(), t.columns);
+      for (const auto& row : t.rows) csv.row(row);
+    }
+  } catch (const std::exception& w) {
+    spdlog::error("the solver's results could not be written: {}", w.what());
+  }
   JsonValue& st = summary["statistics"];
   st = JsonValue::object();
   st["solver"] = solver->name();

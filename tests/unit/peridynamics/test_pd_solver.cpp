@@ -4,7 +4,9 @@
 // conservation of a free vibration, and failure: a block torn in two breaks exactly the bonds that
 // cross the tear and dissipates their energy at the critical stretch.
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -15,6 +17,7 @@
 #include "peridynamics/bond_family.hpp"
 #include "peridynamics/pd_solver.hpp"
 #include "run/simulation.hpp"
+#include "support/test_files.hpp"
 
 using namespace ballista;
 
@@ -233,10 +236,52 @@ TEST(PdSolver, CutBreaksExactlyTheBondsAcrossItAndBooksTheirEnergy) {
   }
   EXPECT_GT(dnear, 0.3);
   EXPECT_EQ(dfar, 0.0);
+  // Two fragments, the halves (6 x 12 x 12 points each), at rest.
+  const auto values = s->result_values();
+  auto value = [&](const std::string& k) {
+    for (const auto& [name, v] : values)
+      if (name == k) return v;
+    return -1.0;
+  };
+  EXPECT_EQ(value("fragment_count"), 2.0);
+  EXPECT_NEAR(value("largest_fragment_mass"), 6 * 12 * 12 * 2200 * V, 1e-12);
+  EXPECT_EQ(value("broken_bonds"), static_cast<double>(crossing / 2));
+  const auto tables = s->result_tables();
+  ASSERT_EQ(tables.size(), 1u);
+  ASSERT_EQ(tables[0].rows.size(), 2u);
+  EXPECT_EQ(tables[0].rows[0][1], 6 * 12 * 12.0);  // points
   // Afterwards the halves stay at rest: no force, no new breaks, energy unchanged.
   for (int k = 0; k < 20; ++k) s->step(s->stable_dt());
   e = s->energies();
   EXPECT_EQ(s->broken_bonds(), crossing / 2);
   EXPECT_NEAR(e.total(), expected, 1e-9 * expected);
   EXPECT_LT(e.kinetic, 1e-20);
+}
+
+// End to end through `ballista run`'s loop: two separate bodies (never bonded) flying apart are two
+// fragments in summary.json and fragments.csv, with their masses and velocities.
+TEST(PdSolver, RunWritesFragmentsOfSeparateBodies) {
+  ballista::test::TempDir dir{"ballista_pd"};
+  const std::string deck =
+      "simulation: {solver: peridynamics, dimension: 3d, end_time: 2.0e-6}\n"
+      "grid: {lower: [-0.05, -0.05, -0.05], upper: [0.05, 0.05, 0.05], cell_size: 1.0e-3}\n"
+      "materials:\n  glass: {model: linear_elastic, density: 2200, youngs_modulus: 72e9, poisson_ratio: 0.25}\n"
+      "bodies:\n"
+      "  - {name: a, material: glass, velocity: [-5, 0, 0], shape: {type: box, lower: [-0.006, 0, 0], upper: [-0.002, 0.004, 0.004]}}\n"
+      "  - {name: b, material: glass, velocity: [5, 0, 0], shape: {type: box, lower: [0.002, 0, 0], upper: [0.004, 0.004, 0.004]}}\n";
+  RunOptions o;
+  o.out_dir = dir.path.string();
+  o.progress = false;
+  const RunResult r = run_simulation(parse_deck(deck, "two.yaml"), o);
+  ASSERT_TRUE(r.ok) << r.error;
+  const YAML::Node sum = YAML::LoadFile((dir.path / "summary.json").string());
+  EXPECT_EQ(sum["statistics"]["solver"].as<std::string>(), "peridynamics");
+  EXPECT_EQ(sum["solver_results"]["fragment_count"].as<double>(), 2.0);
+  // Body a: 4 x 4 x 4 points of 1 mm^3 at 2200 kg/m^3; body b: 2 x 4 x 4.
+  EXPECT_NEAR(sum["solver_results"]["largest_fragment_mass"].as<double>(), 64 * 2.2e-6, 1e-15);
+  const std::string csv = ballista::test::slurp(dir.path / "fragments.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "fragment,points,mass,x,y,z,vx,vy,vz,speed,kinetic_energy");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);
+  EXPECT_NE(csv.find("\n0,64,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n1,32,"), std::string::npos) << csv;
 }

@@ -1,0 +1,26 @@
+#pragma once
+// Fragments of a peridynamic body (seed 001, "fragmentation V&V": fragment mass and velocity
+// distributions): the connected components of the points over the intact bonds, found by
+// union-find. A point with no intact bond left is a fragment of its own.
+#include <vector>
+
+#include "core/field_store.hpp"
+#include "core/tensor.hpp"
+#include "peridynamics/bond_family.hpp"
+
+namespace ballista::pd {
+
+struct Fragment {
+  Index points = 0;     ///< number of points
+  double mass = 0.0;    ///< kg
+  Vec3 center;          ///< centre of mass, m
+  Vec3 velocity;        ///< centre-of-mass velocity, m/s
+  double kinetic_energy = 0.0;  ///< 1/2 M |V|^2 of the centre-of-mass motion, J
+  Index first_point = 0;        ///< lowest point index in it (a stable label)
+};
+
+/// Fragments of the points of `store` (fields x, v, mass) bonded by the intact bonds of `bonds`,
+/// largest mass first (ties: lowest first point).
+std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& store);
+
+}  // namespace ballista::pd
