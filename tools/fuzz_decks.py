@@ -1157,7 +1157,8 @@ def run_case(case, case_dir, a):
     mem = a.mem_limit_mb * 1024 * 1024
 
     def limits():
-        resource.setrlimit(resource.RLIMIT_AS, (mem, mem))
+        if mem > 0:  # 0: no address-space limit (AddressSanitizer reserves terabytes of shadow memory)
+            resource.setrlimit(resource.RLIMIT_AS, (mem, mem))
         resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
         fs = a.max_output_mb * 1024 * 1024
         resource.setrlimit(resource.RLIMIT_FSIZE, (fs, fs))
@@ -1333,7 +1334,8 @@ def main():
     ap.add_argument("--only", type=int, nargs="*", help="run only these case indices")
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--time-limit", type=float, default=20.0, help="seconds per case before it counts as a hang")
-    ap.add_argument("--mem-limit-mb", type=int, default=3072, help="address-space limit per case")
+    ap.add_argument("--mem-limit-mb", type=int, default=3072,
+                    help="address-space limit per case (0: none, e.g. for a sanitizer build)")
     ap.add_argument("--max-output-mb", type=int, default=300, help="output size per case before runaway_output")
     ap.add_argument("--max-error-chars", type=int, default=4000,
                     help="longest acceptable stderr in characters (an echoed bad value cut to ~2000 fits)")

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/parallel.hpp"
+#include "core/threads.hpp"
 #include "io/atomic_file.hpp"
 #include "io/python_tool.hpp"
 #include "materials/material.hpp"
@@ -34,14 +35,15 @@ int run_verify_cli(const VerifyCliOptions& o) {
   VerifySuiteOptions so;
   so.models = o.models;
   so.tests = o.tests;
-  so.threads = o.threads;
+  // --threads above the cores is clamped with a warning, as for `ballista run` (core/threads.hpp).
+  so.threads = o.threads > 0 ? request_threads(o.threads, "--threads") : o.threads;
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<MaterialFactory> factories = material_registry();  // a copy: read once, on this thread
   const std::vector<VerifyCase> cases = run_verify_suite(factories, so);
   VerifyRunInfo info;
   info.version = BALLISTA_VERSION;
   info.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  info.threads = o.threads > 0 ? o.threads : max_threads();
+  info.threads = so.threads > 0 ? so.threads : max_threads();
   const std::string json_path = (fs::path(o.out_dir) / "verify.json").string();
   write_file_atomic(json_path, verify_json(cases, info));
 
