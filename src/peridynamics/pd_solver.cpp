@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -143,6 +144,7 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
       s = std::min(s, s00_[mat[p] * nmat_ + mat[bonds_.other[k]]]);
     s0_[p] = s;  // the first step breaks at s00 (no previous stretch yet)
   }
+  s00_point_ = s0_;
   dissipated_.assign(static_cast<size_t>(n), 0.0);
   // Stable step of each point (Silling & Askari 2005 eq. 17): dt < sqrt(2 rho / sum_j V_j c/|xi|).
   dt_point_.assign(static_cast<size_t>(n), kInf);
@@ -186,7 +188,8 @@ void PdSolver::compute_forces() {
   auto* damage = points_.real("damage");
   auto* eint = points_.real("internal_energy");
   auto* wdis = points_.real("plastic_work");
-  std::vector<double> s0_next(static_cast<size_t>(n));
+  std::vector<double>& s0_next = s0_next_;
+  s0_next.resize(static_cast<size_t>(n));
   // Forces of the intact bonds; a bond stretched beyond min(s0_i, s0_j) breaks. Each point writes
   // only its own row and its own outputs; both rows of a bond see the same stretch and the same
   // min(s0_i, s0_j), so they break together.
@@ -228,9 +231,7 @@ void PdSolver::compute_forces() {
     dissipated_[p] += dis;
     eint[p] = energy * vol0[p] + dissipated_[p];
     wdis[p] = dissipated_[p];
-    double s00 = kInf;
-    for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k)
-      s00 = std::min(s00, s00_[mat[p] * nmat_ + mat[bonds_.other[k]]]);
+    const double s00 = s00_point_[p];
     s0_next[p] = alpha_ > 0.0 && std::isfinite(smin_term) ? s00 + smin_term : s00;
   });
   s0_.swap(s0_next);
@@ -246,10 +247,12 @@ void PdSolver::step(double dt) {
   auto* v = points_.view<Vec3>("v");
   const auto* mass = points_.real("mass");
   loads_.compute(scenario_, points_, time_);
-  const std::vector<Vec3> f0 = loads_.total();
+  f0_ = loads_.total();
+  const std::vector<Vec3>& f0 = f0_;
   const bool has_ext = !f0.empty();
   const double c = damping_;
-  std::vector<Vec3> v_half(static_cast<size_t>(n));
+  std::vector<Vec3>& v_half = v_half_;
+  v_half.resize(static_cast<size_t>(n));
   {
     const auto* acc = points_.view<Vec3>("pd_accel");
     for_each(0, n, [&](Index p) {
@@ -266,11 +269,21 @@ void PdSolver::step(double dt) {
   loads_.compute(scenario_, points_, time_);
   const std::vector<Vec3>& f1 = loads_.total();
   const auto* acc = points_.view<Vec3>("pd_accel");
-  // Damping with the half-step velocity (explicit), as in the first half.
+  // Damping with the half-step velocity (explicit), as in the first half. The same pass finds the
+  // first point whose state is not finite or that left the box (the domain of the points).
+  const GridSpec& g = scenario_.grid;
+  std::atomic<Index> bad{n};
   for_each(0, n, [&](Index p) {
     Vec3 a = acc[p] - c * v[p];
     if (has_ext) a += (1.0 / mass[p]) * f1[p];
     v[p] += (0.5 * dt) * a;
+    bool ok = all_finite(x[p]) && all_finite(v[p]);
+    for (int d = 0; d < 3; ++d) ok = ok && x[p][d] >= g.lower[d] && x[p][d] <= g.upper[d];
+    if (!ok) {
+      Index cur = bad.load();
+      while (p < cur && !bad.compare_exchange_weak(cur, p)) {
+      }
+    }
   });
   // Work of the external and damping forces over the step: force (trapezoidal in time) times the
   // displacement dt v_{n+1/2}, exact for a constant force.
@@ -282,13 +295,10 @@ void PdSolver::step(double dt) {
     }, w);
     external_work_ += dt * comm_.sum(w[0]);
   }
-  // Checks: a non-finite position or velocity, or a point leaving the grid box, stops the run.
-  const GridSpec& g = scenario_.grid;
-  for (Index p = 0; p < n; ++p) {
+  // A non-finite position or velocity, or a point leaving the grid box, stops the run.
+  if (const Index p = bad.load(); p < n) {
     if (!all_finite(x[p]) || !all_finite(v[p])) pts_.fail(p, "has a non-finite position or velocity", steps_, time_);
-    for (int a = 0; a < 3; ++a)
-      if (!(x[p][a] >= g.lower[a] && x[p][a] <= g.upper[a]))
-        pts_.fail(p, "left the grid box (the peridynamic domain)", steps_, time_);
+    pts_.fail(p, "left the grid box (the peridynamic domain)", steps_, time_);
   }
 }
 

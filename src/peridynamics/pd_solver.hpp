@@ -89,6 +89,10 @@ class PdSolver final : public Solver {
   double damping_ = 0.0;     ///< 1/s: a - c v (dynamic relaxation, stages)
   std::vector<double> dt_point_;  ///< Silling-Askari stable step of each point (reference), s
   std::vector<double> s0_;         ///< current critical stretch of each point
+  std::vector<double> s00_point_;  ///< s00 of each point (smallest over its family's material pairs)
+  std::vector<double> s0_next_;    ///< scratch: s0 of the next step
+  std::vector<Vec3> v_half_;       ///< scratch: v_{n+1/2} of the step (external work)
+  std::vector<Vec3> f0_;           ///< scratch: external forces at the step's start
   std::vector<double> dissipated_; ///< J: energy of the broken bonds, half of each to each end
   double time_ = 0.0;
   long steps_ = 0;
