@@ -53,7 +53,7 @@ void print_info() {
       std::cout << fmt::format("      {:<30} [{}] {}; {}{}\n", f.section + "." + p.name, p.unit, p.description,
                                format_default(p), format_range(p).empty() ? "" : "; range " + format_range(p));
   }
-  std::cout << "  (every solver) simulation.cfl [1] Courant number of the stable step; default 0.3; range 0 < x <= 1\n"
+  std::cout << "  (mpm) simulation.cfl [1] Courant number of the stable step; default 0.3; range 0 < x <= 1\n"
                "  (every solver) simulation.damping [1/s] damping a - c v (dynamic relaxation); default 0\n";
   std::cout << "\nShape functions (mpm.shape_function)\n";
   for (const auto& n : ballista::shape_kind_names())
