@@ -153,20 +153,8 @@ class Driver {
     F[0] = F_new;
     s.real("volume")[0] = s.real("volume0")[0] * det(F_new);
     static const Index kPoint[1] = {0};
-    MaterialBatch b;
-    b.points = kPoint;
-    b.count = 1;
-    b.F_old = nullptr;  // recovered from F_new and L inside the adapter, as in the solver
-    b.F_new = F;
-    b.L = L;
-    b.R = s.view<Mat3>("R");
-    b.stress = s.view<Mat3>("stress");
+    MaterialBatch b = make_batch(s, kPoint, 1, dt, true);  // as the solvers' (points/point_set.cpp)
     b.plastic_work = s.real(kStepWorkField);
-    b.store = &s;
-    b.dt = dt;
-    b.volume0 = s.real("volume0");
-    b.internal_energy = s.real("internal_energy");
-    b.plastic_energy = s.real("plastic_work");
     mat_.update(b);
     // Garbage is a failure, never a completed drive (issue 11: a compressive leg underflowed J to 0
     // and the drive completed): the stress, F, J > 0 and every state variable must hold.

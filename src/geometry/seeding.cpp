@@ -38,11 +38,10 @@ struct ClippedLattice {
   bool face[6] = {false, false, false, false, false, false};  ///< faces crossed (x_min .. z_max)
 };
 
-/// True if x is inside the grid box. A point outside counts as clipped unless it lies beyond a
+/// Counts the shape's lattice point x, outside the grid box, as clipped unless it lies beyond a
 /// `symmetry` face whose mirror image is also in the shape (a body cut by its own symmetry plane,
 /// e.g. the quarter Taylor bar): that half is represented by the boundary condition, not lost.
-bool lattice_point_in_grid(const Vec3& x, const GridSpec& grid, int nd, const ShapeSpec& shape,
-                           ClippedLattice& clipped) {
+void count_if_clipped(const Vec3& x, const GridSpec& grid, int nd, const ShapeSpec& shape, ClippedLattice& clipped) {
   bool inside = true, excused = true;
   bool crossed[6] = {false, false, false, false, false, false};
   Vec3 mirror = x;
@@ -57,11 +56,9 @@ bool lattice_point_in_grid(const Vec3& x, const GridSpec& grid, int nd, const Sh
     const double plane = (f % 2) ? grid.upper[a] : grid.lower[a];
     mirror[a] = 2.0 * plane - x[a];
   }
-  if (inside) return true;
-  if (excused && shape_contains(shape, mirror, nd)) return false;
+  if (inside || (excused && shape_contains(shape, mirror, nd))) return;
   ++clipped.count;
   for (int f = 0; f < 6; ++f) clipped.face[f] = clipped.face[f] || crossed[f];
-  return false;
 }
 
 /// Seeding outside the grid would silently lose mass (issue 11): a deck error naming the body,
@@ -147,7 +144,7 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
         if (in_box(x)) continue;
         if (dim == Dimension::Axisymmetric && !(x[0] > 0.0)) continue;  // r > 0 only: not a clip
         if (!shape_contains(body.shape, x, nd)) continue;
-        lattice_point_in_grid(x, grid, nd, body.shape, clipped);
+        count_if_clipped(x, grid, nd, body.shape, clipped);
       }
   clipped.count *= static_cast<Index>(std::pow(static_cast<double>(stride), nd));
   clipped.sampled = stride > 1;

@@ -173,6 +173,30 @@ class Material {
   virtual double max_signal_speed(const FieldStore& store, const Index* points, Index count) const = 0;
 };
 
+/// The batch every caller of Material::update builds: `count` points of `store` with the common
+/// point fields (F at t_{n+1}, L, R, stress; F_old recovered from F_new and L inside the adapter)
+/// and, with `energies`, the accumulators volume0, internal_energy and plastic_work. Solvers, the
+/// single-element driver and the peridynamic moduli probe all go through it.
+inline MaterialBatch make_batch(FieldStore& store, const Index* points, Index count, double dt, bool energies) {
+  MaterialBatch b;
+  b.points = points;
+  b.count = count;
+  b.F_old = nullptr;
+  b.F_new = store.view<Mat3>("F");
+  b.L = store.view<Mat3>("L");
+  b.R = store.view<Mat3>("R");
+  b.stress = store.view<Mat3>("stress");
+  b.store = &store;
+  b.dt = dt;
+  if (energies) {
+    // dE = dt <V> <sigma> : D (trapezoidal stress power); plastic dissipation from the model.
+    b.volume0 = store.real("volume0");
+    b.internal_energy = store.real("internal_energy");
+    b.plastic_energy = store.real("plastic_work");
+  }
+  return b;
+}
+
 /// A pressure-dependent plasticity problem of the verification catalogue (A3 Drucker-Prager vertex,
 /// A4 hydrostat against a cap, A5 load-unload-reload with and without pore fluid): the parameters a
 /// geomaterial model is reduced to. Sign convention: tension positive, I1 = tr(sigma).

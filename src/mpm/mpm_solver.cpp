@@ -100,12 +100,6 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   sort_every_ = static_cast<int>(sc.solver_params.at("sort_every"));
   damping_ = sc.simulation.damping;
   grid_.geom = layout_.geom;
-  for (int a = 0; a < 3; ++a) {
-    box_lower_[a] = layout_.box_lower[a];
-    box_upper_[a] = layout_.box_upper[a];
-    box_first_[a] = layout_.box_first[a];
-    box_last_[a] = layout_.box_last[a];
-  }
   slab_axis_ = dim_ - 1;
   grid_.resize(grid_.geom.node_count());
   sort_by_cell();
@@ -288,11 +282,11 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
 
 void MpmSolver::apply_velocity_bcs(std::vector<Vec3>& vel) {
   const GridGeometry& g = grid_.geom;
-  if (dimension_ == Dimension::Axisymmetric && box_lower_[0] == 0.0) {
+  if (dimension_ == Dimension::Axisymmetric && layout_.box_lower[0] == 0.0) {
     // The symmetry axis: radial velocity is zero on it (and on the ghost nodes beyond it) whatever
     // the x_min condition says; without this the hoop rate v_r / r of the particles next to the
     // axis is unbounded.
-    for (int i = 0; i <= box_first_[0]; ++i)
+    for (int i = 0; i <= layout_.box_first[0]; ++i)
       for (int j = 0; j < g.nodes[1]; ++j) vel[g.node_index(i, j, 0)][0] = 0.0;
   }
   for (int a = 0; a < dim_; ++a) {
@@ -300,8 +294,8 @@ void MpmSolver::apply_velocity_bcs(std::vector<Vec3>& vel) {
       const FaceBC bc = scenario_.grid.faces[2 * a + side];
       if (bc == FaceBC::Free) continue;
       // Nodes on the face and the ghost layers beyond it.
-      const int lo = side == 0 ? 0 : box_last_[a];
-      const int hi = side == 0 ? box_first_[a] : g.nodes[a] - 1;
+      const int lo = side == 0 ? 0 : layout_.box_last[a];
+      const int hi = side == 0 ? layout_.box_first[a] : g.nodes[a] - 1;
       const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
       for (int i = lo; i <= hi; ++i)
         for (int j = 0; j < g.nodes[b1]; ++j)
@@ -367,7 +361,7 @@ inline void MpmSolver::finish_point(Index p, const Mat3& l, const Vec3& disp, do
   vol_[p] = vol0_[p] * J;
   if (!(J > 0.0) || !all_finite(F)) record_min(bad, p);
   for (int a = 0; a < dim_; ++a)
-    if (!(x[a] >= box_lower_[a] && x[a] <= box_upper_[a])) record_min(out, p);
+    if (!(x[a] >= layout_.box_lower[a] && x[a] <= layout_.box_upper[a])) record_min(out, p);
 }
 
 template <int Dim, ShapeKind K>
@@ -459,7 +453,7 @@ void MpmSolver::handle_exits() {
   std::vector<char> keep(n, 1);
   for (Index p = 0; p < n; ++p)
     for (int a = 0; a < dim_; ++a)
-      if (!(x[p][a] >= box_lower_[a] && x[p][a] <= box_upper_[a])) keep[p] = 0;
+      if (!(x[p][a] >= layout_.box_lower[a] && x[p][a] <= layout_.box_upper[a])) keep[p] = 0;
   pts_.remove(keep);
 }
 

@@ -75,8 +75,8 @@ class MpmSolver final : public Solver {
   /// Node layout of the grid block: geometry, physical box and its node index range per axis.
   struct GridLayout {
     GridGeometry geom;
-    Vec3 box_lower, box_upper;
-    int box_first[3], box_last[3];
+    Vec3 box_lower, box_upper;      ///< physical grid box (without ghost layers), m
+    int box_first[3], box_last[3];  ///< node index range of the physical box per axis
   };
   static GridLayout layout_grid(const Scenario& sc, int ghost);
   static constexpr int kGhostLayers = 3;  ///< ghost node layers beyond the box on each side
@@ -95,9 +95,7 @@ class MpmSolver final : public Solver {
   int sort_every_ = 20;  ///< steps between particle sorts (0 = never)
   double damping_;
   GridData grid_;
-  Vec3 box_lower_, box_upper_;  ///< physical grid box (without ghost layers)
   int ghost_ = kGhostLayers;    ///< ghost node layers beyond the box on each side
-  int box_first_[3], box_last_[3];  ///< node index range of the physical box per axis
   std::vector<Vec3> displacement_;  ///< MUSL: dt * grid velocity at each point this step, m
   Index first_bad_ = 0, first_out_ = 0;  ///< lowest inverted / escaped point of the step (or n)
   // Field pointers bound at the start of each step (valid until points are reordered).

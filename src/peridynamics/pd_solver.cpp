@@ -44,16 +44,7 @@ ProbedModuli probe_moduli(const Material& material) {
     F = (Mat3::identity() + L) * Mat3::identity();
     s.view<Mat3>("L")[0] = L;
     static const Index kPoint[1] = {0};
-    MaterialBatch b;
-    b.points = kPoint;
-    b.count = 1;
-    b.F_new = s.view<Mat3>("F");
-    b.L = s.view<Mat3>("L");
-    b.R = s.view<Mat3>("R");
-    b.stress = s.view<Mat3>("stress");
-    b.store = &s;
-    b.dt = 1.0;
-    material.update(b);
+    material.update(make_batch(s, kPoint, 1, 1.0, false));
     return s.view<Mat3>("stress")[0];
   };
   // The adapter's midpoint increment of G = dt L is D dt = sym(G (I + G/2)^-1) (strain_increment.hpp).

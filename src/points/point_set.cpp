@@ -208,21 +208,8 @@ void PointSet::update_stress(double dt, long step, double time) {
   const auto& groups = material_groups();
   std::atomic<Index> bad_stress{n};
   for (size_t m = 0; m < materials_.size(); ++m) {
-    MaterialBatch b;
-    b.points = groups[m].data();
-    b.count = static_cast<Index>(groups[m].size());
-    if (b.count == 0) continue;
-    b.F_old = nullptr;  // recovered from F_new and L inside the adapter
-    b.F_new = points_.view<Mat3>("F");
-    b.L = points_.view<Mat3>("L");
-    b.R = points_.view<Mat3>("R");
-    b.stress = points_.view<Mat3>("stress");
-    b.store = &points_;
-    b.dt = dt;
-    // Energy: dE = dt <V> <sigma> : D (trapezoidal stress power); plastic dissipation from the model.
-    b.volume0 = points_.real("volume0");
-    b.internal_energy = points_.real("internal_energy");
-    b.plastic_energy = points_.real("plastic_work");
+    if (groups[m].empty()) continue;
+    MaterialBatch b = make_batch(points_, groups[m].data(), static_cast<Index>(groups[m].size()), dt, true);
     b.first_bad = &bad_stress;
     materials_[m]->update(b);
   }
