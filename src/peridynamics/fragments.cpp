@@ -17,14 +17,17 @@ Index find_root(std::vector<Index>& parent, Index p) {
 
 }  // namespace
 
-std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& store) {
+std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& store, double damage_threshold) {
   const Index n = store.size();
+  const double* damage = damage_threshold <= 1.0 ? store.real("damage") : nullptr;
+  auto kept = [&](Index p) { return !damage || damage[p] <= damage_threshold; };
   std::vector<Index> parent(static_cast<size_t>(n));
   std::iota(parent.begin(), parent.end(), Index{0});
   for (Index p = 0; p < n; ++p)
     for (Index k = bonds.offset[p]; k < bonds.offset[p + 1]; ++k) {
       if (bonds.broken[k]) continue;
       const Index q = bonds.other[k];
+      if (!kept(p) || !kept(q)) continue;
       Index a = find_root(parent, p), b = find_root(parent, q);
       if (a == b) continue;
       if (b < a) std::swap(a, b);
@@ -36,6 +39,7 @@ std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& 
   std::vector<Index> slot(static_cast<size_t>(n), -1);
   std::vector<Fragment> out;
   for (Index p = 0; p < n; ++p) {
+    if (!kept(p)) continue;
     const Index r = find_root(parent, p);
     if (slot[r] < 0) {
       slot[r] = static_cast<Index>(out.size());

@@ -20,7 +20,9 @@ struct Fragment {
 };
 
 /// Fragments of the points of `store` (fields x, v, mass) bonded by the intact bonds of `bonds`,
-/// largest mass first (ties: lowest first point).
-std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& store);
+/// largest mass first (ties: lowest first point). Points whose damage (field "damage") exceeds
+/// `damage_threshold` are left out (dust, not fragments); the default keeps every point.
+std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& store,
+                                     double damage_threshold = 2.0);
 
 }  // namespace ballista::pd

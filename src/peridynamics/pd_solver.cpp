@@ -82,6 +82,9 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   if (P.given("critical_stretch") && P.given("fracture_energy"))
     section_error(sc, "fracture_energy", "give critical_stretch or fracture_energy, not both");
   alpha_ = P.at("stretch_alpha");
+  fragment_interval_ = P.at("fragment_interval");
+  fragment_threshold_ = P.given("fragment_damage_threshold") ? P.at("fragment_damage_threshold") : 2.0;
+  next_fragment_time_ = fragment_interval_ > 0.0 ? fragment_interval_ : kInf;
   dt_safety_ = P.at("dt_safety");
   damping_ = sc.simulation.damping;
   if (sc.simulation.dimension != Dimension::ThreeD)
@@ -154,6 +157,20 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
 }
 
 void PdSolver::refresh() { compute_forces(); }
+
+Index PdSolver::break_bonds(const std::function<bool(const Vec3&, const Vec3&)>& cut) {
+  const auto* x0 = points_.view<Vec3>("x0");
+  Index count = 0;
+  for (Index p = 0; p < bonds_.points(); ++p)
+    for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k) {
+      const Index q = bonds_.other[k];
+      if (bonds_.broken[k] || !(cut(x0[p], x0[q]) || cut(x0[q], x0[p]))) continue;
+      bonds_.broken[k] = 1;
+      ++count;
+    }
+  compute_forces();
+  return count / 2;  // each bond is stored at both of its ends (the test above is symmetric)
+}
 
 void PdSolver::begin_stage(int stage, double damping) {
   pts_.begin_stage(stage, time_);
@@ -257,6 +274,11 @@ void PdSolver::step(double dt) {
   compute_forces();
   time_ += dt;
   ++steps_;
+  if (time_ >= next_fragment_time_ * (1.0 - 1e-12)) {
+    auto rows = fragment_rows();
+    fragment_rows_.insert(fragment_rows_.end(), rows.begin(), rows.end());
+    while (next_fragment_time_ <= time_ * (1.0 + 1e-12)) next_fragment_time_ += fragment_interval_;
+  }
   loads_.compute(scenario_, points_, time_);
   const std::vector<Vec3>& f1 = loads_.total();
   const auto* acc = points_.view<Vec3>("pd_accel");
@@ -302,7 +324,7 @@ Index PdSolver::broken_bonds() const {
 }
 
 std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
-  const std::vector<pd::Fragment> frags = pd::find_fragments(bonds_, points_);
+  const std::vector<pd::Fragment> frags = pd::find_fragments(bonds_, points_, fragment_threshold_);
   double total = 0.0, dmax = 0.0;
   for (const auto& f : frags) total += f.mass;
   const auto* damage = points_.real("damage");
@@ -314,15 +336,27 @@ std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
           {"max_damage", dmax}};
 }
 
-std::vector<ResultTable> PdSolver::result_tables() const {
-  ResultTable t{"fragments",
-                {"fragment", "points", "mass", "x", "y", "z", "vx", "vy", "vz", "speed", "kinetic_energy"},
-                {}};
-  const std::vector<pd::Fragment> frags = pd::find_fragments(bonds_, points_);
+std::vector<std::vector<double>> PdSolver::fragment_rows() const {
+  const std::vector<pd::Fragment> frags = pd::find_fragments(bonds_, points_, fragment_threshold_);
+  std::vector<std::vector<double>> rows;
   for (size_t k = 0; k < frags.size(); ++k) {
     const pd::Fragment& f = frags[k];
-    t.rows.push_back({static_cast<double>(k), static_cast<double>(f.points), f.mass, f.center[0], f.center[1],
-                      f.center[2], f.velocity[0], f.velocity[1], f.velocity[2], norm(f.velocity), f.kinetic_energy});
+    rows.push_back({time_, static_cast<double>(k), static_cast<double>(f.points), f.mass, f.center[0],
+                              f.center[1], f.center[2], f.velocity[0], f.velocity[1], f.velocity[2],
+                              norm(f.velocity), f.kinetic_energy});
+  }
+  return rows;
+}
+
+std::vector<ResultTable> PdSolver::result_tables() const {
+  // fragments.csv: the snapshots every fragment_interval, then the fragments at the end (unless the
+  // last snapshot was taken at the end already).
+  ResultTable t{"fragments",
+                {"time", "fragment", "points", "mass", "x", "y", "z", "vx", "vy", "vz", "speed", "kinetic_energy"},
+                fragment_rows_};
+  if (t.rows.empty() || t.rows.back()[0] != time_) {
+    auto now = fragment_rows();
+    t.rows.insert(t.rows.end(), now.begin(), now.end());
   }
   return {t};
 }
@@ -346,7 +380,12 @@ std::vector<ParamSpec> pd_params() {
                true};
   ParamSpec alpha{"stretch_alpha", "1", "s0 = s00 - alpha s_min (LAMMPS PERI)", false, 0.0, 0.0, kInf};
   ParamSpec safety{"dt_safety", "1", "fraction of the Silling-Askari stable time step", false, 0.8, 0.0, 1.0, true};
-  return {m, horizon, vc, s0, g0, alpha, safety};
+  ParamSpec fint{"fragment_interval", "s", "time between fragment snapshots in fragments.csv (0: at the end only)",
+                 false, 0.0, 0.0, kInf};
+  ParamSpec fthr{"fragment_damage_threshold", "1",
+                 "points with more damage are left out of the fragments (dust); default: none left out", false, nan,
+                 0.0, 1.0};
+  return {m, horizon, vc, s0, g0, alpha, safety, fint, fthr};
 }
 
 }  // namespace

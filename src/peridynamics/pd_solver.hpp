@@ -15,6 +15,7 @@
 //
 // The points layer (seeding, loads, removal, energies, diagnostics) is shared with MPM: this file
 // owns only the bonds, the force and the time integration.
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -68,6 +69,10 @@ class PdSolver final : public Solver {
   /// Re-evaluates the bond forces, energies and damage at the current positions without advancing
   /// time (after positions were set from outside, e.g. by a test imposing a deformation).
   void refresh();
+  /// Breaks, before the run, every bond whose reference end points (x0 of its two ends) satisfy
+  /// `cut(x0_p, x0_q)` (a pre-crack or notch: the crack faces start stress-free, nothing is
+  /// dissipated), then refreshes forces and damage. Returns the number of bonds broken.
+  Index break_bonds(const std::function<bool(const Vec3&, const Vec3&)>& cut);
 
  private:
   /// Bond forces (per unit mass, into field pd_accel), stretches, failures, s0 for the next step,
@@ -94,6 +99,12 @@ class PdSolver final : public Solver {
   std::vector<Vec3> v_half_;       ///< scratch: v_{n+1/2} of the step (external work)
   std::vector<Vec3> f0_;           ///< scratch: external forces at the step's start
   std::vector<double> dissipated_; ///< J: energy of the broken bonds, half of each to each end
+  double fragment_interval_ = 0.0;   ///< s between fragment snapshots (0: at the end only)
+  double fragment_threshold_ = 2.0;  ///< points with more damage are left out of fragments
+  double next_fragment_time_ = 0.0;
+  std::vector<std::vector<double>> fragment_rows_;  ///< snapshots so far (fragments.csv rows)
+  /// fragments.csv rows of the fragments now (time, fragment, points, mass, centre, velocity, speed, KE).
+  std::vector<std::vector<double>> fragment_rows() const;
   double time_ = 0.0;
   long steps_ = 0;
   double external_work_ = 0.0;
