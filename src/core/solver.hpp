@@ -67,6 +67,12 @@ class Solver {
   virtual void begin_stage(int stage, double damping) = 0;
   /// The point with the largest c + |v| now (one pass over the points; call it rarely).
   virtual StepLimiter step_limiter() const { return {}; }
+  /// Constants derived from the deck, as YAML comment lines appended to resolved.yaml ("" if none).
+  virtual std::string derived_constants() const { return {}; }
+  /// Extra history.csv columns of this solver and its loads (indenter reactions, contact energy).
+  virtual std::vector<std::string> history_columns() const { return {}; }
+  /// Their values now (same order and count as history_columns()).
+  virtual std::vector<double> history_values() const { return {}; }
   /// Results of this discretisation at the end of a run, for summary.json ("solver_results").
   virtual std::vector<std::pair<std::string, double>> result_values() const { return {}; }
   /// Tables of this discretisation written at the end of a run (e.g. fragments.csv).

@@ -367,7 +367,7 @@ class Reader {
       DeckNode l = ls.element(i);
       LoadSpec load;
       load.mark = l.mark();
-      load.type = l.choice("type", {"body_force", "pressure", "confinement", "mms_axis_aligned"});
+      load.type = l.choice("type", {"body_force", "gravity", "pressure", "confinement", "indenter", "mms_axis_aligned"});
       if (load.type == "confinement") {
         confinement(l, load);
         continue;
@@ -376,6 +376,17 @@ class Reader {
         load.body = body_ref(l, false);
         load.acceleration = l.vector("acceleration", vmin());
         load.curve = curve(l);
+      } else if (load.type == "gravity") {
+        // b = rho g along `direction` (EMU seed 001: g = 9.814 m/s^2, the default of `g`).
+        load.type = "body_force";
+        load.body = body_ref(l, false);
+        const double g = l.number("g", 9.814, NumberRange::non_negative("m/s^2"));
+        const Vec3 dir = l.vector("direction", vmin());
+        if (!(norm(dir) > 0.0)) l.fail("direction", "expected a non-zero vector (the direction of gravity)");
+        load.acceleration = (g / norm(dir)) * dir;
+        load.curve = curve(l);
+      } else if (load.type == "indenter") {
+        indenter(l, load);
       } else if (load.type == "pressure") {
         load.body = body_ref(l, true);
         const BodySpec* body = find_body(load.body);
@@ -396,6 +407,28 @@ class Reader {
       l.finish();
       sc_.loads.push_back(std::move(load));
     }
+  }
+
+  /// `indenter`: a rigid sphere or plane moving at a constant velocity (LAMMPS fix indent).
+  void indenter(DeckNode& l, LoadSpec& load) {
+    IndenterSpec& in = load.indenter;
+    load.body = body_ref(l, false);
+    in.name = l.string("name", "indenter" + std::to_string(sc_.loads.size()));
+    in.shape = l.choice("shape", {"sphere", "plane"});
+    if (in.shape == "sphere") {
+      in.center = l.vector("center", vmin());
+      in.radius = l.number("radius", NumberRange::positive("m"));
+    } else {
+      in.center = l.vector("point", vmin());
+      const Vec3 nrm = l.vector("normal", vmin());
+      if (!(norm(nrm) > 0.0)) l.fail("normal", "expected a non-zero vector (out of the indenter, into the space)");
+      in.normal = (1.0 / norm(nrm)) * nrm;
+    }
+    in.velocity = l.vector("velocity", Vec3{}, vmin());
+    in.stiffness = l.number("stiffness", NumberRange::positive("N/m^5"));
+    for (const LoadSpec& other : sc_.loads)
+      if (other.type == "indenter" && other.indenter.name == in.name)
+        l.fail("name", "indenter name '" + in.name + "' is used twice (it names history columns)");
   }
 
   /// `confinement` (thesis seed 000 §5.1, Table 5.1): the overburden on a cylinder, pressure

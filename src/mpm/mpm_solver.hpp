@@ -51,6 +51,9 @@ class MpmSolver final : public Solver {
   double reporting_scale() const override;
   void begin_stage(int stage, double damping) override;
   StepLimiter step_limiter() const override;
+  /// Indenter reactions of the loads (PointLoads::history_columns).
+  std::vector<std::string> history_columns() const override { return PointLoads::history_columns(scenario_); }
+  std::vector<double> history_values() const override { return loads_.history_values(scenario_); }
 
   const GridData& grid() const { return grid_; }
   const std::vector<std::unique_ptr<Material>>& materials() const { return pts_.materials(); }

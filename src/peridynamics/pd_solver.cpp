@@ -83,6 +83,7 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     section_error(sc, "fracture_energy", "give critical_stretch or fracture_energy, not both");
   alpha_ = P.at("stretch_alpha");
   fragment_interval_ = P.at("fragment_interval");
+  contact_on_ = P.choices.at("contact") == "on";
   fragment_threshold_ = P.given("fragment_damage_threshold") ? P.at("fragment_damage_threshold") : 2.0;
   next_fragment_time_ = fragment_interval_ > 0.0 ? fragment_interval_ : kInf;
   dt_safety_ = P.at("dt_safety");
@@ -140,18 +141,34 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   }
   s00_point_ = s0_;
   dissipated_.assign(static_cast<size_t>(n), 0.0);
-  // Stable step of each point (Silling & Askari 2005 eq. 17): dt < sqrt(2 rho / sum_j V_j c/|xi|).
-  dt_point_.assign(static_cast<size_t>(n), kInf);
+  contact_energy_.assign(static_cast<size_t>(n), 0.0);
+  contact_.skin = P.at("contact_skin") * dx_;
+  if (contact_on_)
+    pd::build_contact_list(contact_, points_.view<Vec3>("x"), x0, points_.ints("body"), n, delta_, dx_, contact_.skin, 3);
   const auto* vol0 = points_.real("volume0");
-  const auto* mass = points_.real("mass");
+  // Per bond c_pq beta V_q (N/m^3 per unit stretch): the force loop reads one number per bond instead
+  // of the material pair, the partial-volume factor and the neighbour's volume.
+  bond_coef_.resize(bonds_.other.size());
+  vol_all_.assign(static_cast<size_t>(n), 0.0);
+  for_each(0, n, [&](Index p) {
+    double va = 0.0;
+    for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k) {
+      const Index q = bonds_.other[k];
+      bond_coef_[k] = c_[mat[p] * nmat_ + mat[q]] * bonds_.volume_factor[k] * vol0[q];
+      va += bonds_.volume_factor[k] * vol0[q];
+    }
+    vol_all_[p] = va > 0.0 ? va : 1.0;  // a point without bonds has no damage
+  });
+  stiff_bond_.assign(static_cast<size_t>(n), 0.0);
+  stiff_contact_.assign(static_cast<size_t>(n), 0.0);
+  // Stable step of each point (Silling & Askari 2005 eq. 17): dt < sqrt(2 rho / sum_j V_j c/|xi|).
   for_each(0, n, [&](Index p) {
     double sum = 0.0;
     for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k) {
       const Index q = bonds_.other[k];
       sum += vol0[q] * bonds_.volume_factor[k] * c_[mat[p] * nmat_ + mat[q]] / bonds_.length0[k];
     }
-    const double rho = mass[p] / vol0[p];
-    if (sum > 0.0) dt_point_[p] = std::sqrt(2.0 * rho / sum);
+    stiff_bond_[p] = sum;
   });
   compute_forces();
 }
@@ -178,8 +195,17 @@ void PdSolver::begin_stage(int stage, double damping) {
 }
 
 double PdSolver::stable_dt() {
+  // Silling & Askari 2005 eq. 17 with the active contact springs counted like bonds (stiffness c_s V_q
+  // each): a contact is as stiff as several bonds, and the step must stay stable while it acts.
+  const Index n = points_.size();
+  const auto* vol0 = points_.real("volume0");
+  const auto* mass = points_.real("mass");
   double dt = kInf;
-  for (double d : dt_point_) dt = std::min(dt, d);
+#pragma omp parallel for schedule(static) reduction(min : dt) if (n > kParallelThreshold)
+  for (Index p = 0; p < n; ++p) {
+    const double sum = stiff_bond_[p] + stiff_contact_[p];
+    if (sum > 0.0) dt = std::min(dt, std::sqrt(2.0 * mass[p] / vol0[p] / sum));
+  }
   dt = comm_.min(dt_safety_ * dt);
   if (!std::isfinite(dt)) dt = scenario_.simulation.end_time;  // no bonds at all: free flight
   if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
@@ -189,6 +215,8 @@ double PdSolver::stable_dt() {
 void PdSolver::compute_forces() {
   const Index n = points_.size();
   const auto* x = points_.view<Vec3>("x");
+  static_assert(sizeof(Vec3) == 3 * sizeof(double));
+  const double* xs = n > 0 ? x[0].v : nullptr;  // x as 3n doubles (Vec3 is three packed doubles): the vector loop gathers
   const auto* vol0 = points_.real("volume0");
   const auto* mass = points_.real("mass");
   const auto* mat = points_.ints("material");
@@ -198,49 +226,101 @@ void PdSolver::compute_forces() {
   auto* wdis = points_.real("plastic_work");
   std::vector<double>& s0_next = s0_next_;
   s0_next.resize(static_cast<size_t>(n));
-  // Forces of the intact bonds; a bond stretched beyond min(s0_i, s0_j) breaks. Each point writes
-  // only its own row and its own outputs; both rows of a bond see the same stretch and the same
-  // min(s0_i, s0_j), so they break together.
+  const double* s0 = s0_.data();
+  const double* coef = bond_coef_.data();
+  const double* len0 = bonds_.length0.data();
+  const std::int32_t* other = bonds_.other.data();
+  std::uint8_t* broken = bonds_.broken.data();
+  const double alpha = alpha_;
+  // Short-range contact (contact_list.hpp): c_s = 15 c / delta per unit volume squared and unit
+  // overlap (Silling & Askari 2005; LAMMPS pair_peri_pmb), reach d = min(0.9 |xi|, 1.35 dx).
+  const bool contact = contact_on_;
+  const double cs_over_c = 15.0 / delta_, range = 1.35 * dx_;
+  auto* econ = contact_energy_.data();
+  // Each point writes only its own row and its own outputs; both rows of a bond see the same
+  // stretch and the same min(s0_i, s0_j), so they break together.
   for_each(0, n, [&](Index p) {
-    Vec3 f;
-    double energy = 0.0, vol_all = 0.0, vol_broken = 0.0, dis = 0.0;
-    double smin_term = -kInf;
-    const double rho = mass[p] / vol0[p];
-    for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k) {
-      const Index q = bonds_.other[k];
-      const double w = bonds_.volume_factor[k] * vol0[q];
-      vol_all += w;
-      if (bonds_.broken[k]) {
-        vol_broken += w;
-        continue;
-      }
-      const Vec3 y = x[q] - x[p];
-      const double r = norm(y), r0 = bonds_.length0[k];
+    const Index k0 = bonds_.offset[p], k1 = bonds_.offset[p + 1];
+    const double xp0 = xs[3 * p], xp1 = xs[3 * p + 1], xp2 = xs[3 * p + 2], s0p = s0[p];
+    // Fast pass over the row, branch-free so that it vectorises: the force of the intact bonds
+    // f = c s (y/|y|) per unit volume of each end (seed 001 "Microelastic material"; coef = c beta
+    // V_q), the energy density w_p = 1/2 sum_j (1/2 c s^2 |xi|) beta V_j (Silling & Askari 2005
+    // eq. 21), s_min for the next s0, and whether any bond breaks now.
+    double fx = 0.0, fy = 0.0, fz = 0.0, en = 0.0, smx = -kInf;
+    int breaks = 0;
+#pragma omp simd reduction(+ : fx, fy, fz, en) reduction(max : smx) reduction(| : breaks)
+    for (Index k = k0; k < k1; ++k) {
+      const Index q = other[k];
+      const double alive = broken[k] ? 0.0 : 1.0;
+      const double y0 = xs[3 * q] - xp0, y1 = xs[3 * q + 1] - xp1, y2 = xs[3 * q + 2] - xp2;
+      const double r = std::sqrt(y0 * y0 + y1 * y1 + y2 * y2), r0 = len0[k];
       const double s = (r - r0) / r0;
-      const double cpq = c_[mat[p] * nmat_ + mat[q]];
-      // Energy density of point p: w_p = 1/2 sum_j (1/2 c s^2 |xi|) V_j (Silling & Askari 2005 eq. 21).
-      const double pair = 0.5 * cpq * s * s * r0 * w;
-      if (s > std::min(s0_[p], s0_[q])) {
-        // Failure against the previous step's s0 (LAMMPS PERI's rule). The bond's energy is
-        // dissipated, half of the pair's to each end, and it exerts no force from now on (LAMMPS
-        // still applies it this step; dropping it keeps the energy balance exact).
-        bonds_.broken[k] = 1;
-        vol_broken += w;
-        dis += 0.5 * pair * vol0[p];
-        continue;
-      }
-      // f = c s (y/|y|) per unit volume of each end (seed 001 "Microelastic material").
-      if (r > 0.0) f += (cpq * s * w / r) * y;
-      energy += 0.5 * pair;
-      smin_term = std::max(smin_term, -alpha_ * s);  // s0_new = s00 - alpha s_min (LAMMPS PERI)
+      breaks |= (alive > 0.0) & (s > std::min(s0p, s0[q]));
+      const double g = r > 0.0 ? alive * coef[k] * s / r : 0.0;
+      fx += g * y0;
+      fy += g * y1;
+      fz += g * y2;
+      en += alive * coef[k] * s * s * r0;
+      smx = std::max(smx, alive > 0.0 ? -alpha * s : -kInf);  // s0_new = s00 - alpha s_min (LAMMPS PERI)
     }
-    acc[p] = (1.0 / rho) * f;
-    damage[p] = vol_all > 0.0 ? vol_broken / vol_all : 0.0;
+    Vec3 f{{fx, fy, fz}};
+    double energy = 0.25 * en, dis = 0.0, e_contact = 0.0, k_contact = 0.0;
+    // A repulsive contact spring between p and q at distance r < d: force density on p
+    // -c_s (d - r) V_q y/r; its energy c_s V_p V_q (d - r)^2 / 2, half booked at each end.
+    auto repel = [&](Index q, double r, const Vec3& y, double d, double cpq) {
+      const double cs = cs_over_c * cpq, o = d - r;
+      k_contact += cs * vol0[q];
+      if (r > 0.0) f += (-cs * o * vol0[q] / r) * y;
+      e_contact += 0.25 * cs * o * o * vol0[q] * vol0[p];
+    };
+    if (breaks || (contact && damage[p] > 0.0)) {
+      // Some bond breaks now, or broken bonds may be in contact: the row again, one bond at a time.
+      f = Vec3{};
+      energy = 0.0;
+      smx = -kInf;
+      double vol_broken = 0.0;
+      for (Index k = k0; k < k1; ++k) {
+        const Index q = other[k];
+        const Vec3 y = x[q] - x[p];
+        const double r = norm(y), r0 = len0[k];
+        if (broken[k]) {
+          vol_broken += bonds_.volume_factor[k] * vol0[q];
+          // The ends of a broken bond meet again through contact only.
+          if (contact && r < std::min(0.9 * r0, range)) repel(q, r, y, std::min(0.9 * r0, range), c_[mat[p] * nmat_ + mat[q]]);
+          continue;
+        }
+        const double s = (r - r0) / r0;
+        const double pair = 0.5 * coef[k] * s * s * r0;  // the bond's energy per unit volume of p, twice
+        if (s > std::min(s0p, s0[q])) {
+          // Failure against the previous step's s0 (LAMMPS PERI's rule). The bond's energy is
+          // dissipated, half of the pair's to each end, and it exerts no force from now on (LAMMPS
+          // still applies it this step; dropping it keeps the energy balance exact).
+          broken[k] = 1;
+          vol_broken += bonds_.volume_factor[k] * vol0[q];
+          dis += 0.5 * pair * vol0[p];
+          continue;
+        }
+        if (r > 0.0) f += (coef[k] * s / r) * y;
+        energy += 0.5 * pair;
+        smx = std::max(smx, -alpha * s);
+      }
+      damage[p] = vol_broken / vol_all_[p];
+    }
+    if (contact)  // never-bonded neighbours (other bodies, or beyond the horizon)
+      for (Index k = contact_.offset[p]; k < contact_.offset[p + 1]; ++k) {
+        const Index q = contact_.other[k];
+        const Vec3 y = x[q] - x[p];
+        const double r = norm(y), d = contact_.reach[k];
+        if (r < d) repel(q, r, y, d, c_[mat[p] * nmat_ + mat[q]]);
+      }
+    acc[p] = (vol0[p] / mass[p]) * f;
     dissipated_[p] += dis;
-    eint[p] = energy * vol0[p] + dissipated_[p];
+    econ[p] = e_contact;
+    stiff_contact_[p] = k_contact;
+    eint[p] = energy * vol0[p] + dissipated_[p] + e_contact;
     wdis[p] = dissipated_[p];
     const double s00 = s00_point_[p];
-    s0_next[p] = alpha_ > 0.0 && std::isfinite(smin_term) ? s00 + smin_term : s00;
+    s0_next[p] = alpha > 0.0 && std::isfinite(smx) ? s00 + smx : s00;
   });
   s0_.swap(s0_next);
 }
@@ -271,6 +351,9 @@ void PdSolver::step(double dt) {
       x[p] += dt * v[p];
     });
   }
+  if (contact_on_ && contact_.stale(x, n))
+    pd::build_contact_list(contact_, x, points_.view<Vec3>("x0"), points_.ints("body"), n, delta_, dx_,
+                           contact_.skin, 3);
   compute_forces();
   time_ += dt;
   ++steps_;
@@ -348,6 +431,33 @@ std::vector<std::vector<double>> PdSolver::fragment_rows() const {
   return rows;
 }
 
+std::string PdSolver::derived_constants() const {
+  std::string s = "# Derived by the peridynamics solver (not read back):\n";
+  s += fmt::format("#   lattice_spacing: {:.10g}   # m (grid.cell_size)\n#   horizon: {:.10g}   # m\n", dx_, delta_);
+  const auto& mats = pts_.materials();
+  for (int a = 0; a < nmat_; ++a)
+    for (int b = a; b < nmat_; ++b)
+      s += fmt::format("#   bond {}-{}: {{micromodulus: {:.10g}, critical_stretch: {:.10g}}}   # N/m^6, 1\n",
+                       mats[a]->name(), mats[b]->name(), c_[a * nmat_ + b], s00_[a * nmat_ + b]);
+  return s;
+}
+
+std::vector<std::string> PdSolver::history_columns() const {
+  std::vector<std::string> c = PointLoads::history_columns(scenario_);
+  c.push_back("broken_bonds");
+  c.push_back("contact_energy");
+  return c;
+}
+
+std::vector<double> PdSolver::history_values() const {
+  std::vector<double> v = loads_.history_values(scenario_);
+  double e[1];
+  deterministic_sum<1>(0, points_.size(), [&](Index p, double* o) { o[0] += contact_energy_[p]; }, e);
+  v.push_back(static_cast<double>(broken_bonds()));
+  v.push_back(comm_.sum(e[0]));
+  return v;
+}
+
 std::vector<ResultTable> PdSolver::result_tables() const {
   // fragments.csv: the snapshots every fragment_interval, then the fragments at the end (unless the
   // last snapshot was taken at the end already).
@@ -385,7 +495,13 @@ std::vector<ParamSpec> pd_params() {
   ParamSpec fthr{"fragment_damage_threshold", "1",
                  "points with more damage are left out of the fragments (dust); default: none left out", false, nan,
                  0.0, 1.0};
-  return {m, horizon, vc, s0, g0, alpha, safety, fint, fthr};
+  ParamSpec contact{"contact", "-", "short-range contact forces between points not bonded (S&A 2005, LAMMPS PERI)",
+                    false, 0};
+  contact.choices = {"on", "off"};
+  contact.default_choice = "on";
+  ParamSpec skin{"contact_skin", "1", "contact list skin over the lattice spacing (rebuilt after skin/2 of motion)",
+                 false, 0.5, 0.0, 10.0, true};
+  return {m, horizon, vc, s0, g0, alpha, safety, fint, fthr, contact, skin};
 }
 
 }  // namespace

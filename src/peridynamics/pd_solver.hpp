@@ -24,6 +24,7 @@
 #include "io/scenario.hpp"
 #include "materials/material.hpp"
 #include "peridynamics/bond_family.hpp"
+#include "peridynamics/contact_list.hpp"
 #include "points/point_loads.hpp"
 #include "points/point_set.hpp"
 
@@ -56,8 +57,14 @@ class PdSolver final : public Solver {
   std::vector<std::pair<std::string, double>> result_values() const override;
   /// fragments.csv: one row per fragment, largest first (peridynamics/fragments.hpp).
   std::vector<ResultTable> result_tables() const override;
+  /// Horizon, and per material pair the micromodulus c and critical stretch s00.
+  std::string derived_constants() const override;
+  /// Indenter reactions, then broken_bonds and contact_energy (J, stored in the contact springs).
+  std::vector<std::string> history_columns() const override;
+  std::vector<double> history_values() const override;
 
   const pd::BondFamily& bonds() const { return bonds_; }
+  const pd::ContactList& contacts() const { return contact_; }
   double horizon() const { return delta_; }
   double lattice_spacing() const { return dx_; }
   /// Micromodulus c of the bond between points of materials a and b, N/m^6.
@@ -92,13 +99,19 @@ class PdSolver final : public Solver {
   double alpha_ = 0.0;       ///< s0 = s00 - alpha s_min
   double dt_safety_ = 0.8;   ///< fraction of the Silling-Askari stable step
   double damping_ = 0.0;     ///< 1/s: a - c v (dynamic relaxation, stages)
-  std::vector<double> dt_point_;  ///< Silling-Askari stable step of each point (reference), s
+  std::vector<double> bond_coef_;      ///< per bond c_pq beta V_q, N/m^3
+  std::vector<double> vol_all_;        ///< sum_j beta V_j of each point's family (damage denominator), m^3
+  std::vector<double> stiff_bond_;     ///< sum_j V_j c/|xi| of each point's bonds (reference), N/m^4
+  std::vector<double> stiff_contact_;  ///< sum of c_s V_q over each point's active contacts, N/m^4
   std::vector<double> s0_;         ///< current critical stretch of each point
   std::vector<double> s00_point_;  ///< s00 of each point (smallest over its family's material pairs)
   std::vector<double> s0_next_;    ///< scratch: s0 of the next step
   std::vector<Vec3> v_half_;       ///< scratch: v_{n+1/2} of the step (external work)
   std::vector<Vec3> f0_;           ///< scratch: external forces at the step's start
   std::vector<double> dissipated_; ///< J: energy of the broken bonds, half of each to each end
+  bool contact_on_ = true;           ///< short-range contact forces (contact_list.hpp)
+  pd::ContactList contact_;          ///< never-bonded pairs near each other
+  std::vector<double> contact_energy_;  ///< J: each point's half of its contact springs' energy
   double fragment_interval_ = 0.0;   ///< s between fragment snapshots (0: at the end only)
   double fragment_threshold_ = 2.0;  ///< points with more damage are left out of fragments
   double next_fragment_time_ = 0.0;

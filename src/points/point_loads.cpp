@@ -11,11 +11,13 @@ void PointLoads::compute(const Scenario& sc, const FieldStore& points, double ti
     fext_.clear();
     ftrac_.clear();
     surface_forces_.clear();
+    reactions_.clear();
     return;
   }
   fext_.assign(n, Vec3{});
   ftrac_.clear();
   surface_forces_.clear();
+  reactions_.clear();
   const auto* mass = points.real("mass");
   const auto* bid = points.ints("body");
   for (size_t k = 0; k < sc.loads.size(); ++k) {
@@ -49,6 +51,32 @@ void PointLoads::compute(const Scenario& sc, const FieldStore& points, double ti
         ftrac_[p] += f;
         surface_forces_.push_back({x[p] + F[p] * offset, f});
       }
+    } else if (load.type == "indenter") {
+      // LAMMPS fix indent (sphere and plane): F = K (R - r)^2 pushing the point out, with K a force
+      // per unit volume here (F = k V0 d^2 for an overlap d), so the same k works at any lattice
+      // spacing. The indenter moves rigidly: centre c0 + v t.
+      const IndenterSpec& in = load.indenter;
+      const Vec3 c = in.center + time * in.velocity;
+      const auto* x = points.view<Vec3>("x");
+      const auto* vol0 = points.real("volume0");
+      std::vector<Vec3> f(static_cast<size_t>(n));
+      for_each(0, n, [&](Index p) {
+        if (body >= 0 && bid[p] != body) return;
+        if (in.shape == "sphere") {
+          const Vec3 d = x[p] - c;
+          const double r = norm(d);
+          if (r < in.radius && r > 0.0) f[p] = (in.stiffness * vol0[p] * (in.radius - r) * (in.radius - r) / r) * d;
+        } else {
+          const double h = dot(x[p] - c, in.normal);  // < 0: inside the wall
+          if (h < 0.0) f[p] = (in.stiffness * vol0[p] * h * h) * in.normal;
+        }
+      });
+      double r[3];
+      deterministic_sum<3>(0, n, [&](Index p, double* o) {
+        for (int a = 0; a < 3; ++a) o[a] -= f[p][a];
+      }, r);
+      reactions_.push_back(Vec3{{r[0], r[1], r[2]}});
+      for_each(0, n, [&](Index p) { fext_[p] += f[p]; });
     } else if (load.type == "mms_axis_aligned") {
       const mms::AxisAligned mms;
       const auto* x0 = points.view<Vec3>("x0");
@@ -57,6 +85,26 @@ void PointLoads::compute(const Scenario& sc, const FieldStore& points, double ti
       });
     }
   }
+}
+
+}  // namespace ballista
+
+namespace ballista {
+
+std::vector<std::string> PointLoads::history_columns(const Scenario& sc) {
+  std::vector<std::string> c;
+  for (const LoadSpec& l : sc.loads)
+    if (l.type == "indenter")
+      for (const char* a : {"_fx", "_fy", "_fz"}) c.push_back(l.indenter.name + a);
+  return c;
+}
+
+std::vector<double> PointLoads::history_values(const Scenario& sc) const {
+  std::vector<double> v;
+  for (const Vec3& r : reactions_)
+    for (int a = 0; a < 3; ++a) v.push_back(r[a]);
+  v.resize(history_columns(sc).size(), 0.0);
+  return v;
 }
 
 }  // namespace ballista

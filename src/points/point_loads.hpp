@@ -1,7 +1,8 @@
 #pragma once
 // External loads on points, shared by every solver: body forces (gravity), surface pressure with
-// load curves (Nanson-mapped onto the current surface), and the manufactured body force of
-// CATALOGUE B1. Recomputed at the start of each step.
+// load curves (Nanson-mapped onto the current surface), rigid indenters (LAMMPS fix indent) and the
+// manufactured body force of CATALOGUE B1. Recomputed at the start of each step.
+#include <string>
 #include <vector>
 
 #include "core/field_store.hpp"
@@ -28,10 +29,17 @@ class PointLoads {
   /// Each surface traction with its point of action.
   const std::vector<SurfaceForce>& surface_forces() const { return surface_forces_; }
 
+  /// History columns of the loads: <name>_fx, _fy, _fz of each indenter (empty without one).
+  static std::vector<std::string> history_columns(const Scenario& sc);
+  /// Their values at the last compute(): the force of the points on each indenter, N (the
+  /// reaction), summed over this rank's points in a fixed order (zeros before the first compute).
+  std::vector<double> history_values(const Scenario& sc) const;
+
  private:
   std::vector<Vec3> fext_;
   std::vector<Vec3> ftrac_;
   std::vector<SurfaceForce> surface_forces_;
+  std::vector<Vec3> reactions_;  ///< per indenter, N
 };
 
 }  // namespace ballista

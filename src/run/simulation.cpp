@@ -97,6 +97,9 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
                   opt.threads > 0 ? "--threads" : "simulation.threads");
 
   std::unique_ptr<Solver> solver = make_solver(sc);
+  // Constants the solver derived from the deck (peridynamic bond constants), echoed as comments.
+  if (const std::string derived = solver->derived_constants(); !derived.empty())
+    write_file_atomic((fs::path(opt.out_dir) / "resolved.yaml").string(), sc.resolved_yaml + derived);
   FieldStore& pts = solver->points();
   validate_probes(sc.probes, pts);
   const Dimension dim = sc.simulation.dimension;
@@ -115,6 +118,8 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   // Stages: the preparation stages of the deck, then the main stage (index nstages).
   const int nstages = static_cast<int>(sc.stages.size());
   if (nstages > 0) columns.push_back("stage");
+  const std::vector<std::string> solver_columns = solver->history_columns();
+  columns.insert(columns.end(), solver_columns.begin(), solver_columns.end());
   std::unique_ptr<PenetrationProbe> penetration;
   if (sc.penetration.enabled) {
     penetration = std::make_unique<PenetrationProbe>(sc);
@@ -158,6 +163,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
                                e.removed_energy, e.inserted_energy};
     for (double v : probe_values(e)) row.push_back(v);
     if (nstages > 0) row.push_back(stage);
+    for (double v : solver->history_values()) row.push_back(v);
     if (penetration)
       for (double v : penetration->sample(solver->points(), stage == nstages, solver->time() - stage_start,
                                           solver->reporting_scale()))
