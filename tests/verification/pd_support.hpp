@@ -126,16 +126,21 @@ struct WaveResult {
   long points = 0, steps = 0;
 };
 
-/// Energy-centroid arrival time of the pulse in a station record: t_a = sum t v^2 / sum v^2 over a
-/// window of +-4 sigma/c around the peak of v^2 (exact for a pulse of any shape travelling without
-/// change; with dispersion, the arrival of the energy, i.e. at the mean group velocity).
-inline double arrival_time(const std::vector<double>& t, const std::vector<double>& v, double half_window) {
+/// Index of the peak of v^2 among the samples with t <= t_max.
+inline size_t peak_index(const std::vector<double>& t, const std::vector<double>& v, double t_max) {
   size_t ip = 0;
-  for (size_t i = 0; i < v.size(); ++i)
+  for (size_t i = 0; i < v.size() && t[i] <= t_max; ++i)
     if (v[i] * v[i] > v[ip] * v[ip]) ip = i;
+  return ip;
+}
+
+/// Energy-centroid arrival time of the pulse in a station record: t_a = sum t v^2 / sum v^2 over a
+/// window of +-half_window around the peak time t_p (exact for a pulse of any shape travelling
+/// without change; with dispersion, the arrival of the energy, i.e. at the mean group velocity).
+inline double arrival_time(const std::vector<double>& t, const std::vector<double>& v, double t_p, double half_window) {
   double num = 0.0, den = 0.0;
   for (size_t i = 0; i < v.size(); ++i)
-    if (std::abs(t[i] - t[ip]) <= half_window) {
+    if (std::abs(t[i] - t_p) <= half_window) {
       num += t[i] * v[i] * v[i];
       den += v[i] * v[i];
     }
@@ -184,10 +189,16 @@ inline WaveResult measure_wave(double dx, const BarGeometry& g = {}) {
     s->step(s->stable_dt());
     record();
   }
-  // Window: +-4 sigma/c with c from the peak times (the pulse lasts ~ +-4 sigma/c at a station).
-  const double half = 4.0 * g.sigma / (0.75 * c0);
-  r.t1 = arrival_time(t, vs[0], half);
-  r.t2 = arrival_time(t, vs[1], half);
+  // The direct pulse peaks at a station by (X_s - X0)/(0.7 c0) (the coarsest bar runs at 0.75 c0);
+  // the reflections from the ends cannot arrive before (X_s + X0)/c0 and (2 L - X_s - X0)/c0 (at
+  // most c0), 2-3 us later: the peak is searched before the former. Window: +-4 sigma/c with c
+  // from the two peak times (the pulse lasts ~ +-4 sigma/c at a station).
+  const size_t p1 = peak_index(t, vs[0], (r.xs1 - g.x0) / (0.7 * c0));
+  const size_t p2 = peak_index(t, vs[1], (r.xs2 - g.x0) / (0.7 * c0));
+  const double c_est = (r.xs2 - r.xs1) / (t[p2] - t[p1]);
+  const double half = 4.0 * g.sigma / c_est;
+  r.t1 = arrival_time(t, vs[0], t[p1], half);
+  r.t2 = arrival_time(t, vs[1], t[p2], half);
   r.speed = (r.xs2 - r.xs1) / (r.t2 - r.t1);
   r.points = static_cast<long>(n);
   r.steps = s->steps();
