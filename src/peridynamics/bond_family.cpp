@@ -26,7 +26,10 @@ BondFamily build_bond_family(const Vec3* x0, Index n, double delta, double dx, i
   if (n == 0) return f;
   // Bins of size >= the horizon, so that neighbours lie in the 3^dim surrounding bins. Bonds end
   // at the horizon (|xi| <= delta); the correction scales those within dx/2 of it (as LAMMPS PERI).
+  // Bins a hair wider than the horizon: two points exactly delta apart along an axis could otherwise
+  // round into bins two apart and never be compared (found by the energy-release verification).
   const double reach = delta;
+  const double bin_size = delta * (1.0 + 1e-6);
   Vec3 lo{{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
            std::numeric_limits<double>::infinity()}};
   Vec3 hi = -1.0 * lo;
@@ -36,10 +39,10 @@ BondFamily build_bond_family(const Vec3* x0, Index n, double delta, double dx, i
       hi[a] = std::max(hi[a], x0[p][a]);
     }
   int nb[3] = {1, 1, 1};
-  for (int a = 0; a < dim; ++a) nb[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / reach) + 1);
+  for (int a = 0; a < dim; ++a) nb[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / bin_size) + 1);
   const Index nbins = static_cast<Index>(nb[0]) * nb[1] * nb[2];
   auto bin_of = [&](const Vec3& x, int c[3]) {
-    for (int a = 0; a < 3; ++a) c[a] = a < dim ? std::min(nb[a] - 1, static_cast<int>((x[a] - lo[a]) / reach)) : 0;
+    for (int a = 0; a < 3; ++a) c[a] = a < dim ? std::min(nb[a] - 1, static_cast<int>((x[a] - lo[a]) / bin_size)) : 0;
   };
   // Counting sort of the points into bins (stable: each bin's points in increasing index).
   std::vector<Index> start(static_cast<size_t>(nbins) + 1, 0), order(static_cast<size_t>(n));

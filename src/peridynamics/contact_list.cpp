@@ -29,7 +29,7 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
   if (n == 0) return;
   const double range = 1.35 * dx;  // S&A 2005 / LAMMPS: the contact distance never exceeds 1.35 dx
   const double cutoff = range + skin;
-  double cell = cutoff;  // bin size >= cutoff; enlarged if the points spread far (fragments in flight)
+  double cell = cutoff * (1.0 + 1e-6);  // bin size > cutoff (no pair at the cutoff lost to round-off); enlarged if the points spread far (fragments in flight)
   Vec3 lo{{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
            std::numeric_limits<double>::infinity()}};
   Vec3 hi = -1.0 * lo;

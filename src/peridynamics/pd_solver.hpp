@@ -107,6 +107,7 @@ class PdSolver final : public Solver {
   std::vector<double> s00_point_;  ///< s00 of each point (smallest over its family's material pairs)
   std::vector<double> s0_next_;    ///< scratch: s0 of the next step
   std::vector<Vec3> v_half_;       ///< scratch: v_{n+1/2} of the step (external work)
+  std::vector<Vec3> x_prev_;       ///< positions at the start of the step (energy of breaking bonds)
   std::vector<Vec3> f0_;           ///< scratch: external forces at the step's start
   std::vector<double> dissipated_; ///< J: energy of the broken bonds, half of each to each end
   bool contact_on_ = true;           ///< short-range contact forces (contact_list.hpp)
