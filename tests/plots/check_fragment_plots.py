@@ -9,8 +9,8 @@ never bonded to each other, so each body is one fragment of known point count), 
              ln N(>=m) against sqrt(m)); fragments.csv speeds equal the bodies' speeds
   figures    fragment_mass_distribution.png, fragment_velocity.png and (two snapshots)
              fragment_count.png are valid, non-blank PNGs
-  two        a two-body deck with --no-plots: no PNG, mott_* null with a reason; the script run by
-             hand on it draws the mass figure without a fit and notes the skipped count figure
+  two        a two-body deck with --no-plots: no PNG (those of an earlier run are cleared), mott_*
+             null with a reason; the script run by hand on it draws the mass figure without a fit and notes the skipped count figure
   empty      plot_fragments.py on a folder without fragments.csv: exit 2 naming fragments.csv
 """
 import argparse
@@ -69,6 +69,10 @@ def run_deck(ballista, folder, names, interval, extra=()):
     with open(path, "w") as f:
         f.write(deck(names, interval))
     out = os.path.join(folder, "out")
+    os.makedirs(out)
+    for name in FIGS:  # figures of an earlier run: the run must clear them (io/output_folder.cpp)
+        with open(os.path.join(out, name), "wb") as f:
+            f.write(b"stale")
     rc, log = run([ballista, "run", path, "-o", out, "-q", "--threads", "1", *extra])
     if rc != 0:
         fail(f"ballista run {path}: exit {rc}: {log}")
