@@ -18,8 +18,8 @@
 #include "io/particle_writer.hpp"
 #include "io/summary_writer.hpp"
 #include "points/solver_registry.hpp"
-#include "run/particle_tracker.hpp"
 #include "run/fragment_summary.hpp"
+#include "run/particle_tracker.hpp"
 #include "run/progress.hpp"
 #include "run/stage_criterion.hpp"
 

@@ -10,7 +10,8 @@ never bonded to each other, so each body is one fragment of known point count), 
   figures    fragment_mass_distribution.png, fragment_velocity.png and (two snapshots)
              fragment_count.png are valid, non-blank PNGs
   two        a two-body deck with --no-plots: no PNG (those of an earlier run are cleared), mott_*
-             null with a reason; the script run by hand on it draws the mass figure without a fit and notes the skipped count figure
+             null with a reason; the script run by hand on it draws the mass figure without a
+             fit and notes the skipped count figure
   empty      plot_fragments.py on a folder without fragments.csv: exit 2 naming fragments.csv
 """
 import argparse
