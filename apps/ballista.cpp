@@ -107,7 +107,9 @@ int main(int argc, char** argv) {
   run->add_option("--set", overrides, "override a deck value: key.path=value (repeatable)");
   run->add_flag("-q,--quiet", quiet, "no progress output");
   bool no_plots = false;
-  run->add_flag("--no-plots", no_plots, "do not draw the penetration figures (PNG) of a deck with a penetration section");
+  run->add_flag("--no-plots", no_plots,
+                "do not draw the figures (PNG): penetration figures of a deck with a penetration section, "
+                "fragment figures of a run that writes fragments.csv");
   bool track_failed = false;
   run->add_flag("--track-failed", track_failed,
                 "if a particle fails, run the deck again from the start with that particle tracked "
@@ -174,6 +176,7 @@ int main(int argc, char** argv) {
       opt.out_dir = out_dir;
       opt.threads = threads;
       opt.progress = !quiet;
+      opt.plots = !no_plots;
       ballista::RunResult r = ballista::run_simulation(sc, opt);
       const auto& tracked = sc.output.track;
       if (!r.ok && track_failed && r.failed_particle >= 0 &&

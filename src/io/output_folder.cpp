@@ -15,6 +15,7 @@ bool is_run_output(const std::string& name) {
   static const std::regex pattern(
       R"((particles_\d+\.h5|particles\.xdmf|history\.csv|summary\.json|resolved\.yaml|penetration\.csv|)"
       R"(channel\.csv|fragments\.csv|penetration_depth\.png|penetration_rate\.png|penetrator_energy\.png|channel_profile\.png)"
+      R"(|fragment_mass_distribution\.png|fragment_velocity\.png|fragment_count\.png)"
       R"(|.*\.tmp))");
   return std::regex_match(name, pattern);
 }

@@ -18,6 +18,7 @@
 #include "io/particle_writer.hpp"
 #include "io/summary_writer.hpp"
 #include "points/solver_registry.hpp"
+#include "run/fragment_summary.hpp"
 #include "run/particle_tracker.hpp"
 #include "run/progress.hpp"
 #include "run/stage_criterion.hpp"
@@ -363,10 +364,12 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       sr = JsonValue::object();
       for (const auto& [k, v] : values) sr[k] = v;
     }
-    for (const ResultTable& t : solver->result_tables()) {
+    const std::vector<ResultTable> tables = solver->result_tables();
+    for (const ResultTable& t : tables) {
       HistoryWriter csv((fs::path(opt.out_dir) / (t.name + ".csv")).string(), t.columns);
       for (const auto& row : t.rows) csv.row(row);
     }
+    report_fragments(tables, opt.out_dir, opt.plots, summary.root());  // a table named "fragments"
   } catch (const std::exception& w) {
     spdlog::error("the solver's results could not be written: {}", w.what());
   }

@@ -14,6 +14,7 @@ struct RunOptions {
   std::string out_dir = "out";  ///< results folder (created)
   int threads = 0;              ///< OpenMP threads; 0 = the deck's or the default
   bool progress = true;         ///< progress bar on a terminal, periodic log lines otherwise
+  bool plots = false;           ///< draw the figures of a fragments table (the CLI: unless --no-plots)
 };
 
 /// What a finished (or stopped) run reports.

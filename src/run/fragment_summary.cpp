@@ -1,0 +1,70 @@
+#include "run/fragment_summary.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <spdlog/spdlog.h>
+
+#include "analysis/mott_fit.hpp"
+#include "core/error.hpp"
+#include "run/fragment_plots.hpp"
+
+namespace ballista {
+
+namespace {
+
+/// Index of `name` in the table's columns, -1 if absent.
+int column(const ResultTable& t, const std::string& name) {
+  const auto it = std::find(t.columns.begin(), t.columns.end(), name);
+  return it == t.columns.end() ? -1 : static_cast<int>(it - t.columns.begin());
+}
+
+/// A finite number, else null (summary.json: a value that is not available is null).
+JsonValue number_or_null(double v) { return std::isfinite(v) ? JsonValue(v) : JsonValue(); }
+
+}  // namespace
+
+JsonValue fragment_summary(const ResultTable& table) {
+  const int im = column(table, "mass"), it = column(table, "time");
+  if (im < 0) throw Error("table '" + table.name + "' has no column 'mass'");
+  // The last snapshot: the rows at the time of the last row (rows are grouped by ascending time);
+  // without a time column every row.
+  const double t_last = it >= 0 && !table.rows.empty() ? table.rows.back().at(it) : 0.0;
+  std::vector<double> masses;
+  for (const auto& row : table.rows)
+    if (it < 0 || row.at(it) == t_last) masses.push_back(row.at(im));
+  double total = 0.0, largest = 0.0;
+  for (double m : masses) total += m, largest = std::max(largest, m);
+  JsonValue j = JsonValue::object();
+  j["time"] = it >= 0 && !table.rows.empty() ? JsonValue(t_last) : JsonValue();
+  j["count"] = static_cast<std::int64_t>(masses.size());
+  j["largest_mass"] = largest;
+  j["mean_mass"] = masses.empty() ? JsonValue() : JsonValue(total / static_cast<double>(masses.size()));
+  j["total_mass"] = total;
+  const MottFit f = fit_mott(masses);
+  j["mott_N0"] = f.ok ? JsonValue(f.N0) : JsonValue();
+  j["mott_mu"] = f.ok ? JsonValue(f.mu) : JsonValue();
+  j["mott_r2"] = f.ok ? number_or_null(f.r2) : JsonValue();
+  if (!f.ok) j["mott_reason"] = f.reason;
+  return j;
+}
+
+void report_fragments(const std::vector<ResultTable>& tables, const std::string& out_dir, bool plots,
+                      JsonValue& summary) {
+  const auto t = std::find_if(tables.begin(), tables.end(), [](const ResultTable& r) { return r.name == "fragments"; });
+  if (t == tables.end()) return;
+  try {
+    summary["fragments"] = fragment_summary(*t);
+  } catch (const std::exception& e) {
+    spdlog::warn("no fragment statistics in summary.json: {}", e.what());
+  }
+  if (!plots) return;
+  try {
+    if (const std::string err = make_fragment_plots(out_dir); !err.empty())
+      spdlog::warn("no fragment figures: {} (--no-plots skips them)", err);
+  } catch (const std::exception& e) {
+    spdlog::warn("no fragment figures: {} (--no-plots skips them)", e.what());
+  }
+}
+
+}  // namespace ballista
