@@ -20,6 +20,19 @@ namespace ballista::pd {
 /// Bonds end at the horizon (|xi| <= delta), so the factor never falls below about 1/2.
 double partial_volume_factor(double xi, double delta, double dx);
 
+/// Moments of the family of an interior point of the lattice of spacing dx (cubic in 3D, square in
+/// 2D with unit thickness), with the same horizon rule and partial volumes as build_bond_family:
+/// m1 = sum_j |xi_j| beta_j V_j (the bulk modulus of the PMB bond is c m1/18 in 3D, from the energy
+/// density W = 1/4 c eps^2 m1 of a dilatation eps, Silling & Askari 2005 eq. 21) and
+/// m2 = sum_{xi_j . e > 0} |xi_j| (xi_j . e) beta_j V_j along a lattice axis e (the energy per unit
+/// area of the bonds crossing a lattice plane at the critical stretch is G = c s0^2 m2 / 2, the
+/// discrete form of Silling & Askari 2005 eq. 25). Continuum values: m1 = pi delta^4, m2 = pi delta^5/5.
+struct LatticeMoments {
+  double m1 = 0.0;  ///< m^4 (3D)
+  double m2 = 0.0;  ///< m^5 (3D)
+};
+LatticeMoments lattice_moments(double delta, double dx, bool partial, int dim);
+
 struct BondFamily {
   std::vector<Index> offset;         ///< row start of each point (size n + 1)
   std::vector<std::int32_t> other;   ///< the other end of each bond

@@ -101,6 +101,9 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   // stretch of a mixed bond is the smaller one.
   const auto& mats = pts_.materials();
   nmat_ = static_cast<int>(mats.size());
+  const bool correct = P.choices.at("volume_correction") == "partial";
+  const bool lattice = P.choices.at("calibration") == "lattice";
+  const pd::LatticeMoments moments = pd::lattice_moments(delta_, dx_, correct, 3);
   std::vector<double> c(nmat_), s0(nmat_);
   for (int a = 0; a < nmat_; ++a) {
     const ProbedModuli mod = probe_moduli(*mats[a]);
@@ -108,11 +111,16 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
       throw DeckError(sc.file, 0, 0, "materials." + mats[a]->name(),
                       fmt::format("peridynamics needs a positive bulk modulus; material '{}' gives {:g} Pa",
                                   mats[a]->name(), mod.bulk));
-    c[a] = 18.0 * mod.bulk / (std::numbers::pi * std::pow(delta_, 4));
+    // continuum: c = 18 K/(pi delta^4) (S&A 2005 eq. 22), s00 = sqrt(5 G0/(9 K delta)) (eq. 25), exact
+    // for the integral over the horizon sphere; on the lattice the sums differ (K_PD = 0.90 K and
+    // G = 0.87 G0 at m = 3 with partial volumes), so `lattice` takes the same two relations over the
+    // lattice family of an interior point: c = 18 K/m1, s00 = sqrt(2 G0/(c m2)) (bond_family.hpp).
+    c[a] = 18.0 * mod.bulk / (lattice ? moments.m1 : std::numbers::pi * std::pow(delta_, 4));
     if (P.given("critical_stretch"))
       s0[a] = P.at("critical_stretch");
     else if (P.given("fracture_energy"))
-      s0[a] = std::sqrt(5.0 * P.at("fracture_energy") / (9.0 * mod.bulk * delta_));  // S&A 2005 eq. 25
+      s0[a] = lattice ? std::sqrt(2.0 * P.at("fracture_energy") / (c[a] * moments.m2))
+                      : std::sqrt(5.0 * P.at("fracture_energy") / (9.0 * mod.bulk * delta_));
     else
       s0[a] = kInf;
   }
@@ -129,7 +137,6 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   points_.add_real("pd_accel", 3, "m/s^2", false);
   const Index n = points_.size();
   const auto* x0 = points_.view<Vec3>("x0");
-  const bool correct = P.choices.at("volume_correction") == "partial";
   bonds_ = pd::build_bond_family(x0, n, delta_, correct ? dx_ : 0.0, 3, points_.ints("body"));
   s0_.assign(static_cast<size_t>(n), kInf);
   const auto* mat = points_.ints("material");
@@ -507,13 +514,19 @@ std::vector<ParamSpec> pd_params() {
   ParamSpec fthr{"fragment_damage_threshold", "1",
                  "points with more damage are left out of the fragments (dust); default: none left out", false, nan,
                  0.0, 1.0};
+  ParamSpec cal{"calibration", "-",
+                "bond constants from the continuum integrals (S&A 2005) or from the lattice family (exact K and G0 "
+                "for interior points)",
+                false, 0};
+  cal.choices = {"lattice", "continuum"};
+  cal.default_choice = "lattice";
   ParamSpec contact{"contact", "-", "short-range contact forces between points not bonded (S&A 2005, LAMMPS PERI)",
                     false, 0};
   contact.choices = {"on", "off"};
   contact.default_choice = "on";
   ParamSpec skin{"contact_skin", "1", "contact list skin over the lattice spacing (rebuilt after skin/2 of motion)",
                  false, 0.5, 0.0, 10.0, true};
-  return {m, horizon, vc, s0, g0, alpha, safety, fint, fthr, contact, skin};
+  return {m, horizon, vc, cal, s0, g0, alpha, safety, fint, fthr, contact, skin};
 }
 
 }  // namespace

@@ -97,15 +97,32 @@ TEST(PdBonds, PartialVolumeFactorIsLinearAcrossOneSpacing) {
 }
 
 TEST(PdSolver, BondConstantsFromTheMaterialBulkModulus) {
-  const auto s = solver_for(cube_deck(4));
+  const auto s = solver_for(cube_deck(4, "m: 3, calibration: continuum"));
   // K probed through the linear-elastic kernel (tolerance: the probe's 1e-7 strain, O(1e-7)).
   EXPECT_NEAR(probe_moduli(*make_materials(parse_deck(cube_deck(4), "d.yaml"))[0]).bulk, kK, 1e-6 * kK);
   const double delta = 3 * kDx;
   EXPECT_NEAR(s->micromodulus(0, 0), 18 * kK / (std::numbers::pi * std::pow(delta, 4)), 1e-6 * s->micromodulus(0, 0));
   EXPECT_TRUE(std::isinf(s->critical_stretch(0, 0)));
   // s00 from the fracture energy (Silling & Askari 2005 eq. 25).
-  const auto g = solver_for(cube_deck(4, "m: 3, fracture_energy: 8"));
+  const auto g = solver_for(cube_deck(4, "m: 3, fracture_energy: 8, calibration: continuum"));
   EXPECT_NEAR(g->critical_stretch(0, 0), std::sqrt(5 * 8.0 / (9 * kK * delta)), 1e-6 * g->critical_stretch(0, 0));
+  // The default lattice calibration: the same relations over the lattice family, c = 18 K / m1 and
+  // s00 = sqrt(2 G0 / (c m2)), with the moments summed here independently of bond_family.cpp.
+  double m1 = 0.0, m2 = 0.0;
+  for (int i = -4; i <= 4; ++i)
+    for (int j = -4; j <= 4; ++j)
+      for (int k = -4; k <= 4; ++k) {
+        const double r = std::sqrt(double(i * i + j * j + k * k));
+        if (r == 0.0 || r > 3.0 * (1 + 1e-9)) continue;
+        const double b = r <= 2.5 ? 1.0 : (r > 3.0 - 1e-9 ? 0.5 : 3.5 - r);  // LAMMPS partial volume
+        m1 += r * b * std::pow(kDx, 4);  // |xi| beta V with |xi| = r dx, V = dx^3
+        if (i > 0) m2 += r * i * b * std::pow(kDx, 5);
+      }
+  const auto l = solver_for(cube_deck(4, "m: 3, fracture_energy: 8"));
+  EXPECT_NEAR(l->micromodulus(0, 0), 18 * kK / m1, 1e-6 * l->micromodulus(0, 0));
+  EXPECT_NEAR(l->critical_stretch(0, 0), std::sqrt(2 * 8.0 / (l->micromodulus(0, 0) * m2)),
+              1e-6 * l->critical_stretch(0, 0));
+  EXPECT_NEAR(m1 / (std::numbers::pi * std::pow(delta, 4)), 0.9002, 1e-4);  // K_PD / K of the continuum c
   EXPECT_THROW(solver_for(cube_deck(4, "m: 3, horizon: 0.003")), DeckError);
   EXPECT_THROW(solver_for(cube_deck(4, "critical_stretch: 0.001, fracture_energy: 8")), DeckError);
 }
@@ -120,7 +137,8 @@ TEST(PdSolver, BondConstantsFromTheMaterialBulkModulus) {
 TEST(PdSolver, UniformDilatationEnergyDensityIsTheLatticeSumOfTheContinuumValue) {
   const double eps = 1e-4;
   for (const bool partial : {true, false}) {
-    const auto s = solver_for(cube_deck(11, partial ? "m: 3" : "m: 3, volume_correction: none"));
+    const auto s = solver_for(
+        cube_deck(11, partial ? "m: 3, calibration: continuum" : "m: 3, volume_correction: none, calibration: continuum"));
     FieldStore& pts = s->points();
     auto* x = pts.view<Vec3>("x");
     const auto* x0 = pts.view<Vec3>("x0");
@@ -142,6 +160,27 @@ TEST(PdSolver, UniformDilatationEnergyDensityIsTheLatticeSumOfTheContinuumValue)
     // size c eps V_j / rho each (1e-12 of their sum leaves two orders of margin over 1e-16 x 122).
     const Vec3 a = pts.view<Vec3>("pd_accel")[centre];
     EXPECT_LT(norm(a), 1e-12 * 122 * s->micromodulus(0, 0) * eps * kDx * kDx * kDx / 2200);
+  }
+}
+
+// With the default lattice calibration the same dilatation gives the continuum energy density
+// W = 9 K eps^2 / 2 at an interior point to round-off (c = 18 K / m1 by construction), with and
+// without the partial-volume correction.
+TEST(PdSolver, LatticeCalibrationGivesTheBulkModulusExactly) {
+  const double eps = 1e-4;
+  for (const char* vc : {"partial", "none"}) {
+    const auto s = solver_for(cube_deck(11, std::string("m: 3, volume_correction: ") + vc));
+    FieldStore& pts = s->points();
+    auto* x = pts.view<Vec3>("x");
+    const auto* x0 = pts.view<Vec3>("x0");
+    for (Index p = 0; p < pts.size(); ++p) x[p] = (1.0 + eps) * x0[p];
+    s->refresh();
+    Index centre = -1;
+    for (Index p = 0; p < pts.size(); ++p)
+      if (norm(x0[p] - Vec3{{5.5e-3, 5.5e-3, 5.5e-3}}) < 1e-9) centre = p;
+    ASSERT_GE(centre, 0);
+    const double W = pts.real("internal_energy")[centre] / pts.real("volume0")[centre];
+    EXPECT_NEAR(W / (4.5 * kK * eps * eps), 1.0, 1e-6) << vc;  // the probe's 1e-7 on K, plus round-off
   }
 }
 
@@ -307,7 +346,9 @@ TEST(PdSolver, ResultsDoNotDependOnTheThreadCount) {
     x[run].assign(pts.view<Vec3>("x"), pts.view<Vec3>("x") + pts.size());
     damage[run].assign(pts.real("damage"), pts.real("damage") + pts.size());
     energy[run] = s->energies().total();
-    if (run == 0) EXPECT_GT(s->broken_bonds(), 0);  // the test exercises failure too
+    if (run == 0) {
+      EXPECT_GT(s->broken_bonds(), 0);  // the test exercises failure too
+    }
   }
   set_threads(max_threads());
   ASSERT_EQ(x[0].size(), x[1].size());
