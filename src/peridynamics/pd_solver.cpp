@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "geometry/seeding.hpp"
 #include "peridynamics/fragments.hpp"
+#include "peridynamics/pmb_row.hpp"
 #include "points/solver_registry.hpp"
 
 namespace ballista {
@@ -84,6 +85,7 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   alpha_ = P.at("stretch_alpha");
   fragment_interval_ = P.at("fragment_interval");
   contact_on_ = P.choices.at("contact") == "on";
+  contact_all_pairs_ = P.choices.at("contact_pairs") == "all";
   fragment_threshold_ = P.given("fragment_damage_threshold") ? P.at("fragment_damage_threshold") : 2.0;
   next_fragment_time_ = fragment_interval_ > 0.0 ? fragment_interval_ : kInf;
   dt_safety_ = P.at("dt_safety");
@@ -247,6 +249,7 @@ void PdSolver::compute_forces() {
   // Short-range contact (contact_list.hpp): c_s = 15 c / delta per unit volume squared and unit
   // overlap (Silling & Askari 2005; LAMMPS pair_peri_pmb), reach d = min(0.9 |xi|, 1.35 dx).
   const bool contact = contact_on_;
+  const int bonded_contact = contact && contact_all_pairs_ ? 1 : 0;
   const double cs_over_c = 15.0 / delta_, range = 1.35 * dx_;
   auto* econ = contact_energy_.data();
   // Each point writes only its own row and its own outputs; both rows of a bond see the same
@@ -258,25 +261,12 @@ void PdSolver::compute_forces() {
     // f = c s (y/|y|) per unit volume of each end (seed 001 "Microelastic material"; coef = c beta
     // V_q), the energy density w_p = 1/2 sum_j (1/2 c s^2 |xi|) beta V_j (Silling & Askari 2005
     // eq. 21), s_min for the next s0, and whether any bond breaks now.
-    double fx = 0.0, fy = 0.0, fz = 0.0, en = 0.0, smx = -kInf;
-    int breaks = 0;
-#pragma omp simd reduction(+ : fx, fy, fz, en) reduction(max : smx) reduction(| : breaks)
-    for (Index k = k0; k < k1; ++k) {
-      const Index q = other[k];
-      const double alive = broken[k] ? 0.0 : 1.0;
-      const double y0 = xs[3 * q] - xp0, y1 = xs[3 * q + 1] - xp1, y2 = xs[3 * q + 2] - xp2;
-      const double r = std::sqrt(y0 * y0 + y1 * y1 + y2 * y2), r0 = len0[k];
-      const double s = (r - r0) / r0;
-      breaks |= (alive > 0.0) & (s > std::min(s0p, s0[q]));
-      const double g = r > 0.0 ? alive * coef[k] * s / r : 0.0;
-      fx += g * y0;
-      fy += g * y1;
-      fz += g * y2;
-      en += alive * coef[k] * s * s * r0;
-      smx = std::max(smx, alive > 0.0 ? -alpha * s : -kInf);  // s0_new = s00 - alpha s_min (LAMMPS PERI)
-    }
-    Vec3 f{{fx, fy, fz}};
-    double energy = 0.25 * en, dis = 0.0, e_contact = 0.0, k_contact = 0.0;
+    const pd::RowSums row = pd::pmb_row(k0, k1, xs, xp0, xp1, xp2, other, broken, len0, coef, s0, s0p, alpha,
+                                        bonded_contact, range);
+    const bool breaks = row.breaks != 0, touch = row.touch != 0;
+    double smx = row.smax;
+    Vec3 f{{row.fx, row.fy, row.fz}};
+    double energy = 0.25 * row.energy, dis = 0.0, e_contact = 0.0, k_contact = 0.0;
     // A repulsive contact spring between p and q at distance r < d: force density on p
     // -c_s (d - r) V_q y/r; its energy c_s V_p V_q (d - r)^2 / 2, half booked at each end.
     auto repel = [&](Index q, double r, const Vec3& y, double d, double cpq) {
@@ -285,8 +275,28 @@ void PdSolver::compute_forces() {
       if (r > 0.0) f += (-cs * o * vol0[q] / r) * y;
       e_contact += 0.25 * cs * o * o * vol0[q] * vol0[p];
     };
-    if (breaks || (contact && damage[p] > 0.0)) {
-      // Some bond breaks now, or broken bonds may be in contact: the row again, one bond at a time.
+    if (touch && !breaks) {
+      // contact_pairs: all (LAMMPS PERI): intact bonds compressed below 0.9 |xi| also repel.
+      for (Index k = k0; k < k1; ++k) {
+        if (broken[k]) continue;
+        const Index q = other[k];
+        const Vec3 y = x[q] - x[p];
+        const double r = norm(y), d = std::min(0.9 * len0[k], range);
+        if (r < d) repel(q, r, y, d, c_[mat[p] * nmat_ + mat[q]]);
+      }
+    }
+    if (!breaks && contact && damage[p] > 0.0) {
+      // The ends of a broken bond meet again through contact only (the vector pass skipped them).
+      for (Index k = k0; k < k1; ++k) {
+        if (!broken[k]) continue;
+        const Index q = other[k];
+        const Vec3 y = x[q] - x[p];
+        const double r = norm(y), d = std::min(0.9 * len0[k], range);
+        if (r < d) repel(q, r, y, d, c_[mat[p] * nmat_ + mat[q]]);
+      }
+    }
+    if (breaks) {
+      // Some bond breaks now: the row again, one bond at a time.
       f = Vec3{};
       energy = 0.0;
       smx = -kInf;
@@ -319,6 +329,7 @@ void PdSolver::compute_forces() {
         if (r > 0.0) f += (coef[k] * s / r) * y;
         energy += 0.5 * pair;
         smx = std::max(smx, -alpha * s);
+        if (bonded_contact && r < std::min(0.9 * r0, range)) repel(q, r, y, std::min(0.9 * r0, range), c_[mat[p] * nmat_ + mat[q]]);
       }
       damage[p] = vol_broken / vol_all_[p];
     }
@@ -464,16 +475,23 @@ std::string PdSolver::derived_constants() const {
 std::vector<std::string> PdSolver::history_columns() const {
   std::vector<std::string> c = PointLoads::history_columns(scenario_);
   c.push_back("broken_bonds");
+  c.push_back("mean_damage");
   c.push_back("contact_energy");
   return c;
 }
 
 std::vector<double> PdSolver::history_values() const {
   std::vector<double> v = loads_.history_values(scenario_);
-  double e[1];
-  deterministic_sum<1>(0, points_.size(), [&](Index p, double* o) { o[0] += contact_energy_[p]; }, e);
+  const auto* damage = points_.real("damage");
+  double e[2];
+  deterministic_sum<2>(0, points_.size(), [&](Index p, double* o) {
+    o[0] += damage[p];
+    o[1] += contact_energy_[p];
+  }, e);
+  const double count = comm_.sum(static_cast<double>(points_.size()));
   v.push_back(static_cast<double>(broken_bonds()));
-  v.push_back(comm_.sum(e[0]));
+  v.push_back(count > 0.0 ? comm_.sum(e[0]) / count : 0.0);  // mean over points (LAMMPS compute reduce ave)
+  v.push_back(comm_.sum(e[1]));
   return v;
 }
 
@@ -524,9 +542,15 @@ std::vector<ParamSpec> pd_params() {
                     false, 0};
   contact.choices = {"on", "off"};
   contact.default_choice = "on";
+  ParamSpec pairs{"contact_pairs", "-",
+                  "unbonded: contact between points not bonded (S&A 2005); all: intact bonds compressed below "
+                  "0.9 |xi| repel too (LAMMPS PERI)",
+                  false, 0};
+  pairs.choices = {"unbonded", "all"};
+  pairs.default_choice = "unbonded";
   ParamSpec skin{"contact_skin", "1", "contact list skin over the lattice spacing (rebuilt after skin/2 of motion)",
                  false, 0.5, 0.0, 10.0, true};
-  return {m, horizon, vc, cal, s0, g0, alpha, safety, fint, fthr, contact, skin};
+  return {m, horizon, vc, cal, s0, g0, alpha, safety, fint, fthr, contact, pairs, skin};
 }
 
 }  // namespace

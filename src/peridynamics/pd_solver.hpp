@@ -59,7 +59,7 @@ class PdSolver final : public Solver {
   std::vector<ResultTable> result_tables() const override;
   /// Horizon, and per material pair the micromodulus c and critical stretch s00.
   std::string derived_constants() const override;
-  /// Indenter reactions, then broken_bonds and contact_energy (J, stored in the contact springs).
+  /// Indenter reactions, then broken_bonds, mean_damage and contact_energy (J, in the contact springs).
   std::vector<std::string> history_columns() const override;
   std::vector<double> history_values() const override;
 
@@ -111,6 +111,7 @@ class PdSolver final : public Solver {
   std::vector<Vec3> f0_;           ///< scratch: external forces at the step's start
   std::vector<double> dissipated_; ///< J: energy of the broken bonds, half of each to each end
   bool contact_on_ = true;           ///< short-range contact forces (contact_list.hpp)
+  bool contact_all_pairs_ = false;   ///< also between bonded points (LAMMPS PERI), not only unbonded ones
   pd::ContactList contact_;          ///< never-bonded pairs near each other
   std::vector<double> contact_energy_;  ///< J: each point's half of its contact springs' energy
   double fragment_interval_ = 0.0;   ///< s between fragment snapshots (0: at the end only)
