@@ -122,11 +122,12 @@ class Reader {
     std::vector<std::string> solvers;
     for (const auto& f : solver_registry()) solvers.push_back(f.name);
     sim.solver = s.choice("solver", solvers.empty() ? std::string() : solvers.front(), solvers);
-    const std::string dim = s.choice("dimension", "3d", {"3d", "plane_strain", "axisymmetric"});
+    const std::string dim = s.choice("dimension", "3d", {"3d", "plane_strain", "plane_stress", "axisymmetric"});
     const SolverFactory& solver = *find_solver(sim.solver);
     if (std::find(solver.dimensions.begin(), solver.dimensions.end(), dim) == solver.dimensions.end())
       s.fail("dimension", "solver '" + sim.solver + "' runs in " + join_names(solver.dimensions) + ", not '" + dim + "'");
-    sim.dimension = dim == "plane_strain" ? Dimension::PlaneStrain
+    sim.plane_stress = dim == "plane_stress";
+    sim.dimension = dim == "plane_strain" || dim == "plane_stress" ? Dimension::PlaneStrain
                     : dim == "axisymmetric" ? Dimension::Axisymmetric
                                             : Dimension::ThreeD;
     sim.end_time = s.number("end_time", NumberRange::positive("s"));

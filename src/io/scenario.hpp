@@ -39,6 +39,9 @@ struct LoadCurve {
 struct SimulationSpec {
   std::string solver = "mpm";       ///< a registered solver (points/solver_registry.hpp)
   Dimension dimension = Dimension::ThreeD;
+  /// `dimension: plane_stress` (peridynamics): a 2D run like plane_strain (points in the x-y plane,
+  /// per unit thickness) whose in-plane constants are those of plane stress.
+  bool plane_stress = false;
   double end_time = 0.0;            ///< s
   double cfl = 0.3;                 ///< Courant number (0, 1]
   double max_dt = 0.0;              ///< s; 0 = no cap

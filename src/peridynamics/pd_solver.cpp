@@ -90,8 +90,10 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   next_fragment_time_ = fragment_interval_ > 0.0 ? fragment_interval_ : kInf;
   dt_safety_ = P.at("dt_safety");
   damping_ = sc.simulation.damping;
-  if (sc.simulation.dimension != Dimension::ThreeD)
-    section_error(sc, "", "only 3d runs are implemented (plane stress and plane strain come next)");
+  dim_ = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
+  thickness_ = dim_ == 2 && P.given("thickness") ? P.at("thickness") : 1.0;
+  if (dim_ == 3 && P.given("thickness"))
+    section_error(sc, "thickness", "a thickness belongs to 2D runs (dimension: plane_stress or plane_strain)");
   if (pts_.pending() > 0)
     section_error(sc, "", "bodies with a later activation (activation_time, activation_stage, rods, jets) are not "
                           "supported by the peridynamics solver yet: their bonds would have to be built on arrival");
@@ -105,7 +107,13 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   nmat_ = static_cast<int>(mats.size());
   const bool correct = P.choices.at("volume_correction") == "partial";
   const bool lattice = P.choices.at("calibration") == "lattice";
-  const pd::LatticeMoments moments = pd::lattice_moments(delta_, dx_, correct, 3);
+  const pd::LatticeMoments moments = pd::lattice_moments(delta_, dx_, correct, dim_);
+  // Continuum moments: 3D m1 = pi delta^4, m2 = pi delta^5/5; 2D (unit thickness) m1 = 2 pi delta^3/3,
+  // m2 = delta^4/2 (Ha & Bobaru, Int. J. Fract. 162 (2010) 229: c = 9E/(pi h delta^3) in plane stress).
+  const double m1 = lattice ? moments.m1 : (dim_ == 3 ? std::numbers::pi * std::pow(delta_, 4)
+                                                      : 2.0 * std::numbers::pi * std::pow(delta_, 3) / 3.0);
+  const double m2 = lattice ? moments.m2 : (dim_ == 3 ? std::numbers::pi * std::pow(delta_, 5) / 5.0
+                                                      : std::pow(delta_, 4) / 2.0);
   std::vector<double> c(nmat_), s0(nmat_);
   for (int a = 0; a < nmat_; ++a) {
     const ProbedModuli mod = probe_moduli(*mats[a]);
@@ -117,14 +125,42 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     // for the integral over the horizon sphere; on the lattice the sums differ (K_PD = 0.90 K and
     // G = 0.87 G0 at m = 3 with partial volumes), so `lattice` takes the same two relations over the
     // lattice family of an interior point: c = 18 K/m1, s00 = sqrt(2 G0/(c m2)) (bond_family.hpp).
-    c[a] = 18.0 * mod.bulk / (lattice ? moments.m1 : std::numbers::pi * std::pow(delta_, 4));
+    // The energy density of a dilatation eps is W = c eps^2 m1 / 4 for any dimension (S&A 2005 eq. 21
+    // summed over the family); it equals the continuum 9 K eps^2/2 in 3D and 2 K2 eps^2 in 2D (eps in
+    // both in-plane directions), K2 the in-plane bulk modulus: K + G/3 in plane strain, E/(2(1 - nu))
+    // in plane stress. So c = 18 K/m1 (3D) or 8 K2/m1 (2D). A crack opening through its critical
+    // stretch releases G = c s0^2 m2/2, so s00 = sqrt(2 G0/(c m2)) (eq. 25 in 3D with the continuum m2).
+    double modulus = 18.0 * mod.bulk;
+    if (dim_ == 2) {
+      const double E = 9.0 * mod.bulk * mod.shear / (3.0 * mod.bulk + mod.shear);
+      const double nu = (3.0 * mod.bulk - 2.0 * mod.shear) / (2.0 * (3.0 * mod.bulk + mod.shear));
+      modulus = 8.0 * (sc.simulation.plane_stress ? E / (2.0 * (1.0 - nu)) : mod.bulk + mod.shear / 3.0);
+    }
+    c[a] = modulus / m1;
     if (P.given("critical_stretch"))
       s0[a] = P.at("critical_stretch");
     else if (P.given("fracture_energy"))
-      s0[a] = lattice ? std::sqrt(2.0 * P.at("fracture_energy") / (c[a] * moments.m2))
-                      : std::sqrt(5.0 * P.at("fracture_energy") / (9.0 * mod.bulk * delta_));
+      s0[a] = std::sqrt(2.0 * P.at("fracture_energy") / (c[a] * m2));
     else
       s0[a] = kInf;
+  }
+  // Micro-plastic bonds: first yield of the most stretched bond (the one along the load) under
+  // uniaxial stress sigma_y, s_y = sigma_y/E_PD with the modulus of the bond-based model (nu = 1/4 in
+  // 3D: E = 3K/2; in 2D E = 4 K2/3 for plane stress, nu = 1/3, and plane strain alike). With several
+  // materials the smallest K sets it (one yield stretch for every bond).
+  if (P.given("yield_stress")) {
+    double e_min = kInf;
+    for (int a = 0; a < nmat_; ++a) {
+      const ProbedModuli mod = probe_moduli(*mats[a]);
+      double e = 1.5 * mod.bulk;
+      if (dim_ == 2) {
+        const double E = 9.0 * mod.bulk * mod.shear / (3.0 * mod.bulk + mod.shear);
+        const double nu = (3.0 * mod.bulk - 2.0 * mod.shear) / (2.0 * (3.0 * mod.bulk + mod.shear));
+        e = 4.0 / 3.0 * (sc.simulation.plane_stress ? E / (2.0 * (1.0 - nu)) : mod.bulk + mod.shear / 3.0);
+      }
+      e_min = std::min(e_min, e);
+    }
+    yield_stretch_ = P.at("yield_stress") / e_min;
   }
   c_.resize(static_cast<size_t>(nmat_ * nmat_));
   s00_.resize(c_.size());
@@ -139,7 +175,7 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   points_.add_real("pd_accel", 3, "m/s^2", false);
   const Index n = points_.size();
   const auto* x0 = points_.view<Vec3>("x0");
-  bonds_ = pd::build_bond_family(x0, n, delta_, correct ? dx_ : 0.0, 3, points_.ints("body"));
+  bonds_ = pd::build_bond_family(x0, n, delta_, correct ? dx_ : 0.0, dim_, points_.ints("body"));
   s0_.assign(static_cast<size_t>(n), kInf);
   const auto* mat = points_.ints("material");
   for (Index p = 0; p < n; ++p) {
@@ -149,11 +185,13 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     s0_[p] = s;  // the first step breaks at s00 (no previous stretch yet)
   }
   s00_point_ = s0_;
+  if (std::isfinite(yield_stretch_)) sp_.assign(bonds_.other.size(), 0.0);
   dissipated_.assign(static_cast<size_t>(n), 0.0);
   contact_energy_.assign(static_cast<size_t>(n), 0.0);
   contact_.skin = P.at("contact_skin") * dx_;
   if (contact_on_)
-    pd::build_contact_list(contact_, points_.view<Vec3>("x"), x0, points_.ints("body"), n, delta_, dx_, contact_.skin, 3);
+    pd::build_contact_list(contact_, points_.view<Vec3>("x"), x0, points_.ints("body"), n, delta_, dx_, contact_.skin,
+                           dim_);
   const auto* vol0 = points_.real("volume0");
   // Per bond c_pq beta V_q (N/m^3 per unit stretch): the force loop reads one number per bond instead
   // of the material pair, the partial-volume factor and the neighbour's volume.
@@ -245,6 +283,9 @@ void PdSolver::compute_forces() {
   const std::int32_t* other = bonds_.other.data();
   std::uint8_t* broken = bonds_.broken.data();
   const double alpha = alpha_;
+  const bool plastic = !sp_.empty();
+  double* sp = sp_.data();
+  const double sy = yield_stretch_;
   const Vec3* xprev = x_prev_.data();  // positions at the step's start (= x outside a step)
   // Short-range contact (contact_list.hpp): c_s = 15 c / delta per unit volume squared and unit
   // overlap (Silling & Askari 2005; LAMMPS pair_peri_pmb), reach d = min(0.9 |xi|, 1.35 dx).
@@ -266,7 +307,7 @@ void PdSolver::compute_forces() {
     const bool breaks = row.breaks != 0, touch = row.touch != 0;
     double smx = row.smax;
     Vec3 f{{row.fx, row.fy, row.fz}};
-    double energy = 0.25 * row.energy, dis = 0.0, e_contact = 0.0, k_contact = 0.0;
+    double energy = 0.25 * row.energy, dis = 0.0, e_contact = 0.0, k_contact = 0.0, wplastic = 0.0;
     // A repulsive contact spring between p and q at distance r < d: force density on p
     // -c_s (d - r) V_q y/r; its energy c_s V_p V_q (d - r)^2 / 2, half booked at each end.
     auto repel = [&](Index q, double r, const Vec3& y, double d, double cpq) {
@@ -295,8 +336,8 @@ void PdSolver::compute_forces() {
         if (r < d) repel(q, r, y, d, c_[mat[p] * nmat_ + mat[q]]);
       }
     }
-    if (breaks) {
-      // Some bond breaks now: the row again, one bond at a time.
+    if (breaks || plastic) {
+      // Some bond breaks now, or the bonds are micro-plastic: the row again, one bond at a time.
       f = Vec3{};
       energy = 0.0;
       smx = -kInf;
@@ -312,7 +353,23 @@ void PdSolver::compute_forces() {
           continue;
         }
         const double s = (r - r0) / r0;
-        const double pair = 0.5 * coef[k] * s * s * r0;  // the bond's energy per unit volume of p, twice
+        // Micro-plastic bond (seed 001 "Micro-Elastic and -Plastic Materials"; Silling & Askari 2005
+        // §"microplastic"): elastic in s - s_p up to the yield stretch s_y, perfectly plastic beyond,
+        // elastic unloading with s_p kept; the plastic work of the pair c s_y |ds_p| |xi| beta V_p V_q,
+        // half booked at each end. Failure still on the total stretch s.
+        double se = s;
+        if (plastic) {
+          se = s - sp[k];
+          double dsp = 0.0;
+          if (se > sy) dsp = se - sy;
+          else if (se < -sy) dsp = se + sy;
+          if (dsp != 0.0) {
+            sp[k] += dsp;
+            se -= dsp;
+            wplastic += 0.5 * coef[k] * sy * std::abs(dsp) * r0 * vol0[p];
+          }
+        }
+        const double pair = 0.5 * coef[k] * se * se * r0;  // the bond's energy per unit volume of p, twice
         if (s > std::min(s0p, s0[q])) {
           // Failure against the previous step's s0 (LAMMPS PERI's rule); from now on the bond exerts
           // no force (LAMMPS still applies it this step). What it dissipates is what the step took
@@ -323,10 +380,10 @@ void PdSolver::compute_forces() {
           const double r_prev = norm(xprev[q] - xprev[p]);
           broken[k] = 1;
           vol_broken += bonds_.volume_factor[k] * vol0[q];
-          dis += 0.5 * (pair - 0.5 * coef[k] * s * (r - r_prev)) * vol0[p];
+          dis += 0.5 * (pair - 0.5 * coef[k] * se * (r - r_prev)) * vol0[p];
           continue;
         }
-        if (r > 0.0) f += (coef[k] * s / r) * y;
+        if (r > 0.0) f += (coef[k] * se / r) * y;
         energy += 0.5 * pair;
         smx = std::max(smx, -alpha * s);
         if (bonded_contact && r < std::min(0.9 * r0, range)) repel(q, r, y, std::min(0.9 * r0, range), c_[mat[p] * nmat_ + mat[q]]);
@@ -341,7 +398,7 @@ void PdSolver::compute_forces() {
         if (r < d) repel(q, r, y, d, c_[mat[p] * nmat_ + mat[q]]);
       }
     acc[p] = (vol0[p] / mass[p]) * f;
-    dissipated_[p] += dis;
+    dissipated_[p] += dis + wplastic;
     econ[p] = e_contact;
     stiff_contact_[p] = k_contact;
     eint[p] = energy * vol0[p] + dissipated_[p] + e_contact;
@@ -383,7 +440,7 @@ void PdSolver::step(double dt) {
   }
   if (contact_on_ && contact_.stale(x, n))
     pd::build_contact_list(contact_, x, points_.view<Vec3>("x0"), points_.ints("body"), n, delta_, dx_,
-                           contact_.skin, 3);
+                           contact_.skin, dim_);
   compute_forces();
   time_ += dt;
   ++steps_;
@@ -428,7 +485,7 @@ void PdSolver::step(double dt) {
   }
 }
 
-EnergyTotals PdSolver::energies() const { return pts_.energies(1.0, external_work_); }
+EnergyTotals PdSolver::energies() const { return pts_.energies(thickness_, external_work_); }
 
 Index PdSolver::broken_bonds() const {
   Index k = 0;
@@ -444,8 +501,8 @@ std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
   for (Index p = 0; p < points_.size(); ++p) dmax = std::max(dmax, damage[p]);
   return {{"broken_bonds", static_cast<double>(broken_bonds())},
           {"fragment_count", static_cast<double>(frags.size())},
-          {"largest_fragment_mass", frags.empty() ? 0.0 : frags.front().mass},
-          {"mean_fragment_mass", frags.empty() ? 0.0 : total / static_cast<double>(frags.size())},
+          {"largest_fragment_mass", frags.empty() ? 0.0 : thickness_ * frags.front().mass},
+          {"mean_fragment_mass", frags.empty() ? 0.0 : thickness_ * total / static_cast<double>(frags.size())},
           {"max_damage", dmax}};
 }
 
@@ -454,9 +511,10 @@ std::vector<std::vector<double>> PdSolver::fragment_rows() const {
   std::vector<std::vector<double>> rows;
   for (size_t k = 0; k < frags.size(); ++k) {
     const pd::Fragment& f = frags[k];
-    rows.push_back({time_, static_cast<double>(k), static_cast<double>(f.points), f.mass, f.center[0],
-                              f.center[1], f.center[2], f.velocity[0], f.velocity[1], f.velocity[2],
-                              norm(f.velocity), f.kinetic_energy});
+    // 2D: masses and energies of the plate of the given thickness.
+    rows.push_back({time_, static_cast<double>(k), static_cast<double>(f.points), thickness_ * f.mass, f.center[0],
+                    f.center[1], f.center[2], f.velocity[0], f.velocity[1], f.velocity[2], norm(f.velocity),
+                    thickness_ * f.kinetic_energy});
   }
   return rows;
 }
@@ -464,6 +522,7 @@ std::vector<std::vector<double>> PdSolver::fragment_rows() const {
 std::string PdSolver::derived_constants() const {
   std::string s = "# Derived by the peridynamics solver (not read back):\n";
   s += fmt::format("#   lattice_spacing: {:.10g}   # m (grid.cell_size)\n#   horizon: {:.10g}   # m\n", dx_, delta_);
+  if (!sp_.empty()) s += fmt::format("#   yield_stretch: {:.10g}   # micro-plastic bonds\n", yield_stretch_);
   const auto& mats = pts_.materials();
   for (int a = 0; a < nmat_; ++a)
     for (int b = a; b < nmat_; ++b)
@@ -482,6 +541,7 @@ std::vector<std::string> PdSolver::history_columns() const {
 
 std::vector<double> PdSolver::history_values() const {
   std::vector<double> v = loads_.history_values(scenario_);
+  for (double& f : v) f *= thickness_;  // 2D: per unit thickness -> the plate's
   const auto* damage = points_.real("damage");
   double e[2];
   deterministic_sum<2>(0, points_.size(), [&](Index p, double* o) {
@@ -491,7 +551,7 @@ std::vector<double> PdSolver::history_values() const {
   const double count = comm_.sum(static_cast<double>(points_.size()));
   v.push_back(static_cast<double>(broken_bonds()));
   v.push_back(count > 0.0 ? comm_.sum(e[0]) / count : 0.0);  // mean over points (LAMMPS compute reduce ave)
-  v.push_back(comm_.sum(e[1]));
+  v.push_back(thickness_ * comm_.sum(e[1]));
   return v;
 }
 
@@ -532,6 +592,12 @@ std::vector<ParamSpec> pd_params() {
   ParamSpec fthr{"fragment_damage_threshold", "1",
                  "points with more damage are left out of the fragments (dust); default: none left out", false, nan,
                  0.0, 1.0};
+  ParamSpec thick{"thickness", "m", "2D runs: the plate thickness (totals are per this thickness; default 1 m)", false,
+                  nan, 0.0, kInf, true};
+  ParamSpec yield{"yield_stress", "Pa",
+                  "micro-plastic bonds: uniaxial yield stress (bond yield stretch s_y = yield_stress / E_PD); "
+                  "absent: micro-elastic bonds",
+                  false, nan, 0.0, kInf, true};
   ParamSpec cal{"calibration", "-",
                 "bond constants from the continuum integrals (S&A 2005) or from the lattice family (exact K and G0 "
                 "for interior points)",
@@ -550,7 +616,7 @@ std::vector<ParamSpec> pd_params() {
   pairs.default_choice = "unbonded";
   ParamSpec skin{"contact_skin", "1", "contact list skin over the lattice spacing (rebuilt after skin/2 of motion)",
                  false, 0.5, 0.0, 10.0, true};
-  return {m, horizon, vc, cal, s0, g0, alpha, safety, fint, fthr, contact, pairs, skin};
+  return {m, horizon, vc, thick, cal, yield, s0, g0, alpha, safety, fint, fthr, contact, pairs, skin};
 }
 
 }  // namespace
@@ -560,7 +626,7 @@ std::vector<ParamSpec> pd_params() {
 BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
     "peridynamics",
     "bond-based peridynamics, PMB bonds with critical stretch (Silling & Askari 2005; EMU, seed 001)",
-    {"3d"},
+    {"3d", "plane_strain", "plane_stress"},
     "peridynamics",
     ballista::pd_params(),
     &ballista::make_pd})

@@ -16,6 +16,7 @@
 // The points layer (seeding, loads, removal, energies, diagnostics) is shared with MPM: this file
 // owns only the bonds, the force and the time integration.
 #include <functional>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -50,7 +51,7 @@ class PdSolver final : public Solver {
   FieldStore& points() override { return points_; }
   Index pending_points() const override { return pts_.pending(); }
   EnergyTotals energies() const override;
-  double reporting_scale() const override { return 1.0; }
+  double reporting_scale() const override { return thickness_; }
   void begin_stage(int stage, double damping) override;
   StepLimiter step_limiter() const override { return pts_.step_limiter(); }
   /// broken_bonds, fragment_count, largest_fragment_mass (kg), mean_fragment_mass (kg), max_damage.
@@ -93,12 +94,16 @@ class PdSolver final : public Solver {
   PointLoads loads_;
   pd::BondFamily bonds_;
   double dx_ = 0.0, delta_ = 0.0;
+  int dim_ = 3;             ///< 3, or 2 (plane strain / plane stress: points in the x-y plane)
+  double thickness_ = 1.0;  ///< m, 2D: totals (energies, masses) are per this thickness
   int nmat_ = 0;
   std::vector<double> c_;    ///< micromodulus per material pair, N/m^6
   std::vector<double> s00_;  ///< critical stretch per material pair (inf: no failure)
   double alpha_ = 0.0;       ///< s0 = s00 - alpha s_min
   double dt_safety_ = 0.8;   ///< fraction of the Silling-Askari stable step
   double damping_ = 0.0;     ///< 1/s: a - c v (dynamic relaxation, stages)
+  double yield_stretch_ = std::numeric_limits<double>::infinity();  ///< s_y of micro-plastic bonds
+  std::vector<double> sp_;             ///< plastic stretch per bond (each end its own copy; empty: elastic)
   std::vector<double> bond_coef_;      ///< per bond c_pq beta V_q, N/m^3
   std::vector<double> vol_all_;        ///< sum_j beta V_j of each point's family (damage denominator), m^3
   std::vector<double> stiff_bond_;     ///< sum_j V_j c/|xi| of each point's bonds (reference), N/m^4

@@ -272,7 +272,7 @@ EnergyTotals PointSet::energies(double k, double external_work) const {
   e.plastic = k * s[2];
   e.mass = k * s[3];
   // Axisymmetric: only the axial momentum of a body of revolution is non-zero in total.
-  e.momentum = Vec3{{scenario_.simulation.dimension == Dimension::Axisymmetric ? 0.0 : s[4], k * s[5], k * s[6]}};
+  e.momentum = Vec3{{scenario_.simulation.dimension == Dimension::Axisymmetric ? 0.0 : k * s[4], k * s[5], k * s[6]}};
   e.external = k * external_work;
   e.removed_mass = k * removed_mass_;
   e.removed_energy = k * removed_energy_;

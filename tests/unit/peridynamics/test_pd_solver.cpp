@@ -360,3 +360,67 @@ TEST(PdSolver, ResultsDoNotDependOnTheThreadCount) {
   }
   EXPECT_EQ(energy[0], energy[1]);
 }
+
+// 2D (plane stress, plane strain): the continuum constants are Ha & Bobaru's (Int. J. Fract. 162
+// (2010) 229), c = 9E/(pi delta^3) in plane stress (nu = 1/3) and c = 48E/(5 pi delta^3) in plane
+// strain (nu = 1/4), per unit thickness; with the lattice calibration an in-plane dilatation eps of an
+// interior point stores the continuum W = 2 K2 eps^2 exactly (K2 = E/(2(1 - nu)) in plane stress,
+// K + G/3 in plane strain).
+TEST(PdSolver, PlaneStressAndPlaneStrainConstants) {
+  const double E = 72e9, delta = 3 * kDx;
+  for (const bool stress : {true, false}) {
+    const double nu = stress ? 1.0 / 3.0 : 0.25;
+    auto deck = [&](const std::string& pd) {
+      return std::string("simulation: {solver: peridynamics, dimension: ") + (stress ? "plane_stress" : "plane_strain") +
+             ", end_time: 1e-5}\n" + "peridynamics: {" + pd + "}\n" +
+             "grid: {lower: [-0.05, -0.05], upper: [0.05, 0.05], cell_size: 0.001}\n" +
+             "materials:\n  glass: {model: linear_elastic, density: 2200, youngs_modulus: 72e9, poisson_ratio: " +
+             std::to_string(nu) + "}\n" + "bodies:\n  - {name: b, material: glass, shape: {type: box, lower: [0, 0], upper: [0.011, 0.011]}}\n";
+    };
+    const auto cont = solver_for(deck("calibration: continuum"));
+    const double expected = stress ? 9 * E / (std::numbers::pi * std::pow(delta, 3))
+                                   : 48 * E / (5 * std::numbers::pi * std::pow(delta, 3));
+    EXPECT_NEAR(cont->micromodulus(0, 0), expected, 1e-6 * expected) << (stress ? "plane stress" : "plane strain");
+    const auto s = solver_for(deck("m: 3"));
+    FieldStore& pts = s->points();
+    auto* x = pts.view<Vec3>("x");
+    const auto* x0 = pts.view<Vec3>("x0");
+    const double eps = 1e-4;
+    for (Index p = 0; p < pts.size(); ++p) x[p] = Vec3{{(1 + eps) * x0[p][0], (1 + eps) * x0[p][1], x0[p][2]}};
+    s->refresh();
+    Index centre = -1;
+    for (Index p = 0; p < pts.size(); ++p)
+      if (std::abs(x0[p][0] - 5.5e-3) < 1e-9 && std::abs(x0[p][1] - 5.5e-3) < 1e-9) centre = p;
+    ASSERT_GE(centre, 0);
+    const double W = pts.real("internal_energy")[centre] / pts.real("volume0")[centre];
+    const double K = E / (3 * (1 - 2 * nu)), G = E / (2 * (1 + nu));
+    const double K2 = stress ? E / (2 * (1 - nu)) : K + G / 3;
+    EXPECT_NEAR(W / (2 * K2 * eps * eps), 1.0, 1e-6) << (stress ? "plane stress" : "plane strain");
+  }
+}
+
+// Micro-plastic bonds (seed 001; Silling & Askari 2005): s_y = sigma_y / (3K/2). A dilatation to
+// 3 s_y yields every bond of an interior point to s_p = 2 s_y; back to zero it yields in compression
+// to s_p = s_y with elastic stretch -s_y left. Per unit volume of the point (c m1 = 18 K with the
+// lattice calibration): elastic c s_y^2 m1 / 4, plastic work (c s_y m1 / 2)(2 s_y + s_y), so
+// W = 7/4 c s_y^2 m1 = 31.5 K s_y^2; booked as plastic work 27 K s_y^2 of it.
+TEST(PdSolver, MicroPlasticBondsYieldAndKeepTheirPlasticStretch) {
+  const double sigma_y = 50e6, sy = sigma_y / (1.5 * kK);
+  const auto s = solver_for(cube_deck(11, "m: 3, yield_stress: 50e6"));
+  FieldStore& pts = s->points();
+  auto* x = pts.view<Vec3>("x");
+  const auto* x0 = pts.view<Vec3>("x0");
+  Index centre = -1;
+  for (Index p = 0; p < pts.size(); ++p)
+    if (norm(x0[p] - Vec3{{5.5e-3, 5.5e-3, 5.5e-3}}) < 1e-9) centre = p;
+  ASSERT_GE(centre, 0);
+  for (const double eps : {3 * sy, 0.0}) {
+    for (Index p = 0; p < pts.size(); ++p) x[p] = (1.0 + eps) * x0[p];
+    s->refresh();
+  }
+  const double V = pts.real("volume0")[centre];
+  // Tolerance: the probed K (1e-7) and round-off of the stretch (1e-16 / s_y ~ 1e-13).
+  EXPECT_NEAR(pts.real("internal_energy")[centre] / V / (31.5 * kK * sy * sy), 1.0, 1e-6);
+  EXPECT_NEAR(pts.real("plastic_work")[centre] / V / (27.0 * kK * sy * sy), 1.0, 1e-6);
+  EXPECT_EQ(s->broken_bonds(), 0);
+}
