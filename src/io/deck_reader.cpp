@@ -47,7 +47,7 @@ int axis_from(const std::string& name) { return name == "x" ? 0 : name == "y" ? 
 namespace {
 
 const std::vector<std::string> kSections{"simulation", "grid",   "materials", "stages", "bodies",
-                                         "loads",      "probes", "penetration", "output"};
+                                         "loads",      "cracks", "probes", "penetration", "output"};
 const std::vector<std::string> kFaces{"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
 const std::vector<std::string> kFaceBCs{"free", "fixed", "symmetry", "wall"};
 const std::vector<std::string> kEnergies{"kinetic", "internal", "plastic", "external", "total"};
@@ -97,6 +97,7 @@ class Reader {
     stages();
     bodies();
     loads();
+    cracks();
     probes();
     check_stage_bodies();
     penetration();
@@ -360,6 +361,25 @@ class Reader {
       out.push_back("bottom");
     }
     return out;
+  }
+
+  /// `cracks`: pre-cracks and notches cut into the bonds before the run (peridynamics).
+  void cracks() {
+    DeckNode cs = root_.list("cracks", false);
+    if (cs.size() > 0 && sc_.simulation.solver != "peridynamics")
+      cs.fail("pre-cracks cut bonds: only the peridynamics solver has them (solver '" + sc_.simulation.solver + "')");
+    for (size_t i = 0; i < cs.size(); ++i) {
+      DeckNode c = cs.element(i);
+      CrackSpec crack;
+      crack.mark = c.mark();
+      crack.body = body_ref(c, false);
+      crack.from = c.vector("from", 2);
+      crack.to = c.vector("to", 2);
+      if (crack.from[0] == crack.to[0] && crack.from[1] == crack.to[1])
+        c.fail("to", "expected a segment of non-zero length in the x-y plane (from and to coincide)");
+      c.finish();
+      sc_.cracks.push_back(crack);
+    }
   }
 
   void loads() {

@@ -140,6 +140,15 @@ struct LoadSpec {
   DeckMark mark;
 };
 
+/// A pre-crack or notch (peridynamics): every bond of `body` (all bodies if empty) whose two ends,
+/// projected on the x-y plane, lie on either side of the segment from..to is broken before the run
+/// (a crack through the whole thickness in 3D).
+struct CrackSpec {
+  std::string body;
+  Vec3 from, to;  ///< m (z ignored)
+  DeckMark mark;
+};
+
 struct ProbeSpec {
   std::string name;
   std::string type;    ///< extent | max_radius | field_max | energy
@@ -204,6 +213,7 @@ struct Scenario {
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;
   std::vector<LoadSpec> loads;
+  std::vector<CrackSpec> cracks;  ///< pre-cracks (solvers with bonds only)
   std::vector<ProbeSpec> probes;
   std::vector<StageSpec> stages;  ///< preparation stages before the main stage
   PenetrationSpec penetration;

@@ -218,6 +218,35 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     }
     stiff_bond_[p] = sum;
   });
+  // Pre-cracks (deck `cracks`): bonds whose ends lie on either side of the segment, in the x-y plane.
+  for (const CrackSpec& crack : sc.cracks) {
+    const int body = crack.body.empty() ? -1 : body_index(sc, crack.body);
+    const auto* bid = points_.ints("body");
+    std::vector<char> in_body(static_cast<size_t>(n), 1);
+    if (body >= 0)
+      for (Index p = 0; p < n; ++p) in_body[p] = bid[p] == body;
+    const Vec3 a = crack.from, b = crack.to;
+    // Orientation of c relative to the line a-b (> 0 left, < 0 right), in the x-y plane.
+    auto side = [](const Vec3& o, const Vec3& e, const Vec3& c) {
+      return (e[0] - o[0]) * (c[1] - o[1]) - (e[1] - o[1]) * (c[0] - o[0]);
+    };
+    const Index before = broken_bonds();
+    for (Index p = 0; p < n; ++p) {
+      if (!in_body[p]) continue;
+      for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k) {
+        const Index q = bonds_.other[k];
+        const Vec3 &xp = x0[p], &xq = x0[q];
+        // Proper crossing of the segments p-q and a-b (a point exactly on the crack line counts as
+        // left of it, the same at both ends of the bond).
+        const bool pq = (side(a, b, xp) >= 0.0) != (side(a, b, xq) >= 0.0);
+        const bool ab = (side(xp, xq, a) >= 0.0) != (side(xp, xq, b) >= 0.0);
+        if (pq && ab) bonds_.broken[k] = 1;
+      }
+    }
+    if (broken_bonds() == before)
+      throw DeckError(crack.mark.file, crack.mark.line, crack.mark.column, crack.mark.key_path,
+                      "this crack cuts no bond: check that the segment crosses the body (x-y plane)");
+  }
   compute_forces();
 }
 
