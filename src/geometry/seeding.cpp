@@ -177,6 +177,13 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
     x[p] = pos[q];
     x0[p] = pos[q];
     v[p] = body.velocity;
+    if (body.radial_speed != 0.0) {  // radially away from the axis of the body's cylinder or tube
+      const int ax = body.shape.axis;
+      Vec3 d = pos[q] - body.shape.center;
+      d[ax] = 0.0;
+      const double r = norm(d);
+      if (r > 0.0) v[p] += (body.radial_speed / r) * d;
+    }
     if (nd == 2) v[p][2] = 0.0;
     F[p] = Mat3::identity();
     R[p] = Mat3::identity();

@@ -283,6 +283,10 @@ class Reader {
         DeckNode s = b.map("shape", true);
         body.shape = shape(s);
         body.velocity = b.vector("velocity", Vec3{}, vmin());
+        body.radial_speed = b.number("radial_velocity", 0.0, NumberRange::any("m/s"));
+        if (body.radial_speed != 0.0 && body.shape.type != "cylinder" && body.shape.type != "tube")
+          b.fail("radial_velocity", "a radial velocity is away from the axis of a cylinder or tube; body '" +
+                                        body.name + "' is a " + body.shape.type);
         b.allow("rod");
         b.allow("jet");
       } else {

@@ -108,6 +108,9 @@ struct BodySpec {
   ShapeSpec shape;               ///< plain bodies; for rods and jets the first segment's shape
   int particles_per_cell = 2;    ///< per direction
   Vec3 velocity;                 ///< initial velocity, m/s
+  /// Initial radial speed away from the shape's axis (cylinders and tubes), added to velocity, m/s:
+  /// an expanding ring or cylinder (fragmentation, seed 001).
+  double radial_speed = 0.0;
   double activation_time = 0.0;  ///< s after the start of the activation stage; inert and invisible before
   int activation_stage = 0;      ///< index of the stage that starts the activation clock (stages.size() = main)
   std::string initial_state = "none";  ///< none | mms_axis_aligned
