@@ -6,7 +6,7 @@
 #include "core/communicator.hpp"
 #include "core/field_store.hpp"
 #include "core/solver.hpp"
-#include "io/scenario.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 
