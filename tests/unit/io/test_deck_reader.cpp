@@ -165,8 +165,8 @@ void expect_same_scenario(const Scenario& a, const Scenario& b) {
     const ProbeSpec &x = a.probes[i], &y = b.probes[i];
     EXPECT_EQ(x.name, y.name);
     EXPECT_EQ(x.type, y.type);
-    EXPECT_EQ(static_cast<const std::map<std::string, double>&>(x.params),
-              static_cast<const std::map<std::string, double>&>(y.params));
+    using Numbers = std::map<std::string, double>;  // ParamValues' numbers, without its choices
+    EXPECT_EQ(static_cast<const Numbers&>(x.params), static_cast<const Numbers&>(y.params));
     EXPECT_EQ(x.params.choices, y.params.choices);
     ASSERT_EQ(x.vectors.size(), y.vectors.size());
     for (const auto& [key, v] : x.vectors) expect_same_vec(v, y.vectors.at(key));
