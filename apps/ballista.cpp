@@ -16,6 +16,7 @@
 #include "io/material_presets.hpp"
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
+#include "points/probe_registry.hpp"
 #include "points/solver_registry.hpp"
 #include "penetration/models_command.hpp"
 #include "run/penetration_plots.hpp"
@@ -43,6 +44,22 @@ std::string format_range(const ballista::ParamSpec& p) {
   return lo + "x" + hi;
 }
 
+/// One line of `ballista info` for a probe parameter: key, unit, description, default, range.
+std::string format_probe_param(const ballista::ProbeParam& p) {
+  using Kind = ballista::ProbeParam::Kind;
+  std::string what = p.description;
+  if (p.kind == Kind::Axis) what += "; x | y | z (x | y in 2D)";
+  if (p.kind == Kind::Word && !p.choices.empty()) {
+    std::string words;
+    for (const auto& c : p.choices) words += (words.empty() ? "" : " | ") + c;
+    what += "; " + words;
+  }
+  if (p.kind == Kind::Number || p.kind == Kind::Vector)
+    what += p.required ? "; required" : fmt::format("; default {:g}", p.default_value);
+  if (p.kind == Kind::Number && !std::isinf(p.min)) what += fmt::format("; range {:g} {} x", p.min, p.min_exclusive ? "<" : "<=");
+  return fmt::format("      {:<30} [{}] {}\n", p.name, p.unit.empty() ? "-" : p.unit, what);
+}
+
 void print_info() {
   std::cout << "Ballista " << BALLISTA_VERSION << "\n\nSolvers (simulation.solver; parameters in the section named)\n";
   for (const auto& f : ballista::solver_registry()) {
@@ -58,6 +75,11 @@ void print_info() {
   std::cout << "\nShape functions (mpm.shape_function)\n";
   for (const auto& n : ballista::shape_kind_names())
     std::cout << "  " << n << "  " << ballista::shape_kind_description(ballista::parse_shape_kind(n)) << "\n";
+  std::cout << "\nProbes (probes[].type; each probe is a history.csv column and a summary.json value)\n";
+  for (const auto& f : ballista::probe_registry()) {
+    std::cout << "  " << f.name << "  " << f.description << "\n";
+    for (const auto& p : f.params) std::cout << format_probe_param(p);
+  }
   std::cout << "\nMaterials (materials.<name>.model)\n";
   for (const auto& f : ballista::material_registry()) {
     std::cout << "  " << f.model << "  " << f.description << "\n";

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/field_store.hpp"
-#include "io/scenario.hpp"
 #include "io/summary_writer.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "driver/point_driver.hpp"
-#include "io/scenario.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 

@@ -1,8 +1,8 @@
 #pragma once
 // Seeding material points of a body on a regular lattice aligned with the grid cells.
 #include "core/field_store.hpp"
-#include "io/scenario.hpp"
 #include "materials/material.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 

@@ -1,7 +1,7 @@
 #pragma once
 // Solid shapes used to seed bodies: point-membership tests and bounding boxes.
 #include "core/tensor.hpp"
-#include "io/scenario.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 

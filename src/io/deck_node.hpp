@@ -18,7 +18,7 @@
 #include "core/error.hpp"
 #include "core/tensor.hpp"
 #include "io/deck_overrides.hpp"
-#include "io/scenario.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 

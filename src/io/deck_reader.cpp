@@ -17,6 +17,7 @@
 #include "io/deck_overrides.hpp"
 #include "io/material_reader.hpp"
 #include "io/penetrator_reader.hpp"
+#include "points/probe_registry.hpp"
 #include "points/solver_registry.hpp"
 
 namespace ballista {
@@ -50,7 +51,6 @@ const std::vector<std::string> kSections{"simulation", "grid",   "materials", "s
                                          "loads",      "cracks", "probes", "penetration", "output"};
 const std::vector<std::string> kFaces{"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
 const std::vector<std::string> kFaceBCs{"free", "fixed", "symmetry", "wall"};
-const std::vector<std::string> kEnergies{"kinetic", "internal", "plastic", "external", "total"};
 constexpr long kLongMax = LONG_MAX;
 
 FaceBC face_bc_from(const std::string& s) {
@@ -485,6 +485,33 @@ class Reader {
     confinement_stress_[load.body] = stress;
   }
 
+  /// One parameter of a probe, read as its kind declares (points/probe_registry.hpp).
+  void probe_param(DeckNode& p, const ProbeParam& param, ProbeSpec& probe) {
+    const NumberRange range{.min = param.min, .min_exclusive = param.min_exclusive, .unit = param.unit};
+    switch (param.kind) {
+      case ProbeParam::Kind::Body:
+        probe.params.choices[param.name] = body_ref(p, false);
+        break;
+      case ProbeParam::Kind::Axis:
+        probe.params[param.name] = axis_from(p.choice(param.name, axes()));
+        break;
+      case ProbeParam::Kind::Number:
+        probe.params[param.name] = param.required ? p.number(param.name, range)
+                                                  : p.number(param.name, param.default_value, range);
+        break;
+      case ProbeParam::Kind::Vector: {
+        const double d = param.default_value;
+        probe.vectors[param.name] = param.required ? p.vector(param.name, vmin())
+                                                   : p.vector(param.name, Vec3{{d, d, d}}, vmin());
+        break;
+      }
+      case ProbeParam::Kind::Word:
+        probe.params.choices[param.name] =
+            param.choices.empty() ? p.string(param.name) : p.choice(param.name, param.choices);
+        break;
+    }
+  }
+
   void probes() {
     DeckNode ps = root_.list("probes", false);
     for (size_t i = 0; i < ps.size(); ++i) {
@@ -496,28 +523,17 @@ class Reader {
         if (other.name == probe.name)
           p.fail("name", "duplicate probe name '" + probe.name + "' (also " + other.mark.key_path +
                              (other.mark.line > 0 ? " at line " + std::to_string(other.mark.line) : "") + ")");
-      probe.type = p.choice("type", {"extent", "max_radius", "field_max", "energy"});
-      if (probe.type == "extent") {
-        probe.body = body_ref(p, false);
-        probe.axis = axis_from(p.choice("axis", axes()));
-      } else if (probe.type == "max_radius") {
-        probe.body = body_ref(p, false);
-        probe.axis = axis_from(p.choice("axis", axes()));
-        probe.plane = p.number("plane", 0.0, NumberRange::any("m"));
-        probe.distance = p.number("distance", NumberRange::positive("m"));
-        probe.center = p.vector("center", Vec3{}, vmin());
-        // The axis must cross the grid box: off-axis coordinates of the centre inside it (a centre
-        // at 1e308 gave a foot radius of 1e308 or inf, issue 11).
-        for (int d = 0; d < ndim(); ++d)
-          if (d != probe.axis && !(probe.center[d] >= sc_.grid.lower[d] && probe.center[d] <= sc_.grid.upper[d]))
-            p.fail("center", std::string("the probe's axis must pass through the grid box: ") + axis_name(d) + " = " +
-                                 format_number(probe.center[d]) + " m is outside [" +
-                                 format_number(sc_.grid.lower[d]) + ", " + format_number(sc_.grid.upper[d]) + "] m");
-      } else if (probe.type == "field_max") {
-        probe.body = body_ref(p, false);
-        probe.field = p.string("field");
-      } else {  // energy
-        probe.field = p.choice("field", kEnergies);
+      std::vector<std::string> kinds;
+      for (const auto& f : probe_registry()) kinds.push_back(f.name);
+      probe.type = p.choice("type", kinds);
+      const ProbeFactory& kind = *find_probe(probe.type);
+      for (const ProbeParam& param : kind.params) probe_param(p, param, probe);
+      if (kind.check) {
+        try {
+          kind.check(probe, sc_);
+        } catch (const ParamError& e) {
+          p.fail(e.param(), e.what());
+        }
       }
       p.finish();
       sc_.probes.push_back(std::move(probe));

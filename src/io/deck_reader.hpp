@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "io/scenario.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "io/deck_node.hpp"
-#include "io/scenario.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 

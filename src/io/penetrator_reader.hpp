@@ -3,7 +3,7 @@
 // they expand into cylindrical segments, each with its own velocity and activation time
 // (thesis seed 000 §5.1, Fig. 5.2; §6.4 segmented rods).
 #include "io/deck_node.hpp"
-#include "io/scenario.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 

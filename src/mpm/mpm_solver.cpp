@@ -8,11 +8,11 @@
 
 #include <fmt/format.h>
 
-#include "analysis/mms_axis_aligned.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/system_memory.hpp"
 #include "geometry/seeding.hpp"
+#include "points/mms_axis_aligned.hpp"
 #include "points/solver_registry.hpp"
 
 namespace ballista {

@@ -9,12 +9,12 @@
 
 #include "core/communicator.hpp"
 #include "core/solver.hpp"
-#include "io/scenario.hpp"
 #include "materials/material.hpp"
 #include "mpm/grid_geometry.hpp"
 #include "mpm/shape_functions.hpp"
 #include "points/point_loads.hpp"
 #include "points/point_set.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 

@@ -22,12 +22,12 @@
 
 #include "core/communicator.hpp"
 #include "core/solver.hpp"
-#include "io/scenario.hpp"
 #include "materials/material.hpp"
 #include "peridynamics/bond_family.hpp"
 #include "peridynamics/contact_list.hpp"
 #include "points/point_loads.hpp"
 #include "points/point_set.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 

@@ -1,7 +1,7 @@
 #include "points/point_loads.hpp"
 
-#include "analysis/mms_axis_aligned.hpp"
 #include "core/parallel.hpp"
+#include "points/mms_axis_aligned.hpp"
 
 namespace ballista {
 

@@ -6,11 +6,11 @@
 #include <limits>
 #include <sstream>
 
-#include "analysis/mms_axis_aligned.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/system_memory.hpp"
 #include "geometry/seeding.hpp"
+#include "points/mms_axis_aligned.hpp"
 
 namespace ballista {
 

@@ -11,8 +11,8 @@
 #include "core/communicator.hpp"
 #include "core/field_store.hpp"
 #include "core/solver.hpp"
-#include "io/scenario.hpp"
 #include "materials/material.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/solver.hpp"
-#include "io/scenario.hpp"
 #include "materials/material.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 

@@ -25,7 +25,7 @@
 
 #include "core/field_store.hpp"
 #include "io/history_writer.hpp"
-#include "io/scenario.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 

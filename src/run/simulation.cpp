@@ -9,7 +9,6 @@
 #include <spdlog/spdlog.h>
 
 #include "analysis/penetration_probe.hpp"
-#include "analysis/probes.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "io/atomic_file.hpp"
@@ -17,6 +16,7 @@
 #include "io/output_folder.hpp"
 #include "io/particle_writer.hpp"
 #include "io/summary_writer.hpp"
+#include "points/probe_registry.hpp"
 #include "points/solver_registry.hpp"
 #include "run/fragment_summary.hpp"
 #include "run/particle_tracker.hpp"
@@ -102,7 +102,8 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   if (const std::string derived = solver->derived_constants(); !derived.empty())
     write_file_atomic((fs::path(opt.out_dir) / "resolved.yaml").string(), sc.resolved_yaml + derived);
   FieldStore& pts = solver->points();
-  validate_probes(sc.probes, pts);
+  const std::vector<std::unique_ptr<Probe>> run_probes = make_probes(sc);
+  for (const auto& probe : run_probes) probe->check(pts);
   const Dimension dim = sc.simulation.dimension;
   ParticleWriter writer(opt.out_dir, output_fields(sc, pts), sc.output.domains,
                         dim == Dimension::ThreeD ? 3 : 2);
@@ -111,11 +112,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
                                       "plastic_work", "external_work", "total_energy", "energy_drift",
                                       "mass", "momentum_x", "momentum_y", "momentum_z",
                                       "removed_mass", "removed_energy", "inserted_energy"};
-  std::vector<int> probe_body;
-  for (const auto& pr : sc.probes) {
-    columns.push_back(pr.name);
-    probe_body.push_back(pr.body.empty() ? -1 : body_index(sc, pr.body));
-  }
+  for (const auto& pr : sc.probes) columns.push_back(pr.name);
   // Stages: the preparation stages of the deck, then the main stage (index nstages).
   const int nstages = static_cast<int>(sc.stages.size());
   if (nstages > 0) columns.push_back("stage");
@@ -142,9 +139,9 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   double limiter_dt = std::numeric_limits<double>::infinity(), limiter_time = 0.0;
 
   auto probe_values = [&](const EnergyTotals& e) {
+    const ProbeContext ctx{solver->points(), e, dim, comm};
     std::vector<double> v;
-    for (size_t k = 0; k < sc.probes.size(); ++k)
-      v.push_back(evaluate_probe(sc.probes[k], probe_body[k], solver->points(), e, dim, comm));
+    for (const auto& probe : run_probes) v.push_back(probe->value(ctx));
     return v;
   };
   auto drift_of = [&](const EnergyTotals& e) {
@@ -308,6 +305,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     result.ok = false;
     result.error = err.what();
     result.failed_step = solver->steps();
+    // The only dynamic_cast of the run loop: on the error's type, never on the solver.
     if (const auto* pe = dynamic_cast<const ParticleError*>(&err)) result.failed_particle = pe->id();
     try {
       tracker.record_failure(solver->points(), solver->time());

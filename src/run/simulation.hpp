@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/solver.hpp"
-#include "io/scenario.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 

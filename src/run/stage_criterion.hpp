@@ -6,7 +6,7 @@
 
 #include "core/field_store.hpp"
 #include "core/tensor.hpp"
-#include "io/scenario.hpp"
+#include "scenario/scenario.hpp"
 
 namespace ballista {
 

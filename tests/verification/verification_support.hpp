@@ -22,7 +22,7 @@
 #include "core/solver.hpp"
 #include "io/deck_reader.hpp"
 #include "materials/elastic_constants.hpp"
-#include "analysis/mms_axis_aligned.hpp"
+#include "points/mms_axis_aligned.hpp"
 #include "run/simulation.hpp"
 
 namespace ballista::verification {
@@ -219,7 +219,7 @@ struct MmsError {
 };
 
 /// Runs the example deck at `cell_size` to its end time and measures the displacement error
-/// against the analytic u of src/analysis/mms_axis_aligned.hpp at the reference positions "x0".
+/// against the analytic u of src/points/mms_axis_aligned.hpp at the reference positions "x0".
 inline MmsError run_mms(double cell_size) {
   const Scenario sc = load_example("axis_aligned_mms.yaml", {set_number("grid.cell_size", cell_size)});
   auto solver = make_solver(sc);

@@ -1,13 +1,14 @@
-// Probes on hand-made point sets whose answers follow from the definitions in
-// analysis/probes.hpp: domains are x_p + F_p (+-a, +-b, +-c) with (a, b, c) = half_size.
+// Probes, made through the probe registry (points/probe_registry.hpp) as the run loop makes them,
+// on hand-made point sets whose answers follow from the definitions of the probe kinds in
+// analysis/*_probe.cpp: domains are x_p + F_p (+-a, +-b, +-c) with (a, b, c) = half_size.
 // All inputs are short binary fractions, so most expected values are exact.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "analysis/probes.hpp"
 #include "core/error.hpp"
+#include "points/probe_registry.hpp"
 
 using namespace ballista;
 
@@ -40,17 +41,32 @@ FieldStore make(const std::vector<Pt>& pts) {
   return s;
 }
 
+/// A probe with the parameters the deck reader would fill (defaults of the optional ones).
 ProbeSpec probe(const std::string& type, int axis = 1) {
   ProbeSpec p;
   p.name = type;
   p.type = type;
-  p.axis = axis;
+  p.params["axis"] = axis;
+  p.params["plane"] = 0.0;
+  p.params["distance"] = 0.0;
+  p.vectors["center"] = Vec3{};
   return p;
+}
+
+/// The probe made by the registry for the body with this index (-1: every body) of a deck with
+/// bodies b0 .. b3.
+std::unique_ptr<Probe> make_probe(ProbeSpec p, int body) {
+  Scenario sc;
+  for (int b = 0; b < 4; ++b) sc.bodies.push_back(BodySpec{.name = "b" + std::to_string(b)});
+  p.params.choices["body"] = body < 0 ? "" : "b" + std::to_string(body);
+  sc.probes = {p};
+  return std::move(make_probes(sc).front());
 }
 
 double eval(const ProbeSpec& p, int body, const FieldStore& s, Dimension dim = Dimension::ThreeD,
             const EnergyTotals& e = {}) {
-  return evaluate_probe(p, body, s, e, dim, Communicator{});
+  const Communicator comm;
+  return make_probe(p, body)->value(ProbeContext{s, e, dim, comm});
 }
 
 Mat3 shear_xy(double g) {  // x += g y
@@ -96,8 +112,8 @@ TEST(Probes, TwoDimensionalDomainsHaveFourCornersInThePlane) {
 
 TEST(Probes, MaxRadiusAroundAnAxisNearAPlane) {
   ProbeSpec p = probe("max_radius", 1);  // axis y
-  p.plane = 0.0;
-  p.distance = 0.0625;
+  p.params["plane"] = 0.0;
+  p.params["distance"] = 0.0625;
   const FieldStore s = make({
       {0, {{0.5, 0.03125, 0.0}}, {{0.125, 0.125, 0.125}}},   // corners reach r^2 = 0.625^2 + 0.125^2
       {0, {{0.25, -0.0625, 0.25}}, {{0.125, 0.125, 0.125}}},  // exactly at the distance: counts; r = 0.375 sqrt 2
@@ -107,23 +123,23 @@ TEST(Probes, MaxRadiusAroundAnAxisNearAPlane) {
   EXPECT_DOUBLE_EQ(eval(p, 0, s), std::sqrt(0.625 * 0.625 + 0.125 * 0.125));
   EXPECT_DOUBLE_EQ(eval(p, -1, s), std::sqrt(4.125 * 4.125 + 0.125 * 0.125));
   // Axis through another point: centre (0.5, *, 0) makes particle 1 the farthest of body 0.
-  p.center = {{0.5, 123.0, 0.0}};  // the position along the axis does not matter
+  p.vectors["center"] = {{0.5, 123.0, 0.0}};  // the position along the axis does not matter
   EXPECT_DOUBLE_EQ(eval(p, 0, s), std::sqrt(0.375 * 0.375 + 0.375 * 0.375));
   // A plane elsewhere: no particle of body 0 qualifies -> NaN.
-  p.plane = 10.0;
+  p.params["plane"] = 10.0;
   EXPECT_TRUE(std::isnan(eval(p, 0, s)));
 }
 
 TEST(Probes, MaxRadiusInTwoDimensions) {
   // Axisymmetric (axis y): the radius is x. Plane strain with axis x: the distance is |y - c_y|.
   ProbeSpec p = probe("max_radius", 1);
-  p.distance = 0.5;
+  p.params["distance"] = 0.5;
   const FieldStore s = make({{0, {{0.75, 0.25, 0.0}}, {{0.125, 0.125, 0.0}}},
                              {0, {{0.25, -0.375, 0.0}}, {{0.125, 0.125, 0.0}}}});
   EXPECT_DOUBLE_EQ(eval(p, 0, s, Dimension::Axisymmetric), 0.875);
   ProbeSpec q = probe("max_radius", 0);
-  q.distance = 1.0;
-  q.center = {{0.0, 0.125, 0.0}};
+  q.params["distance"] = 1.0;
+  q.vectors["center"] = {{0.0, 0.125, 0.0}};
   EXPECT_DOUBLE_EQ(eval(q, 0, s, Dimension::PlaneStrain), 0.625);  // |-0.375 - 0.125 - 0.125|
 }
 
@@ -136,7 +152,7 @@ TEST(Probes, FieldMaxOverABody) {
   c.eqps = 5.0;
   const FieldStore s = make({a, b, c});
   ProbeSpec p = probe("field_max");
-  p.field = "eqps";
+  p.params.choices["field"] = "eqps";
   EXPECT_EQ(eval(p, 0, s), -2.0);
   EXPECT_EQ(eval(p, 1, s), 5.0);
   EXPECT_EQ(eval(p, -1, s), 5.0);
@@ -147,10 +163,10 @@ TEST(Probes, NothingQualifiesGivesNan) {
   const FieldStore empty = make({});
   EXPECT_TRUE(std::isnan(eval(probe("extent", 0), -1, empty)));
   ProbeSpec r = probe("max_radius", 2);
-  r.distance = 1.0;
+  r.params["distance"] = 1.0;
   EXPECT_TRUE(std::isnan(eval(r, -1, empty)));
   ProbeSpec f = probe("field_max");
-  f.field = "eqps";
+  f.params.choices["field"] = "eqps";
   EXPECT_TRUE(std::isnan(eval(f, -1, empty)));
   const FieldStore one = make({{0, {{0.0, 0.0, 0.0}}, {{0.1, 0.1, 0.1}}}});
   EXPECT_TRUE(std::isnan(eval(probe("extent", 0), 3, one)));
@@ -169,7 +185,7 @@ TEST(Probes, EnergyReturnsTheRequestedTotal) {
       {"kinetic", 1.5}, {"internal", 2.25}, {"plastic", 0.5}, {"external", 4.0},
       {"total", 1.5 + 2.25 + 0.125 - 4.0}};  // kinetic + internal + removed - external
   for (const auto& [field, value] : expected) {
-    p.field = field;
+    p.params.choices["field"] = field;
     EXPECT_EQ(eval(p, -1, s, Dimension::ThreeD, e), value) << field;
   }
 }
@@ -177,21 +193,21 @@ TEST(Probes, EnergyReturnsTheRequestedTotal) {
 TEST(Probes, ValidationRejectsNonScalarOrMissingFields) {
   const FieldStore s = make({});
   ProbeSpec p = probe("field_max");
-  p.field = "eqps";
-  EXPECT_NO_THROW(validate_probes({p}, s));
-  p.field = "v";  // a vector
-  EXPECT_THROW(validate_probes({p}, s), DeckError);
-  p.field = "body";  // an integer field
-  EXPECT_THROW(validate_probes({p}, s), DeckError);
-  p.field = "no_such_field";
+  p.params.choices["field"] = "eqps";
+  EXPECT_NO_THROW(make_probe(p, -1)->check(s));
+  p.params.choices["field"] = "v";  // a vector
+  EXPECT_THROW(make_probe(p, -1)->check(s), DeckError);
+  p.params.choices["field"] = "body";  // an integer field
+  EXPECT_THROW(make_probe(p, -1)->check(s), DeckError);
+  p.params.choices["field"] = "no_such_field";
   try {
-    validate_probes({p}, s);
+    make_probe(p, -1)->check(s);
     FAIL() << "expected a DeckError";
   } catch (const DeckError& e) {
     EXPECT_NE(std::string(e.what()).find("eqps"), std::string::npos) << "lists the scalar fields: " << e.what();
   }
   // Other probe types do not need a field.
-  EXPECT_NO_THROW(validate_probes({probe("extent")}, s));
+  EXPECT_NO_THROW(make_probe(probe("extent"), -1)->check(s));
 }
 
 TEST(Probes, UnknownTypeIsAnError) {

@@ -165,12 +165,11 @@ void expect_same_scenario(const Scenario& a, const Scenario& b) {
     const ProbeSpec &x = a.probes[i], &y = b.probes[i];
     EXPECT_EQ(x.name, y.name);
     EXPECT_EQ(x.type, y.type);
-    EXPECT_EQ(x.body, y.body);
-    EXPECT_EQ(x.axis, y.axis);
-    EXPECT_EQ(x.plane, y.plane);
-    EXPECT_EQ(x.distance, y.distance);
-    expect_same_vec(x.center, y.center);
-    EXPECT_EQ(x.field, y.field);
+    using Numbers = std::map<std::string, double>;  // ParamValues' numbers, without its choices
+    EXPECT_EQ(static_cast<const Numbers&>(x.params), static_cast<const Numbers&>(y.params));
+    EXPECT_EQ(x.params.choices, y.params.choices);
+    ASSERT_EQ(x.vectors.size(), y.vectors.size());
+    for (const auto& [key, v] : x.vectors) expect_same_vec(v, y.vectors.at(key));
   }
   EXPECT_EQ(a.output.interval, b.output.interval);
   EXPECT_EQ(a.output.fields, b.output.fields);
@@ -255,13 +254,13 @@ TEST(DeckReader, ValidDeckResolvesWithDefaults) {
   EXPECT_EQ(s.loads[1].mark.line, line_of(kDeck, "{type: pressure"));
   // probes
   ASSERT_EQ(s.probes.size(), 4u);
-  EXPECT_EQ(s.probes[0].axis, 1);
+  EXPECT_EQ(s.probes[0].params.at("axis"), 1);
   EXPECT_EQ(s.probes[1].type, "max_radius");
-  EXPECT_EQ(s.probes[1].distance, 1e-3);
-  EXPECT_EQ(s.probes[1].plane, 0.0);
-  EXPECT_EQ(s.probes[2].field, "eqps");
-  EXPECT_EQ(s.probes[3].field, "kinetic");
-  EXPECT_EQ(s.probes[3].body, "");
+  EXPECT_EQ(s.probes[1].params.at("distance"), 1e-3);
+  EXPECT_EQ(s.probes[1].params.at("plane"), 0.0);
+  EXPECT_EQ(s.probes[2].params.choice("field"), "eqps");
+  EXPECT_EQ(s.probes[3].params.choice("field"), "kinetic");
+  EXPECT_EQ(s.probes[3].params.choice("body"), "");
   // output
   EXPECT_EQ(s.output.interval, 1e-5);
   EXPECT_TRUE(s.output.fields.empty());

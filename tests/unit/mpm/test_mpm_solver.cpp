@@ -31,11 +31,11 @@
 #include <tuple>
 #include <vector>
 
-#include "analysis/mms_axis_aligned.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "io/deck_reader.hpp"
 #include "mpm/mpm_solver.hpp"
+#include "points/mms_axis_aligned.hpp"
 #include "run/simulation.hpp"
 
 using namespace ballista;

@@ -152,15 +152,13 @@ struct CrackSpec {
   DeckMark mark;
 };
 
+/// One entry of `probes`: a registered probe kind (points/probe_registry.hpp) and the values of
+/// the parameters that kind declares.
 struct ProbeSpec {
   std::string name;
-  std::string type;    ///< extent | max_radius | field_max | energy
-  std::string body;    ///< "" = all bodies
-  int axis = 1;        ///< extent: axis measured; max_radius: axis of symmetry
-  double plane = 0.0;  ///< max_radius: position of the plane normal to `axis`, m
-  double distance = 0.0;  ///< max_radius: only particles within this distance of the plane, m
-  Vec3 center;         ///< max_radius: a point on the axis of symmetry, m
-  std::string field;   ///< field_max: field name; energy: kinetic|internal|plastic|external|total
+  std::string type;    ///< a registered probe kind
+  ParamValues params;  ///< numbers (an axis as 0, 1, 2); words (body, field) in params.choices
+  std::map<std::string, Vec3> vectors;  ///< vector parameters (max_radius: center), m
   DeckMark mark;
 };
 

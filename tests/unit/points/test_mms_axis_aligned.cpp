@@ -1,4 +1,4 @@
-// The axis-aligned manufactured solution (analysis/mms_axis_aligned.hpp) checked from its
+// The axis-aligned manufactured solution (points/mms_axis_aligned.hpp) checked from its
 // definition alone: u(X, t) is given; velocity = du/dt, F = I + Grad u, and the body force must
 // make rho0 u'' = Div P + rho0 b hold for the neo-Hookean P = mu (F - F^-T) + lambda ln J F^-T.
 // Every derivative here is a central finite difference of the MMS's own functions, so an error in
@@ -8,8 +8,8 @@
 #include <cmath>
 #include <random>
 
-#include "analysis/mms_axis_aligned.hpp"
 #include "materials/material.hpp"
+#include "points/mms_axis_aligned.hpp"
 
 using namespace ballista;
 

@@ -1,0 +1,3 @@
+// Entry point of the layer link checks (cmake/layers.cmake): the program only has to link, it is
+// never run.
+int main() { return 0; }

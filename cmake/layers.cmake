@@ -1,0 +1,71 @@
+# The layers of src/: one static library per folder, ballista_<layer>, built from every .cpp in
+# the folder (a file added to a folder joins its layer at the next build: CONFIGURE_DEPENDS).
+# Each layer links only the layers it is allowed to use (PUBLIC, so what they use comes too).
+# This list is the dependency rule of docs/architecture.md, written once:
+#  - tests/architecture/check_layers.py (ctest `architecture.layers`) fails on any
+#    #include "<layer>/..." in src/ that this graph does not allow (headers all live under one
+#    include root, so the compiler alone would not notice an upward include);
+#  - layer_link_check_<layer> links each layer's whole archive with only the layers below it,
+#    so an upward call fails to link during the build.
+# A new folder in src/ must be declared here; the architecture test fails until it is.
+
+# ballista_layer(<name> [DEPENDS <lower layer>...])
+function(ballista_layer name)
+  cmake_parse_arguments(PARSE_ARGV 1 arg "" "" "DEPENDS")
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${name}/*.cpp)
+  add_library(ballista_${name} STATIC ${sources})
+  target_link_libraries(ballista_${name} PUBLIC ballista_common)
+  foreach(dep IN LISTS arg_DEPENDS)
+    if(NOT TARGET ballista_${dep})
+      message(FATAL_ERROR "layer ${name}: '${dep}' is not a layer declared before it")
+    endif()
+    # Whole archive here too: CMake refuses a library linked both with and without the feature,
+    # and every user of a layer wants its registrations kept.
+    target_link_libraries(ballista_${name} PUBLIC "$<LINK_LIBRARY:WHOLE_ARCHIVE,ballista_${dep}>")
+  endforeach()
+  # "name=dep,dep" entries for the include check.
+  string(REPLACE ";" "," deps "${arg_DEPENDS}")
+  set_property(GLOBAL APPEND PROPERTY BALLISTA_LAYER_GRAPH "${name}=${deps}")
+  set_property(GLOBAL APPEND PROPERTY BALLISTA_LAYERS ballista_${name})
+endfunction()
+
+# Bottom to top. Why this order (docs/architecture.md): the registries (materials; solvers and
+# probes in points) sit below io, so the deck reader validates against them without naming an
+# implementation; io's writers (CSV, JSON, HDF5) are then usable by every layer above io.
+ballista_layer(core)
+ballista_layer(materials DEPENDS core)
+ballista_layer(scenario DEPENDS materials)
+ballista_layer(geometry DEPENDS scenario)
+ballista_layer(points DEPENDS geometry)
+ballista_layer(mpm DEPENDS points)
+ballista_layer(peridynamics DEPENDS points)
+ballista_layer(io DEPENDS points)
+ballista_layer(penetration DEPENDS io)
+ballista_layer(analysis DEPENDS io penetration)
+ballista_layer(driver DEPENDS io)
+ballista_layer(verify DEPENDS driver)
+ballista_layer(run DEPENDS analysis driver)
+
+get_property(BALLISTA_LAYER_LIBS GLOBAL PROPERTY BALLISTA_LAYERS)
+get_property(BALLISTA_LAYER_GRAPH GLOBAL PROPERTY BALLISTA_LAYER_GRAPH)
+
+# Everything, for the CLI, the tests and the benchmarks. Models, solvers and probes register
+# themselves from their own file (static initialisers) that nothing references: link the whole
+# archives so the linker keeps them.
+add_library(ballista_all INTERFACE)
+foreach(lib IN LISTS BALLISTA_LAYER_LIBS)
+  target_link_libraries(ballista_all INTERFACE "$<LINK_LIBRARY:WHOLE_ARCHIVE,${lib}>")
+endforeach()
+
+# Link check: every object of a layer with only the layers it may use. A call into a higher
+# layer (even through a forward declaration, which the include check cannot see) is then an
+# undefined reference and the build stops here.
+option(BALLISTA_LAYER_LINK_CHECK "Link each layer alone with the layers below it" ON)
+if(BALLISTA_LAYER_LINK_CHECK)
+  foreach(lib IN LISTS BALLISTA_LAYER_LIBS)
+    add_executable(layer_link_check_${lib} ${PROJECT_SOURCE_DIR}/cmake/layer_link_check.cpp)
+    target_link_libraries(layer_link_check_${lib} PRIVATE "$<LINK_LIBRARY:WHOLE_ARCHIVE,${lib}>")
+    set_target_properties(layer_link_check_${lib} PROPERTIES RUNTIME_OUTPUT_DIRECTORY
+                          ${CMAKE_BINARY_DIR}/layer_link_check)
+  endforeach()
+endif()
