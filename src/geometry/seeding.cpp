@@ -114,6 +114,11 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
       if (x[a] <= grid.lower[a] || x[a] >= grid.upper[a]) return false;
     return true;
   };
+  auto in_cutout = [&](const Vec3& x) {
+    for (const ShapeSpec& c : body.cutouts)
+      if (shape_contains(c, x, nd)) return true;
+    return false;
+  };
   // Seeding: the shape's lattice inside the grid box (index ranges clipped to the box plus one
   // layer, so a body far larger than the grid costs only the grid's lattice).
   int from[3] = {first[0], first[1], first[2]}, to[3] = {last[0], last[1], last[2]};
@@ -127,7 +132,7 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
       for (int i = from[0]; i <= to[0]; ++i) {
         const Vec3 x = site(i, j, k);
         if (dim == Dimension::Axisymmetric && !(x[0] > 0.0)) continue;  // r > 0 only
-        if (in_box(x) && shape_contains(body.shape, x, nd)) pos.push_back(x);
+        if (in_box(x) && shape_contains(body.shape, x, nd) && !in_cutout(x)) pos.push_back(x);
       }
   // Clipping: lattice points of the shape outside the box (issue 11). Every one is visited while
   // the bounding box has at most kExhaustive lattice points; beyond that a regular sample with
@@ -143,7 +148,7 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
         const Vec3 x = site(i, j, k);
         if (in_box(x)) continue;
         if (dim == Dimension::Axisymmetric && !(x[0] > 0.0)) continue;  // r > 0 only: not a clip
-        if (!shape_contains(body.shape, x, nd)) continue;
+        if (!shape_contains(body.shape, x, nd) || in_cutout(x)) continue;
         count_if_clipped(x, grid, nd, body.shape, clipped);
       }
   clipped.count *= static_cast<Index>(std::pow(static_cast<double>(stride), nd));

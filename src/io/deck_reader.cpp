@@ -282,6 +282,11 @@ class Reader {
       if (b.has("shape")) {
         DeckNode s = b.map("shape", true);
         body.shape = shape(s);
+        DeckNode cuts = b.list("cutouts", false);
+        for (size_t i = 0; i < cuts.size(); ++i) {
+          DeckNode c = cuts.element(i);
+          body.cutouts.push_back(shape(c));
+        }
         body.velocity = b.vector("velocity", Vec3{}, vmin());
         body.radial_speed = b.number("radial_velocity", 0.0, NumberRange::any("m/s"));
         if (body.radial_speed != 0.0 && body.shape.type != "cylinder" && body.shape.type != "tube")

@@ -111,6 +111,8 @@ struct BodySpec {
   /// Initial radial speed away from the shape's axis (cylinders and tubes), added to velocity, m/s:
   /// an expanding ring or cylinder (fragmentation, seed 001).
   double radial_speed = 0.0;
+  /// Shapes cut out of the body (notches, holes, slots): no point is seeded inside any of them.
+  std::vector<ShapeSpec> cutouts;
   double activation_time = 0.0;  ///< s after the start of the activation stage; inert and invisible before
   int activation_stage = 0;      ///< index of the stage that starts the activation clock (stages.size() = main)
   std::string initial_state = "none";  ///< none | mms_axis_aligned
