@@ -226,9 +226,12 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     if (body >= 0)
       for (Index p = 0; p < n; ++p) in_body[p] = bid[p] == body;
     const Vec3 a = crack.from, b = crack.to;
-    // Orientation of c relative to the line a-b (> 0 left, < 0 right), in the x-y plane.
+    // Which side of the line o-e the point c is on, in the x-y plane: +1 left, -1 right, 0 on it
+    // (within 1e-9 of the length o-e, so that round-off never decides a point on the line).
     auto side = [](const Vec3& o, const Vec3& e, const Vec3& c) {
-      return (e[0] - o[0]) * (c[1] - o[1]) - (e[1] - o[1]) * (c[0] - o[0]);
+      const double len = std::hypot(e[0] - o[0], e[1] - o[1]);
+      const double d = ((e[0] - o[0]) * (c[1] - o[1]) - (e[1] - o[1]) * (c[0] - o[0])) / len;
+      return std::abs(d) <= 1e-9 * len ? 0 : (d > 0.0 ? 1 : -1);
     };
     const Index before = broken_bonds();
     for (Index p = 0; p < n; ++p) {
@@ -236,10 +239,12 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
       for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k) {
         const Index q = bonds_.other[k];
         const Vec3 &xp = x0[p], &xq = x0[q];
-        // Proper crossing of the segments p-q and a-b (a point exactly on the crack line counts as
-        // left of it, the same at both ends of the bond).
-        const bool pq = (side(a, b, xp) >= 0.0) != (side(a, b, xq) >= 0.0);
-        const bool ab = (side(xp, xq, a) >= 0.0) != (side(xp, xq, b) >= 0.0);
+        if (xp[0] == xq[0] && xp[1] == xq[1]) continue;  // a bond along z crosses no x-y segment
+        // Crossing of the segments p-q and a-b: p and q on either side of the crack line (a point on
+        // it counts as left), a and b strictly on either side of the bond's line; both tests read
+        // the same from either end, so a bond is cut at both ends or neither.
+        const bool pq = (side(a, b, xp) >= 0) != (side(a, b, xq) >= 0);
+        const bool ab = side(xp, xq, a) * side(xp, xq, b) < 0;
         if (pq && ab) bonds_.broken[k] = 1;
       }
     }
