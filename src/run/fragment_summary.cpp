@@ -19,9 +19,6 @@ int column(const ResultTable& t, const std::string& name) {
   return it == t.columns.end() ? -1 : static_cast<int>(it - t.columns.begin());
 }
 
-/// A finite number, else null (summary.json: a value that is not available is null).
-JsonValue number_or_null(double v) { return std::isfinite(v) ? JsonValue(v) : JsonValue(); }
-
 }  // namespace
 
 JsonValue fragment_summary(const ResultTable& table) {
@@ -36,16 +33,21 @@ JsonValue fragment_summary(const ResultTable& table) {
   double total = 0.0, largest = 0.0;
   for (double m : masses) total += m, largest = std::max(largest, m);
   JsonValue j = JsonValue::object();
-  j["time"] = it >= 0 && !table.rows.empty() ? JsonValue(t_last) : JsonValue();
+  // A value that does not exist is left out (never null: the fuzz harness and readers treat a null
+  // number as garbage), and mott_reason says why the fit is missing.
+  if (it >= 0 && !table.rows.empty()) j["time"] = t_last;
   j["count"] = static_cast<std::int64_t>(masses.size());
   j["largest_mass"] = largest;
-  j["mean_mass"] = masses.empty() ? JsonValue() : JsonValue(total / static_cast<double>(masses.size()));
+  if (!masses.empty()) j["mean_mass"] = total / static_cast<double>(masses.size());
   j["total_mass"] = total;
   const MottFit f = fit_mott(masses);
-  j["mott_N0"] = f.ok ? JsonValue(f.N0) : JsonValue();
-  j["mott_mu"] = f.ok ? JsonValue(f.mu) : JsonValue();
-  j["mott_r2"] = f.ok ? number_or_null(f.r2) : JsonValue();
-  if (!f.ok) j["mott_reason"] = f.reason;
+  if (f.ok) {
+    j["mott_N0"] = f.N0;
+    j["mott_mu"] = f.mu;
+    if (std::isfinite(f.r2)) j["mott_r2"] = f.r2;  // no line through equal masses
+  } else {
+    j["mott_reason"] = f.reason;
+  }
   return j;
 }
 
