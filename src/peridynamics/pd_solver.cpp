@@ -9,8 +9,8 @@
 
 #include "core/error.hpp"
 #include "geometry/seeding.hpp"
+#include "peridynamics/bond_pass.hpp"
 #include "peridynamics/fragments.hpp"
-#include "peridynamics/pmb_row.hpp"
 #include "points/solver_registry.hpp"
 
 namespace ballista {
@@ -193,19 +193,38 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     pd::build_contact_list(contact_, points_.view<Vec3>("x"), x0, points_.ints("body"), n, delta_, dx_, contact_.skin,
                            dim_);
   const auto* vol0 = points_.real("volume0");
-  // Per bond c_pq beta V_q (N/m^3 per unit stretch): the force loop reads one number per bond instead
-  // of the material pair, the partial-volume factor and the neighbour's volume.
-  bond_coef_.resize(bonds_.other.size());
+  // The damage denominator of each point, sum_j beta V_j, and for the half-bond force pass (each
+  // bond evaluated once, from its lower-index end): where each row's upper part starts, where each
+  // bond sits in its other end's row, and the blocks of points (compute_forces).
   vol_all_.assign(static_cast<size_t>(n), 0.0);
+  upper_.assign(static_cast<size_t>(n), 0);
+  mirror_.assign(bonds_.other.size(), 0);
+  inv_len0_.resize(bonds_.other.size());
+  for_each(0, static_cast<Index>(inv_len0_.size()), [&](Index k) { inv_len0_[k] = 1.0 / bonds_.length0[k]; });
+  Index span = 1;
   for_each(0, n, [&](Index p) {
     double va = 0.0;
-    for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k) {
+    const Index k0 = bonds_.offset[p], k1 = bonds_.offset[p + 1];
+    for (Index k = k0; k < k1; ++k) {
       const Index q = bonds_.other[k];
-      bond_coef_[k] = c_[mat[p] * nmat_ + mat[q]] * bonds_.volume_factor[k] * vol0[q];
       va += bonds_.volume_factor[k] * vol0[q];
+      // Rows are sorted by neighbour index: p's place in q's row by binary search.
+      const auto* row = bonds_.other.data() + bonds_.offset[q];
+      const auto* end = bonds_.other.data() + bonds_.offset[q + 1];
+      mirror_[k] = static_cast<std::int32_t>(std::lower_bound(row, end, static_cast<std::int32_t>(p)) - row);
     }
     vol_all_[p] = va > 0.0 ? va : 1.0;  // a point without bonds has no damage
+    upper_[p] = std::upper_bound(bonds_.other.data() + k0, bonds_.other.data() + k1, static_cast<std::int32_t>(p)) -
+                bonds_.other.data();
   });
+  for (Index p = 0; p < n; ++p)
+    if (bonds_.offset[p + 1] > bonds_.offset[p]) span = std::max<Index>(span, bonds_.other[bonds_.offset[p + 1] - 1] - p);
+  // Blocks at least `span` long (a bond of block b ends in b or b + 1), at least 64 of them when the
+  // points allow (so that two phases keep every thread busy); a function of the bonds only.
+  const Index block = std::max(span, (n + 63) / 64);
+  block_start_.clear();
+  for (Index p = 0; p < n; p += block) block_start_.push_back(p);
+  block_start_.push_back(n);
   stiff_bond_.assign(static_cast<size_t>(n), 0.0);
   stiff_contact_.assign(static_cast<size_t>(n), 0.0);
   x_prev_.assign(points_.view<Vec3>("x"), points_.view<Vec3>("x") + n);
@@ -300,8 +319,6 @@ double PdSolver::stable_dt() {
 void PdSolver::compute_forces() {
   const Index n = points_.size();
   const auto* x = points_.view<Vec3>("x");
-  static_assert(sizeof(Vec3) == 3 * sizeof(double));
-  const double* xs = n > 0 ? x[0].v : nullptr;  // x as 3n doubles (Vec3 is three packed doubles): the vector loop gathers
   const auto* vol0 = points_.real("volume0");
   const auto* mass = points_.real("mass");
   const auto* mat = points_.ints("material");
@@ -309,12 +326,11 @@ void PdSolver::compute_forces() {
   auto* damage = points_.real("damage");
   auto* eint = points_.real("internal_energy");
   auto* wdis = points_.real("plastic_work");
-  std::vector<double>& s0_next = s0_next_;
-  s0_next.resize(static_cast<size_t>(n));
   const double* s0 = s0_.data();
-  const double* coef = bond_coef_.data();
   const double* len0 = bonds_.length0.data();
+  const float* beta = bonds_.volume_factor.data();
   const std::int32_t* other = bonds_.other.data();
+  const std::int32_t* mirror = mirror_.data();
   std::uint8_t* broken = bonds_.broken.data();
   const double alpha = alpha_;
   const bool plastic = !sp_.empty();
@@ -324,121 +340,56 @@ void PdSolver::compute_forces() {
   // Short-range contact (contact_list.hpp): c_s = 15 c / delta per unit volume squared and unit
   // overlap (Silling & Askari 2005; LAMMPS pair_peri_pmb), reach d = min(0.9 |xi|, 1.35 dx).
   const bool contact = contact_on_;
-  const int bonded_contact = contact && contact_all_pairs_ ? 1 : 0;
+  const bool bonded_contact = contact && contact_all_pairs_;
   const double cs_over_c = 15.0 / delta_, range = 1.35 * dx_;
-  auto* econ = contact_energy_.data();
-  // Each point writes only its own row and its own outputs; both rows of a bond see the same
-  // stretch and the same min(s0_i, s0_j), so they break together.
+  // Per-point sums of this evaluation (each bond adds to both of its ends).
+  Acc& A = acc_;
+  A.resize(n);
+  for_each(0, n, [&](Index p) { A.clear(p); });
+
+  if (n == 0) return;
+  pd::BondPassArgs args{x[0].v,   vol0,       mat,        c_.data(),  nmat_,   s0,          len0, inv_len0_.data(), beta,
+                        other,     mirror,     broken,     bonds_.offset.data(),  upper_.data(), plastic ? sp : nullptr,
+                        sy,        alpha,      contact,    bonded_contact,        cs_over_c, range, xprev[0].v,
+                        A.f[0].v,  A.energy.data(), A.dis.data(), A.vol_broken.data(), A.smx.data(),
+                        A.e_contact.data(), A.k_contact.data()};
+  const Index nblock = static_cast<Index>(block_start_.size()) - 1;
+  for (int phase = 0; phase < 2; ++phase) {
+    const Index nphase = (nblock - phase + 1) / 2;
+#pragma omp parallel for schedule(dynamic, 1) if (nphase > 1 && n > kParallelThreshold)
+    for (Index j = 0; j < nphase; ++j) {
+      const Index b = 2 * j + phase;
+      pd::bond_pass(args, block_start_[b], block_start_[b + 1]);
+    }
+  }
+
+  // Never-bonded neighbours (other bodies, or beyond the horizon): both rows hold the pair, so each
+  // point sums its own row. Then each point's results.
+  std::vector<double>& s0_next = s0_next_;
+  s0_next.resize(static_cast<size_t>(n));
   for_each(0, n, [&](Index p) {
-    const Index k0 = bonds_.offset[p], k1 = bonds_.offset[p + 1];
-    const double xp0 = xs[3 * p], xp1 = xs[3 * p + 1], xp2 = xs[3 * p + 2], s0p = s0[p];
-    // Fast pass over the row, branch-free so that it vectorises: the force of the intact bonds
-    // f = c s (y/|y|) per unit volume of each end (seed 001 "Microelastic material"; coef = c beta
-    // V_q), the energy density w_p = 1/2 sum_j (1/2 c s^2 |xi|) beta V_j (Silling & Askari 2005
-    // eq. 21), s_min for the next s0, and whether any bond breaks now.
-    const pd::RowSums row = pd::pmb_row(k0, k1, xs, xp0, xp1, xp2, other, broken, len0, coef, s0, s0p, alpha,
-                                        bonded_contact, range);
-    const bool breaks = row.breaks != 0, touch = row.touch != 0;
-    double smx = row.smax;
-    Vec3 f{{row.fx, row.fy, row.fz}};
-    double energy = 0.25 * row.energy, dis = 0.0, e_contact = 0.0, k_contact = 0.0, wplastic = 0.0;
-    // A repulsive contact spring between p and q at distance r < d: force density on p
-    // -c_s (d - r) V_q y/r; its energy c_s V_p V_q (d - r)^2 / 2, half booked at each end.
-    auto repel = [&](Index q, double r, const Vec3& y, double d, double cpq) {
-      const double cs = cs_over_c * cpq, o = d - r;
-      k_contact += cs * vol0[q];
-      if (r > 0.0) f += (-cs * o * vol0[q] / r) * y;
-      e_contact += 0.25 * cs * o * o * vol0[q] * vol0[p];
-    };
-    if (touch && !breaks) {
-      // contact_pairs: all (LAMMPS PERI): intact bonds compressed below 0.9 |xi| also repel.
-      for (Index k = k0; k < k1; ++k) {
-        if (broken[k]) continue;
-        const Index q = other[k];
-        const Vec3 y = x[q] - x[p];
-        const double r = norm(y), d = std::min(0.9 * len0[k], range);
-        if (r < d) repel(q, r, y, d, c_[mat[p] * nmat_ + mat[q]]);
-      }
-    }
-    if (!breaks && contact && damage[p] > 0.0) {
-      // The ends of a broken bond meet again through contact only (the vector pass skipped them).
-      for (Index k = k0; k < k1; ++k) {
-        if (!broken[k]) continue;
-        const Index q = other[k];
-        const Vec3 y = x[q] - x[p];
-        const double r = norm(y), d = std::min(0.9 * len0[k], range);
-        if (r < d) repel(q, r, y, d, c_[mat[p] * nmat_ + mat[q]]);
-      }
-    }
-    if (breaks || plastic) {
-      // Some bond breaks now, or the bonds are micro-plastic: the row again, one bond at a time.
-      f = Vec3{};
-      energy = 0.0;
-      smx = -kInf;
-      double vol_broken = 0.0;
-      for (Index k = k0; k < k1; ++k) {
-        const Index q = other[k];
-        const Vec3 y = x[q] - x[p];
-        const double r = norm(y), r0 = len0[k];
-        if (broken[k]) {
-          vol_broken += bonds_.volume_factor[k] * vol0[q];
-          // The ends of a broken bond meet again through contact only.
-          if (contact && r < std::min(0.9 * r0, range)) repel(q, r, y, std::min(0.9 * r0, range), c_[mat[p] * nmat_ + mat[q]]);
-          continue;
-        }
-        const double s = (r - r0) / r0;
-        // Micro-plastic bond (seed 001 "Micro-Elastic and -Plastic Materials"; Silling & Askari 2005
-        // §"microplastic"): elastic in s - s_p up to the yield stretch s_y, perfectly plastic beyond,
-        // elastic unloading with s_p kept; the plastic work of the pair c s_y |ds_p| |xi| beta V_p V_q,
-        // half booked at each end. Failure still on the total stretch s.
-        double se = s;
-        if (plastic) {
-          se = s - sp[k];
-          double dsp = 0.0;
-          if (se > sy) dsp = se - sy;
-          else if (se < -sy) dsp = se + sy;
-          if (dsp != 0.0) {
-            sp[k] += dsp;
-            se -= dsp;
-            wplastic += 0.5 * coef[k] * sy * std::abs(dsp) * r0 * vol0[p];
-          }
-        }
-        const double pair = 0.5 * coef[k] * se * se * r0;  // the bond's energy per unit volume of p, twice
-        if (s > std::min(s0p, s0[q])) {
-          // Failure against the previous step's s0 (LAMMPS PERI's rule); from now on the bond exerts
-          // no force (LAMMPS still applies it this step). What it dissipates is what the step took
-          // out of the motion: velocity Verlet gave the points only the first half-kick of this
-          // bond, 1/2 f_n . dx, so the energy booked is U(s_n+1) - 1/2 F(s_n+1) (r_n+1 - r_n), the
-          // trapezoidal work of the bond over the step; U(s_n+1) alone would create the missing
-          // half-kick (+7 % of the energy in a dynamic tear, docs/validation.md). Half to each end.
-          const double r_prev = norm(xprev[q] - xprev[p]);
-          broken[k] = 1;
-          vol_broken += bonds_.volume_factor[k] * vol0[q];
-          dis += 0.5 * (pair - 0.5 * coef[k] * se * (r - r_prev)) * vol0[p];
-          continue;
-        }
-        if (r > 0.0) f += (coef[k] * se / r) * y;
-        energy += 0.5 * pair;
-        smx = std::max(smx, -alpha * s);
-        if (bonded_contact && r < std::min(0.9 * r0, range)) repel(q, r, y, std::min(0.9 * r0, range), c_[mat[p] * nmat_ + mat[q]]);
-      }
-      damage[p] = vol_broken / vol_all_[p];
-    }
-    if (contact)  // never-bonded neighbours (other bodies, or beyond the horizon)
+    Vec3 f = A.f[p];
+    double e_contact = A.e_contact[p], k_contact = A.k_contact[p];
+    if (contact)
       for (Index k = contact_.offset[p]; k < contact_.offset[p + 1]; ++k) {
         const Index q = contact_.other[k];
         const Vec3 y = x[q] - x[p];
         const double r = norm(y), d = contact_.reach[k];
-        if (r < d) repel(q, r, y, d, c_[mat[p] * nmat_ + mat[q]]);
+        if (r >= d) continue;
+        const double cs = cs_over_c * c_[mat[p] * nmat_ + mat[q]], o = d - r;
+        k_contact += cs * vol0[q];
+        if (r > 0.0) f += (-cs * o * vol0[q] * vol0[p] / r) * y;
+        e_contact += 0.25 * cs * o * o * vol0[q] * vol0[p];
       }
-    acc[p] = (vol0[p] / mass[p]) * f;
-    dissipated_[p] += dis + wplastic;
-    econ[p] = e_contact;
+    acc[p] = (1.0 / mass[p]) * f;
+    damage[p] = A.vol_broken[p] / vol_all_[p];
+    dissipated_[p] += A.dis[p];
+    contact_energy_[p] = e_contact;
     stiff_contact_[p] = k_contact;
-    eint[p] = energy * vol0[p] + dissipated_[p] + e_contact;
+    eint[p] = A.energy[p] + dissipated_[p] + e_contact;
     wdis[p] = dissipated_[p];
     const double s00 = s00_point_[p];
-    s0_next[p] = alpha > 0.0 && std::isfinite(smx) ? s00 + smx : s00;
+    s0_next[p] = alpha > 0.0 && std::isfinite(A.smx[p]) ? s00 + A.smx[p] : s00;
   });
   s0_.swap(s0_next);
 }

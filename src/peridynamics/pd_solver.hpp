@@ -104,7 +104,26 @@ class PdSolver final : public Solver {
   double damping_ = 0.0;     ///< 1/s: a - c v (dynamic relaxation, stages)
   double yield_stretch_ = std::numeric_limits<double>::infinity();  ///< s_y of micro-plastic bonds
   std::vector<double> sp_;             ///< plastic stretch per bond (each end its own copy; empty: elastic)
-  std::vector<double> bond_coef_;      ///< per bond c_pq beta V_q, N/m^3
+  std::vector<Index> upper_;           ///< first bond of each row whose other end has a higher index
+  std::vector<std::int32_t> mirror_;   ///< each bond's position in its other end's row
+  std::vector<double> inv_len0_;       ///< 1/|xi| per bond (the force loop multiplies instead of dividing)
+  std::vector<Index> block_start_;     ///< blocks of points of the half-bond pass (compute_forces)
+  /// Per-point sums of one force evaluation (each bond adds to both ends).
+  struct Acc {
+    std::vector<Vec3> f;                 ///< N
+    std::vector<double> energy, dis, vol_broken, smx, e_contact, k_contact;
+    void resize(Index n) {
+      const auto m = static_cast<size_t>(n);
+      f.resize(m), energy.resize(m), dis.resize(m), vol_broken.resize(m), smx.resize(m), e_contact.resize(m),
+          k_contact.resize(m);
+    }
+    void clear(Index p) {
+      f[p] = Vec3{};
+      energy[p] = dis[p] = vol_broken[p] = e_contact[p] = k_contact[p] = 0.0;
+      smx[p] = -std::numeric_limits<double>::infinity();
+    }
+  };
+  Acc acc_;
   std::vector<double> vol_all_;        ///< sum_j beta V_j of each point's family (damage denominator), m^3
   std::vector<double> stiff_bond_;     ///< sum_j V_j c/|xi| of each point's bonds (reference), N/m^4
   std::vector<double> stiff_contact_;  ///< sum of c_s V_q over each point's active contacts, N/m^4
