@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -18,6 +19,9 @@ namespace ballista {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+/// Storage per bond end: the family (BondFamily::kBytesPerBond) plus the half-bond pass's mirror
+/// position and inverse length (the micro-plastic stretch adds 8 B when present).
+constexpr double kSolverBytesPerBond = pd::BondFamily::kBytesPerBond + sizeof(std::int32_t) + sizeof(double);
 
 /// A DeckError at a key of the peridynamics section (the solver checks what the specs cannot).
 [[noreturn]] void section_error(const Scenario& sc, const std::string& key, const std::string& message) {
@@ -69,7 +73,7 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
            SeedLattice{sc.grid, 1,
                        4.0 / 3.0 * std::numbers::pi *
                            std::pow(std::isnan(sc.solver_params.at("m")) ? 3.0 : sc.solver_params.at("m"), 3) *
-                           pd::BondFamily::kBytesPerBond},
+                           kSolverBytesPerBond},
            0.0, "", comm),
       points_(pts_.store()) {
   const ParamValues& P = sc.solver_params;
@@ -175,6 +179,7 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   points_.add_real("pd_accel", 3, "m/s^2", false);
   const Index n = points_.size();
   const auto* x0 = points_.view<Vec3>("x0");
+  const auto build_start = std::chrono::steady_clock::now();
   bonds_ = pd::build_bond_family(x0, n, delta_, correct ? dx_ : 0.0, dim_, points_.ints("body"));
   s0_.assign(static_cast<size_t>(n), kInf);
   const auto* mat = points_.ints("material");
@@ -183,6 +188,27 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k)
       s = std::min(s, s00_[mat[p] * nmat_ + mat[bonds_.other[k]]]);
     s0_[p] = s;  // the first step breaks at s00 (no previous stretch yet)
+  }
+  // Scatter of the critical stretch (stretch_scatter): s00 of each point times 1 + sigma z, z a
+  // standard normal drawn from the point's id (splitmix64 + Box-Muller: the same for any thread
+  // count or run), truncated to [1 - 3 sigma, 1 + 3 sigma]. A flawless lattice breaks with its own
+  // symmetry (an expanding ring into identical fragments); real materials carry flaws (Grady 2006
+  // ch. 2). The smaller s0 of a bond's two ends still decides.
+  if (const double sigma = P.at("stretch_scatter"); sigma > 0.0) {
+    const auto* id = points_.ints("id");
+    auto mix = [](std::uint64_t z) {
+      z += 0x9e3779b97f4a7c15ULL;
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+      return z ^ (z >> 31);
+    };
+    for (Index p = 0; p < n; ++p) {
+      const std::uint64_t h1 = mix(static_cast<std::uint64_t>(id[p]) * 2 + 1), h2 = mix(h1);
+      const double u1 = (static_cast<double>(h1 >> 11) + 0.5) / 9007199254740992.0;  // (0, 1)
+      const double u2 = static_cast<double>(h2 >> 11) / 9007199254740992.0;
+      const double z = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+      s0_[p] *= 1.0 + sigma * std::clamp(z, -3.0, 3.0);
+    }
   }
   s00_point_ = s0_;
   if (std::isfinite(yield_stretch_)) sp_.assign(bonds_.other.size(), 0.0);
@@ -225,6 +251,7 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   block_start_.clear();
   for (Index p = 0; p < n; p += block) block_start_.push_back(p);
   block_start_.push_back(n);
+  bond_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
   stiff_bond_.assign(static_cast<size_t>(n), 0.0);
   stiff_contact_.assign(static_cast<size_t>(n), 0.0);
   x_prev_.assign(points_.view<Vec3>("x"), points_.view<Vec3>("x") + n);
@@ -382,7 +409,7 @@ void PdSolver::compute_forces() {
         e_contact += 0.25 * cs * o * o * vol0[q] * vol0[p];
       }
     acc[p] = (1.0 / mass[p]) * f;
-    damage[p] = A.vol_broken[p] / vol_all_[p];
+    damage[p] = std::min(1.0, A.vol_broken[p] / vol_all_[p]);  // round-off of the two sums: never above 1
     dissipated_[p] += A.dis[p];
     contact_energy_[p] = e_contact;
     stiff_contact_[p] = k_contact;
@@ -488,7 +515,12 @@ std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
           {"fragment_count", static_cast<double>(frags.size())},
           {"largest_fragment_mass", frags.empty() ? 0.0 : thickness_ * frags.front().mass},
           {"mean_fragment_mass", frags.empty() ? 0.0 : thickness_ * total / static_cast<double>(frags.size())},
-          {"max_damage", dmax}};
+          {"max_damage", dmax},
+          // Cost figures (docs/performance.md): the bond families with their solver arrays, the
+          // contact list rebuilds, and the storage per bond end.
+          {"bond_build_seconds", bond_build_seconds_},
+          {"contact_list_builds", static_cast<double>(contact_.builds)},
+          {"bytes_per_bond_end", kSolverBytesPerBond + (sp_.empty() ? 0.0 : sizeof(double))}};
 }
 
 std::vector<std::vector<double>> PdSolver::fragment_rows() const {
@@ -572,6 +604,9 @@ std::vector<ParamSpec> pd_params() {
                true};
   ParamSpec alpha{"stretch_alpha", "1", "s0 = s00 - alpha s_min (LAMMPS PERI)", false, 0.0, 0.0, kInf};
   ParamSpec safety{"dt_safety", "1", "fraction of the Silling-Askari stable time step", false, 0.8, 0.0, 1.0, true};
+  ParamSpec scatter{"stretch_scatter", "1",
+                     "relative standard deviation of each point's critical stretch (flaws; 0: a perfect lattice)", false,
+                     0.0, 0.0, 0.3};
   ParamSpec fint{"fragment_interval", "s", "time between fragment snapshots in fragments.csv (0: at the end only)",
                  false, 0.0, 0.0, kInf};
   ParamSpec fthr{"fragment_damage_threshold", "1",
@@ -601,7 +636,7 @@ std::vector<ParamSpec> pd_params() {
   pairs.default_choice = "unbonded";
   ParamSpec skin{"contact_skin", "1", "contact list skin over the lattice spacing (rebuilt after skin/2 of motion)",
                  false, 0.5, 0.0, 10.0, true};
-  return {m, horizon, vc, thick, cal, yield, s0, g0, alpha, safety, fint, fthr, contact, pairs, skin};
+  return {m, horizon, vc, thick, cal, yield, s0, g0, alpha, scatter, safety, fint, fthr, contact, pairs, skin};
 }
 
 }  // namespace

@@ -54,7 +54,8 @@ class PdSolver final : public Solver {
   double reporting_scale() const override { return thickness_; }
   void begin_stage(int stage, double damping) override;
   StepLimiter step_limiter() const override { return pts_.step_limiter(); }
-  /// broken_bonds, fragment_count, largest_fragment_mass (kg), mean_fragment_mass (kg), max_damage.
+  /// broken_bonds, fragment_count, largest_fragment_mass (kg), mean_fragment_mass (kg), max_damage,
+  /// bond_build_seconds, contact_list_builds, bytes_per_bond_end.
   std::vector<std::pair<std::string, double>> result_values() const override;
   /// fragments.csv: one row per fragment, largest first (peridynamics/fragments.hpp).
   std::vector<ResultTable> result_tables() const override;
@@ -72,6 +73,8 @@ class PdSolver final : public Solver {
   double micromodulus(int a, int b) const { return c_[a * nmat_ + b]; }
   /// Critical stretch s00 of the bond between materials a and b (infinite: no failure).
   double critical_stretch(int a, int b) const { return s00_[a * nmat_ + b]; }
+  /// s00 of point p (the smallest over its family's material pairs, times its stretch_scatter factor).
+  double point_critical_stretch(Index p) const { return s00_point_[p]; }
   /// Bonds broken so far (each counted once).
   Index broken_bonds() const;
   /// Re-evaluates the bond forces, energies and damage at the current positions without advancing
@@ -124,6 +127,7 @@ class PdSolver final : public Solver {
     }
   };
   Acc acc_;
+  double bond_build_seconds_ = 0.0;  ///< wall time of the bond families and their solver arrays, s
   std::vector<double> vol_all_;        ///< sum_j beta V_j of each point's family (damage denominator), m^3
   std::vector<double> stiff_bond_;     ///< sum_j V_j c/|xi| of each point's bonds (reference), N/m^4
   std::vector<double> stiff_contact_;  ///< sum of c_s V_q over each point's active contacts, N/m^4

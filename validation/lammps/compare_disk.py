@@ -14,17 +14,19 @@ Usage:
 Exit status 1 if a quantity is outside its tolerance (see TOLERANCES for why each is what it is).
 
 Tolerances. The two codes solve the same discrete equations (same lattice, bonds, partial volumes,
-s0 rule, indenter and step) with three differences: (1) LAMMPS still applies a bond's force on the
-step it breaks, Ballista drops it and books its trapezoidal work; (2) LAMMPS applies the short-range
-contact force to every pair closer than min(0.9 r0, 1.35 dx), intact bonds included, Ballista only
-to pairs not bonded (as the issue specifies); (3) summation order. Before the first bonds break
-(step 100) the runs must agree closely: 2 % (the force of the indenter is then the elastic response
-of the same bonds). Once the disk fractures, brittle cracking amplifies any difference (a bond that
-breaks one step earlier redistributes its load and changes which neighbour breaks next), so the
-statistics are compared as statistics: kinetic energy (dominated by the indenter's push, which both
-codes apply identically) within 12 %, the indenter force (a noisy contact force) within 25 %, broken
-bonds and mean damage (the fracture-sensitive quantities) within 35 %, maximum damage equal (1, a
-fully detached point under the indenter).
+s0 rule, indenter, contact and step) with three differences: (1) LAMMPS still applies a bond's force
+on the step it breaks, Ballista drops it and books its trapezoidal work; (2) LAMMPS's damage/atom
+weighs each partner by its volume alone, Ballista by its partial volume too (the seed's V_d/V_0 with
+the volume inside the horizon), so the same broken bonds give a different mean damage (+17 % at
+step 100 with the same 18 bonds broken); (3) summation order. Before fracture spreads (step 100)
+the indenter force, the elastic response of the same bonds to the same indenter, must agree to 2 %
+and the broken-bond count to 5 %; the kinetic energy is then tiny (4e-6 J, the disk barely moves
+yet) and the breaking rule (1) shows in it: 10 %. Once the disk fractures, brittle cracking
+amplifies any difference (a bond that breaks one step earlier redistributes its load and changes
+which neighbour breaks next), so the statistics are compared as statistics: kinetic energy (set
+by the indenter's push, which both codes apply alike) within 10 %, the indenter force (a noisy
+contact force) within 25 %, broken bonds and mean damage (the fracture-sensitive quantities)
+within 35 %, maximum damage equal (1, a fully detached point under the indenter).
 """
 import argparse
 import csv
@@ -38,8 +40,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 
 # step -> relative tolerance per quantity (see the module docstring).
-EARLY = {"ke": 0.02, "force": 0.02, "broken": 0.10, "mean_damage": 0.10}
-LATE = {"ke": 0.12, "force": 0.25, "broken": 0.35, "mean_damage": 0.35}
+EARLY = {"ke": 0.10, "force": 0.02, "broken": 0.05, "mean_damage": 0.35}
+LATE = {"ke": 0.10, "force": 0.25, "broken": 0.35, "mean_damage": 0.35}
 
 
 def read_csv(path):

@@ -424,3 +424,26 @@ TEST(PdSolver, MicroPlasticBondsYieldAndKeepTheirPlasticStretch) {
   EXPECT_NEAR(pts.real("plastic_work")[centre] / V / (27.0 * kK * sy * sy), 1.0, 1e-6);
   EXPECT_EQ(s->broken_bonds(), 0);
 }
+
+// stretch_scatter: each point's s00 is s00 (1 + sigma z), z standard normal from the point's id,
+// truncated at 3 sigma: over 1,331 points the mean factor is 1 within 4 standard errors
+// (4 sigma / sqrt(n) = 0.011 at sigma = 0.1) and the standard deviation sigma within 10 %
+// (its sampling error is ~ sigma / sqrt(2n) = 2 %; the truncation removes 0.3 % of the mass);
+// the same deck gives the same factors (they depend on the ids only).
+TEST(PdSolver, StretchScatterIsNormalAndReproducible) {
+  const auto a = solver_for(cube_deck(11, "m: 3, critical_stretch: 1e-3, stretch_scatter: 0.1"));
+  const auto b = solver_for(cube_deck(11, "m: 3, critical_stretch: 1e-3, stretch_scatter: 0.1"));
+  const Index n = a->points().size();
+  double sum = 0.0, sum2 = 0.0;
+  for (Index p = 0; p < n; ++p) {
+    const double f = a->point_critical_stretch(p) / 1e-3;
+    EXPECT_EQ(a->point_critical_stretch(p), b->point_critical_stretch(p));
+    EXPECT_GE(f, 0.7 - 1e-12);
+    EXPECT_LE(f, 1.3 + 1e-12);
+    sum += f;
+    sum2 += f * f;
+  }
+  const double mean = sum / n, sd = std::sqrt(sum2 / n - mean * mean);
+  EXPECT_NEAR(mean, 1.0, 4 * 0.1 / std::sqrt(double(n)));
+  EXPECT_NEAR(sd, 0.1, 0.01);
+}
