@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "peridynamics/cell_bins.hpp"
 
 namespace ballista::pd {
 
@@ -48,63 +49,23 @@ BondFamily build_bond_family(const Vec3* x0, Index n, double delta, double dx, i
   // at the horizon (|xi| <= delta); the correction scales those within dx/2 of it (as LAMMPS PERI).
   // Bins a hair wider than the horizon: two points exactly delta apart along an axis could otherwise
   // round into bins two apart and never be compared (found by the energy-release verification).
-  const double reach = delta;
-  const double bin_size = delta * (1.0 + 1e-6);
-  Vec3 lo{{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-           std::numeric_limits<double>::infinity()}};
-  Vec3 hi = -1.0 * lo;
-  for (Index p = 0; p < n; ++p)
-    for (int a = 0; a < dim; ++a) {
-      lo[a] = std::min(lo[a], x0[p][a]);
-      hi[a] = std::max(hi[a], x0[p][a]);
-    }
-  int nb[3] = {1, 1, 1};
-  for (int a = 0; a < dim; ++a) nb[a] = std::max(1, static_cast<int>((hi[a] - lo[a]) / bin_size) + 1);
-  const Index nbins = static_cast<Index>(nb[0]) * nb[1] * nb[2];
-  auto bin_of = [&](const Vec3& x, int c[3]) {
-    for (int a = 0; a < 3; ++a) c[a] = a < dim ? std::min(nb[a] - 1, static_cast<int>((x[a] - lo[a]) / bin_size)) : 0;
-  };
-  // Counting sort of the points into bins (stable: each bin's points in increasing index).
-  std::vector<Index> start(static_cast<size_t>(nbins) + 1, 0), order(static_cast<size_t>(n));
-  std::vector<Index> bin(static_cast<size_t>(n));
-  for (Index p = 0; p < n; ++p) {
-    int c[3];
-    bin_of(x0[p], c);
-    bin[p] = (static_cast<Index>(c[2]) * nb[1] + c[1]) * nb[0] + c[0];
-    ++start[bin[p] + 1];
-  }
-  for (Index b = 0; b < nbins; ++b) start[b + 1] += start[b];
-  {
-    std::vector<Index> fill(start.begin(), start.end() - 1);
-    for (Index p = 0; p < n; ++p) order[fill[bin[p]]++] = p;
-  }
+  const CellBins bins(x0, n, delta * (1.0 + 1e-6), dim);
   // Lattice points at exactly the horizon (m = 3 on a cubic lattice: 30 of them) must be in or out
   // for every point alike, whatever the round-off of their coordinates: the test admits a relative
   // 1e-9 beyond delta (LAMMPS sidesteps the tie with delta = 3.0002 dx).
-  const double reach2 = reach * reach * (1.0 + 2e-9);
+  const double reach2 = delta * delta * (1.0 + 2e-9);
   // Two passes over the same search: count each row, then fill it (rows sorted by index).
   auto visit = [&](Index p, auto&& emit) {
-    int c[3];
-    bin_of(x0[p], c);
-    const int zr = dim == 3 ? 1 : 0;
-    for (int dz = -zr; dz <= zr; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx_ = -1; dx_ <= 1; ++dx_) {
-          const int b0 = c[0] + dx_, b1 = c[1] + dy, b2 = c[2] + dz;
-          if (b0 < 0 || b1 < 0 || b2 < 0 || b0 >= nb[0] || b1 >= nb[1] || b2 >= nb[2]) continue;
-          const Index b = (static_cast<Index>(b2) * nb[1] + b1) * nb[0] + b0;
-          for (Index q = start[b]; q < start[b + 1]; ++q) {
-            const Index o = order[q];
-            if (o == p || (body && body[o] != body[p])) continue;
-            Vec3 d = x0[o] - x0[p];
-            if (dim == 2) d[2] = 0.0;
-            const double r2 = dot(d, d);
-            if (r2 > reach2) continue;
-            const double r = std::sqrt(r2);
-            const double w = partial_volume_factor(r, delta, dx);
-            if (w > 0.0) emit(o, r, w);
-          }
-        }
+    bins.visit(x0[p], [&](Index o) {
+      if (o == p || (body && body[o] != body[p])) return;
+      Vec3 d = x0[o] - x0[p];
+      if (dim == 2) d[2] = 0.0;
+      const double r2 = dot(d, d);
+      if (r2 > reach2) return;
+      const double r = std::sqrt(r2);
+      const double w = partial_volume_factor(r, delta, dx);
+      if (w > 0.0) emit(o, r, w);
+    });
   };
   std::vector<Index> count(static_cast<size_t>(n), 0);
   for_each(0, n, [&](Index p) {

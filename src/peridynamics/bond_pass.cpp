@@ -31,6 +31,7 @@ void bond_pass(const BondPassArgs& a, Index p0, Index p1) {
   double* __restrict smax = a.smax;
   double* __restrict ec = a.e_contact;
   double* __restrict kc = a.k_contact;
+  const double* __restrict lambda = a.surface_factor;
 
   for (Index p = p0; p < p1; ++p) {
     const double xp0 = x[3 * p], xp1 = x[3 * p + 1], xp2 = x[3 * p + 2], vp = vol0[p], s0p = s0[p];
@@ -42,11 +43,14 @@ void bond_pass(const BondPassArgs& a, Index p0, Index p1) {
       const double y0 = x[3 * q] - xp0, y1 = x[3 * q + 1] - xp1, y2 = x[3 * q + 2] - xp2;
       const double r = std::sqrt(y0 * y0 + y1 * y1 + y2 * y2), r0 = len0[k];
       const double vq = vol0[q], vv = vp * vq, bk = beta[k];
-      const double cpq = nmat == 1 ? crow[0] : crow[mat[q]];  // one material: no lookup
+      const double c_bond = nmat == 1 ? crow[0] : crow[mat[q]];  // one material: no lookup
+      // The bond's micromodulus, with the surface correction's mean factor of its ends if on;
+      // contact springs keep the plain c.
+      const double cpq = lambda ? 0.5 * (lambda[p] + lambda[q]) * c_bond : c_bond;
       // A repulsive contact spring between p and q at r < d (Silling & Askari 2005; LAMMPS PERI):
       // force c_s (d - r) V_p V_q apart; energy c_s V_p V_q (d - r)^2 / 2, half at each end.
       auto repel = [&](double d) {
-        const double cs = cs_over_c * cpq, o = d - r;
+        const double cs = cs_over_c * c_bond, o = d - r;
         const double e = 0.25 * cs * o * o * vv;
         kc[p] += cs * vq;
         kc[q] += cs * vp;

@@ -255,12 +255,27 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   stiff_bond_.assign(static_cast<size_t>(n), 0.0);
   stiff_contact_.assign(static_cast<size_t>(n), 0.0);
   x_prev_.assign(points_.view<Vec3>("x"), points_.view<Vec3>("x") + n);
+  // Surface correction (surface_correction: energy; Madenci & Oterkus 2014 §4.2, reviewed by Le &
+  // Bobaru, Comput. Mech. 61 (2018) 499): a point near a free surface misses part of its family and
+  // is softer; under a uniform dilatation its energy density is c eps^2 m1_p / 4 instead of the
+  // interior c eps^2 m1 / 4, so its factor is lambda_p = m1 / m1_p, and a bond is stiffened by the
+  // mean of its two ends' factors (forces and energies; the critical stretch is left as it is).
+  if (P.choices.at("surface_correction") == "energy") {
+    surface_factor_.assign(static_cast<size_t>(n), 1.0);
+    for_each(0, n, [&](Index p) {
+      double m1p = 0.0;
+      for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k)
+        m1p += bonds_.length0[k] * bonds_.volume_factor[k] * vol0[bonds_.other[k]];
+      if (m1p > 0.0) surface_factor_[p] = moments.m1 / m1p;
+    });
+  }
   // Stable step of each point (Silling & Askari 2005 eq. 17): dt < sqrt(2 rho / sum_j V_j c/|xi|).
   for_each(0, n, [&](Index p) {
     double sum = 0.0;
     for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k) {
       const Index q = bonds_.other[k];
-      sum += vol0[q] * bonds_.volume_factor[k] * c_[mat[p] * nmat_ + mat[q]] / bonds_.length0[k];
+      const double g = surface_factor_.empty() ? 1.0 : 0.5 * (surface_factor_[p] + surface_factor_[q]);
+      sum += g * vol0[q] * bonds_.volume_factor[k] * c_[mat[p] * nmat_ + mat[q]] / bonds_.length0[k];
     }
     stiff_bond_[p] = sum;
   });
@@ -379,7 +394,8 @@ void PdSolver::compute_forces() {
                         other,     mirror,     broken,     bonds_.offset.data(),  upper_.data(), plastic ? sp : nullptr,
                         sy,        alpha,      contact,    bonded_contact,        cs_over_c, range, xprev[0].v,
                         A.f[0].v,  A.energy.data(), A.dis.data(), A.vol_broken.data(), A.smx.data(),
-                        A.e_contact.data(), A.k_contact.data()};
+                        A.e_contact.data(), A.k_contact.data(),
+                        surface_factor_.empty() ? nullptr : surface_factor_.data()};
   const Index nblock = static_cast<Index>(block_start_.size()) - 1;
   for (int phase = 0; phase < 2; ++phase) {
     const Index nphase = (nblock - phase + 1) / 2;
@@ -624,6 +640,12 @@ std::vector<ParamSpec> pd_params() {
                 false, 0};
   cal.choices = {"lattice", "continuum"};
   cal.default_choice = "lattice";
+  ParamSpec surf{"surface_correction", "-",
+                 "none, or energy: bonds near free surfaces stiffened by the mean of their ends' factors m1/m1_p "
+                 "(Madenci & Oterkus 2014; Le & Bobaru 2018)",
+                 false, 0};
+  surf.choices = {"none", "energy"};
+  surf.default_choice = "none";
   ParamSpec contact{"contact", "-", "short-range contact forces between points not bonded (S&A 2005, LAMMPS PERI)",
                     false, 0};
   contact.choices = {"on", "off"};
@@ -636,7 +658,7 @@ std::vector<ParamSpec> pd_params() {
   pairs.default_choice = "unbonded";
   ParamSpec skin{"contact_skin", "1", "contact list skin over the lattice spacing (rebuilt after skin/2 of motion)",
                  false, 0.5, 0.0, 10.0, true};
-  return {m, horizon, vc, thick, cal, yield, s0, g0, alpha, scatter, safety, fint, fthr, contact, pairs, skin};
+  return {m, horizon, vc, thick, cal, surf, yield, s0, g0, alpha, scatter, safety, fint, fthr, contact, pairs, skin};
 }
 
 }  // namespace

@@ -107,6 +107,7 @@ class PdSolver final : public Solver {
   double damping_ = 0.0;     ///< 1/s: a - c v (dynamic relaxation, stages)
   double yield_stretch_ = std::numeric_limits<double>::infinity();  ///< s_y of micro-plastic bonds
   std::vector<double> sp_;             ///< plastic stretch per bond (each end its own copy; empty: elastic)
+  std::vector<double> surface_factor_; ///< per point m1/m1_p (surface_correction: energy; empty: off)
   std::vector<Index> upper_;           ///< first bond of each row whose other end has a higher index
   std::vector<std::int32_t> mirror_;   ///< each bond's position in its other end's row
   std::vector<double> inv_len0_;       ///< 1/|xi| per bond (the force loop multiplies instead of dividing)

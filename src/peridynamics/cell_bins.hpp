@@ -1,0 +1,76 @@
+#pragma once
+// Cell binning of points for neighbour searches (bond families, the contact list): the points'
+// bounding box cut into bins of a given size, a stable counting sort of the points into them, and
+// a visit of the points in the 3^dim bins around a position. O(N) to build; a search of radius at
+// most the bin size finds every neighbour in the surrounding bins.
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+#include "core/parallel.hpp"
+#include "core/tensor.hpp"
+
+namespace ballista::pd {
+
+class CellBins {
+ public:
+  /// Bins of at least `size` over the points x[0..n) (z ignored in 2D). The bins are enlarged while
+  /// there would be more than 4n + 1024 of them (points spread far apart: fragments in flight).
+  CellBins(const Vec3* x, Index n, double size, int dim) : dim_(dim), size_(size) {
+    lo_ = Vec3{{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                std::numeric_limits<double>::infinity()}};
+    Vec3 hi = -1.0 * lo_;
+    for (Index p = 0; p < n; ++p)
+      for (int a = 0; a < dim; ++a) {
+        lo_[a] = std::min(lo_[a], x[p][a]);
+        hi[a] = std::max(hi[a], x[p][a]);
+      }
+    auto along = [&](int a) { return a < dim && n > 0 ? (hi[a] - lo_[a]) / size_ + 1.0 : 1.0; };
+    while (along(0) * along(1) * along(2) > 4.0 * static_cast<double>(n) + 1024.0) size_ *= 2.0;
+    for (int a = 0; a < 3; ++a) nb_[a] = a < dim && n > 0 ? std::max(1, static_cast<int>((hi[a] - lo_[a]) / size_) + 1) : 1;
+    const Index nbins = static_cast<Index>(nb_[0]) * nb_[1] * nb_[2];
+    // Counting sort (stable: each bin's points in increasing index).
+    start_.assign(static_cast<size_t>(nbins) + 1, 0);
+    order_.resize(static_cast<size_t>(n));
+    std::vector<Index> bin(static_cast<size_t>(n));
+    for (Index p = 0; p < n; ++p) {
+      int c[3];
+      cell(x[p], c);
+      bin[p] = (static_cast<Index>(c[2]) * nb_[1] + c[1]) * nb_[0] + c[0];
+      ++start_[bin[p] + 1];
+    }
+    for (Index b = 0; b < nbins; ++b) start_[b + 1] += start_[b];
+    std::vector<Index> fill(start_.begin(), start_.end() - 1);
+    for (Index p = 0; p < n; ++p) order_[fill[bin[p]]++] = p;
+  }
+
+  /// Calls f(q) for every point q in the bins around position y (q may be the point at y itself).
+  template <class F>
+  void visit(const Vec3& y, F&& f) const {
+    int c[3];
+    cell(y, c);
+    const int zr = dim_ == 3 ? 1 : 0;
+    for (int dz = -zr; dz <= zr; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int b0 = c[0] + dx, b1 = c[1] + dy, b2 = c[2] + dz;
+          if (b0 < 0 || b1 < 0 || b2 < 0 || b0 >= nb_[0] || b1 >= nb_[1] || b2 >= nb_[2]) continue;
+          const Index b = (static_cast<Index>(b2) * nb_[1] + b1) * nb_[0] + b0;
+          for (Index i = start_[b]; i < start_[b + 1]; ++i) f(order_[i]);
+        }
+  }
+
+ private:
+  void cell(const Vec3& y, int c[3]) const {
+    for (int a = 0; a < 3; ++a)
+      c[a] = a < dim_ ? std::clamp(static_cast<int>((y[a] - lo_[a]) / size_), 0, nb_[a] - 1) : 0;
+  }
+
+  int dim_;
+  double size_;
+  Vec3 lo_;
+  int nb_[3] = {1, 1, 1};
+  std::vector<Index> start_, order_;
+};
+
+}  // namespace ballista::pd
