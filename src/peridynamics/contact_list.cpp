@@ -46,29 +46,33 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
       emit(q, std::min(0.9 * std::sqrt(r02), range));
     });
   };
+  // One search per point (the list is rebuilt often: a point driven at 100 m/s crosses the half-skin
+  // in a dozen steps): the pairs go to per-chunk buffers (fixed chunks, so the result does not
+  // depend on the thread count), then into the rows. Pairs are rare (most neighbours are bonded),
+  // so the buffers stay small.
+  constexpr Index kChunk = 4096;
+  const Index nchunk = (n + kChunk - 1) / kChunk;
+  std::vector<std::vector<std::pair<std::int32_t, double>>> found(static_cast<size_t>(nchunk));
   std::vector<Index> count(static_cast<size_t>(n), 0);
-  for_each(0, n, [&](Index p) {
-    Index k = 0;
-    visit(p, [&](Index, double) { ++k; });
-    count[p] = k;
+  for_each(0, nchunk, [&](Index c) {
+    auto& buf = found[c];
+    for (Index p = c * kChunk; p < std::min(n, (c + 1) * kChunk); ++p) {
+      const size_t first = buf.size();
+      visit(p, [&](Index q, double d) { buf.emplace_back(static_cast<std::int32_t>(q), d); });
+      // Increasing neighbour index: the force sums run in a fixed order (thread-count independent).
+      std::sort(buf.begin() + static_cast<std::ptrdiff_t>(first), buf.end());
+      count[p] = static_cast<Index>(buf.size() - first);
+    }
   });
   for (Index p = 0; p < n; ++p) list.offset[p + 1] = list.offset[p] + count[p];
   list.other.resize(static_cast<size_t>(list.offset[n]));
   list.reach.resize(list.other.size());
-  for_each(0, n, [&](Index p) {
-    Index k = list.offset[p];
-    visit(p, [&](Index q, double d) {
-      list.other[k] = static_cast<std::int32_t>(q);
+  for_each(0, nchunk, [&](Index c) {
+    Index k = list.offset[c * kChunk];
+    for (const auto& [q, d] : found[c]) {
+      list.other[k] = q;
       list.reach[k] = d;
       ++k;
-    });
-    // Increasing neighbour index: the force sums run in a fixed order (thread-count independent).
-    std::vector<std::pair<std::int32_t, double>> row;
-    for (Index i = list.offset[p]; i < list.offset[p + 1]; ++i) row.emplace_back(list.other[i], list.reach[i]);
-    std::sort(row.begin(), row.end());
-    for (size_t i = 0; i < row.size(); ++i) {
-      list.other[list.offset[p] + static_cast<Index>(i)] = row[i].first;
-      list.reach[list.offset[p] + static_cast<Index>(i)] = row[i].second;
     }
   });
 }
