@@ -616,7 +616,9 @@ std::vector<ParamSpec> pd_params() {
   vc.default_choice = "partial";
   ParamSpec s0{"critical_stretch", "1", "bond critical stretch s00 (or fracture_energy; neither: no failure)", false,
                nan, 0.0, kInf, true};
-  ParamSpec g0{"fracture_energy", "J/m^2", "fracture energy G0: s00 = sqrt(2 G0/(c m2)) (continuum m2: S&A 2005 eq. 25, sqrt(5 G0/(9 K delta)))", false, nan, 0.0, kInf,
+  ParamSpec g0{"fracture_energy", "J/m^2",
+               "fracture energy G0: s00 = sqrt(2 G0/(c m2)) (continuum m2: S&A 2005 eq. 25, sqrt(5 G0/(9 K delta)))",
+               false, nan, 0.0, kInf,
                true};
   ParamSpec alpha{"stretch_alpha", "1", "s0 = s00 - alpha s_min (LAMMPS PERI)", false, 0.0, 0.0, kInf};
   ParamSpec safety{"dt_safety", "1", "fraction of the Silling-Askari stable time step", false, 0.8, 0.0, 1.0, true};
