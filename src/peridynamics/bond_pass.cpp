@@ -5,7 +5,12 @@
 
 namespace ballista::pd {
 
-void bond_pass(const BondPassArgs& a, Index p0, Index p1) {
+namespace {
+
+/// The loop, compiled once per combination of the optional models so that the common case (elastic
+/// bonds, no surface correction) carries no test for them per bond.
+template <bool Plastic, bool Surface>
+void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
   const double* __restrict x = a.x;
   const double* __restrict vol0 = a.vol0;
   const std::int64_t* __restrict mat = a.material;
@@ -46,7 +51,8 @@ void bond_pass(const BondPassArgs& a, Index p0, Index p1) {
       const double c_bond = nmat == 1 ? crow[0] : crow[mat[q]];  // one material: no lookup
       // The bond's micromodulus, with the surface correction's mean factor of its ends if on;
       // contact springs keep the plain c.
-      const double cpq = lambda ? 0.5 * (lambda[p] + lambda[q]) * c_bond : c_bond;
+      double cpq = c_bond;
+      if constexpr (Surface) cpq *= 0.5 * (lambda[p] + lambda[q]);
       // A repulsive contact spring between p and q at r < d (Silling & Askari 2005; LAMMPS PERI):
       // force c_s (d - r) V_p V_q apart; energy c_s V_p V_q (d - r)^2 / 2, half at each end.
       auto repel = [&](double d) {
@@ -74,7 +80,7 @@ void bond_pass(const BondPassArgs& a, Index p0, Index p1) {
       // elastic in s - s_p up to the yield stretch s_y, perfectly plastic beyond, elastic unloading
       // with s_p kept; plastic work c s_y |ds_p| |xi| beta V_p V_q, half to each end. Failure on s.
       double se = s;
-      if (sp) {
+      if constexpr (Plastic) {
         se = s - sp[k];
         double dsp = 0.0;
         if (se > sy) dsp = se - sy;
@@ -127,6 +133,16 @@ void bond_pass(const BondPassArgs& a, Index p0, Index p1) {
     energy[p] += ep;
     smax[p] = smp;
   }
+}
+
+}  // namespace
+
+void bond_pass(const BondPassArgs& a, Index p0, Index p1) {
+  const bool plastic = a.plastic_stretch != nullptr, surface = a.surface_factor != nullptr;
+  if (plastic && surface) bond_pass_t<true, true>(a, p0, p1);
+  else if (plastic) bond_pass_t<true, false>(a, p0, p1);
+  else if (surface) bond_pass_t<false, true>(a, p0, p1);
+  else bond_pass_t<false, false>(a, p0, p1);
 }
 
 }  // namespace ballista::pd
