@@ -27,7 +27,7 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
   const Index* __restrict upper = a.upper;
   double* __restrict sp = a.plastic_stretch;
   const double sy = a.yield_stretch, alpha = a.alpha, cs_over_c = a.cs_over_c, range = a.range;
-  const bool contact = a.contact, bonded_contact = a.bonded_contact;
+  const bool contact = a.contact, bonded_contact = a.bonded_contact, lammps_break = a.lammps_break;
   const double* __restrict xprev = a.x_prev;
   double* __restrict f = a.f;
   double* __restrict energy = a.energy;
@@ -96,21 +96,38 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
       // Bond energy c se^2 |xi| beta V_p V_q / 2 (Silling & Askari 2005 eq. 21, both ends' halves).
       const double u = 0.5 * cpq * se * se * r0 * bk * vv;
       if (s > std::min(s0p, s0[q])) {
-        // Failure against the previous step's s0 (LAMMPS PERI's rule), for both ends at once; from
-        // now on the bond exerts no force (LAMMPS still applies it this step). It dissipates what
-        // the step took out of the motion: velocity Verlet gave the points only the first half-kick
-        // of this bond, so the energy booked is U(s_n+1) - 1/2 F (r_n+1 - r_n), the trapezoidal work
-        // of the bond over the step; U(s_n+1) alone creates the missing half-kick (+7 % of the
-        // energy in a dynamic tear, docs/validation.md). Half to each end.
+        // Failure against the previous step's s0 (LAMMPS PERI's rule), for both ends at once.
+        broken[k] = 1;
+        broken[offset[q] + mirror[k]] = 1;
+        vb[p] += bk * vq;
+        vb[q] += bk * vp;
+        if (lammps_break) {
+          // break_rule: lammps. The bond still acts this step (LAMMPS applies the force, then
+          // breaks), and its energy U(s_n+1) is what it dissipates; the next step's first half-kick
+          // then carries a force whose energy is gone (LAMMPS's own O(dt) error, kept for parity).
+          dis[p] += 0.5 * u;
+          dis[q] += 0.5 * u;
+          if (r > 0.0) {
+            const double G = cpq * se * bk * vv / r;
+            fx += G * y0, fy += G * y1, fz += G * y2;
+            f[3 * q] -= G * y0, f[3 * q + 1] -= G * y1, f[3 * q + 2] -= G * y2;
+          }
+          if (alpha > 0.0) {
+            smp = std::max(smp, -alpha * s);
+            smax[q] = std::max(smax[q], -alpha * s);
+          }
+          continue;
+        }
+        // Default: from now on the bond exerts no force. It dissipates what the step took out of
+        // the motion: velocity Verlet gave the points only the first half-kick of this bond, so the
+        // energy booked is U(s_n+1) - 1/2 F (r_n+1 - r_n), the trapezoidal work of the bond over the
+        // step; U(s_n+1) alone creates the missing half-kick (+7 % of the energy in a dynamic tear,
+        // docs/validation.md). Half to each end.
         const double dp0 = xprev[3 * q] - xprev[3 * p], dp1 = xprev[3 * q + 1] - xprev[3 * p + 1],
                      dp2 = xprev[3 * q + 2] - xprev[3 * p + 2];
         const double r_prev = std::sqrt(dp0 * dp0 + dp1 * dp1 + dp2 * dp2);
         const double F = cpq * se * bk * vv;  // N
         const double d = 0.5 * (u - 0.5 * F * (r - r_prev));
-        broken[k] = 1;
-        broken[offset[q] + mirror[k]] = 1;
-        vb[p] += bk * vq;
-        vb[q] += bk * vp;
         dis[p] += d;
         dis[q] += d;
         continue;

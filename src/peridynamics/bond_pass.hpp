@@ -42,6 +42,7 @@ struct BondPassArgs {
   double* e_contact;               ///< contact-spring energy, J
   double* k_contact;               ///< sum of c_s V_other over active contacts, N/m^4
   const double* surface_factor;    ///< per point, bonds scaled by the mean of their ends'; null: none
+  bool lammps_break = false;       ///< a breaking bond still acts this step (LAMMPS PERI's order)
 };
 
 /// The bonds of points [p0, p1) with their higher-index ends. Writes go to both ends: the caller

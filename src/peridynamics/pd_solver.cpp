@@ -90,6 +90,7 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   fragment_interval_ = P.at("fragment_interval");
   contact_on_ = P.choices.at("contact") == "on";
   contact_all_pairs_ = P.choices.at("contact_pairs") == "all";
+  lammps_break_ = P.choices.at("break_rule") == "lammps";
   fragment_threshold_ = P.given("fragment_damage_threshold") ? P.at("fragment_damage_threshold") : 2.0;
   next_fragment_time_ = fragment_interval_ > 0.0 ? fragment_interval_ : kInf;
   dt_safety_ = P.at("dt_safety");
@@ -395,7 +396,7 @@ void PdSolver::compute_forces() {
                         sy,        alpha,      contact,    bonded_contact,        cs_over_c, range, xprev[0].v,
                         A.f[0].v,  A.energy.data(), A.dis.data(), A.vol_broken.data(), A.smx.data(),
                         A.e_contact.data(), A.k_contact.data(),
-                        surface_factor_.empty() ? nullptr : surface_factor_.data()};
+                        surface_factor_.empty() ? nullptr : surface_factor_.data(), lammps_break_};
   const Index nblock = static_cast<Index>(block_start_.size()) - 1;
   for (int phase = 0; phase < 2; ++phase) {
     const Index nphase = (nblock - phase + 1) / 2;
@@ -658,9 +659,15 @@ std::vector<ParamSpec> pd_params() {
                   false, 0};
   pairs.choices = {"unbonded", "all"};
   pairs.default_choice = "unbonded";
+  ParamSpec rule{"break_rule", "-",
+                 "work: a breaking bond stops acting and dissipates its trapezoidal work over the step (energy "
+                 "conserving); lammps: it acts once more and dissipates U(s) (LAMMPS PERI's order, for comparisons)",
+                 false, 0};
+  rule.choices = {"work", "lammps"};
+  rule.default_choice = "work";
   ParamSpec skin{"contact_skin", "1", "contact list skin over the lattice spacing (rebuilt after skin/2 of motion)",
                  false, 0.5, 0.0, 10.0, true};
-  return {m, horizon, vc, thick, cal, surf, yield, s0, g0, alpha, scatter, safety, fint, fthr, contact, pairs, skin};
+  return {m, horizon, vc, thick, cal, surf, yield, s0, g0, alpha, scatter, safety, fint, fthr, contact, pairs, rule, skin};
 }
 
 }  // namespace

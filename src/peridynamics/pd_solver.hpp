@@ -141,6 +141,7 @@ class PdSolver final : public Solver {
   std::vector<double> dissipated_; ///< J: energy of the broken bonds, half of each to each end
   bool contact_on_ = true;           ///< short-range contact forces (contact_list.hpp)
   bool contact_all_pairs_ = false;   ///< also between bonded points (LAMMPS PERI), not only unbonded ones
+  bool lammps_break_ = false;        ///< break_rule: lammps (a breaking bond acts once more)
   pd::ContactList contact_;          ///< never-bonded pairs near each other
   std::vector<double> contact_energy_;  ///< J: each point's half of its contact springs' energy
   double fragment_interval_ = 0.0;   ///< s between fragment snapshots (0: at the end only)

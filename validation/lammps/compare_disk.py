@@ -13,20 +13,21 @@ Usage:
 
 Exit status 1 if a quantity is outside its tolerance (see TOLERANCES for why each is what it is).
 
-Tolerances. The two codes solve the same discrete equations (same lattice, bonds, partial volumes,
-s0 rule, indenter, contact and step) with three differences: (1) LAMMPS still applies a bond's force
-on the step it breaks, Ballista drops it and books its trapezoidal work; (2) LAMMPS's damage/atom
-weighs each partner by its volume alone, Ballista by its partial volume too (the seed's V_d/V_0 with
-the volume inside the horizon), so the same broken bonds give a different mean damage (+17 % at
-step 100 with the same 18 bonds broken); (3) summation order. Before fracture spreads (step 100)
-the indenter force, the elastic response of the same bonds to the same indenter, must agree to 2 %
-and the broken-bond count to 5 %; the kinetic energy is then tiny (4e-6 J, the disk barely moves
-yet) and the breaking rule (1) shows in it: 10 %. Once the disk fractures, brittle cracking
-amplifies any difference (a bond that breaks one step earlier redistributes its load and changes
-which neighbour breaks next), so the statistics are compared as statistics: kinetic energy (set
-by the indenter's push, which both codes apply alike) within 10 %, the indenter force (a noisy
-contact force) within 25 %, broken bonds and mean damage (the fracture-sensitive quantities)
-within 35 %, maximum damage equal (1, a fully detached point under the indenter).
+Tolerances. The example deck asks for LAMMPS's conventions where Ballista's defaults differ:
+`calibration: continuum` (LAMMPS's c), `contact_pairs: all` (short-range forces on compressed bonds
+too) and `break_rule: lammps` (a breaking bond acts once more). The two codes then compute the same
+discrete equations, and differ only in summation order (LAMMPS sums over its neighbour lists,
+Ballista each bond once from its lower-index end) and in the damage definition (LAMMPS's damage/atom
+weighs partners by volume, Ballista by partial volume too: the same broken bonds give a different
+mean damage, +17 % at step 100 with the same 18 bonds). Until fracture amplifies the round-off of
+the summation order, every number must agree to 1e-4 and the broken-bond count exactly: measured,
+the kinetic energy agrees to 9 digits at step 400 and 3e-6 at step 700, the broken bonds are equal
+through step 700 (26,112). Brittle cracking then amplifies any difference (a bond that breaks one
+step earlier redistributes its load), so from step 800 on the statistics are compared as
+statistics: kinetic energy 10 %, indenter force (a noisy contact force) 25 %, broken bonds 35 %.
+Mean damage: 35 % throughout (the definitions differ). Maximum damage equal (1) from step 200.
+With Ballista's default break_rule (`--set peridynamics.break_rule=work`) the same tolerances do not
+hold in the first phase; docs/validation.md shows that comparison too.
 """
 import argparse
 import csv
@@ -40,8 +41,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 
 # step -> relative tolerance per quantity (see the module docstring).
-EARLY = {"ke": 0.10, "force": 0.02, "broken": 0.05, "mean_damage": 0.35}
+EARLY = {"ke": 1e-4, "force": 1e-4, "broken": 0.0, "mean_damage": 0.35}  # steps <= EARLY_LAST
 LATE = {"ke": 0.10, "force": 0.25, "broken": 0.35, "mean_damage": 0.35}
+EARLY_LAST = 700
 
 
 def read_csv(path):
@@ -50,7 +52,11 @@ def read_csv(path):
 
 
 def interp(ts, ys, t):
-    """Linear interpolation of the history at time t (Ballista's rows need not fall on t)."""
+    """The history at time t: the row at t (within a thousandth of LAMMPS's 1e-7 s step: the rows of
+    both codes fall every 100 steps), else linear interpolation (if Ballista's step was cut)."""
+    near = min(range(len(ts)), key=lambda k: abs(ts[k] - t))
+    if abs(ts[near] - t) < 1e-10:
+        return ys[near]
     for k in range(1, len(ts)):
         if ts[k] >= t - 1e-15:
             a = (t - ts[k - 1]) / (ts[k] - ts[k - 1]) if ts[k] > ts[k - 1] else 1.0
@@ -113,7 +119,7 @@ def main():
         # same sign convention as Ballista's reaction column.
         ref = {"ke": float(r["ke_J"]), "force": float(r["indenter_fy_N"]), "broken": float(r["broken_bonds"]),
                "mean_damage": float(r["damage_mean"]), "max_damage": float(r["damage_max"])}
-        tol = EARLY if step <= 100 else LATE
+        tol = EARLY if step <= EARLY_LAST else LATE
         row = {"step": step, "time": ts}
         for q in ("ke", "force", "broken", "mean_damage"):
             b = interp(t, ours[q], ts)
@@ -135,7 +141,7 @@ def main():
         cells = [str(r["step"])]
         for q in ("ke", "broken", "mean_damage", "force"):
             b, l, rel = r[q]
-            cells += ["%.5g" % b, "%.5g" % l, "%+.1f %%" % (100 * rel)]
+            cells += ["%.8g" % b, "%.8g" % l, "%+.1e" % rel]
         print("| " + " | ".join(cells) + " |")
     with open(os.path.join(bout, "summary.json")) as f:
         ps_b = json.load(f)["statistics"]["particle_steps_per_second"]
