@@ -608,13 +608,20 @@ std::unique_ptr<Solver> make_pd(const Scenario& sc, std::vector<std::unique_ptr<
   return std::make_unique<PdSolver>(sc, std::move(materials));
 }
 
+/// An optional word parameter: one of `choices`, the first the default.
+ParamSpec word_param(const char* name, const char* description, std::vector<std::string> choices) {
+  ParamSpec p{name, "-", description, false, 0};
+  p.default_choice = choices.front();
+  p.choices = std::move(choices);
+  return p;
+}
+
 std::vector<ParamSpec> pd_params() {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   ParamSpec m{"m", "1", "horizon over lattice spacing (default 3; give m or horizon)", false, nan, 1.0, 20.0};
   ParamSpec horizon{"horizon", "m", "horizon delta (instead of m)", false, nan, 0.0, kInf, true};
-  ParamSpec vc{"volume_correction", "-", "partial-volume correction of neighbours cut by the horizon", false, 0};
-  vc.choices = {"partial", "none"};
-  vc.default_choice = "partial";
+  const ParamSpec vc =
+      word_param("volume_correction", "partial-volume correction of neighbours cut by the horizon", {"partial", "none"});
   ParamSpec s0{"critical_stretch", "1", "bond critical stretch s00 (or fracture_energy; neither: no failure)", false,
                nan, 0.0, kInf, true};
   ParamSpec g0{"fracture_energy", "J/m^2",
@@ -637,34 +644,28 @@ std::vector<ParamSpec> pd_params() {
                   "micro-plastic bonds: uniaxial yield stress (bond yield stretch s_y = yield_stress / E_PD); "
                   "absent: micro-elastic bonds",
                   false, nan, 0.0, kInf, true};
-  ParamSpec cal{"calibration", "-",
-                "bond constants from the continuum integrals (S&A 2005) or from the lattice family (exact K and G0 "
-                "for interior points)",
-                false, 0};
-  cal.choices = {"lattice", "continuum"};
-  cal.default_choice = "lattice";
-  ParamSpec surf{"surface_correction", "-",
-                 "none, or energy: bonds near free surfaces stiffened by the mean of their ends' factors m1/m1_p "
-                 "(Madenci & Oterkus 2014; Le & Bobaru 2018)",
-                 false, 0};
-  surf.choices = {"none", "energy"};
-  surf.default_choice = "none";
-  ParamSpec contact{"contact", "-", "short-range contact forces between points not bonded (S&A 2005, LAMMPS PERI)",
-                    false, 0};
-  contact.choices = {"on", "off"};
-  contact.default_choice = "on";
-  ParamSpec pairs{"contact_pairs", "-",
-                  "unbonded: contact between points not bonded (S&A 2005); all: intact bonds compressed below "
-                  "0.9 |xi| repel too (LAMMPS PERI)",
-                  false, 0};
-  pairs.choices = {"unbonded", "all"};
-  pairs.default_choice = "unbonded";
-  ParamSpec rule{"break_rule", "-",
-                 "work: a breaking bond stops acting and dissipates its trapezoidal work over the step (energy "
-                 "conserving); lammps: it acts once more and dissipates U(s) (LAMMPS PERI's order, for comparisons)",
-                 false, 0};
-  rule.choices = {"work", "lammps"};
-  rule.default_choice = "work";
+  const ParamSpec cal = word_param(
+      "calibration",
+      "bond constants from the continuum integrals (S&A 2005) or from the lattice family (exact K and G0 "
+      "for interior points)",
+      {"lattice", "continuum"});
+  const ParamSpec surf = word_param(
+      "surface_correction",
+      "none, or energy: bonds near free surfaces stiffened by the mean of their ends' factors m1/m1_p "
+      "(Madenci & Oterkus 2014; Le & Bobaru 2018)",
+      {"none", "energy"});
+  const ParamSpec contact =
+      word_param("contact", "short-range contact forces between points not bonded (S&A 2005, LAMMPS PERI)", {"on", "off"});
+  const ParamSpec pairs = word_param(
+      "contact_pairs",
+      "unbonded: contact between points not bonded (S&A 2005); all: intact bonds compressed below "
+      "0.9 |xi| repel too (LAMMPS PERI)",
+      {"unbonded", "all"});
+  const ParamSpec rule = word_param(
+      "break_rule",
+      "work: a breaking bond stops acting and dissipates its trapezoidal work over the step (energy "
+      "conserving); lammps: it acts once more and dissipates U(s) (LAMMPS PERI's order, for comparisons)",
+      {"work", "lammps"});
   ParamSpec skin{"contact_skin", "1", "contact list skin over the lattice spacing (rebuilt after skin/2 of motion)",
                  false, 0.5, 0.0, 10.0, true};
   return {m, horizon, vc, thick, cal, surf, yield, s0, g0, alpha, scatter, safety, fint, fthr, contact, pairs, rule, skin};

@@ -43,6 +43,32 @@ std::unique_ptr<PdSolver> solver_for(const std::string& yaml) {
   return std::make_unique<PdSolver>(sc, make_materials(sc));
 }
 
+/// Imposes the uniform dilatation x = (1 + eps) X (in the x-y plane only if `planar`) and re-evaluates.
+void dilate(PdSolver& s, double eps, bool planar = false) {
+  FieldStore& pts = s.points();
+  auto* x = pts.view<Vec3>("x");
+  const auto* x0 = pts.view<Vec3>("x0");
+  for (Index p = 0; p < pts.size(); ++p)
+    x[p] = Vec3{{(1 + eps) * x0[p][0], (1 + eps) * x0[p][1], (planar ? 1.0 : 1 + eps) * x0[p][2]}};
+  s.refresh();
+}
+
+/// The point whose reference position is X (x-y only if `planar`), or -1.
+Index point_at(const FieldStore& pts, const Vec3& X, bool planar = false) {
+  const auto* x0 = pts.view<Vec3>("x0");
+  for (Index p = 0; p < pts.size(); ++p) {
+    Vec3 d = x0[p] - X;
+    if (planar) d[2] = 0.0;
+    if (norm(d) < 1e-9) return p;
+  }
+  return -1;
+}
+
+/// Internal energy per unit reference volume of point p, J/m^3.
+double energy_density(const FieldStore& pts, Index p) {
+  return pts.real("internal_energy")[p] / pts.real("volume0")[p];
+}
+
 /// sum over the lattice neighbours j of an interior point of |xi_j| beta_j (units of dx), with the
 /// same partial-volume rule as the solver, by direct enumeration.
 double lattice_moment(double m, bool partial) {
@@ -140,16 +166,11 @@ TEST(PdSolver, UniformDilatationEnergyDensityIsTheLatticeSumOfTheContinuumValue)
     const auto s = solver_for(
         cube_deck(11, partial ? "m: 3, calibration: continuum" : "m: 3, volume_correction: none, calibration: continuum"));
     FieldStore& pts = s->points();
-    auto* x = pts.view<Vec3>("x");
-    const auto* x0 = pts.view<Vec3>("x0");
-    for (Index p = 0; p < pts.size(); ++p) x[p] = (1.0 + eps) * x0[p];
-    s->refresh();
+    dilate(*s, eps);
     // The centre point (5.5 mm in every direction): 5 spacings from every face, deeper than delta.
-    Index centre = -1;
-    for (Index p = 0; p < pts.size(); ++p)
-      if (norm(x0[p] - Vec3{{5.5e-3, 5.5e-3, 5.5e-3}}) < 1e-9) centre = p;
+    const Index centre = point_at(pts, Vec3{{5.5e-3, 5.5e-3, 5.5e-3}});
     ASSERT_GE(centre, 0);
-    const double W = pts.real("internal_energy")[centre] / pts.real("volume0")[centre];
+    const double W = energy_density(pts, centre);
     const double continuum = 4.5 * kK * eps * eps;
     const double moment = lattice_moment(3.0, partial) / (std::numbers::pi * 81.0);
     EXPECT_NEAR(W / continuum, moment, 1e-6 * moment) << (partial ? "partial" : "none");
@@ -170,16 +191,10 @@ TEST(PdSolver, LatticeCalibrationGivesTheBulkModulusExactly) {
   const double eps = 1e-4;
   for (const char* vc : {"partial", "none"}) {
     const auto s = solver_for(cube_deck(11, std::string("m: 3, volume_correction: ") + vc));
-    FieldStore& pts = s->points();
-    auto* x = pts.view<Vec3>("x");
-    const auto* x0 = pts.view<Vec3>("x0");
-    for (Index p = 0; p < pts.size(); ++p) x[p] = (1.0 + eps) * x0[p];
-    s->refresh();
-    Index centre = -1;
-    for (Index p = 0; p < pts.size(); ++p)
-      if (norm(x0[p] - Vec3{{5.5e-3, 5.5e-3, 5.5e-3}}) < 1e-9) centre = p;
+    dilate(*s, eps);
+    const Index centre = point_at(s->points(), Vec3{{5.5e-3, 5.5e-3, 5.5e-3}});
     ASSERT_GE(centre, 0);
-    const double W = pts.real("internal_energy")[centre] / pts.real("volume0")[centre];
+    const double W = energy_density(s->points(), centre);
     EXPECT_NEAR(W / (4.5 * kK * eps * eps), 1.0, 1e-6) << vc;  // the probe's 1e-7 on K, plus round-off
   }
 }
@@ -382,17 +397,11 @@ TEST(PdSolver, PlaneStressAndPlaneStrainConstants) {
                                    : 48 * E / (5 * std::numbers::pi * std::pow(delta, 3));
     EXPECT_NEAR(cont->micromodulus(0, 0), expected, 1e-6 * expected) << (stress ? "plane stress" : "plane strain");
     const auto s = solver_for(deck("m: 3"));
-    FieldStore& pts = s->points();
-    auto* x = pts.view<Vec3>("x");
-    const auto* x0 = pts.view<Vec3>("x0");
     const double eps = 1e-4;
-    for (Index p = 0; p < pts.size(); ++p) x[p] = Vec3{{(1 + eps) * x0[p][0], (1 + eps) * x0[p][1], x0[p][2]}};
-    s->refresh();
-    Index centre = -1;
-    for (Index p = 0; p < pts.size(); ++p)
-      if (std::abs(x0[p][0] - 5.5e-3) < 1e-9 && std::abs(x0[p][1] - 5.5e-3) < 1e-9) centre = p;
+    dilate(*s, eps, true);
+    const Index centre = point_at(s->points(), Vec3{{5.5e-3, 5.5e-3, 0.0}}, true);
     ASSERT_GE(centre, 0);
-    const double W = pts.real("internal_energy")[centre] / pts.real("volume0")[centre];
+    const double W = energy_density(s->points(), centre);
     const double K = E / (3 * (1 - 2 * nu)), G = E / (2 * (1 + nu));
     const double K2 = stress ? E / (2 * (1 - nu)) : K + G / 3;
     EXPECT_NEAR(W / (2 * K2 * eps * eps), 1.0, 1e-6) << (stress ? "plane stress" : "plane strain");
@@ -407,17 +416,10 @@ TEST(PdSolver, PlaneStressAndPlaneStrainConstants) {
 TEST(PdSolver, MicroPlasticBondsYieldAndKeepTheirPlasticStretch) {
   const double sigma_y = 50e6, sy = sigma_y / (1.5 * kK);
   const auto s = solver_for(cube_deck(11, "m: 3, yield_stress: 50e6"));
-  FieldStore& pts = s->points();
-  auto* x = pts.view<Vec3>("x");
-  const auto* x0 = pts.view<Vec3>("x0");
-  Index centre = -1;
-  for (Index p = 0; p < pts.size(); ++p)
-    if (norm(x0[p] - Vec3{{5.5e-3, 5.5e-3, 5.5e-3}}) < 1e-9) centre = p;
+  const FieldStore& pts = s->points();
+  const Index centre = point_at(pts, Vec3{{5.5e-3, 5.5e-3, 5.5e-3}});
   ASSERT_GE(centre, 0);
-  for (const double eps : {3 * sy, 0.0}) {
-    for (Index p = 0; p < pts.size(); ++p) x[p] = (1.0 + eps) * x0[p];
-    s->refresh();
-  }
+  for (const double eps : {3 * sy, 0.0}) dilate(*s, eps);
   const double V = pts.real("volume0")[centre];
   // Tolerance: the probed K (1e-7) and round-off of the stretch (1e-16 / s_y ~ 1e-13).
   EXPECT_NEAR(pts.real("internal_energy")[centre] / V / (31.5 * kK * sy * sy), 1.0, 1e-6);
@@ -459,17 +461,11 @@ TEST(PdSolver, SurfaceCorrectionRestoresTheEnergyNearFreeSurfaces) {
   double corner[2], face[2], centre[2];
   for (int on = 0; on < 2; ++on) {
     const auto s = solver_for(cube_deck(11, on ? "m: 3, surface_correction: energy" : "m: 3"));
-    FieldStore& pts = s->points();
-    auto* x = pts.view<Vec3>("x");
-    const auto* x0 = pts.view<Vec3>("x0");
-    for (Index p = 0; p < pts.size(); ++p) x[p] = (1.0 + eps) * x0[p];
-    s->refresh();
-    for (Index p = 0; p < pts.size(); ++p) {
-      const double W = pts.real("internal_energy")[p] / pts.real("volume0")[p] / W0;
-      if (norm(x0[p] - Vec3{{0.5e-3, 0.5e-3, 0.5e-3}}) < 1e-9) corner[on] = W;
-      if (norm(x0[p] - Vec3{{5.5e-3, 5.5e-3, 0.5e-3}}) < 1e-9) face[on] = W;
-      if (norm(x0[p] - Vec3{{5.5e-3, 5.5e-3, 5.5e-3}}) < 1e-9) centre[on] = W;
-    }
+    dilate(*s, eps);
+    const FieldStore& pts = s->points();
+    corner[on] = energy_density(pts, point_at(pts, Vec3{{0.5e-3, 0.5e-3, 0.5e-3}})) / W0;
+    face[on] = energy_density(pts, point_at(pts, Vec3{{5.5e-3, 5.5e-3, 0.5e-3}})) / W0;
+    centre[on] = energy_density(pts, point_at(pts, Vec3{{5.5e-3, 5.5e-3, 5.5e-3}})) / W0;
   }
   std::printf("W / W_bulk: corner %.3f -> %.3f, face %.3f -> %.3f, centre %.6f -> %.6f with the correction\n",
               corner[0], corner[1], face[0], face[1], centre[0], centre[1]);
