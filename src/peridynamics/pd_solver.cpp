@@ -119,29 +119,33 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
                                                       : 2.0 * std::numbers::pi * std::pow(delta_, 3) / 3.0);
   const double m2 = lattice ? moments.m2 : (dim_ == 3 ? std::numbers::pi * std::pow(delta_, 5) / 5.0
                                                       : std::pow(delta_, 4) / 2.0);
-  std::vector<double> c(nmat_), s0(nmat_);
+  // The dilatational modulus of each material in the model's dimension: K in 3D, the in-plane bulk
+  // modulus K2 in 2D (K + G/3 in plane strain, E/(2(1 - nu)) in plane stress).
+  std::vector<double> kd(nmat_), c(nmat_), s0(nmat_);
   for (int a = 0; a < nmat_; ++a) {
     const ProbedModuli mod = probe_moduli(*mats[a]);
     if (!(mod.bulk > 0.0) || !std::isfinite(mod.bulk))
       throw DeckError(sc.file, 0, 0, "materials." + mats[a]->name(),
                       fmt::format("peridynamics needs a positive bulk modulus; material '{}' gives {:g} Pa",
                                   mats[a]->name(), mod.bulk));
+    kd[a] = mod.bulk;
+    if (dim_ == 2) {
+      const double E = 9.0 * mod.bulk * mod.shear / (3.0 * mod.bulk + mod.shear);
+      const double nu = (3.0 * mod.bulk - 2.0 * mod.shear) / (2.0 * (3.0 * mod.bulk + mod.shear));
+      kd[a] = sc.simulation.plane_stress ? E / (2.0 * (1.0 - nu)) : mod.bulk + mod.shear / 3.0;
+    }
+  }
+  for (int a = 0; a < nmat_; ++a) {
     // continuum: c = 18 K/(pi delta^4) (S&A 2005 eq. 22), s00 = sqrt(5 G0/(9 K delta)) (eq. 25), exact
     // for the integral over the horizon sphere; on the lattice the sums differ (K_PD = 0.90 K and
     // G = 0.87 G0 at m = 3 with partial volumes), so `lattice` takes the same two relations over the
     // lattice family of an interior point: c = 18 K/m1, s00 = sqrt(2 G0/(c m2)) (bond_family.hpp).
     // The energy density of a dilatation eps is W = c eps^2 m1 / 4 for any dimension (S&A 2005 eq. 21
     // summed over the family); it equals the continuum 9 K eps^2/2 in 3D and 2 K2 eps^2 in 2D (eps in
-    // both in-plane directions), K2 the in-plane bulk modulus: K + G/3 in plane strain, E/(2(1 - nu))
-    // in plane stress. So c = 18 K/m1 (3D) or 8 K2/m1 (2D). A crack opening through its critical
-    // stretch releases G = c s0^2 m2/2, so s00 = sqrt(2 G0/(c m2)) (eq. 25 in 3D with the continuum m2).
-    double modulus = 18.0 * mod.bulk;
-    if (dim_ == 2) {
-      const double E = 9.0 * mod.bulk * mod.shear / (3.0 * mod.bulk + mod.shear);
-      const double nu = (3.0 * mod.bulk - 2.0 * mod.shear) / (2.0 * (3.0 * mod.bulk + mod.shear));
-      modulus = 8.0 * (sc.simulation.plane_stress ? E / (2.0 * (1.0 - nu)) : mod.bulk + mod.shear / 3.0);
-    }
-    c[a] = modulus / m1;
+    // both in-plane directions). So c = 18 K/m1 (3D) or 8 K2/m1 (2D). A crack opening through its
+    // critical stretch releases G = c s0^2 m2/2, so s00 = sqrt(2 G0/(c m2)) (eq. 25 in 3D with the
+    // continuum m2).
+    c[a] = (dim_ == 3 ? 18.0 * kd[a] : 8.0 * kd[a]) / m1;
     if (P.given("critical_stretch"))
       s0[a] = P.at("critical_stretch");
     else if (P.given("fracture_energy"))
@@ -152,19 +156,10 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   // Micro-plastic bonds: first yield of the most stretched bond (the one along the load) under
   // uniaxial stress sigma_y, s_y = sigma_y/E_PD with the modulus of the bond-based model (nu = 1/4 in
   // 3D: E = 3K/2; in 2D E = 4 K2/3 for plane stress, nu = 1/3, and plane strain alike). With several
-  // materials the smallest K sets it (one yield stretch for every bond).
+  // materials the smallest modulus sets it (one yield stretch for every bond).
   if (P.given("yield_stress")) {
     double e_min = kInf;
-    for (int a = 0; a < nmat_; ++a) {
-      const ProbedModuli mod = probe_moduli(*mats[a]);
-      double e = 1.5 * mod.bulk;
-      if (dim_ == 2) {
-        const double E = 9.0 * mod.bulk * mod.shear / (3.0 * mod.bulk + mod.shear);
-        const double nu = (3.0 * mod.bulk - 2.0 * mod.shear) / (2.0 * (3.0 * mod.bulk + mod.shear));
-        e = 4.0 / 3.0 * (sc.simulation.plane_stress ? E / (2.0 * (1.0 - nu)) : mod.bulk + mod.shear / 3.0);
-      }
-      e_min = std::min(e_min, e);
-    }
+    for (int a = 0; a < nmat_; ++a) e_min = std::min(e_min, dim_ == 3 ? 1.5 * kd[a] : 4.0 / 3.0 * kd[a]);
     yield_stretch_ = P.at("yield_stress") / e_min;
   }
   c_.resize(static_cast<size_t>(nmat_ * nmat_));
@@ -281,12 +276,9 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     stiff_bond_[p] = sum;
   });
   // Pre-cracks (deck `cracks`): bonds whose ends lie on either side of the segment, in the x-y plane.
+  const auto* bid = points_.ints("body");
   for (const CrackSpec& crack : sc.cracks) {
     const int body = crack.body.empty() ? -1 : body_index(sc, crack.body);
-    const auto* bid = points_.ints("body");
-    std::vector<char> in_body(static_cast<size_t>(n), 1);
-    if (body >= 0)
-      for (Index p = 0; p < n; ++p) in_body[p] = bid[p] == body;
     const Vec3 a = crack.from, b = crack.to;
     // Which side of the line o-e the point c is on, in the x-y plane: +1 left, -1 right, 0 on it
     // (within 1e-9 of the length o-e, so that round-off never decides a point on the line).
@@ -295,22 +287,17 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
       const double d = ((e[0] - o[0]) * (c[1] - o[1]) - (e[1] - o[1]) * (c[0] - o[0])) / len;
       return std::abs(d) <= 1e-9 * len ? 0 : (d > 0.0 ? 1 : -1);
     };
-    const Index before = broken_bonds();
-    for (Index p = 0; p < n; ++p) {
-      if (!in_body[p]) continue;
-      for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k) {
-        const Index q = bonds_.other[k];
-        const Vec3 &xp = x0[p], &xq = x0[q];
-        if (xp[0] == xq[0] && xp[1] == xq[1]) continue;  // a bond along z crosses no x-y segment
-        // Crossing of the segments p-q and a-b: p and q on either side of the crack line (a point on
-        // it counts as left), a and b strictly on either side of the bond's line; both tests read
-        // the same from either end, so a bond is cut at both ends or neither.
-        const bool pq = (side(a, b, xp) >= 0) != (side(a, b, xq) >= 0);
-        const bool ab = side(xp, xq, a) * side(xp, xq, b) < 0;
-        if (pq && ab) bonds_.broken[k] = 1;
-      }
-    }
-    if (broken_bonds() == before)
+    const Index cut = cut_bonds([&](Index p, Index q) {
+      if (body >= 0 && bid[p] != body) return false;  // bonds join points of one body only
+      const Vec3 &xp = x0[p], &xq = x0[q];
+      if (xp[0] == xq[0] && xp[1] == xq[1]) return false;  // a bond along z crosses no x-y segment
+      // Crossing of the segments p-q and a-b: p and q on either side of the crack line (a point on
+      // it counts as left), a and b strictly on either side of the bond's line; both tests read
+      // the same from either end, so a bond is cut at both ends or neither.
+      const bool pq = (side(a, b, xp) >= 0) != (side(a, b, xq) >= 0);
+      return pq && side(xp, xq, a) * side(xp, xq, b) < 0;
+    });
+    if (cut == 0)
       throw DeckError(crack.mark.file, crack.mark.line, crack.mark.column, crack.mark.key_path,
                       "this crack cuts no bond: check that the segment crosses the body (x-y plane)");
   }
@@ -318,22 +305,28 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
 }
 
 void PdSolver::refresh() {
+  loads_current_ = false;
   x_prev_.assign(points_.view<Vec3>("x"), points_.view<Vec3>("x") + points_.size());
   compute_forces();
 }
 
-Index PdSolver::break_bonds(const std::function<bool(const Vec3&, const Vec3&)>& cut) {
-  const auto* x0 = points_.view<Vec3>("x0");
+Index PdSolver::cut_bonds(const std::function<bool(Index, Index)>& cut) {
   Index count = 0;
   for (Index p = 0; p < bonds_.points(); ++p)
     for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k) {
       const Index q = bonds_.other[k];
-      if (bonds_.broken[k] || !(cut(x0[p], x0[q]) || cut(x0[q], x0[p]))) continue;
+      if (bonds_.broken[k] || !(cut(p, q) || cut(q, p))) continue;
       bonds_.broken[k] = 1;
       ++count;
     }
-  compute_forces();
   return count / 2;  // each bond is stored at both of its ends (the test above is symmetric)
+}
+
+Index PdSolver::break_bonds(const std::function<bool(const Vec3&, const Vec3&)>& cut) {
+  const auto* x0 = points_.view<Vec3>("x0");
+  const Index count = cut_bonds([&](Index p, Index q) { return cut(x0[p], x0[q]); });
+  compute_forces();
+  return count;
 }
 
 void PdSolver::begin_stage(int stage, double damping) {
@@ -447,7 +440,9 @@ void PdSolver::step(double dt) {
   auto* x = points_.view<Vec3>("x");
   auto* v = points_.view<Vec3>("v");
   const auto* mass = points_.real("mass");
-  loads_.compute(scenario_, points_, time_);
+  // The loads at (x_n, t_n) are the previous step's end-of-step loads (same positions, same time):
+  // computed again only after the positions were changed from outside (refresh) or at the start.
+  if (!loads_current_) loads_.compute(scenario_, points_, time_);
   f0_ = loads_.total();
   const std::vector<Vec3>& f0 = f0_;
   const bool has_ext = !f0.empty();
@@ -479,6 +474,7 @@ void PdSolver::step(double dt) {
     while (next_fragment_time_ <= time_ * (1.0 + 1e-12)) next_fragment_time_ += fragment_interval_;
   }
   loads_.compute(scenario_, points_, time_);
+  loads_current_ = true;
   const std::vector<Vec3>& f1 = loads_.total();
   const auto* acc = points_.view<Vec3>("pd_accel");
   // Damping with the half-step velocity (explicit), as in the first half. The same pass finds the

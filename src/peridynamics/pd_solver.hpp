@@ -86,6 +86,9 @@ class PdSolver final : public Solver {
   Index break_bonds(const std::function<bool(const Vec3&, const Vec3&)>& cut);
 
  private:
+  /// Marks broken every intact bond p-q with cut(p, q) or cut(q, p), at both ends, with nothing
+  /// dissipated (pre-cracks); returns how many bonds. Forces are not re-evaluated.
+  Index cut_bonds(const std::function<bool(Index, Index)>& cut);
   /// Bond forces (per unit mass, into field pd_accel), stretches, failures, s0 for the next step,
   /// damage and the per-point bond energies.
   void compute_forces();
@@ -95,6 +98,7 @@ class PdSolver final : public Solver {
   PointSet pts_;
   FieldStore& points_;
   PointLoads loads_;
+  bool loads_current_ = false;  ///< loads_ holds the loads at the current positions and time
   pd::BondFamily bonds_;
   double dx_ = 0.0, delta_ = 0.0;
   int dim_ = 3;             ///< 3, or 2 (plane strain / plane stress: points in the x-y plane)

@@ -59,24 +59,26 @@ void PointLoads::compute(const Scenario& sc, const FieldStore& points, double ti
       const Vec3 c = in.center + time * in.velocity;
       const auto* x = points.view<Vec3>("x");
       const auto* vol0 = points.real("volume0");
-      std::vector<Vec3> f(static_cast<size_t>(n));
-      for_each(0, n, [&](Index p) {
-        if (body >= 0 && bid[p] != body) return;
+      // The force on point p (zero outside the indenter), evaluated in both passes below rather
+      // than stored: no per-step array.
+      auto force = [&](Index p) {
+        if (body >= 0 && bid[p] != body) return Vec3{};
         if (in.shape == "sphere") {
           const Vec3 d = x[p] - c;
           const double r = norm(d);
-          if (r < in.radius && r > 0.0) f[p] = (in.stiffness * vol0[p] * (in.radius - r) * (in.radius - r) / r) * d;
-        } else {
-          const double h = dot(x[p] - c, in.normal);  // < 0: inside the wall
-          if (h < 0.0) f[p] = (in.stiffness * vol0[p] * h * h) * in.normal;
+          if (r < in.radius && r > 0.0) return (in.stiffness * vol0[p] * (in.radius - r) * (in.radius - r) / r) * d;
+          return Vec3{};
         }
-      });
+        const double h = dot(x[p] - c, in.normal);  // < 0: inside the wall
+        return h < 0.0 ? (in.stiffness * vol0[p] * h * h) * in.normal : Vec3{};
+      };
       double r[3];
       deterministic_sum<3>(0, n, [&](Index p, double* o) {
-        for (int a = 0; a < 3; ++a) o[a] -= f[p][a];
+        const Vec3 f = force(p);
+        for (int a = 0; a < 3; ++a) o[a] -= f[a];
       }, r);
       reactions_.push_back(Vec3{{r[0], r[1], r[2]}});
-      for_each(0, n, [&](Index p) { fext_[p] += f[p]; });
+      for_each(0, n, [&](Index p) { fext_[p] += force(p); });
     } else if (load.type == "mms_axis_aligned") {
       const mms::AxisAligned mms;
       const auto* x0 = points.view<Vec3>("x0");
