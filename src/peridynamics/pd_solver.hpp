@@ -68,7 +68,6 @@ class PdSolver final : public Solver {
   const pd::BondFamily& bonds() const { return bonds_; }
   const pd::ContactList& contacts() const { return contact_; }
   double horizon() const { return delta_; }
-  double lattice_spacing() const { return dx_; }
   /// Micromodulus c of the bond between points of materials a and b, N/m^6.
   double micromodulus(int a, int b) const { return c_[a * nmat_ + b]; }
   /// Critical stretch s00 of the bond between materials a and b (infinite: no failure).
