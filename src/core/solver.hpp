@@ -24,8 +24,17 @@ struct EnergyTotals {
   double removed_energy = 0.0; ///< J (kinetic + internal) carried off by deleted particles
   Vec3 removed_momentum;       ///< kg m/s carried off by deleted particles
   double inserted_energy = 0.0;  ///< J (kinetic + internal) brought in by bodies activated after t = 0
-  /// Energy balance: kinetic + internal + removed - external - inserted; constant in an exact solution.
-  double total() const { return kinetic + internal + removed_energy - external - inserted_energy; }
+  // Work done on the points by the discretisation itself (J; negative when it removes energy),
+  // booked so that the balance closes (issue 13). Zero for solvers that have no such term.
+  double damping = 0.0;   ///< grid damping -c m v (stages and simulation.damping)
+  double contact = 0.0;   ///< multi-field grid contact (normal and frictional impulses)
+  double friction = 0.0;  ///< the frictional part of `contact` (already inside it)
+  double transfer = 0.0;  ///< the PIC share of a FLIP/PIC velocity update (relative to pure FLIP)
+  /// Energy balance: kinetic + internal + removed - external - inserted - the discretisation's
+  /// booked work; constant in an exact solution, and its change is the unexplained residual.
+  double total() const {
+    return kinetic + internal + removed_energy - external - inserted_energy - damping - contact - transfer;
+  }
 };
 
 /// The point that sets the stable time step (largest c + |v|): for diagnosing a collapsing step.

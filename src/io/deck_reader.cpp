@@ -48,7 +48,7 @@ int axis_from(const std::string& name) { return name == "x" ? 0 : name == "y" ? 
 namespace {
 
 const std::vector<std::string> kSections{"simulation", "grid",   "materials", "stages", "bodies",
-                                         "loads",      "cracks", "probes", "penetration", "output"};
+                                         "loads",      "cracks", "contact", "probes", "penetration", "output"};
 const std::vector<std::string> kFaces{"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
 const std::vector<std::string> kFaceBCs{"free", "fixed", "symmetry", "wall"};
 constexpr long kLongMax = LONG_MAX;
@@ -98,6 +98,7 @@ class Reader {
     bodies();
     loads();
     cracks();
+    contact();
     probes();
     check_stage_bodies();
     penetration();
@@ -389,6 +390,95 @@ class Reader {
       c.finish();
       sc_.cracks.push_back(crack);
     }
+  }
+
+  /// `contact`: velocity fields and Coulomb friction between bodies on the MPM grid. Bodies are
+  /// grouped into fields: each body its own, joined by single_field pairs (and, under the default
+  /// model single_field, every pair not listed as friction); a friction pair must end up in two
+  /// different fields.
+  void contact() {
+    DeckNode c = root_.map("contact", false);
+    ContactSpec& cs = sc_.contact;
+    cs.mark = c.mark();
+    const std::vector<std::string> models{"single_field", "friction"};
+    cs.model = c.choice("model", "single_field", models);
+    cs.friction = c.number("friction", 0.0, NumberRange::non_negative("1"));
+    DeckNode ps = c.list("pairs", false);
+    const int nb = static_cast<int>(sc_.bodies.size());
+    std::vector<int> parent(nb);
+    for (int b = 0; b < nb; ++b) parent[b] = b;
+    auto root = [&](int b) {
+      while (parent[b] != b) b = parent[b] = parent[parent[b]];
+      return b;
+    };
+    std::vector<std::vector<int>> listed(nb, std::vector<int>(nb, -1));  // pair index per body pair
+    for (size_t i = 0; i < ps.size(); ++i) {
+      DeckNode p = ps.element(i);
+      ContactPairSpec pair;
+      pair.mark = p.mark();
+      const std::vector<std::string> names = p.strings("bodies", {});
+      if (names.size() != 2) p.fail("bodies", "expected the names of two bodies, e.g. [jet, casing]");
+      for (const std::string& n : names)
+        if (!find_body(n)) p.fail("bodies", "unknown body '" + n + "'" + suggest(n, body_names()));
+      if (names[0] == names[1]) p.fail("bodies", "expected two different bodies");
+      pair.body_a = names[0];
+      pair.body_b = names[1];
+      pair.model = p.choice("model", "friction", models);
+      pair.friction = pair.model == "friction" ? p.number("friction", cs.friction, NumberRange::non_negative("1")) : 0.0;
+      p.finish();
+      const int a = body_index(sc_, pair.body_a), b = body_index(sc_, pair.body_b);
+      if (listed[a][b] >= 0)
+        p.fail("bodies", "the pair " + pair.body_a + "–" + pair.body_b + " is already listed (contact.pairs." +
+                             std::to_string(listed[a][b]) + ")");
+      listed[a][b] = listed[b][a] = static_cast<int>(i);
+      if (pair.model == "single_field") parent[root(a)] = root(b);
+      cs.pairs.push_back(pair);
+    }
+    c.finish();
+    if (cs.model == "single_field")
+      for (int a = 0; a < nb; ++a)
+        for (int b = a + 1; b < nb; ++b)
+          if (listed[a][b] < 0) parent[root(a)] = root(b);
+    // Fields numbered in order of their first body.
+    std::vector<int> field_of_root(nb, -1);
+    cs.body_field.assign(nb, 0);
+    cs.field_names.clear();
+    for (int b = 0; b < nb; ++b) {
+      const int r = root(b);
+      if (field_of_root[r] < 0) {
+        field_of_root[r] = static_cast<int>(cs.field_names.size());
+        cs.field_names.push_back(sc_.bodies[b].name);
+      } else {
+        cs.field_names[field_of_root[r]] += "+" + sc_.bodies[b].name;
+      }
+      cs.body_field[b] = field_of_root[r];
+    }
+    cs.fields = static_cast<int>(cs.field_names.size());
+    const int nf = cs.fields;
+    cs.field_friction.assign(static_cast<size_t>(nf) * nf, cs.friction);
+    std::vector<int> set_by(static_cast<size_t>(nf) * nf, -1);
+    for (size_t i = 0; i < cs.pairs.size(); ++i) {
+      const ContactPairSpec& pair = cs.pairs[i];
+      if (pair.model != "friction") continue;
+      const int fa = cs.body_field[body_index(sc_, pair.body_a)], fb = cs.body_field[body_index(sc_, pair.body_b)];
+      const DeckMark& m = pair.mark;
+      if (fa == fb)
+        throw DeckError(m.file, m.line, m.column, m.key_path,
+                        "bodies " + pair.body_a + " and " + pair.body_b + " share one velocity field (" +
+                            cs.field_names[fa] + ", joined by single_field pairs), so they cannot slide: "
+                            "list the pairs that join them as friction, or set contact.model: friction");
+      const size_t k = static_cast<size_t>(fa) * nf + fb;
+      if (set_by[k] >= 0 && cs.field_friction[k] != pair.friction)
+        throw DeckError(m.file, m.line, m.column, m.key_path,
+                        "friction " + format_number(pair.friction) + " between fields " + cs.field_names[fa] + " and " +
+                            cs.field_names[fb] + " contradicts contact.pairs." + std::to_string(set_by[k]) +
+                            " (friction " + format_number(cs.field_friction[k]) + ")");
+      cs.field_friction[k] = cs.field_friction[static_cast<size_t>(fb) * nf + fa] = pair.friction;
+      set_by[k] = set_by[static_cast<size_t>(fb) * nf + fa] = static_cast<int>(i);
+    }
+    if (nf > 1 && sc_.simulation.solver != "mpm")
+      c.fail("model", "separate velocity fields are an MPM grid contact; solver '" + sc_.simulation.solver +
+                          "' has its own contact (docs/deck.md)");
   }
 
   void loads() {

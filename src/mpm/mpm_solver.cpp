@@ -12,6 +12,7 @@
 #include "core/parallel.hpp"
 #include "core/system_memory.hpp"
 #include "geometry/seeding.hpp"
+#include "mpm/grid_contact.hpp"
 #include "points/mms_axis_aligned.hpp"
 #include "points/solver_registry.hpp"
 
@@ -78,18 +79,24 @@ MpmSolver::GridLayout MpmSolver::layout_grid(const Scenario& sc, int ghost) {
 }
 
 namespace {
-// Grid storage per node: mass and the four Vec3 arrays of GridData (for the memory estimate).
-constexpr double kBytesPerNode = sizeof(double) + 4 * sizeof(Vec3);
+// Grid storage per node and velocity field: mass and the four Vec3 arrays of GridData, plus the
+// mass gradient with several fields (for the memory estimate).
+double bytes_per_node(int fields) {
+  return fields * (sizeof(double) + 4 * sizeof(Vec3) + (fields > 1 ? sizeof(Vec3) : 0));
+}
 
-double grid_bytes(const GridGeometry& g) { return static_cast<double>(g.node_count()) * kBytesPerNode; }
+double grid_bytes(const GridGeometry& g, int fields) {
+  return static_cast<double>(g.node_count()) * bytes_per_node(fields);
+}
 }  // namespace
 
 MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials, Communicator comm)
     : scenario_(sc),
       comm_(comm),
       layout_(layout_grid(sc, kGhostLayers)),
-      pts_(sc, std::move(materials), SeedLattice{sc.grid, 0}, grid_bytes(layout_.geom),
-           fmt::format("{:.3g} grid nodes x {:g} B", static_cast<double>(layout_.geom.node_count()), kBytesPerNode),
+      pts_(sc, std::move(materials), SeedLattice{sc.grid, 0}, grid_bytes(layout_.geom, sc.contact.fields),
+           fmt::format("{:.3g} grid nodes x {:g} B", static_cast<double>(layout_.geom.node_count()),
+                       bytes_per_node(sc.contact.fields)),
            comm),
       points_(pts_.store()) {
   dimension_ = sc.simulation.dimension;
@@ -100,8 +107,10 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   sort_every_ = static_cast<int>(sc.solver_params.at("sort_every"));
   damping_ = sc.simulation.damping;
   grid_.geom = layout_.geom;
+  grid_.fields = sc.contact.fields;
+  body_field_.assign(sc.contact.body_field.begin(), sc.contact.body_field.end());
   slab_axis_ = dim_ - 1;
-  grid_.resize(grid_.geom.node_count());
+  grid_.resize(grid_.geom.node_count() * grid_.fields);
   sort_by_cell();
 }
 
@@ -224,9 +233,15 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
   double* gm = grid_.mass.data();
   Vec3* gp = grid_.velocity.data();
   Vec3* gf = grid_.force.data();
-  const Index nn = g.node_count();
-  for_each(0, nn, [&](Index i) {
-    if (!momentum_only) { gm[i] = 0.0; gf[i] = Vec3{}; }
+  const bool multi = grid_.fields > 1;
+  Vec3* gg = multi ? grid_.grad.data() : nullptr;
+  const Index nall = g.node_count() * grid_.fields;
+  for_each(0, nall, [&](Index i) {
+    if (!momentum_only) {
+      gm[i] = 0.0;
+      gf[i] = Vec3{};
+      if (multi) gg[i] = Vec3{};
+    }
     gp[i] = Vec3{};
   });
   const bool axisym = dimension_ == Dimension::Axisymmetric;
@@ -241,7 +256,8 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
     for (const PointLoads::SurfaceForce& sf : loads_.surface_forces()) {
       if constexpr (K == ShapeKind::BSpline3) bspline3_stencil<Dim>(g, sf.point, st);
       else linear_stencil<Dim>(g, sf.point, st);
-      for (int k = 0; k < st.count; ++k) gf[st.node[k]] += st.w[k] * sf.force;
+      const Index fo = field_offset(sf.index);
+      for (int k = 0; k < st.count; ++k) gf[fo + st.node[k]] += st.w[k] * sf.force;
     }
   }
   for (int color = 0; color < 2; ++color) {
@@ -253,8 +269,9 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
         stencil_of<Dim, K>(g, x[p], half[p], F[p], st);
         const double m = mass[p];
         const Vec3 mv = m * v[p];
+        const Index fo = field_offset(p);
         if (momentum_only) {
-          for (int k = 0; k < st.count; ++k) gp[st.node[k]] += st.w[k] * mv;
+          for (int k = 0; k < st.count; ++k) gp[fo + st.node[k]] += st.w[k] * mv;
           continue;
         }
         // f_I = -V_p sigma_p grad N_I + N_I f_ext,p (Sulsky et al. 1994, eq. 14); axisymmetric
@@ -264,9 +281,10 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
         // Surface tractions are spread from their own points below.
         const Vec3 fe = has_ext ? (has_trac ? fext[p] - ftrac[p] : fext[p]) : Vec3{};
         for (int k = 0; k < st.count; ++k) {
-          const Index I = st.node[k];
+          const Index I = fo + st.node[k];
           const double w = st.w[k];
           const Vec3& dN = st.grad[k];
+          if (multi) gg[I] += m * dN;  // outward vector of the field: the contact normal (grid_contact.hpp)
           gm[I] += w * m;
           gp[I] += w * mv;
           Vec3 f;
@@ -280,73 +298,104 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
   }
 }
 
-void MpmSolver::apply_velocity_bcs(std::vector<Vec3>& vel) {
+void MpmSolver::apply_velocity_bcs(Vec3* vel_all) {
+  // Every field's nodes obey the face conditions. The faces are at rest, so their reactions do no
+  // work on the material (what the constraint takes from the grid's kinetic energy within a step
+  // is a discretisation error, left in the energy residual).
   const GridGeometry& g = grid_.geom;
-  if (dimension_ == Dimension::Axisymmetric && layout_.box_lower[0] == 0.0) {
-    // The symmetry axis: radial velocity is zero on it (and on the ghost nodes beyond it) whatever
-    // the x_min condition says; without this the hoop rate v_r / r of the particles next to the
-    // axis is unbounded.
-    for (int i = 0; i <= layout_.box_first[0]; ++i)
-      for (int j = 0; j < g.nodes[1]; ++j) vel[g.node_index(i, j, 0)][0] = 0.0;
-  }
-  for (int a = 0; a < dim_; ++a) {
-    for (int side = 0; side < 2; ++side) {
-      const FaceBC bc = scenario_.grid.faces[2 * a + side];
-      if (bc == FaceBC::Free) continue;
-      // Nodes on the face and the ghost layers beyond it.
-      const int lo = side == 0 ? 0 : layout_.box_last[a];
-      const int hi = side == 0 ? layout_.box_first[a] : g.nodes[a] - 1;
-      const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
-      for (int i = lo; i <= hi; ++i)
-        for (int j = 0; j < g.nodes[b1]; ++j)
-          for (int k = 0; k < g.nodes[b2]; ++k) {
-            int ijk[3];
-            ijk[a] = i; ijk[b1] = j; ijk[b2] = k;
-            Vec3& u = vel[g.node_index(ijk[0], ijk[1], ijk[2])];
-            switch (bc) {
-              case FaceBC::Fixed: u = Vec3{}; break;
-              case FaceBC::Symmetry: u[a] = 0.0; break;
-              case FaceBC::Wall:  // rigid frictionless wall: no velocity into the wall, separation allowed
-                if (side == 0) u[a] = std::max(u[a], 0.0); else u[a] = std::min(u[a], 0.0);
-                break;
-              case FaceBC::Free: break;
-            }
-          }
+  const Index nn = g.node_count();
+  for (int f = 0; f < grid_.fields; ++f) {
+    Vec3* vel = vel_all + f * nn;
+    auto set = [&](Index I, const Vec3& u) { vel[I] = u; };
+    if (dimension_ == Dimension::Axisymmetric && layout_.box_lower[0] == 0.0) {
+      // The symmetry axis: radial velocity is zero on it (and on the ghost nodes beyond it) whatever
+      // the x_min condition says; without this the hoop rate v_r / r of the particles next to the
+      // axis is unbounded.
+      for (int i = 0; i <= layout_.box_first[0]; ++i)
+        for (int j = 0; j < g.nodes[1]; ++j) {
+          const Index I = g.node_index(i, j, 0);
+          set(I, Vec3{{0.0, vel[I][1], vel[I][2]}});
+        }
     }
+    for (int a = 0; a < dim_; ++a) {
+      for (int side = 0; side < 2; ++side) {
+        const FaceBC bc = scenario_.grid.faces[2 * a + side];
+        if (bc == FaceBC::Free) continue;
+        // Nodes on the face and the ghost layers beyond it.
+        const int lo = side == 0 ? 0 : layout_.box_last[a];
+        const int hi = side == 0 ? layout_.box_first[a] : g.nodes[a] - 1;
+        const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+        for (int i = lo; i <= hi; ++i)
+          for (int j = 0; j < g.nodes[b1]; ++j)
+            for (int k = 0; k < g.nodes[b2]; ++k) {
+              int ijk[3];
+              ijk[a] = i; ijk[b1] = j; ijk[b2] = k;
+              const Index I = g.node_index(ijk[0], ijk[1], ijk[2]);
+              Vec3 u = vel[I];
+              switch (bc) {
+                case FaceBC::Fixed: u = Vec3{}; break;
+                case FaceBC::Symmetry: u[a] = 0.0; break;
+                case FaceBC::Wall:  // rigid frictionless wall: no velocity into the wall, separation allowed
+                  if (side == 0) u[a] = std::max(u[a], 0.0); else u[a] = std::min(u[a], 0.0);
+                  break;
+                case FaceBC::Free: break;
+              }
+              set(I, u);
+            }
+      }
+    }
+  }
+}
+
+void MpmSolver::apply_contact(Vec3* vel, bool book, const Vec3* v_start) {
+  if (grid_.fields < 2) return;
+  const FieldGrid fg{grid_.fields, grid_.geom.node_count(), grid_.mass.data(), grid_.grad.data(),
+                     scenario_.contact.field_friction.data()};
+  const ContactWork w = apply_grid_contact(fg, vel, kTinyMass, v_start);
+  if (book) {
+    contact_work_ += comm_.sum(w.total);
+    friction_work_ += comm_.sum(w.friction);
   }
 }
 
 void MpmSolver::update_grid(double dt) {
   // v_I = p_I / m_I; a_I = f_I / m_I - c v_I (damping, thesis seed 000 eq. 5.1); explicit Euler.
-  const Index nn = grid_.geom.node_count();
-  for_each(0, nn, [&](Index i) {
+  // Contact acts on the mapped velocities and again on the updated ones (grid_contact.hpp); the
+  // acceleration handed to the particles is measured from the mapped velocity before contact, so
+  // that the particles receive both contact impulses (Nairn, Hammerquist & Smith 2020). The work of
+  // the damping and of the contact impulses (the grid's kinetic-energy change they make) is booked.
+  const Index nall = grid_.geom.node_count() * grid_.fields;
+  const bool multi = grid_.fields > 1;
+  for_each(0, nall, [&](Index i) {
+    const double m = grid_.mass[i];
+    grid_.velocity[i] = m > kTinyMass ? (1.0 / m) * grid_.velocity[i] : Vec3{};
+    if (multi) grid_.accel[i] = grid_.velocity[i];  // kept: the velocity before contact
+  });
+  apply_contact(grid_.velocity.data(), true);
+  double w[1];
+  deterministic_sum<1>(0, nall, [&](Index i, double* o) {
     const double m = grid_.mass[i];
     if (m > kTinyMass) {
-      const Vec3 v = (1.0 / m) * grid_.velocity[i];
-      grid_.velocity[i] = v;
+      const Vec3 v = grid_.velocity[i];
       const Vec3 a = (1.0 / m) * grid_.force[i] - damping_ * v;
       grid_.velocity_new[i] = v + dt * a;
+      // Work of the damping force -c m v over the step (midpoint velocity).
+      if (damping_ > 0.0) o[0] -= dt * damping_ * m * dot(v, 0.5 * (v + grid_.velocity_new[i]));
     } else {
-      grid_.velocity[i] = Vec3{};
       grid_.velocity_new[i] = Vec3{};
     }
-  });
-  apply_velocity_bcs(grid_.velocity_new);
-  // The acceleration handed to the particles is the constrained change of velocity.
-  for_each(0, nn, [&](Index i) {
-    grid_.accel[i] = (1.0 / dt) * (grid_.velocity_new[i] - grid_.velocity[i]);
-  });
-  if (damping_ > 0.0) {
-    // Work of the damping force -c m v over the step (midpoint velocity), booked as external work
-    // so that the energy balance of a damped run still closes.
-    double w[1];
-    deterministic_sum<1>(0, nn, [&](Index i, double* o) {
-      const double m = grid_.mass[i];
-      if (m > kTinyMass)
-        o[0] -= damping_ * m * dot(grid_.velocity[i], 0.5 * (grid_.velocity[i] + grid_.velocity_new[i]));
-    }, w);
-    external_work_ += dt * comm_.sum(w[0]);
+  }, w);
+  damping_work_ += comm_.sum(w[0]);
+  apply_velocity_bcs(grid_.velocity_new.data());
+  if (multi) {
+    apply_contact(grid_.velocity_new.data(), true, grid_.velocity.data());
+    apply_velocity_bcs(grid_.velocity_new.data());  // contact may have moved a face node
   }
+  // The acceleration handed to the particles is the constrained change of velocity.
+  for_each(0, nall, [&](Index i) {
+    const Vec3& v0 = multi ? grid_.accel[i] : grid_.velocity[i];
+    grid_.accel[i] = (1.0 / dt) * (grid_.velocity_new[i] - v0);
+  });
 }
 
 inline void MpmSolver::finish_point(Index p, const Mat3& l, const Vec3& disp, double dt,
@@ -380,19 +429,22 @@ void MpmSolver::grid_to_particles(double dt) {
   const double flip = flip_;
   const Index n = points_.size();
   if (defer) displacement_.resize(n);
+  const auto* mass = points_.real("mass");
   std::atomic<Index> bad{n}, out{n};
-  double pw[1];
-  deterministic_sum<1>(0, n, [&](Index p, double* o) {
+  double pw[2];
+  deterministic_sum<2>(0, n, [&](Index p, double* o) {
     Stencil<Dim> st;
     const Vec3 xp = x_[p];
     stencil_of<Dim, K>(g, xp, half[p], F_[p], st);
+    const Index fo = field_offset(p);
     Vec3 vg, acc;
     Mat3 l;
     for (int k = 0; k < st.count; ++k) {
-      const Vec3& u = vn[st.node[k]];
+      const Index I = fo + st.node[k];
+      const Vec3& u = vn[I];
       const double w = st.w[k];
       vg += w * u;
-      acc += w * ga[st.node[k]];
+      acc += w * ga[I];
       const Vec3& dN = st.grad[k];
       for (int i = 0; i < Dim; ++i)
         for (int j = 0; j < Dim; ++j) l(i, j) += u[i] * dN[j];
@@ -401,8 +453,12 @@ void MpmSolver::grid_to_particles(double dt) {
     if (axisym) l(2, 2) = vg[0] / xp[0];
     const Vec3 v_old = v[p];
     // FLIP/PIC blend: flip (v + dt a) + (1 - flip) v_grid (Brackbill & Ruppel 1986 FLIP).
-    v[p] = flip * (v_old + dt * acc) + (1.0 - flip) * vg;
+    const Vec3 v_flip = v_old + dt * acc;
+    v[p] = flip * v_flip + (1.0 - flip) * vg;
     if (has_ext) o[0] += dot(fext[p], 0.5 * (v_old + v[p]));
+    // What the PIC share of the blend takes from the kinetic energy of the pure FLIP update
+    // (FLIP alone conserves it to the order of the time step; PIC damps the grid's null space).
+    if (flip < 1.0) o[1] += 0.5 * mass[p] * (dot(v[p], v[p]) - dot(v_flip, v_flip));
     // Positions move with the grid velocity (x += dt sum N_I v_I).
     if (defer) {
       displacement_[p] = dt * vg;
@@ -410,7 +466,9 @@ void MpmSolver::grid_to_particles(double dt) {
     }
     finish_point(p, l, dt * vg, dt, bad, out);
   }, pw);
-  external_work_ += dt * comm_.sum(pw[0]);
+  comm_.sum(pw, 2);
+  external_work_ += dt * pw[0];
+  transfer_work_ += pw[1];
   first_bad_ = bad.load();
   first_out_ = out.load();
 }
@@ -429,10 +487,11 @@ void MpmSolver::velocity_gradient_from_grid(double dt) {
     Stencil<Dim> st;
     const Vec3 xp = x_[p];
     stencil_of<Dim, K>(g, xp, half[p], F_[p], st);
+    const Index fo = field_offset(p);
     Mat3 l;
     double vr = 0.0;
     for (int k = 0; k < st.count; ++k) {
-      const Vec3& u = vg[st.node[k]];
+      const Vec3& u = vg[fo + st.node[k]];
       for (int i = 0; i < Dim; ++i)
         for (int j = 0; j < Dim; ++j) l(i, j) += u[i] * st.grad[k][j];
       vr += st.w[k] * u[0];
@@ -470,12 +529,17 @@ void MpmSolver::step_impl(double dt) {
   if (musl_) {
     // Map the updated particle momenta back with the same shape functions, then L from them.
     particles_to_grid<Dim, K>(true);
-    const Index nn = grid_.geom.node_count();
-    for_each(0, nn, [&](Index i) {
+    const Index nall = grid_.geom.node_count() * grid_.fields;
+    for_each(0, nall, [&](Index i) {
       const double m = grid_.mass[i];
       grid_.velocity_new[i] = m > kTinyMass ? (1.0 / m) * grid_.velocity[i] : Vec3{};
     });
-    apply_velocity_bcs(grid_.velocity_new);
+    // Kinematics only (the particle velocities are final): the same constraints, nothing booked.
+    apply_velocity_bcs(grid_.velocity_new.data());
+    if (grid_.fields > 1) {
+      apply_contact(grid_.velocity_new.data(), false);
+      apply_velocity_bcs(grid_.velocity_new.data());
+    }
     velocity_gradient_from_grid<Dim, K>(dt);
   }
   // The step's kinematics are done: count it, so that failure messages, outputs and statistics
@@ -493,6 +557,7 @@ void MpmSolver::bind_fields() {
   L_ = points_.view<Mat3>("L");
   vol_ = points_.real("volume");
   vol0_ = points_.real("volume0");
+  body_ = points_.ints("body");
 }
 
 void MpmSolver::step(double dt) {
@@ -508,7 +573,15 @@ void MpmSolver::step(double dt) {
   handle_exits();
 }
 
-EnergyTotals MpmSolver::energies() const { return pts_.energies(reporting_scale(), external_work_); }
+EnergyTotals MpmSolver::energies() const {
+  const double k = reporting_scale();
+  EnergyTotals e = pts_.energies(k, external_work_);
+  e.damping = k * damping_work_;
+  e.contact = k * contact_work_;
+  e.friction = k * friction_work_;
+  e.transfer = k * transfer_work_;
+  return e;
+}
 
 namespace {
 

@@ -1,8 +1,9 @@
 #pragma once
 // Explicit Material Point Method (Sulsky, Chen & Schreyer, CMAME 118 (1994) 179; update-stress-
 // last and modified-USL as in Nairn, CMES 4 (2003) 649 and Buzzi et al. 2008), the solver of the
-// thesis seed 000 (ch. 5-6, run there in Uintah). One velocity field on the grid for all bodies,
-// which gives no-slip contact for free.
+// thesis seed 000 (ch. 5-6, run there in Uintah). By default one velocity field on the grid for all
+// bodies (no-slip, no separation); with `contact.model: friction` each body or group of bodies has
+// its own field and frictional contact where they meet (mpm/grid_contact.hpp).
 #include <atomic>
 #include <memory>
 #include <vector>
@@ -18,15 +19,19 @@
 
 namespace ballista {
 
-/// Grid arrays of one block (nodal mass, momentum/velocity, force).
+/// Grid arrays of one block (nodal mass, momentum/velocity, force), one set per velocity field,
+/// stored field after field (node I of field f at f * node_count + I).
 struct GridData {
   GridGeometry geom;
+  int fields = 1;
   std::vector<double> mass;      ///< kg
   std::vector<Vec3> velocity;    ///< m/s: momentum during P2G, then velocity at t_n
   std::vector<Vec3> force;       ///< N: internal + external during P2G
   std::vector<Vec3> velocity_new;///< m/s at t_{n+1} after boundary conditions
   std::vector<Vec3> accel;       ///< m/s^2 over the step (after boundary conditions)
+  std::vector<Vec3> grad;        ///< kg/m: sum_p m_p grad N_I, outward from the field's material (several fields only)
   void resize(Index n) {
+    if (fields > 1) grad.assign(n, Vec3{});
     mass.assign(n, 0.0);
     velocity.assign(n, Vec3{});
     force.assign(n, Vec3{});
@@ -70,7 +75,12 @@ class MpmSolver final : public Solver {
                     std::atomic<Index>& out);
   void bind_fields();
   void update_grid(double dt);
-  void apply_velocity_bcs(std::vector<Vec3>& vel);
+  /// Imposes the face and axis conditions on every field's nodal velocities.
+  void apply_velocity_bcs(Vec3* vel);
+  /// Multi-field contact on `vel` (every field); books its work if `book` (v_start: grid_contact.hpp).
+  void apply_contact(Vec3* vel, bool book, const Vec3* v_start = nullptr);
+  /// Offset of point p's velocity field in the grid arrays.
+  Index field_offset(Index p) const { return grid_.fields > 1 ? body_field_[body_[p]] * grid_.geom.node_count() : 0; }
   void handle_exits();
   [[noreturn]] void fail(Index p, const std::string& what) const;
   int stencil_reach_now() const;
@@ -107,6 +117,8 @@ class MpmSolver final : public Solver {
   Mat3* L_ = nullptr;
   double* vol_ = nullptr;
   const double* vol0_ = nullptr;
+  const std::int64_t* body_ = nullptr;
+  std::vector<Index> body_field_;  ///< velocity field of each body (contact.body_field)
   std::vector<Index> slab_start_, slab_points_;      ///< CSR lists of point indices per slab
   std::vector<int> slab_of_point_;                   ///< scratch: slab of each point
   std::vector<Index> slab_fill_;                     ///< scratch: fill cursor per slab
@@ -114,7 +126,11 @@ class MpmSolver final : public Solver {
   int slab_axis_ = 2, slab_width_ = 2;
   double time_ = 0.0;
   long steps_ = 0;
-  double external_work_ = 0.0;  ///< per-point sum (not yet scaled)
+  // Energy bookkeeping, per-point sums (not yet scaled; EnergyTotals names each term).
+  double external_work_ = 0.0;
+  double damping_work_ = 0.0;
+  double contact_work_ = 0.0, friction_work_ = 0.0;
+  double transfer_work_ = 0.0;
 };
 
 }  // namespace ballista

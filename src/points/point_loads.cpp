@@ -49,7 +49,7 @@ void PointLoads::compute(const Scenario& sc, const FieldStore& points, double ti
         for (int i = 0; i < 3; ++i) offset[i] = area[p][i] / a * half[p][i];
         fext_[p] += f;
         ftrac_[p] += f;
-        surface_forces_.push_back({x[p] + F[p] * offset, f});
+        surface_forces_.push_back({x[p] + F[p] * offset, f, p});
       }
     } else if (load.type == "indenter") {
       // LAMMPS fix indent (sphere and plane): F = K (R - r)^2 pushing the point out, with K a force

@@ -17,6 +17,7 @@ class PointLoads {
   struct SurfaceForce {
     Vec3 point;  ///< m
     Vec3 force;  ///< N
+    Index index = 0;  ///< the point it acts on
   };
 
   /// Forces of every load of `sc` on the points at `time`. Without loads nothing is allocated.

@@ -111,7 +111,8 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   std::vector<std::string> columns = {"time", "step", "dt", "kinetic_energy", "internal_energy",
                                       "plastic_work", "external_work", "total_energy", "energy_drift",
                                       "mass", "momentum_x", "momentum_y", "momentum_z",
-                                      "removed_mass", "removed_energy", "inserted_energy"};
+                                      "removed_mass", "removed_energy", "inserted_energy",
+                                      "damping_work", "contact_work", "friction_work", "transfer_work"};
   for (const auto& pr : sc.probes) columns.push_back(pr.name);
   // Stages: the preparation stages of the deck, then the main stage (index nstages).
   const int nstages = static_cast<int>(sc.stages.size());
@@ -133,7 +134,11 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
 
   const EnergyTotals e0 = solver->energies();
   const double total0 = e0.total();
-  double energy_scale = std::abs(e0.kinetic) + std::abs(e0.internal) + std::abs(e0.external);
+  // The scale of the energy residual: kinetic + |internal| + |work of the loads and of damping|.
+  auto scale_of = [](const EnergyTotals& e) {
+    return std::abs(e.kinetic) + std::abs(e.internal) + std::abs(e.external) + std::abs(e.damping);
+  };
+  double energy_scale = scale_of(e0);
   double worst_drift = 0.0, min_dt = std::numeric_limits<double>::infinity();
   StepLimiter limiter;  // the point that set the smallest stable step (to within 10 %)
   double limiter_dt = std::numeric_limits<double>::infinity(), limiter_time = 0.0;
@@ -147,7 +152,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   auto drift_of = [&](const EnergyTotals& e) {
     // Energy drift relative to the largest energy scale seen so far (kinetic + |internal| +
     // |external|), so problems that start at rest and are loaded later are measured sensibly.
-    energy_scale = std::max(energy_scale, std::abs(e.kinetic) + std::abs(e.internal) + std::abs(e.external));
+    energy_scale = std::max(energy_scale, scale_of(e));
     return energy_scale > 0 ? std::abs(e.total() - total0) / energy_scale : 0.0;
   };
   int stage = 0;              // current stage; nstages = main
@@ -158,7 +163,8 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     std::vector<double> row = {solver->time(), static_cast<double>(solver->steps()), dt, e.kinetic,
                                e.internal, e.plastic, e.external, e.total(), drift, e.mass,
                                e.momentum[0], e.momentum[1], e.momentum[2], e.removed_mass,
-                               e.removed_energy, e.inserted_energy};
+                               e.removed_energy, e.inserted_energy, e.damping, e.contact, e.friction,
+                               e.transfer};
     for (double v : probe_values(e)) row.push_back(v);
     if (nstages > 0) row.push_back(stage);
     for (double v : solver->history_values()) row.push_back(v);
@@ -406,6 +412,13 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   en["removed_mass"] = e.removed_mass;
   en["removed_energy"] = e.removed_energy;
   en["inserted_energy"] = e.inserted_energy;
+  en["damping_work"] = e.damping;
+  en["contact_work"] = e.contact;
+  en["friction_work"] = e.friction;
+  en["transfer_work"] = e.transfer;
+  en["scale"] = energy_scale;
+  en["residual"] = e.total() - total0;
+  en["residual_over_scale"] = energy_scale > 0 ? (e.total() - total0) / energy_scale : 0.0;
   // A number that is not a number is garbage, never a success (issue 11): the run is failed and
   // the summary says which values (they are written as null).
   const std::vector<std::string> bad = non_finite_numbers(summary.root());

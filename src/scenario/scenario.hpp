@@ -206,6 +206,30 @@ struct PenetrationSpec {
   DeckMark mark;
 };
 
+/// One entry of `contact.pairs`: how two bodies meet on the MPM grid.
+struct ContactPairSpec {
+  std::string body_a, body_b;
+  std::string model;      ///< single_field (one shared velocity field) | friction
+  double friction = 0.0;  ///< Coulomb coefficient of a friction pair
+  DeckMark mark;
+};
+
+/// Contact between bodies on the MPM grid. `single_field` (the default) gives every body one
+/// velocity field (no-slip, no separation); `friction` gives each body (or each group of bodies
+/// joined by single_field pairs) its own velocity field with Coulomb friction where fields meet
+/// (Bardenhagen et al., CMAME 187 (2000) 529; CMES 2 (2001) 509; thesis seed 000 ch. 2, Uintah).
+struct ContactSpec {
+  std::string model = "single_field";  ///< between bodies not listed in pairs
+  double friction = 0.0;               ///< Coulomb coefficient of friction pairs without their own
+  std::vector<ContactPairSpec> pairs;
+  // Resolved by the deck reader:
+  int fields = 1;                      ///< number of velocity fields
+  std::vector<int> body_field;         ///< velocity field of each body (deck order)
+  std::vector<std::string> field_names;  ///< bodies of each field joined by '+'
+  std::vector<double> field_friction;  ///< fields x fields Coulomb coefficients (row-major)
+  DeckMark mark;
+};
+
 struct Scenario {
   std::string file;               ///< deck path
   SimulationSpec simulation;
@@ -217,6 +241,7 @@ struct Scenario {
   std::vector<BodySpec> bodies;
   std::vector<LoadSpec> loads;
   std::vector<CrackSpec> cracks;  ///< pre-cracks (solvers with bonds only)
+  ContactSpec contact;            ///< velocity fields and friction between bodies (MPM)
   std::vector<ProbeSpec> probes;
   std::vector<StageSpec> stages;  ///< preparation stages before the main stage
   PenetrationSpec penetration;

@@ -1,0 +1,44 @@
+#pragma once
+// Multi-velocity-field contact on the MPM grid (Bardenhagen, Brackbill & Sulsky, CMAME 187 (2000)
+// 529; Bardenhagen, Guilkey, Roessig, Brackbill, Witzel & Foster, CMES 2 (2001) 509; Uintah's
+// friction contact, thesis seed 000 ch. 2). Applied twice per step, after the momenta are mapped
+// to the grid and after they are updated (Nairn, Hammerquist & Smith, CMAME 362 (2020) 112859). Every field (a body, or bodies joined into one) has its own nodal mass and
+// momentum. At a node where two or more fields have mass, each field's velocity is compared with
+// the centre-of-mass velocity; a field approaching the others along the contact normal loses its
+// normal relative velocity (no interpenetration) and its tangential relative velocity is cut by
+// Coulomb friction mu times the normal correction, or stopped (stick). Fields that separate are
+// left alone.
+#include "core/parallel.hpp"
+#include "core/tensor.hpp"
+
+namespace ballista {
+
+/// Work of the contact impulses of one pass (J, per-point-sum units), and the part of it done by
+/// the tangential (friction) impulses.
+struct ContactWork {
+  double total = 0.0;
+  double friction = 0.0;
+};
+
+/// The grid arrays of `fields` velocity fields, each `nodes` long, stored field after field.
+struct FieldGrid {
+  int fields = 1;
+  Index nodes = 0;
+  const double* mass = nullptr;  ///< kg per field and node
+  /// sum_p m_p grad N_I(x_p) per field and node, kg/m: minus the gradient of the field's mass
+  /// density at the node, i.e. it points out of the field's material.
+  const Vec3* grad = nullptr;
+  const double* friction = nullptr;  ///< fields x fields Coulomb coefficients
+};
+
+/// Applies contact to the nodal velocities `vel` (fields x nodes) in place and returns the work of
+/// the contact impulses m c: with the midpoint velocity (v_start + v_after) / 2 when `v_start` (the
+/// velocity at the start of the step, before the nodal forces acted) is given, otherwise with
+/// (v_before + v_after) / 2, which is the kinetic-energy change the correction makes. Nodes lighter than tiny_mass carry no material. The contact
+/// normal of field k at a node is the unit vector of (field k's outward vector - the sum of the
+/// other fields'), i.e. out of k towards the others (an "average" of the two bodies' mass-gradient
+/// normals, as in Nairn's multimaterial MPM, which makes the two normals of a pair exactly
+/// opposite so that the pair's momentum is conserved).
+ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, const Vec3* v_start = nullptr);
+
+}  // namespace ballista
