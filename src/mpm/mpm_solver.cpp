@@ -453,12 +453,14 @@ void MpmSolver::grid_to_particles(double dt) {
     if (axisym) l(2, 2) = vg[0] / xp[0];
     const Vec3 v_old = v[p];
     // FLIP/PIC blend: flip (v + dt a) + (1 - flip) v_grid (Brackbill & Ruppel 1986 FLIP).
-    const Vec3 v_flip = v_old + dt * acc;
-    v[p] = flip * v_flip + (1.0 - flip) * vg;
+    v[p] = flip * (v_old + dt * acc) + (1.0 - flip) * vg;
     if (has_ext) o[0] += dot(fext[p], 0.5 * (v_old + v[p]));
     // What the PIC share of the blend takes from the kinetic energy of the pure FLIP update
     // (FLIP alone conserves it to the order of the time step; PIC damps the grid's null space).
-    if (flip < 1.0) o[1] += 0.5 * mass[p] * (dot(v[p], v[p]) - dot(v_flip, v_flip));
+    if (flip < 1.0) {
+      const Vec3 v_flip = v_old + dt * acc;
+      o[1] += 0.5 * mass[p] * (dot(v[p], v[p]) - dot(v_flip, v_flip));
+    }
     // Positions move with the grid velocity (x += dt sum N_I v_I).
     if (defer) {
       displacement_[p] = dt * vg;
