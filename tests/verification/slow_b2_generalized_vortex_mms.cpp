@@ -15,8 +15,8 @@ using namespace ballista::verification;
 
 TEST(B2GeneralizedVortexMmsSlow, ThreeResolutionsEveryShapeFunction) {
   const std::vector<double> h = {0.0625, 0.03125, 0.015625};
-  std::printf("B2 generalized vortex MMS, t = 0.1, USL, FLIP:\\n");
-  std::printf("  %9s %10s %10s %8s %14s %14s %8s %8s\\n", "shape", "cell_size", "particles", "steps", "L2 [m]",
+  std::printf("B2 generalized vortex MMS, t = 0.1, USL, FLIP:\n");
+  std::printf("  %9s %10s %10s %8s %14s %14s %8s %8s\n", "shape", "cell_size", "particles", "steps", "L2 [m]",
               "Linf [m]", "order", "ord.Linf");
   for (const std::string sf : {"linear", "gimp", "cpdi", "bspline3"}) {
     std::vector<MmsError> err;
@@ -24,7 +24,7 @@ TEST(B2GeneralizedVortexMmsSlow, ThreeResolutionsEveryShapeFunction) {
       err.push_back(run_vortex(h[k], sf));
       const double o = k ? observed_order(err[k - 1].l2, err[k].l2) : NAN;
       const double oi = k ? observed_order(err[k - 1].linf, err[k].linf) : NAN;
-      std::printf("  %9s %10.5g %10ld %8ld %14.6e %14.6e %8.3f %8.3f\\n", sf.c_str(), h[k], err[k].particles,
+      std::printf("  %9s %10.5g %10ld %8ld %14.6e %14.6e %8.3f %8.3f\n", sf.c_str(), h[k], err[k].particles,
                   err[k].steps, err[k].l2, err[k].linf, o, oi);
       report(sf + "_L2_h" + std::to_string(k), err[k].l2);
       if (k) report(sf + "_order_L2_" + std::to_string(k - 1) + "_" + std::to_string(k), o);

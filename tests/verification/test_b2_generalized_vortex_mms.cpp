@@ -25,9 +25,9 @@ void check_order(const std::string& sf, double min_order, double max_l2_fine) {
   const double h0 = 0.0625, h1 = 0.03125;
   const MmsError e0 = run_vortex(h0, sf), e1 = run_vortex(h1, sf);
   const double order = observed_order(e0.l2, e1.l2);
-  std::printf("B2 generalized vortex, t = 0.1, %s, USL, FLIP:\\n", sf.c_str());
-  std::printf("  h = %.5g: L2 %.4e Linf %.4e (%ld particles, %ld steps)\\n", h0, e0.l2, e0.linf, e0.particles, e0.steps);
-  std::printf("  h = %.5g: L2 %.4e Linf %.4e (%ld particles, %ld steps)\\n", h1, e1.l2, e1.linf, e1.particles, e1.steps);
+  std::printf("B2 generalized vortex, t = 0.1, %s, USL, FLIP:\n", sf.c_str());
+  std::printf("  h = %.5g: L2 %.4e Linf %.4e (%ld particles, %ld steps)\n", h0, e0.l2, e0.linf, e0.particles, e0.steps);
+  std::printf("  h = %.5g: L2 %.4e Linf %.4e (%ld particles, %ld steps)\n", h1, e1.l2, e1.linf, e1.particles, e1.steps);
   report(sf + "_L2_coarse", e0.l2);
   report(sf + "_L2_fine", e1.l2);
   report(sf + "_order_L2", order);
