@@ -306,7 +306,19 @@ class Reader {
       }
       // Penetrators are fired in the main stage; other bodies start with the first stage.
       body.activation_stage = stage_ref(b, "activation_stage", body.penetrator.kind.empty() ? 0 : static_cast<int>(sc_.stages.size()));
-      body.initial_state = b.choice("initial_state", "none", {"none", "mms_axis_aligned"});
+      body.initial_state = b.choice("initial_state", "none",
+                                    {"none", "mms_axis_aligned", "mms_generalized_vortex", "cantilever_mode1"});
+      if (body.initial_state == "cantilever_mode1") {
+        if (body.shape.type != "box")
+          b.fail("initial_state", "cantilever_mode1 needs a box body (the beam along x, clamped at its x_min face); body '" +
+                                      body.name + "' is a " + body.shape.type);
+        if (body.velocity[0] != 0.0 || body.velocity[2] != 0.0 || body.radial_speed != 0.0)
+          b.fail("velocity", "with initial_state cantilever_mode1 the velocity is the tip speed along y: [0, v, 0]");
+      }
+      if (body.initial_state == "mms_generalized_vortex" &&
+          !(body.shape.type == "tube" && body.shape.axis == 2 && body.shape.center[0] == 0.0 && body.shape.center[1] == 0.0))
+        b.fail("initial_state", "mms_generalized_vortex needs a tube about the z axis through the origin (the annulus "
+                                "0.75 <= R <= 1.25 of CATALOGUE B2)");
       b.finish();
       Vec3 lo, hi;
       shape_bounds(body.shape, lo, hi);
@@ -487,7 +499,8 @@ class Reader {
       DeckNode l = ls.element(i);
       LoadSpec load;
       load.mark = l.mark();
-      load.type = l.choice("type", {"body_force", "gravity", "pressure", "confinement", "indenter", "mms_axis_aligned"});
+      load.type = l.choice("type", {"body_force", "gravity", "pressure", "confinement", "indenter", "mms_axis_aligned",
+                                    "mms_generalized_vortex"});
       if (load.type == "confinement") {
         confinement(l, load);
         continue;
@@ -521,7 +534,7 @@ class Reader {
         }
         load.pressure = l.number("pressure", NumberRange::any("Pa"));
         load.curve = curve(l);
-      } else {  // mms_axis_aligned
+      } else {  // mms_axis_aligned, mms_generalized_vortex
         load.body = body_ref(l, true);
       }
       l.finish();

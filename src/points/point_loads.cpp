@@ -2,6 +2,7 @@
 
 #include "core/parallel.hpp"
 #include "points/mms_axis_aligned.hpp"
+#include "points/mms_generalized_vortex.hpp"
 
 namespace ballista {
 
@@ -81,6 +82,12 @@ void PointLoads::compute(const Scenario& sc, const FieldStore& points, double ti
       for_each(0, n, [&](Index p) { fext_[p] += force(p); });
     } else if (load.type == "mms_axis_aligned") {
       const mms::AxisAligned mms;
+      const auto* x0 = points.view<Vec3>("x0");
+      for_each(0, n, [&](Index p) {
+        if (body < 0 || bid[p] == body) fext_[p] += mass[p] * mms.body_force(x0[p], time);
+      });
+    } else if (load.type == "mms_generalized_vortex") {
+      const mms::GeneralizedVortex mms;
       const auto* x0 = points.view<Vec3>("x0");
       for_each(0, n, [&](Index p) {
         if (body < 0 || bid[p] == body) fext_[p] += mass[p] * mms.body_force(x0[p], time);

@@ -1,7 +1,7 @@
 #pragma once
 // External loads on points, shared by every solver: body forces (gravity), surface pressure with
 // load curves (Nanson-mapped onto the current surface), rigid indenters (LAMMPS fix indent) and the
-// manufactured body force of CATALOGUE B1. Recomputed at the start of each step.
+// manufactured body forces of CATALOGUE B1 and B2. Recomputed at the start of each step.
 #include <string>
 #include <vector>
 

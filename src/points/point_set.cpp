@@ -10,7 +10,9 @@
 #include "core/parallel.hpp"
 #include "core/system_memory.hpp"
 #include "geometry/seeding.hpp"
+#include "points/cantilever_mode.hpp"
 #include "points/mms_axis_aligned.hpp"
+#include "points/mms_generalized_vortex.hpp"
 
 namespace ballista {
 
@@ -91,6 +93,23 @@ PointSet::PointSet(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
         stress[p] = materials_[mi]->initial_stress(F[p]);
         vol[p] = vol0[p] * det(F[p]);
       }
+    } else if (body.initial_state == "mms_generalized_vortex") {
+      // CATALOGUE B2 at t = 0: undeformed (alpha = 0), spinning with v = R alpha_t(R, 0) e_theta.
+      const mms::GeneralizedVortex mms;
+      const auto* x0 = points_.view<Vec3>("x0");
+      auto* v = points_.view<Vec3>("v");
+      for (Index p = n0; p < points_.size(); ++p) v[p] = mms.velocity(x0[p], 0.0);
+    } else if (body.initial_state == "cantilever_mode1") {
+      // CATALOGUE B4: the box is a beam clamped at its x_min face; the body's velocity (y
+      // component, checked by the deck reader) becomes the tip speed of the first bending mode.
+      beam::CantileverMode1 mode;
+      mode.root = body.shape.lower[0];
+      mode.length = body.shape.upper[0] - body.shape.lower[0];
+      mode.mid = 0.5 * (body.shape.lower[1] + body.shape.upper[1]);
+      mode.tip_speed = body.velocity[1];
+      const auto* x0 = points_.view<Vec3>("x0");
+      auto* v = points_.view<Vec3>("v");
+      for (Index p = n0; p < points_.size(); ++p) v[p] = mode.velocity(x0[p]);
     }
   }
   for (size_t k = 0; k < sc.loads.size(); ++k) {

@@ -115,7 +115,7 @@ struct BodySpec {
   std::vector<ShapeSpec> cutouts;
   double activation_time = 0.0;  ///< s after the start of the activation stage; inert and invisible before
   int activation_stage = 0;      ///< index of the stage that starts the activation clock (stages.size() = main)
-  std::string initial_state = "none";  ///< none | mms_axis_aligned
+  std::string initial_state = "none";  ///< none | mms_axis_aligned | mms_generalized_vortex | cantilever_mode1
   PenetratorSpec penetrator;     ///< rod / jet description (kind empty for plain bodies)
   std::vector<SegmentSpec> segments;  ///< rods and jets: the pieces seeded (empty for plain bodies)
   DeckMark mark;
@@ -135,7 +135,7 @@ struct IndenterSpec {
 };
 
 struct LoadSpec {
-  std::string type;        ///< body_force | pressure | mms_axis_aligned | indenter (gravity is a body_force)
+  std::string type;        ///< body_force | pressure | mms_axis_aligned | mms_generalized_vortex | indenter (gravity is a body_force)
   std::string body;        ///< body name ("" = all bodies for body_force and indenter)
   Vec3 acceleration;       ///< body_force, m/s^2
   IndenterSpec indenter;   ///< indenter
