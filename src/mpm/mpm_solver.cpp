@@ -105,6 +105,7 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   musl_ = sc.solver_params.choices.at("update") == "musl";
   flip_ = sc.solver_params.at("flip");
   sort_every_ = static_cast<int>(sc.solver_params.at("sort_every"));
+  anti_locking_ = parse_anti_locking(sc.solver_params.choices.at("anti_locking"));
   damping_ = sc.simulation.damping;
   grid_.geom = layout_.geom;
   grid_.fields = sc.contact.fields;
@@ -550,6 +551,8 @@ void MpmSolver::step_impl(double dt) {
   ++steps_;
   if (first_bad_ < points_.size())
     fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0 or NaN)");
+  if (anti_locking_ == AntiLocking::FBar)  // volumetric increment averaged per cell (anti_locking.hpp)
+    fbar_.apply(grid_.geom, dimension_, dt, {points_.size(), x_, L_, F_, vol_, vol0_});
   pts_.update_stress(dt, steps_, time_);
 }
 
@@ -601,7 +604,13 @@ std::vector<ParamSpec> mpm_params() {
   ParamSpec flip{"flip", "1", "FLIP fraction of the velocity update (1 FLIP, 0 PIC)", false, 1.0, 0.0, 1.0};
   ParamSpec sort{"sort_every", "steps", "steps between particle sorts by cell (0 = never)", false, 20, 0, 2147483647.0};
   sort.integer = true;
-  return {shape, update, flip, sort};
+  ParamSpec locking{"anti_locking", "-",
+                    "none, or fbar: cell-averaged volumetric deformation against locking at nu -> 0.5 (Coombs et al., "
+                    "CMAME 333 (2018) 1)",
+                    false, 0};
+  locking.choices = anti_locking_names();
+  locking.default_choice = "none";
+  return {shape, update, flip, sort, locking};
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "core/communicator.hpp"
 #include "core/solver.hpp"
 #include "materials/material.hpp"
+#include "mpm/anti_locking.hpp"
 #include "mpm/grid_geometry.hpp"
 #include "mpm/shape_functions.hpp"
 #include "points/point_loads.hpp"
@@ -107,6 +108,8 @@ class MpmSolver final : public Solver {
   double flip_;
   int sort_every_ = 20;  ///< steps between particle sorts (0 = never)
   double damping_;
+  AntiLocking anti_locking_ = AntiLocking::None;  ///< mpm.anti_locking
+  CellFBar fbar_;                                 ///< F-bar scratch (anti_locking: fbar)
   GridData grid_;
   int ghost_ = kGhostLayers;    ///< ghost node layers beyond the box on each side
   std::vector<Vec3> displacement_;  ///< MUSL: dt * grid velocity at each point this step, m
