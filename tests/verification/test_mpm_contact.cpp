@@ -5,8 +5,11 @@
 //  - two identical elastic bars meeting head-on at +-v0 (uniaxial strain) separate after the
 //    contact time 2 L / c with their velocities reversed, without sticking and without
 //    interpenetrating, and total momentum is conserved exactly;
-//  - the deck's single_field model glues the bars instead (the contrast the option exists for).
+//  - a strengthless rod into a strengthless target, frictionless, penetrates at the hydrodynamic
+//    rate U_h = V / (1 + sqrt(rho_t / rho_p)) (Birkhoff et al. 1948; thesis seed 000 ch. 3).
+#include <algorithm>
 #include <cmath>
+#include <vector>
 #include <cstdio>
 #include <string>
 
@@ -73,6 +76,23 @@ bodies:
   - {name: left, material: soft, shape: {type: box, lower: [0.1, 0.0], upper: [0.25, 0.02]}, velocity: [2.0, 0]}
   - {name: right, material: soft, shape: {type: box, lower: [0.255, 0.0], upper: [0.405, 0.02]}, velocity: [-2.0, 0]}
 contact: {model: friction, friction: 0}
+)";
+
+const char* kHydro = R"(
+simulation: {solver: mpm, dimension: axisymmetric, end_time: 26.0e-6, cfl: 0.3, on_particle_exit: delete}
+mpm: {shape_function: gimp, update: musl, flip: 0.99}
+grid: {lower: [0.0, -2.0e-3], upper: [16.0e-3, 62.0e-3], cell_size: 0.5e-3, boundary: {x_min: symmetry}}
+materials:
+  rod_fluid: {model: j2_plasticity, density: 7850, bulk_modulus: 160.0e9, shear_modulus: 80.0e9, yield_stress: 1.0e3}
+  target_fluid: {model: j2_plasticity, density: 2700, bulk_modulus: 70.0e9, shear_modulus: 26.0e9, yield_stress: 1.0e3}
+bodies:
+  - {name: target, material: target_fluid, shape: {type: cylinder, center: [0, 0], axis: y, radius: 15.0e-3, length: 40.0e-3}}
+  - name: rod
+    material: rod_fluid
+    rod: {nose: [0, 40.5e-3], axis: y, direction: -1, diameter: 4.0e-3, length: 20.0e-3, speed: 1500}
+contact: {model: friction, friction: 0}
+penetration: {penetrator: rod, target: target}
+output: {interval: 0, history_every: 5}
 )";
 
 }  // namespace
@@ -149,4 +169,39 @@ TEST(MpmContact, ElasticBarsReboundAndSeparate) {
   // touch; the 5 mm gap closes at 4 m/s by 1.25 ms (GIMP fields meet up to a cell earlier).
   EXPECT_GT(contact_end, L / kCp);
   EXPECT_LT(contact_end, 1.25e-3 + L / kCp);
+}
+
+TEST(MpmContact, StrengthlessRodPenetratesAtTheHydrodynamicRate) {
+  // Steel-density rod (7850) at 1500 m/s into an aluminium-density target (2700), both with a
+  // 1 kPa yield stress (strengthless) and stiff bulk moduli (the 1.2 GPa stagnation pressure
+  // compresses them by < 2 %, so the incompressible Bernoulli balance holds):
+  // U_h = V / (1 + sqrt(rho_t / rho_p)) = 945.5 m/s. The rate is the least-squares slope of the
+  // depth between 6 and 26 us (the rod, 20 mm long, erodes at V - U = 555 m/s: it lasts 36 us).
+  // Measured at 0.5 mm (4 cells across the rod's radius): U / U_h = 0.994 (frictionless fields),
+  // 0.993 with one field; at 1 mm (2 cells) 0.930. The 3 % bound separates the resolved case from
+  // the under-resolved one.
+  const double V = 1500.0, rho_p = 7850.0, rho_t = 2700.0;
+  const double Uh = V / (1.0 + std::sqrt(rho_t / rho_p));
+  TempDir dir("hydro");
+  const RunResult r = run_into(parse_deck(kHydro, "hydro.yaml"), dir.str());
+  ASSERT_TRUE(r.ok) << r.error;
+  const History h = read_history(dir.str() + "/history.csv");
+  const std::vector<double>& t = h["penetration_time"];
+  const std::vector<double>& d = h["penetration_depth"];
+  double n = 0, st = 0, sd = 0, stt = 0, std_ = 0;
+  for (size_t k = 0; k < h.rows; ++k) {
+    if (t[k] < 6.0e-6) continue;
+    n += 1; st += t[k]; sd += d[k]; stt += t[k] * t[k]; std_ += t[k] * d[k];
+  }
+  ASSERT_GT(n, 10);
+  const double U = (n * std_ - st * sd) / (n * stt - st * st);
+  double worst = 0.0;
+  for (double e : h["energy_drift"]) worst = std::max(worst, e);
+  std::printf("strengthless rod: U = %.1f m/s, U_h = %.1f m/s, U/U_h = %.4f, worst energy residual %.4f\n", U, Uh,
+              U / Uh, worst);
+  report("hydro_U_over_Uh", U / Uh);
+  EXPECT_NEAR(U / Uh, 1.0, 0.03);
+  // Energy audit: measured worst residual 0.005 (the PIC share of flip 0.99 and the contact work
+  // booked); 2 % is the issue's bound for a verification problem.
+  EXPECT_LT(worst, 0.02);
 }
