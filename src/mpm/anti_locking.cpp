@@ -34,29 +34,28 @@ void CellFBar::apply(const GridGeometry& g, Dimension dimension, double dt, cons
   if (n == 0 || !(dt > 0.0)) return;
   const int dim = g.dim;
   cell_.resize(n);
-  dJ_.resize(n);
+  v_old_p_.resize(n);
   if (v_new_.size() != static_cast<size_t>(g.node_count())) {
     v_new_.assign(g.node_count(), 0.0);
     v_old_.assign(g.node_count(), 0.0);
   }
   const Mat3 I = Mat3::identity();
-  // 1. Per point: its cell (clamped into the block like the solver's sort) and dJ_p = det dF_p.
+  // 1. Per point: its cell (clamped into the block like the solver's sort) and its volume at t_n,
+  // V_p^n = V_p^{n+1} / dJ_p, dJ_p = det dF_p.
   for_each(0, n, [&](Index p) {
     int c[3] = {0, 0, 0};
     for (int a = 0; a < dim; ++a) c[a] = std::clamp(g.cell_of(pts.x[p][a], a), 0, g.nodes[a] - 1);
     cell_[p] = g.node_index(c[0], c[1], c[2]);
-    dJ_[p] = det(I + dt * pts.L[p]);
+    v_old_p_[p] = pts.volume[p] / det(I + dt * pts.L[p]);
   });
-  // 2. Per cell: V_c^{n+1} = sum V_p^{n+1} and V_c^n = sum V_p^{n+1} / dJ_p, in point order (one
-  // thread: the sums, and so the result, do not depend on the thread count). Only the cells that
-  // hold points are cleared.
+  // 2. Per cell: V_c^{n+1} and V_c^n, summed in point order by one thread (the sums, and so the
+  // result, do not depend on the thread count). Only the cells that hold points are cleared.
   double* vn = v_new_.data();
   double* vo = v_old_.data();
   for (Index p = 0; p < n; ++p) vn[cell_[p]] = vo[cell_[p]] = 0.0;
   for (Index p = 0; p < n; ++p) {
-    const double v = pts.volume[p];
-    vn[cell_[p]] += v;
-    vo[cell_[p]] += v / dJ_[p];
+    vn[cell_[p]] += pts.volume[p];
+    vo[cell_[p]] += v_old_p_[p];
   }
   // 3. Per point: dFbar = s dF with s = (dJbar_c / dJ_p)^(1/m) on the deforming axes (Coombs et
   // al. 2018); F_{n+1} = dFbar F_n = S F_{n+1}, S = diag(s, s, s) or diag(s, s, 1) in plane
@@ -66,7 +65,7 @@ void CellFBar::apply(const GridGeometry& g, Dimension dimension, double dt, cons
   const double inv_dt = 1.0 / dt;
   for_each(0, n, [&](Index p) {
     const Index c = cell_[p];
-    const double ratio = (vn[c] / vo[c]) / dJ_[p];
+    const double ratio = (vn[c] / vo[c]) * (v_old_p_[p] / pts.volume[p]);  // dJbar_c / dJ_p
     const double s = m == 3 ? std::cbrt(ratio) : std::sqrt(ratio);
     Mat3& F = pts.F[p];
     Mat3& L = pts.L[p];

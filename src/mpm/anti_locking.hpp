@@ -64,7 +64,7 @@ class CellFBar {
 
  private:
   std::vector<Index> cell_;      ///< cell of each point (node index of its lowest corner)
-  std::vector<double> dJ_;       ///< dJ_p of each point
+  std::vector<double> v_old_p_;  ///< V_p^n = V_p^{n+1} / dJ_p of each point, m^3
   std::vector<double> v_new_;    ///< per cell: sum of V^{n+1}, m^3
   std::vector<double> v_old_;    ///< per cell: sum of V^n, m^3
 };

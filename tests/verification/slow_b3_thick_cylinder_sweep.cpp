@@ -135,13 +135,16 @@ TEST(B3ThickCylinderSlow, FBarThreeResolutions) {
       report(tag + "_relL2_h0.025", e[k][2].rel_l2);
       for (const CylinderError& x : e[k]) EXPECT_LT(x.ke_over_ie, 1e-4);
     }
-    // F-bar converges at first order or better on both pairs (measured: see docs/validation.md,
-    // B3; the runs are deterministic, the bound 1 is the requirement of issue 13).
+    // F-bar converges at first order or better on both pairs (measured 1.13, 1.18 at nu = 0.49 and
+    // 1.07, 1.15 at 0.499; the runs are deterministic, the bound 1 is the requirement of issue 13).
     EXPECT_GE(observed_order(e[1][0].rel_l2, e[1][1].rel_l2), 1.0) << "nu " << nu;
     EXPECT_GE(observed_order(e[1][1].rel_l2, e[1][2].rel_l2), 1.0) << "nu " << nu;
     if (nu > 0.495) {
-      // At nu = 0.499 F-bar is below the unlocked run at every resolution.
-      for (int k = 0; k < 3; ++k) EXPECT_LT(e[1][k].rel_l2, e[0][k].rel_l2) << "h " << h[k];
+      // At nu = 0.499 F-bar is below the unlocked run on the two coarser grids (measured 3.92 vs
+      // 10.96 %, 1.86 vs 3.17 %), not on the finest (0.84 vs 0.78 %): the unlocked error, mostly
+      // locking, falls at order ~2 here and meets F-bar's first-order compliance error near
+      // h = 0.025 (docs/validation.md, B3). At 0.49 the unlocked error is the smaller throughout.
+      for (int k = 0; k < 2; ++k) EXPECT_LT(e[1][k].rel_l2, e[0][k].rel_l2) << "h " << h[k];
     }
   }
 }
@@ -168,6 +171,7 @@ TEST(B3ThickCylinderSlow, FBarEveryShapeFunction) {
       // (docs/validation.md, B3). Asserted: convergent at order > 0.8.
       EXPECT_GT(o, 0.8) << c.shape;
     } else {
+      // Measured 1.09 (linear), 1.07 (GIMP), 1.08 (CPDI), 1.18 (GIMP, MUSL).
       EXPECT_GE(o, 1.0) << c.shape << " " << c.update;
     }
   }
