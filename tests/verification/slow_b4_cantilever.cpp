@@ -42,7 +42,14 @@ void period_table(const std::string& sf, const std::vector<std::string>& overrid
     report(sf + tag + "_energy_drift_H" + std::to_string(cells), r.energy_drift);
   }
   const double finest = res.back().period / T_ti;
-  if (!tag.empty()) return;  // a variant: its table is the result (asserted in its own test)
+  if (tag == "_fbar") {
+    // Measured (GIMP + F-bar): 1.0853, 1.0150, 1.0011 of Timoshenko at H/h = 2, 4, 8 (without:
+    // 0.9915, 0.9944, 0.9963): F-bar removes the stiff (locking) side and converges from above, to
+    // 0.1 % at H/h = 8; energy drift 2.2e-3 there. Bands: within 0.5 %, drift < 1 %.
+    EXPECT_NEAR(finest, 1.0, 0.005);
+    EXPECT_LT(res.back().energy_drift, 0.01);
+    return;
+  }
   if (sf == "gimp" || sf == "cpdi") {
     // Measured at H/h = 8: 0.9963 (GIMP), 0.9961 (CPDI), approached from below (locking side); the
     // energy drift 2.1e-3 / 3.6e-3. Bands: within 1 % below Timoshenko, closer than at H/h = 2,
@@ -66,6 +73,5 @@ TEST(B4CantileverSlow, Linear) { period_table("linear"); }
 TEST(B4CantileverSlow, Gimp) { period_table("gimp"); }
 TEST(B4CantileverSlow, Cpdi) { period_table("cpdi"); }
 TEST(B4CantileverSlow, Bspline3) { period_table("bspline3"); }
-// The same GIMP study with the F-bar anti-locking option (docs/validation.md, B4): F-bar averages
-// only the volumetric part, so it is not expected to cure shear locking; the table shows it.
+// The same GIMP study with the F-bar anti-locking option (docs/validation.md, B4).
 TEST(B4CantileverSlow, GimpFBar) { period_table("gimp", {"mpm.anti_locking=fbar"}, "_fbar"); }
