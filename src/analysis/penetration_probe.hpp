@@ -52,6 +52,8 @@ class PenetrationProbe {
   Vec3 line_point_;                    ///< a point on the line of flight
   int segments_ = 1;
   double rho_p_ = 0.0, rho_t_ = 0.0, length_ = 0.0, speed_ = 0.0, cell_ = 0.0;
+  double radius_cells_ = 0.0;  ///< the thinnest segment radius over the cell size
+  static constexpr double kResolvedRadiusCells = 4.0;  ///< cells across the radius for a resolved rate
   std::vector<double> t_, depth_, cavity_;
 };
 
