@@ -64,6 +64,7 @@ struct DeckParts {
   std::string loads;          // YAML list items
   std::string simulation_extra;
   std::string anti_locking = "none";
+  std::string contact;        // the contact section's YAML map ("" = none: one velocity field)
 };
 
 std::string make_deck(const DeckParts& d) {
@@ -80,6 +81,7 @@ std::string make_deck(const DeckParts& d) {
   s += "  rubber: {model: neo_hookean, density: 1500, youngs_modulus: 3.0e6, poisson_ratio: 0.3}\n";
   s += "bodies:\n" + d.bodies;
   if (!d.loads.empty()) s += "loads:\n" + d.loads;
+  if (!d.contact.empty()) s += "contact: " + d.contact + "\n";
   return s;
 }
 
@@ -249,11 +251,16 @@ TEST_P(EveryDimensionAndShape, CollisionConservesMomentum) {
   // Two bodies of different materials and sizes collide with free grid faces. Internal grid
   // forces sum to zero (sum_I grad N_I = 0), so the FLIP update changes the total momentum by
   // dt sum_I f_I = 0 (exact up to round-off; the axisymmetric hoop force acts on r only, so the
-  // axial momentum is conserved there). Mass is never changed.
+  // axial momentum is conserved there). Mass is never changed. The same holds with a velocity
+  // field per body and friction (mpm/grid_contact.hpp): the contact impulses of a pair are equal
+  // and opposite, so they cancel in the total.
   const auto& [dim, sf] = GetParam();
+  for (const std::string contact : {"", "{model: friction, friction: 0.3}"}) {
+  SCOPED_TRACE(contact.empty() ? "single field" : contact);
   DeckParts d;
   d.dim = dim;
   d.shape_function = sf;
+  d.contact = contact;
   if (dim == "3d") {
     d.bodies = "  - {name: a, material: soft, velocity: [4, 1, 0], shape: {type: box, lower: [0.0078125, 0.01171875, 0.01171875], upper: [0.015625, 0.01953125, 0.01953125]}}\n"
                "  - {name: b, material: rubber, velocity: [-3, 0, 2], particles_per_cell: 3, shape: {type: sphere, center: [0.0205078125, 0.0166015625, 0.015625], radius: 0.0048828125}}\n";
@@ -282,6 +289,9 @@ TEST_P(EveryDimensionAndShape, CollisionConservesMomentum) {
   }
   // The bodies did interact: some internal energy was stored (otherwise the test is vacuous).
   EXPECT_GT(solver->energies().internal, 1e-3 * e0.kinetic);
+  // With separate fields the contact acted (its work is booked, and never adds energy here).
+  if (!contact.empty()) EXPECT_LT(solver->energies().contact, 0.0);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Solver, EveryDimensionAndShape,
@@ -366,6 +376,42 @@ TEST_P(MpmThreads, ResultsDoNotDependOnTheThreadCount) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AntiLocking, MpmThreads, ::testing::Values("none", "fbar"));
+
+TEST(MpmSolver, MultiFieldContactDoesNotDependOnTheThreadCount) {
+  // Two bodies with their own velocity fields and friction pressed together above
+  // kParallelThreshold points: the contact pass is a deterministic node loop, so 1 and 2 threads
+  // give identical bits (core/parallel.hpp).
+  const int saved = max_threads();
+  DeckParts d;
+  d.shape_function = "gimp";
+  d.grid_upper = "[0.0625, 0.0625, 0.0625]";
+  d.contact = "{model: friction, friction: 0.4}";
+  d.bodies = "  - {name: a, material: rubber, velocity: [3, -20, 1], shape: {type: box, lower: [0.00390625, 0.03125, 0.0078125], upper: [0.04296875, 0.05078125, 0.0390625]}}\n"
+             "  - {name: b, material: soft, velocity: [0, 5, 0], shape: {type: box, lower: [0.00390625, 0.0078125, 0.0078125], upper: [0.04296875, 0.02734375, 0.0390625]}}\n";
+  const std::string yaml = make_deck(d);
+  std::vector<std::vector<double>> results;
+  std::vector<EnergyTotals> totals;
+  for (int threads : {1, 2}) {
+    set_threads(threads);
+    auto solver = make_solver_from(yaml);
+    ASSERT_GT(solver->points().size(), kParallelThreshold);
+    for (int n = 0; n < 12; ++n) solver->step(solver->stable_dt());
+    std::vector<double> r;
+    const FieldStore& p = solver->points();
+    for (const char* f : {"x", "v", "F", "stress"}) {
+      const double* a = p.real(f);
+      r.insert(r.end(), a, a + p.size() * p.info(f).ncomp);
+    }
+    results.push_back(r);
+    totals.push_back(solver->energies());
+  }
+  set_threads(saved);
+  ASSERT_EQ(results[0].size(), results[1].size());
+  EXPECT_EQ(std::memcmp(results[0].data(), results[1].data(), results[0].size() * sizeof(double)), 0);
+  EXPECT_EQ(totals[0].contact, totals[1].contact);
+  EXPECT_EQ(totals[0].friction, totals[1].friction);
+  EXPECT_LT(totals[0].contact, 0.0);  // the bodies met
+}
 
 class MpmFBar : public ::testing::TestWithParam<std::tuple<std::string, std::string, std::string>> {};
 
