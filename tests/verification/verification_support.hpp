@@ -252,21 +252,20 @@ struct MmsError {
   long steps = 0;
 };
 
-/// Runs the example deck at `cell_size` to its end time and measures the displacement error
-/// against the analytic u of src/points/mms_axis_aligned.hpp at the reference positions "x0".
-inline MmsError run_mms(double cell_size) {
-  const Scenario sc = load_example("axis_aligned_mms.yaml", {set_number("grid.cell_size", cell_size)});
+/// Runs `sc` to its end time (landing on its output times) and measures |x_p - exact(X_p, t)|
+/// over the particles (X_p the reference position "x0"): RMS and maximum.
+template <class ExactPosition>
+MmsError run_mms_error(const Scenario& sc, const ExactPosition& exact) {
   auto solver = make_solver(sc);
   advance(*solver, sc.simulation.end_time, sc.output.interval);
   const FieldStore& pts = solver->points();
   const Vec3* x = pts.view<Vec3>("x");
   const Vec3* X = pts.view<Vec3>("x0");
-  const mms::AxisAligned exact;
   const double t = solver->time();
   MmsError e;
   double sum = 0.0;
   for (Index p = 0; p < pts.size(); ++p) {
-    const double d = norm(x[p] - (X[p] + exact.displacement(X[p], t)));
+    const double d = norm(x[p] - exact(X[p], t));
     sum += d * d;
     e.linf = std::max(e.linf, d);
   }
@@ -274,6 +273,14 @@ inline MmsError run_mms(double cell_size) {
   e.l2 = std::sqrt(sum / static_cast<double>(pts.size()));
   e.steps = solver->steps();
   return e;
+}
+
+/// Runs the example deck at `cell_size` to its end time and measures the displacement error
+/// against the analytic u of src/points/mms_axis_aligned.hpp at the reference positions "x0".
+inline MmsError run_mms(double cell_size) {
+  const Scenario sc = load_example("axis_aligned_mms.yaml", {set_number("grid.cell_size", cell_size)});
+  const mms::AxisAligned exact;
+  return run_mms_error(sc, [&](const Vec3& X, double t) { return X + exact.displacement(X, t); });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -287,24 +294,8 @@ inline MmsError run_vortex(double cell_size, const std::string& shape_function,
   std::vector<std::string> o = {set_number("grid.cell_size", cell_size), "mpm.shape_function=" + shape_function};
   o.insert(o.end(), extra.begin(), extra.end());
   const Scenario sc = load_example("generalized_vortex_mms.yaml", o);
-  auto solver = make_solver(sc);
-  advance(*solver, sc.simulation.end_time, sc.output.interval);
-  const FieldStore& pts = solver->points();
-  const Vec3* x = pts.view<Vec3>("x");
-  const Vec3* X = pts.view<Vec3>("x0");
   const mms::GeneralizedVortex exact;
-  const double t = solver->time();
-  MmsError e;
-  double sum = 0.0;
-  for (Index p = 0; p < pts.size(); ++p) {
-    const double d = norm(x[p] - exact.position(X[p], t));
-    sum += d * d;
-    e.linf = std::max(e.linf, d);
-  }
-  e.particles = static_cast<long>(pts.size());
-  e.l2 = std::sqrt(sum / static_cast<double>(pts.size()));
-  e.steps = solver->steps();
-  return e;
+  return run_mms_error(sc, [&](const Vec3& X, double t) { return exact.position(X, t); });
 }
 
 // ---------------------------------------------------------------------------------------------
