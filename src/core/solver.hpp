@@ -17,6 +17,7 @@ struct EnergyTotals {
   double kinetic = 0.0;        ///< J
   double internal = 0.0;       ///< J, accumulated stress power (elastic + plastic)
   double plastic = 0.0;        ///< J, accumulated plastic dissipation
+  double eroded = 0.0;         ///< J, the part of `internal` held by failed (eroded) points
   double external = 0.0;       ///< J, accumulated work of body forces and surface loads
   double mass = 0.0;           ///< kg
   Vec3 momentum;               ///< kg m/s

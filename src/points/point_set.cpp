@@ -10,6 +10,7 @@
 #include "core/parallel.hpp"
 #include "core/system_memory.hpp"
 #include "geometry/seeding.hpp"
+#include "materials/failure.hpp"
 #include "points/cantilever_mode.hpp"
 #include "points/mms_axis_aligned.hpp"
 #include "points/mms_generalized_vortex.hpp"
@@ -273,8 +274,10 @@ EnergyTotals PointSet::energies(double k, double external_work) const {
   const auto* mass = points_.real("mass");
   const auto* eint = points_.real("internal_energy");
   const auto* wp = points_.real("plastic_work");
-  double s[7];
-  deterministic_sum<7>(0, points_.size(), [&](Index p, double* o) {
+  // Failed (eroded) points keep the internal energy they had when their stress was zeroed.
+  const double* failed = points_.has(kFailedField) ? points_.real(kFailedField) : nullptr;
+  double s[8];
+  deterministic_sum<8>(0, points_.size(), [&](Index p, double* o) {
     const double m = mass[p];
     o[0] += 0.5 * m * dot(v[p], v[p]);
     o[1] += eint[p];
@@ -283,12 +286,14 @@ EnergyTotals PointSet::energies(double k, double external_work) const {
     o[4] += m * v[p][0];
     o[5] += m * v[p][1];
     o[6] += m * v[p][2];
+    if (failed && failed[p] > 0.0) o[7] += eint[p];
   }, s);
-  comm_.sum(s, 7);
+  comm_.sum(s, 8);
   EnergyTotals e;
   e.kinetic = k * s[0];
   e.internal = k * s[1];
   e.plastic = k * s[2];
+  e.eroded = k * s[7];
   e.mass = k * s[3];
   // Axisymmetric: only the axial momentum of a body of revolution is non-zero in total.
   e.momentum = Vec3{{scenario_.simulation.dimension == Dimension::Axisymmetric ? 0.0 : k * s[4], k * s[5], k * s[6]}};
