@@ -1,7 +1,7 @@
 // B6 Taylor bar, slow part (see test_b6_taylor_bar.cpp): the decks at their full resolutions,
 // axisymmetric at cell_size 0.2 mm (~10k particles, ~1 min on 2 cores) and the 3D quarter bar at
 // 0.4 mm (~33k particles, ~1.5 min). At these sizes the results must fall in the acceptance
-// bands and the energy balance in its 5 % band (docs/validation.md, "Taylor bar").
+// bands and the energy residual under 2 % (axisymmetric) or in its 5 % band (3D) (docs/validation.md, "Taylor bar").
 #include <gtest/gtest.h>
 
 #include "verification/verification_support.hpp"
@@ -15,9 +15,11 @@ TEST(B6TaylorBarSlow, AxisymmetricFullResolution) {
   expect_in_acceptance_bands(f);
   // Seeding exact in axisymmetry (see the CI test).
   EXPECT_NEAR(f.ke0, ke0_whole_bar(), 1e-12 * ke0_whole_bar());
-  // Numerical loss (PIC blend + wall), first order in h: measured 1.75 % (7.0 % and 3.5 % at 0.8
-  // and 0.4 mm).
-  EXPECT_LT(f.worst_balance, 0.05);
+  // Energy residual after the booked terms (the PIC share of the FLIP/PIC blend is booked since
+  // issue 13; what remains is the grid's loss at the rigid wall), first order in h: measured 0.75 %
+  // (3.6 % and 1.6 % at 0.8 and 0.4 mm; 1.75 % before the PIC share was booked). Issue 13's bound
+  // for the Taylor bar is 2 %.
+  EXPECT_LT(f.worst_balance, 0.02);
   EXPECT_LT(f.ke_end, 0.01 * f.ke0);
 }
 

@@ -27,12 +27,13 @@ TEST(B6TaylorBar, AxisymmetricWithinPublishedBands) {
   // exactly (R0 and L0 are multiples of the 0.2 mm point spacing) and the midpoint rule integrates
   // r dr exactly, so the seeding error is zero and only round-off remains (measured 2e-15).
   EXPECT_NEAR(f.ke0, ke0_whole_bar(), 1e-12 * ke0_whole_bar());
-  // Energy balance: no external work, so kinetic + internal (elastic + plastic) must stay at KE0
-  // up to the numerical losses, first order in h: the 1 % PIC blend of the deck (flip 0.99) and
-  // the rigid-wall condition (each step it zeroes the inward velocity of the wall nodes, an
-  // inelastic collision of that nodal mass), about half each. Measured 3.5 % at 0.4 mm (1.7 % with
-  // flip 1); the bound is the 5 % acceptance band of docs/validation.md (target band: 2 %).
-  EXPECT_LT(f.worst_balance, 0.05);
+  // Energy balance: no external work, so kinetic + internal (elastic + plastic) minus the booked
+  // PIC share of the deck's FLIP/PIC blend (flip 0.99; total_energy, docs/deck.md "Energy audit")
+  // must stay at KE0 up to the rigid-wall loss (each step the wall zeroes the inward velocity of
+  // its nodes, an inelastic collision of that nodal mass), first order in h. Measured 1.6 % at
+  // 0.4 mm (3.5 % before the PIC share was booked); issue 13's bound for the Taylor bar is 2 %
+  // (0.75 % at the full 0.2 mm, slow_b6_taylor_bar.cpp).
+  EXPECT_LT(f.worst_balance, 0.02);
   // The bar has nearly stopped at 80 us: < 1 % of KE0 left (measured 0.06 %), so the figures are
   // measured at the end of the plastic flow, as in the FE references.
   EXPECT_LT(f.ke_end, 0.01 * f.ke0);
@@ -62,9 +63,9 @@ TEST(B6TaylorBar, ThreeDimensionalQuarterBarWithinPublishedBands) {
   report("taylor_3d_h0.8mm_KE0_seeding_error_rel", f.ke0 / ke0_quarter - 1.0);
   EXPECT_EQ(n_disk, 52);
   EXPECT_NEAR(f.ke0, ke0_lattice, 1e-12 * ke0_lattice);
-  // Energy balance: the numerical loss (see the axisymmetric test) falls about linearly with the
-  // cell size: measured 7.7 %, 5.9 %, 4.0 % at 0.8, 0.6, 0.4 mm (3D) and 7.0 %, 3.5 % at 0.8, 0.4 mm
-  // (axisymmetric). At this coarse size the bound is 10 %; the 5 % acceptance band is asserted at
+  // Energy balance: the residual (see the axisymmetric test) falls about linearly with the cell
+  // size: before the PIC share was booked 7.7 %, 5.9 %, 4.0 % at 0.8, 0.6, 0.4 mm (3D); with it
+  // 3.6 % at 0.8 mm. At this coarse size the bound is 10 %; the 5 % acceptance band is asserted at
   // 0.4 mm in slow_b6_taylor_bar.cpp.
   EXPECT_LT(f.worst_balance, 0.10);
   EXPECT_LT(f.ke_end, 0.01 * f.ke0);
