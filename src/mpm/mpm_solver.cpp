@@ -307,16 +307,12 @@ void MpmSolver::apply_velocity_bcs(Vec3* vel_all) {
   const Index nn = g.node_count();
   for (int f = 0; f < grid_.fields; ++f) {
     Vec3* vel = vel_all + f * nn;
-    auto set = [&](Index I, const Vec3& u) { vel[I] = u; };
     if (dimension_ == Dimension::Axisymmetric && layout_.box_lower[0] == 0.0) {
       // The symmetry axis: radial velocity is zero on it (and on the ghost nodes beyond it) whatever
       // the x_min condition says; without this the hoop rate v_r / r of the particles next to the
       // axis is unbounded.
       for (int i = 0; i <= layout_.box_first[0]; ++i)
-        for (int j = 0; j < g.nodes[1]; ++j) {
-          const Index I = g.node_index(i, j, 0);
-          set(I, Vec3{{0.0, vel[I][1], vel[I][2]}});
-        }
+        for (int j = 0; j < g.nodes[1]; ++j) vel[g.node_index(i, j, 0)][0] = 0.0;
     }
     for (int a = 0; a < dim_; ++a) {
       for (int side = 0; side < 2; ++side) {
@@ -331,8 +327,7 @@ void MpmSolver::apply_velocity_bcs(Vec3* vel_all) {
             for (int k = 0; k < g.nodes[b2]; ++k) {
               int ijk[3];
               ijk[a] = i; ijk[b1] = j; ijk[b2] = k;
-              const Index I = g.node_index(ijk[0], ijk[1], ijk[2]);
-              Vec3 u = vel[I];
+              Vec3& u = vel[g.node_index(ijk[0], ijk[1], ijk[2])];
               switch (bc) {
                 case FaceBC::Fixed: u = Vec3{}; break;
                 case FaceBC::Symmetry: u[a] = 0.0; break;
@@ -341,7 +336,6 @@ void MpmSolver::apply_velocity_bcs(Vec3* vel_all) {
                   break;
                 case FaceBC::Free: break;
               }
-              set(I, u);
             }
       }
     }
@@ -364,7 +358,7 @@ void MpmSolver::update_grid(double dt) {
   // Contact acts on the mapped velocities and again on the updated ones (grid_contact.hpp); the
   // acceleration handed to the particles is measured from the mapped velocity before contact, so
   // that the particles receive both contact impulses (Nairn, Hammerquist & Smith 2020). The work of
-  // the damping and of the contact impulses (the grid's kinetic-energy change they make) is booked.
+  // the damping and of the contact impulses is booked (grid_contact.hpp for the latter).
   const Index nall = grid_.geom.node_count() * grid_.fields;
   const bool multi = grid_.fields > 1;
   for_each(0, nall, [&](Index i) {
