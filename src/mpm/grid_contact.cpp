@@ -1,7 +1,6 @@
 #include "mpm/grid_contact.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 namespace ballista {
 

@@ -109,7 +109,6 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   damping_ = sc.simulation.damping;
   grid_.geom = layout_.geom;
   grid_.fields = sc.contact.fields;
-  body_field_.assign(sc.contact.body_field.begin(), sc.contact.body_field.end());
   slab_axis_ = dim_ - 1;
   grid_.resize(grid_.geom.node_count() * grid_.fields);
   sort_by_cell();
@@ -367,20 +366,26 @@ void MpmSolver::update_grid(double dt) {
     if (multi) grid_.accel[i] = grid_.velocity[i];  // kept: the velocity before contact
   });
   apply_contact(grid_.velocity.data(), true);
-  double w[1];
-  deterministic_sum<1>(0, nall, [&](Index i, double* o) {
+  // Explicit Euler per node; returns the work of the damping force -c m v over the step
+  // (midpoint velocity), which is summed only when there is damping.
+  auto integrate = [&](Index i) {
     const double m = grid_.mass[i];
-    if (m > kTinyMass) {
-      const Vec3 v = grid_.velocity[i];
-      const Vec3 a = (1.0 / m) * grid_.force[i] - damping_ * v;
-      grid_.velocity_new[i] = v + dt * a;
-      // Work of the damping force -c m v over the step (midpoint velocity).
-      if (damping_ > 0.0) o[0] -= dt * damping_ * m * dot(v, 0.5 * (v + grid_.velocity_new[i]));
-    } else {
+    if (!(m > kTinyMass)) {
       grid_.velocity_new[i] = Vec3{};
+      return 0.0;
     }
-  }, w);
-  damping_work_ += comm_.sum(w[0]);
+    const Vec3 v = grid_.velocity[i];
+    const Vec3 a = (1.0 / m) * grid_.force[i] - damping_ * v;
+    grid_.velocity_new[i] = v + dt * a;
+    return -dt * damping_ * m * dot(v, 0.5 * (v + grid_.velocity_new[i]));
+  };
+  if (damping_ > 0.0) {
+    double w[1];
+    deterministic_sum<1>(0, nall, [&](Index i, double* o) { o[0] += integrate(i); }, w);
+    damping_work_ += comm_.sum(w[0]);
+  } else {
+    for_each(0, nall, [&](Index i) { integrate(i); });
+  }
   apply_velocity_bcs(grid_.velocity_new.data());
   if (multi) {
     apply_contact(grid_.velocity_new.data(), true, grid_.velocity.data());

@@ -81,7 +81,9 @@ class MpmSolver final : public Solver {
   /// Multi-field contact on `vel` (every field); books its work if `book` (v_start: grid_contact.hpp).
   void apply_contact(Vec3* vel, bool book, const Vec3* v_start = nullptr);
   /// Offset of point p's velocity field in the grid arrays.
-  Index field_offset(Index p) const { return grid_.fields > 1 ? body_field_[body_[p]] * grid_.geom.node_count() : 0; }
+  Index field_offset(Index p) const {
+    return grid_.fields > 1 ? scenario_.contact.body_field[body_[p]] * grid_.geom.node_count() : 0;
+  }
   void handle_exits();
   [[noreturn]] void fail(Index p, const std::string& what) const;
   int stencil_reach_now() const;
@@ -121,7 +123,6 @@ class MpmSolver final : public Solver {
   double* vol_ = nullptr;
   const double* vol0_ = nullptr;
   const std::int64_t* body_ = nullptr;
-  std::vector<Index> body_field_;  ///< velocity field of each body (contact.body_field)
   std::vector<Index> slab_start_, slab_points_;      ///< CSR lists of point indices per slab
   std::vector<int> slab_of_point_;                   ///< scratch: slab of each point
   std::vector<Index> slab_fill_;                     ///< scratch: fill cursor per slab
