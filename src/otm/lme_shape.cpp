@@ -62,8 +62,7 @@ bool solve(const Mat3& A, const Vec3& y, int dim, Vec3& x) {
 
 }  // namespace
 
-double symmetric_condition(const Mat3& A, int dim) {
-  double lo, hi;
+void symmetric_extremes(const Mat3& A, int dim, double& lo, double& hi) {
   if (dim == 2) {
     // Eigenvalues of a symmetric 2x2: mean +- sqrt(((a - d)/2)^2 + b^2).
     const double m = 0.5 * (A(0, 0) + A(1, 1));
@@ -88,6 +87,11 @@ double symmetric_condition(const Mat3& A, int dim) {
       lo = q + 2.0 * p * std::cos(phi + 2.0 * std::numbers::pi / 3.0);
     }
   }
+}
+
+double symmetric_condition(const Mat3& A, int dim) {
+  double lo, hi;
+  symmetric_extremes(A, dim, lo, hi);
   if (!(lo > 0.0)) return kInf;
   return hi / lo;
 }

@@ -45,6 +45,9 @@ struct LmeResult {
 LmeResult lme_shape(int dim, const Vec3* d, int count, double beta, double h, Vec3& lambda, double* N, Vec3* dN,
                     const LmeOptions& options = {});
 
+/// Smallest and largest eigenvalue of the symmetric dim x dim block of A.
+void symmetric_extremes(const Mat3& A, int dim, double& lo, double& hi);
+
 /// Eigenvalues-based condition number of the symmetric dim x dim block of A (inf if singular).
 double symmetric_condition(const Mat3& A, int dim);
 

@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "core/error.hpp"
-#include "peridynamics/cell_bins.hpp"
+#include "points/cell_bins.hpp"
 
 namespace ballista::pd {
 

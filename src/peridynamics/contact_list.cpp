@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "peridynamics/cell_bins.hpp"
+#include "points/cell_bins.hpp"
 
 namespace ballista::pd {
 

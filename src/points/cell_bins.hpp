@@ -1,8 +1,8 @@
 #pragma once
-// Cell binning of points for neighbour searches (bond families, the contact list): the points'
-// bounding box cut into bins of a given size, a stable counting sort of the points into them, and
-// a visit of the points in the 3^dim bins around a position. O(N) to build; a search of radius at
-// most the bin size finds every neighbour in the surrounding bins.
+// Cell binning of points for neighbour searches (peridynamic bond families and contact list, the
+// OTM supports): the points' bounding box cut into bins of a given size, a stable counting sort of
+// the points into them, and a visit of the points in the 3^dim bins around a position. O(N) to
+// build; a search of radius at most the bin size finds every neighbour in the surrounding bins.
 #include <algorithm>
 #include <limits>
 #include <vector>
@@ -10,7 +10,7 @@
 #include "core/parallel.hpp"
 #include "core/tensor.hpp"
 
-namespace ballista::pd {
+namespace ballista {
 
 class CellBins {
  public:
@@ -73,4 +73,4 @@ class CellBins {
   std::vector<Index> start_, order_;
 };
 
-}  // namespace ballista::pd
+}  // namespace ballista

@@ -1,0 +1,416 @@
+#include "otm/otm_solver.hpp"
+
+#include <fmt/format.h>
+
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "core/error.hpp"
+#include "core/parallel.hpp"
+#include "points/solver_registry.hpp"
+
+namespace ballista {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kTinyMass = 1e-300;
+
+[[noreturn]] void section_error(const Scenario& sc, const std::string& key, const std::string& message) {
+  throw DeckError(sc.file, 0, 0, "otm." + key, message);
+}
+
+}  // namespace
+
+OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials, Communicator comm)
+    : scenario_(sc),
+      comm_(comm),
+      // Points on each body's lattice (grid.cell_size / particles_per_cell), as for MPM; the support
+      // lists cost ~ (number of nodes in reach) x 44 B per point (node index, N, grad N).
+      pts_(sc, std::move(materials), SeedLattice{sc.grid, 0, 60.0 * 44.0}, 0.0, "", comm),
+      points_(pts_.store()) {
+  const ParamValues& P = sc.solver_params;
+  if (pts_.pending() > 0)
+    section_error(sc, "", "bodies with a later activation (activation_time, activation_stage, rods, jets) are not "
+                          "supported by the OTM solver yet: their nodes would have to be seeded on arrival");
+  if (sc.simulation.on_particle_exit != "stop")
+    section_error(sc, "", "simulation.on_particle_exit: delete is not supported by the OTM solver yet");
+  dim_ = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
+  axisym_ = sc.simulation.dimension == Dimension::Axisymmetric;
+  damping_ = sc.simulation.damping;
+  penalty_ = P.choices.at("wall_model") == "penalty";
+  penalty_factor_ = P.at("penalty");
+  sopt_.h = sc.grid.cell_size;
+  sopt_.gamma = P.at("gamma");
+  sopt_.tolerance = P.at("support_tolerance");
+  sopt_.min_support = static_cast<int>(P.at("min_support"));
+  sopt_.dim = dim_;
+  sopt_.lme.line_search = P.choices.at("line_search") == "on";
+
+  const Index n = points_.size();
+  nodes_ = otm::seed_nodes(points_.view<Vec3>("x"), points_.ints("body"), n, sc.grid.lower, sc.grid.cell_size, dim_);
+  lambda_.assign(static_cast<size_t>(n), Vec3{});
+  refresh_supports();
+  // Initial node velocities: the mass-weighted projection of the points' (exact for a body in
+  // uniform motion: the shape functions are a partition of unity).
+  const auto* v = points_.view<Vec3>("v");
+  const auto* mass = points_.real("mass");
+  std::vector<Vec3> mom(static_cast<size_t>(nodes_.size()));
+  std::vector<double> m(static_cast<size_t>(nodes_.size()), 0.0);
+  for (Index p = 0; p < n; ++p)
+    for (Index k = sup_.offset[p]; k < sup_.offset[p + 1]; ++k) {
+      const Index a = sup_.node[k];
+      m[a] += sup_.N[k] * mass[p];
+      mom[a] += (sup_.N[k] * mass[p]) * v[p];
+    }
+  for (Index a = 0; a < nodes_.size(); ++a) {
+    nodes_.mass[a] = m[a];
+    nodes_.v[a] = m[a] > kTinyMass ? (1.0 / m[a]) * mom[a] : Vec3{};
+    momentum0_ += m[a] * nodes_.v[a];
+  }
+}
+
+double OtmSolver::reporting_scale() const { return axisym_ ? 2.0 * std::numbers::pi : 1.0; }
+
+void OtmSolver::begin_stage(int stage, double damping) {
+  pts_.begin_stage(stage, time_);
+  damping_ = damping;
+}
+
+void OtmSolver::refresh_supports() {
+  const Index n = points_.size();
+  lambda_.resize(static_cast<size_t>(n));
+  // Radius scale of each point: the largest principal stretch of F (in the plane in 2D).
+  scale_.resize(static_cast<size_t>(n));
+  const auto* F = points_.view<Mat3>("F");
+  for_each(0, n, [&](Index p) {
+    double lo, hi;
+    otm::symmetric_extremes(transpose_times(F[p], F[p]), dim_, lo, hi);
+    scale_[p] = std::sqrt(std::max(hi, 1.0));
+  });
+  std::swap(prev_sup_, sup_);
+  otm::build_supports(points_.view<Vec3>("x"), points_.ints("body"), n, nodes_.x.data(), nodes_.body.data(),
+                      nodes_.size(), sopt_, scale_.data(), prev_sup_.offset.empty() ? nullptr : &prev_sup_,
+                      lambda_.data(), sup_);
+  retries_ += sup_.retries;
+  mean_support_ = sup_.mean_size;
+  max_support_ = std::max(max_support_, sup_.max_size);
+  max_iterations_ = std::max(max_iterations_, sup_.max_iterations);
+  max_condition_ = std::max(max_condition_, sup_.max_condition);
+  fallbacks_ += sup_.fallbacks;
+  if (sup_.failed < 0) return;
+  // The point, its support nodes and the state of the solve (never a NaN weight handed on).
+  const Index p = sup_.failed;
+  const Index k0 = sup_.offset[p], k1 = sup_.offset[p + 1];
+  std::string nodes;
+  for (Index k = k0; k < k1 && k < k0 + 8; ++k) {
+    const Vec3& x = nodes_.x[sup_.node[k]];
+    nodes += fmt::format("{}{} [{:.6g}, {:.6g}, {:.6g}]", k == k0 ? "" : ", ", sup_.node[k], x[0], x[1], x[2]);
+  }
+  if (k1 - k0 > 8) nodes += ", ...";
+  const otm::LmeResult& r = sup_.failed_result;
+  pts_.fail(p,
+            fmt::format("has no local max-entropy shape functions: the solve for the multiplier failed with "
+                        "{} support nodes within {:.4g} m (at least {} needed; otm.gamma = {:g}), residual {:.3g} h "
+                        "after {} iterations{}, condition number of the Hessian {:.3g}; support nodes: {}. "
+                        "The point has probably left the convex hull of its nodes (otm docs: adaptivity)",
+                        k1 - k0, otm::support_radius(sopt_), sopt_.min_support > 0 ? sopt_.min_support : dim_ + 2,
+                        sopt_.gamma, r.residual, r.iterations, r.used_fallback ? " (with the fallback)" : "",
+                        r.condition, nodes),
+            steps_, time_);
+}
+
+void OtmSolver::assemble() {
+  // Node-wise gathers over the transposed supports: deterministic for any thread count.
+  const Index n = points_.size(), nn = nodes_.size();
+  std::vector<Index> start(static_cast<size_t>(nn) + 1, 0);
+  for (Index k = 0; k < sup_.offset[n]; ++k) ++start[sup_.node[k] + 1];
+  for (Index a = 0; a < nn; ++a) start[a + 1] += start[a];
+  std::vector<Index> entry(static_cast<size_t>(start[nn]));
+  std::vector<Index> owner(static_cast<size_t>(start[nn]));
+  {
+    std::vector<Index> fill(start.begin(), start.end() - 1);
+    for (Index p = 0; p < n; ++p)
+      for (Index k = sup_.offset[p]; k < sup_.offset[p + 1]; ++k) {
+        const Index i = fill[sup_.node[k]]++;
+        entry[i] = k;
+        owner[i] = p;
+      }
+  }
+  const auto* mass = points_.real("mass");
+  const auto* vol = points_.real("volume");
+  const auto* stress = points_.view<Mat3>("stress");
+  const auto* x = points_.view<Vec3>("x");
+  const std::vector<Vec3>& fext = loads_.total();
+  const bool has_ext = !fext.empty();
+  const bool axisym = axisym_;
+  for_each(0, nn, [&](Index a) {
+    double m = 0.0;
+    Vec3 f;
+    for (Index i = start[a]; i < start[a + 1]; ++i) {
+      const Index k = entry[i], p = owner[i];
+      const double N = sup_.N[k];
+      const Vec3& g = sup_.dN[k];
+      m += N * mass[p];
+      // f_a = -V_p sigma_p grad N_a + N_a f_ext,p (seed 003 Algorithm 1 line 9, the weak form 2.7).
+      const Mat3& s = stress[p];
+      const double V = vol[p];
+      for (int r = 0; r < 3; ++r) f[r] -= V * (s(r, 0) * g[0] + s(r, 1) * g[1] + s(r, 2) * g[2]);
+      if (axisym) f[0] -= V * s(2, 2) * N / x[p][0];  // hoop term (per-radian volume)
+      if (has_ext) f += N * fext[p];
+    }
+    nodes_.mass[a] = m;
+    nodes_.f[a] = f;
+  });
+}
+
+void OtmSolver::apply_face_conditions(double dt) {
+  // Box faces at the nodes: fixed and symmetry faces hold the nodes on them; a wall stops (or, with
+  // the penalty, pushes back) a node that would cross it. The kinetic energy a wall takes is booked.
+  const GridSpec& g = scenario_.grid;
+  const double tol = 1e-9 * g.cell_size;
+  double wall_dk = 0.0, reaction = 0.0;
+  for (Index a = 0; a < nodes_.size(); ++a) {
+    Vec3& v = nodes_.v[a];
+    const Vec3& x = nodes_.x[a];
+    const double m = nodes_.mass[a];
+    for (int ax = 0; ax < dim_; ++ax)
+      for (int side = 0; side < 2; ++side) {
+        const FaceBC bc = g.faces[2 * ax + side];
+        if (bc == FaceBC::Free) continue;
+        const double plane = side == 0 ? g.lower[ax] : g.upper[ax];
+        const double sign = side == 0 ? 1.0 : -1.0;  // inward normal component
+        if (bc == FaceBC::Fixed || bc == FaceBC::Symmetry) {
+          if (std::abs(x[ax] - plane) > tol) continue;
+          if (bc == FaceBC::Fixed) v = Vec3{};
+          else v[ax] = 0.0;
+          continue;
+        }
+        if (penalty_) continue;  // walls by penalty act through the force (assemble)
+        // Constraint: the normal displacement into the wall is zero (seed 003 ch. 4).
+        const double gap = sign * (x[ax] + dt * v[ax] - plane);  // < 0: would cross
+        if (gap >= 0.0) continue;
+        const double vn = (plane - x[ax]) / dt;
+        const double dv = vn - v[ax];
+        wall_dk += 0.5 * m * ((v[ax] + dv) * (v[ax] + dv) - v[ax] * v[ax]);
+        reaction += sign * m * dv / dt;
+        v[ax] = vn;
+      }
+  }
+  wall_work_ += wall_dk;
+  if (!penalty_) wall_force_ = reaction;
+}
+
+double OtmSolver::stable_dt() {
+  // dt = CFL h_min / max_p (c_p + |v_p|), h_min = h times the smallest principal stretch of the
+  // points (nodes move with the material, so their spacing shrinks with it): the seed's
+  // "conservative Courant condition estimate" (Algorithm 1 line 10).
+  const Index n = points_.size();
+  const auto* F = points_.view<Mat3>("F");
+  double smin = kInf;
+#pragma omp parallel for schedule(static) reduction(min : smin) if (n > kParallelThreshold)
+  for (Index p = 0; p < n; ++p) {
+    double lo, hi;
+    otm::symmetric_extremes(transpose_times(F[p], F[p]), dim_, lo, hi);
+    smin = std::min(smin, std::sqrt(std::max(lo, 0.0)));
+  }
+  smin = std::min(1.0, comm_.min(smin));
+  const double speed = comm_.max(pts_.max_signal_speed());
+  double dt = speed > 0.0 ? scenario_.simulation.cfl * scenario_.grid.cell_size * smin / speed
+                          : scenario_.simulation.end_time;
+  if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
+  return dt;
+}
+
+void OtmSolver::step(double dt) {
+  const Index n = points_.size(), nn = nodes_.size();
+  loads_.compute(scenario_, points_, time_);
+  assemble();
+  // Rigid walls by penalty: a spring k = penalty m_a / dt^2 on how far a node is behind the wall
+  // (k dt^2 / m < 4 keeps the central difference stable; penalty 1 by default).
+  double wall_force = 0.0;
+  std::vector<Vec3> fpen;
+  if (penalty_) {
+    fpen.assign(static_cast<size_t>(nn), Vec3{});
+    const GridSpec& g = scenario_.grid;
+    for (Index a = 0; a < nn; ++a)
+      for (int ax = 0; ax < dim_; ++ax)
+        for (int side = 0; side < 2; ++side) {
+          if (g.faces[2 * ax + side] != FaceBC::Wall) continue;
+          const double plane = side == 0 ? g.lower[ax] : g.upper[ax];
+          const double sign = side == 0 ? 1.0 : -1.0;
+          const double depth = sign * (plane - nodes_.x[a][ax]);  // > 0: behind the wall
+          if (depth <= 0.0) continue;
+          const double fn = penalty_factor_ * nodes_.mass[a] / (dt * dt) * depth;
+          fpen[a][ax] += sign * fn;
+          wall_force += sign * fn;
+        }
+    wall_force_ = wall_force;
+  }
+  // Central difference with a variable step (Algorithm 1 line 11, l_k = M_k v_k): v_a gains
+  // (dt_k + dt_k+1)/2 f_a / m_a; damping -c v (stages) with its work booked (midpoint velocity).
+  const double h = 0.5 * (dt_prev_ + dt);
+  const double c = damping_;
+  double dw[2];
+  deterministic_sum<2>(0, nn, [&](Index a, double* o) {
+    const double m = nodes_.mass[a];
+    if (!(m > kTinyMass)) return;  // a node no point reaches: it keeps its velocity, carries nothing
+    Vec3 f = nodes_.f[a];
+    if (penalty_) f += fpen[a];
+    const Vec3 v0 = nodes_.v[a];
+    const Vec3 acc = (1.0 / m) * f - c * v0;
+    nodes_.v[a] = v0 + h * acc;
+    const Vec3 vmid = 0.5 * (v0 + nodes_.v[a]);
+    o[0] -= h * c * m * dot(v0, vmid);
+    if (penalty_) o[1] += h * dot(fpen[a], vmid);
+  }, dw);
+  damping_work_ += comm_.sum(dw[0]);
+  wall_work_ += comm_.sum(dw[1]);
+  apply_face_conditions(dt);
+  for_each(0, nn, [&](Index a) { nodes_.x[a] += dt * nodes_.v[a]; });
+
+  // Points follow the nodes (Algorithm 1 lines 12-16) with the shape functions of x_p^k.
+  auto* x = points_.view<Vec3>("x");
+  auto* v = points_.view<Vec3>("v");
+  auto* F = points_.view<Mat3>("F");
+  auto* L = points_.view<Mat3>("L");
+  auto* vol = points_.real("volume");
+  const auto* vol0 = points_.real("volume0");
+  const std::vector<Vec3>& fext = loads_.total();
+  const bool has_ext = !fext.empty();
+  std::atomic<Index> bad{n};
+  double ew[1];
+  deterministic_sum<1>(0, n, [&](Index p, double* o) {
+    Vec3 xn, vp;
+    Mat3 l;
+    for (Index k = sup_.offset[p]; k < sup_.offset[p + 1]; ++k) {
+      const Index a = sup_.node[k];
+      const double N = sup_.N[k];
+      xn += N * nodes_.x[a];
+      vp += N * nodes_.v[a];
+      const Vec3& g = sup_.dN[k];
+      const Vec3& va = nodes_.v[a];
+      for (int i = 0; i < dim_; ++i)
+        for (int j = 0; j < dim_; ++j) l(i, j) += va[i] * g[j];
+    }
+    // Axisymmetric hoop stretch r_k+1 / r_k over the step, exactly.
+    if (axisym_) l(2, 2) = (xn[0] / x[p][0] - 1.0) / dt;
+    if (has_ext) o[0] += dt * dot(fext[p], vp);
+    x[p] = xn;
+    v[p] = vp;
+    L[p] = l;
+    // dF = I + dt sum_a v_a (x) grad N_a = sum_a x_a^k+1 (x) grad N_a (line 13, by the first-order
+    // consistency of the shape functions); F and V (lines 14-15).
+    F[p] = (Mat3::identity() + dt * l) * F[p];
+    const double J = det(F[p]);
+    vol[p] = vol0[p] * J;
+    if (!(J > 0.0) || !all_finite(F[p]) || !all_finite(xn)) {
+      Index cur = bad.load();
+      while (p < cur && !bad.compare_exchange_weak(cur, p)) {
+      }
+    }
+  }, ew);
+  external_work_ += comm_.sum(ew[0]);
+  dt_prev_ = dt;
+  time_ += dt;
+  ++steps_;
+  if (const Index p = bad.load(); p < n) pts_.fail(p, "inverted or non-finite deformation gradient (J <= 0 or NaN)", steps_, time_);
+  pts_.update_stress(dt, steps_, time_);
+  refresh_supports();
+}
+
+EnergyTotals OtmSolver::energies() const {
+  const double k = reporting_scale();
+  EnergyTotals e = pts_.energies(k, external_work_);
+  // The nodes carry the motion: kinetic energy and momentum are theirs.
+  double s[4];
+  deterministic_sum<4>(0, nodes_.size(), [&](Index a, double* o) {
+    const double m = nodes_.mass[a];
+    const Vec3& v = nodes_.v[a];
+    o[0] += 0.5 * m * dot(v, v);
+    o[1] += m * v[0];
+    o[2] += m * v[1];
+    o[3] += m * v[2];
+  }, s);
+  e.kinetic = k * s[0];
+  e.momentum = Vec3{{axisym_ ? 0.0 : k * s[1], k * s[2], k * s[3]}};
+  e.damping = k * damping_work_;
+  e.contact = k * wall_work_;
+  return e;
+}
+
+std::string OtmSolver::derived_constants() const {
+  return fmt::format(
+      "# otm: {} nodes, {} points; beta = gamma / h^2 = {:.6g} 1/m^2; support radius {:.6g} m "
+      "({:.3g} h); {:.1f} support nodes per point on average\n",
+      nodes_.size(), points_.size(), sopt_.gamma / (sopt_.h * sopt_.h), otm::support_radius(sopt_),
+      otm::support_radius(sopt_) / sopt_.h, sup_.mean_size);
+}
+
+std::vector<std::string> OtmSolver::history_columns() const { return {"wall_force"}; }
+
+std::vector<double> OtmSolver::history_values() const { return {reporting_scale() * wall_force_}; }
+
+std::vector<std::pair<std::string, double>> OtmSolver::result_values() const {
+  const EnergyTotals e = energies();
+  const Vec3 p0 = reporting_scale() * momentum0_;
+  return {{"node_count", static_cast<double>(nodes_.size())},
+          {"support_mean", mean_support_},
+          {"support_max", static_cast<double>(max_support_)},
+          {"lme_max_iterations", static_cast<double>(max_iterations_)},
+          {"lme_max_condition", max_condition_},
+          {"lme_fallbacks", static_cast<double>(fallbacks_)},
+          {"support_retries", static_cast<double>(retries_)},
+          {"lme_failures", 0.0},  // a failed solve stops the run
+          {"momentum_change_x", axisym_ ? 0.0 : e.momentum[0] - p0[0]},
+          {"momentum_change_y", e.momentum[1] - p0[1]},
+          {"momentum_change_z", e.momentum[2] - p0[2]}};
+}
+
+namespace {
+
+std::unique_ptr<Solver> make_otm(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials) {
+  return std::make_unique<OtmSolver>(sc, std::move(materials));
+}
+
+ParamSpec word(const char* name, const char* description, std::vector<std::string> choices) {
+  ParamSpec s{name, "-", description, false, 0};
+  s.default_choice = choices.front();
+  s.choices = std::move(choices);
+  return s;
+}
+
+std::vector<ParamSpec> otm_params() {
+  ParamSpec gamma{"gamma", "1",
+                  "LME locality gamma = beta h^2 (h = grid.cell_size, the nodal spacing; seed 003 Fig. 5-5): larger "
+                  "is more local (the finite-element limit), smaller smoother",
+                  false, 1.8, 0.0, 50.0, true};
+  ParamSpec tol{"support_tolerance", "1",
+                "weight cut-off of the support radius h sqrt(-ln(tol)/gamma)", false, 1e-4, 0.0, 0.1, true};
+  ParamSpec minsup{"min_support", "1", "fewest support nodes of a point (0: dimension + 2)", false, 0, 0, 1000};
+  minsup.integer = true;
+  const ParamSpec wall = word("wall_model",
+                              "rigid walls (faces marked wall): constraint (no normal displacement into the wall) or "
+                              "penalty (a spring on the crossing; seed 003 ch. 4)",
+                              {"constraint", "penalty"});
+  ParamSpec pen{"penalty", "1", "penalty walls: spring k = penalty m_a / dt^2 (below 4 for stability)", false, 1.0,
+                0.0, 4.0, true, true};
+  const ParamSpec ls = word("line_search", "backtracking line search in the LME Newton solve (seed 003 Fig. 5-5)",
+                            {"on", "off"});
+  return {gamma, tol, minsup, wall, pen, ls};
+}
+
+}  // namespace
+
+}  // namespace ballista
+
+BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
+    "otm",
+    "optimal transportation meshfree method with local max-entropy shape functions (Li, Habbal & Ortiz 2010; "
+    "seed 003)",
+    {"3d", "plane_strain", "axisymmetric"},
+    "otm",
+    ballista::otm_params(),
+    &ballista::make_otm})

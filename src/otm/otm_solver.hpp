@@ -1,0 +1,102 @@
+#pragma once
+// Optimal Transportation Meshfree (OTM) solver (Li, Habbal & Ortiz, IJNME 83 (2010) 1541; seed 003
+// SAND2020-9716 ch. 2, Algorithm 1): nodes carry the motion, material points carry the material,
+// local max-entropy shape functions (otm/lme_shape.hpp) tie them; an updated-Lagrangian explicit
+// two-step scheme. The points layer (seeding, materials, loads, energies, diagnostics) is shared
+// with MPM and peridynamics: this file owns the nodes, the supports and the time integration.
+//
+// One step (Algorithm 1, from t_k to t_k+1):
+//   supports and N_a, grad N_a at the points' positions x_p^k           (lines 6-7, otm_support.hpp)
+//   m_a = sum_p N_a(x_p) m_p                                            (line 8, eq. 2.13)
+//   f_a = sum_p [ -V_p sigma_p grad N_a + N_a f_ext,p ]                 (line 9; axisymmetric adds the
+//         hoop term -V_p sigma_tt N_a / r_p to the radial force, as the MPM solver does)
+//   v_a <- v_a + (dt_k + dt_k+1)/2 f_a / m_a                            (line 11 with l_k = M_k v_k)
+//   x_a <- x_a + dt_k+1 v_a
+//   x_p <- sum_a N_a x_a;  dF = I + dt sum_a v_a (x) grad N_a           (lines 12-13)
+//   F_p <- dF F_p;  V_p <- det(dF) V_p                                  (lines 14-16)
+//   stress update through the material library with L = (dF - I) / dt.
+// Momentum (ch. 2.3): the seed's own form, l_k = M_k v_k with the node velocity of the last step,
+// not Li et al.'s l_a = sum_p N_a m_p v_p: nodes keep their velocity, so no PIC-like smoothing of
+// the velocity field enters at each step (that form re-projects v_p = sum N v_a every step). The
+// price is that momentum changes when the lumped masses change as points move among their nodes;
+// the solver reports that drift (docs/validation.md).
+//
+// Rigid walls (seed 003 ch. 4) at the grid box faces marked `wall`: `constraint` (a node that would
+// cross the wall is stopped on it: zero normal displacement into it) or `penalty` (a spring
+// k = penalty m_a / dt^2 on the crossing distance). `fixed` faces stop nodes; `symmetry` faces and
+// the axis hold the normal velocity at zero.
+#include <memory>
+#include <vector>
+
+#include "core/communicator.hpp"
+#include "core/solver.hpp"
+#include "materials/material.hpp"
+#include "otm/otm_nodes.hpp"
+#include "otm/otm_support.hpp"
+#include "points/point_loads.hpp"
+#include "points/point_set.hpp"
+#include "scenario/scenario.hpp"
+
+namespace ballista {
+
+class OtmSolver final : public Solver {
+ public:
+  OtmSolver(const Scenario& scenario, std::vector<std::unique_ptr<Material>> materials, Communicator comm = {});
+
+  const char* name() const override { return "otm"; }
+  double stable_dt() override;
+  void step(double dt) override;
+  double time() const override { return time_; }
+  long steps() const override { return steps_; }
+  FieldStore& points() override { return points_; }
+  EnergyTotals energies() const override;
+  double reporting_scale() const override;
+  void begin_stage(int stage, double damping) override;
+  StepLimiter step_limiter() const override { return pts_.step_limiter(); }
+  std::string derived_constants() const override;
+  /// wall_force (N, the normal reaction of the rigid walls, summed), node_count.
+  std::vector<std::string> history_columns() const override;
+  std::vector<double> history_values() const override;
+  /// node_count, support statistics, LME iterations and fallbacks, momentum drift.
+  std::vector<std::pair<std::string, double>> result_values() const override;
+
+  const otm::NodeCloud& nodes() const { return nodes_; }
+  const otm::Supports& supports() const { return sup_; }
+
+ private:
+  /// Supports and shape functions at the current positions; stops the run on a failed solve.
+  void refresh_supports();
+  /// Lumped masses and residual forces from the current supports.
+  void assemble();
+  /// Velocity constraints of the box faces on node a after the update; returns the wall's normal
+  /// reaction impulse per dt (N) for the history.
+  void apply_face_conditions(double dt);
+
+  Scenario scenario_;
+  Communicator comm_;
+  PointSet pts_;
+  FieldStore& points_;
+  PointLoads loads_;
+  otm::NodeCloud nodes_;
+  otm::SupportOptions sopt_;
+  otm::Supports sup_, prev_sup_;  ///< this step's supports and the last step's (retries)
+  std::vector<double> scale_;     ///< support radius scale per point (largest principal stretch)
+  std::vector<Vec3> lambda_;   ///< LME multiplier per point (warm start)
+  int dim_ = 3;                ///< axes of the motion: 3, or 2 (plane strain, axisymmetric)
+  bool axisym_ = false;
+  bool penalty_ = false;       ///< rigid walls by penalty instead of the constraint
+  double penalty_factor_ = 1.0;
+  double damping_ = 0.0;       ///< 1/s (stages)
+  double dt_prev_ = 0.0;       ///< s, the previous step (0 before the first)
+  double time_ = 0.0;
+  long steps_ = 0;
+  double external_work_ = 0.0, damping_work_ = 0.0, wall_work_ = 0.0;
+  double wall_force_ = 0.0;    ///< N, last step's normal wall reaction
+  Vec3 momentum0_;             ///< initial nodal momentum (per radian / per metre)
+  double mean_support_ = 0.0;
+  int max_support_ = 0, max_iterations_ = 0;
+  double max_condition_ = 0.0;
+  Index fallbacks_ = 0, retries_ = 0;
+};
+
+}  // namespace ballista

@@ -1,0 +1,164 @@
+#include "otm/otm_support.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+#include "core/parallel.hpp"
+#include "points/cell_bins.hpp"
+
+namespace ballista::otm {
+
+double support_radius(const SupportOptions& opt) { return opt.h * std::sqrt(-std::log(opt.tolerance) / opt.gamma); }
+
+namespace {
+
+/// Nodes of point p's body within radius r of it, in increasing index, appended to ids.
+template <class Bins>
+void nodes_within(const Bins& bins, const Vec3& x, std::int64_t body, const Vec3* xn, const std::int64_t* nbody,
+                  double r, int dim, std::vector<std::int32_t>& ids) {
+  const double r2 = r * r;
+  const size_t first = ids.size();
+  bins.visit(x, [&](Index a) {
+    if (nbody[a] != body) return;
+    Vec3 d = x - xn[a];
+    if (dim == 2) d[2] = 0.0;
+    if (dot(d, d) <= r2) ids.push_back(static_cast<std::int32_t>(a));
+  });
+  std::sort(ids.begin() + static_cast<std::ptrdiff_t>(first), ids.end());
+}
+
+}  // namespace
+
+void build_supports(const Vec3* xp, const std::int64_t* pbody, Index np, const Vec3* xn, const std::int64_t* nbody,
+                    Index nn, const SupportOptions& opt, const double* scale, const Supports* previous, Vec3* lambda,
+                    Supports& out) {
+  const double r0 = support_radius(opt);
+  const int min_support = opt.min_support > 0 ? opt.min_support : opt.dim + 2;
+  double smax = 1.0;
+  if (scale)
+    for (Index p = 0; p < np; ++p) smax = std::max(smax, std::min(scale[p], kMaxScale));
+  const CellBins bins(xn, nn, r0 * smax * (1.0 + 1e-9), opt.dim);
+  auto radius = [&](Index p) { return scale ? r0 * std::clamp(scale[p], 1.0, kMaxScale) : r0; };
+  // Pass 1: how many nodes each point reaches.
+  out.offset.assign(static_cast<size_t>(np) + 1, 0);
+  for_each(0, np, [&](Index p) {
+    thread_local std::vector<std::int32_t> ids;
+    ids.clear();
+    nodes_within(bins, xp[p], pbody[p], xn, nbody, radius(p), opt.dim, ids);
+    out.offset[p + 1] = static_cast<Index>(ids.size());
+  });
+  for (Index p = 0; p < np; ++p) out.offset[p + 1] += out.offset[p];
+  const Index total = out.offset[np];
+  out.node.resize(static_cast<size_t>(total));
+  out.N.resize(static_cast<size_t>(total));
+  out.dN.resize(static_cast<size_t>(total));
+  // Pass 2: the nodes (in increasing index: deterministic for any thread count) and the LME solve.
+  const double beta = opt.gamma / (opt.h * opt.h);
+  std::vector<char> ok(static_cast<size_t>(np), 1);
+  int max_size = 0, max_iter = 0;
+  double max_cond = 0.0;
+  Index fallbacks = 0;
+#pragma omp parallel for schedule(dynamic, 64) reduction(max : max_size, max_iter, max_cond) \
+    reduction(+ : fallbacks) if (np > kParallelThreshold)
+  for (Index p = 0; p < np; ++p) {
+    const Index k0 = out.offset[p];
+    const int k = static_cast<int>(out.offset[p + 1] - k0);
+    thread_local std::vector<std::int32_t> ids;
+    thread_local std::vector<Vec3> d;
+    ids.clear();
+    nodes_within(bins, xp[p], pbody[p], xn, nbody, radius(p), opt.dim, ids);
+    std::copy(ids.begin(), ids.end(), out.node.begin() + k0);
+    d.resize(static_cast<size_t>(k));
+    for (int j = 0; j < k; ++j) d[j] = xp[p] - xn[ids[j]];
+    LmeResult res;
+    if (k >= min_support)
+      res = lme_shape(opt.dim, d.data(), k, beta, opt.h, lambda[p], out.N.data() + k0, out.dN.data() + k0, opt.lme);
+    max_size = std::max(max_size, k);
+    max_iter = std::max(max_iter, res.iterations);
+    if (res.used_fallback) ++fallbacks;
+    if (res.converged) max_cond = std::max(max_cond, res.condition);
+    else ok[p] = 0;
+  }
+  out.retries = 0;
+  out.failed = -1;
+  // Retries (serial: rare) with the union of the new and the previous nodes of the point.
+  std::vector<Index> failed;
+  for (Index p = 0; p < np; ++p)
+    if (!ok[p]) failed.push_back(p);
+  if (!failed.empty() && previous && previous->size() == np) {
+    std::vector<std::vector<std::int32_t>> rows(failed.size());
+    std::vector<std::vector<double>> Ns(failed.size());
+    std::vector<std::vector<Vec3>> dNs(failed.size());
+    std::vector<Index> unresolved;
+    for (size_t i = 0; i < failed.size(); ++i) {
+      const Index p = failed[i];
+      std::vector<std::int32_t>& row = rows[i];
+      row.assign(out.node.begin() + out.offset[p], out.node.begin() + out.offset[p + 1]);
+      row.insert(row.end(), previous->node.begin() + previous->offset[p], previous->node.begin() + previous->offset[p + 1]);
+      std::sort(row.begin(), row.end());
+      row.erase(std::unique(row.begin(), row.end()), row.end());
+      const int k = static_cast<int>(row.size());
+      std::vector<Vec3> d(static_cast<size_t>(k));
+      for (int j = 0; j < k; ++j) d[j] = xp[p] - xn[row[j]];
+      Ns[i].resize(static_cast<size_t>(k));
+      dNs[i].resize(static_cast<size_t>(k));
+      Vec3 lam;
+      const LmeResult res = lme_shape(opt.dim, d.data(), k, beta, opt.h, lam, Ns[i].data(), dNs[i].data(), opt.lme);
+      if (res.converged) {
+        lambda[p] = lam;
+        ok[p] = 1;
+        ++out.retries;
+        max_size = std::max(max_size, k);
+        max_cond = std::max(max_cond, res.condition);
+      }
+    }
+    // Splice the retried rows into the compressed storage.
+    if (out.retries > 0) {
+      Supports merged;
+      merged.offset.assign(static_cast<size_t>(np) + 1, 0);
+      size_t next = 0;
+      for (Index p = 0; p < np; ++p) {
+        const bool retried = next < failed.size() && failed[next] == p;
+        const Index k = retried ? static_cast<Index>(rows[next].size()) : out.offset[p + 1] - out.offset[p];
+        merged.offset[p + 1] = merged.offset[p] + k;
+        if (retried) {
+          merged.node.insert(merged.node.end(), rows[next].begin(), rows[next].end());
+          merged.N.insert(merged.N.end(), Ns[next].begin(), Ns[next].end());
+          merged.dN.insert(merged.dN.end(), dNs[next].begin(), dNs[next].end());
+          ++next;
+        } else {
+          merged.node.insert(merged.node.end(), out.node.begin() + out.offset[p], out.node.begin() + out.offset[p + 1]);
+          merged.N.insert(merged.N.end(), out.N.begin() + out.offset[p], out.N.begin() + out.offset[p + 1]);
+          merged.dN.insert(merged.dN.end(), out.dN.begin() + out.offset[p], out.dN.begin() + out.offset[p + 1]);
+        }
+      }
+      out.offset.swap(merged.offset);
+      out.node.swap(merged.node);
+      out.N.swap(merged.N);
+      out.dN.swap(merged.dN);
+    }
+  }
+  for (Index p = 0; p < np; ++p)
+    if (!ok[p]) {
+      out.failed = p;
+      break;
+    }
+  out.mean_size = np > 0 ? static_cast<double>(out.offset[np]) / static_cast<double>(np) : 0.0;
+  out.max_size = max_size;
+  out.max_iterations = max_iter;
+  out.max_condition = max_cond;
+  out.fallbacks = fallbacks;
+  if (out.failed >= 0) {
+    // Solve it again (serial) for the diagnostic.
+    const Index p = out.failed, k0 = out.offset[p];
+    const int k = static_cast<int>(out.offset[p + 1] - k0);
+    std::vector<Vec3> d(static_cast<size_t>(k)), g(static_cast<size_t>(k));
+    std::vector<double> N(static_cast<size_t>(k));
+    for (int j = 0; j < k; ++j) d[j] = xp[p] - xn[out.node[k0 + j]];
+    Vec3 lam;
+    out.failed_result = lme_shape(opt.dim, d.data(), k, beta, opt.h, lam, N.data(), g.data(), opt.lme);
+  }
+}
+
+}  // namespace ballista::otm
