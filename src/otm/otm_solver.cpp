@@ -193,9 +193,13 @@ void OtmSolver::apply_face_conditions(double dt) {
         const double gap = sign * (x[ax] + dt * v[ax] - plane);  // < 0: would cross
         if (gap >= 0.0) continue;
         const double vn = (plane - x[ax]) / dt;
-        const double dv = vn - v[ax];
-        wall_dk += 0.5 * m * ((v[ax] + dv) * (v[ax] + dv) - v[ax] * v[ax]);
-        reaction += sign * m * dv / dt;
+        // The wall takes the normal kinetic energy the node had at the start of the step: the
+        // force of this step did no work on the stopped node (its strain rate, from the constrained
+        // velocity, stores none), so what the update added is not lost, only what the node
+        // brought in (zero for a node resting on the wall).
+        const double v_start = v_start_[a][ax];
+        wall_dk += 0.5 * m * (vn * vn - v_start * v_start);
+        reaction += sign * m * (vn - v[ax]) / dt;
         v[ax] = vn;
       }
   }
@@ -252,6 +256,7 @@ void OtmSolver::step(double dt) {
   // Central difference with a variable step (Algorithm 1 line 11, l_k = M_k v_k): v_a gains
   // (dt_k + dt_k+1)/2 f_a / m_a; damping -c v (stages) with its work booked (midpoint velocity).
   const double h = 0.5 * (dt_prev_ + dt);
+  v_start_.assign(static_cast<size_t>(nn), Vec3{});
   const double c = damping_;
   double dw[2];
   deterministic_sum<2>(0, nn, [&](Index a, double* o) {
@@ -260,6 +265,7 @@ void OtmSolver::step(double dt) {
     Vec3 f = nodes_.f[a];
     if (penalty_) f += fpen[a];
     const Vec3 v0 = nodes_.v[a];
+    v_start_[a] = v0;
     const Vec3 acc = (1.0 / m) * f - c * v0;
     nodes_.v[a] = v0 + h * acc;
     const Vec3 vmid = 0.5 * (v0 + nodes_.v[a]);

@@ -80,6 +80,7 @@ class OtmSolver final : public Solver {
   otm::NodeCloud nodes_;
   otm::SupportOptions sopt_;
   otm::Supports sup_, prev_sup_;  ///< this step's supports and the last step's (retries)
+  std::vector<Vec3> v_start_;     ///< node velocities at the start of the step (wall booking)
   std::vector<double> scale_;     ///< support radius scale per point (largest principal stretch)
   std::vector<Vec3> lambda_;   ///< LME multiplier per point (warm start)
   int dim_ = 3;                ///< axes of the motion: 3, or 2 (plane strain, axisymmetric)
