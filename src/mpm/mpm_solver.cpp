@@ -32,14 +32,14 @@ void record_min(std::atomic<Index>& slot, Index p) {
 }
 
 template <int Dim, ShapeKind K>
-inline void stencil_of(const GridGeometry& g, const Vec3& x, const Vec3& half, const Mat3& F,
-                       Stencil<Dim>& s) {
+inline void stencil_of(const GridGeometry& g, const SplineFaces& faces, const Vec3& x, const Vec3& half,
+                       const Mat3& F, Stencil<Dim>& s) {
   if constexpr (K == ShapeKind::Linear) {
     linear_stencil<Dim>(g, x, s);
   } else if constexpr (K == ShapeKind::Gimp) {
     gimp_stencil<Dim>(g, x, half, s);  // uGIMP: reference half-size (Bardenhagen & Kober 2004)
   } else if constexpr (K == ShapeKind::BSpline3) {
-    bspline3_stencil<Dim>(g, x, s);
+    bspline3_stencil<Dim>(g, x, s, faces);
   } else {
     // CPDI1 domain vectors r_j = F (half_j e_j) (Sadeghirad et al. 2011, eq. 11).
     Mat3 r;
@@ -111,6 +111,26 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   grid_.fields = sc.contact.fields;
   slab_axis_ = dim_ - 1;
   grid_.resize(grid_.geom.node_count() * grid_.fields);
+  if (shape_ == ShapeKind::BSpline3) {
+    // The cubic B-spline reaches one node beyond the face cell. Fixed and wall faces bound the
+    // basis (Steffen, Wallstedt et al., CMES 31 (2008) 107: boundary-modified, interpolatory at
+    // the face, so the face nodes' condition holds for the material at the face). Symmetry faces
+    // and the axis of an axisymmetric grid continue it by the mirror image of the grid field
+    // (image particles: the ghost nodes carry the mirrored inside values), which is the exact
+    // half of the symmetric whole-body problem. Free faces keep the uniform basis on the ghost
+    // layers (as in the interior). docs/deck.md, mpm.shape_function.
+    for (int a = 0; a < dim_; ++a)
+      for (int side = 0; side < 2; ++side) {
+        const FaceBC bc = sc.grid.faces[2 * a + side];
+        const int node = side == 0 ? layout_.box_first[a] : layout_.box_last[a];
+        const bool axis = dimension_ == Dimension::Axisymmetric && a == 0 && side == 0 && layout_.box_lower[0] == 0.0;
+        if (bc == FaceBC::Fixed || bc == FaceBC::Wall) {
+          (side == 0 ? spline_faces_.lo : spline_faces_.hi)[a] = node;
+        } else if (bc == FaceBC::Symmetry || axis) {
+          mirror_faces_.push_back({a, node, side == 0 ? -1 : 1});
+        }
+      }
+  }
   sort_by_cell();
 }
 
@@ -254,7 +274,7 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
     // Tractions at the surface points, with the kernel's weights there (serial: few points).
     Stencil<Dim> st;
     for (const PointLoads::SurfaceForce& sf : loads_.surface_forces()) {
-      if constexpr (K == ShapeKind::BSpline3) bspline3_stencil<Dim>(g, sf.point, st);
+      if constexpr (K == ShapeKind::BSpline3) bspline3_stencil<Dim>(g, sf.point, st, spline_faces_);
       else linear_stencil<Dim>(g, sf.point, st);
       const Index fo = field_offset(sf.index);
       for (int k = 0; k < st.count; ++k) gf[fo + st.node[k]] += st.w[k] * sf.force;
@@ -266,7 +286,7 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
       Stencil<Dim> st;
       for (Index q = slab_start_[s]; q < slab_start_[s + 1]; ++q) {
         const Index p = slab_points_[q];
-        stencil_of<Dim, K>(g, x[p], half[p], F[p], st);
+        stencil_of<Dim, K>(g, spline_faces_, x[p], half[p], F[p], st);
         const double m = mass[p];
         const Vec3 mv = m * v[p];
         const Index fo = field_offset(p);
@@ -295,6 +315,86 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
         }
       }
     }
+  }
+  if (!mirror_faces_.empty()) fold_mirror_faces(momentum_only);
+}
+
+namespace {
+/// Calls f(ghost, image, axis) for every node on (ghost == image) and beyond a mirror face and its
+/// mirror image (both as node indices of field 0), faces in the given order, every node of the
+/// transverse planes (ghost layers included, so that corners between two mirror faces are folded
+/// twice).
+template <class Face, class Fn>
+void for_each_mirror_pair(const GridGeometry& g, int ghost, const std::vector<Face>& faces, Fn&& fn) {
+  for (const Face& mf : faces) {
+    const int a = mf.axis, b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+    for (int k = 0; k <= ghost; ++k) {
+      const int gi = mf.node + mf.side * k, ii = mf.node - mf.side * k;
+      if (gi < 0 || gi >= g.nodes[a] || ii < 0 || ii >= g.nodes[a]) continue;
+      for (int j = 0; j < g.nodes[b1]; ++j)
+        for (int l = 0; l < g.nodes[b2]; ++l) {
+          int G[3], I[3];
+          G[a] = gi; I[a] = ii;
+          G[b1] = I[b1] = j;
+          G[b2] = I[b2] = l;
+          fn(g.node_index(G[0], G[1], G[2]), g.node_index(I[0], I[1], I[2]), a);
+        }
+    }
+  }
+}
+/// The mirror image of v across a plane normal to `axis`.
+inline Vec3 mirrored(Vec3 v, int axis) {
+  v[axis] = -v[axis];
+  return v;
+}
+}  // namespace
+
+void MpmSolver::fold_mirror_faces(bool momentum_only) {
+  // Image particles (the body reflected in the face) would add to inside node I what the real
+  // ones put on its mirror ghost G, reflected: m_I += m_G, p_I += R p_G, f_I += R f_G (the image's
+  // stress R sigma R and gradient R grad N_G give R f_G; the axisymmetric hoop term flips with r).
+  // A face node is its own image: p += R p, f += R f cancel the normal components (and double
+  // the tangential ones with the mass, which changes neither v nor a), so the mapped velocity of
+  // the face nodes has no normal part either, as in the whole body; the acceleration handed to the
+  // particles, (v_new - v)/dt, then has none there. Ghost nodes are left empty;
+  // fill_mirror_ghosts sets them.
+  const GridGeometry& g = grid_.geom;
+  const Index nn = g.node_count();
+  for (int f = 0; f < grid_.fields; ++f) {
+    const Index o = f * nn;
+    for_each_mirror_pair(g, ghost_, mirror_faces_, [&](Index G, Index I, int a) {
+      G += o;
+      I += o;
+      if (G == I) {
+        grid_.velocity[I][a] = 0.0;
+        if (momentum_only) return;
+        grid_.force[I][a] = 0.0;
+        if (grid_.fields > 1) grid_.grad[I][a] = 0.0;
+        return;
+      }
+      grid_.velocity[I] += mirrored(grid_.velocity[G], a);
+      grid_.velocity[G] = Vec3{};
+      if (momentum_only) return;
+      grid_.mass[I] += grid_.mass[G];
+      grid_.mass[G] = 0.0;
+      grid_.force[I] += mirrored(grid_.force[G], a);
+      grid_.force[G] = Vec3{};
+      if (grid_.fields > 1) {
+        grid_.grad[I] += mirrored(grid_.grad[G], a);
+        grid_.grad[G] = Vec3{};
+      }
+    });
+  }
+}
+
+void MpmSolver::fill_mirror_ghosts(Vec3* v) {
+  const GridGeometry& g = grid_.geom;
+  const Index nn = g.node_count();
+  for (int f = 0; f < grid_.fields; ++f) {
+    Vec3* vf = v + f * nn;
+    for_each_mirror_pair(g, ghost_, mirror_faces_, [&](Index G, Index I, int a) {
+      if (G != I) vf[G] = mirrored(vf[I], a);
+    });
   }
 }
 
@@ -396,6 +496,10 @@ void MpmSolver::update_grid(double dt) {
     const Vec3& v0 = multi ? grid_.accel[i] : grid_.velocity[i];
     grid_.accel[i] = (1.0 / dt) * (grid_.velocity_new[i] - v0);
   });
+  if (!mirror_faces_.empty()) {  // cubic B-spline: the ghosts beyond a mirror face read the image
+    fill_mirror_ghosts(grid_.velocity_new.data());
+    fill_mirror_ghosts(grid_.accel.data());
+  }
 }
 
 inline void MpmSolver::finish_point(Index p, const Mat3& l, const Vec3& disp, double dt,
@@ -435,7 +539,7 @@ void MpmSolver::grid_to_particles(double dt) {
   deterministic_sum<2>(0, n, [&](Index p, double* o) {
     Stencil<Dim> st;
     const Vec3 xp = x_[p];
-    stencil_of<Dim, K>(g, xp, half[p], F_[p], st);
+    stencil_of<Dim, K>(g, spline_faces_, xp, half[p], F_[p], st);
     const Index fo = field_offset(p);
     Vec3 vg, acc;
     Mat3 l;
@@ -488,7 +592,7 @@ void MpmSolver::velocity_gradient_from_grid(double dt) {
   for_each(0, n, [&](Index p) {
     Stencil<Dim> st;
     const Vec3 xp = x_[p];
-    stencil_of<Dim, K>(g, xp, half[p], F_[p], st);
+    stencil_of<Dim, K>(g, spline_faces_, xp, half[p], F_[p], st);
     const Index fo = field_offset(p);
     Mat3 l;
     double vr = 0.0;
@@ -542,6 +646,7 @@ void MpmSolver::step_impl(double dt) {
       apply_contact(grid_.velocity_new.data(), false);
       apply_velocity_bcs(grid_.velocity_new.data());
     }
+    if (!mirror_faces_.empty()) fill_mirror_ghosts(grid_.velocity_new.data());
     velocity_gradient_from_grid<Dim, K>(dt);
   }
   // The step's kinematics are done: count it, so that failure messages, outputs and statistics

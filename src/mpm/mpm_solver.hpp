@@ -78,6 +78,12 @@ class MpmSolver final : public Solver {
   void update_grid(double dt);
   /// Imposes the face and axis conditions on every field's nodal velocities.
   void apply_velocity_bcs(Vec3* vel);
+  /// Cubic B-spline at symmetry faces and the axis: folds what the stencils put on the ghost nodes
+  /// beyond a mirror face onto their mirror images inside (normal component negated) and leaves
+  /// the ghosts empty; all arrays of the first P2G pass, or only the momentum (MUSL remap).
+  void fold_mirror_faces(bool momentum_only);
+  /// ... and sets the ghost nodes of every field to the mirror image of the inside values.
+  void fill_mirror_ghosts(Vec3* v);
   /// Multi-field contact on `vel` (every field); books its work if `book` (v_start: grid_contact.hpp).
   void apply_contact(Vec3* vel, bool book, const Vec3* v_start = nullptr);
   /// Offset of point p's velocity field in the grid arrays.
@@ -106,6 +112,15 @@ class MpmSolver final : public Solver {
   Dimension dimension_;
   int dim_;
   ShapeKind shape_;
+  /// Cubic B-spline only: faces with the boundary-modified basis (fixed and wall faces; Steffen
+  /// et al. 2008) and faces continued by the mirror image (symmetry faces and the axis).
+  SplineFaces spline_faces_;
+  struct MirrorFace {
+    int axis;   ///< normal axis
+    int node;   ///< node index of the face on that axis
+    int side;   ///< -1: ghosts below the face (x_min), +1: above it (x_max)
+  };
+  std::vector<MirrorFace> mirror_faces_;
   bool musl_;
   double flip_;
   int sort_every_ = 20;  ///< steps between particle sorts (0 = never)

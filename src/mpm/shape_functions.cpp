@@ -55,7 +55,8 @@ std::string shape_kind_description(ShapeKind kind) {
              "domain (Sadeghirad, Brannon & Burghardt, IJNME 86 (2011) 1435)";
     case ShapeKind::BSpline3:
       return "cubic B-spline, 4^d nodes, C2 (de Boor 1978; Steffen, Kirby & Berzins, IJNME 76 "
-             "(2008) 922)";
+             "(2008) 922); boundary-modified at fixed and wall faces (Steffen, Wallstedt et al., "
+             "CMES 31 (2008) 107), mirrored at symmetry faces and the axis";
   }
   return "unknown";
 }

@@ -71,6 +71,9 @@ inline int stencil_reach(ShapeKind kind, double cpdi_extent_cells = 0.5) {
   return 2;
 }
 
+/// Node index meaning "no bounding face" for the cubic B-spline (SplineFaces, bspline3_1d).
+inline constexpr int kNoSplineFace = -(1 << 29);
+
 namespace shape_detail {
 
 /// Per-axis window: first node index and the 1-D weights/derivatives (derivative in 1/m).
@@ -166,10 +169,41 @@ inline void gimp_1d(double x, double origin, double h, double inv_h, double a, A
 /// ch. IX; used in MPM by Steffen, Kirby & Berzins, IJNME 76 (2008) 922). Node-centred kernel
 /// N(u) = |u|^3/2 - u^2 + 2/3 (|u| < 1), (2 - |u|)^3/6 (1 <= |u| < 2). For t in [0,1) the nodes
 /// c-1..c+2 sit at u = t+1, t, t-1, t-2, giving the four uniform B-spline segments below.
-inline void bspline3_1d(double x, double origin, double h, double inv_h, Axis1D<4>& a) {
+///
+/// Boundary-modified basis (Steffen, Wallstedt, Guilkey, Kirby & Berzins, "Examination and
+/// analysis of implementation choices within the material point method (MPM)", CMES 31 (2008)
+/// 107, section on cubic B-splines; the same piecewise cubics are the "boundary-modified cubic
+/// B-spline" of later MPM codes). At a bounding face with node index `lo` (`hi`), the node beyond
+/// the face is removed by linear extrapolation, N'_lo = N_lo + 2 N_(lo-1),
+/// N'_(lo+1) = N_(lo+1) - N_(lo-1), N'_(lo-1) = 0 (mirrored at `hi`). Only the face cell changes;
+/// there, with t = (x - x_lo)/h in [0,1] (s = 1 - t at the high face, node order reversed):
+///   N'_lo     = 1 - t + t^3/6            dN'/dx = (t^2/2 - 1)/h
+///   N'_(lo+1) = t - t^3/3                dN'/dx = (1 - t^2)/h
+///   N_(lo+2)  = t^3/6  (unchanged)       dN /dx = t^2/(2h)
+/// In node units (xi = (x - x_I)/h) this is Steffen et al.'s face-node function
+/// xi^3/6 - xi + 1 on [0,1] (uniform on [1,2]) and first-interior-node function
+/// -xi^3/3 - xi^2 + 2/3 on [-1,0] (uniform elsewhere). Properties: partition of unity and exact
+/// linear reproduction with the real node positions (the extrapolation keeps them), N'_lo(face)
+/// = 1 and every other function 0 there (interpolatory at the face: a constrained face node
+/// constrains the material at the face), non-negative, C2 inside the box (the face cell's
+/// pieces meet the uniform ones with equal value, slope and curvature at t = 1), and N'' = 0 at
+/// the face (a natural-spline end: quadratics are not reproduced in the face cell). It is not the
+/// open-knot-vector (clamped) basis of isogeometric analysis, whose control points are not at
+/// the nodes (Greville abscissae 0, h/3, h, ...).
+///
+/// `lo`/`hi`: node indices of the bounding faces on this axis, or kNoSplineFace. A coordinate
+/// outside the box on a bounded side is evaluated with the face cell's polynomials (extrapolated),
+/// so the node beyond the face never carries weight; that happens only for surface-load points
+/// (particles outside the box stop the run or are deleted first).
+inline void bspline3_1d(double x, double origin, double h, double inv_h, Axis1D<4>& a,
+                        int lo = kNoSplineFace, int hi = kNoSplineFace) {
   int c;
   double t;
   locate(x, origin, h, c, t);
+  // Rare (face cells only) and well predicted: the uniform path is unchanged bitwise.
+  if (c < lo) { t += c - lo; c = lo; }
+  if (hi != kNoSplineFace && c > hi - 1) { t += c - (hi - 1); c = hi - 1; }
+  const bool at_lo = c == lo, at_hi = hi != kNoSplineFace && c == hi - 1;
   a.first = c - 1;
   const double t2 = t * t, t3 = t2 * t, s = 1.0 - t;
   a.w[0] = s * s * s * (1.0 / 6.0);
@@ -180,6 +214,30 @@ inline void bspline3_1d(double x, double origin, double h, double inv_h, Axis1D<
   a.dw[1] = (1.5 * t2 - 2.0 * t) * inv_h;
   a.dw[2] = (-1.5 * t2 + t + 0.5) * inv_h;
   a.dw[3] = 0.5 * t2 * inv_h;
+  if (at_lo && at_hi) {
+    // A one-cell axis: both extrapolations at once leave N_lo + 2 N_(lo-1) - N_(lo+2) = 1 - t and
+    // N_(lo+1) + 2 N_(lo+2) - N_(lo-1) = t, the linear hat (written directly: exact, >= 0).
+    a.w[0] = a.w[3] = a.dw[0] = a.dw[3] = 0.0;
+    a.w[1] = s;
+    a.w[2] = t;
+    a.dw[1] = -inv_h;
+    a.dw[2] = inv_h;
+  } else if (at_lo) {  // window lo-1..lo+2: the face cell (closed forms above)
+    a.w[0] = 0.0;
+    a.w[1] = 1.0 - t + t3 * (1.0 / 6.0);
+    a.w[2] = t - t3 * (1.0 / 3.0);
+    a.dw[0] = 0.0;
+    a.dw[1] = (0.5 * t2 - 1.0) * inv_h;
+    a.dw[2] = (1.0 - t2) * inv_h;
+  } else if (at_hi) {  // window hi-2..hi+1, mirror image (x -> -x, t -> s)
+    const double s2 = s * s, s3 = s2 * s;
+    a.w[1] = s - s3 * (1.0 / 3.0);
+    a.w[2] = 1.0 - s + s3 * (1.0 / 6.0);
+    a.w[3] = 0.0;
+    a.dw[1] = (s2 - 1.0) * inv_h;
+    a.dw[2] = (1.0 - 0.5 * s2) * inv_h;
+    a.dw[3] = 0.0;
+  }
 }
 
 inline Index stride_y(const GridGeometry& g) {
@@ -305,14 +363,26 @@ inline void gimp_stencil(const GridGeometry& g, const Vec3& x, const Vec3& lp, S
   shape_detail::tensor_product_n<Dim, 3>(g, ax, n, s);
 }
 
+/// The grid faces at which the cubic B-spline basis is boundary-modified (Steffen et al. 2008,
+/// bspline3_1d): per axis, the node index of the low / high face, or kNoSplineFace where the
+/// uniform basis continues onto the ghost layers. The default bounds nothing.
+struct SplineFaces {
+  int lo[3] = {kNoSplineFace, kNoSplineFace, kNoSplineFace};
+  int hi[3] = {kNoSplineFace, kNoSplineFace, kNoSplineFace};
+};
+
 /// Cubic B-spline (de Boor 1978; Steffen, Kirby & Berzins 2008), support 4h: 4^Dim nodes
-/// c-1..c+2 per axis. Uniform (no boundary-modified) splines: the grid's ghost layers provide the
-/// outer nodes, so linear fields are reproduced everywhere the stencil is complete.
+/// c-1..c+2 per axis (the node beyond a bounding face of `faces` gets weight 0). Uniform where
+/// `faces` bounds nothing: the grid's ghost layers provide the outer nodes there, so linear
+/// fields are reproduced everywhere the stencil is complete; boundary-modified (Steffen,
+/// Wallstedt et al., CMES 31 (2008) 107) in the face cell of a bounded face.
 template <int Dim>
-inline void bspline3_stencil(const GridGeometry& g, const Vec3& x, Stencil<Dim>& s) {
+inline void bspline3_stencil(const GridGeometry& g, const Vec3& x, Stencil<Dim>& s,
+                             const SplineFaces& faces = {}) {
   const double inv_h = 1.0 / g.h;
   shape_detail::Axis1D<4> ax[Dim];
-  for (int d = 0; d < Dim; ++d) shape_detail::bspline3_1d(x[d], g.origin[d], g.h, inv_h, ax[d]);
+  for (int d = 0; d < Dim; ++d)
+    shape_detail::bspline3_1d(x[d], g.origin[d], g.h, inv_h, ax[d], faces.lo[d], faces.hi[d]);
   s.count = 0;
   shape_detail::tensor_product<Dim, 4>(g, ax, s);
 }
