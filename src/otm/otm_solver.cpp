@@ -208,22 +208,40 @@ void OtmSolver::apply_face_conditions(double dt) {
 }
 
 double OtmSolver::stable_dt() {
-  // dt = CFL h_min / max_p (c_p + |v_p|), h_min = h times the smallest principal stretch of the
-  // points (nodes move with the material, so their spacing shrinks with it): the seed's
-  // "conservative Courant condition estimate" (Algorithm 1 line 10).
-  const Index n = points_.size();
-  const auto* F = points_.view<Mat3>("F");
-  double smin = kInf;
-#pragma omp parallel for schedule(static) reduction(min : smin) if (n > kParallelThreshold)
+  // The central difference is stable for dt <= 2 / omega_max (Belytschko, Liu & Moran, Nonlinear
+  // Finite Elements for Continua and Structures (2000) §6.3). omega_max^2 is bounded by the largest
+  // row sum of M^-1 K (Gershgorin), with the tangent stiffness of a point bounded by its P-wave
+  // modulus rho c^2: K_ab <= sum_p V_p rho_p c^2 g_a,p g_b,p, g_a,p = |grad N_a(x_p)| (+ N_a / r_p,
+  // the hoop strain, in axisymmetric runs). So omega_a^2 <= (1/m_a) sum_p m_p c^2 g_a,p G_p with
+  // G_p = sum_b g_b,p, and dt = CFL * 2 / max_a omega_a (CFL 1 is the bound itself). For the
+  // lumped linear finite element on a regular 1D mesh this is exactly h / c; for LME it follows
+  // the supports as the nodes move with the material (the seed's "conservative Courant condition
+  // estimate", Algorithm 1 line 10).
+  const Index n = points_.size(), nn = nodes_.size();
+  const double c = comm_.max(pts_.max_signal_speed());
+  if (!(c > 0.0) || n == 0) return scenario_.simulation.max_dt > 0.0 ? std::min(scenario_.simulation.max_dt, scenario_.simulation.end_time) : scenario_.simulation.end_time;
+  const auto* mass = points_.real("mass");
+  const auto* x = points_.view<Vec3>("x");
+  std::vector<double> k(static_cast<size_t>(nn), 0.0), m(static_cast<size_t>(nn), 0.0);
+  auto g = [&](Index p, Index kk) {
+    double v = norm(sup_.dN[kk]);
+    if (axisym_) v += sup_.N[kk] / x[p][0];
+    return v;
+  };
   for (Index p = 0; p < n; ++p) {
-    double lo, hi;
-    otm::symmetric_extremes(transpose_times(F[p], F[p]), dim_, lo, hi);
-    smin = std::min(smin, std::sqrt(std::max(lo, 0.0)));
+    double G = 0.0;
+    for (Index kk = sup_.offset[p]; kk < sup_.offset[p + 1]; ++kk) G += g(p, kk);
+    for (Index kk = sup_.offset[p]; kk < sup_.offset[p + 1]; ++kk) {
+      const Index a = sup_.node[kk];
+      k[a] += mass[p] * G * g(p, kk);
+      m[a] += sup_.N[kk] * mass[p];
+    }
   }
-  smin = std::min(1.0, comm_.min(smin));
-  const double speed = comm_.max(pts_.max_signal_speed());
-  double dt = speed > 0.0 ? scenario_.simulation.cfl * scenario_.grid.cell_size * smin / speed
-                          : scenario_.simulation.end_time;
+  double w2 = 0.0;
+  for (Index a = 0; a < nn; ++a)
+    if (m[a] > kTinyMass) w2 = std::max(w2, k[a] / m[a]);
+  w2 = comm_.max(w2) * c * c;
+  double dt = w2 > 0.0 ? scenario_.simulation.cfl * 2.0 / std::sqrt(w2) : scenario_.simulation.end_time;
   if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
   return dt;
 }
