@@ -7,7 +7,7 @@
 //    energy the wall takes from the nodes it stops booked as contact work;
 //  - the bar rebounds: mean axial velocity after the contact between +0.85 v and +1.0 v (lateral
 //    inertia and the stopped node layer keep some energy in vibration: 1D theory is an upper bound);
-//  - the contact lasts 2L/c_0 within 10 % (the wall force history).
+//  - the contact lasts 2L/c_0 within 10 % (first to last step with a wall force).
 //  - the two wall forms give rebound speeds within 2 % of each other ("nearly equal", seed ch. 4).
 #include <gtest/gtest.h>
 
@@ -32,7 +32,7 @@ struct Impact {
 
 Impact run(const std::string& wall) {
   const std::string yaml = R"(
-simulation: {solver: otm, dimension: axisymmetric, end_time: 3.0e-5, cfl: 0.3}
+simulation: {solver: otm, dimension: axisymmetric, end_time: 3.0e-5, cfl: 0.9}
 materials:
   steel: {model: linear_elastic, density: 7850, youngs_modulus: 200.0e9, poisson_ratio: 0.3}
 otm: {wall_model: )" + wall + R"(}
@@ -45,11 +45,16 @@ bodies:
   OtmSolver s(sc, make_materials(sc));
   const EnergyTotals e0 = s.energies();
   Impact out;
+  double first = -1.0, last = -1.0;
   while (s.time() < 3.0e-5) {
-    const double dt = s.stable_dt();
-    s.step(dt);
-    if (std::abs(s.history_values()[0]) > 0.0) out.contact += dt;
+    const double t0 = s.time();
+    s.step(s.stable_dt());
+    if (std::abs(s.history_values()[0]) > 0.0) {
+      if (first < 0.0) first = t0;
+      last = s.time();
+    }
   }
+  out.contact = last - first;
   const EnergyTotals e = s.energies();
   out.residual = (e.total() - e0.total()) / e0.kinetic;
   out.rebound = e.momentum[1] / e.mass / kV;
