@@ -116,7 +116,7 @@ void OtmSolver::refresh_supports() {
                         "{} support nodes within {:.4g} m (at least {} needed; otm.gamma = {:g}), residual {:.3g} h "
                         "after {} iterations{}, condition number of the Hessian {:.3g}; support nodes: {}. "
                         "The point has probably left the convex hull of its nodes (otm docs: adaptivity)",
-                        k1 - k0, otm::support_radius(sopt_), sopt_.min_support > 0 ? sopt_.min_support : dim_ + 2,
+                        k1 - k0, otm::support_radius(sopt_) * std::clamp(scale_[p], 1.0, otm::kMaxScale), sopt_.min_support > 0 ? sopt_.min_support : dim_ + 2,
                         sopt_.gamma, r.residual, r.iterations, r.used_fallback ? " (with the fallback)" : "",
                         r.condition, nodes),
             steps_, time_);
@@ -238,10 +238,17 @@ double OtmSolver::stable_dt() {
     }
   }
   double w2 = 0.0;
+  omega2_.assign(static_cast<size_t>(nn), 0.0);
   for (Index a = 0; a < nn; ++a)
-    if (m[a] > kTinyMass) w2 = std::max(w2, k[a] / m[a]);
-  w2 = comm_.max(w2) * c * c;
-  double dt = w2 > 0.0 ? scenario_.simulation.cfl * 2.0 / std::sqrt(w2) : scenario_.simulation.end_time;
+    if (m[a] > kTinyMass) {
+      omega2_[a] = k[a] / m[a] * c * c;
+      w2 = std::max(w2, omega2_[a]);
+    }
+  w2 = comm_.max(w2);
+  // A penalty wall's spring k_a = penalty m_a omega_a^2 raises a wall node's omega^2 by the
+  // factor 1 + penalty.
+  const double bound = penalty_ ? 2.0 / std::sqrt(1.0 + penalty_factor_) : 2.0;
+  double dt = w2 > 0.0 ? scenario_.simulation.cfl * bound / std::sqrt(w2) : scenario_.simulation.end_time;
   if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
   return dt;
 }
@@ -250,8 +257,9 @@ void OtmSolver::step(double dt) {
   const Index n = points_.size(), nn = nodes_.size();
   loads_.compute(scenario_, points_, time_);
   assemble();
-  // Rigid walls by penalty: a spring k = penalty m_a / dt^2 on how far a node is behind the wall
-  // (k dt^2 / m < 4 keeps the central difference stable; penalty 1 by default).
+  // Rigid walls by penalty: a spring k_a = penalty m_a omega_a^2 on how far a node is behind the
+  // wall, omega_a^2 the node's Gershgorin bound (stable_dt): as stiff as the material around the
+  // node times `penalty`, independent of the time step (stable_dt shortens the step for it).
   double wall_force = 0.0;
   std::vector<Vec3> fpen;
   if (penalty_) {
@@ -265,7 +273,7 @@ void OtmSolver::step(double dt) {
           const double sign = side == 0 ? 1.0 : -1.0;
           const double depth = sign * (plane - nodes_.x[a][ax]);  // > 0: behind the wall
           if (depth <= 0.0) continue;
-          const double fn = penalty_factor_ * nodes_.mass[a] / (dt * dt) * depth;
+          const double fn = penalty_factor_ * nodes_.mass[a] * omega2_[a] * depth;
           fpen[a][ax] += sign * fn;
           wall_force += sign * fn;
         }
@@ -419,8 +427,9 @@ std::vector<ParamSpec> otm_params() {
                               "rigid walls (faces marked wall): constraint (no normal displacement into the wall) or "
                               "penalty (a spring on the crossing; seed 003 ch. 4)",
                               {"constraint", "penalty"});
-  ParamSpec pen{"penalty", "1", "penalty walls: spring k = penalty m_a / dt^2 (below 4 for stability)", false, 1.0,
-                0.0, 4.0, true, true};
+  ParamSpec pen{"penalty", "1",
+                "penalty walls: spring k_a = penalty m_a omega_a^2 (the node's own stiffness bound times this)", false,
+                1.0, 0.0, 100.0, true};
   const ParamSpec ls = word("line_search", "backtracking line search in the LME Newton solve (seed 003 Fig. 5-5)",
                             {"on", "off"});
   return {gamma, tol, minsup, wall, pen, ls};

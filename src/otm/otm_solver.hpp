@@ -23,7 +23,7 @@
 //
 // Rigid walls (seed 003 ch. 4) at the grid box faces marked `wall`: `constraint` (a node that would
 // cross the wall is stopped on it: zero normal displacement into it) or `penalty` (a spring
-// k = penalty m_a / dt^2 on the crossing distance). `fixed` faces stop nodes; `symmetry` faces and
+// k_a = penalty m_a omega_a^2 on the crossing distance, omega_a the node's stiffness bound). `fixed` faces stop nodes; `symmetry` faces and
 // the axis hold the normal velocity at zero.
 #include <memory>
 #include <vector>
@@ -81,6 +81,7 @@ class OtmSolver final : public Solver {
   otm::SupportOptions sopt_;
   otm::Supports sup_, prev_sup_;  ///< this step's supports and the last step's (retries)
   std::vector<Vec3> v_start_;     ///< node velocities at the start of the step (wall booking)
+  std::vector<double> omega2_;    ///< 1/s^2, each node's Gershgorin bound on omega^2 (stable_dt; penalty walls)
   std::vector<double> scale_;     ///< support radius scale per point (largest principal stretch)
   std::vector<Vec3> lambda_;   ///< LME multiplier per point (warm start)
   int dim_ = 3;                ///< axes of the motion: 3, or 2 (plane strain, axisymmetric)
