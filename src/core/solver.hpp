@@ -66,6 +66,9 @@ class Solver {
   virtual long steps() const = 0;
   /// The points of this rank (fields named as the output datasets).
   virtual FieldStore& points() = 0;
+  /// A second point cloud written beside the points at every output (the OTM nodes: x, v, mass),
+  /// brought up to date by this call; null for solvers without one.
+  virtual const FieldStore* output_nodes() { return nullptr; }
   /// Points seeded but not active yet (bodies with a later activation); ids run over both.
   virtual Index pending_points() const { return 0; }
   virtual EnergyTotals energies() const = 0;

@@ -145,7 +145,7 @@ std::string ParticleWriter::h5_path(int index) const {
   return dir_ + "/" + name;
 }
 
-void ParticleWriter::write(double time, long step, const FieldStore& points) {
+void ParticleWriter::write(double time, long step, const FieldStore& points, const FieldStore* nodes) {
   // Fields to write: the requested ones (or every output field); "x" is the geometry.
   std::vector<const FieldInfo*> sel;
   if (fields_.empty()) {
@@ -161,6 +161,8 @@ void ParticleWriter::write(double time, long step, const FieldStore& points) {
   }
   if (!points.has("x") || points.info("x").type != FieldType::Real || points.info("x").ncomp != 3)
     throw Error("particle output needs a real field 'x' with 3 components");
+  if (nodes && !(nodes->has("x") && nodes->info("x").type == FieldType::Real && nodes->info("x").ncomp == 3))
+    throw Error("node output needs a real field 'x' with 3 components");
   if (domains_ && !(points.has("F") && points.has("half_size")))
     throw Error("particle domain output needs fields 'F' (Mat3) and 'half_size' (Vec3)");
   bool x_selected = false;
@@ -231,6 +233,19 @@ void ParticleWriter::write(double time, long step, const FieldStore& points) {
         write_dataset(h5, "domain_cells", H5T_NATIVE_INT64, H5T_STD_I64LE,
                       {static_cast<hsize_t>(n), static_cast<hsize_t>(nc)}, cells.data(), "");
       }
+      if (nodes) {
+        // The second point cloud (OTM nodes): every real field, prefixed, with its own vertices.
+        const Index nn = nodes->size();
+        for (const FieldInfo& f : nodes->fields()) {
+          if (f.type != FieldType::Real) continue;
+          std::vector<hsize_t> dims{static_cast<hsize_t>(nn)};
+          if (f.ncomp != 1) dims.push_back(static_cast<hsize_t>(f.ncomp));
+          write_dataset(h5, "node_" + f.name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, dims, nodes->real(f.name), f.unit);
+        }
+        std::vector<std::int64_t> nv(static_cast<size_t>(nn));
+        for (Index a = 0; a < nn; ++a) nv[a] = a;
+        write_dataset(h5, "node_cells", H5T_NATIVE_INT64, H5T_STD_I64LE, {static_cast<hsize_t>(nn)}, nv.data(), "");
+      }
       h5.close("close '" + out.tmp() + "'");
     }
     out.commit();
@@ -241,7 +256,8 @@ void ParticleWriter::write(double time, long step, const FieldStore& points) {
   const std::string name = "output_" + std::to_string(index);
   std::string g;
   std::string in = "      ";
-  if (domains_) {
+  const bool collection = domains_ || nodes;
+  if (collection) {
     g += in + "<Grid Name=\"" + name + "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n";
     g += in + "  <Time Value=\"" + t + "\"/>\n";
     in += "  ";
@@ -269,8 +285,28 @@ void ParticleWriter::write(double time, long step, const FieldStore& points) {
     g += in + "  </Geometry>\n";
     g += attributes(file, sel, n, "Cell", in + "  ");
     g += in + "</Grid>\n";
-    g += "      </Grid>\n";
   }
+  if (nodes) {
+    const Index nn = nodes->size();
+    g += in + "<Grid Name=\"nodes\" GridType=\"Uniform\">\n";
+    g += in + "  <Time Value=\"" + t + "\"/>\n";
+    g += in + "  <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + std::to_string(nn) +
+         "\" NodesPerElement=\"1\">\n";
+    g += data_item(file, "node_cells", nn, 1, true, in + "    ");
+    g += in + "  </Topology>\n";
+    g += in + "  <Geometry GeometryType=\"XYZ\">\n";
+    g += data_item(file, "node_x", nn, 3, false, in + "    ");
+    g += in + "  </Geometry>\n";
+    for (const FieldInfo& f : nodes->fields()) {
+      if (f.type != FieldType::Real || f.name == "x") continue;
+      g += in + "  <Attribute Name=\"" + xml_escape(f.name) + "\" AttributeType=\"" + attribute_type(f.ncomp) +
+           "\" Center=\"Node\">\n";
+      g += data_item(file, "node_" + f.name, nn, f.ncomp, false, in + "    ");
+      g += in + "  </Attribute>\n";
+    }
+    g += in + "</Grid>\n";
+  }
+  if (collection) g += "      </Grid>\n";
   append_xdmf(g);
   ++count_;
 }

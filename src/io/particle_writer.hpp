@@ -6,7 +6,8 @@
 // real fields as float64, int fields as int64, with a "unit" attribute), /vertex_cells (0..N-1,
 // the Polyvertex connectivity) and, with domains, /domain_points and /domain_cells: each
 // particle's deformed domain x_p + F_p (±a, ±b, ±c), (a,b,c) = half_size, as a hexahedron (3D)
-// or a quadrilateral (2D, c = 0) in VTK/XDMF node order.
+// or a quadrilateral (2D, c = 0) in VTK/XDMF node order. A second point cloud (the OTM nodes) can
+// go into the same files: node_<field> datasets and a grid "nodes" in the output's collection.
 #include <string>
 #include <vector>
 
@@ -22,7 +23,10 @@ class ParticleWriter {
   ParticleWriter(std::string dir, std::vector<std::string> fields, bool domains, int dim);
 
   /// Writes dir/particles_NNNNNN.h5 (NNNNNN = outputs so far) and rewrites dir/particles.xdmf.
-  void write(double time, long step, const FieldStore& points);
+  /// `nodes` (optional: the OTM solver's nodes) is written into the same file as datasets
+  /// node_<field> (every real field of that store, "x" required) with node_cells, and becomes a
+  /// second grid "nodes" beside the particles in the output's spatial collection.
+  void write(double time, long step, const FieldStore& points, const FieldStore* nodes = nullptr);
 
   /// Number of outputs written so far.
   int count() const { return count_; }

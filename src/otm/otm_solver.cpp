@@ -72,6 +72,28 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   }
 }
 
+const FieldStore* OtmSolver::output_nodes() {
+  if (!node_out_.has("x")) {
+    node_out_.add_real("x", 3, "m");
+    node_out_.add_real("v", 3, "m/s");
+    node_out_.add_real("mass", 1, "kg");
+    node_out_.add_real("body", 1, "1");
+  }
+  const Index nn = nodes_.size();
+  node_out_.resize(nn);
+  auto* x = node_out_.view<Vec3>("x");
+  auto* v = node_out_.view<Vec3>("v");
+  auto* m = node_out_.real("mass");
+  auto* b = node_out_.real("body");
+  for (Index a = 0; a < nn; ++a) {
+    x[a] = nodes_.x[a];
+    v[a] = nodes_.v[a];
+    m[a] = nodes_.mass[a];
+    b[a] = static_cast<double>(nodes_.body[a]);
+  }
+  return &node_out_;
+}
+
 double OtmSolver::reporting_scale() const { return axisym_ ? 2.0 * std::numbers::pi : 1.0; }
 
 void OtmSolver::begin_stage(int stage, double damping) {

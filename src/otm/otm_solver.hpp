@@ -49,6 +49,8 @@ class OtmSolver final : public Solver {
   double time() const override { return time_; }
   long steps() const override { return steps_; }
   FieldStore& points() override { return points_; }
+  /// The nodes for the output: x, v (m/s), mass (kg; per radian in axisymmetric runs), body.
+  const FieldStore* output_nodes() override;
   EnergyTotals energies() const override;
   double reporting_scale() const override;
   void begin_stage(int stage, double damping) override;
@@ -78,6 +80,7 @@ class OtmSolver final : public Solver {
   FieldStore& points_;
   PointLoads loads_;
   otm::NodeCloud nodes_;
+  FieldStore node_out_;           ///< the nodes as written (output_nodes)
   otm::SupportOptions sopt_;
   otm::Supports sup_, prev_sup_;  ///< this step's supports and the last step's (retries)
   std::vector<Vec3> v_start_;     ///< node velocities at the start of the step (wall booking)

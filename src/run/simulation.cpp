@@ -192,7 +192,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   double end = nstages > 0 ? std::numeric_limits<double>::infinity() : sc.simulation.end_time;
   const double interval = sc.output.interval > 0 ? sc.output.interval : sc.simulation.end_time;
   double next_output = nstages > 0 ? end : interval;
-  writer.write(solver->time(), solver->steps(), pts);
+  writer.write(solver->time(), solver->steps(), pts, solver->output_nodes());
   if (nstages > 0) {
     solver->begin_stage(0, sc.stages[0].damping);
     spdlog::info("stage '{}' begins (damping {} 1/s)", sc.stages[0].name, sc.stages[0].damping);
@@ -222,7 +222,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     spdlog::info("stage '{}' ended at t = {:.4g} s ({}){}", st.name, solver->time(), how,
                  check ? ": " + describe_equilibrium(st, *check) : std::string());
     record_history(dt);
-    writer.write(solver->time(), solver->steps(), solver->points());
+    writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
     ++stage;
     stage_start = solver->time();
     const double damping = stage < nstages ? sc.stages[stage].damping : sc.simulation.damping;
@@ -300,13 +300,13 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       const bool at_end = solver->time() >= end * (1.0 - 1e-12);
       if (solver->steps() % std::max(1, sc.output.history_every) == 0 || at_output || at_end) record_history(dt);
       if (at_output && !at_end) {
-        writer.write(solver->time(), solver->steps(), solver->points());
+        writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
         next_output += interval;
         if (next_output > end) next_output = end;
       }
       progress->update(solver->time(), solver->steps(), dt);
     }
-    writer.write(solver->time(), solver->steps(), solver->points());
+    writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
   } catch (const PhysicsError& err) {
     if (progress) progress->finish();
     result.ok = false;
@@ -322,7 +322,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     spdlog::error("run stopped: {}", err.what());
     // The failing state goes to a new output file; earlier outputs stay untouched.
     try {
-      writer.write(solver->time(), solver->steps(), solver->points());
+      writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
     } catch (const std::exception& w) {
       spdlog::error("could not write the failing state: {}", w.what());
     }

@@ -466,3 +466,38 @@ TEST(OutputParticles, LongSeriesIndexStaysValidAndGrowsLinearly) {
   EXPECT_LE(sizes[199] - sizes[198], sizes[2] - sizes[1] + 64);
   EXPECT_EQ(text.substr(text.size() - 8), "</Xdmf>\n");
 }
+
+// A second point cloud (the OTM nodes) goes into the same file as node_<field> datasets and into
+// the same XDMF output as a second grid "nodes" of the spatial collection.
+TEST(OutputParticles, NodesAreASecondGridOfTheSameOutput) {
+  ballista::test::TempDir d{"ballista_output"};
+  FieldStore s = make_points();
+  FieldStore nodes;
+  nodes.add_real("x", 3, "m");
+  nodes.add_real("mass", 1, "kg");
+  nodes.resize(3);
+  for (Index a = 0; a < 3; ++a) {
+    nodes.view<Vec3>("x")[a] = Vec3{{0.1 * a, 0.2, 0.3}};
+    nodes.real("mass")[a] = 1.5 + a;
+  }
+  ParticleWriter w(d.path.string(), {"eqps"}, false, 3);
+  w.write(0.5, 1, s, &nodes);
+  w.write(0.75, 2, s, &nodes);
+  const std::string f = (d.path / "particles_000001.h5").string();
+  const H5Data x = read_dataset(f, "/node_x");
+  ASSERT_EQ(x.real.size(), 9u);
+  EXPECT_EQ(x.real[3], 0.1);
+  const H5Data m = read_dataset(f, "/node_mass");
+  ASSERT_EQ(m.real.size(), 3u);
+  EXPECT_EQ(m.real[2], 3.5);
+  EXPECT_TRUE(has_dataset(f, "/node_cells"));
+  const std::string text = slurp(d.path / "particles.xdmf");
+  EXPECT_EQ(xml_problem(text), "");
+  EXPECT_NE(text.find("Collection\" CollectionType=\"Spatial\""), std::string::npos);
+  EXPECT_NE(text.find("<Grid Name=\"nodes\""), std::string::npos);
+  EXPECT_NE(text.find("node_mass"), std::string::npos);
+  const int rc = python_check(d.path / "particles.xdmf", 2, false);
+  if (rc >= 0 && rc != 77) {
+    EXPECT_EQ(rc, 0);
+  }
+}
