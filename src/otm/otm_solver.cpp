@@ -429,12 +429,6 @@ std::unique_ptr<Solver> make_otm(const Scenario& sc, std::vector<std::unique_ptr
   return std::make_unique<OtmSolver>(sc, std::move(materials));
 }
 
-ParamSpec word(const char* name, const char* description, std::vector<std::string> choices) {
-  ParamSpec s{name, "-", description, false, 0};
-  s.default_choice = choices.front();
-  s.choices = std::move(choices);
-  return s;
-}
 
 std::vector<ParamSpec> otm_params() {
   ParamSpec gamma{"gamma", "1",
@@ -445,14 +439,14 @@ std::vector<ParamSpec> otm_params() {
                 "weight cut-off of the support radius h sqrt(-ln(tol)/gamma)", false, 1e-4, 0.0, 0.1, true};
   ParamSpec minsup{"min_support", "1", "fewest support nodes of a point (0: dimension + 2)", false, 0, 0, 1000};
   minsup.integer = true;
-  const ParamSpec wall = word("wall_model",
+  const ParamSpec wall = word_param("wall_model",
                               "rigid walls (faces marked wall): constraint (no normal displacement into the wall) or "
                               "penalty (a spring on the crossing; seed 003 ch. 4)",
                               {"constraint", "penalty"});
   ParamSpec pen{"penalty", "1",
                 "penalty walls: spring k_a = penalty m_a omega_a^2 (the node's own stiffness bound times this)", false,
                 1.0, 0.0, 100.0, true};
-  const ParamSpec ls = word("line_search", "backtracking line search in the LME Newton solve (seed 003 Fig. 5-5)",
+  const ParamSpec ls = word_param("line_search", "backtracking line search in the LME Newton solve (seed 003 Fig. 5-5)",
                             {"on", "off"});
   return {gamma, tol, minsup, wall, pen, ls};
 }

@@ -605,12 +605,6 @@ std::unique_ptr<Solver> make_pd(const Scenario& sc, std::vector<std::unique_ptr<
 }
 
 /// An optional word parameter: one of `choices`, the first the default.
-ParamSpec word_param(const char* name, const char* description, std::vector<std::string> choices) {
-  ParamSpec p{name, "-", description, false, 0};
-  p.default_choice = choices.front();
-  p.choices = std::move(choices);
-  return p;
-}
 
 std::vector<ParamSpec> pd_params() {
   const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -5,6 +5,7 @@
 // make_solver read the registry, so no other file names a solver.
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/solver.hpp"
@@ -21,6 +22,14 @@ struct SolverFactory {
   std::vector<ParamSpec> params;        ///< the section's keys (units, defaults, ranges, choices)
   std::unique_ptr<Solver> (*create)(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials) = nullptr;
 };
+
+/// An optional word parameter of a solver section whose default is the first choice.
+inline ParamSpec word_param(const char* name, const char* description, std::vector<std::string> choices) {
+  ParamSpec p{name, "-", description, false, 0};
+  p.default_choice = choices.front();
+  p.choices = std::move(choices);
+  return p;
+}
 
 /// Registered solvers in name order, filled at static-initialisation time.
 const std::vector<SolverFactory>& solver_registry();
