@@ -111,17 +111,38 @@ const char* attribute_type(int ncomp) {
   }
 }
 
-/// Attributes for every written field, centred on nodes (particles) or cells (domains).
+/// Attributes for every written field, centred on nodes (particles) or cells (domains); each
+/// field's dataset is `prefix` + its name.
 std::string attributes(const std::string& file, const std::vector<const FieldInfo*>& fields, Index n,
-                       const char* center, const std::string& indent) {
+                       const char* center, const std::string& indent, const std::string& prefix = "") {
   std::string s;
   for (const FieldInfo* f : fields) {
     s += indent + "<Attribute Name=\"" + xml_escape(f->name) + "\" AttributeType=\"" +
          attribute_type(f->ncomp) + "\" Center=\"" + center + "\">\n";
-    s += data_item(file, f->name, n, f->ncomp, f->type == FieldType::Int, indent + "  ");
+    s += data_item(file, prefix + f->name, n, f->ncomp, f->type == FieldType::Int, indent + "  ");
     s += indent + "</Attribute>\n";
   }
   return s;
+}
+
+/// One Polyvertex grid of n points: connectivity dataset `cells`, geometry dataset `x`, then the
+/// given attributes.
+std::string polyvertex_grid(const std::string& name, const std::string& time, const std::string& file,
+                            const std::string& cells, const std::string& x, Index n, const std::string& attrs,
+                            const std::string& in) {
+  std::string g;
+  g += in + "<Grid Name=\"" + name + "\" GridType=\"Uniform\">\n";
+  g += in + "  <Time Value=\"" + time + "\"/>\n";
+  g += in + "  <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + std::to_string(n) +
+       "\" NodesPerElement=\"1\">\n";
+  g += data_item(file, cells, n, 1, true, in + "    ");
+  g += in + "  </Topology>\n";
+  g += in + "  <Geometry GeometryType=\"XYZ\">\n";
+  g += data_item(file, x, n, 3, false, in + "    ");
+  g += in + "  </Geometry>\n";
+  g += attrs;
+  g += in + "</Grid>\n";
+  return g;
 }
 
 const char* const kReserved[] = {"time", "step", "vertex_cells", "domain_points", "domain_cells"};
@@ -251,7 +272,8 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
     out.commit();
   }
 
-  // XDMF grid(s) of this output: particles (Polyvertex) and, with domains, the deformed cells.
+  // XDMF grid(s) of this output: particles (Polyvertex), with domains the deformed cells, with
+  // nodes a second Polyvertex grid.
   const std::string t = num(time);
   const std::string name = "output_" + std::to_string(index);
   std::string g;
@@ -262,17 +284,8 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
     g += in + "  <Time Value=\"" + t + "\"/>\n";
     in += "  ";
   }
-  g += in + "<Grid Name=\"particles\" GridType=\"Uniform\">\n";
-  g += in + "  <Time Value=\"" + t + "\"/>\n";
-  g += in + "  <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + std::to_string(n) +
-       "\" NodesPerElement=\"1\">\n";
-  g += data_item(file, "vertex_cells", n, 1, true, in + "    ");
-  g += in + "  </Topology>\n";
-  g += in + "  <Geometry GeometryType=\"XYZ\">\n";
-  g += data_item(file, "x", n, 3, false, in + "    ");
-  g += in + "  </Geometry>\n";
-  g += attributes(file, sel, n, "Node", in + "  ");
-  g += in + "</Grid>\n";
+  g += polyvertex_grid("particles", t, file, "vertex_cells", "x", n,
+                       attributes(file, sel, n, "Node", in + "  "), in);
   if (domains_) {
     g += in + "<Grid Name=\"domains\" GridType=\"Uniform\">\n";
     g += in + "  <Time Value=\"" + t + "\"/>\n";
@@ -287,24 +300,12 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
     g += in + "</Grid>\n";
   }
   if (nodes) {
+    std::vector<const FieldInfo*> node_fields;
+    for (const FieldInfo& f : nodes->fields())
+      if (f.type == FieldType::Real && f.name != "x") node_fields.push_back(&f);
     const Index nn = nodes->size();
-    g += in + "<Grid Name=\"nodes\" GridType=\"Uniform\">\n";
-    g += in + "  <Time Value=\"" + t + "\"/>\n";
-    g += in + "  <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + std::to_string(nn) +
-         "\" NodesPerElement=\"1\">\n";
-    g += data_item(file, "node_cells", nn, 1, true, in + "    ");
-    g += in + "  </Topology>\n";
-    g += in + "  <Geometry GeometryType=\"XYZ\">\n";
-    g += data_item(file, "node_x", nn, 3, false, in + "    ");
-    g += in + "  </Geometry>\n";
-    for (const FieldInfo& f : nodes->fields()) {
-      if (f.type != FieldType::Real || f.name == "x") continue;
-      g += in + "  <Attribute Name=\"" + xml_escape(f.name) + "\" AttributeType=\"" + attribute_type(f.ncomp) +
-           "\" Center=\"Node\">\n";
-      g += data_item(file, "node_" + f.name, nn, f.ncomp, false, in + "    ");
-      g += in + "  </Attribute>\n";
-    }
-    g += in + "</Grid>\n";
+    g += polyvertex_grid("nodes", t, file, "node_cells", "node_x", nn,
+                         attributes(file, node_fields, nn, "Node", in + "  ", "node_"), in);
   }
   if (collection) g += "      </Grid>\n";
   append_xdmf(g);

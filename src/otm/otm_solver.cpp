@@ -241,7 +241,8 @@ double OtmSolver::stable_dt() {
   // estimate", Algorithm 1 line 10).
   const Index n = points_.size(), nn = nodes_.size();
   const double c = comm_.max(pts_.max_signal_speed());
-  if (!(c > 0.0) || n == 0) return scenario_.simulation.max_dt > 0.0 ? std::min(scenario_.simulation.max_dt, scenario_.simulation.end_time) : scenario_.simulation.end_time;
+  const double max_dt = scenario_.simulation.max_dt > 0.0 ? scenario_.simulation.max_dt : kInf;
+  if (!(c > 0.0) || n == 0) return std::min(max_dt, scenario_.simulation.end_time);
   const auto* mass = points_.real("mass");
   const auto* x = points_.view<Vec3>("x");
   std::vector<double> k(static_cast<size_t>(nn), 0.0), m(static_cast<size_t>(nn), 0.0);
@@ -270,9 +271,8 @@ double OtmSolver::stable_dt() {
   // A penalty wall's spring k_a = penalty m_a omega_a^2 raises a wall node's omega^2 by the
   // factor 1 + penalty.
   const double bound = penalty_ ? 2.0 / std::sqrt(1.0 + penalty_factor_) : 2.0;
-  double dt = w2 > 0.0 ? scenario_.simulation.cfl * bound / std::sqrt(w2) : scenario_.simulation.end_time;
-  if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
-  return dt;
+  const double dt = w2 > 0.0 ? scenario_.simulation.cfl * bound / std::sqrt(w2) : scenario_.simulation.end_time;
+  return std::min(dt, max_dt);
 }
 
 void OtmSolver::step(double dt) {
@@ -303,7 +303,7 @@ void OtmSolver::step(double dt) {
   }
   // Central difference with a variable step (Algorithm 1 line 11, l_k = M_k v_k): v_a gains
   // (dt_k + dt_k+1)/2 f_a / m_a; damping -c v (stages) with its work booked (midpoint velocity).
-  const double h = 0.5 * (dt_prev_ + dt);
+  const double dt_mid = 0.5 * (dt_prev_ + dt);
   v_start_.assign(static_cast<size_t>(nn), Vec3{});
   const double c = damping_;
   double dw[2];
@@ -315,10 +315,10 @@ void OtmSolver::step(double dt) {
     const Vec3 v0 = nodes_.v[a];
     v_start_[a] = v0;
     const Vec3 acc = (1.0 / m) * f - c * v0;
-    nodes_.v[a] = v0 + h * acc;
+    nodes_.v[a] = v0 + dt_mid * acc;
     const Vec3 vmid = 0.5 * (v0 + nodes_.v[a]);
-    o[0] -= h * c * m * dot(v0, vmid);
-    if (penalty_) o[1] += h * dot(fpen[a], vmid);
+    o[0] -= dt_mid * c * m * dot(v0, vmid);
+    if (penalty_) o[1] += dt_mid * dot(fpen[a], vmid);
   }, dw);
   damping_work_ += comm_.sum(dw[0]);
   wall_work_ += comm_.sum(dw[1]);

@@ -70,8 +70,8 @@ class OtmSolver final : public Solver {
   void refresh_supports();
   /// Lumped masses and residual forces from the current supports.
   void assemble();
-  /// Velocity constraints of the box faces on node a after the update; returns the wall's normal
-  /// reaction impulse per dt (N) for the history.
+  /// Velocity constraints of the box faces on the nodes after the update (fixed, symmetry, and
+  /// constraint walls, whose normal reaction goes to wall_force_ for the history).
   void apply_face_conditions(double dt);
 
   Scenario scenario_;

@@ -1,7 +1,6 @@
 #include "otm/otm_support.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 
 #include "core/parallel.hpp"
