@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "points/cell_bins.hpp"
 #include "points/solver_registry.hpp"
 
 namespace ballista {
@@ -48,8 +49,27 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   sopt_.min_support = static_cast<int>(P.at("min_support"));
   sopt_.dim = dim_;
   sopt_.lme.line_search = P.choices.at("line_search") == "on";
+  adapt_.enabled = P.choices.at("adaptivity") == "on";
+  adapt_.split_stretch = P.at("split_stretch");
+  adapt_.node_gap = P.at("node_gap");
+  adapt_.node_crowding = P.at("node_crowding");
+  adapt_.max_condition = P.at("max_condition");
 
   const Index n = points_.size();
+  if (adapt_.enabled) {
+    // The extent tensor of each point's cell (s0 I at seeding) and the ids the splits continue.
+    for (const BodySpec& b : sc.bodies) spacing_.push_back(sc.grid.cell_size / b.particles_per_cell);
+    points_.add_real(otm::kExtentField, 9, "m", false);
+    auto* S = points_.view<Mat3>(otm::kExtentField);
+    const auto* body = points_.ints("body");
+    const auto* id = points_.ints("id");
+    for (Index p = 0; p < n; ++p) {
+      const double s0 = spacing_[static_cast<size_t>(body[p])];
+      S[p] = Mat3::diag(s0, s0, s0);
+      next_id_ = std::max(next_id_, id[p] + 1);
+    }
+    Fr_.assign(static_cast<size_t>(n), Mat3::identity());
+  }
   nodes_ = otm::seed_nodes(points_.view<Vec3>("x"), points_.ints("body"), n, sc.grid.lower, sc.grid.cell_size, dim_);
   lambda_.assign(static_cast<size_t>(n), Vec3{});
   refresh_supports();
@@ -102,11 +122,16 @@ void OtmSolver::begin_stage(int stage, double damping) {
 }
 
 void OtmSolver::refresh_supports() {
+  if (!build_current_supports()) report_failed_solve();
+}
+
+bool OtmSolver::build_current_supports() {
   const Index n = points_.size();
   lambda_.resize(static_cast<size_t>(n));
-  // Radius scale of each point: the largest principal stretch of F (in the plane in 2D).
+  // Radius scale of each point: the largest principal stretch (in the plane in 2D) of what has
+  // moved its nodes apart: F, or with adaptivity the deformation since the nodes were re-generated.
   scale_.resize(static_cast<size_t>(n));
-  const auto* F = points_.view<Mat3>("F");
+  const Mat3* F = adapt_.enabled ? Fr_.data() : points_.view<Mat3>("F");
   for_each(0, n, [&](Index p) {
     double lo, hi;
     otm::symmetric_extremes(transpose_times(F[p], F[p]), dim_, lo, hi);
@@ -122,7 +147,10 @@ void OtmSolver::refresh_supports() {
   max_iterations_ = std::max(max_iterations_, sup_.max_iterations);
   max_condition_ = std::max(max_condition_, sup_.max_condition);
   fallbacks_ += sup_.fallbacks;
-  if (sup_.failed < 0) return;
+  return sup_.failed < 0;
+}
+
+void OtmSolver::report_failed_solve() {
   // The point, its support nodes and the state of the solve (never a NaN weight handed on).
   const Index p = sup_.failed;
   const Index k0 = sup_.offset[p], k1 = sup_.offset[p + 1];
@@ -136,12 +164,159 @@ void OtmSolver::refresh_supports() {
   pts_.fail(p,
             fmt::format("has no local max-entropy shape functions: the solve for the multiplier failed with "
                         "{} support nodes within {:.4g} m (at least {} needed; otm.gamma = {:g}), residual {:.3g} h "
-                        "after {} iterations{}, condition number of the Hessian {:.3g}; support nodes: {}. "
-                        "The point has probably left the convex hull of its nodes (otm docs: adaptivity)",
-                        k1 - k0, otm::support_radius(sopt_) * std::clamp(scale_[p], 1.0, otm::kMaxScale), sopt_.min_support > 0 ? sopt_.min_support : dim_ + 2,
-                        sopt_.gamma, r.residual, r.iterations, r.used_fallback ? " (with the fallback)" : "",
-                        r.condition, nodes),
+                        "after {} iterations{}, condition number of the Hessian {:.3g}; support nodes: {}. {}",
+                        k1 - k0, otm::support_radius(sopt_) * std::clamp(scale_[p], 1.0, otm::kMaxScale),
+                        sopt_.min_support > 0 ? sopt_.min_support : dim_ + 2, sopt_.gamma, r.residual, r.iterations,
+                        r.used_fallback ? " (with the fallback)" : "", r.condition, nodes,
+                        adapt_.enabled ? "It failed on freshly re-generated lattice nodes too"
+                                       : "The point has probably left the convex hull of its nodes (otm.adaptivity: on)"),
             steps_, time_);
+}
+
+void OtmSolver::adapt() {
+  bool regenerate = false;
+  std::vector<std::string> extensive = {"mass", "volume0", "internal_energy", "plastic_work"};
+  for (const std::string& a : pts_.load_area_fields()) extensive.push_back(a);
+  const std::vector<Index> parents = otm::split_points(points_, extensive, spacing_, dim_, axisym_, scenario_.grid.lower,
+                                                            scenario_.grid.upper, adapt_, next_id_);
+  if (!parents.empty()) {
+    // The second children take their parents' solver state; a child outside the hull of its
+    // nodes fails its LME solve below, which re-generates the nodes.
+    splits_ += static_cast<Index>(parents.size());
+    pts_.mark_reordered();
+    for (const Index p : parents) {
+      Fr_.push_back(Fr_[p]);
+      lambda_.push_back(lambda_[p]);
+    }
+  }
+  {
+    regenerate = !build_current_supports();
+    // The seed's distance metric (Fig. 5-2), seen from the points: a point whose nearest node is
+    // farther than node_gap h has lost the nodes that resolve the motion around it.
+    const auto* x = points_.view<Vec3>("x");
+    const double gap2 = std::pow(adapt_.node_gap * sopt_.h, 2);
+    for (Index p = 0; p < points_.size() && !regenerate; ++p) {
+      double near2 = kInf;
+      for (Index k = sup_.offset[p]; k < sup_.offset[p + 1]; ++k) {
+        Vec3 d = x[p] - nodes_.x[sup_.node[k]];
+        if (dim_ == 2) d[2] = 0.0;
+        near2 = std::min(near2, dot(d, d));
+      }
+      regenerate = near2 > gap2;
+    }
+    if (!regenerate) regenerate = otm::nodes_crowded(nodes_, adapt_.node_crowding * sopt_.h, dim_);
+    // Conditioning (seed 003 ch. 5.2): an LME Hessian this ill-conditioned means a point's nodes
+    // have collapsed onto a line or plane around it.
+    if (!regenerate) regenerate = sup_.max_condition > adapt_.max_condition;
+  }
+  // A split conserves the points' mass, momentum sum_p m_p v_p and energies exactly; the nodes'
+  // lumped masses then follow at the next assembly, as they do every step in the momentum form
+  // (docs/validation.md: the residual this leaves).
+  if (regenerate) regenerate_nodes();
+}
+
+void OtmSolver::regenerate_nodes() {
+  const Index n = points_.size();
+  const otm::NodeCloud old = std::move(nodes_);
+  double ke0 = 0.0;
+  for (Index b = 0; b < old.size(); ++b) ke0 += 0.5 * old.mass[b] * dot(old.v[b], old.v[b]);
+  nodes_ = otm::seed_nodes(points_.view<Vec3>("x"), points_.ints("body"), n, scenario_.grid.lower,
+                           scenario_.grid.cell_size, dim_);
+  const Index nn = nodes_.size();
+  // Velocities of the new nodes: the old nodes' LME interpolant evaluated at them,
+  // v_a = sum_b N_b(x_a) v_b. An interpolation, not the mass-weighted projection from the points
+  // (Li, Habbal & Ortiz 2010 eq. 20), which averages the field over a support and removes kinetic
+  // energy at every re-generation (the 750 m/s bar at 1.6 mm lost 64 % of its energy to it, 14 %
+  // with the interpolation; docs/validation.md).
+  {
+    std::vector<double> wide(static_cast<size_t>(nn), otm::kMaxScale);
+    std::vector<Vec3> lam(static_cast<size_t>(nn));
+    otm::Supports at;
+    otm::build_supports(nodes_.x.data(), nodes_.body.data(), nn, old.x.data(), old.body.data(), old.size(), sopt_,
+                        wide.data(), nullptr, lam.data(), at);
+    std::vector<char> inside(static_cast<size_t>(nn), 1);
+    for (const Index a : at.unsolved) inside[a] = 0;
+    for_each(0, nn, [&](Index a) {
+      Vec3 v;
+      if (inside[a])
+        for (Index k = at.offset[a]; k < at.offset[a + 1]; ++k) v += at.N[k] * old.v[at.node[k]];
+      nodes_.v[a] = v;
+    });
+    interpolated_.swap(inside);
+  }
+  lambda_.assign(static_cast<size_t>(n), Vec3{});
+  Fr_.assign(static_cast<size_t>(n), Mat3::identity());
+  sup_ = otm::Supports{};  // no previous supports: their node indices are gone
+  prev_sup_ = otm::Supports{};
+  if (!build_current_supports()) report_failed_solve();
+  // Lumped masses on the new nodes (eq. 2.13).
+  const auto* v = points_.view<Vec3>("v");
+  const auto* mass = points_.real("mass");
+  const auto* pbody = points_.ints("body");
+  const size_t nb = scenario_.bodies.size();
+  std::vector<Vec3> p_points(nb);  // sum_p m_p v_p per body: the old nodes' momentum, exactly
+  for (Index p = 0; p < n; ++p) {
+    p_points[static_cast<size_t>(pbody[p])] += mass[p] * v[p];
+    for (Index k = sup_.offset[p]; k < sup_.offset[p + 1]; ++k) {
+      const Index a = sup_.node[k];
+      nodes_.mass[a] += sup_.N[k] * mass[p];
+    }
+  }
+  // A node outside the old nodes' hull (a lattice vertex beyond the old edge of the material)
+  // takes the velocity of its nearest point, v_p = sum N_b v_b: an extrapolation, not an average.
+  {
+    const auto* xp = points_.view<Vec3>("x");
+    const CellBins bins(xp, n, std::sqrt(static_cast<double>(dim_)) * scenario_.grid.cell_size, dim_);
+    for (Index a = 0; a < nn; ++a) {
+      if (interpolated_[a]) continue;
+      double best = kInf;
+      Index q = -1;
+      bins.visit(nodes_.x[a], [&](Index p) {
+        if (pbody[p] != nodes_.body[a]) return;
+        Vec3 d = xp[p] - nodes_.x[a];
+        if (dim_ == 2) d[2] = 0.0;
+        const double d2 = dot(d, d);
+        if (d2 < best || (d2 == best && p < q)) {
+          best = d2;
+          q = p;
+        }
+      });
+      nodes_.v[a] = q >= 0 ? v[q] : Vec3{};
+    }
+  }
+  // Linear momentum is restored exactly by a uniform velocity change of each body's nodes that are
+  // free to move along the component (not on a fixed or symmetry face; the radial component of an
+  // axisymmetric run is not a conserved quantity). The interpolation error it corrects is of the
+  // order of the field's curvature times h^2.
+  const GridSpec& g = scenario_.grid;
+  const double tol = 1e-9 * g.cell_size;
+  auto held = [&](Index a, int c) {
+    if (axisym_ && c == 0) return true;
+    for (int ax = 0; ax < dim_; ++ax)
+      for (int side = 0; side < 2; ++side) {
+        const FaceBC bc = g.faces[2 * ax + side];
+        if (bc != FaceBC::Fixed && !(bc == FaceBC::Symmetry && ax == c)) continue;
+        if (std::abs(nodes_.x[a][ax] - (side == 0 ? g.lower[ax] : g.upper[ax])) <= tol) return true;
+      }
+    return false;
+  };
+  for (int c = 0; c < dim_; ++c) {
+    std::vector<double> dp(nb, 0.0), mfree(nb, 0.0);
+    for (size_t b = 0; b < nb; ++b) dp[b] = p_points[b][c];
+    for (Index a = 0; a < nn; ++a) {
+      const size_t b = static_cast<size_t>(nodes_.body[a]);
+      dp[b] -= nodes_.mass[a] * nodes_.v[a][c];
+      if (!held(a, c)) mfree[b] += nodes_.mass[a];
+    }
+    for (Index a = 0; a < nn; ++a) {
+      const size_t b = static_cast<size_t>(nodes_.body[a]);
+      if (!held(a, c) && mfree[b] > kTinyMass) nodes_.v[a][c] += dp[b] / mfree[b];
+    }
+  }
+  double ke1 = 0.0;
+  for (Index a = 0; a < nn; ++a) ke1 += 0.5 * nodes_.mass[a] * dot(nodes_.v[a], nodes_.v[a]);
+  remap_work_ += ke1 - ke0;
+  ++regenerations_;
 }
 
 void OtmSolver::assemble() {
@@ -334,6 +509,7 @@ void OtmSolver::step(double dt) {
   const auto* vol0 = points_.real("volume0");
   const std::vector<Vec3>& fext = loads_.total();
   const bool has_ext = !fext.empty();
+  Mat3* extent = adapt_.enabled ? points_.view<Mat3>(otm::kExtentField) : nullptr;
   std::atomic<Index> bad{n};
   double ew[1];
   deterministic_sum<1>(0, n, [&](Index p, double* o) {
@@ -357,7 +533,12 @@ void OtmSolver::step(double dt) {
     L[p] = l;
     // dF = I + dt sum_a v_a (x) grad N_a = sum_a x_a^k+1 (x) grad N_a (line 13, by the first-order
     // consistency of the shape functions); F and V (lines 14-15).
-    F[p] = (Mat3::identity() + dt * l) * F[p];
+    const Mat3 dF = Mat3::identity() + dt * l;
+    F[p] = dF * F[p];
+    if (extent) {
+      extent[p] = dF * extent[p];
+      Fr_[p] = dF * Fr_[p];
+    }
     const double J = det(F[p]);
     vol[p] = vol0[p] * J;
     if (!(J > 0.0) || !all_finite(F[p]) || !all_finite(xn)) {
@@ -372,7 +553,8 @@ void OtmSolver::step(double dt) {
   ++steps_;
   if (const Index p = bad.load(); p < n) pts_.fail(p, "inverted or non-finite deformation gradient (J <= 0 or NaN)", steps_, time_);
   pts_.update_stress(dt, steps_, time_);
-  refresh_supports();
+  if (adapt_.enabled) adapt();
+  else refresh_supports();
 }
 
 EnergyTotals OtmSolver::energies() const {
@@ -392,6 +574,7 @@ EnergyTotals OtmSolver::energies() const {
   e.momentum = Vec3{{axisym_ ? 0.0 : k * s[1], k * s[2], k * s[3]}};
   e.damping = k * damping_work_;
   e.contact = k * wall_work_;
+  e.transfer = k * remap_work_;  // the node re-generations' velocity projection (adaptivity)
   return e;
 }
 
@@ -418,6 +601,8 @@ std::vector<std::pair<std::string, double>> OtmSolver::result_values() const {
           {"lme_fallbacks", static_cast<double>(fallbacks_)},
           {"support_retries", static_cast<double>(retries_)},
           {"lme_failures", 0.0},  // a failed solve stops the run
+          {"point_splits", static_cast<double>(splits_)},
+          {"node_regenerations", static_cast<double>(regenerations_)},
           {"momentum_change_x", axisym_ ? 0.0 : e.momentum[0] - p0[0]},
           {"momentum_change_y", e.momentum[1] - p0[1]},
           {"momentum_change_z", e.momentum[2] - p0[2]}};
@@ -448,7 +633,22 @@ std::vector<ParamSpec> otm_params() {
                 1.0, 0.0, 100.0, true};
   const ParamSpec ls = word_param("line_search", "backtracking line search in the LME Newton solve (seed 003 Fig. 5-5)",
                             {"on", "off"});
-  return {gamma, tol, minsup, wall, pen, ls};
+  const ParamSpec adapt = word_param("adaptivity",
+                                     "split stretched points and re-generate the nodes on the lattice when they no "
+                                     "longer resolve the points (seed 003 ch. 5; otm_adaptivity.hpp)",
+                                     {"off", "on"});
+  ParamSpec split{"split_stretch", "1", "adaptivity: split a point whose extent exceeds this times its seeded spacing",
+                  false, 2.0, 1.0, 100.0, true};
+  ParamSpec gap{"node_gap", "1",
+                "adaptivity: re-generate the nodes when a point's nearest node is farther than this times h", false,
+                1.0, 0.0, 100.0, true};
+  ParamSpec crowd{"node_crowding", "1",
+                  "adaptivity: re-generate the nodes when two nodes of a body come closer than this times h", false,
+                  0.25, 0.0, 1.0};
+  ParamSpec cond{"max_condition", "1",
+                 "adaptivity: re-generate the nodes when a point's LME Hessian condition number exceeds this", false,
+                 1e6, 1.0, 1e300};
+  return {gamma, tol, minsup, wall, pen, ls, adapt, split, gap, crowd, cond};
 }
 
 }  // namespace

@@ -31,6 +31,7 @@
 #include "core/communicator.hpp"
 #include "core/solver.hpp"
 #include "materials/material.hpp"
+#include "otm/otm_adaptivity.hpp"
 #include "otm/otm_nodes.hpp"
 #include "otm/otm_support.hpp"
 #include "points/point_loads.hpp"
@@ -63,11 +64,23 @@ class OtmSolver final : public Solver {
   std::vector<std::pair<std::string, double>> result_values() const override;
 
   const otm::NodeCloud& nodes() const { return nodes_; }
+  /// Adaptivity (otm_adaptivity.hpp): new nodes on the lattice over the current points, their
+  /// velocities interpolated from the old nodes, linear momentum restored exactly and the
+  /// kinetic-energy change booked as transfer work. adapt() decides when; public for the tests.
+  void regenerate_nodes();
   const otm::Supports& supports() const { return sup_; }
 
  private:
   /// Supports and shape functions at the current positions; stops the run on a failed solve.
   void refresh_supports();
+  /// Builds the supports; false if a point's LME solve failed (sup_.failed names it).
+  bool build_current_supports();
+  /// Stops the run naming the point whose LME solve failed, its support nodes and the solve's state.
+  [[noreturn]] void report_failed_solve();
+  /// Adaptivity after a step (otm_adaptivity.hpp): split stretched points, then re-generate the
+  /// nodes if a point split, a point lost its nearby nodes, nodes crowded or a solve failed.
+  void adapt();
+
   /// Lumped masses and residual forces from the current supports.
   void assemble();
   /// Velocity constraints of the box faces on the nodes after the update (fixed, symmetry, and
@@ -87,6 +100,13 @@ class OtmSolver final : public Solver {
   std::vector<double> omega2_;    ///< 1/s^2, each node's Gershgorin bound on omega^2 (stable_dt; penalty walls)
   std::vector<double> scale_;     ///< support radius scale per point (largest principal stretch)
   std::vector<Vec3> lambda_;   ///< LME multiplier per point (warm start)
+  otm::AdaptivityOptions adapt_;
+  std::vector<Mat3> Fr_;       ///< adaptivity: each point's deformation since the nodes were last re-generated
+  std::vector<double> spacing_;  ///< m, seeded point spacing per body (cell_size / particles_per_cell)
+  std::int64_t next_id_ = 0;     ///< id of the next point made by a split
+  std::vector<char> interpolated_;  ///< last re-generation: node velocity interpolated (1) or projected (0)
+  Index splits_ = 0, regenerations_ = 0;
+  double remap_work_ = 0.0;      ///< J per radian/metre: kinetic-energy change of the node re-generations
   int dim_ = 3;                ///< axes of the motion: 3, or 2 (plane strain, axisymmetric)
   bool axisym_ = false;
   bool penalty_ = false;       ///< rigid walls by penalty instead of the constraint

@@ -138,11 +138,10 @@ void build_supports(const Vec3* xp, const std::int64_t* pbody, Index np, const V
       out.dN.swap(merged.dN);
     }
   }
+  out.unsolved.clear();
   for (Index p = 0; p < np; ++p)
-    if (!ok[p]) {
-      out.failed = p;
-      break;
-    }
+    if (!ok[p]) out.unsolved.push_back(p);
+  if (!out.unsolved.empty()) out.failed = out.unsolved.front();
   out.mean_size = np > 0 ? static_cast<double>(out.offset[np]) / static_cast<double>(np) : 0.0;
   out.max_size = max_size;
   out.max_iterations = max_iter;

@@ -41,6 +41,7 @@ struct Supports {
   Index fallbacks = 0;              ///< points solved by the Levenberg-Marquardt fallback
   Index retries = 0;                ///< points solved again with their previous nodes added
   Index failed = -1;                ///< first point whose LME solve failed (-1: none)
+  std::vector<Index> unsolved;      ///< every point whose solve failed, in increasing index
   LmeResult failed_result;          ///< its solve
   Index size() const { return static_cast<Index>(offset.size()) - 1; }
 };
