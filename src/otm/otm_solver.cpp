@@ -6,9 +6,11 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "core/phase_timer.hpp"
 #include "points/cell_bins.hpp"
 #include "points/solver_registry.hpp"
 
@@ -126,6 +128,7 @@ void OtmSolver::refresh_supports() {
 }
 
 bool OtmSolver::build_current_supports() {
+  const ScopedPhase timer(seconds_.supports);
   const Index n = points_.size();
   lambda_.resize(static_cast<size_t>(n));
   // Radius scale of each point: the largest principal stretch (in the plane in 2D) of what has
@@ -141,6 +144,7 @@ bool OtmSolver::build_current_supports() {
   otm::build_supports(points_.view<Vec3>("x"), points_.ints("body"), n, nodes_.x.data(), nodes_.body.data(),
                       nodes_.size(), sopt_, scale_.data(), prev_sup_.offset.empty() ? nullptr : &prev_sup_,
                       lambda_.data(), sup_);
+  otm::build_influences(sup_, nodes_.size(), inf_);
   retries_ += sup_.retries;
   mean_support_ = sup_.mean_size;
   max_support_ = std::max(max_support_, sup_.max_size);
@@ -174,6 +178,9 @@ void OtmSolver::report_failed_solve() {
 }
 
 void OtmSolver::adapt() {
+  // Its support builds count as `supports`, the rest (splits, metrics, re-generation) as `adapt`.
+  const auto t0 = std::chrono::steady_clock::now();
+  const double supports0 = seconds_.supports;
   bool regenerate = false;
   std::vector<std::string> extensive = {"mass", "volume0", "internal_energy", "plastic_work"};
   for (const std::string& a : pts_.load_area_fields()) extensive.push_back(a);
@@ -213,6 +220,7 @@ void OtmSolver::adapt() {
   // lumped masses then follow at the next assembly, as they do every step in the momentum form
   // (docs/validation.md: the residual this leaves).
   if (regenerate) regenerate_nodes();
+  seconds_.adapt += seconds_since(t0) - (seconds_.supports - supports0);
 }
 
 void OtmSolver::regenerate_nodes() {
@@ -320,22 +328,12 @@ void OtmSolver::regenerate_nodes() {
 }
 
 void OtmSolver::assemble() {
-  // Node-wise gathers over the transposed supports: deterministic for any thread count.
-  const Index n = points_.size(), nn = nodes_.size();
-  std::vector<Index> start(static_cast<size_t>(nn) + 1, 0);
-  for (Index k = 0; k < sup_.offset[n]; ++k) ++start[sup_.node[k] + 1];
-  for (Index a = 0; a < nn; ++a) start[a + 1] += start[a];
-  std::vector<Index> entry(static_cast<size_t>(start[nn]));
-  std::vector<Index> owner(static_cast<size_t>(start[nn]));
-  {
-    std::vector<Index> fill(start.begin(), start.end() - 1);
-    for (Index p = 0; p < n; ++p)
-      for (Index k = sup_.offset[p]; k < sup_.offset[p + 1]; ++k) {
-        const Index i = fill[sup_.node[k]]++;
-        entry[i] = k;
-        owner[i] = p;
-      }
-  }
+  // Node-wise gathers over the influence domains: deterministic for any thread count.
+  const ScopedPhase timer(seconds_.assemble);
+  const Index nn = nodes_.size();
+  const std::vector<Index>& start = inf_.start;
+  const std::vector<Index>& entry = inf_.entry;
+  const std::vector<Index>& owner = inf_.owner;
   const auto* mass = points_.real("mass");
   const auto* vol = points_.real("volume");
   const auto* stress = points_.view<Mat3>("stress");
@@ -405,6 +403,7 @@ void OtmSolver::apply_face_conditions(double dt) {
 }
 
 double OtmSolver::stable_dt() {
+  const ScopedPhase timer(seconds_.stable_dt);
   // The central difference is stable for dt <= 2 / omega_max (Belytschko, Liu & Moran, Nonlinear
   // Finite Elements for Continua and Structures (2000) §6.3). omega_max^2 is bounded by the largest
   // row sum of M^-1 K (Gershgorin), with the tangent stiffness of a point bounded by its P-wave
@@ -420,28 +419,31 @@ double OtmSolver::stable_dt() {
   if (!(c > 0.0) || n == 0) return std::min(max_dt, scenario_.simulation.end_time);
   const auto* mass = points_.real("mass");
   const auto* x = points_.view<Vec3>("x");
-  std::vector<double> k(static_cast<size_t>(nn), 0.0), m(static_cast<size_t>(nn), 0.0);
   auto g = [&](Index p, Index kk) {
     double v = norm(sup_.dN[kk]);
     if (axisym_) v += sup_.N[kk] / x[p][0];
     return v;
   };
-  for (Index p = 0; p < n; ++p) {
-    double G = 0.0;
-    for (Index kk = sup_.offset[p]; kk < sup_.offset[p + 1]; ++kk) G += g(p, kk);
-    for (Index kk = sup_.offset[p]; kk < sup_.offset[p + 1]; ++kk) {
-      const Index a = sup_.node[kk];
-      k[a] += mass[p] * G * g(p, kk);
-      m[a] += sup_.N[kk] * mass[p];
-    }
-  }
-  double w2 = 0.0;
+  // G_p = sum_b g_b,p per point, then omega_a^2 node by node over the influence domains (a
+  // gather: parallel and deterministic).
+  std::vector<double> G(static_cast<size_t>(n), 0.0);
+  for_each(0, n, [&](Index p) {
+    double s = 0.0;
+    for (Index kk = sup_.offset[p]; kk < sup_.offset[p + 1]; ++kk) s += g(p, kk);
+    G[p] = s;
+  });
   omega2_.assign(static_cast<size_t>(nn), 0.0);
-  for (Index a = 0; a < nn; ++a)
-    if (m[a] > kTinyMass) {
-      omega2_[a] = k[a] / m[a] * c * c;
-      w2 = std::max(w2, omega2_[a]);
+  for_each(0, nn, [&](Index a) {
+    double k = 0.0, m = 0.0;
+    for (Index i = inf_.start[a]; i < inf_.start[a + 1]; ++i) {
+      const Index kk = inf_.entry[i], p = inf_.owner[i];
+      k += mass[p] * G[p] * g(p, kk);
+      m += sup_.N[kk] * mass[p];
     }
+    if (m > kTinyMass) omega2_[a] = k / m * c * c;
+  });
+  double w2 = 0.0;
+  for (Index a = 0; a < nn; ++a) w2 = std::max(w2, omega2_[a]);
   w2 = comm_.max(w2);
   // A penalty wall's spring k_a = penalty m_a omega_a^2 raises a wall node's omega^2 by the
   // factor 1 + penalty.
@@ -459,6 +461,7 @@ void OtmSolver::step(double dt) {
   // node times `penalty`, independent of the time step (stable_dt shortens the step for it).
   double wall_force = 0.0;
   std::vector<Vec3> fpen;
+  std::optional<ScopedPhase> phase(std::in_place, seconds_.nodes);
   if (penalty_) {
     fpen.assign(static_cast<size_t>(nn), Vec3{});
     const GridSpec& g = scenario_.grid;
@@ -501,6 +504,7 @@ void OtmSolver::step(double dt) {
   for_each(0, nn, [&](Index a) { nodes_.x[a] += dt * nodes_.v[a]; });
 
   // Points follow the nodes (Algorithm 1 lines 12-16) with the shape functions of x_p^k.
+  phase.emplace(seconds_.points);
   auto* x = points_.view<Vec3>("x");
   auto* v = points_.view<Vec3>("v");
   auto* F = points_.view<Mat3>("F");
@@ -552,7 +556,9 @@ void OtmSolver::step(double dt) {
   time_ += dt;
   ++steps_;
   if (const Index p = bad.load(); p < n) pts_.fail(p, "inverted or non-finite deformation gradient (J <= 0 or NaN)", steps_, time_);
+  phase.emplace(seconds_.material);
   pts_.update_stress(dt, steps_, time_);
+  phase.reset();
   if (adapt_.enabled) adapt();
   else refresh_supports();
 }
@@ -605,7 +611,16 @@ std::vector<std::pair<std::string, double>> OtmSolver::result_values() const {
           {"node_regenerations", static_cast<double>(regenerations_)},
           {"momentum_change_x", axisym_ ? 0.0 : e.momentum[0] - p0[0]},
           {"momentum_change_y", e.momentum[1] - p0[1]},
-          {"momentum_change_z", e.momentum[2] - p0[2]}};
+          {"momentum_change_z", e.momentum[2] - p0[2]},
+          // Wall time per phase (s; supports: the search and the LME solves, also those after
+          // splits and re-generations): bench/otm_taylor_bench, docs/performance.md.
+          {"seconds_supports", seconds_.supports},
+          {"seconds_assemble", seconds_.assemble},
+          {"seconds_node_update", seconds_.nodes},
+          {"seconds_point_update", seconds_.points},
+          {"seconds_material", seconds_.material},
+          {"seconds_adaptivity", seconds_.adapt},
+          {"seconds_stable_dt", seconds_.stable_dt}};
 }
 
 namespace {

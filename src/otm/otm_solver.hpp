@@ -118,6 +118,11 @@ class OtmSolver final : public Solver {
   double external_work_ = 0.0, damping_work_ = 0.0, wall_work_ = 0.0;
   double wall_force_ = 0.0;    ///< N, last step's normal wall reaction
   Vec3 momentum0_;             ///< initial nodal momentum (per radian / per metre)
+  otm::Influences inf_;          ///< influence domains of sup_ (node-wise gathers)
+  /// s, wall time per phase of the step (result_values seconds_*; bench/otm_taylor_bench).
+  struct PhaseSeconds {
+    double supports = 0, assemble = 0, nodes = 0, points = 0, material = 0, adapt = 0, stable_dt = 0;
+  } seconds_;
   double mean_support_ = 0.0;
   int max_support_ = 0, max_iterations_ = 0;
   double max_condition_ = 0.0;

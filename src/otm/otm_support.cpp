@@ -159,4 +159,21 @@ void build_supports(const Vec3* xp, const std::int64_t* pbody, Index np, const V
   }
 }
 
+void build_influences(const Supports& sup, Index nn, Influences& out) {
+  const Index np = sup.size();
+  const Index ne = np > 0 ? sup.offset[np] : 0;
+  out.start.assign(static_cast<size_t>(nn) + 1, 0);
+  for (Index k = 0; k < ne; ++k) ++out.start[sup.node[k] + 1];
+  for (Index a = 0; a < nn; ++a) out.start[a + 1] += out.start[a];
+  out.entry.resize(static_cast<size_t>(ne));
+  out.owner.resize(static_cast<size_t>(ne));
+  std::vector<Index> fill(out.start.begin(), out.start.end() - 1);
+  for (Index p = 0; p < np; ++p)
+    for (Index k = sup.offset[p]; k < sup.offset[p + 1]; ++k) {
+      const Index i = fill[sup.node[k]]++;
+      out.entry[i] = k;
+      out.owner[i] = p;
+    }
+}
+
 }  // namespace ballista::otm

@@ -66,4 +66,14 @@ inline constexpr double kMaxScale = 4.0;
 /// Support radius for the options: h sqrt(-ln(tol) / gamma).
 double support_radius(const SupportOptions& opt);
 
+/// Influence domains (seed 003 Fig. 2-1): the transpose of the supports, node a's entries
+/// entry[start[a] .. start[a+1]) index the support arrays (N, dN) and owner[] names their points,
+/// in increasing point order. Node-wise gathers over it are deterministic for any thread count.
+struct Influences {
+  std::vector<Index> start, entry, owner;
+};
+
+/// The influence domains of `sup` over nn nodes (a counting sort: O(entries)).
+void build_influences(const Supports& sup, Index nn, Influences& out);
+
 }  // namespace ballista::otm
