@@ -52,7 +52,8 @@ Vec3 largest_eigenvector(const Mat3& A, int dim, double hi);
 
 /// Splits every point whose extent (largest singular value of its extent tensor, in the plane in
 /// 2D) exceeds opt.split_stretch times spacing[body], into two at the centres of the halves of its
-/// cell along that direction. `extensive` names the reference-volume-proportional fields (mass,
+/// cell along that direction. `lower`/`upper` are the held faces of the box (walls, symmetry
+/// planes, fixed faces; -inf / +inf where a face is free). `extensive` names the reference-volume-proportional fields (mass,
 /// volume0, energies, areas), shared 1/2 : 1/2 (axisymmetric: by the half-rings' volumes);
 /// `volume` is recomputed as det(F) volume0; every other field is copied (in axisymmetric runs the
 /// hoop stretch F_zz becomes each child's r / r0). Near a box face the offset loses its component

@@ -184,8 +184,15 @@ void OtmSolver::adapt() {
   bool regenerate = false;
   std::vector<std::string> extensive = {"mass", "volume0", "internal_energy", "plastic_work"};
   for (const std::string& a : pts_.load_area_fields()) extensive.push_back(a);
-  const std::vector<Index> parents = otm::split_points(points_, extensive, spacing_, dim_, axisym_, scenario_.grid.lower,
-                                                            scenario_.grid.upper, adapt_, next_id_);
+  // Only held faces (walls, symmetry planes, fixed faces) keep a split parallel to them: a free
+  // face is no obstacle, and material may flow past the box there (the 750 m/s bar's disc).
+  Vec3 held_lower = scenario_.grid.lower, held_upper = scenario_.grid.upper;
+  for (int ax = 0; ax < 3; ++ax) {
+    if (scenario_.grid.faces[2 * ax] == FaceBC::Free) held_lower[ax] = -kInf;
+    if (scenario_.grid.faces[2 * ax + 1] == FaceBC::Free) held_upper[ax] = kInf;
+  }
+  const std::vector<Index> parents =
+      otm::split_points(points_, extensive, spacing_, dim_, axisym_, held_lower, held_upper, adapt_, next_id_);
   if (!parents.empty()) {
     // The second children take their parents' solver state; a child outside the hull of its
     // nodes fails its LME solve below, which re-generates the nodes.
