@@ -25,6 +25,10 @@ struct EnergyTotals {
   double removed_energy = 0.0; ///< J (kinetic + internal) carried off by deleted particles
   Vec3 removed_momentum;       ///< kg m/s carried off by deleted particles
   double inserted_energy = 0.0;  ///< J (kinetic + internal) brought in by bodies activated after t = 0
+  /// J, chemical energy released so far by burning explosive (deleted points included). Not a
+  /// term of total(): the products' energy enters the stress-power integral `internal` as the work
+  /// they do, so the balance closes without it; it is the energy scale of an explosive run.
+  double chemical = 0.0;
   // Work done on the points by the discretisation itself (J; negative when it removes energy),
   // booked so that the balance closes (issue 13). Zero for solvers that have no such term.
   double damping = 0.0;   ///< grid damping -c m v (stages and simulation.damping)

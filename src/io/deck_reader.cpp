@@ -48,7 +48,7 @@ int axis_from(const std::string& name) { return name == "x" ? 0 : name == "y" ? 
 namespace {
 
 const std::vector<std::string> kSections{"simulation", "grid",   "materials", "stages", "bodies",
-                                         "loads",      "cracks", "contact", "probes", "penetration", "output"};
+                                         "loads",      "cracks", "contact", "detonation", "probes", "penetration", "output"};
 const std::vector<std::string> kFaces{"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
 const std::vector<std::string> kFaceBCs{"free", "fixed", "symmetry", "wall"};
 constexpr long kLongMax = LONG_MAX;
@@ -99,6 +99,7 @@ class Reader {
     loads();
     cracks();
     contact();
+    detonation();
     probes();
     check_stage_bodies();
     penetration();
@@ -402,6 +403,34 @@ class Reader {
       c.finish();
       sc_.cracks.push_back(crack);
     }
+  }
+
+  /// `detonation`: the detonators of the program burn (seed 001). Required when a material is an
+  /// `explosive` (a charge that never lights is refused: say so with a detonator at a late time).
+  void detonation() {
+    DeckNode d = root_.map("detonation", false);
+    DetonationSpec& ds = sc_.detonation;
+    ds.mark = d.mark();
+    ds.edge_radius = d.number("edge_radius", 3.2, NumberRange::between(1.0, 10.0));
+    ds.burn_cells = d.number("burn_cells", 2.0, NumberRange::between(0.0, 20.0));
+    DeckNode ps = d.list("points", false);
+    for (size_t i = 0; i < ps.size(); ++i) {
+      DeckNode p = ps.element(i);
+      DetonatorSpec det;
+      det.mark = p.mark();
+      det.position = p.vector("position", vmin());
+      det.time = p.number("time", 0.0, NumberRange::non_negative("s"));
+      p.finish();
+      ds.points.push_back(det);
+    }
+    d.finish();
+    bool explosive = false;
+    for (const MaterialSpec& m : sc_.materials) explosive = explosive || m.model == "explosive";
+    if (explosive && ds.points.empty())
+      d.fail("points", "a material is an explosive: give at least one detonator, e.g. "
+                       "detonation: {points: [{position: [0, 0, 0], time: 0}]}");
+    if (!explosive && !ds.points.empty())
+      d.fail("points", "detonators are given but no material has model: explosive");
   }
 
   /// `contact`: velocity fields and Coulomb friction between bodies on the MPM grid. Bodies are

@@ -25,6 +25,10 @@
 
 namespace ballista {
 
+/// State field of the `explosive` material: the chemical energy released so far, Q F, J per m^3
+/// of initial volume (summed by the points layer into EnergyTotals::chemical).
+inline constexpr const char* kChemicalEnergyField = "chemical_energy";
+
 struct ProductsEos {
   enum class Kind { Jwl, IdealGas };
   Kind kind = Kind::Jwl;

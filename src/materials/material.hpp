@@ -97,6 +97,7 @@ struct PointKinematics {
   double J_old = 1.0;  ///< det F_old (always filled)
   double J_new = 1.0;  ///< det F_new (always filled)
   double dt = 0.0;
+  double time = 0.0;   ///< s, t_{n+1} (the solvers' clock; read by the explosive's program burn)
 };
 
 /// Per-point by-products of a kernel call. Everything but plastic_work_density is read only by
@@ -132,6 +133,7 @@ struct MaterialBatch {
   double* plastic_work = nullptr; ///< optional out: plastic dissipation over the step, J/m^3
   FieldStore* store = nullptr;    ///< holds the model's state fields
   double dt = 0.0;
+  double time = 0.0;              ///< s, t_{n+1}
   // Optional energy accumulation (all three set, or none):
   const double* volume0 = nullptr;   ///< reference volume, m^3
   double* internal_energy = nullptr; ///< += dt <V> <sigma> : D (trapezoidal stress power), J

@@ -106,6 +106,7 @@ class MaterialAdapter final : public Material {
       else
         kin.F_old = Mat3{};  // not read by this model
       kin.dt = b.dt;
+      kin.time = b.time;
       kin.J_new = det(kin.F_new);
       kin.J_old = kin.J_new / detA;
       const Mat3 R_old = b.R[p];

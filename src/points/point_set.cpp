@@ -10,8 +10,10 @@
 #include "core/parallel.hpp"
 #include "core/system_memory.hpp"
 #include "geometry/seeding.hpp"
+#include "materials/explosive_eos.hpp"
 #include "materials/failure.hpp"
 #include "points/cantilever_mode.hpp"
+#include "points/explosive_lighting.hpp"
 #include "points/mms_axis_aligned.hpp"
 #include "points/mms_generalized_vortex.hpp"
 
@@ -126,6 +128,8 @@ PointSet::PointSet(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
                       "no particle of body '" + load.body + "' lies on surface '" + load.surface + "'");
     load_area_fields_.push_back("load_area_" + std::to_string(k));
   }
+  // Program burn: the lighting times of the explosive points, before any body waits for activation.
+  light_explosives(sc, points_, lattice.override_ppc);
   // Bodies with a later activation time wait in pending_.
   std::vector<Index> later;
   std::vector<char> keep(points_.size(), 1);
@@ -231,6 +235,7 @@ void PointSet::update_stress(double dt, long step, double time) {
     if (groups[m].empty()) continue;
     MaterialBatch b = make_batch(points_, groups[m].data(), static_cast<Index>(groups[m].size()), dt, true);
     b.first_bad = &bad_stress;
+    b.time = time;
     materials_[m]->update(b);
   }
   if (bad_stress.load() < n) fail(bad_stress.load(), "non-finite stress after the material update", step, time);
@@ -241,11 +246,14 @@ void PointSet::remove(const std::vector<char>& keep) {
   const auto* v = points_.view<Vec3>("v");
   const auto* mass = points_.real("mass");
   const auto* eint = points_.real("internal_energy");
+  const double* chem = points_.has(kChemicalEnergyField) ? points_.real(kChemicalEnergyField) : nullptr;
+  const auto* vol0 = points_.real("volume0");
   for (Index p = 0; p < n; ++p) {
     if (keep[p]) continue;
     removed_mass_ += mass[p];
     removed_momentum_ += mass[p] * v[p];
     removed_energy_ += 0.5 * mass[p] * dot(v[p], v[p]) + eint[p];
+    if (chem) removed_chemical_ += chem[p] * vol0[p];
   }
   points_.compact(keep);
   groups_dirty_ = true;
@@ -276,8 +284,11 @@ EnergyTotals PointSet::energies(double k, double external_work) const {
   const auto* wp = points_.real("plastic_work");
   // Failed (eroded) points keep the internal energy they had when their stress was zeroed.
   const double* failed = points_.has(kFailedField) ? points_.real(kFailedField) : nullptr;
-  double s[8];
-  deterministic_sum<8>(0, points_.size(), [&](Index p, double* o) {
+  // Explosives (materials/explosive.cpp): the chemical energy released, J/m^3 of initial volume.
+  const double* chem = points_.has(kChemicalEnergyField) ? points_.real(kChemicalEnergyField) : nullptr;
+  const auto* vol0 = points_.real("volume0");
+  double s[9];
+  deterministic_sum<9>(0, points_.size(), [&](Index p, double* o) {
     const double m = mass[p];
     o[0] += 0.5 * m * dot(v[p], v[p]);
     o[1] += eint[p];
@@ -287,8 +298,9 @@ EnergyTotals PointSet::energies(double k, double external_work) const {
     o[5] += m * v[p][1];
     o[6] += m * v[p][2];
     if (failed && failed[p] > 0.0) o[7] += eint[p];
+    if (chem) o[8] += chem[p] * vol0[p];
   }, s);
-  comm_.sum(s, 8);
+  comm_.sum(s, 9);
   EnergyTotals e;
   e.kinetic = k * s[0];
   e.internal = k * s[1];
@@ -302,6 +314,7 @@ EnergyTotals PointSet::energies(double k, double external_work) const {
   e.removed_energy = k * removed_energy_;
   e.removed_momentum = k * removed_momentum_;
   e.inserted_energy = k * comm_.sum(inserted_energy_);
+  e.chemical = k * (s[8] + comm_.sum(removed_chemical_));
   return e;
 }
 

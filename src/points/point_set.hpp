@@ -88,6 +88,7 @@ class PointSet {
   bool groups_dirty_ = true;
   std::vector<std::string> load_area_fields_;
   double removed_mass_ = 0.0, removed_energy_ = 0.0;
+  double removed_chemical_ = 0.0;  ///< J, chemical energy released by points since deleted
   Vec3 removed_momentum_;
   double inserted_energy_ = 0.0;  ///< per-point sum of the energy of activated points (this rank)
 };

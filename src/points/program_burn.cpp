@@ -77,21 +77,24 @@ class Occupancy {
     return holes == 0;
   }
 
-  /// True if the segment a -> b stays in explosive cells (sampled every h/8; the cell of `a`
-  /// itself is not required when skip_start: a detonator may sit on the charge's surface).
+  /// True if the segment a -> b stays in explosive cells (sampled every h/8). With skip_start
+  /// (a detonator, which may sit on the charge's surface, or just outside it) the leading samples
+  /// in a's own cell or outside the box are not required to be explosive.
   bool line_of_sight(const Vec3& a, const Vec3& b, bool skip_start = false) const {
     Vec3 d = b - a;
     if (dim_ == 2) d[2] = 0.0;
     const double len = norm(d);
     const int m = std::max(1, static_cast<int>(std::ceil(8.0 * len / h_)));
     int ca[3];
-    cell(a, ca);
+    const bool a_inside = cell(a, ca);
+    bool leading = skip_start;
     for (int s = 0; s <= m; ++s) {
       const Vec3 y = a + (static_cast<double>(s) / m) * d;
       int c[3];
-      if (!cell(y, c)) return false;
-      if (skip_start && c[0] == ca[0] && c[1] == ca[1] && c[2] == ca[2]) continue;
-      if (!cells_[(static_cast<size_t>(c[2]) * nc_[1] + c[1]) * nc_[0] + c[0]]) return false;
+      const bool inside = cell(y, c);
+      if (leading && (!inside || (a_inside && c[0] == ca[0] && c[1] == ca[1] && c[2] == ca[2]))) continue;
+      leading = false;
+      if (!inside || !cells_[(static_cast<size_t>(c[2]) * nc_[1] + c[1]) * nc_[0] + c[0]]) return false;
     }
     return true;
   }

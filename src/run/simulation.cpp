@@ -113,7 +113,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
                                       "mass", "momentum_x", "momentum_y", "momentum_z",
                                       "removed_mass", "removed_energy", "inserted_energy",
                                       "damping_work", "contact_work", "friction_work", "transfer_work",
-                                      "eroded_internal_energy"};
+                                      "eroded_internal_energy", "chemical_energy"};
   for (const auto& pr : sc.probes) columns.push_back(pr.name);
   // Stages: the preparation stages of the deck, then the main stage (index nstages).
   const int nstages = static_cast<int>(sc.stages.size());
@@ -136,8 +136,10 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   const EnergyTotals e0 = solver->energies();
   const double total0 = e0.total();
   // The scale of the energy residual: kinetic + |internal| + |work of the loads and of damping|.
+  // Explosives add the chemical energy released so far (the energy their products work with).
   auto scale_of = [](const EnergyTotals& e) {
-    return std::abs(e.kinetic) + std::abs(e.internal) + std::abs(e.external) + std::abs(e.damping);
+    return std::abs(e.kinetic) + std::abs(e.internal) + std::abs(e.external) + std::abs(e.damping) +
+           std::abs(e.chemical);
   };
   double energy_scale = scale_of(e0);
   double worst_drift = 0.0, min_dt = std::numeric_limits<double>::infinity();
@@ -165,7 +167,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
                                e.internal, e.plastic, e.external, e.total(), drift, e.mass,
                                e.momentum[0], e.momentum[1], e.momentum[2], e.removed_mass,
                                e.removed_energy, e.inserted_energy, e.damping, e.contact, e.friction,
-                               e.transfer, e.eroded};
+                               e.transfer, e.eroded, e.chemical};
     for (double v : probe_values(e)) row.push_back(v);
     if (nstages > 0) row.push_back(stage);
     for (double v : solver->history_values()) row.push_back(v);
@@ -418,6 +420,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   en["friction_work"] = e.friction;
   en["transfer_work"] = e.transfer;
   en["eroded_internal_energy"] = e.eroded;
+  en["chemical_energy"] = e.chemical;
   en["scale"] = energy_scale;
   en["residual"] = e.total() - total0;
   en["residual_over_scale"] = energy_scale > 0 ? (e.total() - total0) / energy_scale : 0.0;

@@ -230,6 +230,22 @@ struct ContactSpec {
   DeckMark mark;
 };
 
+/// One detonator of the `detonation` section: where and when the program burn starts.
+struct DetonatorSpec {
+  Vec3 position;      ///< m
+  double time = 0.0;  ///< s
+  DeckMark mark;
+};
+
+/// Program burn (seed 001; points/program_burn.hpp): the detonators from which the lighting times
+/// of every point of an `explosive` material are computed before time stepping.
+struct DetonationSpec {
+  std::vector<DetonatorSpec> points;
+  double edge_radius = 3.2;  ///< graph edges of the burn search, in lattice spacings
+  double burn_cells = 2.0;   ///< burn time of a point, in lattice spacings / D (0: at once)
+  DeckMark mark;
+};
+
 struct Scenario {
   std::string file;               ///< deck path
   SimulationSpec simulation;
@@ -242,6 +258,7 @@ struct Scenario {
   std::vector<LoadSpec> loads;
   std::vector<CrackSpec> cracks;  ///< pre-cracks (solvers with bonds only)
   ContactSpec contact;            ///< velocity fields and friction between bodies (MPM)
+  DetonationSpec detonation;      ///< program burn of explosive materials
   std::vector<ProbeSpec> probes;
   std::vector<StageSpec> stages;  ///< preparation stages before the main stage
   PenetrationSpec penetration;

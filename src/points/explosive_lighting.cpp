@@ -1,0 +1,84 @@
+#include "points/explosive_lighting.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "points/program_burn.hpp"
+
+namespace ballista {
+
+Index light_explosives(const Scenario& sc, FieldStore& points, int ppc_override) {
+  const DetonationSpec& det = sc.detonation;
+  if (det.points.empty()) return 0;
+  auto deck_error = [&](const std::string& key, const std::string& message) {
+    throw DeckError(det.mark.file, det.mark.line, det.mark.column, "detonation" + (key.empty() ? "" : "." + key),
+                    message);
+  };
+  // One detonation speed and one lattice spacing over every explosive body.
+  double D = 0.0, spacing = 0.0;
+  std::vector<char> is_explosive_material(sc.materials.size(), 0);
+  for (size_t m = 0; m < sc.materials.size(); ++m) {
+    const MaterialSpec& ms = sc.materials[m];
+    if (ms.model != "explosive") continue;
+    is_explosive_material[m] = 1;
+    const double d = ms.params.at("detonation_speed");
+    if (D > 0.0 && d != D)
+      deck_error("", fmt::format("explosives with different detonation speeds ({} and {} m/s) are not supported by "
+                                 "the program burn yet (one front speed)",
+                                 D, d));
+    D = d;
+  }
+  for (const BodySpec& b : sc.bodies) {
+    int mi = -1;
+    for (size_t m = 0; m < sc.materials.size(); ++m)
+      if (sc.materials[m].name == b.material) mi = static_cast<int>(m);
+    if (mi < 0 || !is_explosive_material[mi]) continue;
+    if (b.activation_time > 0.0 || b.activation_stage > 0 || !b.segments.empty())
+      deck_error("", "explosive body '" + b.name + "' has a later activation: not supported by the program burn");
+    const double s = sc.grid.cell_size / (ppc_override > 0 ? ppc_override : b.particles_per_cell);
+    if (spacing > 0.0 && std::abs(s / spacing - 1.0) > 1e-12)
+      deck_error("", "explosive bodies with different point spacings are not supported by the program burn yet");
+    spacing = s;
+  }
+  const Index n = points.size();
+  const auto* mat = points.ints("material");
+  const auto* x0 = points.view<Vec3>("x0");
+  std::vector<char> explosive(static_cast<size_t>(n), 0);
+  for (Index p = 0; p < n; ++p) explosive[p] = is_explosive_material[static_cast<size_t>(mat[p])];
+  std::vector<Detonator> detonators;
+  for (const DetonatorSpec& d : det.points) detonators.push_back({d.position, d.time});
+  ProgramBurnOptions opt;
+  opt.speed = D;
+  opt.spacing = spacing;
+  opt.radius_factor = det.edge_radius;
+  opt.dim = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
+  ProgramBurnResult r;
+  try {
+    r = program_burn(x0, explosive.data(), n, detonators, opt);
+  } catch (const Error& e) {
+    deck_error("points", e.what());
+  }
+  if (r.unreachable > 0) {
+    Index first = -1;
+    for (Index p = 0; p < n && first < 0; ++p)
+      if (explosive[p] && !std::isfinite(r.time[p])) first = p;
+    deck_error("points", fmt::format("{} explosive points are cut off from every detonator by inert material or void "
+                                     "(the first at ({:.6g}, {:.6g}, {:.6g}) m): add a detonator in that part of the "
+                                     "charge",
+                                     r.unreachable, x0[first][0], x0[first][1], x0[first][2]));
+  }
+  auto* t = points.real("lighting_time");
+  auto* tau = points.real("burn_time");
+  Index lit = 0;
+  for (Index p = 0; p < n; ++p)
+    if (explosive[p]) {
+      t[p] = r.time[p];
+      tau[p] = det.burn_cells * spacing / D;
+      ++lit;
+    }
+  return lit;
+}
+
+}  // namespace ballista

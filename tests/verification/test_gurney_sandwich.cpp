@@ -1,0 +1,123 @@
+// Detonation products driving a metal plate (issue 15 item 5): the open-faced sandwich of Gurney
+// (R.W. Gurney, BRL Report 405, 1943; P.W. Cooper, Explosives Engineering, 1996, ch. 27) in MPM,
+// plane strain, made one-dimensional by symmetry faces: a 10 mm layer of TNT (the `tnt` preset,
+// JWL products) lit on its free face, a steel plate on the other face. The plate's terminal
+// velocity against V = sqrt(2E) [((1 + 2 M/C)^3 + 1) / (6 (1 + M/C)) + M/C]^{-1/2} with TNT's
+// Gurney constant sqrt(2E) = 2440 m/s (Cooper's table; data/materials.yaml tnt notes), at
+// M/C = 0.5 and 1. Bound 10 % (the issue's): Gurney's formula is itself an energy-balance model
+// with a linear gas velocity profile, fitted to experiments to about that accuracy, and the run
+// stops when the gas has expanded ~10 charge thicknesses (what the products still hold then is
+// a few % of the plate's energy). Also checked: the energy balance (kinetic + stress-power
+// internal energy; the products' chemical energy enters as their E) closes to 2 % of the chemical
+// energy released (measured 1.0 % at these 0.5 mm cells and CFL 0.3; the residual is MPM's
+// time-integration error — it falls with the CFL, 3.6 % -> 1.5 % at 0.25 mm from CFL 0.3 to 0.1 —
+// not the burn's: an instantaneous burn changes it by 0.1 %), and the lighting times follow the
+// distance from the detonator over D exactly. 20 cells across the charge, 2 x 2 points per cell.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "io/deck_reader.hpp"
+#include "materials/explosive_eos.hpp"
+#include "run/simulation.hpp"
+
+namespace ballista {
+namespace {
+
+constexpr double kCharge = 10.0e-3;  // m, explosive thickness
+constexpr double kRhoC = 1630.0, kRhoM = 7850.0;
+
+std::string deck(double plate) {
+  char buf[2048];
+  std::snprintf(buf, sizeof buf, R"(
+simulation: {solver: mpm, dimension: plane_strain, end_time: 30.0e-6, cfl: 0.3, on_particle_exit: delete}
+materials:
+  tnt: {preset: tnt}
+  steel: {model: linear_elastic, density: 7850, bulk_modulus: 160.0e9, shear_modulus: 79.0e9}
+mpm: {shape_function: gimp, update: musl, flip: 0.99}
+grid: {lower: [-0.06, 0], upper: [0.08, 1.0e-3], cell_size: 0.5e-3, boundary: {y_min: symmetry, y_max: symmetry}}
+bodies:
+  - {name: charge, material: tnt, shape: {type: box, lower: [0, 0], upper: [%.9g, 1.0e-3]}, particles_per_cell: 2}
+  - {name: plate, material: steel, shape: {type: box, lower: [%.9g, 0], upper: [%.9g, 1.0e-3]}, particles_per_cell: 2}
+detonation: {points: [{position: [0, 0.5e-3], time: 0}]}
+)",
+                kCharge, kCharge, kCharge + plate);
+  return buf;
+}
+
+struct PlateResult {
+  double velocity = 0.0;   // m/s, the plate's mean x velocity at the end
+  double residual = 0.0;   // largest energy residual of the run over the chemical energy released
+  double lighting_error = 0.0;  // m, worst |t D - distance from the detonator|
+};
+
+PlateResult drive(double m_over_c) {
+  const double plate = m_over_c * kRhoC * kCharge / kRhoM;
+  const Scenario sc = parse_deck(deck(plate), "gurney_sandwich.yaml");
+  auto solver = make_solver(sc);
+  PlateResult r;
+  {
+    const FieldStore& pts = solver->points();
+    const auto* t = pts.real("lighting_time");
+    const auto* x = pts.view<Vec3>("x");
+    const auto* body = pts.ints("body");
+    for (Index p = 0; p < pts.size(); ++p)
+      if (body[p] == 0) {
+        const double d = std::hypot(x[p][0], x[p][1] - 0.5e-3);
+        r.lighting_error = std::max(r.lighting_error, std::abs(t[p] * 6930.0 - d));
+      }
+  }
+  const EnergyTotals e0 = solver->energies();
+  double worst = 0.0, chemical = 0.0;
+  while (solver->time() < sc.simulation.end_time) {
+    solver->step(std::min(solver->stable_dt(), sc.simulation.end_time - solver->time() + 1e-15));
+    const EnergyTotals e = solver->energies();
+    chemical = e.chemical;
+    worst = std::max(worst, std::abs(e.total() - e0.total()));
+  }
+  // Every point has burnt: the chemical energy is Q V0 of the whole charge (per metre of depth).
+  const double Q = detonation_energy([&] {
+    ProductsEos tnt;
+    tnt.rho0 = kRhoC;
+    tnt.D = 6930.0;
+    tnt.p_cj = 21.0e9;
+    tnt.A = 371.2e9;
+    tnt.B = 3.231e9;
+    tnt.R1 = 4.15;
+    tnt.R2 = 0.95;
+    tnt.omega = 0.30;
+    return tnt;
+  }());
+  EXPECT_NEAR(chemical, Q * kCharge * 1.0e-3, 1e-9 * chemical);
+  r.residual = worst / chemical;
+  const FieldStore& pts = solver->points();
+  const auto* v = pts.view<Vec3>("v");
+  const auto* m = pts.real("mass");
+  const auto* body = pts.ints("body");
+  double mv = 0.0, mm = 0.0;
+  for (Index p = 0; p < pts.size(); ++p)
+    if (body[p] == 1) {
+      mv += m[p] * v[p][0];
+      mm += m[p];
+    }
+  r.velocity = mv / mm;
+  return r;
+}
+
+TEST(GurneySandwich, PlateReachesTheGurneyVelocity) {
+  for (double mc : {0.5, 1.0}) {
+    const PlateResult r = drive(mc);
+    const double gurney = gurney_open_sandwich(2440.0, mc);
+    std::printf("open-faced sandwich, M/C = %.2f: plate %.0f m/s, Gurney %.0f m/s (%.1f %%), energy residual %.4f, "
+                "lighting-time error %.3g m\n",
+                mc, r.velocity, gurney, 100.0 * (r.velocity / gurney - 1.0), r.residual, r.lighting_error);
+    EXPECT_NEAR(r.velocity / gurney, 1.0, 0.10) << mc;
+    EXPECT_LT(r.residual, 0.02) << mc;
+    EXPECT_LT(r.lighting_error, 1e-9);  // straight lines from the detonator: exact
+  }
+}
+
+}  // namespace
+}  // namespace ballista
