@@ -46,8 +46,8 @@ class FieldMaxProbe : public Probe {
 BALLISTA_REGISTER_PROBE(ProbeFactory{
     .name = "field_max",
     .description = "maximum of a scalar particle field over the body",
-    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .description = "body measured (default: every body)"},
-               {.name = "field", .kind = ProbeParam::Kind::Word,
+    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "", .description = "body measured (default: every body)"},
+               {.name = "field", .kind = ProbeParam::Kind::Word, .unit = "",
                 .description = "a scalar field (e.g. eqps, damage, internal_energy)"}},
     .create = [](const ProbeSpec& spec, const Scenario& sc) -> std::unique_ptr<Probe> {
       return std::make_unique<FieldMaxProbe>(probe_body(spec, sc), spec.params.choice("field"), spec.mark);
