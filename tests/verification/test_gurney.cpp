@@ -1,4 +1,5 @@
-// Detonation products driving a metal plate (issue 15 item 5): the open-faced sandwich of Gurney
+// Detonation products driving metal (issue 15 item 5): Gurney's open-faced sandwich and cylinder.
+// The open-faced sandwich of Gurney
 // (R.W. Gurney, BRL Report 405, 1943; P.W. Cooper, Explosives Engineering, 1996, ch. 27) in MPM,
 // plane strain, made one-dimensional by symmetry faces: a 10 mm layer of TNT (the `tnt` preset,
 // JWL products) lit on its free face, a steel plate on the other face. The plate's terminal
@@ -116,6 +117,62 @@ TEST(GurneySandwich, PlateReachesTheGurneyVelocity) {
     EXPECT_NEAR(r.velocity / gurney, 1.0, 0.10) << mc;
     EXPECT_LT(r.residual, 0.02) << mc;
     EXPECT_LT(r.lighting_error, 1e-9);  // straight lines from the detonator: exact
+  }
+}
+
+// The Gurney cylinder (R.W. Gurney 1943; Cooper 1996 ch. 27): a long TNT cylinder (radius 10 mm)
+// in a steel case, V = sqrt(2E) (M/C + 1/2)^{-1/2}. MPM, axisymmetric, an axial slice of 1 mm
+// between symmetry faces (an infinitely long cylinder, as Gurney's formula assumes), lit on the
+// axis; the case is strengthless (J2 with a 1 MPa yield stress: Gurney's energy balance has no
+// case strength; the seed's 4340 case at 750 MPa is 3-5 % slower, docs/validation.md). Measured at
+// 20 us, when the case has expanded ~4x in radius (the gas ~16x in volume; the standard cylinder
+// test reads the wall velocity at 7 volumes). Bound 10 % (the issue's); measured -1.7 %..+1.0 %
+// at these 0.5 mm cells (20 across the charge), within 5 % at 1 and 0.25 mm.
+TEST(GurneyCylinder, CaseReachesTheGurneyVelocity) {
+  for (double mc : {1.0, 2.0}) {
+    const double a = 10.0e-3;
+    const double b = a * std::sqrt(1.0 + mc * kRhoC / kRhoM);  // case mass M = mc C per unit length
+    char buf[2048];
+    std::snprintf(buf, sizeof buf, R"(
+simulation: {solver: mpm, dimension: axisymmetric, end_time: 20.0e-6, cfl: 0.3, on_particle_exit: delete}
+materials:
+  tnt: {preset: tnt}
+  steel: {model: j2_plasticity, density: 7850, youngs_modulus: 200.0e9, poisson_ratio: 0.29, yield_stress: 1.0e6,
+          hardening_modulus: 0.0}
+mpm: {shape_function: gimp, update: musl, flip: 0.99}
+grid: {lower: [0, 0], upper: [0.08, 1.0e-3], cell_size: 0.5e-3,
+       boundary: {x_min: symmetry, y_min: symmetry, y_max: symmetry}}
+bodies:
+  - {name: charge, material: tnt, shape: {type: box, lower: [0, 0], upper: [%.9g, 1.0e-3]}, particles_per_cell: 2}
+  - {name: case, material: steel, shape: {type: box, lower: [%.9g, 0], upper: [%.9g, 1.0e-3]}, particles_per_cell: 2}
+detonation: {points: [{position: [0, 0.5e-3], time: 0}]}
+)",
+                  a, a, b);
+    const Scenario sc = parse_deck(buf, "gurney_cylinder.yaml");
+    auto solver = make_solver(sc);
+    const EnergyTotals e0 = solver->energies();
+    double worst = 0.0;
+    while (solver->time() < sc.simulation.end_time) {
+      solver->step(std::min(solver->stable_dt(), sc.simulation.end_time - solver->time() + 1e-15));
+      worst = std::max(worst, std::abs(solver->energies().total() - e0.total()));
+    }
+    const EnergyTotals e = solver->energies();
+    const FieldStore& pts = solver->points();
+    const auto* v = pts.view<Vec3>("v");
+    const auto* m = pts.real("mass");
+    const auto* body = pts.ints("body");
+    double mv = 0.0, mm = 0.0;
+    for (Index p = 0; p < pts.size(); ++p)
+      if (body[p] == 1) {
+        mv += m[p] * v[p][0];
+        mm += m[p];
+      }
+    const double V = mv / mm, gurney = gurney_cylinder(2440.0, mc);
+    std::printf("Gurney cylinder, M/C = %.1f: case %.0f m/s, Gurney %.0f m/s (%.1f %%), energy residual %.4f of the "
+                "chemical energy\n",
+                mc, V, gurney, 100.0 * (V / gurney - 1.0), worst / e.chemical);
+    EXPECT_NEAR(V / gurney, 1.0, 0.10) << mc;
+    EXPECT_LT(worst / e.chemical, 0.02) << mc;
   }
 }
 
