@@ -48,6 +48,20 @@ detonation: {points: [{position: [0, 0.5e-3], time: 0}]}
   return buf;
 }
 
+/// Centre-of-mass velocity along x of body `b` (the plate, the case), m/s.
+double mean_x_velocity(const FieldStore& pts, int b) {
+  const auto* v = pts.view<Vec3>("v");
+  const auto* m = pts.real("mass");
+  const auto* body = pts.ints("body");
+  double mv = 0.0, mm = 0.0;
+  for (Index p = 0; p < pts.size(); ++p)
+    if (body[p] == b) {
+      mv += m[p] * v[p][0];
+      mm += m[p];
+    }
+  return mv / mm;
+}
+
 struct PlateResult {
   double velocity = 0.0;   // m/s, the plate's mean x velocity at the end
   double residual = 0.0;   // largest energy residual of the run over the chemical energy released
@@ -78,32 +92,11 @@ PlateResult drive(double m_over_c) {
     chemical = e.chemical;
     worst = std::max(worst, std::abs(e.total() - e0.total()));
   }
-  // Every point has burnt: the chemical energy is Q V0 of the whole charge (per metre of depth).
-  const double Q = detonation_energy([&] {
-    ProductsEos tnt;
-    tnt.rho0 = kRhoC;
-    tnt.D = 6930.0;
-    tnt.p_cj = 21.0e9;
-    tnt.A = 371.2e9;
-    tnt.B = 3.231e9;
-    tnt.R1 = 4.15;
-    tnt.R2 = 0.95;
-    tnt.omega = 0.30;
-    return tnt;
-  }());
-  EXPECT_NEAR(chemical, Q * kCharge * 1.0e-3, 1e-9 * chemical);
+  // Every point has burnt: the chemical energy is Q V0 of the whole charge (per metre of depth),
+  // Q the CJ state's detonation energy, 0.13 % above the handbook's E0 = 7.0 GPa (material_data.md).
+  EXPECT_NEAR(chemical / (kCharge * 1.0e-3), 7.0e9, 0.002 * 7.0e9);
   r.residual = worst / chemical;
-  const FieldStore& pts = solver->points();
-  const auto* v = pts.view<Vec3>("v");
-  const auto* m = pts.real("mass");
-  const auto* body = pts.ints("body");
-  double mv = 0.0, mm = 0.0;
-  for (Index p = 0; p < pts.size(); ++p)
-    if (body[p] == 1) {
-      mv += m[p] * v[p][0];
-      mm += m[p];
-    }
-  r.velocity = mv / mm;
+  r.velocity = mean_x_velocity(solver->points(), 1);
   return r;
 }
 
@@ -157,17 +150,7 @@ detonation: {points: [{position: [0, 0.5e-3], time: 0}]}
       worst = std::max(worst, std::abs(solver->energies().total() - e0.total()));
     }
     const EnergyTotals e = solver->energies();
-    const FieldStore& pts = solver->points();
-    const auto* v = pts.view<Vec3>("v");
-    const auto* m = pts.real("mass");
-    const auto* body = pts.ints("body");
-    double mv = 0.0, mm = 0.0;
-    for (Index p = 0; p < pts.size(); ++p)
-      if (body[p] == 1) {
-        mv += m[p] * v[p][0];
-        mm += m[p];
-      }
-    const double V = mv / mm, gurney = gurney_cylinder(2440.0, mc);
+    const double V = mean_x_velocity(solver->points(), 1), gurney = gurney_cylinder(2440.0, mc);
     std::printf("Gurney cylinder, M/C = %.1f: case %.0f m/s, Gurney %.0f m/s (%.1f %%), energy residual %.4f of the "
                 "chemical energy\n",
                 mc, V, gurney, 100.0 * (V / gurney - 1.0), worst / e.chemical);
