@@ -44,6 +44,18 @@ inline void for_each(Index begin, Index end, F&& f) {
   for (Index i = begin; i < end; ++i) f(i);
 }
 
+/// For loops whose iterations each cost microseconds (an LME solve, a gather over dozens of
+/// support entries): a parallel region pays for itself from a few hundred iterations, and the
+/// dynamic schedule evens out iterations of uneven cost (supports of 8 to 300 nodes).
+inline constexpr Index kHeavyParallelThreshold = 256;
+
+/// for_each for heavy iterations (see kHeavyParallelThreshold); iterations must write disjoint data.
+template <class F>
+inline void for_each_heavy(Index begin, Index end, F&& f) {
+#pragma omp parallel for schedule(dynamic, 16) if (end - begin > kHeavyParallelThreshold)
+  for (Index i = begin; i < end; ++i) f(i);
+}
+
 /// Chunk size for reductions: fixed, so chunk boundaries (and thus round-off) do not depend on
 /// the number of threads.
 inline constexpr Index kReduceChunk = 4096;

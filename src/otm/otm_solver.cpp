@@ -348,7 +348,7 @@ void OtmSolver::assemble() {
   const std::vector<Vec3>& fext = loads_.total();
   const bool has_ext = !fext.empty();
   const bool axisym = axisym_;
-  for_each(0, nn, [&](Index a) {
+  for_each_heavy(0, nn, [&](Index a) {
     double m = 0.0;
     Vec3 f;
     for (Index i = start[a]; i < start[a + 1]; ++i) {
@@ -434,13 +434,13 @@ double OtmSolver::stable_dt() {
   // G_p = sum_b g_b,p per point, then omega_a^2 node by node over the influence domains (a
   // gather: parallel and deterministic).
   std::vector<double> G(static_cast<size_t>(n), 0.0);
-  for_each(0, n, [&](Index p) {
+  for_each_heavy(0, n, [&](Index p) {
     double s = 0.0;
     for (Index kk = sup_.offset[p]; kk < sup_.offset[p + 1]; ++kk) s += g(p, kk);
     G[p] = s;
   });
   omega2_.assign(static_cast<size_t>(nn), 0.0);
-  for_each(0, nn, [&](Index a) {
+  for_each_heavy(0, nn, [&](Index a) {
     double k = 0.0, m = 0.0;
     for (Index i = inf_.start[a]; i < inf_.start[a + 1]; ++i) {
       const Index kk = inf_.entry[i], p = inf_.owner[i];

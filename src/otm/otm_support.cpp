@@ -41,7 +41,7 @@ void build_supports(const Vec3* xp, const std::int64_t* pbody, Index np, const V
   auto radius = [&](Index p) { return scale ? r0 * std::clamp(scale[p], 1.0, kMaxScale) : r0; };
   // Pass 1: how many nodes each point reaches.
   out.offset.assign(static_cast<size_t>(np) + 1, 0);
-  for_each(0, np, [&](Index p) {
+  for_each_heavy(0, np, [&](Index p) {
     thread_local std::vector<std::int32_t> ids;
     ids.clear();
     nodes_within(bins, xp[p], pbody[p], xn, nbody, radius(p), opt.dim, ids);
@@ -58,8 +58,8 @@ void build_supports(const Vec3* xp, const std::int64_t* pbody, Index np, const V
   int max_size = 0, max_iter = 0;
   double max_cond = 0.0;
   Index fallbacks = 0;
-#pragma omp parallel for schedule(dynamic, 64) reduction(max : max_size, max_iter, max_cond) \
-    reduction(+ : fallbacks) if (np > kParallelThreshold)
+#pragma omp parallel for schedule(dynamic, 16) reduction(max : max_size, max_iter, max_cond) \
+    reduction(+ : fallbacks) if (np > kHeavyParallelThreshold)
   for (Index p = 0; p < np; ++p) {
     const Index k0 = out.offset[p];
     const int k = static_cast<int>(out.offset[p + 1] - k0);
