@@ -20,6 +20,8 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kTinyMass = 1e-300;
+/// Per point: the node set it belongs to (its body, or 0 for all with otm.nodes: shared).
+constexpr const char* kNodeGroupField = "node_group";
 
 [[noreturn]] void section_error(const Scenario& sc, const std::string& key, const std::string& message) {
   throw DeckError(sc.file, 0, 0, "otm." + key, message);
@@ -72,7 +74,17 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     }
     Fr_.assign(static_cast<size_t>(n), Mat3::identity());
   }
-  nodes_ = otm::seed_nodes(points_.view<Vec3>("x"), points_.ints("body"), n, sc.grid.lower, sc.grid.cell_size, dim_);
+  // Node groups: each body its own nodes (bodies do not interact), or one node set over every body
+  // (otm.nodes: shared; bodies then move together where they touch, as MPM's single_field).
+  points_.add_int(kNodeGroupField, 1, "1", false);
+  {
+    auto* group = points_.ints(kNodeGroupField);
+    const auto* body = points_.ints("body");
+    const bool shared = P.choices.at("nodes") == "shared";
+    for (Index p = 0; p < n; ++p) group[p] = shared ? 0 : body[p];
+  }
+  nodes_ = otm::seed_nodes(points_.view<Vec3>("x"), points_.ints(kNodeGroupField), n, sc.grid.lower, sc.grid.cell_size,
+                           dim_);
   lambda_.assign(static_cast<size_t>(n), Vec3{});
   refresh_supports();
   // Initial node velocities: the mass-weighted projection of the points' (exact for a body in
@@ -141,7 +153,7 @@ bool OtmSolver::build_current_supports() {
     scale_[p] = std::sqrt(std::max(hi, 1.0));
   });
   std::swap(prev_sup_, sup_);
-  otm::build_supports(points_.view<Vec3>("x"), points_.ints("body"), n, nodes_.x.data(), nodes_.body.data(),
+  otm::build_supports(points_.view<Vec3>("x"), points_.ints(kNodeGroupField), n, nodes_.x.data(), nodes_.body.data(),
                       nodes_.size(), sopt_, scale_.data(), prev_sup_.offset.empty() ? nullptr : &prev_sup_,
                       lambda_.data(), sup_);
   otm::build_influences(sup_, nodes_.size(), inf_);
@@ -235,7 +247,7 @@ void OtmSolver::regenerate_nodes() {
   const otm::NodeCloud old = std::move(nodes_);
   double ke0 = 0.0;
   for (Index b = 0; b < old.size(); ++b) ke0 += 0.5 * old.mass[b] * dot(old.v[b], old.v[b]);
-  nodes_ = otm::seed_nodes(points_.view<Vec3>("x"), points_.ints("body"), n, scenario_.grid.lower,
+  nodes_ = otm::seed_nodes(points_.view<Vec3>("x"), points_.ints(kNodeGroupField), n, scenario_.grid.lower,
                            scenario_.grid.cell_size, dim_);
   const Index nn = nodes_.size();
   // Velocities of the new nodes: the old nodes' LME interpolant evaluated at them,
@@ -267,8 +279,8 @@ void OtmSolver::regenerate_nodes() {
   // Lumped masses on the new nodes (eq. 2.13).
   const auto* v = points_.view<Vec3>("v");
   const auto* mass = points_.real("mass");
-  const auto* pbody = points_.ints("body");
-  const size_t nb = scenario_.bodies.size();
+  const auto* pbody = points_.ints(kNodeGroupField);
+  const size_t nb = scenario_.bodies.size();  // groups are numbered below the body count
   std::vector<Vec3> p_points(nb);  // sum_p m_p v_p per body: the old nodes' momentum, exactly
   for (Index p = 0; p < n; ++p) {
     p_points[static_cast<size_t>(pbody[p])] += mass[p] * v[p];
@@ -670,7 +682,12 @@ std::vector<ParamSpec> otm_params() {
   ParamSpec cond{"max_condition", "1",
                  "adaptivity: re-generate the nodes when a point's LME Hessian condition number exceeds this", false,
                  1e6, 1.0, 1e300};
-  return {gamma, tol, minsup, wall, pen, ls, adapt, split, gap, crowd, cond};
+  const ParamSpec nodes = word_param("nodes",
+                                     "node sets: per_body (each body its own nodes; bodies do not interact) or shared "
+                                     "(one node set over every body: bodies move together where they touch, no slip "
+                                     "and no separation, as MPM's single_field)",
+                                     {"per_body", "shared"});
+  return {gamma, tol, minsup, wall, pen, ls, adapt, split, gap, crowd, cond, nodes};
 }
 
 }  // namespace
