@@ -77,6 +77,13 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
            0.0, "", comm),
       points_(pts_.store()) {
   const ParamValues& P = sc.solver_params;
+  // Bonds do not go through the material library's stress update, so an explosive would never
+  // burn here: refuse it rather than run it as an inert solid.
+  for (const MaterialSpec& m : sc.materials)
+    if (m.model == "explosive")
+      throw DeckError(m.mark.file, m.mark.line, m.mark.column, m.mark.key_path + ".model",
+                      "explosive materials are not supported by the peridynamics solver yet (the peridynamic gas of "
+                      "seed 001 is not built): use solver mpm (or otm with otm.nodes: shared)");
   dx_ = sc.grid.cell_size;
   const bool m_given = P.given("m"), h_given = P.given("horizon");
   if (m_given && h_given) section_error(sc, "horizon", "give the horizon or m (horizon = m x lattice spacing), not both");

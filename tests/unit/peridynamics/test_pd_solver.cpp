@@ -503,3 +503,30 @@ TEST(PdSolver, LammpsBreakRuleAppliesTheBreakingBondOnce) {
   EXPECT_LT(pull[1], 0.0);                               // the breaking bonds pull the right half back
   EXPECT_NEAR(dissipated[1], dissipated[0], 1e-12 * dissipated[0]);  // refresh: no motion, U booked alike
 }
+
+namespace ballista {
+namespace {
+
+// Bonds bypass the material library's stress update, so an explosive would never burn under
+// peridynamics: the deck is refused at the material, not run as an inert solid (issue 15).
+TEST(PdSolver, RefusesExplosiveMaterials) {
+  const std::string yaml = R"(
+simulation: {solver: peridynamics, dimension: plane_strain, end_time: 1.0e-6}
+materials:
+  tnt: {preset: tnt}
+grid: {lower: [-0.01, 0], upper: [0.02, 2.0e-3], cell_size: 0.5e-3}
+bodies:
+  - {name: charge, material: tnt, shape: {type: box, lower: [0, 0], upper: [10.0e-3, 2.0e-3]}}
+detonation: {points: [{position: [0, 1.0e-3], time: 0}]}
+)";
+  try {
+    solver_for(yaml);
+    FAIL() << "expected a DeckError";
+  } catch (const DeckError& e) {
+    EXPECT_NE(std::string(e.what()).find("materials.tnt.model"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not supported by the peridynamics solver"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace ballista
