@@ -145,7 +145,7 @@ drive: {legs: [{duration: 1, steps: 1}]}
   EXPECT_HAS(deck_error(kMaterial + "drive:\n  table:\n    - [0,1,0,0,0,1,0,0,0,1]\n    - [0,1,0,0,0,1,0,0,0,1]\n"),
              "d.yaml:6:7: 'drive.table.1': expected times strictly increasing; 0 follows 0");
   EXPECT_HAS(deck_error(kMaterial + "drive:\n  table:\n    - [0,1,0,0,0,1,0,0,0,1]\n    - [1,-1,0,0,0,1,0,0,0,1]\n"),
-             "'drive.table.1': expected det F > 0, got -1");
+             "'drive.table.1': expected det F >= 1e-6 (a volume ratio), got -1");
   EXPECT_HAS(deck_error(kMaterial + "drive:\n  table:\n    - [0,1,0,0,0,1,0,0,0,1]\n    - [1,x,0,0,0,1,0,0,0,1]\n"),
              "'drive.table.1.1': expected a number, got 'x'");
   EXPECT_HAS(deck_error(kMaterial + "drive:\n  table: [[0,1,0,0,0,1,0,0,0,1]]\n"), "expected at least 2 rows");

@@ -393,6 +393,10 @@ TEST(PointDriver, BadProgramsAreReported) {
   DriveProgram inverted;
   inverted.table = {row(0, Mat3::identity()), row(1, Mat3::diag(-1, 1, 1))};
   EXPECT_NE(run(inverted).find("row 1 (t = 1): det F = -1"), std::string::npos);
+  DriveProgram collapsed;  // a volume ratio of 1e-300 is garbage, not a test (a fuzz case)
+  collapsed.table = {row(0, Mat3::identity()), row(1, Mat3::diag(1, 1, 1e-300))};
+  EXPECT_NE(run(collapsed).find("row 1 (t = 1): det F = 1e-300 (must be >= 1e-6"), std::string::npos)
+      << run(collapsed);
   DriveProgram through;  // rows have det > 0 but the interpolation passes through det = 0
   through.table = {row(0, Mat3::identity()), row(1, Mat3::diag(-1, -1, 1))};
   through.substeps = 2;
