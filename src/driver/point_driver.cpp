@@ -155,6 +155,7 @@ class Driver {
     static const Index kPoint[1] = {0};
     MaterialBatch b = make_batch(s, kPoint, 1, dt, true);  // as the solvers' (points/point_set.cpp)
     b.plastic_work = s.real(kStepWorkField);
+    b.time = t_ + dt;  // t_{n+1} (an explosive stays unreacted here: no program burn in a drive)
     mat_.update(b);
     // Garbage is a failure, never a completed drive (issue 11: a compressive leg underflowed J to 0
     // and the drive completed): the stress, F, J > 0 and every state variable must hold.

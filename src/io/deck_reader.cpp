@@ -411,7 +411,7 @@ class Reader {
     DeckNode d = root_.map("detonation", false);
     DetonationSpec& ds = sc_.detonation;
     ds.mark = d.mark();
-    ds.edge_radius = d.number("edge_radius", 3.2, NumberRange::between(1.0, 10.0));
+    ds.edge_radius = d.number("edge_radius", 3.2, NumberRange::between(1.5, 10.0));
     ds.burn_cells = d.number("burn_cells", 2.0, NumberRange::between(0.0, 20.0));
     DeckNode ps = d.list("points", false);
     for (size_t i = 0; i < ps.size(); ++i) {

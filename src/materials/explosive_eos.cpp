@@ -64,7 +64,8 @@ double products_isentropic_slope(const ProductsEos& e, double X, double E) {
 
 double products_sound_speed(const ProductsEos& e, double X, double E) {
   const double c2 = X * X / e.rho0 * (-products_isentropic_slope(e, X, E));
-  return c2 > 0.0 ? std::sqrt(c2) : 0.0;
+  // No real sound speed is a state outside the EOS: NaN, so that the stable step reports it.
+  return c2 > 0.0 ? std::sqrt(c2) : std::nan("");
 }
 
 double gurney_cylinder(double sqrt2E, double m) { return sqrt2E / std::sqrt(m + 0.5); }

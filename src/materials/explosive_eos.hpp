@@ -63,7 +63,7 @@ double detonation_energy(const ProductsEos& e);
 /// Isentropic (dP/dX)_s at (X, E), Pa: the partial dP/dX at fixed E minus (dP/dE) P.
 double products_isentropic_slope(const ProductsEos& e, double X, double E);
 
-/// Sound speed of the products, c^2 = (X^2 / rho0) (-dP/dX)_s, m/s (0 if not real).
+/// Sound speed of the products, c^2 = (X^2 / rho0) (-dP/dX)_s, m/s (NaN if not real).
 double products_sound_speed(const ProductsEos& e, double X, double E);
 
 /// Gurney velocities (R.W. Gurney, BRL Report 405, 1943; P.W. Cooper, Explosives Engineering,

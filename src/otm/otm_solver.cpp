@@ -81,6 +81,12 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     auto* group = points_.ints(kNodeGroupField);
     const auto* body = points_.ints("body");
     const bool shared = P.choices.at("nodes") == "shared";
+    // Products that act on nothing would "succeed" with the other bodies untouched.
+    bool explosive = false;
+    for (const MaterialSpec& m : sc.materials) explosive = explosive || m.model == "explosive";
+    if (explosive && sc.bodies.size() > 1 && !shared)
+      section_error(sc, "nodes", "an explosive with other bodies needs otm.nodes: shared (with a node set per body "
+                                 "the products would push nothing: OTM has no contact between bodies yet)");
     for (Index p = 0; p < n; ++p) group[p] = shared ? 0 : body[p];
   }
   nodes_ = otm::seed_nodes(points_.view<Vec3>("x"), points_.ints(kNodeGroupField), n, sc.grid.lower, sc.grid.cell_size,

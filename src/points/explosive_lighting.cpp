@@ -16,6 +16,10 @@ Index light_explosives(const Scenario& sc, FieldStore& points, int ppc_override)
     throw DeckError(det.mark.file, det.mark.line, det.mark.column, "detonation" + (key.empty() ? "" : "." + key),
                     message);
   };
+  // Lighting times count from t = 0; with preparation stages the charge would go off during them.
+  if (!sc.stages.empty())
+    deck_error("", "explosives with preparation stages are not supported yet: the lighting times count from t = 0, "
+                   "not from the start of the main stage");
   // One detonation speed and one lattice spacing over every explosive body.
   double D = 0.0, spacing = 0.0;
   std::vector<char> is_explosive_material(sc.materials.size(), 0);

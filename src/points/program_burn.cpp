@@ -27,11 +27,15 @@ class Occupancy {
       lo_[a] = kInf;
       hi[a] = -kInf;
     }
+    // The box of the explosive points only: their lattice then sits at the cell centres whatever
+    // the inert bodies' spacing (an inert lattice offset by half a cell would put explosive points
+    // on cell faces), and a large inert target costs no cells. Outside it is non-explosive anyway.
     for (Index p = 0; p < n; ++p)
-      for (int a = 0; a < dim; ++a) {
-        lo_[a] = std::min(lo_[a], x[p][a]);
-        hi[a] = std::max(hi[a], x[p][a]);
-      }
+      if (explosive[p])
+        for (int a = 0; a < dim; ++a) {
+          lo_[a] = std::min(lo_[a], x[p][a]);
+          hi[a] = std::max(hi[a], x[p][a]);
+        }
     for (int a = 0; a < 3; ++a) {
       if (a < dim && n > 0) {
         lo_[a] -= 0.5 * h;
@@ -43,7 +47,14 @@ class Occupancy {
     }
     cells_.assign(static_cast<size_t>(nc_[0]) * nc_[1] * nc_[2], 0);
     for (Index p = 0; p < n; ++p)
-      if (explosive[p]) cells_[index(x[p])] = 1;
+      if (explosive[p]) {
+        std::uint8_t& c = cells_[index(x[p])];
+        if (c)  // two points in one cell: the charge is not on a lattice of this spacing
+          throw Error(fmt::format("program burn: explosive points closer than the lattice spacing {} m (at ({:.6g}, "
+                                  "{:.6g}, {:.6g}) m): the explosive bodies must share one lattice",
+                                  h, x[p][0], x[p][1], x[p][2]));
+        c = 1;
+      }
     // Summed-volume table of the cells that are not explosive, with a zero border.
     const size_t s0 = nc_[0] + 1, s1 = nc_[1] + 1, s2 = nc_[2] + 1;
     sum_.assign(s0 * s1 * s2, 0);
@@ -138,8 +149,11 @@ ProgramBurnResult program_burn(const Vec3* x, const char* explosive, Index n, co
                             opt.speed, opt.spacing, opt.radius_factor));
   ProgramBurnResult out;
   out.time.assign(static_cast<size_t>(n), kInf);
+  Index n_explosive = 0;
+  for (Index p = 0; p < n; ++p) n_explosive += explosive[p] ? 1 : 0;
+  if (n_explosive == 0) throw Error("program burn: no point is explosive (no body uses an explosive material)");
   const double radius = opt.radius_factor * opt.spacing;
-  const double r2 = radius * radius;
+  const double r2 = radius * radius * (1.0 + 1e-9);  // neighbours exactly at the radius stay in
   const Occupancy occ(x, explosive, n, opt.spacing, opt.dim);
   // Points whose whole edge neighbourhood is explosive need no line-of-sight test.
   const int k = static_cast<int>(std::ceil(opt.radius_factor)) + 1;
@@ -204,6 +218,8 @@ ProgramBurnResult program_burn(const Vec3* x, const char* explosive, Index n, co
           arg = p;
         }
       });
+      if (arg < 0)  // cannot happen: the point that last lowered g[q] is settled and visible
+        throw Error(fmt::format("program burn: internal error, point {} has no settled neighbour in sight", q));
       g[q] = best;
       parent[q] = arg;
     }

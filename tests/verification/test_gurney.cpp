@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <string>
 
+#include "core/error.hpp"
 #include "io/deck_reader.hpp"
 #include "materials/explosive_eos.hpp"
 #include "run/simulation.hpp"
@@ -133,6 +134,26 @@ TEST(GurneySandwich, OtmPlateReachesTheGurneyVelocity) {
               r.velocity, gurney, 100.0 * (r.velocity / gurney - 1.0), r.residual);
   EXPECT_NEAR(r.velocity / gurney, 1.0, 0.10);
   EXPECT_LT(r.residual, 0.05);
+}
+
+// Decks that would run without the explosive doing what they say are refused: under OTM with a
+// node set per body (the products would push nothing), and with preparation stages (the lighting
+// times count from t = 0, so the charge would go off during the stage).
+TEST(GurneySandwich, DecksWhereTheChargeWouldActOnNothingAreRefused) {
+  std::string otm = deck(1.0e-3, true);
+  otm.replace(otm.find("nodes: shared, "), 15, "");
+  auto error_of = [](const std::string& yaml) -> std::string {
+    try {
+      make_solver(parse_deck(yaml, "refused.yaml"));
+    } catch (const DeckError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(error_of(otm).find("otm.nodes"), std::string::npos) << error_of(otm);
+  const std::string staged = deck(1.0e-3) +
+                             "stages:\n  - {name: settle, duration: 1.0e-6, damping: 1.0e5}\n";
+  EXPECT_NE(error_of(staged).find("preparation stages"), std::string::npos) << error_of(staged);
 }
 
 // The Gurney cylinder (R.W. Gurney 1943; Cooper 1996 ch. 27): a long TNT cylinder (radius 10 mm)

@@ -204,6 +204,26 @@ TEST(ProgramBurn, AWallStopsTheFrontAndAGapLetsItThrough) {
     if (open.x[p][0] > 31.0 * kH && open.x[p][1] < 30.0 * kH) EXPECT_GT(ro.time[p] * kD, norm(open.x[p] - xd) * 1.05);
 }
 
+// Inert points on another lattice (offset by half a spacing, e.g. a body with another
+// particles_per_cell) beside the charge: the occupancy cells follow the explosive's own lattice,
+// so the front is unaffected (planar, exact); the same explosive points alone give the same times.
+TEST(ProgramBurn, InertPointsOnAnotherLatticeDoNotDisturbTheCharge) {
+  Cloud c = lattice(30, 6, 1, [](const Vec3&) { return true; });
+  const Cloud alone = c;
+  for (int j = 0; j < 12; ++j)
+    for (int i = 0; i < 8; ++i) {  // an inert plate below x = 0 at half the spacing, shifted
+      c.x.push_back(Vec3{{-(i + 0.25) * 0.5 * kH, (j + 0.25) * 0.5 * kH, 0.0}});
+      c.explosive.push_back(0);
+    }
+  std::vector<Detonator> det;
+  for (int j = 0; j < 6; ++j) det.push_back({Vec3{{0.0, (j + 0.5) * kH, 0.0}}, 0.0});
+  const ProgramBurnResult r = burn(c, det, 2), r0 = burn(alone, det, 2);
+  for (size_t p = 0; p < alone.x.size(); ++p) {
+    EXPECT_EQ(r.time[p], r0.time[p]);
+    EXPECT_NEAR(r.time[p] * kD, alone.x[p][0], 1e-12);
+  }
+}
+
 TEST(ProgramBurn, ADetonatorAwayFromTheChargeIsAnError) {
   const Cloud c = lattice(10, 10, 1, [](const Vec3&) { return true; });
   try {
