@@ -318,7 +318,8 @@ void OtmSolver::regenerate_nodes() {
     }
   }
   // Linear momentum is restored exactly by a uniform velocity change of each body's nodes that are
-  // free to move along the component (not on a fixed or symmetry face; the radial component of an
+  // free to move along the component (not on a fixed face, nor normal to a symmetry face or a wall,
+  // whose condition would undo the change at the next step; the radial component of an
   // axisymmetric run is not a conserved quantity). The interpolation error it corrects is of the
   // order of the field's curvature times h^2.
   const GridSpec& g = scenario_.grid;
@@ -328,7 +329,7 @@ void OtmSolver::regenerate_nodes() {
     for (int ax = 0; ax < dim_; ++ax)
       for (int side = 0; side < 2; ++side) {
         const FaceBC bc = g.faces[2 * ax + side];
-        if (bc != FaceBC::Fixed && !(bc == FaceBC::Symmetry && ax == c)) continue;
+        if (bc != FaceBC::Fixed && !((bc == FaceBC::Symmetry || bc == FaceBC::Wall) && ax == c)) continue;
         if (std::abs(nodes_.x[a][ax] - (side == 0 ? g.lower[ax] : g.upper[ax])) <= tol) return true;
       }
     return false;
