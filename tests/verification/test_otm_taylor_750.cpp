@@ -11,12 +11,12 @@
 //    re-generations' kinetic-energy change booked as transfer work and the wall's as contact work,
 //    closes to 2 % of the initial kinetic energy. What stays unbooked is the momentum form's
 //    re-lumping of masses as points (and split children) move among the nodes: measured 1.5 % at
-//    this size, 0.45 % at 0.8 mm (first order in h; docs/validation.md); the elastic impact closes
+//    this size, 0.5 % at 0.8 mm (docs/validation.md); the elastic impact closes
 //    to 0.03 % (test_otm_elastic_impact.cpp, issue 14 item 8's 1 %);
 //  - the bar has come to rest: kinetic energy below 1 % of the initial (the rebound of a bar whose
 //    energy went almost all into plastic work), and plastic work is more than 3/4 of the initial
 //    energy (the balance: elastic energy, the wall's and the re-generations' shares are the rest;
-//    measured 81 % at this size, 89 % at 0.8 mm, docs/validation.md).
+//    measured 85 % at this size, 88 % at 0.8 mm, docs/validation.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
