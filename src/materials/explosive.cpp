@@ -70,14 +70,7 @@ struct Explosive {
   }
 
   static Params make(const ParamValues& given) {
-    ParamValues v = given;
-    for (const ParamSpec& s : param_specs()) {
-      if (!s.choices.empty()) {
-        if (!v.choices.count(s.name)) v.choices[s.name] = s.default_choice;
-      } else if (!v.count(s.name)) {
-        v[s.name] = s.default_value;
-      }
-    }
+    const ParamValues v = with_defaults(given, param_specs());
     Params p;
     const double rho0 = v.at("density"), D = v.at("detonation_speed");
     p.density = rho0;

@@ -70,6 +70,20 @@ struct ParamValues : std::map<std::string, double> {
   }
 };
 
+/// `given` with every parameter of `specs` it lacks at its default: for programmatic callers of
+/// Model::make (the deck reader fills the defaults itself).
+inline ParamValues with_defaults(const ParamValues& given, const std::vector<ParamSpec>& specs) {
+  ParamValues v = given;
+  for (const ParamSpec& s : specs) {
+    if (!s.choices.empty()) {
+      if (!v.choices.count(s.name)) v.choices[s.name] = s.default_choice;
+    } else if (!v.given(s.name)) {
+      v[s.name] = s.default_value;
+    }
+  }
+  return v;
+}
+
 /// Thrown by Model::make for a bad combination of parameters; `param` names the deck key so the
 /// deck layer can point at its line.
 class ParamError : public Error {

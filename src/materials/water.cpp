@@ -57,14 +57,7 @@ struct Water {
   static Params make(const ParamValues& given) {
     // Values absent from `given` (a programmatic caller; the deck fills every default) take the
     // defaults above.
-    ParamValues v = given;
-    for (const ParamSpec& s : param_specs()) {
-      if (!s.choices.empty()) {
-        if (!v.choices.count(s.name)) v.choices[s.name] = s.default_choice;
-      } else if (!v.given(s.name)) {
-        v[s.name] = s.default_value;
-      }
-    }
+    const ParamValues v = with_defaults(given, param_specs());
     const double rho = v.at("density");
     const double c0 = v.at("eos.sound_speed");
     if (!(rho > 0.0)) throw ParamError("density", "density must be > 0");
