@@ -6,7 +6,7 @@
 // point-step grows with the support size), then times `steps` steps. Reports point-steps per
 // second and the split of the step into its phases (supports: cell-binning search and LME
 // solves; assemble: lumped masses and forces; node update; point update: positions, F, volumes;
-// material: the shared library's stress update; stable_dt: the Gershgorin bound).
+// material: the shared library's stress update; stable_dt: the Gershgorin bound; Solver::timing_values).
 //   ./build/bench/otm_taylor_bench [--benchmark_filter=...]
 // Figures and the exact command are recorded in docs/performance.md ("OTM throughput").
 #include <benchmark/benchmark.h>
@@ -63,8 +63,7 @@ void BM_OtmTaylor(benchmark::State& state, bool three_d) {
   while (solver->time() < 10.0e-6) solver->step(solver->stable_dt());
   auto phases = [&] {
     std::map<std::string, double> s;
-    for (const auto& [k, v] : solver->result_values())
-      if (k.rfind("seconds_", 0) == 0) s[k.substr(8)] = v;
+    for (const auto& [k, v] : solver->timing_values()) s[k] = v;
     return s;
   };
   const std::map<std::string, double> before = phases();

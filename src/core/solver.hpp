@@ -92,6 +92,9 @@ class Solver {
   virtual std::vector<double> history_values() const { return {}; }
   /// Results of this discretisation at the end of a run, for summary.json ("solver_results").
   virtual std::vector<std::pair<std::string, double>> result_values() const { return {}; }
+  /// Wall seconds per phase of the step so far, for summary.json ("timing") and the benchmarks;
+  /// kept apart from the results so that two identical runs give identical solver_results.
+  virtual std::vector<std::pair<std::string, double>> timing_values() const { return {}; }
   /// Tables of this discretisation written at the end of a run (e.g. fragments.csv).
   virtual std::vector<ResultTable> result_tables() const { return {}; }
 };

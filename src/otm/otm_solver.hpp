@@ -62,6 +62,9 @@ class OtmSolver final : public Solver {
   std::vector<double> history_values() const override;
   /// node_count, support statistics, LME iterations and fallbacks, momentum drift.
   std::vector<std::pair<std::string, double>> result_values() const override;
+  /// supports (search and LME solves), assemble, node_update, point_update, material, adaptivity,
+  /// stable_dt: seconds.
+  std::vector<std::pair<std::string, double>> timing_values() const override;
 
   const otm::NodeCloud& nodes() const { return nodes_; }
   /// Adaptivity (otm_adaptivity.hpp): new nodes on the lattice over the current points, their
@@ -119,7 +122,7 @@ class OtmSolver final : public Solver {
   double wall_force_ = 0.0;    ///< N, last step's normal wall reaction
   Vec3 momentum0_;             ///< initial nodal momentum (per radian / per metre)
   otm::Influences inf_;          ///< influence domains of sup_ (node-wise gathers)
-  /// s, wall time per phase of the step (result_values seconds_*; bench/otm_taylor_bench).
+  /// s, wall time per phase of the step (timing_values; bench/otm_taylor_bench).
   struct PhaseSeconds {
     double supports = 0, assemble = 0, nodes = 0, points = 0, material = 0, adapt = 0, stable_dt = 0;
   } seconds_;

@@ -371,6 +371,11 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       sr = JsonValue::object();
       for (const auto& [k, v] : values) sr[k] = v;
     }
+    if (const auto timing = solver->timing_values(); !timing.empty()) {
+      JsonValue& tm = summary["timing"];
+      tm = JsonValue::object();
+      for (const auto& [k, v] : timing) tm[k + "_seconds"] = v;
+    }
     const std::vector<ResultTable> tables = solver->result_tables();
     for (const ResultTable& t : tables) {
       HistoryWriter csv((fs::path(opt.out_dir) / (t.name + ".csv")).string(), t.columns);
