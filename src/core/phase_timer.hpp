@@ -15,7 +15,7 @@ inline double seconds_since(std::chrono::steady_clock::time_point t0) {
 class ScopedPhase {
  public:
   explicit ScopedPhase(double& sink) : sink_(sink), start_(std::chrono::steady_clock::now()) {}
-  ~ScopedPhase() { sink_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+  ~ScopedPhase() { sink_ += seconds_since(start_); }
   ScopedPhase(const ScopedPhase&) = delete;
   ScopedPhase& operator=(const ScopedPhase&) = delete;
 

@@ -19,6 +19,7 @@
 #include "io/penetrator_reader.hpp"
 #include "points/probe_registry.hpp"
 #include "points/solver_registry.hpp"
+#include "scenario/material_model.hpp"
 
 namespace ballista {
 
@@ -424,8 +425,7 @@ class Reader {
       ds.points.push_back(det);
     }
     d.finish();
-    bool explosive = false;
-    for (const MaterialSpec& m : sc_.materials) explosive = explosive || m.model == "explosive";
+    const bool explosive = first_material_of_model(sc_, "explosive") != nullptr;
     if (explosive && ds.points.empty())
       d.fail("points", "a material is an explosive: give at least one detonator, e.g. "
                        "detonation: {points: [{position: [0, 0, 0], time: 0}]}");

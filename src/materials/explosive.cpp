@@ -155,7 +155,7 @@ struct Explosive {
       const double dF = F - state[2];
       // p_n of the products' update: the unreacted pressure in the step the point lights.
       const double X = k.J_new, dX = k.J_new - k.J_old;
-      const double w_over_X = p.eos.kind == ProductsEos::Kind::IdealGas ? (p.eos.gamma - 1.0) / X : p.eos.omega / X;
+      const double w_over_X = p.eos.omega / X;  // omega = gamma - 1 for the ideal gas
       const double P0 = F * products_pressure(p.eos, X, 0.0);  // the E-independent part, products' share
       // The denominator falls below 1/2 only if the volume halves in one step (w <= 2): no stable
       // step does that, so a NaN pressure stops the run with the point's diagnostic.

@@ -13,6 +13,7 @@
 #include "core/phase_timer.hpp"
 #include "points/cell_bins.hpp"
 #include "points/solver_registry.hpp"
+#include "scenario/material_model.hpp"
 
 namespace ballista {
 
@@ -82,9 +83,7 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     const auto* body = points_.ints("body");
     const bool shared = P.choices.at("nodes") == "shared";
     // Products that act on nothing would "succeed" with the other bodies untouched.
-    bool explosive = false;
-    for (const MaterialSpec& m : sc.materials) explosive = explosive || m.model == "explosive";
-    if (explosive && sc.bodies.size() > 1 && !shared)
+    if (first_material_of_model(sc, "explosive") && sc.bodies.size() > 1 && !shared)
       section_error(sc, "nodes", "an explosive with other bodies needs otm.nodes: shared (with a node set per body "
                                  "the products would push nothing: OTM has no contact between bodies yet)");
     for (Index p = 0; p < n; ++p) group[p] = shared ? 0 : body[p];

@@ -13,6 +13,7 @@
 #include "peridynamics/bond_pass.hpp"
 #include "peridynamics/fragments.hpp"
 #include "points/solver_registry.hpp"
+#include "scenario/material_model.hpp"
 
 namespace ballista {
 
@@ -79,9 +80,8 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   const ParamValues& P = sc.solver_params;
   // Bonds do not go through the material library's stress update, so an explosive would never
   // burn here: refuse it rather than run it as an inert solid.
-  for (const MaterialSpec& m : sc.materials)
-    if (m.model == "explosive")
-      throw DeckError(m.mark.file, m.mark.line, m.mark.column, m.mark.key_path + ".model",
+  if (const MaterialSpec* m = first_material_of_model(sc, "explosive"))
+    throw DeckError(m->mark.file, m->mark.line, m->mark.column, m->mark.key_path + ".model",
                       "explosive materials are not supported by the peridynamics solver yet (the peridynamic gas of "
                       "seed 001 is not built): use solver mpm (or otm with otm.nodes: shared)");
   dx_ = sc.grid.cell_size;
