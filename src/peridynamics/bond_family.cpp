@@ -38,8 +38,12 @@ LatticeMoments lattice_moments(double delta, double dx, bool partial, int dim) {
   return m;
 }
 
-BondFamily build_bond_family(const Vec3* x0, Index n, double delta, double dx, int dim,
-                             const std::int64_t* body) {
+namespace {
+
+/// The families of build_bond_family and build_gas_family: the pairs within the horizon that
+/// `accept(p, o)` admits (a symmetric test, so that each bond is in both ends' rows).
+template <class Accept>
+BondFamily build_family(const Vec3* x0, Index n, double delta, double dx, int dim, const Accept& accept) {
   if (n > std::numeric_limits<std::int32_t>::max())
     throw Error("peridynamics: more than 2^31 points in one bond family");
   BondFamily f;
@@ -57,7 +61,7 @@ BondFamily build_bond_family(const Vec3* x0, Index n, double delta, double dx, i
   // Two passes over the same search: count each row, then fill it (rows sorted by index).
   auto visit = [&](Index p, auto&& emit) {
     bins.visit(x0[p], [&](Index o) {
-      if (o == p || (body && body[o] != body[p])) return;
+      if (o == p || !accept(p, o)) return;
       Vec3 d = x0[o] - x0[p];
       if (dim == 2) d[2] = 0.0;
       const double r2 = dot(d, d);
@@ -104,6 +108,19 @@ BondFamily build_bond_family(const Vec3* x0, Index n, double delta, double dx, i
     std::copy(w2.begin(), w2.end(), f.volume_factor.begin() + f.offset[p]);
   });
   return f;
+}
+
+}  // namespace
+
+BondFamily build_bond_family(const Vec3* x0, Index n, double delta, double dx, int dim, const std::int64_t* body,
+                             const std::uint8_t* gas) {
+  return build_family(x0, n, delta, dx, dim, [&](Index p, Index o) {
+    return (!body || body[o] == body[p]) && !(gas && (gas[p] || gas[o]));
+  });
+}
+
+BondFamily build_gas_family(const Vec3* x0, Index n, double delta, double dx, int dim, const std::uint8_t* gas) {
+  return build_family(x0, n, delta, dx, dim, [&](Index p, Index o) { return gas[p] || gas[o]; });
 }
 
 }  // namespace ballista::pd

@@ -49,8 +49,14 @@ struct BondFamily {
 /// Families of the n reference positions x0 with horizon delta; `dx` is the lattice spacing used
 /// by the partial-volume correction (0: no correction). With `body` given, only points of the same
 /// body are bonded (bodies are separate objects that meet through contact). Neighbours within each
-/// row are in increasing index order. `dim` is 2 or 3 (in 2D the z components are ignored).
+/// row are in increasing index order. `dim` is 2 or 3 (in 2D the z components are ignored). Points
+/// with gas[p] != 0 (detonation products, peridynamics/gas_pass.hpp) get no bonds here.
 BondFamily build_bond_family(const Vec3* x0, Index n, double delta, double dx, int dim,
-                             const std::int64_t* body = nullptr);
+                             const std::int64_t* body = nullptr, const std::uint8_t* gas = nullptr);
+
+/// The gas family: every pair within the horizon with at least one gas end, across bodies (a gas
+/// point's row holds all its neighbours, a solid point's row only its gas neighbours). Same
+/// horizon rule, partial volumes and row order as build_bond_family.
+BondFamily build_gas_family(const Vec3* x0, Index n, double delta, double dx, int dim, const std::uint8_t* gas);
 
 }  // namespace ballista::pd

@@ -7,20 +7,22 @@
 
 namespace ballista::pd {
 
-bool ContactList::stale(const Vec3* x, Index n) const {
+bool ContactList::stale(const Vec3* x, Index n, const std::uint8_t* skip) const {
+  // skip: vented gas (no longer part of the run)
   if (static_cast<Index>(x_build.size()) != n) return true;
   const double limit2 = 0.25 * skin * skin;
   bool moved = false;
 #pragma omp parallel for schedule(static) reduction(|| : moved) if (n > kParallelThreshold)
   for (Index p = 0; p < n; ++p) {
     const Vec3 d = x[p] - x_build[p];
-    moved = moved || dot(d, d) > limit2;
+    moved = moved || (dot(d, d) > limit2 && !(skip && skip[p]));
   }
   return moved;
 }
 
 void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const std::int64_t* body, Index n,
-                        double delta, double dx, double skin, int dim) {
+                        double delta, double dx, double skin, int dim, const std::uint8_t* skip,
+                        const std::uint8_t* gas) {
   list.skin = skin;
   list.x_build.assign(x, x + n);
   ++list.builds;
@@ -30,12 +32,23 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
   if (n == 0) return;
   const double range = 1.35 * dx;  // S&A 2005 / LAMMPS: the contact distance never exceeds 1.35 dx
   const double cutoff = range + skin;
-  // Bins a hair wider than the cutoff (no pair at the cutoff lost to round-off).
-  const CellBins bins(x, n, cutoff * (1.0 + 1e-6), dim);
+  // Bins a hair wider than the cutoff (no pair at the cutoff lost to round-off), over the points
+  // that take part (vented gas flying far off would stretch the bins over its whole cloud).
+  std::vector<Index> kept;
+  std::vector<Vec3> xk;
+  if (skip) {
+    for (Index p = 0; p < n; ++p)
+      if (!skip[p]) kept.push_back(p);
+    xk.resize(kept.size());
+    for (size_t i = 0; i < kept.size(); ++i) xk[i] = x[kept[i]];
+  }
+  const CellBins bins(skip ? xk.data() : x, skip ? static_cast<Index>(kept.size()) : n, cutoff * (1.0 + 1e-6), dim);
   const double cut2 = cutoff * cutoff, delta2 = delta * delta * (1.0 + 2e-9);  // the bond family's tie rule
   auto visit = [&](Index p, auto&& emit) {
-    bins.visit(x[p], [&](Index q) {
-      if (q == p) return;
+    if (skip && skip[p]) return;
+    bins.visit(x[p], [&](Index qi) {
+      const Index q = skip ? kept[qi] : qi;
+      if (q == p || (gas && gas[p] && gas[q])) return;
       Vec3 d = x[q] - x[p];
       if (dim == 2) d[2] = 0.0;
       if (dot(d, d) > cut2) return;

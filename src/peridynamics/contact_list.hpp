@@ -30,13 +30,16 @@ struct ContactList {
   long builds = 0;                  ///< number of builds so far
 
   Index pairs() const { return other.empty() ? 0 : static_cast<Index>(other.size()) / 2; }
-  /// True if some point moved more than skin/2 since the last build (or there was none).
-  bool stale(const Vec3* x, Index n) const;
+  /// True if some point (skip[p] == 0) moved more than skin/2 since the last build (or there was none).
+  bool stale(const Vec3* x, Index n, const std::uint8_t* skip = nullptr) const;
 };
 
 /// Builds the list of never-bonded pairs (different `body`, or reference distance > delta) within
-/// 1.35 dx + skin of each other at the positions x (x0: reference positions).
+/// 1.35 dx + skin of each other at the positions x (x0: reference positions). Points with
+/// skip[p] != 0 (vented gas) take no part; two points with gas != 0 (detonation products) are
+/// never a pair: the gas has no contact stiffness of its own, only the solids it meets.
 void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const std::int64_t* body, Index n,
-                        double delta, double dx, double skin, int dim);
+                        double delta, double dx, double skin, int dim, const std::uint8_t* skip = nullptr,
+                        const std::uint8_t* gas = nullptr);
 
 }  // namespace ballista::pd

@@ -17,10 +17,11 @@ Index find_root(std::vector<Index>& parent, Index p) {
 
 }  // namespace
 
-std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& store, double damage_threshold) {
+std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& store, double damage_threshold,
+                                     const std::uint8_t* skip) {
   const Index n = store.size();
   const double* damage = damage_threshold <= 1.0 ? store.real("damage") : nullptr;
-  auto kept = [&](Index p) { return !damage || damage[p] <= damage_threshold; };
+  auto kept = [&](Index p) { return !(skip && skip[p]) && (!damage || damage[p] <= damage_threshold); };
   std::vector<Index> parent(static_cast<size_t>(n));
   std::iota(parent.begin(), parent.end(), Index{0});
   for (Index p = 0; p < n; ++p)

@@ -21,8 +21,9 @@ struct Fragment {
 
 /// Fragments of the points of `store` (fields x, v, mass) bonded by the intact bonds of `bonds`,
 /// largest mass first (ties: lowest first point). Points whose damage (field "damage") exceeds
-/// `damage_threshold` are left out (dust, not fragments); the default keeps every point.
+/// `damage_threshold` are left out (dust, not fragments); the default keeps every point. Points
+/// with skip[p] != 0 (detonation products) are never part of a fragment.
 std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& store,
-                                     double damage_threshold = 2.0);
+                                     double damage_threshold = 2.0, const std::uint8_t* skip = nullptr);
 
 }  // namespace ballista::pd

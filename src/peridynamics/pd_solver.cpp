@@ -78,12 +78,11 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
            0.0, "", comm),
       points_(pts_.store()) {
   const ParamValues& P = sc.solver_params;
-  // Bonds do not go through the material library's stress update, so an explosive would never
-  // burn here: refuse it rather than run it as an inert solid.
-  if (const MaterialSpec* m = first_material_of_model(sc, "explosive"))
+  // Explosives are a peridynamic gas (gas_pass.hpp): a pressure from the material library, no
+  // bond stiffness. The products' pressure of a plane-stress plate has no meaning.
+  if (const MaterialSpec* m = first_material_of_model(sc, "explosive"); m && sc.simulation.plane_stress)
     throw DeckError(m->mark.file, m->mark.line, m->mark.column, m->mark.key_path + ".model",
-                      "explosive materials are not supported by the peridynamics solver yet (the peridynamic gas of "
-                      "seed 001 is not built): use solver mpm (or otm with otm.nodes: shared)");
+                    "an explosive (a peridynamic gas) needs dimension 3d or plane_strain, not plane_stress");
   dx_ = sc.grid.cell_size;
   const bool m_given = P.given("m"), h_given = P.given("horizon");
   if (m_given && h_given) section_error(sc, "horizon", "give the horizon or m (horizon = m x lattice spacing), not both");
@@ -129,7 +128,10 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   // The dilatational modulus of each material in the model's dimension: K in 3D, the in-plane bulk
   // modulus K2 in 2D (K + G/3 in plane strain, E/(2(1 - nu)) in plane stress).
   std::vector<double> kd(nmat_), c(nmat_), s0(nmat_);
+  gas_material_.assign(static_cast<size_t>(nmat_), 0);
+  for (int a = 0; a < nmat_; ++a) gas_material_[a] = std::string(mats[a]->model()) == "explosive";
   for (int a = 0; a < nmat_; ++a) {
+    if (gas_material_[a]) continue;  // no bonds: its stiffness is its pressure (gas_pass.hpp)
     const ProbedModuli mod = probe_moduli(*mats[a]);
     if (!(mod.bulk > 0.0) || !std::isfinite(mod.bulk))
       throw DeckError(sc.file, 0, 0, "materials." + mats[a]->name(),
@@ -142,6 +144,7 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
       kd[a] = sc.simulation.plane_stress ? E / (2.0 * (1.0 - nu)) : mod.bulk + mod.shear / 3.0;
     }
   }
+  m1_ = m1;
   for (int a = 0; a < nmat_; ++a) {
     // continuum: c = 18 K/(pi delta^4) (S&A 2005 eq. 22), s00 = sqrt(5 G0/(9 K delta)) (eq. 25), exact
     // for the integral over the horizon sphere; on the lattice the sums differ (K_PD = 0.90 K and
@@ -166,15 +169,25 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   // materials the smallest modulus sets it (one yield stretch for every bond).
   if (P.given("yield_stress")) {
     double e_min = kInf;
-    for (int a = 0; a < nmat_; ++a) e_min = std::min(e_min, dim_ == 3 ? 1.5 * kd[a] : 4.0 / 3.0 * kd[a]);
+    for (int a = 0; a < nmat_; ++a)
+      if (!gas_material_[a]) e_min = std::min(e_min, dim_ == 3 ? 1.5 * kd[a] : 4.0 / 3.0 * kd[a]);
     yield_stretch_ = P.at("yield_stress") / e_min;
   }
   c_.resize(static_cast<size_t>(nmat_ * nmat_));
+  c_contact_.resize(c_.size());
   s00_.resize(c_.size());
   for (int a = 0; a < nmat_; ++a)
     for (int b = 0; b < nmat_; ++b) {
-      c_[a * nmat_ + b] = 2.0 * c[a] * c[b] / (c[a] + c[b]);
-      s00_[a * nmat_ + b] = std::min(s0[a], s0[b]);
+      // A gas takes no bond stiffness, and none in the contact springs either (they scale with c).
+      const bool gas = gas_material_[a] || gas_material_[b];
+      c_[a * nmat_ + b] = gas ? 0.0 : 2.0 * c[a] * c[b] / (c[a] + c[b]);
+      s00_[a * nmat_ + b] = gas ? kInf : std::min(s0[a], s0[b]);
+      // Products meeting a solid they were not bonded to (gas streaming towards the case from
+      // deep inside the charge) are stopped by the solid's contact springs; gas-gas pairs have none.
+      c_contact_[a * nmat_ + b] = gas_material_[a] && gas_material_[b] ? 0.0
+                                  : gas_material_[a]                  ? c[b]
+                                  : gas_material_[b]                  ? c[a]
+                                                                      : c_[a * nmat_ + b];
     }
 
   // Fields of this solver: damage (output) and the acceleration of the last force evaluation.
@@ -183,7 +196,14 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   const Index n = points_.size();
   const auto* x0 = points_.view<Vec3>("x0");
   const auto build_start = std::chrono::steady_clock::now();
-  bonds_ = pd::build_bond_family(x0, n, delta_, correct ? dx_ : 0.0, dim_, points_.ints("body"));
+  gas_.assign(static_cast<size_t>(n), 0);
+  {
+    const auto* mt = points_.ints("material");
+    for (Index p = 0; p < n; ++p) gas_[p] = gas_material_[mt[p]];
+  }
+  has_gas_ = std::find(gas_.begin(), gas_.end(), 1) != gas_.end();
+  bonds_ = pd::build_bond_family(x0, n, delta_, correct ? dx_ : 0.0, dim_, points_.ints("body"), gas_.data());
+  if (has_gas_) build_gas();
   s0_.assign(static_cast<size_t>(n), kInf);
   const auto* mat = points_.ints("material");
   for (Index p = 0; p < n; ++p) {
@@ -220,7 +240,7 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   contact_.skin = P.at("contact_skin") * dx_;
   if (contact_on_)
     pd::build_contact_list(contact_, points_.view<Vec3>("x"), x0, points_.ints("body"), n, delta_, dx_, contact_.skin,
-                           dim_);
+                           dim_, skip_vented(), skip_gas());
   const auto* vol0 = points_.real("volume0");
   // The damage denominator of each point, sum_j beta V_j, and for the half-bond force pass (each
   // bond evaluated once, from its lower-index end): where each row's upper part starts, where each
@@ -353,6 +373,7 @@ double PdSolver::stable_dt() {
     const double sum = stiff_bond_[p] + stiff_contact_[p];
     if (sum > 0.0) dt = std::min(dt, std::sqrt(2.0 * mass[p] / vol0[p] / sum));
   }
+  if (has_gas_) dt = std::min(dt, gas_stable_dt());
   dt = comm_.min(dt_safety_ * dt);
   if (!std::isfinite(dt)) dt = scenario_.simulation.end_time;  // no bonds at all: free flight
   if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
@@ -411,6 +432,8 @@ void PdSolver::compute_forces() {
   // point sums its own row. Then each point's results.
   std::vector<double>& s0_next = s0_next_;
   s0_next.resize(static_cast<size_t>(n));
+  const bool gas_on = has_gas_;
+  const pd::GasPassArgs gas_args = gas_pass_args();
   for_each(0, n, [&](Index p) {
     Vec3 f = A.f[p];
     double e_contact = A.e_contact[p], k_contact = A.k_contact[p];
@@ -420,18 +443,21 @@ void PdSolver::compute_forces() {
         const Vec3 y = x[q] - x[p];
         const double r = norm(y), d = contact_.reach[k];
         if (r >= d) continue;
-        const double cs = cs_over_c * c_[mat[p] * nmat_ + mat[q]], o = d - r;
+        const double cs = cs_over_c * c_contact_[mat[p] * nmat_ + mat[q]], o = d - r;
         k_contact += cs * vol0[q];
         if (r > 0.0) f += (-cs * o * vol0[q] * vol0[p] / r) * y;
         e_contact += 0.25 * cs * o * o * vol0[q] * vol0[p];
       }
+    if (gas_on) f += pd::gas_force(gas_args, p);
     acc[p] = (1.0 / mass[p]) * f;
     damage[p] = std::min(1.0, A.vol_broken[p] / vol_all_[p]);  // round-off of the two sums: never above 1
     dissipated_[p] += A.dis[p];
     contact_energy_[p] = e_contact;
     stiff_contact_[p] = k_contact;
-    eint[p] = A.energy[p] + dissipated_[p] + e_contact;
-    wdis[p] = dissipated_[p];
+    if (!gas_on || !gas_[p]) {  // a gas point's energy is the material's stress-power integral
+      eint[p] = A.energy[p] + dissipated_[p] + e_contact;
+      wdis[p] = dissipated_[p];
+    }
     const double s00 = s00_point_[p];
     s0_next[p] = alpha > 0.0 && std::isfinite(A.smx[p]) ? s00 + A.smx[p] : s00;
   });
@@ -460,18 +486,25 @@ void PdSolver::step(double dt) {
   Vec3* x_prev = x_prev_.data();
   {
     const auto* acc = points_.view<Vec3>("pd_accel");
+    const std::uint8_t* vented = vented_.empty() ? nullptr : vented_.data();
     for_each(0, n, [&](Index p) {
+      x_prev[p] = x[p];
+      if (vented && vented[p]) {  // vented gas flies on, force-free and out of the balance
+        v_half[p] = Vec3{};
+        x[p] += dt * vent_velocity_[p];
+        return;
+      }
       Vec3 a = acc[p] - c * v[p];
       if (has_ext) a += (1.0 / mass[p]) * f0[p];
       v[p] += (0.5 * dt) * a;
       v_half[p] = v[p];
-      x_prev[p] = x[p];
       x[p] += dt * v[p];
     });
   }
-  if (contact_on_ && contact_.stale(x, n))
+  if (has_gas_) update_gas(dt);
+  if (contact_on_ && contact_.stale(x, n, skip_vented()))
     pd::build_contact_list(contact_, x, points_.view<Vec3>("x0"), points_.ints("body"), n, delta_, dx_,
-                           contact_.skin, dim_);
+                           contact_.skin, dim_, skip_vented(), skip_gas());
   compute_forces();
   time_ += dt;
   ++steps_;
@@ -488,13 +521,21 @@ void PdSolver::step(double dt) {
   // first point whose state is not finite or that left the box (the domain of the points).
   const GridSpec& g = scenario_.grid;
   std::atomic<Index> bad{n};
+  std::atomic<bool> left{false};
+  const std::uint8_t* vented = vented_.empty() ? nullptr : vented_.data();
   for_each(0, n, [&](Index p) {
+    if (vented && vented[p]) return;
     Vec3 a = acc[p] - c * v[p];
     if (has_ext) a += (1.0 / mass[p]) * f1[p];
     v[p] += (0.5 * dt) * a;
     bool ok = all_finite(x[p]) && all_finite(v[p]);
-    for (int d = 0; d < 3; ++d) ok = ok && x[p][d] >= g.lower[d] && x[p][d] <= g.upper[d];
-    if (!ok) {
+    bool inside = true;
+    for (int d = 0; d < 3; ++d) inside = inside && x[p][d] >= g.lower[d] && x[p][d] <= g.upper[d];
+    if (ok && !inside && vented) {  // gas leaving the box is vented below, not a failure
+      left = true;
+      return;
+    }
+    if (!(ok && inside)) {
       Index cur = bad.load();
       while (p < cur && !bad.compare_exchange_weak(cur, p)) {
       }
@@ -510,6 +551,7 @@ void PdSolver::step(double dt) {
     }, w);
     external_work_ += dt * comm_.sum(w[0]);
   }
+  if (left) vent_escaped_gas();
   // A non-finite position or velocity, or a point leaving the grid box, stops the run.
   if (const Index p = bad.load(); p < n) {
     if (!all_finite(x[p]) || !all_finite(v[p])) pts_.fail(p, "has a non-finite position or velocity", steps_, time_);
@@ -526,7 +568,7 @@ Index PdSolver::broken_bonds() const {
 }
 
 std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
-  const std::vector<pd::Fragment> frags = pd::find_fragments(bonds_, points_, fragment_threshold_);
+  const std::vector<pd::Fragment> frags = pd::find_fragments(bonds_, points_, fragment_threshold_, skip_gas());
   double total = 0.0, dmax = 0.0;
   for (const auto& f : frags) total += f.mass;
   const auto* damage = points_.real("damage");
@@ -540,11 +582,14 @@ std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
           // contact list rebuilds, and the storage per bond end.
           {"bond_build_seconds", bond_build_seconds_},
           {"contact_list_builds", static_cast<double>(contact_.builds)},
-          {"bytes_per_bond_end", kSolverBytesPerBond + (sp_.empty() ? 0.0 : sizeof(double))}};
+          {"bytes_per_bond_end", kSolverBytesPerBond + (sp_.empty() ? 0.0 : sizeof(double))},
+          {"gas_bonds", static_cast<double>(gas_bonds_.bonds()) / 2.0},
+          {"vented_gas_points", static_cast<double>(vented_count_)},
+          {"gas_rate_limited_steps", static_cast<double>(gas_rate_limited_)}};
 }
 
 std::vector<std::vector<double>> PdSolver::fragment_rows() const {
-  const std::vector<pd::Fragment> frags = pd::find_fragments(bonds_, points_, fragment_threshold_);
+  const std::vector<pd::Fragment> frags = pd::find_fragments(bonds_, points_, fragment_threshold_, skip_gas());
   std::vector<std::vector<double>> rows;
   for (size_t k = 0; k < frags.size(); ++k) {
     const pd::Fragment& f = frags[k];

@@ -25,6 +25,7 @@
 #include "materials/material.hpp"
 #include "peridynamics/bond_family.hpp"
 #include "peridynamics/contact_list.hpp"
+#include "peridynamics/gas_pass.hpp"
 #include "points/point_loads.hpp"
 #include "points/point_set.hpp"
 #include "scenario/scenario.hpp"
@@ -92,6 +93,26 @@ class PdSolver final : public Solver {
   /// damage and the per-point bond energies.
   void compute_forces();
 
+  // ---- detonation products as a peridynamic gas (gas_pass.hpp, pd_gas.cpp) -------------------
+  /// The gas family of the explosive points and their neighbours, V_i and the stable-step sums.
+  void build_gas();
+  pd::GasPassArgs gas_pass_args() const;
+  /// X of every gas point at the current positions, F = X^(1/d) I and L over dt, the material's
+  /// update at t + dt (burn, pressure, -P dV booked as internal energy), then G_i for the forces.
+  void update_gas(double dt);
+  /// Smallest stable step of the gas points: Silling & Askari's bound with the micromodulus of
+  /// the products' current bulk modulus rho c^2.
+  double gas_stable_dt() const;
+  /// Gas points that left the box: their kinetic and internal energy and momentum booked as
+  /// removed; they fly on at the velocity they left with (kept apart from the field v, which is
+  /// zeroed so that the energies do not count them), without pressure, so that their neighbours
+  /// still near the box see them move away rather than pile up at the box face.
+  void vent_escaped_gas();
+  /// 1 for every gas point (fragments are of the solids only); null without gas.
+  const std::uint8_t* skip_gas() const { return has_gas_ ? gas_.data() : nullptr; }
+  /// 1 for every vented gas point (out of the contact list); null without gas.
+  const std::uint8_t* skip_vented() const { return has_gas_ ? vented_.data() : nullptr; }
+
   Scenario scenario_;
   Communicator comm_;
   PointSet pts_;
@@ -105,6 +126,7 @@ class PdSolver final : public Solver {
   int nmat_ = 0;
   std::vector<double> c_;    ///< micromodulus per material pair, N/m^6
   std::vector<double> s00_;  ///< critical stretch per material pair (inf: no failure)
+  std::vector<double> c_contact_;  ///< micromodulus of the contact springs per material pair (gas-solid: the solid's), N/m^6
   double alpha_ = 0.0;       ///< s0 = s00 - alpha s_min
   double dt_safety_ = 0.8;   ///< fraction of the Silling-Askari stable step
   double damping_ = 0.0;     ///< 1/s: a - c v (dynamic relaxation, stages)
@@ -153,6 +175,19 @@ class PdSolver final : public Solver {
   std::vector<std::vector<double>> fragment_rows_;  ///< snapshots so far (fragments.csv rows)
   /// fragments.csv rows of the fragments now (time, fragment, points, mass, centre, velocity, speed, KE).
   std::vector<std::vector<double>> fragment_rows() const;
+  std::vector<std::uint8_t> gas_material_;  ///< per material: an explosive (a peridynamic gas)
+  std::vector<std::uint8_t> gas_;           ///< per point: 1 for gas points
+  bool has_gas_ = false;
+  double m1_ = 0.0;                   ///< the family moment m1 of the bond constants (gas stable step)
+  pd::BondFamily gas_bonds_;          ///< build_gas_family
+  std::vector<double> gas_volume_;    ///< V_i = sum_j beta dV_j of each gas point, m^3
+  std::vector<double> gas_inv_len_;   ///< sum_j beta dV_j / |xi| of each gas point, 1/m^2
+  std::vector<double> gas_x_;         ///< X of each gas point (1 elsewhere)
+  std::vector<double> gas_g_;         ///< G_i of each gas point, Pa
+  std::vector<std::uint8_t> vented_;  ///< per point: gas vented (left the box); empty without gas
+  std::vector<Vec3> vent_velocity_;   ///< m/s, the velocity each vented point left the box with
+  Index vented_count_ = 0;
+  Index gas_rate_limited_ = 0;        ///< point-steps whose X change was limited (gas_pass.hpp)
   double time_ = 0.0;
   long steps_ = 0;
   double external_work_ = 0.0;

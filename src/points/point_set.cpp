@@ -259,6 +259,13 @@ void PointSet::remove(const std::vector<char>& keep) {
   groups_dirty_ = true;
 }
 
+void PointSet::book_vented(Index p) {
+  const Vec3& v = points_.view<Vec3>("v")[p];
+  const double m = points_.real("mass")[p];
+  removed_momentum_ += m * v;
+  removed_energy_ += 0.5 * m * dot(v, v) + points_.real("internal_energy")[p];
+}
+
 void PointSet::fail(Index p, const std::string& what, long step, double time) const {
   std::ostringstream os;
   os.precision(6);

@@ -67,6 +67,10 @@ class PointSet {
   /// Keeps the points with keep[p] != 0; the others' mass, momentum and kinetic + internal energy
   /// are booked as removed.
   void remove(const std::vector<char>& keep);
+  /// Books point p's kinetic and internal energy and its momentum as removed while the point
+  /// stays in the store (peridynamic gas vented from the box: its bonds cannot be compacted away);
+  /// the caller then zeroes its velocity and internal energy so that nothing is counted twice.
+  void book_vented(Index p);
   /// Throws a ParticleError naming point p (id, body, position, F, J, stress), the step and time.
   [[noreturn]] void fail(Index p, const std::string& what, long step, double time) const;
 

@@ -1,0 +1,140 @@
+// The peridynamic solver's detonation products (issue 15; seed 001 "Gases as Peridynamic
+// Materials"): the gas family, the density measure X fed to the shared material library, the
+// stable step of the gas and the venting of gas that leaves the box. The pair force itself is in
+// gas_pass.cpp; pd_solver.cpp calls these.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+#include "peridynamics/pd_solver.hpp"
+
+namespace ballista {
+
+void PdSolver::build_gas() {
+  const Index n = points_.size();
+  const auto* x0 = points_.view<Vec3>("x0");
+  const auto* vol0 = points_.real("volume0");
+  const bool correct = scenario_.solver_params.choices.at("volume_correction") == "partial";
+  gas_bonds_ = pd::build_gas_family(x0, n, delta_, correct ? dx_ : 0.0, dim_, gas_.data());
+  gas_volume_.assign(static_cast<size_t>(n), 0.0);
+  gas_inv_len_.assign(static_cast<size_t>(n), 0.0);
+  gas_x_.assign(static_cast<size_t>(n), 1.0);
+  gas_g_.assign(static_cast<size_t>(n), 0.0);
+  vented_.assign(static_cast<size_t>(n), 0);
+  vent_velocity_.assign(static_cast<size_t>(n), Vec3{});
+  const pd::GasPassArgs a = gas_pass_args();
+  for_each(0, n, [&](Index p) {
+    if (!gas_[p]) return;
+    double v = 0.0;
+    for (Index k = gas_bonds_.offset[p]; k < gas_bonds_.offset[p + 1]; ++k)
+      v += gas_bonds_.volume_factor[k] * vol0[gas_bonds_.other[k]];
+    gas_volume_[p] = v;
+    gas_inv_len_[p] = pd::gas_inverse_length_sum(a, p);
+  });
+}
+
+pd::GasPassArgs PdSolver::gas_pass_args() const {
+  return {points_.view<Vec3>("x"), points_.real("volume0"), &gas_bonds_, gas_.data(), gas_volume_.data(),
+          gas_g_.data(),           dim_};
+}
+
+void PdSolver::update_gas(double dt) {
+  const Index n = points_.size();
+  auto* F = points_.view<Mat3>("F");
+  auto* L = points_.view<Mat3>("L");
+  auto* volume = points_.real("volume");
+  const auto* vol0 = points_.real("volume0");
+  const pd::GasPassArgs a = gas_pass_args();
+  const double inv_d = 1.0 / dim_;
+  std::atomic<Index> limited{0};
+  // X at t_{n+1}; the deformation the material sees is the isotropic F = X^(1/d) (in the plane
+  // in 2D), reached from the old one by L = a I over dt, (1 + a dt)^d = X_new / X_old, so that
+  // the adapter's F_old = (I + dt L)^-1 F_new and J_old = X_old are exact.
+  for_each(0, n, [&](Index p) {
+    if (!gas_[p] || vented_[p]) {
+      if (gas_[p]) L[p] = Mat3{};
+      return;
+    }
+    const double x_old = gas_x_[p], x_measured = pd::density_measure(a, p);
+    const double x_new = std::clamp(x_measured, x_old / pd::kGasMaxStepRatio, x_old * pd::kGasMaxStepRatio);
+    if (x_new != x_measured) limited.fetch_add(1, std::memory_order_relaxed);
+    const double s = std::pow(x_new, inv_d), rate = dt > 0.0 ? (std::pow(x_new / x_old, inv_d) - 1.0) / dt : 0.0;
+    Mat3 f = Mat3::identity(), l;
+    for (int d = 0; d < dim_; ++d) {
+      f(d, d) = s;
+      l(d, d) = rate;
+    }
+    F[p] = f;
+    L[p] = l;
+    gas_x_[p] = x_new;
+    volume[p] = vol0[p] * x_new;
+  });
+  gas_rate_limited_ += limited.load();
+  // The products' pressure through the library: program burn, JWL / ideal gas, energy -P dV.
+  const auto& groups = pts_.material_groups();
+  const auto& mats = pts_.materials();
+  std::atomic<Index> bad{n};
+  for (int m = 0; m < nmat_; ++m) {
+    if (!gas_material_[m] || groups[m].empty()) continue;
+    MaterialBatch b = make_batch(points_, groups[m].data(), static_cast<Index>(groups[m].size()), dt, true);
+    b.first_bad = &bad;
+    b.time = time_ + dt;
+    mats[m]->update(b);
+  }
+  if (bad.load() < n) pts_.fail(bad.load(), "has a non-finite products pressure", steps_ + 1, time_ + dt);
+  // G_i = d P_i X_i^(1+m/d) dV0_i / V_i (gas_pass.hpp); a vented point pushes nothing.
+  const auto* stress = points_.view<Mat3>("stress");
+  const double expo = 1.0 + pd::kGasExponent / dim_;
+  for_each(0, n, [&](Index p) {
+    if (!gas_[p]) return;
+    const double P = -trace(stress[p]) / 3.0;
+    gas_g_[p] = vented_[p] || !(gas_volume_[p] > 0.0)
+                    ? 0.0
+                    : dim_ * P * std::pow(gas_x_[p], expo) * vol0[p] / gas_volume_[p];
+  });
+}
+
+double PdSolver::gas_stable_dt() const {
+  // Silling & Askari 2005 eq. 17, dt < sqrt(2 rho0 / sum_j V_j c/|xi|), with the micromodulus of
+  // a PMB solid of the products' current bulk modulus K = rho c^2 = rho0 c^2 / X (c = 18 K/m1 in
+  // 3D, 8 K/m1 in 2D: the calibration of the solid bonds, pd_solver.cpp). Linearised about a
+  // uniform state, the gas bond's stiffness is that of the pressure's dependence on X, which is
+  // this K; the reference lengths are kept (the spacing only grows as the gas expands).
+  const Index n = points_.size();
+  const auto* mat = points_.ints("material");
+  const auto& mats = pts_.materials();
+  const double coef = dim_ == 3 ? 18.0 : 8.0;
+  double dt = std::numeric_limits<double>::infinity();
+#pragma omp parallel for schedule(static) reduction(min : dt) if (n > kParallelThreshold)
+  for (Index p = 0; p < n; ++p) {
+    if (!gas_[p] || vented_[p] || !(gas_inv_len_[p] > 0.0)) continue;
+    const double X = gas_x_[p], c = mats[mat[p]]->wave_speed(points_, p, X);
+    // rho0 / (coef rho0 c^2 / (X m1) * sum) = X m1 / (coef c^2 sum)
+    if (c > 0.0) dt = std::min(dt, std::sqrt(2.0 * X * m1_ / (coef * c * c * gas_inv_len_[p])));
+  }
+  return comm_.min(dt_safety_ * dt);
+}
+
+void PdSolver::vent_escaped_gas() {
+  const Index n = points_.size();
+  auto* x = points_.view<Vec3>("x");
+  auto* v = points_.view<Vec3>("v");
+  auto* eint = points_.real("internal_energy");
+  const GridSpec& g = scenario_.grid;
+  for (Index p = 0; p < n; ++p) {
+    if (!gas_[p] || vented_[p]) continue;
+    bool inside = true;
+    for (int d = 0; d < 3; ++d) inside = inside && x[p][d] >= g.lower[d] && x[p][d] <= g.upper[d];
+    if (inside) continue;
+    pts_.book_vented(p);
+    vented_[p] = 1;
+    ++vented_count_;
+    vent_velocity_[p] = v[p];  // it flies on (pd_solver.cpp), out of the balance
+    v[p] = Vec3{};
+    eint[p] = 0.0;
+    gas_g_[p] = 0.0;
+  }
+}
+
+}  // namespace ballista
