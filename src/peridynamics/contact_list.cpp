@@ -33,22 +33,29 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
   const double range = 1.35 * dx;  // S&A 2005 / LAMMPS: the contact distance never exceeds 1.35 dx
   const double cutoff = range + skin;
   // Bins a hair wider than the cutoff (no pair at the cutoff lost to round-off), over the points
-  // that take part (vented gas flying far off would stretch the bins over its whole cloud).
-  std::vector<Index> kept;
-  std::vector<Vec3> xk;
-  if (skip) {
-    for (Index p = 0; p < n; ++p)
-      if (!skip[p]) kept.push_back(p);
-    xk.resize(kept.size());
-    for (size_t i = 0; i < kept.size(); ++i) xk[i] = x[kept[i]];
+  // that take part (vented gas flying far off would stretch the bins over its whole cloud), in two
+  // sets when there is gas: a gas point looks only among the solids (gas-gas pairs are never
+  // pairs), which keeps the search of a charge's many gas points short.
+  std::vector<Index> solid_ids, gas_ids;
+  std::vector<Vec3> solid_x, gas_x;
+  for (Index p = 0; p < n; ++p) {
+    if (skip && skip[p]) continue;
+    if (gas && gas[p]) {
+      gas_ids.push_back(p);
+      gas_x.push_back(x[p]);
+    } else {
+      solid_ids.push_back(p);
+      solid_x.push_back(x[p]);
+    }
   }
-  const CellBins bins(skip ? xk.data() : x, skip ? static_cast<Index>(kept.size()) : n, cutoff * (1.0 + 1e-6), dim);
+  const double bin = cutoff * (1.0 + 1e-6);
+  const CellBins solid_bins(solid_x.data(), static_cast<Index>(solid_ids.size()), bin, dim);
+  const CellBins gas_bins(gas_x.data(), static_cast<Index>(gas_ids.size()), bin, dim);
   const double cut2 = cutoff * cutoff, delta2 = delta * delta * (1.0 + 2e-9);  // the bond family's tie rule
   auto visit = [&](Index p, auto&& emit) {
     if (skip && skip[p]) return;
-    bins.visit(x[p], [&](Index qi) {
-      const Index q = skip ? kept[qi] : qi;
-      if (q == p || (gas && gas[p] && gas[q])) return;
+    auto test = [&](Index q) {
+      if (q == p) return;
       Vec3 d = x[q] - x[p];
       if (dim == 2) d[2] = 0.0;
       if (dot(d, d) > cut2) return;
@@ -57,7 +64,9 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
       const double r02 = dot(d0, d0);
       if (body[p] == body[q] && r02 <= delta2) return;  // bonded (or once bonded): the bond loop's
       emit(q, std::min(0.9 * std::sqrt(r02), range));
-    });
+    };
+    solid_bins.visit(x[p], [&](Index i) { test(solid_ids[i]); });
+    if (!(gas && gas[p])) gas_bins.visit(x[p], [&](Index i) { test(gas_ids[i]); });
   };
   // One search per point (the list is rebuilt often: a point driven at 100 m/s crosses the half-skin
   // in a dozen steps): the pairs go to per-chunk buffers (fixed chunks, so the result does not

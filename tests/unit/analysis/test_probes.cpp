@@ -214,3 +214,28 @@ TEST(Probes, UnknownTypeIsAnError) {
   const FieldStore s = make({{0, {{0.0, 0.0, 0.0}}, {{0.1, 0.1, 0.1}}}});
   EXPECT_THROW(eval(probe("median"), -1, s), Error);
 }
+
+// radial_velocity: sum m (v . e_r) / sum m about the axis through `center`. Points of a ring about
+// z moving radially at 3 m/s plus a common axial 5 m/s (no radial part) and one tangential
+// (no radial part): the mean is 3 m/s weighted by mass.
+TEST(Probes, RadialVelocityAboutAnAxis) {
+  ProbeSpec p = probe("radial_velocity", 2);  // axis z
+  FieldStore s = make({
+      {0, {{1.0, 0.0, 0.5}}, {}},
+      {0, {{0.0, -2.0, 0.0}}, {}},
+      {0, {{-0.5, 0.0, 7.0}}, {}},
+      {1, {{4.0, 0.0, 0.0}}, {}},  // other body: moving inwards
+  });
+  s.add_real("mass", 1, "kg");
+  const double m[4] = {1.0, 2.0, 1.0, 1.0};
+  const Vec3 v[4] = {{{3.0, 0.0, 5.0}}, {{0.0, -3.0, 5.0}}, {{0.0, 4.0, 5.0}}, {{-1.0, 0.0, 0.0}}};
+  for (int i = 0; i < 4; ++i) {
+    s.real("mass")[i] = m[i];
+    s.view<Vec3>("v")[i] = v[i];
+  }
+  EXPECT_DOUBLE_EQ(eval(p, 0, s), (3.0 * 1.0 + 3.0 * 2.0 + 0.0) / 4.0);
+  EXPECT_DOUBLE_EQ(eval(p, 1, s), -1.0);
+  // An axis through x = 4: body 1's point is on it (no direction), so it has no value.
+  p.vectors["center"] = {{4.0, 0.0, 0.0}};
+  EXPECT_TRUE(std::isnan(eval(p, 1, s)));
+}
