@@ -65,8 +65,9 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
       if (body[p] == body[q] && r02 <= delta2) return;  // bonded (or once bonded): the bond loop's
       emit(q, std::min(0.9 * std::sqrt(r02), range));
     };
-    solid_bins.visit(x[p], [&](Index i) { test(solid_ids[i]); });
-    if (!(gas && gas[p])) gas_bins.visit(x[p], [&](Index i) { test(gas_ids[i]); });
+    // Gas escaped beyond the solids' box is far from every solid: not clamped into the edge bins.
+    if (solid_bins.near(x[p])) solid_bins.visit(x[p], [&](Index i) { test(solid_ids[i]); });
+    if (!(gas && gas[p]) && gas_bins.near(x[p])) gas_bins.visit(x[p], [&](Index i) { test(gas_ids[i]); });
   };
   // One search per point (the list is rebuilt often: a point driven at 100 m/s crosses the half-skin
   // in a dozen steps): the pairs go to per-chunk buffers (fixed chunks, so the result does not

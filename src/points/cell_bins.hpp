@@ -19,7 +19,8 @@ class CellBins {
   CellBins(const Vec3* x, Index n, double size, int dim) : dim_(dim), size_(size) {
     lo_ = Vec3{{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
                 std::numeric_limits<double>::infinity()}};
-    Vec3 hi = -1.0 * lo_;
+    Vec3& hi = hi_;
+    hi = -1.0 * lo_;
     for (Index p = 0; p < n; ++p)
       for (int a = 0; a < dim; ++a) {
         lo_[a] = std::min(lo_[a], x[p][a]);
@@ -42,6 +43,14 @@ class CellBins {
     for (Index b = 0; b < nbins; ++b) start_[b + 1] += start_[b];
     std::vector<Index> fill(start_.begin(), start_.end() - 1);
     for (Index p = 0; p < n; ++p) order_[fill[bin[p]]++] = p;
+  }
+
+  /// False if y is farther than one bin outside the points' bounding box along some axis: no point
+  /// is within a bin size of it (visit would clamp it into the edge bins and scan them for nothing).
+  bool near(const Vec3& y) const {
+    for (int a = 0; a < dim_; ++a)
+      if (!(y[a] >= lo_[a] - size_ && y[a] <= hi_[a] + size_)) return false;
+    return true;
   }
 
   /// Calls f(q) for every point q in the bins around position y (q may be the point at y itself).
@@ -68,7 +77,7 @@ class CellBins {
 
   int dim_;
   double size_;
-  Vec3 lo_;
+  Vec3 lo_, hi_;
   int nb_[3] = {1, 1, 1};
   std::vector<Index> start_, order_;
 };
