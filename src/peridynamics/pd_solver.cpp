@@ -559,7 +559,20 @@ void PdSolver::step(double dt) {
   }
 }
 
-EnergyTotals PdSolver::energies() const { return pts_.energies(thickness_, external_work_); }
+EnergyTotals PdSolver::energies() const {
+  EnergyTotals e = pts_.energies(thickness_, external_work_);
+  if (has_gas_) {
+    // A gas point's internal_energy is the products' stress-power integral (the material's), so
+    // its half of the contact springs it is pressed into (kept in internal_energy for solids)
+    // joins the internal energy here.
+    double s[1];
+    deterministic_sum<1>(0, points_.size(), [&](Index p, double* o) {
+      if (gas_[p]) o[0] += contact_energy_[p];
+    }, s);
+    e.internal += thickness_ * comm_.sum(s[0]);
+  }
+  return e;
+}
 
 Index PdSolver::broken_bonds() const {
   Index k = 0;
@@ -625,12 +638,16 @@ std::vector<double> PdSolver::history_values() const {
   std::vector<double> v = loads_.history_values(scenario_);
   for (double& f : v) f *= thickness_;  // 2D: per unit thickness -> the plate's
   const auto* damage = points_.real("damage");
-  double e[2];
-  deterministic_sum<2>(0, points_.size(), [&](Index p, double* o) {
-    o[0] += damage[p];
+  // The mean damage is of the solids (gas points have no bonds to break).
+  const std::uint8_t* gas = skip_gas();
+  double e[3];
+  deterministic_sum<3>(0, points_.size(), [&](Index p, double* o) {
+    const bool solid = !(gas && gas[p]);
+    o[0] += solid ? damage[p] : 0.0;
     o[1] += contact_energy_[p];
+    o[2] += solid ? 1.0 : 0.0;
   }, e);
-  const double count = comm_.sum(static_cast<double>(points_.size()));
+  const double count = comm_.sum(e[2]);
   v.push_back(static_cast<double>(broken_bonds()));
   v.push_back(count > 0.0 ? comm_.sum(e[0]) / count : 0.0);  // mean over points (LAMMPS compute reduce ave)
   v.push_back(thickness_ * comm_.sum(e[1]));
