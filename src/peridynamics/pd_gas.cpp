@@ -72,17 +72,7 @@ void PdSolver::update_gas(double dt) {
   });
   gas_rate_limited_ += limited.load();
   // The products' pressure through the library: program burn, JWL / ideal gas, energy -P dV.
-  const auto& groups = pts_.material_groups();
-  const auto& mats = pts_.materials();
-  std::atomic<Index> bad{n};
-  for (int m = 0; m < nmat_; ++m) {
-    if (!gas_material_[m] || groups[m].empty()) continue;
-    MaterialBatch b = make_batch(points_, groups[m].data(), static_cast<Index>(groups[m].size()), dt, true);
-    b.first_bad = &bad;
-    b.time = time_ + dt;
-    mats[m]->update(b);
-  }
-  if (bad.load() < n) pts_.fail(bad.load(), "has a non-finite products pressure", steps_ + 1, time_ + dt);
+  pts_.update_stress(dt, steps_ + 1, time_ + dt, gas_material_);
   // G_i = d P_i X_i^(1+m/d) dV0_i / V_i (gas_pass.hpp); a vented point pushes nothing.
   const auto* stress = points_.view<Mat3>("stress");
   const double expo = 1.0 + pd::kGasExponent / dim_;
@@ -124,9 +114,7 @@ void PdSolver::vent_escaped_gas() {
   const GridSpec& g = scenario_.grid;
   for (Index p = 0; p < n; ++p) {
     if (!gas_[p] || vented_[p]) continue;
-    bool inside = true;
-    for (int d = 0; d < 3; ++d) inside = inside && x[p][d] >= g.lower[d] && x[p][d] <= g.upper[d];
-    if (inside) continue;
+    if (g.contains(x[p])) continue;
     pts_.book_vented(p);
     vented_[p] = 1;
     ++vented_count_;

@@ -529,8 +529,7 @@ void PdSolver::step(double dt) {
     if (has_ext) a += (1.0 / mass[p]) * f1[p];
     v[p] += (0.5 * dt) * a;
     bool ok = all_finite(x[p]) && all_finite(v[p]);
-    bool inside = true;
-    for (int d = 0; d < 3; ++d) inside = inside && x[p][d] >= g.lower[d] && x[p][d] <= g.upper[d];
+    const bool inside = g.contains(x[p]);
     if (ok && !inside && vented) {  // gas leaving the box is vented below, not a failure
       left = true;
       return;

@@ -227,12 +227,12 @@ StepLimiter PointSet::step_limiter() const {
   return out;
 }
 
-void PointSet::update_stress(double dt, long step, double time) {
+void PointSet::update_stress(double dt, long step, double time, const std::vector<std::uint8_t>& only) {
   const Index n = points_.size();
   const auto& groups = material_groups();
   std::atomic<Index> bad_stress{n};
   for (size_t m = 0; m < materials_.size(); ++m) {
-    if (groups[m].empty()) continue;
+    if (groups[m].empty() || (!only.empty() && !only[m])) continue;
     MaterialBatch b = make_batch(points_, groups[m].data(), static_cast<Index>(groups[m].size()), dt, true);
     b.first_bad = &bad_stress;
     b.time = time;

@@ -4,6 +4,7 @@
 // bodies and segments on a lattice, activation by time and stage, material groups and the stress
 // update through the material library, removal with its mass, momentum and energy booked,
 // failure diagnostics naming the point, and the energy totals.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -60,8 +61,9 @@ class PointSet {
   StepLimiter step_limiter() const;
   /// Stress update of every point through its material, from F (already at t_{n+1}) and L over dt;
   /// stress power and plastic work accumulate in internal_energy and plastic_work. A non-finite
-  /// stress stops the run with fail().
-  void update_stress(double dt, long step, double time);
+  /// stress stops the run with fail(). With `only` given, just the materials m with only[m] != 0
+  /// (peridynamics: its gas; the solids' stress is their bonds').
+  void update_stress(double dt, long step, double time, const std::vector<std::uint8_t>& only = {});
 
   // ---- removal and diagnostics -------------------------------------------------------------
   /// Keeps the points with keep[p] != 0; the others' mass, momentum and kinetic + internal energy

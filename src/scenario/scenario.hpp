@@ -62,6 +62,12 @@ struct GridSpec {
   /// Per face: x_min, x_max, y_min, y_max, z_min, z_max.
   std::array<FaceBC, 6> faces{FaceBC::Free, FaceBC::Free, FaceBC::Free,
                               FaceBC::Free, FaceBC::Free, FaceBC::Free};
+  /// x inside the box, faces included (all three coordinates: 2D points have z = 0 inside it).
+  bool contains(const Vec3& x) const {
+    for (int d = 0; d < 3; ++d)
+      if (!(x[d] >= lower[d] && x[d] <= upper[d])) return false;
+    return true;
+  }
 };
 
 struct MaterialSpec {

@@ -62,6 +62,19 @@ inline void advance(Solver& solver, double end, double interval = 0.0) {
   }
 }
 
+/// Steps to `end` at the solver's stable step (the last one shortened to end there, 1e-15 s past to
+/// absorb round-off) and returns the largest |total energy - initial total| after any step, J: the
+/// worst energy residual of the run (EnergyTotals::total, the balance every solver books).
+inline double run_worst_energy_residual(Solver& solver, double end) {
+  const double total0 = solver.energies().total();
+  double worst = 0.0;
+  while (solver.time() < end) {
+    solver.step(std::min(solver.stable_dt(), end - solver.time() + 1e-15));
+    worst = std::max(worst, std::abs(solver.energies().total() - total0));
+  }
+  return worst;
+}
+
 /// A fresh folder under the system temp directory, removed at scope exit (kept if the environment
 /// variable BALLISTA_KEEP_TEST_OUTPUT is set, to inspect the results).
 class TempDir {
