@@ -187,7 +187,7 @@ detonation: {points: [{position: [0, 0.5e-3], time: 0}]}
                   a, a, b);
     const Scenario sc = parse_deck(buf, "gurney_cylinder.yaml");
     auto solver = make_solver(sc);
-    const double worst = run_worst_energy_residual(*solver, sc.simulation.end_time);
+    const double worst = verification::run_worst_energy_residual(*solver, sc.simulation.end_time);
     const EnergyTotals e = solver->energies();
     const double V = mean_x_velocity(solver->points(), 1), gurney = gurney_cylinder(2440.0, mc);
     std::printf("Gurney cylinder, M/C = %.1f: case %.0f m/s, Gurney %.0f m/s (%.1f %%), energy residual %.4f of the "

@@ -97,7 +97,7 @@ detonation: {points: [{position: [0, 0], time: 0}], burn_cells: 0}
 )",
                                  "pd_ideal_gas.yaml");
   auto solver = make_solver(sc);
-  const double worst = run_worst_energy_residual(*solver, sc.simulation.end_time);
+  const double worst = verification::run_worst_energy_residual(*solver, sc.simulation.end_time);
   const EnergyTotals e = solver->energies();
   const double Q = detonation_energy(ideal_gas_products(1630.0, 6930.0, 3.0));
   const FieldStore& pts = solver->points();
@@ -166,7 +166,7 @@ TEST(PdGas, GurneyCylinder) {
   for (double mc : {1.0, 2.0}) {
     const Scenario sc = parse_deck(cylinder_deck(mc, 0.5e-3, 20.0e-6, 0.08), "pd_gurney_cylinder.yaml");
     auto solver = make_solver(sc);
-    const double worst = run_worst_energy_residual(*solver, sc.simulation.end_time);
+    const double worst = verification::run_worst_energy_residual(*solver, sc.simulation.end_time);
     const double V = mean_radial_velocity(solver->points(), 1), gurney = gurney_cylinder(2440.0, mc);
     const EnergyTotals e = solver->energies();
     std::printf("PD Gurney cylinder, M/C = %.1f: case %.0f m/s, Gurney %.0f m/s (%+.1f %%), residual %.4f of the "
@@ -193,7 +193,7 @@ detonation: {points: [{position: [0, 0], time: 0}]}
 )",
                                  "pd_vent.yaml");
   auto solver = make_solver(sc);
-  const double worst = run_worst_energy_residual(*solver, sc.simulation.end_time);
+  const double worst = verification::run_worst_energy_residual(*solver, sc.simulation.end_time);
   const EnergyTotals e = solver->energies();
   const double vented = result(*solver, "vented_gas_points");
   std::printf("vented %.0f of %ld gas points; removed energy %.4g J/m of the chemical %.4g J/m; worst residual %.4f\n",
