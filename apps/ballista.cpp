@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/threads.hpp"
 #include "driver/drive_run.hpp"
+#include "io/checkpoint_file.hpp"
 #include "io/deck_reader.hpp"
 #include "io/material_presets.hpp"
 #include "materials/material.hpp"
@@ -123,7 +124,18 @@ int main(int argc, char** argv) {
   int threads = 0;
   std::vector<std::string> overrides;
   bool quiet = false;
-  run->add_option("deck", deck, "YAML deck file")->required()->check(CLI::ExistingFile);
+  std::string restart_dir;
+  double checkpoint_minutes = 0.0;
+  auto* deck_opt = run->add_option("deck", deck, "YAML deck file (not with --restart)")->check(CLI::ExistingFile);
+  auto* restart_opt = run->add_option(
+      "--restart", restart_dir,
+      "continue the run whose results folder is DIR from its newest checkpoint (the deck is the checkpoint's; "
+      "docs/restart.md)");
+  restart_opt->excludes(deck_opt);
+  run->add_option("--checkpoint-every-minutes", checkpoint_minutes,
+                  "also write a checkpoint after every M minutes of wall time (keeps the newest "
+                  "output.checkpoint_keep)")
+      ->check(CLI::PositiveNumber);
   run->add_option("-o,--output", out_dir, "results folder (default out/<deck name>)");
   run->add_option("--threads", threads, "OpenMP threads (default: the deck's, else all cores; at most the cores)");
   run->add_option("--set", overrides, "override a deck value: key.path=value (repeatable)");
@@ -192,16 +204,34 @@ int main(int argc, char** argv) {
       return r.ok ? 0 : 3;
     }
     if (*run) {
-      ballista::Scenario sc = ballista::read_deck(deck, overrides);
+      if (deck.empty() && restart_dir.empty()) throw ballista::Error("run: give a deck, or --restart DIR");
+      if (!restart_dir.empty() && !out_dir.empty() &&
+          std::filesystem::path(out_dir).lexically_normal() != std::filesystem::path(restart_dir).lexically_normal())
+        throw ballista::Error("run: --restart continues in its own results folder; do not give -o");
+      std::string restart_from;
+      ballista::Scenario sc;
+      if (!restart_dir.empty()) {
+        // The deck is the one the checkpoint was written with (its resolved text); --set still
+        // applies, e.g. a later simulation.end_time.
+        const auto [path, deck_text] = ballista::newest_checkpoint(restart_dir);
+        restart_from = path;
+        sc = ballista::parse_deck(deck_text, (std::filesystem::path(restart_dir) / "resolved.yaml").string(), overrides);
+        out_dir = restart_dir;
+        std::cerr << "restarting from " << path << "\n";
+      } else {
+        sc = ballista::read_deck(deck, overrides);
+      }
       if (out_dir.empty()) out_dir = "out/" + std::filesystem::path(deck).stem().string();
       ballista::RunOptions opt;
+      opt.restart_from = restart_from;
+      opt.checkpoint_minutes = checkpoint_minutes;
       opt.out_dir = out_dir;
       opt.threads = threads;
       opt.progress = !quiet;
       opt.plots = !no_plots;
       ballista::RunResult r = ballista::run_simulation(sc, opt);
       const auto& tracked = sc.output.track;
-      if (!r.ok && track_failed && r.failed_particle >= 0 &&
+      if (!r.ok && track_failed && restart_dir.empty() && r.failed_particle >= 0 &&
           std::find(tracked.begin(), tracked.end(), r.failed_particle) == tracked.end()) {
         // Re-run from the start with the failing particle tracked: same deck, same thread count,
         // so the run is bitwise the same up to the failure (docs/deck.md, output.track).
@@ -226,6 +256,12 @@ int main(int argc, char** argv) {
                            .string()
                     << " (replay: ballista drive with drive: {table: <that file>, substeps: 1})\n";
       }
+      if (!r.checkpoint.empty())
+        std::cout << "the last good step is checkpointed in " << r.checkpoint << " (ballista run --restart " << out_dir
+                  << ")\n";
+      if (!r.checkpoint.empty())
+        std::cout << "the last good step is checkpointed in " << r.checkpoint << " (ballista run --restart " << out_dir
+                  << ")\n";
       std::cout << (r.ok ? "completed" : "FAILED") << ": " << r.steps << " steps to t = " << r.time << " s in "
                 << fmt::format("{:.2f}", r.wall_seconds) << " s (" << fmt::format("{:.3g}", r.particle_steps_per_second)
                 << " particle-steps/s)\n";

@@ -235,4 +235,19 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   out["max_channel_radius"] = max_radius;
 }
 
+void PenetrationProbe::save_state(StateArchive& a, std::size_t samples) const {
+  const auto first = [&](const std::vector<double>& v) {
+    return std::vector<double>(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(std::min(samples, v.size())));
+  };
+  a.put("penetration.time", first(t_));
+  a.put("penetration.depth", first(depth_));
+  a.put("penetration.cavity", first(cavity_));
+}
+
+void PenetrationProbe::load_state(const StateArchive& a) {
+  t_ = a.reals("penetration.time");
+  depth_ = a.reals("penetration.depth", t_.size());
+  cavity_ = a.reals("penetration.cavity", t_.size());
+}
+
 }  // namespace ballista

@@ -4,10 +4,12 @@
 // time since firing, rate of penetration by a smoothing local-polynomial derivative, steady-state
 // linear fit, stop time, penetrator kinetic energy (total and per segment) and the final channel
 // radius profile, with the hydrodynamic predictions of eq. 3.1-3.4 for comparison.
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "core/field_store.hpp"
+#include "core/state_archive.hpp"
 #include "io/summary_writer.hpp"
 #include "scenario/scenario.hpp"
 
@@ -31,6 +33,12 @@ class PenetrationProbe {
   /// Writes penetration.csv (time, depth, cavity_depth, rate, cavity_rate) and channel.csv
   /// (depth, radius) into out_dir and fills `out` (the summary's "penetration" object).
   void finish(const FieldStore& points, const std::string& out_dir, double main_duration, JsonValue& out);
+
+  /// Checkpoint: the recorded series (under "penetration."), its first `samples` entries (all by
+  /// default: fewer for the state before the latest samples).
+  void save_state(StateArchive& archive, std::size_t samples = SIZE_MAX) const;
+  std::size_t samples() const { return t_.size(); }
+  void load_state(const StateArchive& archive);
 
   /// Depth below the target's struck face along the direction of flight, m (negative above it).
   double depth_of(const Vec3& x) const { return direction_ * (x[axis_] - surface_); }

@@ -5,7 +5,9 @@
 #include <utility>
 #include <vector>
 
+#include "core/error.hpp"
 #include "core/field_store.hpp"
+#include "core/state_archive.hpp"
 #include "core/tensor.hpp"
 
 namespace ballista {
@@ -97,6 +99,20 @@ class Solver {
   virtual std::vector<std::pair<std::string, double>> timing_values() const { return {}; }
   /// Tables of this discretisation written at the end of a run (e.g. fragments.csv).
   virtual std::vector<ResultTable> result_tables() const { return {}; }
+
+  // ---- checkpoint and restart (issue 16, docs/restart.md) ------------------------------------
+  /// Puts everything the next step depends on into `archive` (points, pending bodies, solver
+  /// state, booked energies, time and step), so that load_state on a solver built from the same
+  /// deck continues bitwise as this one would.
+  virtual void save_state(StateArchive& archive) const {
+    (void)archive;
+    throw Error(std::string("the ") + name() + " solver cannot write checkpoints yet");
+  }
+  /// Restores what save_state wrote; throws Error naming a missing or mis-sized key.
+  virtual void load_state(const StateArchive& archive) {
+    (void)archive;
+    throw Error(std::string("the ") + name() + " solver cannot restart from a checkpoint yet");
+  }
 };
 
 }  // namespace ballista

@@ -784,6 +784,8 @@ class Reader {
     out.domains = o.boolean("domains", false);
     out.history_every = static_cast<int>(o.integer("history_every", 10, 1, INT_MAX));
     out.max_outputs = o.integer("max_outputs", 1000, 1, kLongMax);
+    out.checkpoint_interval = o.number("checkpoint_interval", 0.0, NumberRange::non_negative("s"));
+    out.checkpoint_keep = static_cast<int>(o.integer("checkpoint_keep", 2, 1, 1000));
     if (out.interval > 0.0) {
       // Particle files of the run: the first, one per interval of the main stage, one per
       // preparation stage and the last (issue 11: 1e-12 s gave one 300 kB file per step).

@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 
 #include "core/error.hpp"
 
@@ -33,22 +34,50 @@ void append_number(std::string& line, double v) {
 }
 }  // namespace
 
+std::string HistoryWriter::header() const {
+  std::string h;
+  for (size_t k = 0; k < columns_.size(); ++k) {
+    if (k) h += ',';
+    h += csv_quote(columns_[k]);
+  }
+  return h + '\n';
+}
+
 HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> columns)
     : path_(std::move(path)), columns_(std::move(columns)) {
   if (columns_.empty()) throw Error("history file '" + path_ + "' needs at least one column");
   file_ = std::fopen(path_.c_str(), "w");
   if (!file_) throw Error("cannot create '" + path_ + "': " + std::strerror(errno));
-  std::string header;
-  for (size_t k = 0; k < columns_.size(); ++k) {
-    if (k) header += ',';
-    header += csv_quote(columns_[k]);
-  }
-  header += '\n';
-  if (std::fputs(header.c_str(), file_) < 0 || std::fflush(file_) != 0) {
+  const std::string h = header();
+  if (std::fputs(h.c_str(), file_) < 0 || std::fflush(file_) != 0) {
     std::fclose(file_);
     file_ = nullptr;
     throw Error("cannot write '" + path_ + "'");
   }
+  bytes_ = static_cast<long long>(h.size());
+}
+
+HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> columns, long long resume_bytes)
+    : path_(std::move(path)), columns_(std::move(columns)) {
+  const std::string h = header();
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path_, ec);
+  if (ec) throw Error("cannot continue '" + path_ + "': " + ec.message());
+  if (resume_bytes < static_cast<long long>(h.size()) || static_cast<long long>(size) < resume_bytes)
+    throw Error("cannot continue '" + path_ + "': it holds " + std::to_string(size) + " bytes, the checkpoint needs " +
+                std::to_string(resume_bytes));
+  std::filesystem::resize_file(path_, static_cast<std::uintmax_t>(resume_bytes), ec);
+  if (ec) throw Error("cannot cut '" + path_ + "' back to the checkpoint: " + ec.message());
+  file_ = std::fopen(path_.c_str(), "r+");
+  if (!file_) throw Error("cannot open '" + path_ + "': " + std::strerror(errno));
+  std::string first(h.size(), '\0');
+  if (std::fread(first.data(), 1, first.size(), file_) != first.size() || first != h) {
+    std::fclose(file_);
+    file_ = nullptr;
+    throw Error("cannot continue '" + path_ + "': its header differs from this run's columns");
+  }
+  std::fseek(file_, 0, SEEK_END);
+  bytes_ = resume_bytes;
 }
 
 HistoryWriter::~HistoryWriter() {
@@ -68,6 +97,7 @@ void HistoryWriter::row(const std::vector<double>& values) {
   line += '\n';
   if (std::fwrite(line.data(), 1, line.size(), file_) != line.size() || std::fflush(file_) != 0)
     throw Error("cannot write '" + path_ + "': " + std::strerror(errno));
+  bytes_ += static_cast<long long>(line.size());
 }
 
 }  // namespace ballista

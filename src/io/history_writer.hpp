@@ -18,6 +18,10 @@ class HistoryWriter {
  public:
   /// Creates (truncates) `path` and writes the header; throws Error if it cannot be opened.
   HistoryWriter(std::string path, std::vector<std::string> columns);
+  /// Continues the history of a restarted run: `path` must exist with the same header and at
+  /// least `resume_bytes` bytes; it is cut to that length (rows written after the checkpoint by
+  /// the interrupted run are dropped) and later rows are appended. Throws Error otherwise.
+  HistoryWriter(std::string path, std::vector<std::string> columns, long long resume_bytes);
   ~HistoryWriter();
   HistoryWriter(const HistoryWriter&) = delete;
   HistoryWriter& operator=(const HistoryWriter&) = delete;
@@ -25,6 +29,8 @@ class HistoryWriter {
   /// Appends one row; values.size() must equal the number of columns (throws Error otherwise).
   void row(const std::vector<double>& values);
 
+  /// Bytes of the file so far (header and complete rows): what a checkpoint records.
+  long long bytes() const { return bytes_; }
   const std::string& path() const { return path_; }
   const std::vector<std::string>& columns() const { return columns_; }
 
@@ -32,6 +38,8 @@ class HistoryWriter {
   std::string path_;
   std::vector<std::string> columns_;
   std::FILE* file_ = nullptr;
+  long long bytes_ = 0;
+  std::string header() const;
 };
 
 }  // namespace ballista

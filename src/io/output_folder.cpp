@@ -20,7 +20,9 @@ bool is_run_output(const std::string& name) {
   return std::regex_match(name, pattern);
 }
 
-int remove_matching(const std::filesystem::path& dir, bool tracks) {
+enum class Folder { Results, Tracks, Checkpoints };
+
+int remove_matching(const std::filesystem::path& dir, Folder folder) {
   namespace fs = std::filesystem;
   int removed = 0;
   std::error_code ec;
@@ -28,9 +30,13 @@ int remove_matching(const std::filesystem::path& dir, bool tracks) {
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     if (!e.is_regular_file(ec)) continue;
     const std::string name = e.path().filename().string();
-    const bool match = tracks ? (name.rfind("particle_", 0) == 0 && e.path().extension() == ".csv") ||
-                                    e.path().extension() == ".tmp"
-                              : is_run_output(name);
+    const std::string ext = e.path().extension().string();
+    bool match = false;
+    switch (folder) {
+      case Folder::Results: match = is_run_output(name); break;
+      case Folder::Tracks: match = (name.rfind("particle_", 0) == 0 && ext == ".csv") || ext == ".tmp"; break;
+      case Folder::Checkpoints: match = (name.rfind("checkpoint_", 0) == 0 && ext == ".h5") || ext == ".tmp"; break;
+    }
     if (!match) continue;
     if (!fs::remove(e.path(), ec) || ec)
       throw Error("cannot remove '" + e.path().string() + "' of an earlier run: " + ec.message());
@@ -46,7 +52,8 @@ int prepare_run_folder(const std::string& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw Error("cannot create the results folder '" + dir + "': " + ec.message());
-  return remove_matching(dir, false) + remove_matching(fs::path(dir) / "tracks", true);
+  return remove_matching(dir, Folder::Results) + remove_matching(fs::path(dir) / "tracks", Folder::Tracks) +
+         remove_matching(fs::path(dir) / "checkpoints", Folder::Checkpoints);
 }
 
 }  // namespace ballista

@@ -8,7 +8,7 @@ namespace ballista {
 
 /// Creates `dir` if needed and removes what an earlier `ballista run` wrote there: particle files
 /// (particles_*.h5, particles.xdmf), history.csv, summary.json, resolved.yaml, penetration.csv,
-/// channel.csv, the penetration figures, tracks/particle_*.csv, and every *.tmp. Other files are
+/// channel.csv, the penetration figures, tracks/particle_*.csv, checkpoints/checkpoint_*.h5, and every *.tmp. Other files are
 /// left alone. Returns the number of files removed.
 int prepare_run_folder(const std::string& dir);
 

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -18,34 +19,11 @@
 #include "core/parallel.hpp"
 #include "core/tensor.hpp"
 #include "io/atomic_file.hpp"
+#include "io/hdf5_handle.hpp"
 
 namespace ballista {
 
 namespace {
-
-/// Owns one HDF5 identifier and closes it with the matching H5?close.
-class H5Id {
- public:
-  H5Id(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
-    if (id_ < 0) throw Error("HDF5: cannot " + what);
-  }
-  ~H5Id() {
-    if (id_ >= 0) close_(id_);
-  }
-  H5Id(const H5Id&) = delete;
-  H5Id& operator=(const H5Id&) = delete;
-  operator hid_t() const { return id_; }
-  /// Closes now and reports failure (a file's data are flushed at close).
-  void close(const std::string& what) {
-    const herr_t rc = close_(id_);
-    id_ = -1;
-    if (rc < 0) throw Error("HDF5: cannot " + what);
-  }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
 
 /// Writes a dataset of the given shape (empty dims = scalar) and an optional "unit" attribute.
 void write_dataset(hid_t file, const std::string& name, hid_t mem_type, hid_t file_type,
@@ -312,11 +290,43 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
   ++count_;
 }
 
+namespace {
+const std::string kXdmfFooter =
+    "    </Grid>\n"
+    "  </Domain>\n"
+    "</Xdmf>\n";
+}  // namespace
+
+ParticleWriter::State ParticleWriter::state_at(int count, std::size_t body_end) const {
+  State s;
+  s.count = count;
+  if (count == 0) return s;
+  std::ifstream in(xdmf_path(), std::ios::binary);
+  std::string text(body_end, '\0');
+  if (!in.read(text.data(), static_cast<std::streamsize>(text.size())))
+    throw Error("'" + xdmf_path() + "' is shorter than this run wrote it");
+  s.xdmf_body = std::move(text);
+  return s;
+}
+
+void ParticleWriter::restore(const State& s) {
+  namespace fs = std::filesystem;
+  // Outputs the interrupted run wrote after the checkpoint: numbered s.count and on.
+  for (int k = s.count;; ++k) {
+    std::error_code ec;
+    if (!fs::remove(h5_path(k), ec)) break;
+  }
+  count_ = s.count;
+  xdmf_body_end_ = s.xdmf_body.size();
+  std::error_code ec;
+  if (count_ == 0)
+    fs::remove(xdmf_path(), ec);
+  else
+    write_file_atomic(xdmf_path(), s.xdmf_body + kXdmfFooter);
+}
+
 void ParticleWriter::append_xdmf(const std::string& grid) {
-  static const std::string kFooter =
-      "    </Grid>\n"
-      "  </Domain>\n"
-      "</Xdmf>\n";
+  const std::string& kFooter = kXdmfFooter;
   if (count_ == 0) {
     // The first output writes the whole index atomically (a new run never shows an old index).
     const std::string head =

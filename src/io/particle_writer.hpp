@@ -28,6 +28,21 @@ class ParticleWriter {
   /// second grid "nodes" beside the particles in the output's spatial collection.
   void write(double time, long step, const FieldStore& points, const FieldStore* nodes = nullptr);
 
+  /// Checkpoint: the output count and the index's text up to its footer.
+  struct State {
+    int count = 0;
+    std::string xdmf_body;  ///< particles.xdmf without the footer ("" before the first output)
+  };
+  State state() const { return state_at(count_, xdmf_body_end_); }
+  /// The state as it was after output `count` - 1, whose index body ended at `body_end`
+  /// (count() and xdmf_body_end() read then): earlier index text is never rewritten.
+  State state_at(int count, std::size_t body_end) const;
+  std::size_t xdmf_body_end() const { return xdmf_body_end_; }
+  /// Restart: the index rewritten from `s` (atomically) and the particle files numbered from
+  /// s.count on (written by the interrupted run after its checkpoint) removed; later outputs
+  /// continue the numbering.
+  void restore(const State& s);
+
   /// Number of outputs written so far.
   int count() const { return count_; }
   /// Path of the XDMF index.

@@ -682,6 +682,27 @@ void MpmSolver::step(double dt) {
   handle_exits();
 }
 
+void MpmSolver::save_state(StateArchive& a) const {
+  pts_.save_state(a);
+  a.put_real("mpm.time", time_);
+  a.put_int("mpm.steps", steps_);
+  a.put("mpm.work", std::vector<double>{external_work_, damping_work_, contact_work_, friction_work_,
+                                        transfer_work_, damping_});
+}
+
+void MpmSolver::load_state(const StateArchive& a) {
+  pts_.load_state(a);
+  time_ = a.real("mpm.time");
+  steps_ = static_cast<long>(a.integer("mpm.steps"));
+  const auto& w = a.reals("mpm.work", 6);
+  external_work_ = w[0];
+  damping_work_ = w[1];
+  contact_work_ = w[2];
+  friction_work_ = w[3];
+  transfer_work_ = w[4];
+  damping_ = w[5];
+}
+
 EnergyTotals MpmSolver::energies() const {
   const double k = reporting_scale();
   EnergyTotals e = pts_.energies(k, external_work_);

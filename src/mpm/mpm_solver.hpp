@@ -61,6 +61,11 @@ class MpmSolver final : public Solver {
   std::vector<std::string> history_columns() const override { return PointLoads::history_columns(scenario_); }
   std::vector<double> history_values() const override { return loads_.history_values(scenario_); }
 
+  /// Checkpoint: the particles (points layer), time, step, stage damping and the booked work
+  /// terms. The grid is rebuilt from the particles every step, so it holds no state.
+  void save_state(StateArchive& archive) const override;
+  void load_state(const StateArchive& archive) override;
+
   const GridData& grid() const { return grid_; }
   const std::vector<std::unique_ptr<Material>>& materials() const { return pts_.materials(); }
 

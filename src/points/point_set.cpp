@@ -326,3 +326,34 @@ EnergyTotals PointSet::energies(double k, double external_work) const {
 }
 
 }  // namespace ballista
+
+namespace ballista {
+
+void PointSet::save_state(StateArchive& a) const {
+  a.put_fields("points.", points_);
+  a.put_fields("pending.", pending_);
+  a.put("pending.activation_time", pending_activation_);
+  a.put("pending.stage", std::vector<std::int64_t>(pending_stage_.begin(), pending_stage_.end()));
+  a.put("points.stage_start", stage_start_);
+  a.put("points.removed", std::vector<double>{removed_mass_, removed_energy_, removed_chemical_, removed_momentum_[0],
+                                              removed_momentum_[1], removed_momentum_[2], inserted_energy_});
+}
+
+void PointSet::load_state(const StateArchive& a) {
+  a.get_fields("points.", points_);
+  a.get_fields("pending.", pending_);
+  const std::size_t np = static_cast<std::size_t>(pending_.size());
+  pending_activation_ = a.reals("pending.activation_time", np);
+  const auto& st = a.ints("pending.stage", np);
+  pending_stage_.assign(st.begin(), st.end());
+  stage_start_ = a.reals("points.stage_start", stage_start_.size());
+  const auto& r = a.reals("points.removed", 7);
+  removed_mass_ = r[0];
+  removed_energy_ = r[1];
+  removed_chemical_ = r[2];
+  removed_momentum_ = Vec3{{r[3], r[4], r[5]}};
+  inserted_energy_ = r[6];
+  groups_dirty_ = true;
+}
+
+}  // namespace ballista

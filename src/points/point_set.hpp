@@ -12,6 +12,7 @@
 #include "core/communicator.hpp"
 #include "core/field_store.hpp"
 #include "core/solver.hpp"
+#include "core/state_archive.hpp"
 #include "materials/material.hpp"
 #include "scenario/scenario.hpp"
 
@@ -80,6 +81,13 @@ class PointSet {
   /// Totals over every rank: per-point sums times `scale` (2 pi in axisymmetric runs), with the
   /// solver's external work (per-point sum) and the removal and insertion bookkeeping.
   EnergyTotals energies(double scale, double external_work) const;
+
+  // ---- checkpoint and restart --------------------------------------------------------------
+  /// Active and pending points, activation clocks, stage starts and the removal and insertion
+  /// bookkeeping, under "points." and "pending." (core/state_archive.hpp).
+  void save_state(StateArchive& archive) const;
+  /// Restores them into a PointSet built from the same deck; material groups are rebuilt.
+  void load_state(const StateArchive& archive);
 
  private:
   Scenario scenario_;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -12,6 +13,7 @@
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "io/atomic_file.hpp"
+#include "io/checkpoint_file.hpp"
 #include "io/history_writer.hpp"
 #include "io/output_folder.hpp"
 #include "io/particle_writer.hpp"
@@ -21,6 +23,7 @@
 #include "run/fragment_summary.hpp"
 #include "run/particle_tracker.hpp"
 #include "run/progress.hpp"
+#include "run/run_state.hpp"
 #include "run/stage_criterion.hpp"
 
 namespace ballista {
@@ -91,15 +94,24 @@ std::vector<std::string> output_fields(const Scenario& sc, const FieldStore& poi
 
 RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   namespace fs = std::filesystem;
-  if (const int removed = prepare_run_folder(opt.out_dir))
-    spdlog::info("removed {} output files of an earlier run from {}", removed, opt.out_dir);
-  write_file_atomic((fs::path(opt.out_dir) / "resolved.yaml").string(), sc.resolved_yaml);
+  // A restart continues the results folder it was written in: nothing there is cleared.
+  std::optional<StateArchive> restart;
+  if (!opt.restart_from.empty()) {
+    restart = read_checkpoint_file(opt.restart_from);
+    if (!sc.output.track.empty())
+      throw Error("output.track.ids cannot be continued by a restart yet (the tracks would miss the steps after "
+                  "the checkpoint); run the deck again from the start to track particles");
+  } else {
+    if (const int removed = prepare_run_folder(opt.out_dir))
+      spdlog::info("removed {} output files of an earlier run from {}", removed, opt.out_dir);
+    write_file_atomic((fs::path(opt.out_dir) / "resolved.yaml").string(), sc.resolved_yaml);
+  }
   request_threads(opt.threads > 0 ? opt.threads : sc.simulation.threads,  // clamped to the cores present
                   opt.threads > 0 ? "--threads" : "simulation.threads");
 
   std::unique_ptr<Solver> solver = make_solver(sc);
   // Constants the solver derived from the deck (peridynamic bond constants), echoed as comments.
-  if (const std::string derived = solver->derived_constants(); !derived.empty())
+  if (const std::string derived = solver->derived_constants(); !derived.empty() && !restart)
     write_file_atomic((fs::path(opt.out_dir) / "resolved.yaml").string(), sc.resolved_yaml + derived);
   FieldStore& pts = solver->points();
   const std::vector<std::unique_ptr<Probe>> run_probes = make_probes(sc);
@@ -125,26 +137,45 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     penetration = std::make_unique<PenetrationProbe>(sc);
     for (const auto& c : penetration->columns()) columns.push_back(c);
   }
-  HistoryWriter history((fs::path(opt.out_dir) / "history.csv").string(), columns);
+  const std::string history_path = (fs::path(opt.out_dir) / "history.csv").string();
+  std::unique_ptr<HistoryWriter> history =
+      restart ? std::make_unique<HistoryWriter>(history_path, columns, restart->integer("run.history_bytes"))
+              : std::make_unique<HistoryWriter>(history_path, columns);
   // Particle ids run 0 .. seeded - 1 over every body, active or waiting for activation.
   const std::int64_t seeded = static_cast<std::int64_t>(pts.size() + solver->pending_points());
   ParticleTracker tracker(sc, opt.out_dir, seeded);
   const Communicator comm;
 
-  check_step_estimate(sc, *solver);
+  if (!restart) check_step_estimate(sc, *solver);
 
-  const EnergyTotals e0 = solver->energies();
-  const double total0 = e0.total();
+  RunState rs;
+  const double interval = sc.output.interval > 0 ? sc.output.interval : sc.simulation.end_time;
+  const bool checkpointing = sc.output.checkpoint_interval > 0 || opt.checkpoint_minutes > 0;
+  if (restart) {
+    solver->load_state(*restart);
+    rs.load(*restart);
+    ParticleWriter::State ws;
+    ws.count = static_cast<int>(restart->integer("run.outputs"));
+    ws.xdmf_body = restart->text("run.xdmf");
+    writer.restore(ws);
+    if (penetration) penetration->load_state(*restart);
+    spdlog::info("restarted from {} at step {}, t = {:.6g} s", opt.restart_from, solver->steps(), solver->time());
+  } else {
+    const EnergyTotals e0 = solver->energies();
+    rs.total0 = e0.total();
+    // The end time and output times are known once the main stage starts (stage_start + end_time).
+    rs.end = nstages > 0 ? RunState::kInf : sc.simulation.end_time;
+    rs.next_output = nstages > 0 ? rs.end : interval;
+    rs.next_checkpoint = sc.output.checkpoint_interval > 0 ? sc.output.checkpoint_interval : RunState::kInf;
+  }
+  const double total0 = rs.total0;
   // The scale of the energy residual: kinetic + |internal| + |work of the loads and of damping|.
   // Explosives add the chemical energy released so far (the energy their products work with).
   auto scale_of = [](const EnergyTotals& e) {
     return std::abs(e.kinetic) + std::abs(e.internal) + std::abs(e.external) + std::abs(e.damping) +
            std::abs(e.chemical);
   };
-  double energy_scale = scale_of(e0);
-  double worst_drift = 0.0, min_dt = std::numeric_limits<double>::infinity();
-  StepLimiter limiter;  // the point that set the smallest stable step (to within 10 %)
-  double limiter_dt = std::numeric_limits<double>::infinity(), limiter_time = 0.0;
+  if (!restart) rs.energy_scale = scale_of(solver->energies());
 
   auto probe_values = [&](const EnergyTotals& e) {
     const ProbeContext ctx{solver->points(), e, dim, comm};
@@ -155,11 +186,9 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   auto drift_of = [&](const EnergyTotals& e) {
     // Energy drift relative to the largest energy scale seen so far (kinetic + |internal| +
     // |external|), so problems that start at rest and are loaded later are measured sensibly.
-    energy_scale = std::max(energy_scale, scale_of(e));
-    return energy_scale > 0 ? std::abs(e.total() - total0) / energy_scale : 0.0;
+    rs.energy_scale = std::max(rs.energy_scale, scale_of(e));
+    return rs.energy_scale > 0 ? std::abs(e.total() - total0) / rs.energy_scale : 0.0;
   };
-  int stage = 0;              // current stage; nstages = main
-  double stage_start = 0.0;   // s, start of the current stage
   auto history_row = [&](double dt) {
     const EnergyTotals e = solver->energies();
     const double drift = drift_of(e);
@@ -169,114 +198,185 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
                                e.removed_energy, e.inserted_energy, e.damping, e.contact, e.friction,
                                e.transfer, e.eroded, e.chemical};
     for (double v : probe_values(e)) row.push_back(v);
-    if (nstages > 0) row.push_back(stage);
+    if (nstages > 0) row.push_back(rs.stage);
     for (double v : solver->history_values()) row.push_back(v);
     if (penetration)
-      for (double v : penetration->sample(solver->points(), stage == nstages, solver->time() - stage_start,
+      for (double v : penetration->sample(solver->points(), rs.stage == nstages, solver->time() - rs.stage_start,
                                           solver->reporting_scale()))
         row.push_back(v);
-    history.row(row);
+    history->row(row);
     return drift;
   };
   // A history row, the worst drift so far and the drift guard (simulation.energy_drift_limit).
   auto record_history = [&](double step_dt) {
     const double drift = history_row(step_dt);
-    worst_drift = std::max(worst_drift, drift);
+    rs.worst_drift = std::max(rs.worst_drift, drift);
     if (sc.simulation.energy_drift_limit > 0 && drift > sc.simulation.energy_drift_limit)
       throw PhysicsError(fmt::format("energy drift {:.6g} exceeds the limit {:.6g} at step {} (t = {:.6g} s): the "
                                      "run is blowing up",
                                      drift, sc.simulation.energy_drift_limit, solver->steps(), solver->time()));
   };
-  JsonValue stage_log = JsonValue::array();
+
+  // ---- checkpoints (docs/restart.md) ---------------------------------------------------------
+  // What the outputs looked like at a state: the loop state and how far history.csv, the
+  // particle files and the penetration series had got.
+  struct Marks {
+    RunState rs;
+    long long history_bytes = 0;
+    int outputs = 0;
+    std::size_t xdmf_body_end = 0;
+    std::size_t penetration_samples = 0;
+  };
+  auto marks_now = [&] {
+    return Marks{rs, history->bytes(), writer.count(), writer.xdmf_body_end(),
+                 penetration ? penetration->samples() : 0};
+  };
+  // The solver calls since the newest checkpoint, so that a failing step can be replayed up to
+  // the step before it (the run is deterministic): a step (stage < 0) or a stage start.
+  struct SolverCall {
+    double dt;
+    int stage;
+    double damping;
+  };
+  std::vector<SolverCall> calls_since_checkpoint;
+  std::string newest_checkpoint;
+  auto wall_start = std::chrono::steady_clock::now();
+  auto wall_of_last_checkpoint = wall_start;
+  auto write_checkpoint = [&](const Marks& m, const char* why) {
+    StateArchive a;
+    a.put_text("run.deck", sc.resolved_yaml);
+    a.put_text("run.deck_file", restart ? restart->text("run.deck_file") : sc.file);
+    a.put_text("run.solver", solver->name());
+    solver->save_state(a);
+    RunState saved = m.rs;
+    saved.wall_before = rs.wall_before +
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    saved.save(a);
+    a.put_int("run.history_bytes", m.history_bytes);
+    const ParticleWriter::State ws = writer.state_at(m.outputs, m.xdmf_body_end);
+    a.put_int("run.outputs", ws.count);
+    a.put_text("run.xdmf", ws.xdmf_body);
+    if (penetration) penetration->save_state(a, m.penetration_samples);
+    const std::string path = checkpoint_path(opt.out_dir, solver->steps());
+    write_checkpoint_file(path, a);
+    prune_checkpoints(opt.out_dir, sc.output.checkpoint_keep);
+    newest_checkpoint = path;
+    calls_since_checkpoint.clear();
+    wall_of_last_checkpoint = std::chrono::steady_clock::now();
+    spdlog::info("checkpoint at step {} (t = {:.6g} s, {}): {}", solver->steps(), solver->time(), why, path);
+  };
+  // After a step: a checkpoint when the simulated-time or the wall-time interval has passed.
+  auto maybe_checkpoint = [&] {
+    if (!checkpointing || solver->time() >= rs.end * (1.0 - 1e-12)) return;
+    const char* why = nullptr;
+    if (solver->time() >= rs.next_checkpoint * (1.0 - 1e-12)) {
+      while (rs.next_checkpoint <= solver->time() * (1.0 + 1e-12)) rs.next_checkpoint += sc.output.checkpoint_interval;
+      why = "output.checkpoint_interval";
+    }
+    const double minutes =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_of_last_checkpoint).count() / 60.0;
+    if (opt.checkpoint_minutes > 0 && minutes >= opt.checkpoint_minutes) why = "--checkpoint-every-minutes";
+    if (why) write_checkpoint(marks_now(), why);
+  };
+  auto begin_stage = [&](int stage, double damping) {
+    solver->begin_stage(stage, damping);
+    calls_since_checkpoint.push_back({0.0, stage, damping});
+  };
 
   RunResult result;
-  // The end time and output times are known once the main stage starts (stage_start + end_time).
-  double end = nstages > 0 ? std::numeric_limits<double>::infinity() : sc.simulation.end_time;
-  const double interval = sc.output.interval > 0 ? sc.output.interval : sc.simulation.end_time;
-  double next_output = nstages > 0 ? end : interval;
-  writer.write(solver->time(), solver->steps(), pts, solver->output_nodes());
-  if (nstages > 0) {
-    solver->begin_stage(0, sc.stages[0].damping);
-    spdlog::info("stage '{}' begins (damping {} 1/s)", sc.stages[0].name, sc.stages[0].damping);
-  }
-  history_row(0.0);
-  tracker.record(pts, solver->time(), solver->steps());
   std::unique_ptr<Progress> progress;
-  if (nstages == 0) progress = std::make_unique<Progress>(end, opt.progress);
-  const auto wall0 = std::chrono::steady_clock::now();
-  double particle_steps = 0.0;
-  double dt = 0.0;
+  if (!restart) {
+    writer.write(solver->time(), solver->steps(), pts, solver->output_nodes());
+    if (nstages > 0) {
+      begin_stage(0, sc.stages[0].damping);
+      spdlog::info("stage '{}' begins (damping {} 1/s)", sc.stages[0].name, sc.stages[0].damping);
+    }
+    history_row(0.0);
+    tracker.record(pts, solver->time(), solver->steps());
+    // The first checkpoint is the initial state: a failing run replays from the newest one.
+    if (checkpointing) write_checkpoint(marks_now(), "initial state");
+  }
+  if (rs.stage == nstages) progress = std::make_unique<Progress>(rs.end, opt.progress);
   // Ends the current preparation stage: log it, snapshot the particles, start the next stage.
   auto next_stage = [&](const std::string& how, const EquilibriumCheck* check) {
-    const StageSpec& st = sc.stages[stage];
-    JsonValue rec = JsonValue::object();
-    rec["name"] = st.name;
-    rec["start_time"] = stage_start;
-    rec["end_time"] = solver->time();
-    rec["ended_by"] = how;
-    rec["damping"] = st.damping;
+    const StageSpec& st = sc.stages[rs.stage];
+    StageRecord rec;
+    rec.name = st.name;
+    rec.start_time = rs.stage_start;
+    rec.end_time = solver->time();
+    rec.ended_by = how;
+    rec.damping = st.damping;
     if (check) {
-      rec["worst_deviation"] = check->worst;
-      rec["worst_particle"] = check->worst_id;
-      rec["fraction_within"] = check->within;
+      rec.checked = true;
+      rec.worst_deviation = check->worst;
+      rec.worst_particle = check->worst_id;
+      rec.fraction_within = check->within;
     }
-    stage_log.push_back(rec);
+    rs.stages.push_back(rec);
     spdlog::info("stage '{}' ended at t = {:.4g} s ({}){}", st.name, solver->time(), how,
                  check ? ": " + describe_equilibrium(st, *check) : std::string());
-    record_history(dt);
+    record_history(rs.dt);
     writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
-    ++stage;
-    stage_start = solver->time();
-    const double damping = stage < nstages ? sc.stages[stage].damping : sc.simulation.damping;
-    solver->begin_stage(stage, damping);
-    if (stage < nstages) {
-      spdlog::info("stage '{}' begins (damping {} 1/s)", sc.stages[stage].name, damping);
+    ++rs.stage;
+    rs.stage_start = solver->time();
+    const double damping = rs.stage < nstages ? sc.stages[rs.stage].damping : sc.simulation.damping;
+    begin_stage(rs.stage, damping);
+    if (rs.stage < nstages) {
+      spdlog::info("stage '{}' begins (damping {} 1/s)", sc.stages[rs.stage].name, damping);
     } else {
-      end = stage_start + sc.simulation.end_time;
-      next_output = std::min(end, stage_start + interval);
-      progress = std::make_unique<Progress>(end, opt.progress);
-      spdlog::info("main stage begins at t = {:.4g} s (damping {} 1/s), runs to {:.4g} s", stage_start, damping, end);
+      rs.end = rs.stage_start + sc.simulation.end_time;
+      rs.next_output = std::min(rs.end, rs.stage_start + interval);
+      progress = std::make_unique<Progress>(rs.end, opt.progress);
+      spdlog::info("main stage begins at t = {:.4g} s (damping {} 1/s), runs to {:.4g} s", rs.stage_start, damping,
+                   rs.end);
     }
   };
+  Marks good;  // the state before the step being taken (a failing step's last good state)
+  bool particle_failure = false;
   try {
     // Stop within a relative round-off of the end time instead of taking a sliver step.
-    while (solver->time() < end * (1.0 - 1e-12)) {
+    while (solver->time() < rs.end * (1.0 - 1e-12)) {
       if (sc.simulation.max_steps > 0 && solver->steps() >= sc.simulation.max_steps) {
         spdlog::warn("simulation.max_steps = {} reached at t = {:.6g} s of {:.6g} s: the run ends early",
-                     sc.simulation.max_steps, solver->time(), end);
+                     sc.simulation.max_steps, solver->time(), rs.end);
         break;
       }
-      dt = solver->stable_dt();
+      if (checkpointing) good = marks_now();
+      double dt = solver->stable_dt();
       if (!(dt > 0.0) || !std::isfinite(dt))
         throw PhysicsError(fmt::format("time step collapsed (dt = {:.6g} s) at step {}", dt, solver->steps()));
       if (solver->steps() >= sc.simulation.step_limit)
         throw PhysicsError(fmt::format(
             "the run reached simulation.step_limit = {} steps at t = {:.6g} s of {:.6g} s (dt = {:.6g} s, set by {}): "
             "the time step has collapsed; raise simulation.step_limit to insist",
-            sc.simulation.step_limit, solver->time(), end, dt, describe_limiter(sc, solver->step_limiter())));
+            sc.simulation.step_limit, solver->time(), rs.end, dt, describe_limiter(sc, solver->step_limiter())));
       // The smallest stable step is what a collapsing time step shows (thesis ch. 6), not the
       // slivers taken to land on output and end times.
-      if (dt < 0.9 * limiter_dt) {
+      if (dt < 0.9 * rs.limiter_dt) {
         // A new low of the stable step (by 10 %): remember which point sets it.
-        limiter = solver->step_limiter();
-        limiter_dt = dt;
-        limiter_time = solver->time();
+        rs.limiter = solver->step_limiter();
+        rs.limiter_dt = dt;
+        rs.limiter_time = solver->time();
       }
-      min_dt = std::min(min_dt, dt);
+      rs.min_dt = std::min(rs.min_dt, dt);
       // Land exactly on output times, the end time and the end of a fixed-length stage.
-      dt = std::min({dt, end - solver->time(), next_output - solver->time()});
-      if (stage < nstages) {
-        const StageSpec& st = sc.stages[stage];
-        const double stage_end = stage_start + (st.until.empty() ? st.duration : st.max_duration);
+      dt = std::min({dt, rs.end - solver->time(), rs.next_output - solver->time()});
+      if (rs.stage < nstages) {
+        const StageSpec& st = sc.stages[rs.stage];
+        const double stage_end = rs.stage_start + (st.until.empty() ? st.duration : st.max_duration);
         dt = std::min(dt, stage_end - solver->time());
       }
-      particle_steps += static_cast<double>(solver->points().size());
+      rs.particle_steps += static_cast<double>(solver->points().size());
+      particle_failure = true;  // a PhysicsError from inside the step leaves a half-updated state
       solver->step(dt);
+      particle_failure = false;
+      rs.dt = dt;
+      if (checkpointing) calls_since_checkpoint.push_back({dt, -1, 0.0});
       tracker.record(solver->points(), solver->time(), solver->steps());
-      if (stage < nstages) {
-        const int stage_before = stage;
-        const StageSpec& st = sc.stages[stage];
-        const double elapsed = solver->time() - stage_start;
+      if (rs.stage < nstages) {
+        const int stage_before = rs.stage;
+        const StageSpec& st = sc.stages[rs.stage];
+        const double elapsed = solver->time() - rs.stage_start;
         if (st.until.empty()) {
           if (elapsed >= st.duration * (1.0 - 1e-12)) next_stage("duration", nullptr);
         } else {
@@ -294,19 +394,21 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
             }
           }
         }
-        if (stage == stage_before && solver->steps() % std::max(1, sc.output.history_every) == 0)
+        if (rs.stage == stage_before && solver->steps() % std::max(1, sc.output.history_every) == 0)
           record_history(dt);
+        maybe_checkpoint();
         continue;
       }
-      const bool at_output = solver->time() >= next_output * (1.0 - 1e-12);
-      const bool at_end = solver->time() >= end * (1.0 - 1e-12);
+      const bool at_output = solver->time() >= rs.next_output * (1.0 - 1e-12);
+      const bool at_end = solver->time() >= rs.end * (1.0 - 1e-12);
       if (solver->steps() % std::max(1, sc.output.history_every) == 0 || at_output || at_end) record_history(dt);
       if (at_output && !at_end) {
         writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
-        next_output += interval;
-        if (next_output > end) next_output = end;
+        rs.next_output += interval;
+        if (rs.next_output > rs.end) rs.next_output = rs.end;
       }
       progress->update(solver->time(), solver->steps(), dt);
+      maybe_checkpoint();
     }
     writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
   } catch (const PhysicsError& err) {
@@ -322,6 +424,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       spdlog::error("could not record the failing step of the tracked particles: {}", w.what());
     }
     spdlog::error("run stopped: {}", err.what());
+    if (!particle_failure) good = marks_now();  // a whole step's state: it is the last good one
     // The failing state goes to a new output file; earlier outputs stay untouched.
     try {
       writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
@@ -330,7 +433,17 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     }
   }
   if (progress) progress->finish();
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double wall = rs.wall_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  const double particle_steps = rs.particle_steps;
+  const double min_dt = rs.min_dt;
+  const double worst_drift = rs.worst_drift;
+  const double energy_scale = rs.energy_scale;
+  const StepLimiter& limiter = rs.limiter;
+  const double limiter_dt = rs.limiter_dt, limiter_time = rs.limiter_time;
+  const int stage = rs.stage;
+  const double stage_start = rs.stage_start;
+  JsonValue stage_log = JsonValue::array();
+  for (const auto& r : rs.stages) stage_log.push_back(r.json());
 
   const EnergyTotals e = solver->energies();
   result.steps = solver->steps();
@@ -346,7 +459,8 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     if (result.failed_particle >= 0) summary["failed_particle"] = result.failed_particle;
   }
   if (!sc.output.track.empty()) summary["tracked_particles"] = sc.output.track;
-  summary["deck"] = sc.file;
+  summary["deck"] = restart ? restart->text("run.deck_file") : sc.file;
+  if (restart) summary["restarted_from"] = opt.restart_from;
   JsonValue& probes = summary["probes"];
   probes = JsonValue::object();
   for (size_t k = 0; k < sc.probes.size(); ++k) {
@@ -444,6 +558,29 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     summary["error"] = result.error;
   }
   summary.write((fs::path(opt.out_dir) / "summary.json").string());
+  if (!result.ok && checkpointing) {
+    // The last good state as a checkpoint, to restart from with other settings. A failure inside a
+    // step leaves a half-updated state, so the solver goes back to the newest checkpoint and
+    // replays the calls since then (the run is deterministic) up to the step before the failure.
+    try {
+      if (particle_failure) {
+        solver->load_state(read_checkpoint_file(newest_checkpoint));
+        const std::vector<SolverCall> calls = calls_since_checkpoint;
+        for (const SolverCall& c : calls) {
+          if (c.stage >= 0)
+            solver->begin_stage(c.stage, c.damping);
+          else
+            solver->step(c.dt);
+        }
+      }
+      write_checkpoint(good, "the last good step before the failure");
+      result.checkpoint = newest_checkpoint;
+    } catch (const std::exception& w) {
+      spdlog::error("could not write a checkpoint of the last good step: {} (the newest checkpoint is {})", w.what(),
+                    newest_checkpoint);
+      result.checkpoint = newest_checkpoint;
+    }
+  }
   return result;
 }
 

@@ -15,6 +15,8 @@ struct RunOptions {
   int threads = 0;              ///< OpenMP threads; 0 = the deck's or the default
   bool progress = true;         ///< progress bar on a terminal, periodic log lines otherwise
   bool plots = false;           ///< draw the figures of a fragments table (the CLI: unless --no-plots)
+  std::string restart_from;     ///< checkpoint file to continue (its results folder is out_dir); "" = a new run
+  double checkpoint_minutes = 0.0;  ///< > 0: also a checkpoint after this many wall minutes (docs/restart.md)
 };
 
 /// What a finished (or stopped) run reports.
@@ -28,6 +30,7 @@ struct RunResult {
   double wall_seconds = 0.0;
   double particle_steps_per_second = 0.0;
   std::vector<std::pair<std::string, double>> probes;  ///< final probe values
+  std::string checkpoint;       ///< after a failure with checkpoints on: the checkpoint of the last good step
 };
 
 /// Builds the materials of the scenario from the registry.

@@ -176,6 +176,8 @@ struct OutputSpec {
   bool domains = false;              ///< also write each particle's domain as a deformed hexahedron
   int history_every = 10;            ///< steps between history.csv rows
   long max_outputs = 1000;           ///< more planned particle files than this is a deck error
+  double checkpoint_interval = 0.0;  ///< s of simulated time between checkpoints; 0 = none (docs/restart.md)
+  int checkpoint_keep = 2;           ///< newest checkpoints kept in DIR/checkpoints
   std::vector<std::int64_t> track;   ///< output.track.ids: particle ids whose full history is recorded
   DeckMark track_mark;               ///< where output.track.ids is (ids are checked against the seeding)
 };

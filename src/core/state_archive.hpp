@@ -1,0 +1,53 @@
+#pragma once
+// The complete state of a run as named arrays, for checkpoint and restart (issue 16,
+// docs/restart.md). Every part of the state (run loop, points, solver, probes, writers) puts its
+// values under its own key prefix ("points.", "mpm.", "run.", ...); io/checkpoint_file writes the
+// archive to one HDF5 file and reads it back. Values are exact doubles and integers, so a
+// restarted run continues bitwise as the uninterrupted one. A missing key or an array of the
+// wrong length is an Error that names the key (a checkpoint of another deck or version).
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/field_store.hpp"
+
+namespace ballista {
+
+class StateArchive {
+ public:
+  void put(const std::string& key, std::vector<double> values) { reals_[key] = std::move(values); }
+  void put(const std::string& key, std::vector<std::int64_t> values) { ints_[key] = std::move(values); }
+  void put_real(const std::string& key, double v) { reals_[key] = {v}; }
+  void put_int(const std::string& key, std::int64_t v) { ints_[key] = {v}; }
+  void put_text(const std::string& key, std::string text) { texts_[key] = std::move(text); }
+
+  bool has(const std::string& key) const {
+    return reals_.count(key) || ints_.count(key) || texts_.count(key);
+  }
+  const std::vector<double>& reals(const std::string& key) const;
+  const std::vector<std::int64_t>& ints(const std::string& key) const;
+  /// A real array that must hold exactly n values.
+  const std::vector<double>& reals(const std::string& key, std::size_t n) const;
+  const std::vector<std::int64_t>& ints(const std::string& key, std::size_t n) const;
+  double real(const std::string& key) const { return reals(key, 1)[0]; }
+  std::int64_t integer(const std::string& key) const { return ints(key, 1)[0]; }
+  const std::string& text(const std::string& key) const;
+
+  /// Every field of `store` under prefix + field name, and its size under prefix + "size".
+  void put_fields(const std::string& prefix, const FieldStore& store);
+  /// Resizes `store` (its fields already declared, as by the same deck) and fills every field
+  /// from the archive; a field the archive lacks or whose shape differs is an Error.
+  void get_fields(const std::string& prefix, FieldStore& store) const;
+
+  const std::map<std::string, std::vector<double>>& all_reals() const { return reals_; }
+  const std::map<std::string, std::vector<std::int64_t>>& all_ints() const { return ints_; }
+  const std::map<std::string, std::string>& all_texts() const { return texts_; }
+
+ private:
+  std::map<std::string, std::vector<double>> reals_;
+  std::map<std::string, std::vector<std::int64_t>> ints_;
+  std::map<std::string, std::string> texts_;
+};
+
+}  // namespace ballista

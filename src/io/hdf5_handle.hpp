@@ -1,0 +1,36 @@
+#pragma once
+// RAII ownership of an HDF5 identifier (file, dataset, dataspace, type, attribute, group), shared
+// by the particle writer and the checkpoint file.
+#include <hdf5.h>
+
+#include <string>
+
+#include "core/error.hpp"
+
+namespace ballista {
+
+/// Owns one HDF5 identifier and closes it with the matching H5?close.
+class H5Id {
+ public:
+  H5Id(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
+    if (id_ < 0) throw Error("HDF5: cannot " + what);
+  }
+  ~H5Id() {
+    if (id_ >= 0) close_(id_);
+  }
+  H5Id(const H5Id&) = delete;
+  H5Id& operator=(const H5Id&) = delete;
+  operator hid_t() const { return id_; }
+  /// Closes now and reports failure (a file's data are flushed at close).
+  void close(const std::string& what) {
+    const herr_t rc = close_(id_);
+    id_ = -1;
+    if (rc < 0) throw Error("HDF5: cannot " + what);
+  }
+
+ private:
+  hid_t id_;
+  herr_t (*close_)(hid_t);
+};
+
+}  // namespace ballista
