@@ -24,7 +24,7 @@ void write_array(hid_t group, const std::string& name, hid_t mem_type, hid_t fil
                  const void* data) {
   const hsize_t dims[1] = {static_cast<hsize_t>(n)};
   H5Id space(H5Screate_simple(1, dims, nullptr), H5Sclose, "create dataspace for '" + name + "'");
-  H5Id dset(H5Dcreate2(group, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+  H5Id dset(H5Dcreate2(group, name.c_str(), file_type, space, H5P_DEFAULT, untimed_dataset(), H5P_DEFAULT), H5Dclose,
             "create checkpoint dataset '" + name + "'");
   if (n > 0 && H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
     throw Error("HDF5: cannot write checkpoint dataset '" + name + "'");
@@ -106,6 +106,7 @@ void write_checkpoint_file(const std::string& path, const StateArchive& archive)
 }
 
 StateArchive read_checkpoint_file(const std::string& path) {
+  const H5QuietErrors quiet;
   try {
     H5Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "create file access list");
 #if H5_VERSION_GE(1, 10, 7)
@@ -142,6 +143,7 @@ StateArchive read_checkpoint_file(const std::string& path) {
 }
 
 std::string read_checkpoint_text(const std::string& path, const std::string& key) {
+  const H5QuietErrors quiet;
   try {
     H5Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "create file access list");
 #if H5_VERSION_GE(1, 10, 7)

@@ -33,4 +33,32 @@ class H5Id {
   herr_t (*close_)(hid_t);
 };
 
+/// Dataset creation properties without modification times (HDF5 stores them by default), so
+/// that equal states give byte-identical files: a restarted run's outputs compare with `cmp`.
+inline hid_t untimed_dataset() {
+  static const hid_t dcpl = [] {
+    const hid_t p = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_obj_track_times(p, false);
+    return p;
+  }();
+  return dcpl;
+}
+
+/// Silences HDF5's own error printing while alive (the caller reports the failure as an Error
+/// with the file's path instead of the library's stack dump), then restores it.
+class H5QuietErrors {
+ public:
+  H5QuietErrors() {
+    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  ~H5QuietErrors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+  H5QuietErrors(const H5QuietErrors&) = delete;
+  H5QuietErrors& operator=(const H5QuietErrors&) = delete;
+
+ private:
+  H5E_auto2_t func_ = nullptr;
+  void* data_ = nullptr;
+};
+
 }  // namespace ballista

@@ -31,7 +31,7 @@ void write_dataset(hid_t file, const std::string& name, hid_t mem_type, hid_t fi
   H5Id space(dims.empty() ? H5Screate(H5S_SCALAR)
                           : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
              H5Sclose, "create dataspace for '" + name + "'");
-  H5Id dset(H5Dcreate2(file, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+  H5Id dset(H5Dcreate2(file, name.c_str(), file_type, space, H5P_DEFAULT, untimed_dataset(), H5P_DEFAULT),
             H5Dclose, "create dataset '" + name + "'");
   hsize_t total = 1;
   for (hsize_t d : dims) total *= d;

@@ -592,7 +592,6 @@ std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
           {"max_damage", dmax},
           // Cost figures (docs/performance.md): the bond families with their solver arrays, the
           // contact list rebuilds, and the storage per bond end.
-          {"bond_build_seconds", bond_build_seconds_},
           {"contact_list_builds", static_cast<double>(contact_.builds)},
           {"bytes_per_bond_end", kSolverBytesPerBond + (sp_.empty() ? 0.0 : sizeof(double))},
           {"gas_bonds", static_cast<double>(gas_bonds_.bonds()) / 2.0},

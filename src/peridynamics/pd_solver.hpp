@@ -66,6 +66,17 @@ class PdSolver final : public Solver {
   std::vector<std::string> history_columns() const override;
   std::vector<double> history_values() const override;
 
+  /// Checkpoint (pd_checkpoint.cpp): the points, the broken flags and plastic stretches of the
+  /// bonds, the contact list as last built, the critical stretches, the gas state, the energy
+  /// bookkeeping and the fragment snapshots. The bond families and constants are rebuilt from
+  /// the deck by the constructor (deterministic), so they are not stored.
+  void save_state(StateArchive& archive) const override;
+  /// Wall time of the bond families and their solver arrays (summary.json timing.bond_build_seconds).
+  std::vector<std::pair<std::string, double>> timing_values() const override {
+    return {{"bond_build", bond_build_seconds_}};
+  }
+  void load_state(const StateArchive& archive) override;
+
   const pd::BondFamily& bonds() const { return bonds_; }
   const pd::ContactList& contacts() const { return contact_; }
   double horizon() const { return delta_; }

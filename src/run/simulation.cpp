@@ -573,7 +573,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
             solver->step(c.dt);
         }
       }
-      write_checkpoint(good, "the last good step before the failure");
+      write_checkpoint(good, particle_failure ? "the last good step before the failure" : "the state the run stopped in");
       result.checkpoint = newest_checkpoint;
     } catch (const std::exception& w) {
       spdlog::error("could not write a checkpoint of the last good step: {} (the newest checkpoint is {})", w.what(),

@@ -1,0 +1,171 @@
+// Checkpoint and restart at the run level (issue 16, docs/restart.md): a run restarted from a
+// checkpoint continues exactly as the uninterrupted one (history.csv byte for byte, the probes,
+// the particle files, the stage log); a failing run leaves a checkpoint of its last good step,
+// from which the failure is reproduced at the same step; what cannot be continued is refused.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "core/error.hpp"
+#include "io/checkpoint_file.hpp"
+#include "io/deck_reader.hpp"
+#include "run/simulation.hpp"
+#include "support/test_files.hpp"
+
+namespace fs = std::filesystem;
+using namespace ballista;
+using ballista::test::slurp;
+using ballista::test::TempDir;
+
+namespace {
+
+RunOptions options(const fs::path& dir, const std::string& restart = "") {
+  RunOptions o;
+  o.out_dir = dir.string();
+  o.progress = false;
+  o.threads = 1;
+  o.restart_from = restart;
+  return o;
+}
+
+// A J2 block thrown against a wall (plastic flow, contact with the wall) with a damped preparation
+// stage first, particle outputs and checkpoints every 2e-5 s.
+const std::string kBlock =
+    "simulation: {dimension: plane_strain, end_time: 1.0e-4}\n"
+    "grid: {lower: [0, 0], upper: [0.03125, 0.03125], cell_size: 0.00390625, boundary: {x_min: wall}}\n"
+    "materials:\n"
+    "  metal: {model: j2_plasticity, density: 2700, youngs_modulus: 7.0e10, poisson_ratio: 0.3, "
+    "yield_stress: 1.0e8, hardening_modulus: 1.0e8}\n"
+    "bodies:\n"
+    "  - {name: block, material: metal, velocity: [-150, 0], shape: {type: box, lower: [0.00390625, 0.01171875], "
+    "upper: [0.015625, 0.0234375]}}\n"
+    "stages:\n"
+    "  - {name: settle, duration: 1.0e-5, damping: 100}\n"
+    "probes:\n"
+    "  - {name: eqps_max, type: field_max, field: eqps}\n"
+    "output: {interval: 2.0e-5, history_every: 3, checkpoint_interval: 2.0e-5}\n";
+
+// Two putty slabs colliding at +-50 m/s: a particle inverts (tests/verification/test_replay.cpp).
+const std::string kPutty =
+    "simulation: {dimension: plane_strain, end_time: 1.0e-3, cfl: 1.0}\n"
+    "grid: {lower: [0, 0], upper: [0.0625, 0.03125], cell_size: 0.00390625}\n"
+    "materials:\n"
+    "  putty: {model: linear_elastic, density: 1000, youngs_modulus: 100, poisson_ratio: 0.25}\n"
+    "bodies:\n"
+    "  - {name: left, material: putty, velocity: [50, 0], shape: {type: box, lower: [0.00390625, 0.01171875], upper: "
+    "[0.009765625, 0.01953125]}}\n"
+    "  - {name: slab, material: putty, velocity: [-50, 0], shape: {type: box, lower: [0.041015625, 0.01171875], "
+    "upper: [0.046875, 0.01953125]}}\n"
+    "output: {interval: 5.0e-5, checkpoint_interval: 1.0e-4}\n";
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Restart, ContinuesBitwiseFromEveryCheckpoint) {
+  TempDir ref("restart_ref");
+  const Scenario sc = parse_deck(kBlock, "block.yaml", {"output.checkpoint_keep=10"});
+  const RunResult full = run_simulation(sc, options(ref.path));
+  ASSERT_TRUE(full.ok) << full.error;
+  const std::vector<std::string> cks = list_checkpoints(ref.path.string());
+  // The initial state, then every 2e-5 s of simulated time but the end: one in the stage.
+  ASSERT_GE(cks.size(), 5u);
+  const std::string history = slurp(ref.path / "history.csv");
+  const std::vector<fs::path> files = ballista::test::h5_files(ref.path);
+  for (std::size_t k = 0; k < cks.size(); ++k) {
+    TempDir copy("restart_copy");
+    fs::copy(ref.path, copy.path, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+    const std::string from = (copy.path / "checkpoints" / fs::path(cks[k]).filename()).string();
+    const RunResult r = run_simulation(sc, options(copy.path, from));
+    ASSERT_TRUE(r.ok) << r.error;
+    EXPECT_EQ(r.steps, full.steps) << from;
+    EXPECT_EQ(r.probes, full.probes) << from;
+    EXPECT_TRUE(slurp(copy.path / "history.csv") == history) << "restart from " << from;
+    const std::vector<fs::path> again = ballista::test::h5_files(copy.path);
+    ASSERT_EQ(again.size(), files.size()) << from;
+    // The particle files carry no time stamps (io/hdf5_handle.hpp): equal states give equal bytes.
+    for (std::size_t f = 0; f < files.size(); ++f)
+      EXPECT_TRUE(slurp(again[f]) == slurp(files[f])) << files[f].filename() << " after a restart from " << from;
+    EXPECT_TRUE(slurp(copy.path / "particles.xdmf") == slurp(ref.path / "particles.xdmf")) << from;
+  }
+}
+
+TEST(Restart, AThreadCountChangeKeepsTheResultBitwise) {
+  // MPM's scatter and reductions do not depend on the thread count (docs/performance.md), so a
+  // checkpoint of a 2-thread run continues on 1 thread to the same bits.
+  TempDir ref("restart_t2");
+  const Scenario sc = parse_deck(kBlock, "block.yaml");
+  RunOptions two = options(ref.path);
+  two.threads = 2;
+  ASSERT_TRUE(run_simulation(sc, two).ok);
+  TempDir copy("restart_t1");
+  fs::copy(ref.path, copy.path, fs::copy_options::recursive);
+  const auto [from, deck] = newest_checkpoint(copy.path.string());
+  EXPECT_EQ(deck, sc.resolved_yaml);
+  ASSERT_TRUE(run_simulation(parse_deck(deck, "resolved.yaml"), options(copy.path, from)).ok);
+  EXPECT_EQ(slurp(copy.path / "history.csv"), slurp(ref.path / "history.csv"));
+}
+
+TEST(Restart, AFailingRunCheckpointsItsLastGoodStepAndFailsAgainFromIt) {
+  TempDir dir("restart_fail");
+  const Scenario sc = parse_deck(kPutty, "putty.yaml");
+  const RunResult r1 = run_simulation(sc, options(dir.path));
+  ASSERT_FALSE(r1.ok);
+  ASSERT_GE(r1.failed_particle, 0) << r1.error;
+  // The particle inverts inside a step; the checkpoint is the state before that step, rebuilt by
+  // replaying from the newest periodic checkpoint.
+  ASSERT_EQ(r1.checkpoint, checkpoint_path(dir.path.string(), r1.failed_step - 1)) << r1.error;
+  ASSERT_TRUE(fs::exists(r1.checkpoint));
+  const RunResult r2 = run_simulation(sc, options(dir.path, r1.checkpoint));
+  ASSERT_FALSE(r2.ok);
+  EXPECT_EQ(r2.failed_particle, r1.failed_particle);
+  EXPECT_EQ(r2.failed_step, r1.failed_step);
+  EXPECT_EQ(r2.error, r1.error);
+  EXPECT_EQ(r2.steps, r1.steps);
+}
+
+TEST(Restart, AWholeStepFailureCheckpointsTheStateItStoppedIn) {
+  // The energy-drift guard stops a run between steps: the state is consistent, so it is
+  // checkpointed as it is, and the run continues from it with the guard relaxed to the same
+  // history as a run that never stopped.
+  TempDir dir("restart_drift");
+  const Scenario guarded = parse_deck(kBlock, "block.yaml", {"simulation.energy_drift_limit=1e-12"});
+  const RunResult r1 = run_simulation(guarded, options(dir.path));
+  ASSERT_FALSE(r1.ok);
+  ASSERT_NE(r1.error.find("energy drift"), std::string::npos) << r1.error;
+  EXPECT_EQ(r1.checkpoint, checkpoint_path(dir.path.string(), r1.failed_step));
+  const RunResult r2 = run_simulation(parse_deck(kBlock, "block.yaml"), options(dir.path, r1.checkpoint));
+  ASSERT_TRUE(r2.ok) << r2.error;
+  TempDir ref("restart_drift_ref");
+  const RunResult full = run_simulation(parse_deck(kBlock, "block.yaml"), options(ref.path));
+  EXPECT_EQ(r2.probes, full.probes);
+  EXPECT_EQ(r2.steps, full.steps);
+  EXPECT_EQ(slurp(dir.path / "history.csv"), slurp(ref.path / "history.csv"));
+}
+
+TEST(Restart, WhatCannotBeContinuedIsRefused) {
+  TempDir dir("restart_refused");
+  const Scenario sc = parse_deck(kBlock, "block.yaml");
+  ASSERT_TRUE(run_simulation(sc, options(dir.path)).ok);
+  const auto [from, deck] = newest_checkpoint(dir.path.string());
+  // Tracked particles would miss the steps the interrupted run took after the checkpoint.
+  EXPECT_NE(error_of([&] {
+              run_simulation(parse_deck(deck, "d.yaml", {"output.track.ids=[3]"}), options(dir.path, from));
+            }).find("output.track.ids cannot be continued"),
+            std::string::npos);
+  // Another deck's materials: the checkpoint lacks the state field.
+  const std::string other = error_of([&] {
+    run_simulation(parse_deck(deck, "d.yaml", {"materials.metal.failure.criterion=max_stress",
+                                               "materials.metal.failure.max_stress=1e9"}),
+                   options(dir.path, from));
+  });
+  EXPECT_NE(other.find("the checkpoint has no"), std::string::npos) << other;
+}
