@@ -257,12 +257,10 @@ int main(int argc, char** argv) {
                     << " (replay: ballista drive with drive: {table: <that file>, substeps: 1})\n";
       }
       if (!r.checkpoint.empty())
-        std::cout << "the last good step is checkpointed in " << r.checkpoint << " (ballista run --restart " << out_dir
-                  << ")\n";
-      if (!r.checkpoint.empty())
-        std::cout << "the last good step is checkpointed in " << r.checkpoint << " (ballista run --restart " << out_dir
-                  << ")\n";
-      std::cout << (r.ok ? "completed" : "FAILED") << ": " << r.steps << " steps to t = " << r.time << " s in "
+        std::cout << (r.interrupted ? "checkpointed in " : "the last good step is checkpointed in ") << r.checkpoint
+                  << " (ballista run --restart " << out_dir << ")\n";
+      std::cout << (r.ok ? "completed" : r.interrupted ? "INTERRUPTED" : "FAILED") << ": " << r.steps
+                << " steps to t = " << r.time << " s in "
                 << fmt::format("{:.2f}", r.wall_seconds) << " s (" << fmt::format("{:.3g}", r.particle_steps_per_second)
                 << " particle-steps/s)\n";
       for (const auto& [name, value] : r.probes) std::cout << "  " << name << " = " << value << "\n";
@@ -276,7 +274,7 @@ int main(int argc, char** argv) {
           std::cerr << "warning: no penetration figures: " << err << " (--no-plots skips them)\n";
       }
       std::cout << "results in " << std::filesystem::absolute(out_dir).string() << "\n";
-      return r.ok ? 0 : 3;
+      return r.ok ? 0 : r.interrupted ? 4 : 3;
     }
   } catch (const ballista::DeckError& e) {
     std::cerr << "deck error: " << ballista::shorten(e.what(), 2500) << "\n";

@@ -66,6 +66,13 @@ class OtmSolver final : public Solver {
   /// stable_dt: seconds.
   std::vector<std::pair<std::string, double>> timing_values() const override;
 
+  /// Checkpoint (otm_checkpoint.cpp): the points, the nodes, this step's and the last step's
+  /// supports with their shape functions (the next step uses them; a rebuild would start the LME
+  /// solves from other multipliers and differ in the last bits), the multipliers, the adaptivity
+  /// state, time, step and the booked work.
+  void save_state(StateArchive& archive) const override;
+  void load_state(const StateArchive& archive) override;
+
   const otm::NodeCloud& nodes() const { return nodes_; }
   /// Adaptivity (otm_adaptivity.hpp): new nodes on the lattice over the current points, their
   /// velocities interpolated from the old nodes, linear momentum restored exactly and the

@@ -22,6 +22,7 @@
 #include "points/solver_registry.hpp"
 #include "run/fragment_summary.hpp"
 #include "run/particle_tracker.hpp"
+#include "run/interrupt.hpp"
 #include "run/progress.hpp"
 #include "run/run_state.hpp"
 #include "run/stage_criterion.hpp"
@@ -106,6 +107,8 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       spdlog::info("removed {} output files of an earlier run from {}", removed, opt.out_dir);
     write_file_atomic((fs::path(opt.out_dir) / "resolved.yaml").string(), sc.resolved_yaml);
   }
+  clear_interrupt();
+  install_interrupt_handlers();
   request_threads(opt.threads > 0 ? opt.threads : sc.simulation.threads,  // clamped to the cores present
                   opt.threads > 0 ? "--threads" : "simulation.threads");
 
@@ -278,6 +281,17 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     if (opt.checkpoint_minutes > 0 && minutes >= opt.checkpoint_minutes) why = "--checkpoint-every-minutes";
     if (why) write_checkpoint(marks_now(), why);
   };
+  // After a step: the due checkpoint, then a signal's request to stop (run/interrupt.hpp), which
+  // checkpoints this step (if not just done) and ends the loop. True: stop.
+  bool interrupted = false;
+  auto after_step = [&] {
+    maybe_checkpoint();
+    if (!interrupt_requested()) return false;
+    if (newest_checkpoint != checkpoint_path(opt.out_dir, solver->steps()))
+      write_checkpoint(marks_now(), "interrupted by a signal");
+    interrupted = true;
+    return true;
+  };
   auto begin_stage = [&](int stage, double damping) {
     solver->begin_stage(stage, damping);
     calls_since_checkpoint.push_back({0.0, stage, damping});
@@ -396,7 +410,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
         }
         if (rs.stage == stage_before && solver->steps() % std::max(1, sc.output.history_every) == 0)
           record_history(dt);
-        maybe_checkpoint();
+        if (after_step()) break;
         continue;
       }
       const bool at_output = solver->time() >= rs.next_output * (1.0 - 1e-12);
@@ -408,9 +422,20 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
         if (rs.next_output > rs.end) rs.next_output = rs.end;
       }
       progress->update(solver->time(), solver->steps(), dt);
-      maybe_checkpoint();
+      if (after_step()) break;
     }
-    writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
+    if (interrupted) {
+      // No final particle file: the checkpoint is where the run continues (ballista run --restart).
+      result.ok = false;
+      result.interrupted = true;
+      result.checkpoint = newest_checkpoint;
+      result.error = fmt::format("interrupted by a signal at step {} (t = {:.6g} s); continue with ballista run "
+                                 "--restart {}",
+                                 solver->steps(), solver->time(), opt.out_dir);
+      spdlog::warn("{}", result.error);
+    } else {
+      writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
+    }
   } catch (const PhysicsError& err) {
     if (progress) progress->finish();
     result.ok = false;
@@ -452,10 +477,10 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   result.particle_steps_per_second = wall > 0 ? particle_steps / wall : 0.0;
   const std::vector<double> pv = probe_values(e);
   SummaryWriter summary;
-  summary["status"] = result.ok ? "completed" : "failed";
+  summary["status"] = result.ok ? "completed" : result.interrupted ? "interrupted" : "failed";
   if (!result.ok) {
     summary["error"] = result.error;
-    summary["failed_step"] = result.failed_step;
+    if (!result.interrupted) summary["failed_step"] = result.failed_step;
     if (result.failed_particle >= 0) summary["failed_particle"] = result.failed_particle;
   }
   if (!sc.output.track.empty()) summary["tracked_particles"] = sc.output.track;
@@ -558,7 +583,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     summary["error"] = result.error;
   }
   summary.write((fs::path(opt.out_dir) / "summary.json").string());
-  if (!result.ok && checkpointing) {
+  if (!result.ok && !result.interrupted && checkpointing) {
     // The last good state as a checkpoint, to restart from with other settings. A failure inside a
     // step leaves a half-updated state, so the solver goes back to the newest checkpoint and
     // replays the calls since then (the run is deterministic) up to the step before the failure.

@@ -30,7 +30,8 @@ struct RunResult {
   double wall_seconds = 0.0;
   double particle_steps_per_second = 0.0;
   std::vector<std::pair<std::string, double>> probes;  ///< final probe values
-  std::string checkpoint;       ///< after a failure with checkpoints on: the checkpoint of the last good step
+  std::string checkpoint;       ///< after a failure with checkpoints on, or an interruption: where to restart
+  bool interrupted = false;     ///< stopped by SIGTERM/SIGINT after checkpointing (ok is false)
 };
 
 /// Builds the materials of the scenario from the registry.

@@ -9,6 +9,8 @@ copy: the reference run writes checkpoints; a copy of its folder is restarted fr
       checkpoint (the rows and particle files written after it are cut back and rewritten).
 kill: a second run is killed with SIGKILL as soon as it has written a checkpoint after the first
       step, then restarted (on --restart-threads threads) and compared with the reference.
+term: the same with SIGTERM, which the run answers by checkpointing its current step and exiting
+      with status 4 ("interrupted" in summary.json).
 """
 import argparse, glob, json, os, shutil, signal, subprocess, sys, time
 
@@ -70,7 +72,7 @@ def main():
     ap.add_argument("ballista")
     ap.add_argument("deck")
     ap.add_argument("workdir")
-    ap.add_argument("--mode", choices=["copy", "kill"], required=True)
+    ap.add_argument("--mode", choices=["copy", "kill", "term"], required=True)
     ap.add_argument("--set", action="append", default=[])
     ap.add_argument("--restart-threads", type=int, default=0)
     ap.add_argument("--threads", type=int, default=1)
@@ -106,8 +108,15 @@ def main():
             time.sleep(0.01)
         if p.poll() is not None:
             sys.exit("the run ended before it could be killed; lengthen it")
-        p.send_signal(signal.SIGKILL)
-        p.wait()
+        p.send_signal(signal.SIGKILL if a.mode == "kill" else signal.SIGTERM)
+        rc = p.wait()
+        if a.mode == "term":
+            # SIGTERM: the run checkpoints the step it is in and exits with status 4, "interrupted".
+            if rc != 4:
+                sys.exit(f"SIGTERM: exit status {rc}, expected 4 (interrupted)")
+            status = json.load(open(os.path.join(other, "summary.json")))["status"]
+            if status != "interrupted":
+                sys.exit(f"SIGTERM: summary status '{status}', expected 'interrupted'")
         left = sorted(glob.glob(os.path.join(other, "checkpoints", "checkpoint_*.h5")))
         resumed_at = os.path.basename(left[-1])
     out = run([a.ballista, "run", "--restart", other, "-q", "--no-plots"] + restart_threads + sets)

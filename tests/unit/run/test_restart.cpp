@@ -169,3 +169,18 @@ TEST(Restart, WhatCannotBeContinuedIsRefused) {
   });
   EXPECT_NE(other.find("the checkpoint has no"), std::string::npos) << other;
 }
+
+TEST(Restart, WallClockCheckpointsKeepTheNewestTwo) {
+  // --checkpoint-every-minutes with a tiny interval: a checkpoint after every step (none at the
+  // end), of which the newest output.checkpoint_keep = 2 remain: the last two steps before the end.
+  TempDir dir("restart_wall");
+  const Scenario sc = parse_deck(kBlock, "block.yaml", {"output.checkpoint_interval=0"});
+  RunOptions o = options(dir.path);
+  o.checkpoint_minutes = 1e-12;
+  const RunResult r = run_simulation(sc, o);
+  ASSERT_TRUE(r.ok) << r.error;
+  const std::vector<std::string> cks = list_checkpoints(dir.path.string());
+  ASSERT_EQ(cks.size(), 2u);
+  EXPECT_EQ(cks[0], checkpoint_path(dir.path.string(), r.steps - 2));
+  EXPECT_EQ(cks[1], checkpoint_path(dir.path.string(), r.steps - 1));
+}

@@ -1,0 +1,35 @@
+#include "run/interrupt.hpp"
+
+#include <atomic>
+#include <csignal>
+
+namespace ballista {
+
+namespace {
+
+std::atomic<int> g_requested{0};  // lock-free: the only thing the handler touches
+
+extern "C" void on_signal(int sig) {
+  if (g_requested.exchange(1) != 0) {
+    // A second signal: the user insists. Default action (terminate) without the checkpoint.
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+  }
+}
+
+}  // namespace
+
+void install_interrupt_handlers() {
+  static const bool installed = [] {
+    std::signal(SIGTERM, on_signal);
+    std::signal(SIGINT, on_signal);
+    return true;
+  }();
+  (void)installed;
+}
+
+bool interrupt_requested() { return g_requested.load() != 0; }
+void request_interrupt() { g_requested.store(1); }
+void clear_interrupt() { g_requested.store(0); }
+
+}  // namespace ballista

@@ -1,0 +1,17 @@
+#pragma once
+// Stopping a run cleanly on SIGTERM (a batch system's notice before it kills a job) or SIGINT
+// (Ctrl-C): the handler only sets a flag; the run loop reads it after each step, writes a
+// checkpoint of that step and ends with status "interrupted" (docs/restart.md). A second signal
+// while the first is being handled kills the process as the default action would.
+namespace ballista {
+
+/// Installs the handlers (idempotent).
+void install_interrupt_handlers();
+/// True once SIGTERM or SIGINT has arrived (or request_interrupt was called).
+bool interrupt_requested();
+/// What a signal does, for tests and embedding programs.
+void request_interrupt();
+/// Forgets an earlier request (a new run starts uninterrupted).
+void clear_interrupt();
+
+}  // namespace ballista
