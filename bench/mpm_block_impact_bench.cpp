@@ -16,15 +16,22 @@
 
 namespace {
 
-std::string deck(long particles, const std::string& shape) {
+std::string deck(long particles, const std::string& shape, double box_volume_ratio = 0.0) {
   // 8 particles per cell (2 per direction); block of nx x ny x nz cells with ny = 0.8 nx.
   const double cells = static_cast<double>(particles) / 8.0;
   const int nx = static_cast<int>(std::lround(std::cbrt(cells / 0.8)));
   const int ny = static_cast<int>(std::lround(0.8 * nx));
   const double h = 1.0e-3;
   const double lx = nx * h, ly = ny * h;
-  // Four empty cells around the block in x and z leave room for its lateral spreading.
-  const double m = 4 * h;
+  // Four empty cells around the block in x and z leave room for its lateral spreading. With
+  // box_volume_ratio > 0 the box is instead that many times the block's volume (the margin grows
+  // alike in x, z and above the block): the cost of empty grid (issue 17, the sparse grid).
+  double m = 4 * h, top = 2 * h;
+  if (box_volume_ratio > 0.0) {
+    const double s = std::cbrt(box_volume_ratio);
+    m = std::ceil(0.5 * (s - 1.0) * lx / h) * h;
+    top = std::ceil((s - 1.0) * ly / h) * h;
+  }
   char buf[2048];
   std::snprintf(buf, sizeof buf, R"(
 simulation: {solver: mpm, dimension: 3d, end_time: 1.0, cfl: 0.3, on_particle_exit: delete}
@@ -44,7 +51,7 @@ bodies:
     particles_per_cell: 2
     velocity: [0, -200.0, 0]
 )",
-                shape.c_str(), lx + 2 * m, ly + 2 * h, lx + 2 * m, h, m, 0.0, m, m + lx, ly, m + lx);
+                shape.c_str(), lx + 2 * m, ly + top, lx + 2 * m, h, m, 0.0, m, m + lx, ly, m + lx);
   return buf;
 }
 
@@ -70,8 +77,31 @@ void BM_BlockImpact(benchmark::State& state, std::string shape) {
       benchmark::Counter(n * steps, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
+// The same block (1e5 particles, linear, 2 threads) in its tight box (4 empty cells around it) and
+// in boxes of 10 and 100 times its volume: the grid work that empty space costs.
+void BM_EmptyBox(benchmark::State& state) {
+  const double ratio = static_cast<double>(state.range(0));
+  ballista::set_threads(2);
+  const ballista::Scenario sc = ballista::parse_deck(deck(100000, "linear", ratio > 1 ? ratio : 0.0), "bench.yaml");
+  auto solver = ballista::make_solver(sc);
+  const double n = static_cast<double>(solver->points().size());
+  for (int k = 0; k < 3; ++k) solver->step(solver->stable_dt());
+  double steps = 0;
+  for (auto _ : state) {
+    solver->step(solver->stable_dt());
+    steps += 1;
+  }
+  const ballista::GridSpec& g = sc.grid;
+  double cells = 1.0;
+  for (int a = 0; a < 3; ++a) cells *= std::round((g.upper[a] - g.lower[a]) / g.cell_size);
+  state.counters["particles"] = n;
+  state.counters["grid_cells"] = cells;
+  state.counters["particle_steps_per_second"] = benchmark::Counter(n * steps, benchmark::Counter::kIsRate);
+}
+
 }  // namespace
 
+BENCHMARK(BM_EmptyBox)->Arg(1)->Arg(10)->Arg(100)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_BlockImpact, linear, std::string("linear"))
     ->ArgsProduct({{100000, 1000000}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_BlockImpact, gimp, std::string("gimp"))

@@ -111,6 +111,7 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   grid_.fields = sc.contact.fields;
   slab_axis_ = dim_ - 1;
   grid_.resize(grid_.geom.node_count() * grid_.fields);
+  blocks_.reset(grid_.geom);
   if (shape_ == ShapeKind::BSpline3) {
     // The cubic B-spline reaches one node beyond the face cell. Fixed and wall faces bound the
     // basis (Steffen, Wallstedt et al., CMES 31 (2008) 107: boundary-modified, interpolatory at
@@ -206,12 +207,33 @@ int MpmSolver::stencil_reach_now() const {
   return stencil_reach(shape_, ext / grid_.geom.h);
 }
 
+void MpmSolver::mark_active_blocks() {
+  blocks_.mark(x_, points_.size(), reach_);
+  const auto& surface = loads_.surface_forces();
+  if (!surface.empty()) {
+    std::vector<Vec3> at(surface.size());
+    for (std::size_t k = 0; k < surface.size(); ++k) at[k] = surface[k].point;
+    blocks_.mark(at.data(), static_cast<Index>(at.size()), reach_);
+  }
+  blocks_.finish();
+  // Blocks no particle reaches any more go back to zero, as a dense pass would leave them.
+  const Index nn = grid_.geom.node_count();
+  const bool multi = grid_.fields > 1;
+  for (int k = 0; k < grid_.fields; ++k)
+    blocks_.for_each_released_node(k * nn, [&](Index i) {
+      grid_.mass[i] = 0.0;
+      grid_.velocity[i] = grid_.force[i] = grid_.velocity_new[i] = grid_.accel[i] = Vec3{};
+      if (multi) grid_.grad[i] = Vec3{};
+    });
+}
+
 void MpmSolver::build_slabs() {
   // Lock-free scatter: points are bucketed into slabs of slab_width_ cells along the slab axis.
   // Slabs two apart touch disjoint nodes when width >= 2 * reach, so even slabs are scattered in
   // parallel, then odd ones. Each node thus receives its contributions in an order fixed by the
   // point order alone, so the result does not depend on the thread count.
   const int reach = stencil_reach_now();
+  reach_ = reach;
   if (reach + 1 > ghost_ && shape_ == ShapeKind::Cpdi) {
     // A CPDI domain larger than the ghost layers could reach outside the block.
     const auto* F = points_.view<Mat3>("F");
@@ -255,8 +277,8 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
   Vec3* gf = grid_.force.data();
   const bool multi = grid_.fields > 1;
   Vec3* gg = multi ? grid_.grad.data() : nullptr;
-  const Index nall = g.node_count() * grid_.fields;
-  for_each(0, nall, [&](Index i) {
+  // Only the blocks particles reach are cleared: the others are zero already (active_blocks.hpp).
+  for_each_active_node([&](Index i) {
     if (!momentum_only) {
       gm[i] = 0.0;
       gf[i] = Vec3{};
@@ -458,9 +480,11 @@ void MpmSolver::update_grid(double dt) {
   // acceleration handed to the particles is measured from the mapped velocity before contact, so
   // that the particles receive both contact impulses (Nairn, Hammerquist & Smith 2020). The work of
   // the damping and of the contact impulses is booked (grid_contact.hpp for the latter).
+  // Node passes over the active blocks only (active_blocks.hpp); the damping work is summed over
+  // every node in a fixed order (its round-off does not depend on which blocks are active).
   const Index nall = grid_.geom.node_count() * grid_.fields;
   const bool multi = grid_.fields > 1;
-  for_each(0, nall, [&](Index i) {
+  for_each_active_node([&](Index i) {
     const double m = grid_.mass[i];
     grid_.velocity[i] = m > kTinyMass ? (1.0 / m) * grid_.velocity[i] : Vec3{};
     if (multi) grid_.accel[i] = grid_.velocity[i];  // kept: the velocity before contact
@@ -484,7 +508,7 @@ void MpmSolver::update_grid(double dt) {
     deterministic_sum<1>(0, nall, [&](Index i, double* o) { o[0] += integrate(i); }, w);
     damping_work_ += comm_.sum(w[0]);
   } else {
-    for_each(0, nall, [&](Index i) { integrate(i); });
+    for_each_active_node([&](Index i) { integrate(i); });
   }
   apply_velocity_bcs(grid_.velocity_new.data());
   if (multi) {
@@ -492,7 +516,7 @@ void MpmSolver::update_grid(double dt) {
     apply_velocity_bcs(grid_.velocity_new.data());  // contact may have moved a face node
   }
   // The acceleration handed to the particles is the constrained change of velocity.
-  for_each(0, nall, [&](Index i) {
+  for_each_active_node([&](Index i) {
     const Vec3& v0 = multi ? grid_.accel[i] : grid_.velocity[i];
     grid_.accel[i] = (1.0 / dt) * (grid_.velocity_new[i] - v0);
   });
@@ -629,14 +653,14 @@ void MpmSolver::step_impl(double dt) {
   bind_fields();
   build_slabs();
   loads_.compute(scenario_, points_, time_);
+  mark_active_blocks();
   particles_to_grid<Dim, K>(false);
   update_grid(dt);
   grid_to_particles<Dim, K>(dt);
   if (musl_) {
     // Map the updated particle momenta back with the same shape functions, then L from them.
     particles_to_grid<Dim, K>(true);
-    const Index nall = grid_.geom.node_count() * grid_.fields;
-    for_each(0, nall, [&](Index i) {
+    for_each_active_node([&](Index i) {
       const double m = grid_.mass[i];
       grid_.velocity_new[i] = m > kTinyMass ? (1.0 / m) * grid_.velocity[i] : Vec3{};
     });

@@ -11,6 +11,7 @@
 #include "core/communicator.hpp"
 #include "core/solver.hpp"
 #include "materials/material.hpp"
+#include "mpm/active_blocks.hpp"
 #include "mpm/anti_locking.hpp"
 #include "mpm/grid_geometry.hpp"
 #include "mpm/shape_functions.hpp"
@@ -133,6 +134,15 @@ class MpmSolver final : public Solver {
   AntiLocking anti_locking_ = AntiLocking::None;  ///< mpm.anti_locking
   CellFBar fbar_;                                 ///< F-bar scratch (anti_locking: fbar)
   GridData grid_;
+  ActiveBlocks blocks_;  ///< the grid blocks particles reach this step (only they are zeroed and updated)
+  int reach_ = 1;        ///< the shape function's reach this step, nodes (build_slabs)
+  /// Marks this step's active blocks (particles and traction points) and clears the released ones.
+  void mark_active_blocks();
+  /// f(i) for every node i of the active blocks in every velocity field.
+  template <class F>
+  void for_each_active_node(F&& f) const {
+    for (int k = 0; k < grid_.fields; ++k) blocks_.for_each_node(k * grid_.geom.node_count(), f);
+  }
   int ghost_ = kGhostLayers;    ///< ghost node layers beyond the box on each side
   std::vector<Vec3> displacement_;  ///< MUSL: dt * grid velocity at each point this step, m
   Index first_bad_ = 0, first_out_ = 0;  ///< lowest inverted / escaped point of the step (or n)
