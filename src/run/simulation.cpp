@@ -162,6 +162,15 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     ws.xdmf_body = restart->text("run.xdmf");
     writer.restore(ws);
     if (penetration) penetration->load_state(*restart);
+    // The deck may have changed the end (--set simulation.end_time=...): the main stage ends
+    // end_time after it began; the output clock stays where it was, within the new end.
+    if (rs.stage == nstages) {
+      rs.end = (nstages > 0 ? rs.stage_start : 0.0) + sc.simulation.end_time;
+      rs.next_output = std::min(rs.next_output, rs.end);
+      if (rs.next_output <= solver->time()) rs.next_output = std::min(rs.end, solver->time() + interval);
+    }
+    if (sc.output.checkpoint_interval > 0 && !std::isfinite(rs.next_checkpoint))
+      rs.next_checkpoint = solver->time() + sc.output.checkpoint_interval;
     spdlog::info("restarted from {} at step {}, t = {:.6g} s", opt.restart_from, solver->steps(), solver->time());
   } else {
     const EnergyTotals e0 = solver->energies();

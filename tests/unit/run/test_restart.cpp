@@ -184,3 +184,18 @@ TEST(Restart, WallClockCheckpointsKeepTheNewestTwo) {
   EXPECT_EQ(cks[0], checkpoint_path(dir.path.string(), r.steps - 2));
   EXPECT_EQ(cks[1], checkpoint_path(dir.path.string(), r.steps - 1));
 }
+
+TEST(Restart, ALaterEndTimeContinuesTheRun) {
+  // --set simulation.end_time on a restart: the run goes on to the new end from where it stopped.
+  TempDir dir("restart_longer");
+  const Scenario sc = parse_deck(kBlock, "block.yaml");
+  const RunResult first = run_simulation(sc, options(dir.path));
+  ASSERT_TRUE(first.ok) << first.error;
+  const auto [from, deck] = newest_checkpoint(dir.path.string());
+  const RunResult longer =
+      run_simulation(parse_deck(deck, "resolved.yaml", {"simulation.end_time=2.0e-4"}), options(dir.path, from));
+  ASSERT_TRUE(longer.ok) << longer.error;
+  // The main stage starts after the 1e-5 s stage: it ends 2e-4 s later.
+  EXPECT_NEAR(longer.time, 2.1e-4, 1e-12);
+  EXPECT_GT(longer.steps, first.steps);
+}
