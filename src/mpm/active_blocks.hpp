@@ -5,6 +5,7 @@
 // active blocks are zeroed and updated, so empty space in the box costs one flag per block.
 // Nodes outside the active blocks are kept at zero (a block that falls inactive is cleared
 // once), exactly what a dense pass would leave there, so results do not change by a bit.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -42,6 +43,18 @@ class ActiveBlocks {
       const Index b = row_start_[r] + offset;
       for (Index i = b; i < b + row_len_[r]; ++i) f(i);
     });
+  }
+  /// Calls f(begin, end) for every run of consecutive active nodes [begin, end) (+ `offset`), in
+  /// parallel: for passes the compiler should vectorise (zeroing).
+  template <class F>
+  void for_each_run(Index offset, F&& f) const {
+    if (dense_) {
+      const Index n = g_.node_count();
+      const Index chunk = 4096;
+      for_each(0, (n + chunk - 1) / chunk, [&](Index c) { f(offset + c * chunk, offset + std::min(n, (c + 1) * chunk)); });
+      return;
+    }
+    for_each(0, rows(), [&](Index r) { f(row_start_[r] + offset, row_start_[r] + offset + row_len_[r]); });
   }
   /// Same over the blocks released by the last finish().
   template <class F>

@@ -278,14 +278,15 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
   const bool multi = grid_.fields > 1;
   Vec3* gg = multi ? grid_.grad.data() : nullptr;
   // Only the blocks particles reach are cleared: the others are zero already (active_blocks.hpp).
-  for_each_active_node([&](Index i) {
-    if (!momentum_only) {
-      gm[i] = 0.0;
-      gf[i] = Vec3{};
-      if (multi) gg[i] = Vec3{};
-    }
-    gp[i] = Vec3{};
-  });
+  for (int k = 0; k < grid_.fields; ++k)
+    blocks_.for_each_run(k * g.node_count(), [&](Index b, Index e) {
+      if (!momentum_only) {
+        std::fill(gm + b, gm + e, 0.0);
+        std::fill(gf + b, gf + e, Vec3{});
+        if (multi) std::fill(gg + b, gg + e, Vec3{});
+      }
+      std::fill(gp + b, gp + e, Vec3{});
+    });
   const bool axisym = dimension_ == Dimension::Axisymmetric;
   const std::vector<Vec3>& fext = loads_.total();
   const std::vector<Vec3>& ftrac = loads_.traction();
