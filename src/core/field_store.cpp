@@ -56,6 +56,7 @@ void FieldStore::add_int(const std::string& name, int ncomp, const std::string& 
 }
 
 void FieldStore::resize(Index n) {
+  ++layout_version_;
   for (size_t k = 0; k < info_.size(); ++k) {
     const size_t len = static_cast<size_t>(n * info_[k].ncomp);
     if (info_[k].type == FieldType::Real)
@@ -109,6 +110,7 @@ void compact_array(std::vector<T>& a, int nc, const std::vector<char>& keep) {
 }  // namespace
 
 void FieldStore::permute(const std::vector<Index>& order) {
+  ++layout_version_;
   if (static_cast<Index>(order.size()) != size_) throw Error("permute: order has the wrong size");
   for (size_t k = 0; k < info_.size(); ++k) {
     if (info_[k].type == FieldType::Real)
@@ -119,6 +121,7 @@ void FieldStore::permute(const std::vector<Index>& order) {
 }
 
 void FieldStore::compact(const std::vector<char>& keep) {
+  ++layout_version_;
   if (static_cast<Index>(keep.size()) != size_) throw Error("compact: mask has the wrong size");
   Index n = 0;
   for (char k : keep) n += k ? 1 : 0;
@@ -132,6 +135,7 @@ void FieldStore::compact(const std::vector<char>& keep) {
 }
 
 void FieldStore::append_from(const FieldStore& other, const std::vector<Index>& which) {
+  ++layout_version_;
   if (other.info_.size() != info_.size()) throw Error("append_from: field layouts differ");
   // Check the whole layout before growing, so a refused append leaves this store unchanged.
   for (size_t k = 0; k < info_.size(); ++k)

@@ -32,6 +32,9 @@ class FieldStore {
   bool has(const std::string& name) const { return find(name) >= 0; }
 
   Index size() const { return size_; }
+  /// Changes whenever points may have changed places or number (resize, permute, compact,
+  /// append): a cache of point indices built at one version is valid while it stays the same.
+  std::uint64_t layout_version() const { return layout_version_; }
   void resize(Index n);
 
   double* real(const std::string& name);
@@ -74,6 +77,7 @@ class FieldStore {
   void check_ncomp(const std::string& name, int ncomp) const;
 
   Index size_ = 0;
+  std::uint64_t layout_version_ = 0;
   std::vector<FieldInfo> info_;
   std::vector<std::vector<double>> real_;        // indexed like info_ (empty if Int)
   std::vector<std::vector<std::int64_t>> int_;   // indexed like info_ (empty if Real)

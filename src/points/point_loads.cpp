@@ -42,8 +42,8 @@ void PointLoads::compute(const Scenario& sc, const FieldStore& points, double ti
       const auto* area = points.view<Vec3>("load_area_" + std::to_string(k));
       const double pr = scale * load.pressure;
       if (ftrac_.size() != static_cast<size_t>(n)) ftrac_.assign(n, Vec3{});
-      for (Index p = 0; p < n; ++p) {
-        if (area[p][0] == 0.0 && area[p][1] == 0.0 && area[p][2] == 0.0) continue;
+      update_surface_points(sc, points);
+      for (const Index p : surface_points_[k]) {
         const Vec3 f = (-pr) * (cofactor(F[p]) * area[p]);
         const double a = norm(area[p]);
         Vec3 offset;
@@ -114,6 +114,19 @@ std::vector<double> PointLoads::history_values(const Scenario& sc) const {
     for (int a = 0; a < 3; ++a) v.push_back(r[a]);
   v.resize(history_columns(sc).size(), 0.0);
   return v;
+}
+
+void PointLoads::update_surface_points(const Scenario& sc, const FieldStore& points) {
+  if (surface_layout_ == points.layout_version() && surface_points_.size() == sc.loads.size()) return;
+  surface_points_.assign(sc.loads.size(), {});
+  const Index n = points.size();
+  for (size_t k = 0; k < sc.loads.size(); ++k) {
+    if (sc.loads[k].type != "pressure") continue;
+    const auto* area = points.view<Vec3>("load_area_" + std::to_string(k));
+    for (Index p = 0; p < n; ++p)
+      if (area[p][0] != 0.0 || area[p][1] != 0.0 || area[p][2] != 0.0) surface_points_[k].push_back(p);
+  }
+  surface_layout_ = points.layout_version();
 }
 
 }  // namespace ballista

@@ -2,6 +2,7 @@
 // External loads on points, shared by every solver: body forces (gravity), surface pressure with
 // load curves (Nanson-mapped onto the current surface), rigid indenters (LAMMPS fix indent) and the
 // manufactured body forces of CATALOGUE B1 and B2. Recomputed at the start of each step.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,12 @@ class PointLoads {
   std::vector<Vec3> ftrac_;
   std::vector<SurfaceForce> surface_forces_;
   std::vector<Vec3> reactions_;  ///< per indenter, N
+  /// Per load: the points with a loaded surface area (pressure loads), in index order, found
+  /// once per layout of the points (FieldStore::layout_version) instead of a scan every step.
+  std::vector<std::vector<Index>> surface_points_;
+  std::uint64_t surface_layout_ = UINT64_MAX;
+  /// Rebuilds surface_points_ if the points moved or changed in number since it was built.
+  void update_surface_points(const Scenario& sc, const FieldStore& points);
 };
 
 }  // namespace ballista

@@ -204,3 +204,27 @@ TEST(FieldStore, AppendFromCopiesSelectedPointsOfEveryField) {
   ASSERT_EQ(a.size(), 10);
   for (Index p = 0; p < 6; ++p) expect_point(a, p, p);
 }
+
+// The layout version changes with every operation that can move points or change their number,
+// and only with those (caches of point indices, e.g. the pressure loads' surface points, key on it).
+TEST(FieldStore, LayoutVersionTracksEveryReorderingAndNothingElse) {
+  ballista::FieldStore s;
+  s.add_real("x", 3, "m");
+  s.resize(4);
+  auto v = s.layout_version();
+  s.real("x")[0] = 1.0;  // values change, places do not
+  s.add_real("y", 1, "m");
+  EXPECT_EQ(s.layout_version(), v);
+  s.permute({3, 2, 1, 0});
+  EXPECT_NE(s.layout_version(), v);
+  v = s.layout_version();
+  s.compact({1, 0, 1, 1});
+  EXPECT_NE(s.layout_version(), v);
+  v = s.layout_version();
+  const ballista::FieldStore other = s;
+  s.append_from(other, {0});
+  EXPECT_NE(s.layout_version(), v);
+  v = s.layout_version();
+  s.resize(2);
+  EXPECT_NE(s.layout_version(), v);
+}
