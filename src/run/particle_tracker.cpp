@@ -38,10 +38,12 @@ void ParticleTracker::locate(const FieldStore& points) {
       if (id[p] == ids_[k]) where_[k] = p;
 }
 
-void ParticleTracker::open(std::int64_t id, int material) {
+void ParticleTracker::open(std::int64_t id, int material, const long long* resume_bytes) {
   Track& t = tracks_[id];
+  t.material = material;
   const std::string stem = (std::filesystem::path(dir_) / ("particle_" + std::to_string(id))).string();
-  t.table = std::make_unique<HistoryWriter>(stem + ".csv", ftable_columns(false));
+  t.table = resume_bytes ? std::make_unique<HistoryWriter>(stem + ".csv", ftable_columns(false), resume_bytes[0])
+                         : std::make_unique<HistoryWriter>(stem + ".csv", ftable_columns(false));
   // The driver's columns without those the solver does not have (per-step plastic work density,
   // Newton iterations).
   std::vector<std::string> cols;
@@ -50,7 +52,8 @@ void ParticleTracker::open(std::int64_t id, int material) {
     t.keep.push_back(keep);
     if (keep) cols.push_back(c);
   }
-  t.history = std::make_unique<HistoryWriter>(stem + "_history.csv", cols);
+  t.history = resume_bytes ? std::make_unique<HistoryWriter>(stem + "_history.csv", cols, resume_bytes[1])
+                           : std::make_unique<HistoryWriter>(stem + "_history.csv", cols);
 }
 
 void ParticleTracker::record(const FieldStore& points, double t, long step) {
@@ -108,6 +111,33 @@ void ParticleTracker::record_failure(const FieldStore& points, double t) {
     std::vector<double> frow = {t};
     frow.insert(frow.end(), F[where_[k]].a, F[where_[k]].a + 9);
     it->second.table->row(frow);
+  }
+}
+
+ParticleTracker::State ParticleTracker::state() const {
+  State s;
+  s.t_prev = t_prev_;
+  for (const auto& [id, t] : tracks_)
+    s.tracks.insert(s.tracks.end(), {id, t.material, t.started ? 1 : 0, t.table->bytes(), t.history->bytes()});
+  return s;
+}
+
+void ParticleTracker::save_state(StateArchive& a, const State& s) const {
+  a.put("tracks.open", s.tracks);
+  a.put_real("tracks.t_prev", s.t_prev);
+}
+
+void ParticleTracker::load_state(const StateArchive& a) {
+  const auto& v = a.ints("tracks.open");
+  t_prev_ = a.real("tracks.t_prev");
+  tracks_.clear();
+  for (std::size_t k = 0; k + 5 <= v.size(); k += 5) {
+    if (std::find(ids_.begin(), ids_.end(), v[k]) == ids_.end())
+      throw Error("the checkpoint tracks particle " + std::to_string(v[k]) +
+                  ", which output.track.ids no longer names; restart with the same ids");
+    const long long bytes[2] = {v[k + 3], v[k + 4]};
+    open(v[k], static_cast<int>(v[k + 1]), bytes);
+    tracks_[v[k]].started = v[k + 2] != 0;
   }
 }
 

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "core/field_store.hpp"
+#include "core/state_archive.hpp"
 #include "io/history_writer.hpp"
 #include "scenario/scenario.hpp"
 
@@ -43,15 +44,28 @@ class ParticleTracker {
   /// After a PhysicsError: appends the current F of every tracked particle to its F-table only.
   void record_failure(const FieldStore& points, double t);
 
+  /// Checkpoint: for each open track its id, material, whether it started, and the lengths of
+  /// its two files; and the time of the last record (docs/restart.md).
+  struct State {
+    std::vector<std::int64_t> tracks;  ///< 5 per open track: id, material, started, table bytes, history bytes
+    double t_prev = 0.0;
+  };
+  State state() const;
+  void save_state(StateArchive& archive, const State& s) const;
+  /// Restart: the tracks reopened and cut back to their lengths at the checkpoint.
+  void load_state(const StateArchive& archive);
+
  private:
   struct Track {
     std::unique_ptr<HistoryWriter> table, history;
     std::vector<bool> keep;  ///< which of the driver's history columns the solver has
     bool started = false;
+    int material = 0;
   };
   /// index of each tracked id in `points` (-1 if absent).
   void locate(const FieldStore& points);
-  void open(std::int64_t id, int material);
+  /// Opens the two files of a track (resume_bytes: continue them, cut back to these lengths).
+  void open(std::int64_t id, int material, const long long* resume_bytes = nullptr);
 
   std::string dir_;
   std::vector<std::int64_t> ids_;

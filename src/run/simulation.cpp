@@ -99,9 +99,6 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   std::optional<StateArchive> restart;
   if (!opt.restart_from.empty()) {
     restart = read_checkpoint_file(opt.restart_from);
-    if (!sc.output.track.empty())
-      throw Error("output.track.ids cannot be continued by a restart yet (the tracks would miss the steps after "
-                  "the checkpoint); run the deck again from the start to track particles");
   } else {
     if (const int removed = prepare_run_folder(opt.out_dir))
       spdlog::info("removed {} output files of an earlier run from {}", removed, opt.out_dir);
@@ -162,6 +159,12 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     ws.xdmf_body = restart->text("run.xdmf");
     writer.restore(ws);
     if (penetration) penetration->load_state(*restart);
+    if (!tracker.empty()) {
+      if (!restart->has("tracks.open"))
+        throw Error("the checkpoint was written without output.track.ids; tracks cannot start in the middle of a "
+                    "run (their F-tables would miss the steps before): run the deck from the start to track");
+      tracker.load_state(*restart);
+    }
     // The deck may have changed the end (--set simulation.end_time=...): the main stage ends
     // end_time after it began; the output clock stays where it was, within the new end.
     if (rs.stage == nstages) {
@@ -238,10 +241,11 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     int outputs = 0;
     std::size_t xdmf_body_end = 0;
     std::size_t penetration_samples = 0;
+    ParticleTracker::State tracks;
   };
   auto marks_now = [&] {
     return Marks{rs, history->bytes(), writer.count(), writer.xdmf_body_end(),
-                 penetration ? penetration->samples() : 0};
+                 penetration ? penetration->samples() : 0, tracker.state()};
   };
   // The solver calls since the newest checkpoint, so that a failing step can be replayed up to
   // the step before it (the run is deterministic): a step (stage < 0) or a stage start.
@@ -269,6 +273,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     a.put_int("run.outputs", ws.count);
     a.put_text("run.xdmf", ws.xdmf_body);
     if (penetration) penetration->save_state(a, m.penetration_samples);
+    if (!tracker.empty()) tracker.save_state(a, m.tracks);
     const std::string path = checkpoint_path(opt.out_dir, solver->steps());
     write_checkpoint_file(path, a);
     prune_checkpoints(opt.out_dir, sc.output.checkpoint_keep);
