@@ -11,6 +11,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "block_impact_deck.hpp"
 #include "core/parallel.hpp"
 #include "core/state_archive.hpp"
 #include "io/checkpoint_file.hpp"
@@ -19,28 +20,6 @@
 
 namespace {
 
-std::string deck(long particles) {
-  // As bench/mpm_block_impact_bench.cpp: 8 particles per cell, block nx x 0.8 nx x nx cells.
-  const double cells = static_cast<double>(particles) / 8.0;
-  const int nx = static_cast<int>(std::lround(std::cbrt(cells / 0.8)));
-  const int ny = static_cast<int>(std::lround(0.8 * nx));
-  const double h = 1.0e-3, lx = nx * h, ly = ny * h, m = 4 * h;
-  char buf[2048];
-  std::snprintf(buf, sizeof buf, R"(
-simulation: {solver: mpm, dimension: 3d, end_time: 1.0, cfl: 0.3, on_particle_exit: delete}
-materials:
-  steel: {model: j2_plasticity, density: 7850, youngs_modulus: 200.0e9, poisson_ratio: 0.29,
-          yield_stress: 350.0e6, hardening_modulus: 1.0e9}
-mpm: {shape_function: linear, update: musl, flip: 0.99}
-grid: {lower: [0, 0, 0], upper: [%g, %g, %g], cell_size: %g, boundary: {y_min: wall}}
-bodies:
-  - {name: block, material: steel, particles_per_cell: 2, velocity: [0, -200.0, 0],
-     shape: {type: box, lower: [%g, %g, %g], upper: [%g, %g, %g]}}
-)",
-                lx + 2 * m, ly + 2 * h, lx + 2 * m, h, m, 0.0, m, m + lx, ly, m + lx);
-  return buf;
-}
-
 std::string scratch_dir() {
   return (std::filesystem::temp_directory_path() / ("ballista_checkpoint_bench_" + std::to_string(::getpid())))
       .string();
@@ -48,7 +27,7 @@ std::string scratch_dir() {
 
 void BM_Checkpoint(benchmark::State& state, bool write) {
   ballista::set_threads(2);
-  const ballista::Scenario sc = ballista::parse_deck(deck(state.range(0)), "bench.yaml");
+  const ballista::Scenario sc = ballista::parse_deck(ballista::bench::block_impact_deck(state.range(0), "linear"), "bench.yaml");
   auto solver = ballista::make_solver(sc);
   for (int k = 0; k < 3; ++k) solver->step(solver->stable_dt());
   const std::string dir = scratch_dir();

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <string>
 
+#include "block_impact_deck.hpp"
 #include "core/parallel.hpp"
 #include "io/deck_reader.hpp"
 #include "run/simulation.hpp"
@@ -17,42 +18,7 @@
 namespace {
 
 std::string deck(long particles, const std::string& shape, double box_volume_ratio = 0.0) {
-  // 8 particles per cell (2 per direction); block of nx x ny x nz cells with ny = 0.8 nx.
-  const double cells = static_cast<double>(particles) / 8.0;
-  const int nx = static_cast<int>(std::lround(std::cbrt(cells / 0.8)));
-  const int ny = static_cast<int>(std::lround(0.8 * nx));
-  const double h = 1.0e-3;
-  const double lx = nx * h, ly = ny * h;
-  // Four empty cells around the block in x and z leave room for its lateral spreading. With
-  // box_volume_ratio > 0 the box is instead that many times the block's volume (the margin grows
-  // alike in x, z and above the block): the cost of empty grid (issue 17, the sparse grid).
-  double m = 4 * h, top = 2 * h;
-  if (box_volume_ratio > 0.0) {
-    const double s = std::cbrt(box_volume_ratio);
-    m = std::ceil(0.5 * (s - 1.0) * lx / h) * h;
-    top = std::ceil((s - 1.0) * ly / h) * h;
-  }
-  char buf[2048];
-  std::snprintf(buf, sizeof buf, R"(
-simulation: {solver: mpm, dimension: 3d, end_time: 1.0, cfl: 0.3, on_particle_exit: delete}
-materials:
-  steel: {model: j2_plasticity, density: 7850, youngs_modulus: 200.0e9, poisson_ratio: 0.29,
-          yield_stress: 350.0e6, hardening_modulus: 1.0e9}
-mpm: {shape_function: %s, update: musl, flip: 0.99, sort_every: 20}
-grid:
-  lower: [0, 0, 0]
-  upper: [%g, %g, %g]
-  cell_size: %g
-  boundary: {y_min: wall}
-bodies:
-  - name: block
-    material: steel
-    shape: {type: box, lower: [%g, %g, %g], upper: [%g, %g, %g]}
-    particles_per_cell: 2
-    velocity: [0, -200.0, 0]
-)",
-                shape.c_str(), lx + 2 * m, ly + top, lx + 2 * m, h, m, 0.0, m, m + lx, ly, m + lx);
-  return buf;
+  return ballista::bench::block_impact_deck(particles, shape, box_volume_ratio);
 }
 
 void BM_BlockImpact(benchmark::State& state, std::string shape) {

@@ -50,6 +50,11 @@ const std::string& StateArchive::text(const std::string& key) const {
   return it->second;
 }
 
+void StateArchive::throw_bad_records(const std::string& key, std::size_t n, std::size_t k) {
+  throw Error("the checkpoint's '" + key + "' holds " + std::to_string(n) + " values, not a multiple of " +
+              std::to_string(k) + " (written by another version of ballista?)");
+}
+
 void StateArchive::put_fields(const std::string& prefix, const FieldStore& store) {
   const Index n = store.size();
   put_int(prefix + "size", n);

@@ -6,6 +6,7 @@
 // restarted run continues bitwise as the uninterrupted one. A missing key or an array of the
 // wrong length is an Error that names the key (a checkpoint of another deck or version).
 #include <cstdint>
+#include <cstring>
 #include <map>
 #include <string>
 #include <vector>
@@ -34,6 +35,35 @@ class StateArchive {
   std::int64_t integer(const std::string& key) const { return ints(key, 1)[0]; }
   const std::string& text(const std::string& key) const;
 
+  /// Arrays of fixed-size records of doubles (Vec3, Mat3) as flat real arrays, and integer-like
+  /// arrays (uint8 flags, int32 indices) as int64 arrays; get_* resize `out`.
+  template <class T>
+  void put_records(const std::string& key, const std::vector<T>& v) {
+    constexpr std::size_t k = sizeof(T) / sizeof(double);
+    static_assert(k * sizeof(double) == sizeof(T), "a record of doubles");
+    std::vector<double> flat(k * v.size());
+    if (!v.empty()) std::memcpy(flat.data(), v.data(), flat.size() * sizeof(double));
+    put(key, std::move(flat));
+  }
+  /// `count` (if given): the number of records the archive must hold.
+  template <class T>
+  void get_records(const std::string& key, std::vector<T>& out, std::size_t count = SIZE_MAX) const {
+    constexpr std::size_t k = sizeof(T) / sizeof(double);
+    const auto& flat = count == SIZE_MAX ? reals(key) : reals(key, k * count);
+    if (flat.size() % k != 0) throw_bad_records(key, flat.size(), k);
+    out.resize(flat.size() / k);
+    if (!out.empty()) std::memcpy(out.data(), flat.data(), flat.size() * sizeof(double));
+  }
+  template <class T>
+  void put_integers(const std::string& key, const std::vector<T>& v) {
+    put(key, std::vector<std::int64_t>(v.begin(), v.end()));
+  }
+  template <class T>
+  void get_integers(const std::string& key, std::vector<T>& out, std::size_t count = SIZE_MAX) const {
+    const auto& v = count == SIZE_MAX ? ints(key) : ints(key, count);
+    out.assign(v.begin(), v.end());
+  }
+
   /// Every field of `store` under prefix + field name, and its size under prefix + "size".
   void put_fields(const std::string& prefix, const FieldStore& store);
   /// Resizes `store` (its fields already declared, as by the same deck) and fills every field
@@ -48,6 +78,7 @@ class StateArchive {
   std::map<std::string, std::vector<double>> reals_;
   std::map<std::string, std::vector<std::int64_t>> ints_;
   std::map<std::string, std::string> texts_;
+  [[noreturn]] static void throw_bad_records(const std::string& key, std::size_t n, std::size_t k);
 };
 
 }  // namespace ballista

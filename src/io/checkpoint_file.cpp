@@ -66,6 +66,16 @@ void fsync_path(const std::string& path) {
   if (rc != 0) throw Error("cannot flush '" + path + "' to disk");
 }
 
+/// The file opened read-only without file locking (locks fail on some parallel file systems);
+/// a negative id if it cannot be opened.
+hid_t open_read_only(const std::string& path) {
+  H5Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "create file access list");
+#if H5_VERSION_GE(1, 10, 7)
+  H5Pset_file_locking(fapl, false, true);
+#endif
+  return H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
+}
+
 }  // namespace
 
 void write_checkpoint_file(const std::string& path, const StateArchive& archive) {
@@ -108,11 +118,7 @@ void write_checkpoint_file(const std::string& path, const StateArchive& archive)
 StateArchive read_checkpoint_file(const std::string& path) {
   const H5QuietErrors quiet;
   try {
-    H5Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "create file access list");
-#if H5_VERSION_GE(1, 10, 7)
-    H5Pset_file_locking(fapl, false, true);
-#endif
-    H5Id h5(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl), H5Fclose, "open '" + path + "'");
+    H5Id h5(open_read_only(path), H5Fclose, "open '" + path + "'");
     {
       H5Id attr(H5Aopen(h5, "format", H5P_DEFAULT), H5Aclose, "find the checkpoint format of '" + path + "'");
       H5Id type(H5Aget_type(attr), H5Tclose, "read the checkpoint format type");
@@ -145,11 +151,7 @@ StateArchive read_checkpoint_file(const std::string& path) {
 std::string read_checkpoint_text(const std::string& path, const std::string& key) {
   const H5QuietErrors quiet;
   try {
-    H5Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "create file access list");
-#if H5_VERSION_GE(1, 10, 7)
-    H5Pset_file_locking(fapl, false, true);
-#endif
-    H5Id h5(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl), H5Fclose, "open '" + path + "'");
+    H5Id h5(open_read_only(path), H5Fclose, "open '" + path + "'");
     H5Id g(H5Gopen2(h5, "text", H5P_DEFAULT), H5Gclose, "open group 'text'");
     const auto bytes = read_array<unsigned char>(g, key, H5T_NATIVE_UCHAR);
     return std::string(bytes.begin(), bytes.end());

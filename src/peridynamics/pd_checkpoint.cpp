@@ -1,37 +1,10 @@
 // Checkpoint and restart of the peridynamic solver (issue 16, docs/restart.md): what a step
 // carries to the next beyond the point fields. Everything the constructor derives from the deck
 // (bond families, constants, blocks, mirrors) is rebuilt identically and is only checked here.
-#include <cstring>
-
 #include "core/error.hpp"
 #include "peridynamics/pd_solver.hpp"
 
 namespace ballista {
-
-namespace {
-
-template <class T>
-std::vector<std::int64_t> as_ints(const std::vector<T>& v) {
-  return std::vector<std::int64_t>(v.begin(), v.end());
-}
-
-template <class T>
-void from_ints(const std::vector<std::int64_t>& in, std::vector<T>& out) {
-  out.assign(in.begin(), in.end());
-}
-
-std::vector<double> flatten(const std::vector<Vec3>& v) {
-  std::vector<double> out(3 * v.size());
-  if (!v.empty()) std::memcpy(out.data(), v.data(), out.size() * sizeof(double));
-  return out;
-}
-
-void unflatten(const std::vector<double>& in, std::vector<Vec3>& out) {
-  out.resize(in.size() / 3);
-  if (!out.empty()) std::memcpy(out.data(), in.data(), in.size() * sizeof(double));
-}
-
-}  // namespace
 
 void PdSolver::save_state(StateArchive& a) const {
   pts_.save_state(a);
@@ -40,21 +13,21 @@ void PdSolver::save_state(StateArchive& a) const {
   a.put("pd.scalars", std::vector<double>{external_work_, damping_, next_fragment_time_});
   a.put("pd.counters", std::vector<std::int64_t>{static_cast<std::int64_t>(vented_count_),
                                                  static_cast<std::int64_t>(gas_rate_limited_)});
-  a.put("pd.bond_broken", as_ints(bonds_.broken));
+  a.put_integers("pd.bond_broken", bonds_.broken);
   a.put("pd.plastic_stretch", sp_);
   a.put("pd.critical_stretch", s0_);
   a.put("pd.dissipated", dissipated_);
   a.put("pd.contact_energy", contact_energy_);
   a.put("pd.contact_stiffness", stiff_contact_);
-  a.put("pd.contact.offset", as_ints(contact_.offset));
-  a.put("pd.contact.other", as_ints(contact_.other));
+  a.put_integers("pd.contact.offset", contact_.offset);
+  a.put_integers("pd.contact.other", contact_.other);
   a.put("pd.contact.reach", contact_.reach);
-  a.put("pd.contact.x_build", flatten(contact_.x_build));
+  a.put_records("pd.contact.x_build", contact_.x_build);
   a.put("pd.contact.state", std::vector<double>{contact_.skin, static_cast<double>(contact_.builds)});
   a.put("pd.gas.x", gas_x_);
   a.put("pd.gas.g", gas_g_);
-  a.put("pd.gas.vented", as_ints(vented_));
-  a.put("pd.gas.vent_velocity", flatten(vent_velocity_));
+  a.put_integers("pd.gas.vented", vented_);
+  a.put_records("pd.gas.vent_velocity", vent_velocity_);
   std::vector<double> rows;
   const std::size_t width = fragment_rows_.empty() ? 0 : fragment_rows_.front().size();
   for (const auto& r : fragment_rows_) rows.insert(rows.end(), r.begin(), r.end());
@@ -76,23 +49,23 @@ void PdSolver::load_state(const StateArchive& a) {
   const auto& cn = a.ints("pd.counters", 2);
   vented_count_ = static_cast<Index>(cn[0]);
   gas_rate_limited_ = static_cast<Index>(cn[1]);
-  from_ints(a.ints("pd.bond_broken", bonds_.broken.size()), bonds_.broken);
+  a.get_integers("pd.bond_broken", bonds_.broken, bonds_.broken.size());
   sp_ = a.reals("pd.plastic_stretch", sp_.size());
   s0_ = a.reals("pd.critical_stretch", s0_.size());
   dissipated_ = a.reals("pd.dissipated", dissipated_.size());
   contact_energy_ = a.reals("pd.contact_energy", contact_energy_.size());
   stiff_contact_ = a.reals("pd.contact_stiffness", stiff_contact_.size());
-  from_ints(a.ints("pd.contact.offset"), contact_.offset);
-  from_ints(a.ints("pd.contact.other"), contact_.other);
+  a.get_integers("pd.contact.offset", contact_.offset);
+  a.get_integers("pd.contact.other", contact_.other);
   contact_.reach = a.reals("pd.contact.reach", contact_.other.size());
-  unflatten(a.reals("pd.contact.x_build"), contact_.x_build);
+  a.get_records("pd.contact.x_build", contact_.x_build);
   const auto& cs = a.reals("pd.contact.state", 2);
   contact_.skin = cs[0];
   contact_.builds = static_cast<long>(cs[1]);
   gas_x_ = a.reals("pd.gas.x", gas_x_.size());
   gas_g_ = a.reals("pd.gas.g", gas_g_.size());
-  from_ints(a.ints("pd.gas.vented", vented_.size()), vented_);
-  unflatten(a.reals("pd.gas.vent_velocity"), vent_velocity_);
+  a.get_integers("pd.gas.vented", vented_, vented_.size());
+  a.get_records("pd.gas.vent_velocity", vent_velocity_);
   const auto width = static_cast<std::size_t>(a.integer("pd.fragment_row_width"));
   const auto& rows = a.reals("pd.fragment_rows");
   fragment_rows_.clear();
