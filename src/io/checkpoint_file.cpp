@@ -201,6 +201,16 @@ std::vector<std::string> list_checkpoints(const std::string& out_dir) {
   return out;
 }
 
+int remove_checkpoints_after(const std::string& out_dir, const std::string& path) {
+  const std::string name = std::filesystem::path(path).filename().string();
+  int removed = 0;
+  for (const std::string& c : list_checkpoints(out_dir)) {
+    std::error_code ec;
+    if (std::filesystem::path(c).filename().string() > name && std::filesystem::remove(c, ec)) ++removed;
+  }
+  return removed;
+}
+
 int prune_checkpoints(const std::string& out_dir, int keep) {
   const std::vector<std::string> all = list_checkpoints(out_dir);
   int removed = 0;

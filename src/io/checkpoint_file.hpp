@@ -34,6 +34,10 @@ std::string checkpoint_path(const std::string& out_dir, long step);
 /// The complete checkpoints in out_dir (temporary files ignored), oldest first (by step).
 std::vector<std::string> list_checkpoints(const std::string& out_dir);
 
+/// Removes the checkpoints of out_dir written after `path` (by step: a restart from an older
+/// one abandons them); returns how many were removed.
+int remove_checkpoints_after(const std::string& out_dir, const std::string& path);
+
 /// Removes all but the newest `keep` checkpoints of out_dir; returns how many were removed.
 int prune_checkpoints(const std::string& out_dir, int keep);
 

@@ -74,7 +74,8 @@ HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> columns,
   if (std::fread(first.data(), 1, first.size(), file_) != first.size() || first != h) {
     std::fclose(file_);
     file_ = nullptr;
-    throw Error("cannot continue '" + path_ + "': its header differs from this run's columns");
+    throw Error("cannot continue '" + path_ + "': its header differs from this run's columns (were probes, stages or "
+                "loads changed by --set at the restart?)");
   }
   std::fseek(file_, 0, SEEK_END);
   bytes_ = resume_bytes;

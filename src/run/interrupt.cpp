@@ -19,13 +19,14 @@ extern "C" void on_signal(int sig) {
 
 }  // namespace
 
-void install_interrupt_handlers() {
-  static const bool installed = [] {
-    std::signal(SIGTERM, on_signal);
-    std::signal(SIGINT, on_signal);
-    return true;
-  }();
-  (void)installed;
+InterruptScope::InterruptScope() {
+  term_ = std::signal(SIGTERM, on_signal);
+  int_ = std::signal(SIGINT, on_signal);
+}
+
+InterruptScope::~InterruptScope() {
+  std::signal(SIGTERM, term_ == SIG_ERR ? SIG_DFL : term_);
+  std::signal(SIGINT, int_ == SIG_ERR ? SIG_DFL : int_);
 }
 
 bool interrupt_requested() { return g_requested.load() != 0; }

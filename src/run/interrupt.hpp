@@ -5,8 +5,19 @@
 // while the first is being handled kills the process as the default action would.
 namespace ballista {
 
-/// Installs the handlers (idempotent).
-void install_interrupt_handlers();
+/// Installs the handlers while alive (the run loop's steps) and restores the previous ones after:
+/// a signal during setup or the end-of-run work acts as it would without Ballista.
+class InterruptScope {
+ public:
+  InterruptScope();
+  ~InterruptScope();
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+
+ private:
+  void (*term_)(int) = nullptr;
+  void (*int_)(int) = nullptr;
+};
 /// True once SIGTERM or SIGINT has arrived (or request_interrupt was called).
 bool interrupt_requested();
 /// What a signal does, for tests and embedding programs.

@@ -123,11 +123,20 @@ ParticleTracker::State ParticleTracker::state() const {
 }
 
 void ParticleTracker::save_state(StateArchive& a, const State& s) const {
+  a.put("tracks.ids", ids_);
   a.put("tracks.open", s.tracks);
   a.put_real("tracks.t_prev", s.t_prev);
 }
 
 void ParticleTracker::load_state(const StateArchive& a) {
+  // A track added now would start in the middle of the run: its F-table would miss the steps
+  // before, and a replay of it would be wrong.
+  const auto& saved = a.ints("tracks.ids");
+  for (std::int64_t id : ids_)
+    if (std::find(saved.begin(), saved.end(), id) == saved.end())
+      throw Error("output.track.ids adds particle " + std::to_string(id) +
+                  " at a restart: its F-table would miss the steps before the checkpoint; run the deck from the "
+                  "start to track it");
   const auto& v = a.ints("tracks.open");
   t_prev_ = a.real("tracks.t_prev");
   tracks_.clear();

@@ -91,6 +91,36 @@ std::vector<std::string> output_fields(const Scenario& sc, const FieldStore& poi
   return sc.output.fields;
 }
 
+/// What a restart may not change: the solver, the grid, the bodies' materials and seeding, the
+/// materials' models (--set may change the end, outputs and guards; docs/restart.md).
+std::string layout_signature(const Scenario& sc) {
+  std::string s = "solver " + sc.simulation.solver + "\ngrid " +
+                  fmt::format("{} {} {} {} {} {} {}", sc.grid.lower[0], sc.grid.lower[1], sc.grid.lower[2],
+                              sc.grid.upper[0], sc.grid.upper[1], sc.grid.upper[2], sc.grid.cell_size) +
+                  "\n";
+  for (const auto& m : sc.materials) s += "material " + m.name + " " + m.model + "\n";
+  for (const auto& b : sc.bodies)
+    s += "body " + b.name + " " + b.material + " " + std::to_string(b.particles_per_cell) + "\n";
+  return s;
+}
+
+/// Refuses a restart whose deck seeds other points than the checkpoint's (naming the first
+/// differing line).
+void check_layout(const StateArchive& a, const Scenario& sc, const std::string& path) {
+  if (!a.has("run.layout")) return;
+  const std::string want = a.text("run.layout"), have = layout_signature(sc);
+  if (want == have) return;
+  std::size_t at = 0;
+  while (at < want.size() && at < have.size() && want[at] == have[at]) ++at;
+  const std::size_t line = want.rfind('\n', at == 0 ? 0 : at - 1);
+  const std::size_t from = line == std::string::npos ? 0 : line + 1;
+  throw Error("the deck does not match the checkpoint " + path + ": it has '" +
+              have.substr(from, have.find('\n', from) - from) + "' where the checkpoint has '" +
+              want.substr(from, want.find('\n', from) - from) +
+              "' (a restart may change the end time, outputs and guards, not the solver, grid, bodies or material "
+              "models)");
+}
+
 }  // namespace
 
 RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
@@ -99,13 +129,16 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   std::optional<StateArchive> restart;
   if (!opt.restart_from.empty()) {
     restart = read_checkpoint_file(opt.restart_from);
+    check_layout(*restart, sc, opt.restart_from);
+    // Checkpoints newer than the one restarted from belong to the abandoned continuation.
+    if (const int n = remove_checkpoints_after(opt.out_dir, opt.restart_from))
+      spdlog::info("removed {} checkpoints newer than {}", n, opt.restart_from);
   } else {
     if (const int removed = prepare_run_folder(opt.out_dir))
       spdlog::info("removed {} output files of an earlier run from {}", removed, opt.out_dir);
     write_file_atomic((fs::path(opt.out_dir) / "resolved.yaml").string(), sc.resolved_yaml);
   }
   clear_interrupt();
-  install_interrupt_handlers();
   request_threads(opt.threads > 0 ? opt.threads : sc.simulation.threads,  // clamped to the cores present
                   opt.threads > 0 ? "--threads" : "simulation.threads");
 
@@ -172,7 +205,9 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       rs.next_output = std::min(rs.next_output, rs.end);
       if (rs.next_output <= solver->time()) rs.next_output = std::min(rs.end, solver->time() + interval);
     }
-    if (sc.output.checkpoint_interval > 0 && !std::isfinite(rs.next_checkpoint))
+    if (sc.output.checkpoint_interval <= 0)
+      rs.next_checkpoint = RunState::kInf;
+    else if (!std::isfinite(rs.next_checkpoint))
       rs.next_checkpoint = solver->time() + sc.output.checkpoint_interval;
     spdlog::info("restarted from {} at step {}, t = {:.6g} s", opt.restart_from, solver->steps(), solver->time());
   } else {
@@ -242,10 +277,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     std::size_t xdmf_body_end = 0;
     std::size_t penetration_samples = 0;
     ParticleTracker::State tracks;
-  };
-  auto marks_now = [&] {
-    return Marks{rs, history->bytes(), writer.count(), writer.xdmf_body_end(),
-                 penetration ? penetration->samples() : 0, tracker.state()};
+    std::size_t calls = 0;  ///< solver calls since the newest checkpoint at the mark
   };
   // The solver calls since the newest checkpoint, so that a failing step can be replayed up to
   // the step before it (the run is deterministic): a step (stage < 0) or a stage start.
@@ -255,7 +287,12 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     double damping;
   };
   std::vector<SolverCall> calls_since_checkpoint;
-  std::string newest_checkpoint;
+  // A restart's own checkpoint is where a failure before its first checkpoint replays from.
+  std::string newest_checkpoint = restart ? opt.restart_from : std::string();
+  auto marks_now = [&] {
+    return Marks{rs, history->bytes(), writer.count(), writer.xdmf_body_end(),
+                 penetration ? penetration->samples() : 0, tracker.state(), calls_since_checkpoint.size()};
+  };
   auto wall_start = std::chrono::steady_clock::now();
   auto wall_of_last_checkpoint = wall_start;
   auto write_checkpoint = [&](const Marks& m, const char* why) {
@@ -263,6 +300,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     a.put_text("run.deck", sc.resolved_yaml);
     a.put_text("run.deck_file", restart ? restart->text("run.deck_file") : sc.file);
     a.put_text("run.solver", solver->name());
+    a.put_text("run.layout", layout_signature(sc));
     solver->save_state(a);
     RunState saved = m.rs;
     saved.wall_before = rs.wall_before +
@@ -286,21 +324,28 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   auto maybe_checkpoint = [&] {
     if (!checkpointing || solver->time() >= rs.end * (1.0 - 1e-12)) return;
     const char* why = nullptr;
-    if (solver->time() >= rs.next_checkpoint * (1.0 - 1e-12)) {
+    if (sc.output.checkpoint_interval > 0 && solver->time() >= rs.next_checkpoint * (1.0 - 1e-12)) {
       while (rs.next_checkpoint <= solver->time() * (1.0 + 1e-12)) rs.next_checkpoint += sc.output.checkpoint_interval;
       why = "output.checkpoint_interval";
     }
     const double minutes =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_of_last_checkpoint).count() / 60.0;
     if (opt.checkpoint_minutes > 0 && minutes >= opt.checkpoint_minutes) why = "--checkpoint-every-minutes";
-    if (why) write_checkpoint(marks_now(), why);
+    if (!why) return;
+    // A checkpoint that cannot be written (disk full) does not stop the run: the previous ones stay.
+    try {
+      write_checkpoint(marks_now(), why);
+    } catch (const std::exception& e) {
+      spdlog::error("could not write a checkpoint at step {}: {} (the run goes on; the newest checkpoint is {})",
+                    solver->steps(), e.what(), newest_checkpoint.empty() ? "none" : newest_checkpoint);
+    }
   };
   // After a step: the due checkpoint, then a signal's request to stop (run/interrupt.hpp), which
   // checkpoints this step (if not just done) and ends the loop. True: stop.
   bool interrupted = false;
   auto after_step = [&] {
     maybe_checkpoint();
-    if (!interrupt_requested()) return false;
+    if (!interrupt_requested() || solver->time() >= rs.end * (1.0 - 1e-12)) return false;
     if (newest_checkpoint != checkpoint_path(opt.out_dir, solver->steps()))
       write_checkpoint(marks_now(), "interrupted by a signal");
     interrupted = true;
@@ -359,9 +404,10 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
                    rs.end);
     }
   };
-  Marks good;  // the state before the step being taken (a failing step's last good state)
-  bool particle_failure = false;
+  Marks good;  // the state at the start of the iteration being taken (a failure's last good state)
+  bool physics_failure = false;
   try {
+    const InterruptScope signals;  // SIGTERM / SIGINT checkpoint and stop, during the steps only
     // Stop within a relative round-off of the end time instead of taking a sliver step.
     while (solver->time() < rs.end * (1.0 - 1e-12)) {
       if (sc.simulation.max_steps > 0 && solver->steps() >= sc.simulation.max_steps) {
@@ -395,9 +441,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
         dt = std::min(dt, stage_end - solver->time());
       }
       rs.particle_steps += static_cast<double>(solver->points().size());
-      particle_failure = true;  // a PhysicsError from inside the step leaves a half-updated state
       solver->step(dt);
-      particle_failure = false;
       rs.dt = dt;
       if (checkpointing) calls_since_checkpoint.push_back({dt, -1, 0.0});
       tracker.record(solver->points(), solver->time(), solver->steps());
@@ -463,7 +507,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       spdlog::error("could not record the failing step of the tracked particles: {}", w.what());
     }
     spdlog::error("run stopped: {}", err.what());
-    if (!particle_failure) good = marks_now();  // a whole step's state: it is the last good one
+    physics_failure = true;
     // The failing state goes to a new output file; earlier outputs stay untouched.
     try {
       writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
@@ -597,26 +641,30 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     summary["error"] = result.error;
   }
   summary.write((fs::path(opt.out_dir) / "summary.json").string());
-  if (!result.ok && !result.interrupted && checkpointing) {
-    // The last good state as a checkpoint, to restart from with other settings. A failure inside a
-    // step leaves a half-updated state, so the solver goes back to the newest checkpoint and
-    // replays the calls since then (the run is deterministic) up to the step before the failure.
+  if (physics_failure && checkpointing) {
+    // The state at the start of the iteration that failed, as a checkpoint to restart from with
+    // other settings. A failure leaves a half-updated state (inside a step) or one whose outputs
+    // and stage bookkeeping were cut short (the drift guard, a stage that did not settle), so the
+    // solver goes back to the newest checkpoint and replays the calls made before that iteration
+    // (the run is deterministic; each step after its stable_dt, as the loop does).
     try {
-      if (particle_failure) {
-        solver->load_state(read_checkpoint_file(newest_checkpoint));
-        const std::vector<SolverCall> calls = calls_since_checkpoint;
-        for (const SolverCall& c : calls) {
-          if (c.stage >= 0)
-            solver->begin_stage(c.stage, c.damping);
-          else
-            solver->step(c.dt);
+      if (newest_checkpoint.empty()) throw Error("no checkpoint to replay from");
+      solver->load_state(read_checkpoint_file(newest_checkpoint));
+      const std::vector<SolverCall> calls(calls_since_checkpoint.begin(),
+                                          calls_since_checkpoint.begin() + static_cast<std::ptrdiff_t>(good.calls));
+      for (const SolverCall& c : calls) {
+        if (c.stage >= 0) {
+          solver->begin_stage(c.stage, c.damping);
+        } else {
+          (void)solver->stable_dt();
+          solver->step(c.dt);
         }
       }
-      write_checkpoint(good, particle_failure ? "the last good step before the failure" : "the state the run stopped in");
+      write_checkpoint(good, "the start of the step that failed");
       result.checkpoint = newest_checkpoint;
     } catch (const std::exception& w) {
       spdlog::error("could not write a checkpoint of the last good step: {} (the newest checkpoint is {})", w.what(),
-                    newest_checkpoint);
+                    newest_checkpoint.empty() ? "none" : newest_checkpoint);
       result.checkpoint = newest_checkpoint;
     }
   }

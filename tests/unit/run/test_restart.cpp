@@ -130,25 +130,32 @@ TEST(Restart, AFailingRunCheckpointsItsLastGoodStepAndFailsAgainFromIt) {
   EXPECT_EQ(r2.failed_step, r1.failed_step);
   EXPECT_EQ(r2.error, r1.error);
   EXPECT_EQ(r2.steps, r1.steps);
+  // The restarted run fails before its first checkpoint: it replays from the one it started from.
+  EXPECT_EQ(r2.checkpoint, r1.checkpoint);
 }
 
-TEST(Restart, AWholeStepFailureCheckpointsTheStateItStoppedIn) {
-  // The energy-drift guard stops a run between steps: the state is consistent, so it is
-  // checkpointed as it is, and the run continues from it with the guard relaxed to the same
-  // history as a run that never stopped.
+TEST(Restart, ADriftGuardFailureCheckpointsTheStartOfItsStep) {
+  // The energy-drift guard stops the run on a history row, after the step. The checkpoint is the
+  // state at the start of that step (replayed), with the outputs as they were then; restarting
+  // from it with the guard on fails again at the same step, and with the guard off the run
+  // continues to the history of a run that never stopped.
   TempDir dir("restart_drift");
   const Scenario guarded = parse_deck(kBlock, "block.yaml", {"simulation.energy_drift_limit=1e-12"});
   const RunResult r1 = run_simulation(guarded, options(dir.path));
   ASSERT_FALSE(r1.ok);
   ASSERT_NE(r1.error.find("energy drift"), std::string::npos) << r1.error;
-  EXPECT_EQ(r1.checkpoint, checkpoint_path(dir.path.string(), r1.failed_step));
-  const RunResult r2 = run_simulation(parse_deck(kBlock, "block.yaml"), options(dir.path, r1.checkpoint));
+  EXPECT_EQ(r1.checkpoint, checkpoint_path(dir.path.string(), r1.failed_step - 1));
+  const RunResult again = run_simulation(guarded, options(dir.path, r1.checkpoint));
+  EXPECT_FALSE(again.ok);
+  EXPECT_EQ(again.failed_step, r1.failed_step);
+  EXPECT_EQ(again.error, r1.error);
+  const RunResult r2 = run_simulation(parse_deck(kBlock, "block.yaml"), options(dir.path, again.checkpoint));
   ASSERT_TRUE(r2.ok) << r2.error;
   TempDir ref("restart_drift_ref");
   const RunResult full = run_simulation(parse_deck(kBlock, "block.yaml"), options(ref.path));
   EXPECT_EQ(r2.probes, full.probes);
   EXPECT_EQ(r2.steps, full.steps);
-  EXPECT_EQ(slurp(dir.path / "history.csv"), slurp(ref.path / "history.csv"));
+  EXPECT_TRUE(slurp(dir.path / "history.csv") == slurp(ref.path / "history.csv"));
 }
 
 TEST(Restart, WhatCannotBeContinuedIsRefused) {
@@ -168,6 +175,12 @@ TEST(Restart, WhatCannotBeContinuedIsRefused) {
                    options(dir.path, from));
   });
   EXPECT_NE(other.find("the checkpoint has no"), std::string::npos) << other;
+  // Another grid or seeding: the deck no longer matches the checkpoint's points.
+  const std::string grid = error_of([&] {
+    run_simulation(parse_deck(deck, "d.yaml", {"grid.cell_size=0.0078125"}), options(dir.path, from));
+  });
+  EXPECT_NE(grid.find("does not match the checkpoint"), std::string::npos) << grid;
+  EXPECT_NE(grid.find("grid"), std::string::npos) << grid;
 }
 
 TEST(Restart, WallClockCheckpointsKeepTheNewestTwo) {
@@ -183,6 +196,16 @@ TEST(Restart, WallClockCheckpointsKeepTheNewestTwo) {
   ASSERT_EQ(cks.size(), 2u);
   EXPECT_EQ(cks[0], checkpoint_path(dir.path.string(), r.steps - 2));
   EXPECT_EQ(cks[1], checkpoint_path(dir.path.string(), r.steps - 1));
+  // Restarted with the simulated-time interval switched off (it was on): wall-clock checkpoints
+  // only, and the run ends.
+  TempDir again("restart_wall_again");
+  ASSERT_TRUE(run_simulation(parse_deck(kBlock, "block.yaml"), options(again.path)).ok);
+  const auto [from, deck] = newest_checkpoint(again.path.string());
+  RunOptions o2 = options(again.path, from);
+  o2.checkpoint_minutes = 1e-12;
+  const RunResult r2 = run_simulation(parse_deck(deck, "d.yaml", {"output.checkpoint_interval=0"}), o2);
+  ASSERT_TRUE(r2.ok) << r2.error;
+  EXPECT_EQ(r2.steps, r.steps);
 }
 
 TEST(Restart, ALaterEndTimeContinuesTheRun) {
@@ -218,4 +241,9 @@ TEST(Restart, TrackedParticlesContinueTheirTables) {
     EXPECT_TRUE(a == b) << f;
   }
   EXPECT_TRUE(slurp(ref.path / "history.csv") == slurp(copy.path / "history.csv"));
+  // A particle tracked only from the restart on is refused (its table would miss the start).
+  const std::string added = error_of([&] {
+    run_simulation(parse_deck(kBlock, "block.yaml", {"output.track.ids=[0,5,17]"}), options(copy.path, cks[0]));
+  });
+  EXPECT_NE(added.find("adds particle 5"), std::string::npos) << added;
 }
