@@ -33,7 +33,6 @@ class ParticleWriter {
     int count = 0;
     std::string xdmf_body;  ///< particles.xdmf without the footer ("" before the first output)
   };
-  State state() const { return state_at(count_, xdmf_body_end_); }
   /// The state as it was after output `count` - 1, whose index body ended at `body_end`
   /// (count() and xdmf_body_end() read then): earlier index text is never rewritten.
   State state_at(int count, std::size_t body_end) const;

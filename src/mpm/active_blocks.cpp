@@ -82,8 +82,5 @@ void ActiveBlocks::finish() {
   dense_ = active_nodes_ > kDenseFraction * static_cast<double>(g_.node_count());
 }
 
-double ActiveBlocks::active_fraction() const {
-  return g_.node_count() > 0 ? static_cast<double>(active_nodes_) / static_cast<double>(g_.node_count()) : 0.0;
-}
 
 }  // namespace ballista

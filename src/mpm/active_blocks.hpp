@@ -24,8 +24,6 @@ class ActiveBlocks {
   /// Marks the blocks overlapping nodes [c - reach, c + 1 + reach] of each point's cell c
   /// (points outside the grid are clamped to it: the solver reports them).
   void mark(const Vec3* x, Index n, int reach);
-  /// Marks the blocks of nodes [c, c + 1] around each of `n` positions (traction points).
-  void mark_linear(const Vec3* x, Index n) { mark(x, n, 0); }
   /// Ends marking: the node rows of the active blocks (ascending), and the rows of the blocks that
   /// were active before and are not now (released(): the caller clears them).
   void finish();
@@ -64,8 +62,6 @@ class ActiveBlocks {
       for (Index i = b; i < b + released_len_[r]; ++i) f(i);
     });
   }
-  /// Fraction of the grid's nodes in active blocks (statistics).
-  double active_fraction() const;
   Index active_blocks() const { return static_cast<Index>(active_list_.size()); }
   /// More than kDenseFraction of the nodes active: the node passes run over the whole grid.
   bool dense() const { return dense_; }

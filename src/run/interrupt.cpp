@@ -30,7 +30,6 @@ InterruptScope::~InterruptScope() {
 }
 
 bool interrupt_requested() { return g_requested.load() != 0; }
-void request_interrupt() { g_requested.store(1); }
 void clear_interrupt() { g_requested.store(0); }
 
 }  // namespace ballista

@@ -18,10 +18,8 @@ class InterruptScope {
   void (*term_)(int) = nullptr;
   void (*int_)(int) = nullptr;
 };
-/// True once SIGTERM or SIGINT has arrived (or request_interrupt was called).
+/// True once SIGTERM or SIGINT has arrived.
 bool interrupt_requested();
-/// What a signal does, for tests and embedding programs.
-void request_interrupt();
 /// Forgets an earlier request (a new run starts uninterrupted).
 void clear_interrupt();
 
