@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include "core/communicator.hpp"
 #include "core/error.hpp"
 #include "core/threads.hpp"
 #include "driver/drive_run.hpp"
@@ -115,6 +117,26 @@ int main(int argc, char** argv) {
   // OpenMP threads sleep instead of spinning while they wait, unless the user chose a policy: may
   // re-execute this program (libgomp reads its environment before main; docs/performance.md).
   ballista::ensure_omp_wait_policy(argv);
+  // Launched by mpirun: MPI for the run's ranks (docs/parallel.md); finalised when main returns.
+  ballista::Communicator::init_if_launched(&argc, &argv);
+  struct MpiFinalize {
+    ~MpiFinalize() { ballista::Communicator::finalize(); }
+  } mpi_finalize;
+  const ballista::Communicator world = ballista::Communicator::world();
+  // Rank 0 reports; the other ranks print only errors of their own (std::cout goes to /dev/null
+  // until main returns, then gets its own buffer back).
+  std::ofstream quiet_rank;
+  struct RestoreCout {
+    std::streambuf* saved = nullptr;
+    ~RestoreCout() {
+      if (saved) std::cout.rdbuf(saved);
+    }
+  } restore_cout;
+  if (world.rank() != 0) {
+    spdlog::set_level(spdlog::level::err);
+    quiet_rank.open("/dev/null");
+    restore_cout.saved = std::cout.rdbuf(quiet_rank.rdbuf());
+  }
   CLI::App app{"Ballista: solids under extreme deformation (MPM; peridynamics and OTM planned)"};
   app.set_version_flag("--version", std::string("ballista ") + BALLISTA_VERSION);
   app.require_subcommand(1);

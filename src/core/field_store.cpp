@@ -1,5 +1,7 @@
 #include "core/field_store.hpp"
 
+#include <cstring>
+
 #include <algorithm>
 
 #include "core/error.hpp"
@@ -156,6 +158,40 @@ void FieldStore::append_from(const FieldStore& other, const std::vector<Index>& 
         else
           int_[k][dst] = other.int_[k][src];
       }
+  }
+}
+
+std::vector<char> FieldStore::pack(const std::vector<Index>& which) const {
+  double per_point = bytes_per_point();
+  std::vector<char> out(static_cast<std::size_t>(per_point) * which.size());
+  char* o = out.data();
+  for (size_t k = 0; k < info_.size(); ++k) {
+    const std::size_t nc = static_cast<std::size_t>(info_[k].ncomp);
+    const char* base = info_[k].type == FieldType::Real ? reinterpret_cast<const char*>(real_[k].data())
+                                                        : reinterpret_cast<const char*>(int_[k].data());
+    for (Index q : which) {
+      std::memcpy(o, base + static_cast<std::size_t>(q) * nc * 8, nc * 8);
+      o += nc * 8;
+    }
+  }
+  return out;
+}
+
+void FieldStore::append_packed(const char* data, std::size_t bytes) {
+  const std::size_t per_point = static_cast<std::size_t>(bytes_per_point());
+  if (bytes == 0) return;
+  if (per_point == 0 || bytes % per_point != 0) throw Error("append_packed: the bytes do not hold whole points");
+  const Index m = static_cast<Index>(bytes / per_point);
+  const Index n0 = size_;
+  resize(size_ + m);
+  const char* in = data;
+  for (size_t k = 0; k < info_.size(); ++k) {
+    const std::size_t nc = static_cast<std::size_t>(info_[k].ncomp);
+    char* base = info_[k].type == FieldType::Real ? reinterpret_cast<char*>(real_[k].data())
+                                                  : reinterpret_cast<char*>(int_[k].data());
+    const std::size_t len = static_cast<std::size_t>(m) * nc * 8;
+    std::memcpy(base + static_cast<std::size_t>(n0) * nc * 8, in, len);
+    in += len;
   }
 }
 

@@ -71,6 +71,11 @@ class FieldStore {
   void append_from(const FieldStore& other, const std::vector<Index>& which);
   /// An empty store with the same field declarations.
   FieldStore empty_like() const;
+  /// Points `which` as bytes, field after field in declaration order (8 bytes per component):
+  /// what a rank sends when points migrate or are gathered for output.
+  std::vector<char> pack(const std::vector<Index>& which) const;
+  /// Appends points packed by pack() of a store with the same declarations.
+  void append_packed(const char* data, std::size_t bytes);
 
  private:
   int find(const std::string& name) const;

@@ -46,6 +46,27 @@ void ActiveBlocks::mark(const Vec3* x, Index n, int reach) {
   });
 }
 
+void ActiveBlocks::mark_mirror_images(int axis, int face, int band) {
+  const int nba = nb_[axis];
+  int bc[3];
+  for (bc[2] = 0; bc[2] < nb_[2]; ++bc[2])
+    for (bc[1] = 0; bc[1] < nb_[1]; ++bc[1])
+      for (bc[0] = 0; bc[0] < nb_[0]; ++bc[0]) {
+        const Index b = (static_cast<Index>(bc[2]) * nb_[1] + bc[1]) * nb_[0] + bc[0];
+        if (!flag_[static_cast<std::size_t>(b)]) continue;
+        // Node range of the block on the axis, cut to the band around the face.
+        const int lo = std::max(bc[axis] * kBlock, face - band);
+        const int hi = std::min(std::min((bc[axis] + 1) * kBlock, g_.nodes[axis]) - 1, face + band);
+        if (lo > hi) continue;
+        const int mlo = std::max(2 * face - hi, 0), mhi = std::min(2 * face - lo, g_.nodes[axis] - 1);
+        for (int m = mlo / kBlock; m <= mhi / kBlock && m < nba; ++m) {
+          int c[3] = {bc[0], bc[1], bc[2]};
+          c[axis] = m;
+          flag_[static_cast<std::size_t>((static_cast<Index>(c[2]) * nb_[1] + c[1]) * nb_[0] + c[0])] = 1;
+        }
+      }
+}
+
 void ActiveBlocks::append_rows(Index b, std::vector<Index>& start, std::vector<int>& len) const {
   const int bi = static_cast<int>(b % nb_[0]);
   const int bj = static_cast<int>((b / nb_[0]) % nb_[1]);

@@ -63,13 +63,25 @@ class ActiveBlocks {
     });
   }
   Index active_blocks() const { return static_cast<Index>(active_list_.size()); }
+  /// The active blocks of the last finish(), ascending.
+  const std::vector<Index>& active_list() const { return active_list_; }
+  /// Several ranks, before finish(): also marks the mirror image, across the node plane `face` of
+  /// `axis`, of every marked block within `band` nodes of it, so that a rank holding a ghost node
+  /// beyond a mirror face also holds its image inside and the other way round (the fold of
+  /// MpmSolver::fold_mirror_faces then sees the same summed values on every rank).
+  void mark_mirror_images(int axis, int face, int band);
+  /// Rows (x-runs of nodes) of block b appended to start/len.
+  void append_rows(Index b, std::vector<Index>& start, std::vector<int>& len) const;
+  Index block_count() const { return static_cast<Index>(flag_.size()); }
+  /// The block holding node (i, j, k).
+  Index block_of(int i, int j, int k) const {
+    return (static_cast<Index>(k / kBlock) * nb_[1] + j / kBlock) * nb_[0] + i / kBlock;
+  }
   /// More than kDenseFraction of the nodes active: the node passes run over the whole grid.
   bool dense() const { return dense_; }
   static constexpr double kDenseFraction = 0.5;
 
  private:
-  /// Rows (x-runs of nodes) of block b appended to start/len.
-  void append_rows(Index b, std::vector<Index>& start, std::vector<int>& len) const;
 
   GridGeometry g_;
   int nb_[3] = {1, 1, 1};              ///< blocks per axis

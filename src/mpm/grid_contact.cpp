@@ -53,8 +53,10 @@ ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, 
       const Vec3 vnew = vel[k] + c;
       // Work of the impulse m c over the step (midpoint velocity; grid_contact.hpp).
       const Vec3 vmid = 0.5 * ((v_start ? v_start[k] : vel[k]) + vnew);
-      o[0] += m * dot(c, vmid);
-      o[1] += m * dot(ct, vmid);
+      if (!g.counted || g.counted[i]) {
+        o[0] += m * dot(c, vmid);
+        o[1] += m * dot(ct, vmid);
+      }
       vel[k] = vnew;
     }
   }, w);

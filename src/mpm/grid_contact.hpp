@@ -8,6 +8,8 @@
 // normal relative velocity (no interpenetration) and its tangential relative velocity is cut by
 // Coulomb friction mu times the normal correction, or stopped (stick). Fields that separate are
 // left alone.
+#include <cstdint>
+
 #include "core/parallel.hpp"
 #include "core/tensor.hpp"
 
@@ -29,6 +31,9 @@ struct FieldGrid {
   /// density at the node, i.e. it points out of the field's material.
   const Vec3* grad = nullptr;
   const double* friction = nullptr;  ///< fields x fields Coulomb coefficients
+  /// Several ranks: per node, 0 where a lower rank books the work of this shared node (the node's
+  /// velocities are corrected on every rank that holds it). nullptr: every node counts.
+  const std::uint8_t* counted = nullptr;
 };
 
 /// Applies contact to the nodal velocities `vel` (fields x nodes) in place and returns the work of

@@ -8,12 +8,14 @@
 
 #include <fmt/format.h>
 
+#include "core/agreed_failure.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/system_memory.hpp"
 #include "geometry/seeding.hpp"
 #include "mpm/grid_contact.hpp"
 #include "points/mms_axis_aligned.hpp"
+#include "points/point_exchange.hpp"
 #include "points/solver_registry.hpp"
 
 namespace ballista {
@@ -98,7 +100,8 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
            fmt::format("{:.3g} grid nodes x {:g} B", static_cast<double>(layout_.geom.node_count()),
                        bytes_per_node(sc.contact.fields)),
            comm),
-      points_(pts_.store()) {
+      points_(pts_.store()),
+      partition_(comm, axis_count(sc.simulation.dimension)) {
   dimension_ = sc.simulation.dimension;
   dim_ = axis_count(dimension_);
   shape_ = parse_shape_kind(sc.solver_params.choices.at("shape_function"));
@@ -106,6 +109,7 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   flip_ = sc.solver_params.at("flip");
   sort_every_ = static_cast<int>(sc.solver_params.at("sort_every"));
   anti_locking_ = parse_anti_locking(sc.solver_params.choices.at("anti_locking"));
+  rebalance_ = sc.solver_params.at("rebalance_imbalance");
   damping_ = sc.simulation.damping;
   grid_.geom = layout_.geom;
   grid_.fields = sc.contact.fields;
@@ -132,7 +136,46 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
         }
       }
   }
+  if (comm_.distributed()) {
+    // Every rank seeded every body: keep a share, then the first partition moves each particle to
+    // the rank owning its region.
+    pts_.keep_share(comm_);
+    const std::vector<int> dest = partition_.partition(points_.view<Vec3>("x"), points_.ints("id"), points_.size());
+    migrated_ += static_cast<double>(comm_.sum(static_cast<std::int64_t>(migrate_points(comm_, points_, dest))));
+    pts_.mark_reordered();
+  }
   sort_by_cell();
+}
+
+void MpmSolver::redistribute() {
+  // Particles move less than a cell per step, so few cross a cut; the owner of a position is
+  // known from the kept cuts without communication (points/rcb_partition.hpp).
+  std::vector<int> dest;
+  partition_.owners(points_.view<Vec3>("x"), points_.size(), dest);
+  Index moved = migrate_points(comm_, points_, dest);
+  const double n = static_cast<double>(points_.size());
+  const double total = comm_.sum(n), largest = comm_.max(n);
+  const double mean = total / comm_.size();
+  const double imbalance = mean > 0.0 ? largest / mean - 1.0 : 0.0;
+  max_imbalance_ = std::max(max_imbalance_, imbalance);
+  // Penetration runs move work along the axis: new cuts from the particles where they are now,
+  // when the imbalance passes the deck's threshold and has grown by that much since the last
+  // repartition (a clump RCB cannot split, or fewer particles than ranks, would otherwise
+  // repartition every step).
+  if (imbalance > rebalance_ && imbalance > imbalance_after_partition_ + rebalance_) {
+    const int before = partition_.partitions();
+    dest = partition_.partition(points_.view<Vec3>("x"), points_.ints("id"), points_.size());
+    moved += migrate_points(comm_, points_, dest);
+    if (partition_.partitions() > before) ++repartitions_;
+    const double m = comm_.max(static_cast<double>(points_.size()));
+    imbalance_after_partition_ = mean > 0.0 ? m / mean - 1.0 : 0.0;
+  }
+  const std::int64_t all_moved = comm_.sum(static_cast<std::int64_t>(moved));
+  migrated_ += static_cast<double>(all_moved);
+  if (moved > 0) {
+    pts_.mark_reordered();
+    sort_by_cell();
+  }
 }
 
 void MpmSolver::begin_stage(int stage, double damping) {
@@ -156,8 +199,13 @@ double MpmSolver::stable_dt() {
 
 StepLimiter MpmSolver::step_limiter() const {
   // Serial and per point through the virtual wave_speed: only for diagnostics (the run loop
-  // calls it when the stable step reaches a new low).
-  return pts_.step_limiter();
+  // calls it when the stable step reaches a new low). Several ranks: the rank with the fastest
+  // signal names its particle to all (collective).
+  StepLimiter l = pts_.step_limiter();
+  if (!comm_.distributed()) return l;
+  const int root = comm_.rank_of_max(l.id >= 0 ? l.wave_speed + l.speed : -1.0);
+  comm_.broadcast(&l, sizeof l, root);
+  return l;
 }
 
 void MpmSolver::activate_pending() {
@@ -215,7 +263,10 @@ void MpmSolver::mark_active_blocks() {
     for (std::size_t k = 0; k < surface.size(); ++k) at[k] = surface[k].point;
     blocks_.mark(at.data(), static_cast<Index>(at.size()), reach_);
   }
+  if (comm_.distributed())
+    for (const MirrorFace& mf : mirror_faces_) blocks_.mark_mirror_images(mf.axis, mf.node, ghost_);
   blocks_.finish();
+  if (comm_.distributed()) exchange_.plan(comm_, blocks_, grid_.geom.node_count());
   // Blocks no particle reaches any more go back to zero, as a dense pass would leave them.
   const Index nn = grid_.geom.node_count();
   const bool multi = grid_.fields > 1;
@@ -234,8 +285,12 @@ void MpmSolver::build_slabs() {
   // point order alone, so the result does not depend on the thread count.
   const int reach = stencil_reach_now();
   reach_ = reach;
-  if (reach + 1 > ghost_ && shape_ == ShapeKind::Cpdi) {
+  // Every rank takes this branch together (a rank that threw alone would leave the others waiting
+  // in the grid exchange).
+  if (comm_.any(reach + 1 > ghost_ && shape_ == ShapeKind::Cpdi)) {
     // A CPDI domain larger than the ghost layers could reach outside the block.
+    if (points_.size() == 0 || reach + 1 <= ghost_)
+      throw PhysicsError("CPDI particle domain spans more than " + std::to_string(ghost_) + " cells on another rank");
     const auto* F = points_.view<Mat3>("F");
     Index worst = 0;
     double worst_norm = 0.0;
@@ -338,6 +393,20 @@ void MpmSolver::particles_to_grid(bool momentum_only) {
         }
       }
     }
+  }
+  if (comm_.distributed()) {
+    // Partial sums of the blocks shared with other ranks, added in rank order (grid_exchange.hpp).
+    std::vector<GridExchange::Array> arrays;
+    if (!momentum_only) arrays.push_back({gm, 1});
+    arrays.push_back({reinterpret_cast<double*>(gp), 3});
+    if (!momentum_only) {
+      arrays.push_back({reinterpret_cast<double*>(gf), 3});
+      if (multi) arrays.push_back({reinterpret_cast<double*>(gg), 3});
+    }
+    exchange_.sum(comm_, arrays, grid_.fields);
+    halo_bytes_ += static_cast<double>(exchange_.last_bytes());
+    halo_messages_ += static_cast<double>(exchange_.last_messages());
+    if (!momentum_only) halo_steps_ += 1.0;
   }
   if (!mirror_faces_.empty()) fold_mirror_faces(momentum_only);
 }
@@ -467,7 +536,7 @@ void MpmSolver::apply_velocity_bcs(Vec3* vel_all) {
 void MpmSolver::apply_contact(Vec3* vel, bool book, const Vec3* v_start) {
   if (grid_.fields < 2) return;
   const FieldGrid fg{grid_.fields, grid_.geom.node_count(), grid_.mass.data(), grid_.grad.data(),
-                     scenario_.contact.field_friction.data()};
+                     scenario_.contact.field_friction.data(), comm_.distributed() ? exchange_.counted() : nullptr};
   const ContactWork w = apply_grid_contact(fg, vel, kTinyMass, v_start);
   if (book) {
     contact_work_ += comm_.sum(w.total);
@@ -506,7 +575,17 @@ void MpmSolver::update_grid(double dt) {
   };
   if (damping_ > 0.0) {
     double w[1];
-    deterministic_sum<1>(0, nall, [&](Index i, double* o) { o[0] += integrate(i); }, w);
+    if (comm_.distributed()) {
+      // A node shared with other ranks is booked by its lowest sharer (grid_exchange.hpp).
+      const std::uint8_t* counted = exchange_.counted();
+      const Index nn = grid_.geom.node_count();
+      deterministic_sum<1>(0, nall, [&](Index i, double* o) {
+        const double dw = integrate(i);
+        if (counted[i % nn]) o[0] += dw;
+      }, w);
+    } else {
+      deterministic_sum<1>(0, nall, [&](Index i, double* o) { o[0] += integrate(i); }, w);
+    }
     damping_work_ += comm_.sum(w[0]);
   } else {
     for_each_active_node([&](Index i) { integrate(i); });
@@ -695,6 +774,24 @@ void MpmSolver::bind_fields() {
 }
 
 void MpmSolver::step(double dt) {
+  if (!comm_.distributed()) {
+    step_local(dt);
+    return;
+  }
+  // A failure on one rank stops every rank with the same diagnostic. Nothing after the first
+  // place a rank can throw (the kinematics check) waits for the other ranks, so the ranks that
+  // did not fail reach the agreement too.
+  std::exception_ptr failure;
+  try {
+    step_local(dt);
+  } catch (const std::exception&) {
+    failure = std::current_exception();
+  }
+  rethrow_agreed(comm_, failure);
+}
+
+void MpmSolver::step_local(double dt) {
+  if (comm_.distributed()) redistribute();
   activate_pending();
   if (sort_every_ > 0 && steps_ % sort_every_ == 0) sort_by_cell();
   const bool three = dim_ == 3;
@@ -705,6 +802,27 @@ void MpmSolver::step(double dt) {
     case ShapeKind::BSpline3: three ? step_impl<3, ShapeKind::BSpline3>(dt) : step_impl<2, ShapeKind::BSpline3>(dt); break;
   }
   handle_exits();
+}
+
+std::vector<double> MpmSolver::history_values() const {
+  std::vector<double> v = loads_.history_values(scenario_);  // indenter reactions: sums over particles
+  comm_.sum(v.data(), static_cast<int>(v.size()));
+  return v;
+}
+
+std::vector<std::pair<std::string, double>> MpmSolver::result_values() const {
+  if (!comm_.distributed()) return {};
+  const double steps = std::max(halo_steps_, 1.0);
+  const double n = static_cast<double>(points_.size());
+  return {{"ranks", static_cast<double>(comm_.size())},
+          {"fewest_particles_on_a_rank", comm_.min(n)},  // collective: every rank reports
+          {"most_particles_on_a_rank", comm_.max(n)},
+          {"repartitions", static_cast<double>(repartitions_)},
+          {"particles_migrated", migrated_},
+          {"max_particle_imbalance", max_imbalance_},
+          // This rank's halo (rank 0's in the summary): the scaling model's measured input.
+          {"halo_bytes_per_step_rank0", halo_bytes_ / steps},
+          {"halo_messages_per_step_rank0", halo_messages_ / steps}};
 }
 
 void MpmSolver::save_state(StateArchive& a) const {
@@ -740,8 +858,9 @@ EnergyTotals MpmSolver::energies() const {
 
 namespace {
 
-std::unique_ptr<Solver> make_mpm(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials) {
-  return std::make_unique<MpmSolver>(sc, std::move(materials));
+std::unique_ptr<Solver> make_mpm(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials,
+                                 const Communicator& comm) {
+  return std::make_unique<MpmSolver>(sc, std::move(materials), comm);
 }
 
 std::vector<ParamSpec> mpm_params() {
@@ -754,13 +873,17 @@ std::vector<ParamSpec> mpm_params() {
   ParamSpec flip{"flip", "1", "FLIP fraction of the velocity update (1 FLIP, 0 PIC)", false, 1.0, 0.0, 1.0};
   ParamSpec sort{"sort_every", "steps", "steps between particle sorts by cell (0 = never)", false, 20, 0, 2147483647.0};
   sort.integer = true;
+  ParamSpec rebalance{"rebalance_imbalance", "1",
+                      "several MPI ranks: repartition (Zoltan RCB) when the largest rank holds more than (1 + this) "
+                      "times the mean particle count",
+                      false, 0.1, 0.0, 100.0};
   ParamSpec locking{"anti_locking", "-",
                     "none, or fbar: cell-averaged volumetric deformation against locking at nu -> 0.5 (Coombs et al., "
                     "CMAME 333 (2018) 1)",
                     false, 0};
   locking.choices = anti_locking_names();
   locking.default_choice = "none";
-  return {shape, update, flip, sort, locking};
+  return {shape, update, flip, sort, locking, rebalance};
 }
 
 }  // namespace
@@ -773,4 +896,5 @@ BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
     {"3d", "plane_strain", "axisymmetric"},
     "mpm",
     ballista::mpm_params(),
-    &ballista::make_mpm})
+    &ballista::make_mpm,
+    true})

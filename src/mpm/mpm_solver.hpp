@@ -13,10 +13,12 @@
 #include "materials/material.hpp"
 #include "mpm/active_blocks.hpp"
 #include "mpm/anti_locking.hpp"
+#include "mpm/grid_exchange.hpp"
 #include "mpm/grid_geometry.hpp"
 #include "mpm/shape_functions.hpp"
 #include "points/point_loads.hpp"
 #include "points/point_set.hpp"
+#include "points/rcb_partition.hpp"
 #include "scenario/scenario.hpp"
 
 namespace ballista {
@@ -60,7 +62,7 @@ class MpmSolver final : public Solver {
   StepLimiter step_limiter() const override;
   /// Indenter reactions of the loads (PointLoads::history_columns).
   std::vector<std::string> history_columns() const override { return PointLoads::history_columns(scenario_); }
-  std::vector<double> history_values() const override { return loads_.history_values(scenario_); }
+  std::vector<double> history_values() const override;
 
   /// Checkpoint: the particles (points layer), time, step, stage damping and the booked work
   /// terms. The grid is rebuilt from the particles every step, so it holds no state.
@@ -68,10 +70,16 @@ class MpmSolver final : public Solver {
   void load_state(const StateArchive& archive) override;
 
   const GridData& grid() const { return grid_; }
+  /// Several ranks: what the decomposition did (summary.json solver_results).
+  std::vector<std::pair<std::string, double>> result_values() const override;
   const std::vector<std::unique_ptr<Material>>& materials() const { return pts_.materials(); }
 
  private:
   void activate_pending();
+  /// Several ranks: particles that left this rank's region go to its owner; a repartition when the
+  /// largest rank holds more than (1 + mpm.rebalance_imbalance) times the mean (collective).
+  void redistribute();
+  void step_local(double dt);
   void sort_by_cell();
   void build_slabs();
   template <int Dim, ShapeKind K> void step_impl(double dt);
@@ -135,6 +143,13 @@ class MpmSolver final : public Solver {
   CellFBar fbar_;                                 ///< F-bar scratch (anti_locking: fbar)
   GridData grid_;
   ActiveBlocks blocks_;  ///< the grid blocks particles reach this step (only they are zeroed and updated)
+  GridExchange exchange_;   ///< several ranks: the blocks shared with other ranks and their sums
+  RcbPartition partition_;  ///< several ranks: which rank owns which region (Zoltan RCB)
+  double rebalance_ = 0.1;  ///< mpm.rebalance_imbalance
+  // Decomposition statistics (several ranks): repartitions, particles migrated, halo per step.
+  long repartitions_ = 0;
+  double imbalance_after_partition_ = 0.0;  ///< what the last repartition achieved
+  double migrated_ = 0.0, halo_bytes_ = 0.0, halo_messages_ = 0.0, halo_steps_ = 0.0, max_imbalance_ = 0.0;
   int reach_ = 1;        ///< the shape function's reach this step, nodes (build_slabs)
   /// Marks this step's active blocks (particles and traction points) and clears the released ones.
   void mark_active_blocks();

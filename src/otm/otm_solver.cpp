@@ -650,7 +650,9 @@ std::vector<std::pair<std::string, double>> OtmSolver::timing_values() const {
 
 namespace {
 
-std::unique_ptr<Solver> make_otm(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials) {
+// One rank only so far (SolverFactory::distributed is false): the run refuses more.
+std::unique_ptr<Solver> make_otm(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials,
+                                const Communicator&) {
   return std::make_unique<OtmSolver>(sc, std::move(materials));
 }
 

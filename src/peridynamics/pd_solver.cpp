@@ -667,7 +667,9 @@ std::vector<ResultTable> PdSolver::result_tables() const {
 
 namespace {
 
-std::unique_ptr<Solver> make_pd(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials) {
+// One rank only so far (SolverFactory::distributed is false): the run refuses more.
+std::unique_ptr<Solver> make_pd(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials,
+                                const Communicator&) {
   return std::make_unique<PdSolver>(sc, std::move(materials));
 }
 

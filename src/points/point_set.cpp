@@ -149,6 +149,30 @@ PointSet::PointSet(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   }
 }
 
+void PointSet::keep_share(const Communicator& comm) {
+  if (!comm.distributed()) return;
+  auto share = [&](Index n, std::vector<char>& keep) {
+    const Index lo = n * comm.rank() / comm.size(), hi = n * (comm.rank() + 1) / comm.size();
+    keep.assign(static_cast<std::size_t>(n), 0);
+    for (Index p = lo; p < hi; ++p) keep[p] = 1;
+  };
+  std::vector<char> keep;
+  share(points_.size(), keep);
+  points_.compact(keep);
+  share(pending_.size(), keep);
+  std::vector<double> activation;
+  std::vector<int> stage;
+  for (Index p = 0; p < pending_.size(); ++p)
+    if (keep[p]) {
+      activation.push_back(pending_activation_[p]);
+      stage.push_back(pending_stage_[p]);
+    }
+  pending_.compact(keep);
+  pending_activation_.swap(activation);
+  pending_stage_.swap(stage);
+  groups_dirty_ = true;
+}
+
 void PointSet::begin_stage(int stage, double time) {
   if (stage < 0 || stage >= static_cast<int>(stage_start_.size()))
     throw Error("stage index " + std::to_string(stage) + " out of range");
@@ -317,9 +341,12 @@ EnergyTotals PointSet::energies(double k, double external_work) const {
   // Axisymmetric: only the axial momentum of a body of revolution is non-zero in total.
   e.momentum = Vec3{{scenario_.simulation.dimension == Dimension::Axisymmetric ? 0.0 : k * s[4], k * s[5], k * s[6]}};
   e.external = k * external_work;
-  e.removed_mass = k * removed_mass_;
-  e.removed_energy = k * removed_energy_;
-  e.removed_momentum = k * removed_momentum_;
+  double removed[5] = {removed_mass_, removed_energy_, removed_momentum_[0], removed_momentum_[1],
+                       removed_momentum_[2]};
+  comm_.sum(removed, 5);
+  e.removed_mass = k * removed[0];
+  e.removed_energy = k * removed[1];
+  e.removed_momentum = k * Vec3{{removed[2], removed[3], removed[4]}};
   e.inserted_energy = k * comm_.sum(inserted_energy_);
   e.chemical = k * (s[8] + comm_.sum(removed_chemical_));
   return e;

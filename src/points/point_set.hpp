@@ -42,6 +42,12 @@ class PointSet {
   /// Names of the per-load surface fields ("load_area_<k>") of the pressure loads.
   const std::vector<std::string>& load_area_fields() const { return load_area_fields_; }
 
+  /// Several ranks: every rank seeded every body; it keeps its contiguous share (by index) of
+  /// the active and of the pending points, and the solver's partition then moves them to their
+  /// owners. Mass, momentum and energy totals are sums over the ranks (energies()).
+  void keep_share(const Communicator& comm);
+  const Communicator& communicator() const { return comm_; }
+
   // ---- activation --------------------------------------------------------------------------
   /// Number of points seeded but not yet active.
   Index pending() const { return pending_.size(); }

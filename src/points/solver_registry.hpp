@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/communicator.hpp"
 #include "core/solver.hpp"
 #include "materials/material.hpp"
 #include "scenario/scenario.hpp"
@@ -20,7 +21,10 @@ struct SolverFactory {
   std::vector<std::string> dimensions;  ///< of "3d", "plane_strain", "axisymmetric"
   std::string section;                  ///< deck section of its parameters (read into Scenario::solver_params)
   std::vector<ParamSpec> params;        ///< the section's keys (units, defaults, ranges, choices)
-  std::unique_ptr<Solver> (*create)(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials) = nullptr;
+  /// Builds the solver on `comm` (a solver that does not run distributed is only ever given one rank).
+  std::unique_ptr<Solver> (*create)(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials,
+                                    const Communicator& comm) = nullptr;
+  bool distributed = false;  ///< runs on several MPI ranks (issue 16)
 };
 
 /// An optional word parameter of a solver section whose default is the first choice.

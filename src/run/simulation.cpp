@@ -18,6 +18,7 @@
 #include "io/output_folder.hpp"
 #include "io/particle_writer.hpp"
 #include "io/summary_writer.hpp"
+#include "points/point_exchange.hpp"
 #include "points/probe_registry.hpp"
 #include "points/solver_registry.hpp"
 #include "run/fragment_summary.hpp"
@@ -41,14 +42,17 @@ std::vector<std::unique_ptr<Material>> make_materials(const Scenario& sc) {
   return out;
 }
 
-std::unique_ptr<Solver> make_solver(const Scenario& sc) {
+std::unique_ptr<Solver> make_solver(const Scenario& sc, const Communicator& comm) {
   const SolverFactory* f = find_solver(sc.simulation.solver);
   if (!f) {
     std::string names;
     for (const auto& s : solver_registry()) names += (names.empty() ? "" : ", ") + s.name;
     throw Error("unknown solver '" + sc.simulation.solver + "' (registered: " + names + ")");
   }
-  return f->create(sc, make_materials(sc));
+  if (comm.distributed() && !f->distributed)
+    throw Error("solver '" + sc.simulation.solver + "' runs on one MPI rank only so far (" +
+                std::to_string(comm.size()) + " ranks were started); run it without mpirun, or with -np 1");
+  return f->create(sc, make_materials(sc), comm);
 }
 
 namespace {
@@ -121,10 +125,33 @@ void check_layout(const StateArchive& a, const Scenario& sc, const std::string& 
               "models)");
 }
 
+/// Several ranks: what does not run distributed yet is refused before anything is written.
+void check_distributed(const Scenario& sc, const RunOptions& opt, const Communicator& comm) {
+  if (!comm.distributed()) return;
+  auto refuse = [&](const std::string& key, const std::string& what) {
+    throw DeckError(sc.file, 0, 0, key,
+                    what + " runs on one MPI rank only so far (" + std::to_string(comm.size()) +
+                        " ranks were started; docs/parallel.md)");
+  };
+  if (const SolverFactory* f = find_solver(sc.simulation.solver); f && !f->distributed)
+    throw Error("solver '" + sc.simulation.solver + "' runs on one MPI rank only so far (" +
+                std::to_string(comm.size()) + " ranks were started); run it without mpirun, or with -np 1");
+  if (!opt.restart_from.empty() || sc.output.checkpoint_interval > 0 || opt.checkpoint_minutes > 0)
+    refuse("output.checkpoint_interval", "checkpoint and restart");
+  if (sc.penetration.enabled) refuse("penetration", "the penetration analysis");
+  if (!sc.output.track.empty()) refuse("output.track", "particle tracking");
+  for (const StageSpec& st : sc.stages)
+    if (!st.until.empty()) refuse("stages", "a stage ended by a stress-equilibrium check ('until')");
+}
+
 }  // namespace
 
 RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   namespace fs = std::filesystem;
+  // Every rank runs this loop; rank 0 alone writes files (docs/parallel.md).
+  const Communicator comm = Communicator::world();
+  const bool root = comm.rank() == 0;
+  check_distributed(sc, opt, comm);
   // A restart continues the results folder it was written in: nothing there is cleared.
   std::optional<StateArchive> restart;
   if (!opt.restart_from.empty()) {
@@ -133,7 +160,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     // Checkpoints newer than the one restarted from belong to the abandoned continuation.
     if (const int n = remove_checkpoints_after(opt.out_dir, opt.restart_from))
       spdlog::info("removed {} checkpoints newer than {}", n, opt.restart_from);
-  } else {
+  } else if (root) {
     if (const int removed = prepare_run_folder(opt.out_dir))
       spdlog::info("removed {} output files of an earlier run from {}", removed, opt.out_dir);
     write_file_atomic((fs::path(opt.out_dir) / "resolved.yaml").string(), sc.resolved_yaml);
@@ -142,9 +169,9 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   request_threads(opt.threads > 0 ? opt.threads : sc.simulation.threads,  // clamped to the cores present
                   opt.threads > 0 ? "--threads" : "simulation.threads");
 
-  std::unique_ptr<Solver> solver = make_solver(sc);
+  std::unique_ptr<Solver> solver = make_solver(sc, comm);
   // Constants the solver derived from the deck (peridynamic bond constants), echoed as comments.
-  if (const std::string derived = solver->derived_constants(); !derived.empty() && !restart)
+  if (const std::string derived = solver->derived_constants(); !derived.empty() && !restart && root)
     write_file_atomic((fs::path(opt.out_dir) / "resolved.yaml").string(), sc.resolved_yaml + derived);
   FieldStore& pts = solver->points();
   const std::vector<std::unique_ptr<Probe>> run_probes = make_probes(sc);
@@ -152,6 +179,16 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   const Dimension dim = sc.simulation.dimension;
   ParticleWriter writer(opt.out_dir, output_fields(sc, pts), sc.output.domains,
                         dim == Dimension::ThreeD ? 3 : 2);
+  // A particle file of the current state: several ranks gather their particles on rank 0, which
+  // writes them in id order (points/point_exchange.hpp); collective.
+  auto write_output = [&] {
+    if (!comm.distributed()) {
+      writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
+      return;
+    }
+    const FieldStore all = gather_points(comm, solver->points());
+    if (root) writer.write(solver->time(), solver->steps(), all, solver->output_nodes());
+  };
 
   std::vector<std::string> columns = {"time", "step", "dt", "kinetic_energy", "internal_energy",
                                       "plastic_work", "external_work", "total_energy", "energy_drift",
@@ -171,13 +208,13 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     for (const auto& c : penetration->columns()) columns.push_back(c);
   }
   const std::string history_path = (fs::path(opt.out_dir) / "history.csv").string();
-  std::unique_ptr<HistoryWriter> history =
-      restart ? std::make_unique<HistoryWriter>(history_path, columns, restart->integer("run.history_bytes"))
-              : std::make_unique<HistoryWriter>(history_path, columns);
+  std::unique_ptr<HistoryWriter> history;  // rank 0's
+  if (root)
+    history = restart ? std::make_unique<HistoryWriter>(history_path, columns, restart->integer("run.history_bytes"))
+                      : std::make_unique<HistoryWriter>(history_path, columns);
   // Particle ids run 0 .. seeded - 1 over every body, active or waiting for activation.
-  const std::int64_t seeded = static_cast<std::int64_t>(pts.size() + solver->pending_points());
+  const std::int64_t seeded = comm.sum(static_cast<std::int64_t>(pts.size() + solver->pending_points()));
   ParticleTracker tracker(sc, opt.out_dir, seeded);
-  const Communicator comm;
 
   if (!restart) check_step_estimate(sc, *solver);
 
@@ -254,7 +291,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       for (double v : penetration->sample(solver->points(), rs.stage == nstages, solver->time() - rs.stage_start,
                                           solver->reporting_scale()))
         row.push_back(v);
-    history->row(row);
+    if (history) history->row(row);
     return drift;
   };
   // A history row, the worst drift so far and the drift guard (simulation.energy_drift_limit).
@@ -290,7 +327,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   // A restart's own checkpoint is where a failure before its first checkpoint replays from.
   std::string newest_checkpoint = restart ? opt.restart_from : std::string();
   auto marks_now = [&] {
-    return Marks{rs, history->bytes(), writer.count(), writer.xdmf_body_end(),
+    return Marks{rs, history ? history->bytes() : 0, writer.count(), writer.xdmf_body_end(),
                  penetration ? penetration->samples() : 0, tracker.state(), calls_since_checkpoint.size()};
   };
   auto wall_start = std::chrono::steady_clock::now();
@@ -359,7 +396,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   RunResult result;
   std::unique_ptr<Progress> progress;
   if (!restart) {
-    writer.write(solver->time(), solver->steps(), pts, solver->output_nodes());
+    write_output();
     if (nstages > 0) {
       begin_stage(0, sc.stages[0].damping);
       spdlog::info("stage '{}' begins (damping {} 1/s)", sc.stages[0].name, sc.stages[0].damping);
@@ -369,7 +406,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     // The first checkpoint is the initial state: a failing run replays from the newest one.
     if (checkpointing) write_checkpoint(marks_now(), "initial state");
   }
-  if (rs.stage == nstages) progress = std::make_unique<Progress>(rs.end, opt.progress);
+  if (rs.stage == nstages) progress = std::make_unique<Progress>(rs.end, opt.progress && root);
   // Ends the current preparation stage: log it, snapshot the particles, start the next stage.
   auto next_stage = [&](const std::string& how, const EquilibriumCheck* check) {
     const StageSpec& st = sc.stages[rs.stage];
@@ -389,7 +426,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     spdlog::info("stage '{}' ended at t = {:.4g} s ({}){}", st.name, solver->time(), how,
                  check ? ": " + describe_equilibrium(st, *check) : std::string());
     record_history(rs.dt);
-    writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
+    write_output();
     ++rs.stage;
     rs.stage_start = solver->time();
     const double damping = rs.stage < nstages ? sc.stages[rs.stage].damping : sc.simulation.damping;
@@ -399,7 +436,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     } else {
       rs.end = rs.stage_start + sc.simulation.end_time;
       rs.next_output = std::min(rs.end, rs.stage_start + interval);
-      progress = std::make_unique<Progress>(rs.end, opt.progress);
+      progress = std::make_unique<Progress>(rs.end, opt.progress && root);
       spdlog::info("main stage begins at t = {:.4g} s (damping {} 1/s), runs to {:.4g} s", rs.stage_start, damping,
                    rs.end);
     }
@@ -407,7 +444,9 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   Marks good;  // the state at the start of the iteration being taken (a failure's last good state)
   bool physics_failure = false;
   try {
-    const InterruptScope signals;  // SIGTERM / SIGINT checkpoint and stop, during the steps only
+    // SIGTERM / SIGINT checkpoint and stop, during the steps only (one rank: checkpoints are serial).
+    std::optional<InterruptScope> signals;
+    if (!comm.distributed()) signals.emplace();
     // Stop within a relative round-off of the end time instead of taking a sliver step.
     while (solver->time() < rs.end * (1.0 - 1e-12)) {
       if (sc.simulation.max_steps > 0 && solver->steps() >= sc.simulation.max_steps) {
@@ -475,7 +514,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       const bool at_end = solver->time() >= rs.end * (1.0 - 1e-12);
       if (solver->steps() % std::max(1, sc.output.history_every) == 0 || at_output || at_end) record_history(dt);
       if (at_output && !at_end) {
-        writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
+        write_output();
         rs.next_output += interval;
         if (rs.next_output > rs.end) rs.next_output = rs.end;
       }
@@ -492,7 +531,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
                                  solver->steps(), solver->time(), opt.out_dir);
       spdlog::warn("{}", result.error);
     } else {
-      writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
+      write_output();
     }
   } catch (const PhysicsError& err) {
     if (progress) progress->finish();
@@ -510,14 +549,14 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     physics_failure = true;
     // The failing state goes to a new output file; earlier outputs stay untouched.
     try {
-      writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
+      write_output();
     } catch (const std::exception& w) {
       spdlog::error("could not write the failing state: {}", w.what());
     }
   }
   if (progress) progress->finish();
   const double wall = rs.wall_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  const double particle_steps = rs.particle_steps;
+  const double particle_steps = comm.sum(rs.particle_steps);  // over every rank
   const double min_dt = rs.min_dt;
   const double worst_drift = rs.worst_drift;
   const double energy_scale = rs.energy_scale;
@@ -573,7 +612,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       tm = JsonValue::object();
       for (const auto& [k, v] : timing) tm[k + "_seconds"] = v;
     }
-    const std::vector<ResultTable> tables = solver->result_tables();
+    const std::vector<ResultTable> tables = root ? solver->result_tables() : std::vector<ResultTable>{};
     for (const ResultTable& t : tables) {
       HistoryWriter csv((fs::path(opt.out_dir) / (t.name + ".csv")).string(), t.columns);
       for (const auto& row : t.rows) csv.row(row);
@@ -589,7 +628,8 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   st["end_time"] = result.time;
   st["wall_time"] = wall;
   st["threads"] = max_threads();
-  st["particles"] = static_cast<std::int64_t>(solver->points().size());
+  st["ranks"] = comm.size();
+  st["particles"] = comm.sum(static_cast<std::int64_t>(solver->points().size()));
   st["particle_steps"] = particle_steps;
   st["particle_steps_per_second"] = result.particle_steps_per_second;
   st["min_dt"] = std::isfinite(min_dt) ? min_dt : 0.0;
@@ -640,7 +680,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     summary["status"] = "failed";
     summary["error"] = result.error;
   }
-  summary.write((fs::path(opt.out_dir) / "summary.json").string());
+  if (root) summary.write((fs::path(opt.out_dir) / "summary.json").string());
   if (physics_failure && checkpointing) {
     // The state at the start of the iteration that failed, as a checkpoint to restart from with
     // other settings. A failure leaves a half-updated state (inside a step) or one whose outputs

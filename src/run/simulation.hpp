@@ -2,6 +2,8 @@
 // The run loop of `ballista run`: deck -> solver -> outputs, histories, probes and summary.
 #include <cstdint>
 #include <memory>
+
+#include "core/communicator.hpp"
 #include <string>
 #include <vector>
 
@@ -37,8 +39,9 @@ struct RunResult {
 /// Builds the materials of the scenario from the registry.
 std::vector<std::unique_ptr<Material>> make_materials(const Scenario& sc);
 
-/// Builds the solver named in the scenario (simulation.solver).
-std::unique_ptr<Solver> make_solver(const Scenario& sc);
+/// Builds the solver named in the scenario (simulation.solver) on `comm` (several ranks only for a
+/// solver registered as distributed; the others are refused with an error saying so).
+std::unique_ptr<Solver> make_solver(const Scenario& sc, const Communicator& comm = {});
 
 /// Runs the scenario to its end time, writing resolved.yaml, particles_*.h5 + particles.xdmf,
 /// history.csv, summary.json and (output.track.ids) tracks/particle_<id>*.csv to options.out_dir. A PhysicsError stops the run after the state

@@ -228,3 +228,33 @@ TEST(FieldStore, LayoutVersionTracksEveryReorderingAndNothingElse) {
   s.resize(2);
   EXPECT_NE(s.layout_version(), v);
 }
+
+TEST(FieldStore, PackedPointsAppendToAStoreWithTheSameFields) {
+  // What migrating points between ranks does (points/point_exchange.hpp): pack some points, append
+  // them elsewhere; every real and integer component arrives unchanged, in the packed order.
+  FieldStore a;
+  a.add_real("x", 3, "m");
+  a.add_int("id", 1, "1");
+  a.add_real("mass", 1, "kg");
+  a.resize(4);
+  for (Index p = 0; p < 4; ++p) {
+    for (int c = 0; c < 3; ++c) a.real("x")[3 * p + c] = 10.0 * p + c + 0.125;
+    a.ints("id")[p] = 1000 + p;
+    a.real("mass")[p] = -1.0 / (p + 1);
+  }
+  const std::vector<char> bytes = a.pack({3, 1});
+  EXPECT_EQ(bytes.size(), 2u * 5u * 8u);
+  FieldStore b = a.empty_like();
+  b.resize(1);
+  b.ints("id")[0] = 7;
+  b.append_packed(bytes.data(), bytes.size());
+  ASSERT_EQ(b.size(), 3);
+  EXPECT_EQ(b.ints("id")[0], 7);
+  EXPECT_EQ(b.ints("id")[1], 1003);
+  EXPECT_EQ(b.ints("id")[2], 1001);
+  EXPECT_EQ(b.real("x")[3 * 1 + 2], 32.125);
+  EXPECT_EQ(b.real("x")[3 * 2 + 0], 10.125);
+  EXPECT_EQ(b.real("mass")[2], -0.5);
+  // Bytes that are not whole points are refused.
+  EXPECT_THROW(b.append_packed(bytes.data(), bytes.size() - 8), Error);
+}

@@ -135,3 +135,29 @@ TEST(ActiveBlocks, AHugeBoxGivesBitwiseTheTightBoxRun) {
   for (double m : a.grid().mass) total += m;
   EXPECT_NEAR(far_mass, total, 1e-12 * total);
 }
+
+TEST(ActiveBlocks, MirrorImagesOfBlocksNearAMirrorFace) {
+  // Several ranks (mpm/grid_exchange.hpp): a rank holding a ghost node beyond a mirror face must
+  // hold its image inside, and the other way round. Face at node 10 on x, band 3: a block whose
+  // nodes reach 7..13 pulls in the blocks holding the reflected nodes; blocks farther away do not.
+  const GridGeometry g = grid(32, 16, 1, 2);  // 4 x 2 blocks of 8 x 8
+  ActiveBlocks b;
+  b.reset(g);
+  // A point in cell (12, 3) with reach 0: nodes 12..13, block (1, 0): within the band (10 +- 3).
+  const Vec3 p{{12.5, 3.5, 0.0}};
+  b.mark(&p, 1, 0);
+  b.mark_mirror_images(0, 10, 3);
+  b.finish();
+  // Block (1, 0) covers nodes 8..15; its band part 8..13 reflects to 7..12: blocks (0,0), (1,0).
+  const std::vector<Index>& active = b.active_list();
+  ASSERT_EQ(active.size(), 2u);
+  EXPECT_EQ(active[0], b.block_of(0, 0, 0));
+  EXPECT_EQ(active[1], b.block_of(8, 0, 0));
+  // A block beyond the band (nodes 24..31) pulls nothing in.
+  const Vec3 far{{28.5, 3.5, 0.0}};
+  b.mark(&far, 1, 0);
+  b.mark_mirror_images(0, 10, 3);
+  b.finish();
+  ASSERT_EQ(b.active_list().size(), 1u);
+  EXPECT_EQ(b.active_list()[0], b.block_of(24, 0, 0));
+}

@@ -1,0 +1,178 @@
+#!/usr/bin/env python3
+"""MPI correctness check (issue 16, docs/parallel.md): a deck run on several ranks must give the
+serial run's answer. The reference is the plain serial run (no mpirun, 1 thread); every
+ranks x threads combination is run under mpirun and compared with it:
+
+  - summary.json: status, steps, particle count, every probe;
+  - history.csv: every column at every row;
+  - every particle file: every per-particle dataset, points matched by id (a distributed run
+    writes them in id order, a serial one in its sort order).
+
+Not bitwise: a node shared by several ranks sums the ranks' partial sums (in rank order), and a
+rank's particles scatter in their own order, so the rounding of the nodal sums depends on the
+decomposition. Hence a relative tolerance (--tol, default 1e-12), measured against each column's
+or dataset's largest magnitude; the largest difference seen is printed for docs/parallel.md.
+
+  check_mpi.py BALLISTA DECK WORKDIR [--ranks 1,2,4] [--threads 1,2] [--set k=v ...]
+               [--tol 1e-12] [--empty-rank] [--expect-failure]
+
+--empty-rank: the largest rank count must leave at least one rank without particles at the end
+(solver_results.fewest_particles_on_a_rank == 0), and the answer must still be the serial one.
+--expect-failure: the serial run stops with a physics failure; every distributed run must stop at
+the same step naming the same particle (a rank's diagnostic names the global id), with the same
+failing state in its last particle file.
+"""
+import argparse, csv, glob, json, os, shutil, subprocess, sys
+
+import h5py
+import numpy as np
+
+
+def run(cmd, env=None, ok=(0,)):
+    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+    if r.returncode not in ok:
+        sys.exit(f"FAILED ({r.returncode}): {' '.join(cmd)}\n{r.stdout[-3000:]}")
+    return r.stdout
+
+
+def history(d):
+    rows = list(csv.reader(open(os.path.join(d, "history.csv"))))
+    return rows[0], np.array([[float(x) for x in r] for r in rows[1:]])
+
+
+def rel(a, b, scale):
+    d = np.max(np.abs(a - b)) if a.size else 0.0
+    return d / scale if scale > 0 else d
+
+
+def compare(ref, other, tol):
+    """Returns (worst relative difference, list of failures)."""
+    bad, worst = [], 0.0
+    worst_field = {}
+    sa, sb = (json.load(open(os.path.join(d, "summary.json"))) for d in (ref, other))
+    if sb["status"] != sa["status"]:
+        bad.append(f"status {sb['status']} (serial: {sa['status']}): {sb.get('error', '')}")
+        return worst, bad
+    # A failing run fails at the same step and names the same particle (its global id).
+    for key in ("failed_step", "failed_particle"):
+        if sa.get(key) != sb.get(key):
+            bad.append(f"{key} {sb.get(key)} (serial: {sa.get(key)})")
+    for key in ("steps", "particles"):
+        if sa["statistics"][key] != sb["statistics"][key]:
+            bad.append(f"{key} {sa['statistics'][key]} vs {sb['statistics'][key]}")
+    for k, v in sa["probes"].items():
+        r = abs(v - sb["probes"][k]) / max(abs(v), 1e-300)
+        worst = max(worst, r)
+        if r > tol:
+            bad.append(f"probe {k}: {v!r} vs {sb['probes'][k]!r} (relative {r:.3g})")
+    ha, a = history(ref)
+    hb, b = history(other)
+    if ha != hb or a.shape != b.shape:
+        bad.append(f"history.csv layout {a.shape} vs {b.shape}")
+    else:
+        # Each column against the magnitude of what it measures: a component that is zero in exact
+        # arithmetic (a transverse momentum) is round-off, measured against the momentum's size;
+        # energies against the largest energy term; energy_drift is already relative.
+        def group(c):
+            if c.startswith("momentum_"):
+                return "momentum"
+            if c.endswith("_energy") or c.endswith("_work") or c == "kinetic_energy":
+                return "energy"
+            return c
+        scales = {}
+        for k, c in enumerate(ha):
+            scales[group(c)] = max(scales.get(group(c), 0.0), np.max(np.abs(a[:, k])))
+        for k, c in enumerate(ha):
+            scale = 1.0 if c == "energy_drift" else scales[group(c)]
+            r = rel(a[:, k], b[:, k], scale)
+            worst = max(worst, r)
+            if r > tol:
+                bad.append(f"history column {c}: relative {r:.3g}")
+    fa = sorted(glob.glob(os.path.join(ref, "particles_*.h5")))
+    fb = sorted(glob.glob(os.path.join(other, "particles_*.h5")))
+    if [os.path.basename(f) for f in fa] != [os.path.basename(f) for f in fb]:
+        bad.append(f"particle files {len(fa)} vs {len(fb)}")
+        return worst, bad
+    # A field's scale is its largest magnitude over the whole run (the stress of a body in free
+    # flight is round-off until it hits something).
+    field_scale = {}
+    for f in fa:
+        with h5py.File(f, "r") as A:
+            for k in A.keys():
+                x = np.asarray(A[k])
+                if x.size and np.issubdtype(x.dtype, np.number):
+                    field_scale[k] = max(field_scale.get(k, 0.0), float(np.max(np.abs(x))))
+    for f, g in zip(fa, fb):
+        with h5py.File(f, "r") as A, h5py.File(g, "r") as B:
+            ia, ib = np.asarray(A["id"]).ravel(), np.asarray(B["id"]).ravel()
+            n = ia.size
+            if not np.array_equal(np.sort(ia), np.sort(ib)):
+                bad.append(f"{os.path.basename(f)}: other particle ids")
+                continue
+            oa, ob = np.argsort(ia), np.argsort(ib)
+            for k in A.keys():
+                x, y = np.asarray(A[k]), np.asarray(B[k])
+                if x.ndim == 0 or x.shape[0] != n or k not in B or k.endswith("_cells"):
+                    continue  # the XDMF topology (point indices in file order) and domain corners
+                x, y = x[oa].astype(float), y[ob].astype(float)
+                r = rel(x, y, field_scale[k])
+                worst = max(worst, r)
+                worst_field[k] = max(worst_field.get(k, 0.0), r)
+                if r > tol:
+                    bad.append(f"{os.path.basename(f)} {k}: relative {r:.3g}")
+    if worst_field:
+        k = max(worst_field, key=worst_field.get)
+        print(f"  particle fields: largest relative difference {worst_field[k]:.3g} ({k})")
+    return worst, bad
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("ballista")
+    ap.add_argument("deck")
+    ap.add_argument("workdir")
+    ap.add_argument("--ranks", default="1,2,4")
+    ap.add_argument("--threads", default="1,2")
+    ap.add_argument("--set", action="append", default=[])
+    ap.add_argument("--tol", type=float, default=1e-12)
+    ap.add_argument("--empty-rank", action="store_true")
+    ap.add_argument("--expect-failure", action="store_true",
+                    help="the serial run fails (exit 3); every distributed run must fail the same way")
+    a = ap.parse_args()
+    shutil.rmtree(a.workdir, ignore_errors=True)
+    os.makedirs(a.workdir)
+    sets = sum((["--set", s] for s in a.set), [])
+    env = dict(os.environ, OMP_WAIT_POLICY="passive")
+    ref = os.path.join(a.workdir, "serial")
+    codes = (3,) if a.expect_failure else (0,)
+    run([a.ballista, "run", a.deck, "-o", ref, "-q", "--no-plots", "--threads", "1"] + sets, env, codes)
+    if a.expect_failure and json.load(open(os.path.join(ref, "summary.json")))["status"] != "failed":
+        sys.exit("the serial run was expected to fail")
+    failures = []
+    ranks = [int(x) for x in a.ranks.split(",")]
+    for n in ranks:
+        for t in [int(x) for x in a.threads.split(",")]:
+            out = os.path.join(a.workdir, f"ranks{n}_threads{t}")
+            run(["mpirun", "--oversubscribe", "--allow-run-as-root", "-np", str(n), a.ballista, "run", a.deck, "-o",
+                 out, "-q", "--no-plots", "--threads", str(t)] + sets, env, codes)
+            worst, bad = compare(ref, out, a.tol)
+            s = json.load(open(os.path.join(out, "summary.json")))
+            sr = s.get("solver_results", {})
+            if s["statistics"].get("ranks") != n:
+                bad.append(f"summary says {s['statistics'].get('ranks')} ranks")
+            if a.empty_rank and n == max(ranks) and sr.get("fewest_particles_on_a_rank", -1) != 0:
+                bad.append(f"no rank was left empty (fewest particles on a rank: {sr.get('fewest_particles_on_a_rank')})")
+            print(f"{n} ranks x {t} threads: largest relative difference {worst:.3g}; "
+                  f"repartitions {sr.get('repartitions', 0):g}, migrated {sr.get('particles_migrated', 0):g}, "
+                  f"halo {sr.get('halo_bytes_per_step_rank0', 0):.4g} B and "
+                  f"{sr.get('halo_messages_per_step_rank0', 0):.3g} messages per step on rank 0"
+                  + ("" if not bad else " -- FAILED"))
+            failures += [f"{n}x{t}: {b}" for b in bad]
+    if failures:
+        print("\n".join(failures[:40]))
+        sys.exit(1)
+    print("OK")
+
+
+if __name__ == "__main__":
+    main()
