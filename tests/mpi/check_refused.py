@@ -13,6 +13,7 @@ CASES = [
     ("taylor_bar_mpm.yaml", ["--set", "output.checkpoint_interval=1e-5"], "checkpoint and restart runs on one MPI rank"),
     ("rod_billet_4130_mpm.yaml", [], "the penetration analysis runs on one MPI rank"),
     ("taylor_bar_mpm.yaml", ["--set", "output.track.ids=[3]"], "particle tracking runs on one MPI rank"),
+    ("taylor_bar_mpm.yaml", ["--set", "mpm.anti_locking=fbar"], "fbar runs on one MPI rank only"),
 ]
 
 
