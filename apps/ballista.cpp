@@ -286,7 +286,7 @@ int main(int argc, char** argv) {
                 << fmt::format("{:.2f}", r.wall_seconds) << " s (" << fmt::format("{:.3g}", r.particle_steps_per_second)
                 << " particle-steps/s)\n";
       for (const auto& [name, value] : r.probes) std::cout << "  " << name << " = " << value << "\n";
-      if (sc.penetration.enabled && !no_plots) {
+      if (sc.penetration.enabled && !no_plots && world.rank() == 0) {
         // Figures of the penetration run (thesis seed 000 Figs. 7.4-7.7), also after a failure:
         // what ran is worth seeing. A missing Python is a warning, not a failed run.
         const std::string err = ballista::make_penetration_plots(out_dir);

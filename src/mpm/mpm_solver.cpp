@@ -831,15 +831,45 @@ std::vector<std::pair<std::string, double>> MpmSolver::result_values() const {
 }
 
 void MpmSolver::save_state(StateArchive& a) const {
-  pts_.save_state(a);
+  pts_.save_state(a);  // several ranks: collective, every rank's particles in rank 0's archive
   a.put_real("mpm.time", time_);
   a.put_int("mpm.steps", steps_);
   a.put("mpm.work", std::vector<double>{external_work_, damping_work_, contact_work_, friction_work_,
                                         transfer_work_, damping_});
+  if (comm_.distributed()) {
+    // The decomposition: the region boxes (a restart on as many ranks migrates exactly as the
+    // uninterrupted run) and rank 0's statistics.
+    a.put("mpm.rcb_boxes", partition_.boxes());
+    a.put("mpm.decomposition", std::vector<double>{static_cast<double>(repartitions_), migrated_, halo_bytes_,
+                                                   halo_messages_, halo_steps_, max_imbalance_,
+                                                   imbalance_after_partition_});
+  }
 }
 
 void MpmSolver::load_state(const StateArchive& a) {
-  pts_.load_state(a);
+  const bool own = pts_.load_state(a);
+  if (comm_.distributed()) {
+    const std::size_t nbox = static_cast<std::size_t>(6 * comm_.size());
+    if (own && a.has("mpm.rcb_boxes") && a.reals("mpm.rcb_boxes").size() == nbox) {
+      // Written on as many ranks: each rank has its particles back in their order, and the cuts.
+      partition_.restore_boxes(a.reals("mpm.rcb_boxes", nbox));
+      const auto& d = a.reals("mpm.decomposition", 7);
+      repartitions_ = static_cast<long>(d[0]);
+      migrated_ = d[1];
+      halo_bytes_ = d[2];
+      halo_messages_ = d[3];
+      halo_steps_ = d[4];
+      max_imbalance_ = d[5];
+      imbalance_after_partition_ = d[6];
+    } else {
+      // Another rank count (or a serial checkpoint): cut anew and move the particles there.
+      const std::vector<int> dest =
+          partition_.partition(points_.view<Vec3>("x"), points_.ints("id"), points_.size());
+      migrate_points(comm_, points_, dest);
+      imbalance_after_partition_ = 0.0;
+    }
+    pts_.mark_reordered();
+  }
   time_ = a.real("mpm.time");
   steps_ = static_cast<long>(a.integer("mpm.steps"));
   const auto& w = a.reals("mpm.work", 6);

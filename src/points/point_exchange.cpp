@@ -1,6 +1,7 @@
 #include "points/point_exchange.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <numeric>
 
 namespace ballista {
@@ -33,19 +34,36 @@ Index migrate_points(const Communicator& comm, FieldStore& store, const std::vec
   return sent + received;
 }
 
-FieldStore gather_points(const Communicator& comm, const FieldStore& store, int root) {
+FieldStore gather_points(const Communicator& comm, const FieldStore& store, int root, bool by_id) {
   FieldStore all = store.empty_like();
   std::vector<Index> every(static_cast<std::size_t>(store.size()));
   std::iota(every.begin(), every.end(), Index{0});
   const std::vector<std::vector<char>> parts = comm.gather(store.pack(every), root);
   if (comm.rank() != root) return all;
   for (const auto& part : parts) all.append_packed(part.data(), part.size());
+  if (!by_id) return all;
   const std::int64_t* id = all.ints("id");
   std::vector<Index> order(static_cast<std::size_t>(all.size()));
   std::iota(order.begin(), order.end(), Index{0});
   std::sort(order.begin(), order.end(), [&](Index a, Index b) { return id[a] < id[b]; });
   all.permute(order);
   return all;
+}
+
+}  // namespace ballista
+
+namespace ballista {
+
+std::vector<double> gather_values(const Communicator& comm, const std::vector<double>& mine, int root) {
+  std::vector<char> bytes(mine.size() * sizeof(double));
+  if (!mine.empty()) std::memcpy(bytes.data(), mine.data(), bytes.size());
+  std::vector<double> out;
+  for (const auto& part : comm.gather(bytes, root)) {
+    const std::size_t n0 = out.size();
+    out.resize(n0 + part.size() / sizeof(double));
+    if (!part.empty()) std::memcpy(out.data() + n0, part.data(), part.size());
+  }
+  return out;
 }
 
 }  // namespace ballista

@@ -15,7 +15,11 @@ namespace ballista {
 Index migrate_points(const Communicator& comm, FieldStore& store, const std::vector<int>& dest);
 
 /// Every rank's points on `root`, in increasing id order (so a file does not depend on the
-/// decomposition); other ranks get an empty store. Collective.
-FieldStore gather_points(const Communicator& comm, const FieldStore& store, int root = 0);
+/// decomposition), or with `by_id` false in rank order, each rank's in its own order (a
+/// checkpoint); other ranks get an empty store. Collective.
+FieldStore gather_points(const Communicator& comm, const FieldStore& store, int root = 0, bool by_id = true);
+
+/// Every rank's values on `root`, concatenated in rank order (empty elsewhere). Collective.
+std::vector<double> gather_values(const Communicator& comm, const std::vector<double>& mine, int root = 0);
 
 }  // namespace ballista

@@ -1,4 +1,5 @@
 #include "points/point_set.hpp"
+#include "points/point_exchange.hpp"
 
 #include <fmt/format.h>
 
@@ -357,16 +358,40 @@ EnergyTotals PointSet::energies(double k, double external_work) const {
 namespace ballista {
 
 void PointSet::save_state(StateArchive& a) const {
-  a.put_fields("points.", points_);
-  a.put_fields("pending.", pending_);
-  a.put("pending.activation_time", pending_activation_);
-  a.put("pending.stage", std::vector<std::int64_t>(pending_stage_.begin(), pending_stage_.end()));
+  const std::vector<double> removed{removed_mass_, removed_energy_, removed_chemical_, removed_momentum_[0],
+                                    removed_momentum_[1], removed_momentum_[2], inserted_energy_};
+  if (!comm_.distributed()) {
+    a.put_fields("points.", points_);
+    a.put_fields("pending.", pending_);
+    a.put("pending.activation_time", pending_activation_);
+    a.put("pending.stage", std::vector<std::int64_t>(pending_stage_.begin(), pending_stage_.end()));
+    a.put("points.stage_start", stage_start_);
+    a.put("points.removed", removed);
+    return;
+  }
+  // Several ranks: rank 0's archive is a serial checkpoint of every rank's points (rank order),
+  // plus what a restart on as many ranks needs to give each rank its own back.
+  const FieldStore all = gather_points(comm_, points_, 0, false);
+  const FieldStore all_pending = gather_points(comm_, pending_, 0, false);
+  const std::vector<double> activation = gather_values(comm_, pending_activation_);
+  const std::vector<double> stage = gather_values(comm_, std::vector<double>(pending_stage_.begin(), pending_stage_.end()));
+  const std::vector<double> counts = gather_values(
+      comm_, {static_cast<double>(points_.size()), static_cast<double>(pending_.size())});
+  const std::vector<double> removed_by_rank = gather_values(comm_, removed);
+  std::vector<double> totals = removed;
+  comm_.sum(totals.data(), static_cast<int>(totals.size()));
+  if (comm_.rank() != 0) return;
+  a.put_fields("points.", all);
+  a.put_fields("pending.", all_pending);
+  a.put("pending.activation_time", activation);
+  a.put("pending.stage", std::vector<std::int64_t>(stage.begin(), stage.end()));
   a.put("points.stage_start", stage_start_);
-  a.put("points.removed", std::vector<double>{removed_mass_, removed_energy_, removed_chemical_, removed_momentum_[0],
-                                              removed_momentum_[1], removed_momentum_[2], inserted_energy_});
+  a.put("points.removed", totals);
+  a.put("points.rank_counts", std::vector<std::int64_t>(counts.begin(), counts.end()));  // active, pending per rank
+  a.put("points.removed_by_rank", removed_by_rank);
 }
 
-void PointSet::load_state(const StateArchive& a) {
+bool PointSet::load_state(const StateArchive& a) {
   a.get_fields("points.", points_);
   a.get_fields("pending.", pending_);
   const std::size_t np = static_cast<std::size_t>(pending_.size());
@@ -374,13 +399,47 @@ void PointSet::load_state(const StateArchive& a) {
   const auto& st = a.ints("pending.stage", np);
   pending_stage_.assign(st.begin(), st.end());
   stage_start_ = a.reals("points.stage_start", stage_start_.size());
-  const auto& r = a.reals("points.removed", 7);
+  std::vector<double> r = a.reals("points.removed", 7);
+  bool own = false;
+  if (comm_.distributed()) {
+    const int P = comm_.size(), me = comm_.rank();
+    if (a.has("points.rank_counts") && a.ints("points.rank_counts").size() == static_cast<std::size_t>(2 * P)) {
+      // Written on as many ranks: this rank's segment of the active and of the pending points.
+      const auto& counts = a.ints("points.rank_counts", static_cast<std::size_t>(2 * P));
+      Index first = 0, first_pending = 0;
+      for (int q = 0; q < me; ++q) {
+        first += counts[2 * q];
+        first_pending += counts[2 * q + 1];
+      }
+      std::vector<char> keep(static_cast<std::size_t>(points_.size()), 0);
+      for (Index p = first; p < first + counts[2 * me]; ++p) keep[p] = 1;
+      points_.compact(keep);
+      keep.assign(np, 0);
+      std::vector<double> activation;
+      std::vector<int> stage;
+      for (Index p = first_pending; p < first_pending + counts[2 * me + 1]; ++p) {
+        keep[p] = 1;
+        activation.push_back(pending_activation_[p]);
+        stage.push_back(pending_stage_[p]);
+      }
+      pending_.compact(keep);
+      pending_activation_.swap(activation);
+      pending_stage_.swap(stage);
+      const auto& by_rank = a.reals("points.removed_by_rank", static_cast<std::size_t>(7 * P));
+      r.assign(by_rank.begin() + 7 * me, by_rank.begin() + 7 * (me + 1));
+      own = true;
+    } else {
+      keep_share(comm_);
+      if (me != 0) r.assign(7, 0.0);  // the totals once, on rank 0
+    }
+  }
   removed_mass_ = r[0];
   removed_energy_ = r[1];
   removed_chemical_ = r[2];
   removed_momentum_ = Vec3{{r[3], r[4], r[5]}};
   inserted_energy_ = r[6];
   groups_dirty_ = true;
+  return own;
 }
 
 }  // namespace ballista

@@ -90,10 +90,15 @@ class PointSet {
 
   // ---- checkpoint and restart --------------------------------------------------------------
   /// Active and pending points, activation clocks, stage starts and the removal and insertion
-  /// bookkeeping, under "points." and "pending." (core/state_archive.hpp).
+  /// bookkeeping, under "points." and "pending." (core/state_archive.hpp). Several ranks
+  /// (collective): the archive of rank 0 holds every rank's points in rank order, each rank's
+  /// count and bookkeeping, and the totals, i.e. a checkpoint any rank count can read.
   void save_state(StateArchive& archive) const;
-  /// Restores them into a PointSet built from the same deck; material groups are rebuilt.
-  void load_state(const StateArchive& archive);
+  /// Restores them into a PointSet built from the same deck; material groups are rebuilt. Several
+  /// ranks: a checkpoint written on as many ranks gives each rank its own points back in their
+  /// order (true: the caller keeps its decomposition); any other gives each rank a contiguous share
+  /// and the totals to rank 0 (false: the caller repartitions).
+  bool load_state(const StateArchive& archive);
 
  private:
   Scenario scenario_;

@@ -73,7 +73,6 @@ RcbPartition::RcbPartition(const Communicator& comm, int dim) : impl_(std::make_
   Zoltan_Set_Param(zz, "OBJ_WEIGHT_DIM", "0");  // unit weights: balance the point count
   Zoltan_Set_Param(zz, "RETURN_LISTS", "PARTS");
   Zoltan_Set_Param(zz, "KEEP_CUTS", "1");        // owner() of any position after the partition
-  Zoltan_Set_Param(zz, "RCB_REUSE", "1");        // a repartition starts from the previous cuts
   Zoltan_Set_Param(zz, "IMBALANCE_TOL", "1.02");
   Zoltan_Set_Num_Obj_Fn(zz, num_obj, impl_.get());
   Zoltan_Set_Obj_List_Fn(zz, obj_list, impl_.get());
@@ -117,24 +116,46 @@ std::vector<int> RcbPartition::partition(const Vec3* x, const std::int64_t* ids,
     std::fill(dest.begin(), dest.end(), comm_.rank());
     return dest;
   }
+  // Every rank's region box, from the kept cuts (the outer faces are Zoltan's +-DBL_MAX).
+  boxes_.assign(static_cast<std::size_t>(6 * comm_.size()), 0.0);
+  for (int r = 0; r < comm_.size(); ++r) {
+    int ndim = 0;
+    double* b = boxes_.data() + 6 * r;
+    zcheck(Zoltan_RCB_Box(impl_->zz, r, &ndim, b, b + 1, b + 2, b + 3, b + 4, b + 5), "Zoltan_RCB_Box");
+  }
   ready_ = true;
   ++partitions_;
   return dest;
 }
 
+void RcbPartition::restore_boxes(const std::vector<double>& boxes) {
+  if (!comm_.distributed()) return;
+  if (boxes.size() != static_cast<std::size_t>(6 * comm_.size()))
+    throw std::runtime_error("restore_boxes: " + std::to_string(boxes.size() / 6) + " region boxes for " +
+                             std::to_string(comm_.size()) + " ranks");
+  boxes_ = boxes;
+  ready_ = true;
+}
+
 int RcbPartition::owner(const Vec3& x) const {
   if (!comm_.distributed()) return 0;
   if (!ready_) return comm_.rank();
-  double c[3] = {x[0], x[1], x[2]};
-  int proc = 0, part = 0;
-  zcheck(Zoltan_LB_Point_PP_Assign(impl_->zz, c, &proc, &part), "Zoltan_LB_Point_PP_Assign");
-  return part;
+  // Half-open boxes [lo, hi): a point on a cut belongs to the upper side. Own box first: almost
+  // every particle stays where it was.
+  auto inside = [&](int r) {
+    const double* b = boxes_.data() + 6 * r;
+    for (int a = 0; a < dim_; ++a)
+      if (!(x[a] >= b[a] && x[a] < b[3 + a])) return false;
+    return true;
+  };
+  if (inside(comm_.rank())) return comm_.rank();
+  for (int r = 0; r < comm_.size(); ++r)
+    if (inside(r)) return r;
+  return comm_.rank();  // outside every box (beyond +-DBL_MAX, or NaN: the solver reports it)
 }
 
 void RcbPartition::owners(const Vec3* x, Index n, std::vector<int>& out) const {
   out.resize(static_cast<std::size_t>(n));
-  // Zoltan_LB_Point_PP_Assign only reads the kept cuts: it cannot fail on one rank alone unless
-  // the cuts are missing, which ready_ rules out.
   for (Index p = 0; p < n; ++p) out[p] = owner(x[p]);
 }
 

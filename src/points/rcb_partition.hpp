@@ -2,8 +2,9 @@
 // Which rank owns which points: recursive coordinate bisection (Berger & Bokhari, IEEE Trans.
 // Comput. 36 (1987) 570) computed by Zoltan (Boman et al., Sandia; Debian libtrilinos-zoltan-dev),
 // weighted by point count, so every rank holds about the same number of points. The cuts are kept
-// (KEEP_CUTS), so the owner of any position is known without communication (Zoltan's point
-// assignment); a repartition starts from the previous cuts (RCB_REUSE). Solver-neutral: MPM
+// (KEEP_CUTS) as every rank's region box, so the owner of any position is known without
+// communication, and a checkpoint can store them. A repartition depends only on where the points
+// are (no RCB_REUSE), so a restarted run cuts where the uninterrupted one did. Solver-neutral: MPM
 // particles today, peridynamic and OTM points next (issue 16).
 #include <cstdint>
 #include <memory>
@@ -26,8 +27,13 @@ class RcbPartition {
   /// Computes the cuts from the points every rank holds now (collective); the result is the rank
   /// each local point should go to.
   std::vector<int> partition(const Vec3* x, const std::int64_t* ids, Index n);
-  /// The rank whose region holds x (after a partition; no communication).
+  /// The rank whose region holds x (after a partition; no communication): the first region box
+  /// that holds it, this rank's own box tried first.
   int owner(const Vec3& x) const;
+  /// The region boxes of every rank (lower then upper corner, 6 values per rank), for a
+  /// checkpoint; restore_boxes() makes owner() answer as it did then.
+  const std::vector<double>& boxes() const { return boxes_; }
+  void restore_boxes(const std::vector<double>& boxes);
   /// Owners of n points (no communication).
   void owners(const Vec3* x, Index n, std::vector<int>& out) const;
   bool ready() const { return ready_; }
@@ -41,6 +47,7 @@ class RcbPartition {
   int dim_;
   bool ready_ = false;
   int partitions_ = 0;
+  std::vector<double> boxes_;  ///< per rank: xmin ymin zmin xmax ymax zmax of its region
 };
 
 }  // namespace ballista

@@ -126,7 +126,7 @@ void check_layout(const StateArchive& a, const Scenario& sc, const std::string& 
 }
 
 /// Several ranks: what does not run distributed yet is refused before anything is written.
-void check_distributed(const Scenario& sc, const RunOptions& opt, const Communicator& comm) {
+void check_distributed(const Scenario& sc, const Communicator& comm) {
   if (!comm.distributed()) return;
   auto refuse = [&](const std::string& key, const std::string& what) {
     throw DeckError(sc.file, 0, 0, key,
@@ -136,12 +136,7 @@ void check_distributed(const Scenario& sc, const RunOptions& opt, const Communic
   if (const SolverFactory* f = find_solver(sc.simulation.solver); f && !f->distributed)
     throw Error("solver '" + sc.simulation.solver + "' runs on one MPI rank only so far (" +
                 std::to_string(comm.size()) + " ranks were started); run it without mpirun, or with -np 1");
-  if (!opt.restart_from.empty() || sc.output.checkpoint_interval > 0 || opt.checkpoint_minutes > 0)
-    refuse("output.checkpoint_interval", "checkpoint and restart");
-  if (sc.penetration.enabled) refuse("penetration", "the penetration analysis");
   if (!sc.output.track.empty()) refuse("output.track", "particle tracking");
-  for (const StageSpec& st : sc.stages)
-    if (!st.until.empty()) refuse("stages", "a stage ended by a stress-equilibrium check ('until')");
 }
 
 }  // namespace
@@ -151,15 +146,16 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   // Every rank runs this loop; rank 0 alone writes files (docs/parallel.md).
   const Communicator comm = Communicator::world();
   const bool root = comm.rank() == 0;
-  check_distributed(sc, opt, comm);
+  check_distributed(sc, comm);
   // A restart continues the results folder it was written in: nothing there is cleared.
   std::optional<StateArchive> restart;
   if (!opt.restart_from.empty()) {
-    restart = read_checkpoint_file(opt.restart_from);
+    restart = read_checkpoint_file(opt.restart_from);  // every rank reads it
     check_layout(*restart, sc, opt.restart_from);
     // Checkpoints newer than the one restarted from belong to the abandoned continuation.
-    if (const int n = remove_checkpoints_after(opt.out_dir, opt.restart_from))
-      spdlog::info("removed {} checkpoints newer than {}", n, opt.restart_from);
+    if (root)
+      if (const int n = remove_checkpoints_after(opt.out_dir, opt.restart_from))
+        spdlog::info("removed {} checkpoints newer than {}", n, opt.restart_from);
   } else if (root) {
     if (const int removed = prepare_run_folder(opt.out_dir))
       spdlog::info("removed {} output files of an earlier run from {}", removed, opt.out_dir);
@@ -224,10 +220,11 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   if (restart) {
     solver->load_state(*restart);
     rs.load(*restart);
+    if (!root) rs.particle_steps = 0.0;  // the checkpoint holds the total (counted once, on rank 0)
     ParticleWriter::State ws;
     ws.count = static_cast<int>(restart->integer("run.outputs"));
     ws.xdmf_body = restart->text("run.xdmf");
-    writer.restore(ws);
+    if (root) writer.restore(ws);  // removes the particle files written after the checkpoint
     if (penetration) penetration->load_state(*restart);
     if (!tracker.empty()) {
       if (!restart->has("tracks.open"))
@@ -287,10 +284,15 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     for (double v : probe_values(e)) row.push_back(v);
     if (nstages > 0) row.push_back(rs.stage);
     for (double v : solver->history_values()) row.push_back(v);
-    if (penetration)
-      for (double v : penetration->sample(solver->points(), rs.stage == nstages, solver->time() - rs.stage_start,
-                                          solver->reporting_scale()))
-        row.push_back(v);
+    if (penetration) {
+      // Several ranks: the analysis runs on rank 0 over every rank's particles (gathered), which
+      // alone keeps the series and writes the row.
+      const FieldStore all = comm.distributed() ? gather_points(comm, solver->points()) : FieldStore{};
+      if (root)
+        for (double v : penetration->sample(comm.distributed() ? all : solver->points(), rs.stage == nstages,
+                                            solver->time() - rs.stage_start, solver->reporting_scale()))
+          row.push_back(v);
+    }
     if (history) history->row(row);
     return drift;
   };
@@ -340,6 +342,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     a.put_text("run.layout", layout_signature(sc));
     solver->save_state(a);
     RunState saved = m.rs;
+    saved.particle_steps = comm.sum(m.rs.particle_steps);  // each rank counts its own: the total
     saved.wall_before = rs.wall_before +
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     saved.save(a);
@@ -350,8 +353,10 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     if (penetration) penetration->save_state(a, m.penetration_samples);
     if (!tracker.empty()) tracker.save_state(a, m.tracks);
     const std::string path = checkpoint_path(opt.out_dir, solver->steps());
-    write_checkpoint_file(path, a);
-    prune_checkpoints(opt.out_dir, sc.output.checkpoint_keep);
+    if (root) {  // several ranks: rank 0's archive holds every rank's state (Solver::save_state)
+      write_checkpoint_file(path, a);
+      prune_checkpoints(opt.out_dir, sc.output.checkpoint_keep);
+    }
     newest_checkpoint = path;
     calls_since_checkpoint.clear();
     wall_of_last_checkpoint = std::chrono::steady_clock::now();
@@ -367,7 +372,10 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     }
     const double minutes =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_of_last_checkpoint).count() / 60.0;
-    if (opt.checkpoint_minutes > 0 && minutes >= opt.checkpoint_minutes) why = "--checkpoint-every-minutes";
+    // Several ranks: rank 0's clock decides for all (the checkpoint is collective).
+    bool wall_due = opt.checkpoint_minutes > 0 && minutes >= opt.checkpoint_minutes;
+    if (opt.checkpoint_minutes > 0 && comm.distributed()) comm.broadcast(&wall_due, sizeof wall_due, 0);
+    if (wall_due) why = "--checkpoint-every-minutes";
     if (!why) return;
     // A checkpoint that cannot be written (disk full) does not stop the run: the previous ones stay.
     try {
@@ -382,7 +390,9 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   bool interrupted = false;
   auto after_step = [&] {
     maybe_checkpoint();
-    if (!interrupt_requested() || solver->time() >= rs.end * (1.0 - 1e-12)) return false;
+    // Several ranks: a signal reaches the ranks at different steps; they stop together.
+    const bool asked = comm.distributed() ? comm.any(interrupt_requested()) : interrupt_requested();
+    if (!asked || solver->time() >= rs.end * (1.0 - 1e-12)) return false;
     if (newest_checkpoint != checkpoint_path(opt.out_dir, solver->steps()))
       write_checkpoint(marks_now(), "interrupted by a signal");
     interrupted = true;
@@ -444,9 +454,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   Marks good;  // the state at the start of the iteration being taken (a failure's last good state)
   bool physics_failure = false;
   try {
-    // SIGTERM / SIGINT checkpoint and stop, during the steps only (one rank: checkpoints are serial).
-    std::optional<InterruptScope> signals;
-    if (!comm.distributed()) signals.emplace();
+    const InterruptScope signals;  // SIGTERM / SIGINT checkpoint and stop, during the steps only
     // Stop within a relative round-off of the end time instead of taking a sliver step.
     while (solver->time() < rs.end * (1.0 - 1e-12)) {
       if (sc.simulation.max_steps > 0 && solver->steps() >= sc.simulation.max_steps) {
@@ -493,8 +501,16 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
         } else {
           const bool last_chance = elapsed >= st.max_duration * (1.0 - 1e-12);
           if ((elapsed >= st.min_duration && solver->steps() % st.check_every == 0) || last_chance) {
-            const EquilibriumCheck c =
-                check_stress_equilibrium(st, body_index(sc, st.body), solver->points());
+            EquilibriumCheck c;
+            if (!comm.distributed()) {
+              c = check_stress_equilibrium(st, body_index(sc, st.body), solver->points());
+            } else {
+              // Over every rank's particles on rank 0; its verdict goes to all (they end the stage
+              // together).
+              const FieldStore all = gather_points(comm, solver->points());
+              if (root) c = check_stress_equilibrium(st, body_index(sc, st.body), all);
+              comm.broadcast(&c, sizeof c, 0);
+            }
             if (c.satisfied && elapsed >= st.min_duration) {
               next_stage(st.until, &c);
             } else if (last_chance) {
@@ -595,7 +611,10 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   }
   if (penetration) {
     try {
-      penetration->finish(solver->points(), opt.out_dir, sc.simulation.end_time, summary["penetration"]);
+      const FieldStore all = comm.distributed() ? gather_points(comm, solver->points()) : FieldStore{};
+      if (root)
+        penetration->finish(comm.distributed() ? all : solver->points(), opt.out_dir, sc.simulation.end_time,
+                            summary["penetration"]);
     } catch (const std::exception& w) {
       spdlog::error("penetration analysis failed: {}", w.what());
     }

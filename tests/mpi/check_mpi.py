@@ -22,7 +22,7 @@ or dataset's largest magnitude; the largest difference seen is printed for docs/
 the same step naming the same particle (a rank's diagnostic names the global id), with the same
 failing state in its last particle file.
 """
-import argparse, csv, glob, json, os, shutil, subprocess, sys
+import argparse, csv, glob, json, math, os, shutil, subprocess, sys
 
 import h5py
 import numpy as np
@@ -82,12 +82,65 @@ def compare(ref, other, tol):
         scales = {}
         for k, c in enumerate(ha):
             scales[group(c)] = max(scales.get(group(c), 0.0), np.max(np.abs(a[:, k])))
+        # Momentum's own scale: sqrt(2 m K) with the largest mass and kinetic energy of the run (a
+        # body at rest, or one whose momenta cancel, carries only round-off momentum).
+        col = {c: k for k, c in enumerate(ha)}
+        if "mass" in col and "kinetic_energy" in col:
+            p = math.sqrt(2.0 * np.max(np.abs(a[:, col["mass"]])) * np.max(np.abs(a[:, col["kinetic_energy"]])))
+            scales["momentum"] = max(scales.get("momentum", 0.0), p)
         for k, c in enumerate(ha):
             scale = 1.0 if c == "energy_drift" else scales[group(c)]
             r = rel(a[:, k], b[:, k], scale)
             worst = max(worst, r)
             if r > tol:
                 bad.append(f"history column {c}: relative {r:.3g}")
+    # The penetration analysis's tables (penetration.csv, channel.csv): every column against its
+    # largest magnitude.
+    for f in sorted(glob.glob(os.path.join(ref, "*.csv"))):
+        name = os.path.basename(f)
+        if name == "history.csv":
+            continue
+        g = os.path.join(other, name)
+        if not os.path.exists(g):
+            bad.append(f"{name} missing")
+            continue
+        ta = list(csv.reader(open(f)))
+        tb = list(csv.reader(open(g)))
+        if ta[0] != tb[0] or len(ta) != len(tb):
+            bad.append(f"{name} layout")
+            continue
+        x = np.array([[float(v) for v in r] for r in ta[1:]]) if len(ta) > 1 else np.zeros((0, len(ta[0])))
+        y = np.array([[float(v) for v in r] for r in tb[1:]]) if len(tb) > 1 else np.zeros((0, len(tb[0])))
+        for k, c in enumerate(ta[0]):
+            finite = np.isfinite(x[:, k])
+            if not np.array_equal(finite, np.isfinite(y[:, k])):
+                bad.append(f"{name} column {c}: other non-finite entries")
+                continue
+            r = rel(x[finite, k], y[finite, k], np.max(np.abs(x[finite, k])) if finite.any() else 0.0)
+            worst = max(worst, r)
+            if r > tol:
+                bad.append(f"{name} column {c}: relative {r:.3g}")
+    # summary.json's penetration object: every number.
+    def leaves(o, p=""):
+        if isinstance(o, dict):
+            for k, v in o.items():
+                yield from leaves(v, p + "." + k)
+        elif isinstance(o, list):
+            for i, v in enumerate(o):
+                yield from leaves(v, p + f"[{i}]")
+        else:
+            yield p, o
+    if "penetration" in sa:
+        lb = dict(leaves(sb.get("penetration", {})))
+        for k, v in leaves(sa["penetration"]):
+            w = lb.get(k)
+            if isinstance(v, (int, float)) and not isinstance(v, bool) and isinstance(w, (int, float)):
+                r = abs(v - w) / max(abs(v), 1e-300) if v != w else 0.0
+                worst = max(worst, r)
+                if r > tol:
+                    bad.append(f"summary penetration{k}: {v!r} vs {w!r}")
+            elif v != w:
+                bad.append(f"summary penetration{k}: {v!r} vs {w!r}")
     fa = sorted(glob.glob(os.path.join(ref, "particles_*.h5")))
     fb = sorted(glob.glob(os.path.join(other, "particles_*.h5")))
     if [os.path.basename(f) for f in fa] != [os.path.basename(f) for f in fb]:

@@ -10,8 +10,6 @@ CASES = [
     # (deck, extra arguments, text the error must contain)
     ("pd_disk_indent.yaml", [], "solver 'peridynamics' runs on one MPI rank only"),
     ("taylor_bar_otm.yaml", [], "solver 'otm' runs on one MPI rank only"),
-    ("taylor_bar_mpm.yaml", ["--set", "output.checkpoint_interval=1e-5"], "checkpoint and restart runs on one MPI rank"),
-    ("rod_billet_4130_mpm.yaml", [], "the penetration analysis runs on one MPI rank"),
     ("taylor_bar_mpm.yaml", ["--set", "output.track.ids=[3]"], "particle tracking runs on one MPI rank"),
     ("taylor_bar_mpm.yaml", ["--set", "mpm.anti_locking=fbar"], "fbar runs on one MPI rank only"),
 ]

@@ -1,0 +1,160 @@
+#!/usr/bin/env python3
+"""Checkpoint and restart on several MPI ranks (issue 16 item 3, docs/restart.md, docs/parallel.md).
+
+  check_mpi_restart.py BALLISTA DECK WORKDIR [--pairs 2:2,2:1,1:2,2:4] [--kill 2] [--term 2]
+                       [--set k=v ...] [--tol 1e-11]
+
+For each pair W:R: the deck runs uninterrupted on W ranks with checkpoints; a copy of its results
+folder keeps only a checkpoint from the middle of the run and is restarted from it on R ranks
+(R = 1: the plain serial program). With W = R the restarted run must be bitwise the uninterrupted
+one (history.csv and the XDMF byte for byte, every particle dataset, the summary apart from wall
+clock), because each rank gets its own particles back in their order and the decomposition's cuts.
+With W != R the particles are cut anew, so it must agree within --tol (check_mpi.compare).
+--kill W: a run on W ranks is killed with SIGKILL (its whole process group: mpirun and the ranks)
+once it has written a checkpoint after the start, restarted on W ranks, and must end bitwise equal
+to the uninterrupted run.
+--term W: the same with SIGTERM sent to mpirun (a batch system's notice): the ranks agree to stop,
+checkpoint the step they are in, exit with status 4 ("interrupted"; mpirun itself returns 1), and
+the restart must again
+end bitwise equal to the uninterrupted run.
+"""
+import argparse, glob, json, os, shutil, signal, subprocess, sys, time
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from check_mpi import compare  # noqa: E402
+
+WALL_KEYS = {"wall_time", "particle_steps_per_second", "deck", "restarted_from", "timing", "threads"}
+ENV = dict(os.environ, OMP_WAIT_POLICY="passive")
+
+
+def launcher(n, ballista):
+    if n == 1:
+        return [ballista]
+    return ["mpirun", "--oversubscribe", "--allow-run-as-root", "-np", str(n), ballista]
+
+
+def run(cmd):
+    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=ENV)
+    if r.returncode != 0:
+        sys.exit(f"FAILED ({r.returncode}): {' '.join(cmd)}\n{r.stdout[-3000:]}")
+
+
+def strip(obj):
+    if isinstance(obj, dict):
+        return {k: strip(v) for k, v in obj.items() if k not in WALL_KEYS}
+    if isinstance(obj, list):
+        return [strip(v) for v in obj]
+    return obj
+
+
+def bitwise(ref, other):
+    bad = []
+    for name in ["history.csv", "particles.xdmf"]:
+        if open(os.path.join(ref, name), "rb").read() != open(os.path.join(other, name), "rb").read():
+            bad.append(name)
+    fa = sorted(glob.glob(os.path.join(ref, "particles_*.h5")))
+    fb = sorted(glob.glob(os.path.join(other, "particles_*.h5")))
+    if [os.path.basename(f) for f in fa] != [os.path.basename(f) for f in fb]:
+        return bad + [f"particle files {len(fa)} vs {len(fb)}"]
+    for f, g in zip(fa, fb):
+        with h5py.File(f, "r") as A, h5py.File(g, "r") as B:
+            for k in A.keys():
+                if k not in B or not np.array_equal(np.asarray(A[k]), np.asarray(B[k])):
+                    bad.append(f"{os.path.basename(f)}:{k}")
+    sa, sb = (strip(json.load(open(os.path.join(d, "summary.json")))) for d in (ref, other))
+    if sa != sb:
+        bad.append("summary.json")
+    return bad
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("ballista")
+    ap.add_argument("deck")
+    ap.add_argument("workdir")
+    ap.add_argument("--pairs", default="2:2,2:1,1:2,2:4")
+    ap.add_argument("--kill", type=int, default=0)
+    ap.add_argument("--term", type=int, default=0)
+    ap.add_argument("--set", action="append", default=[])
+    ap.add_argument("--tol", type=float, default=1e-11)
+    a = ap.parse_args()
+    shutil.rmtree(a.workdir, ignore_errors=True)
+    os.makedirs(a.workdir)
+    sets = sum((["--set", s] for s in a.set + ["output.checkpoint_keep=100"]), [])
+    common = ["-q", "--no-plots", "--threads", "1"]
+    refs = {}
+
+    def reference(w):
+        if w not in refs:
+            refs[w] = os.path.join(a.workdir, f"uninterrupted_{w}")
+            run(launcher(w, a.ballista) + ["run", a.deck, "-o", refs[w]] + common + sets)
+        return refs[w]
+
+    failures = []
+    for pair in [p for p in a.pairs.split(",") if p]:
+        w, r = (int(x) for x in pair.split(":"))
+        ref = reference(w)
+        cks = sorted(glob.glob(os.path.join(ref, "checkpoints", "checkpoint_*.h5")))
+        if len(cks) < 3:
+            sys.exit(f"{ref}: only {len(cks)} checkpoints; shorten output.checkpoint_interval")
+        keep = cks[len(cks) // 2]
+        out = os.path.join(a.workdir, f"restart_{w}_on_{r}")
+        shutil.copytree(ref, out)
+        for f in glob.glob(os.path.join(out, "checkpoints", "checkpoint_*.h5")):
+            if os.path.basename(f) != os.path.basename(keep):
+                os.remove(f)
+        run(launcher(r, a.ballista) + ["run", "--restart", out] + common)
+        if w == r:
+            bad = bitwise(ref, out)
+            print(f"written on {w}, restarted on {r} from {os.path.basename(keep)}: "
+                  + ("bitwise identical" if not bad else "DIFFERS: " + ", ".join(bad[:8])))
+        else:
+            worst, bad = compare(ref, out, a.tol)
+            print(f"written on {w}, restarted on {r} from {os.path.basename(keep)}: largest relative difference "
+                  f"{worst:.3g}" + ("" if not bad else " -- FAILED"))
+        failures += [f"{w}:{r}: {b}" for b in bad]
+    for sig, w in ((signal.SIGKILL, a.kill), (signal.SIGTERM, a.term)):
+        if not w:
+            continue
+        ref = reference(w)
+        out = os.path.join(a.workdir, f"{sig.name}_{w}")
+        p = subprocess.Popen(launcher(w, a.ballista) + ["run", a.deck, "-o", out] + common + sets,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=ENV, start_new_session=True)
+        deadline = time.time() + 120
+        while time.time() < deadline and p.poll() is None:
+            if len(glob.glob(os.path.join(out, "checkpoints", "checkpoint_*.h5"))) >= 2:
+                break
+            time.sleep(0.01)
+        stopped = p.poll() is None
+        if stopped:
+            # SIGKILL: mpirun and every rank at once (nothing can be written). SIGTERM: to mpirun,
+            # which forwards it to the ranks; they agree, checkpoint the step they are in and exit 4.
+            if sig == signal.SIGKILL:
+                os.killpg(p.pid, signal.SIGKILL)
+            else:
+                p.send_signal(signal.SIGTERM)
+        code = p.wait()
+        if not stopped:
+            failures.append(f"{sig.name}: the run ended before the signal; lengthen the deck")
+            continue
+        if sig == signal.SIGTERM:
+            status = json.load(open(os.path.join(out, "summary.json")))["status"]
+            # Each rank exits 4; mpirun itself (Open MPI 4.1) returns 1 once it was signalled.
+            if code == 0 or status != "interrupted":
+                failures.append(f"SIGTERM: exit {code}, status {status} (expected non-zero, interrupted)")
+        run(launcher(w, a.ballista) + ["run", "--restart", out] + common)
+        bad = bitwise(ref, out)
+        print(f"{sig.name} on {w} ranks, restarted on {w}: "
+              + ("bitwise identical" if not bad else "DIFFERS: " + ", ".join(bad[:8])))
+        failures += [f"{sig.name}: {b}" for b in bad]
+    if failures:
+        print("\n".join(failures[:40]))
+        sys.exit(1)
+    print("OK")
+
+
+if __name__ == "__main__":
+    main()
