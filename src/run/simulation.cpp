@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <optional>
+#include <set>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -128,15 +129,9 @@ void check_layout(const StateArchive& a, const Scenario& sc, const std::string& 
 /// Several ranks: what does not run distributed yet is refused before anything is written.
 void check_distributed(const Scenario& sc, const Communicator& comm) {
   if (!comm.distributed()) return;
-  auto refuse = [&](const std::string& key, const std::string& what) {
-    throw DeckError(sc.file, 0, 0, key,
-                    what + " runs on one MPI rank only so far (" + std::to_string(comm.size()) +
-                        " ranks were started; docs/parallel.md)");
-  };
   if (const SolverFactory* f = find_solver(sc.simulation.solver); f && !f->distributed)
     throw Error("solver '" + sc.simulation.solver + "' runs on one MPI rank only so far (" +
                 std::to_string(comm.size()) + " ranks were started); run it without mpirun, or with -np 1");
-  if (!sc.output.track.empty()) refuse("output.track", "particle tracking");
 }
 
 }  // namespace
@@ -211,6 +206,27 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   // Particle ids run 0 .. seeded - 1 over every body, active or waiting for activation.
   const std::int64_t seeded = comm.sum(static_cast<std::int64_t>(pts.size() + solver->pending_points()));
   ParticleTracker tracker(sc, opt.out_dir, seeded);
+  // The tracked particles as the tracker sees them: several ranks send theirs to rank 0, which
+  // alone records (collective; every rank calls it).
+  const std::set<std::int64_t> tracked_ids(sc.output.track.begin(), sc.output.track.end());
+  auto record_tracks = [&](bool failure) {
+    if (tracker.empty()) return;
+    if (!comm.distributed()) {
+      failure ? tracker.record_failure(solver->points(), solver->time())
+              : tracker.record(solver->points(), solver->time(), solver->steps());
+      return;
+    }
+    const FieldStore& local = solver->points();
+    const std::int64_t* id = local.ints("id");
+    std::vector<Index> mine;
+    for (Index p = 0; p < local.size(); ++p)
+      if (tracked_ids.count(id[p])) mine.push_back(p);
+    FieldStore sub = local.empty_like();
+    sub.append_from(local, mine);
+    const FieldStore all = gather_points(comm, sub);
+    if (!root) return;
+    failure ? tracker.record_failure(all, solver->time()) : tracker.record(all, solver->time(), solver->steps());
+  };
 
   if (!restart) check_step_estimate(sc, *solver);
 
@@ -226,11 +242,11 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     ws.xdmf_body = restart->text("run.xdmf");
     if (root) writer.restore(ws);  // removes the particle files written after the checkpoint
     if (penetration) penetration->load_state(*restart);
-    if (!tracker.empty()) {
+    if (!tracker.empty()) {  // rank 0's: it alone writes the tracks
       if (!restart->has("tracks.open"))
         throw Error("the checkpoint was written without output.track.ids; tracks cannot start in the middle of a "
                     "run (their F-tables would miss the steps before): run the deck from the start to track");
-      tracker.load_state(*restart);
+      if (root) tracker.load_state(*restart);
     }
     // The deck may have changed the end (--set simulation.end_time=...): the main stage ends
     // end_time after it began; the output clock stays where it was, within the new end.
@@ -351,7 +367,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     a.put_int("run.outputs", ws.count);
     a.put_text("run.xdmf", ws.xdmf_body);
     if (penetration) penetration->save_state(a, m.penetration_samples);
-    if (!tracker.empty()) tracker.save_state(a, m.tracks);
+    if (!tracker.empty() && root) tracker.save_state(a, m.tracks);
     const std::string path = checkpoint_path(opt.out_dir, solver->steps());
     if (root) {  // several ranks: rank 0's archive holds every rank's state (Solver::save_state)
       write_checkpoint_file(path, a);
@@ -412,7 +428,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       spdlog::info("stage '{}' begins (damping {} 1/s)", sc.stages[0].name, sc.stages[0].damping);
     }
     history_row(0.0);
-    tracker.record(pts, solver->time(), solver->steps());
+    record_tracks(false);
     // The first checkpoint is the initial state: a failing run replays from the newest one.
     if (checkpointing) write_checkpoint(marks_now(), "initial state");
   }
@@ -491,7 +507,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       solver->step(dt);
       rs.dt = dt;
       if (checkpointing) calls_since_checkpoint.push_back({dt, -1, 0.0});
-      tracker.record(solver->points(), solver->time(), solver->steps());
+      record_tracks(false);
       if (rs.stage < nstages) {
         const int stage_before = rs.stage;
         const StageSpec& st = sc.stages[rs.stage];
@@ -557,7 +573,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     // The only dynamic_cast of the run loop: on the error's type, never on the solver.
     if (const auto* pe = dynamic_cast<const ParticleError*>(&err)) result.failed_particle = pe->id();
     try {
-      tracker.record_failure(solver->points(), solver->time());
+      record_tracks(true);
     } catch (const std::exception& w) {
       spdlog::error("could not record the failing step of the tracked particles: {}", w.what());
     }

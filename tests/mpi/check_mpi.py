@@ -94,10 +94,10 @@ def compare(ref, other, tol):
             worst = max(worst, r)
             if r > tol:
                 bad.append(f"history column {c}: relative {r:.3g}")
-    # The penetration analysis's tables (penetration.csv, channel.csv): every column against its
-    # largest magnitude.
-    for f in sorted(glob.glob(os.path.join(ref, "*.csv"))):
-        name = os.path.basename(f)
+    # The penetration analysis's tables (penetration.csv, channel.csv) and the tracked particles'
+    # F-tables and histories (tracks/): every column against its largest magnitude.
+    for f in sorted(glob.glob(os.path.join(ref, "*.csv")) + glob.glob(os.path.join(ref, "tracks", "*.csv"))):
+        name = os.path.relpath(f, ref)
         if name == "history.csv":
             continue
         g = os.path.join(other, name)

@@ -52,7 +52,11 @@ def strip(obj):
 
 def bitwise(ref, other):
     bad = []
-    for name in ["history.csv", "particles.xdmf"]:
+    csvs = [os.path.relpath(f, ref) for f in glob.glob(os.path.join(ref, "*.csv")) + glob.glob(os.path.join(ref, "tracks", "*.csv"))]
+    for name in sorted(csvs) + ["particles.xdmf"]:
+        if not os.path.exists(os.path.join(other, name)):
+            bad.append(name + " missing")
+            continue
         if open(os.path.join(ref, name), "rb").read() != open(os.path.join(other, name), "rb").read():
             bad.append(name)
     fa = sorted(glob.glob(os.path.join(ref, "particles_*.h5")))

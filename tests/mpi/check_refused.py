@@ -10,7 +10,6 @@ CASES = [
     # (deck, extra arguments, text the error must contain)
     ("pd_disk_indent.yaml", [], "solver 'peridynamics' runs on one MPI rank only"),
     ("taylor_bar_otm.yaml", [], "solver 'otm' runs on one MPI rank only"),
-    ("taylor_bar_mpm.yaml", ["--set", "output.track.ids=[3]"], "particle tracking runs on one MPI rank"),
     ("taylor_bar_mpm.yaml", ["--set", "mpm.anti_locking=fbar"], "fbar runs on one MPI rank only"),
 ]
 
