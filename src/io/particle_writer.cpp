@@ -1,3 +1,6 @@
+// Only MPI's C API is used (hdf5.h of the parallel build includes mpi.h).
+#define OMPI_SKIP_MPICXX 1
+#define MPICH_SKIP_MPICXX 1
 #include "io/particle_writer.hpp"
 
 #include <fcntl.h>
@@ -6,10 +9,13 @@
 #include <cerrno>
 
 #include <hdf5.h>
+#include <mpi.h>
 
 #include <charconv>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <optional>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -25,9 +31,20 @@ namespace ballista {
 
 namespace {
 
-/// Writes a dataset of the given shape (empty dims = scalar) and an optional "unit" attribute.
+/// Several ranks: this rank's rows [first, first + rows) of every dataset written collectively
+/// (transfer list `dxpl`); rows == 0 and dxpl == H5P_DEFAULT: the serial write of everything.
+struct RowSlice {
+  hsize_t first = 0;
+  hsize_t rows = 0;
+  hid_t dxpl = H5P_DEFAULT;
+  bool root = true;  ///< writes the scalar datasets
+};
+
+/// Writes a dataset of the given shape (empty dims = scalar) and an optional "unit" attribute. With
+/// a collective slice, `data` holds this rank's rows of dims[0] (every rank calls it alike).
 void write_dataset(hid_t file, const std::string& name, hid_t mem_type, hid_t file_type,
-                   const std::vector<hsize_t>& dims, const void* data, const std::string& unit) {
+                   const std::vector<hsize_t>& dims, const void* data, const std::string& unit,
+                   const RowSlice& slice = {}) {
   H5Id space(dims.empty() ? H5Screate(H5S_SCALAR)
                           : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
              H5Sclose, "create dataspace for '" + name + "'");
@@ -35,8 +52,35 @@ void write_dataset(hid_t file, const std::string& name, hid_t mem_type, hid_t fi
             H5Dclose, "create dataset '" + name + "'");
   hsize_t total = 1;
   for (hsize_t d : dims) total *= d;
-  if (total > 0 && H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
-    throw Error("HDF5: cannot write dataset '" + name + "'");
+  if (slice.dxpl == H5P_DEFAULT) {
+    if (total > 0 && H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+      throw Error("HDF5: cannot write dataset '" + name + "'");
+  } else {
+    // Collective: every rank takes part, each selecting its rows (or nothing).
+    H5Id fspace(H5Dget_space(dset), H5Sclose, "dataspace of '" + name + "'");
+    std::vector<hsize_t> count = dims, start(dims.size(), 0);
+    hsize_t rows = 0;
+    if (dims.empty()) {
+      rows = slice.root ? 1 : 0;
+      if (!slice.root) H5Sselect_none(fspace);
+    } else {
+      rows = slice.rows;
+      start[0] = slice.first;
+      count[0] = slice.rows;
+      if (rows > 0)
+        H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+      else
+        H5Sselect_none(fspace);
+    }
+    std::vector<hsize_t> mdims = dims.empty() ? std::vector<hsize_t>{1} : count;
+    if (mdims[0] == 0) mdims[0] = 1;  // a dataspace of zero rows: select none of one
+    H5Id mspace(H5Screate_simple(static_cast<int>(mdims.size()), mdims.data(), nullptr), H5Sclose,
+                "memory dataspace of '" + name + "'");
+    if (rows == 0) H5Sselect_none(mspace);
+    const double dummy = 0.0;
+    if (H5Dwrite(dset, mem_type, mspace, fspace, slice.dxpl, rows > 0 ? data : &dummy) < 0)
+      throw Error("HDF5: cannot write dataset '" + name + "' (collective)");
+  }
   if (unit.empty()) return;
   H5Id str(H5Tcopy(H5T_C_S1), H5Tclose, "create string type");
   if (H5Tset_size(str, unit.size()) < 0) throw Error("HDF5: cannot size string type");
@@ -173,24 +217,50 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
     x_selected = x_selected || f->name == "x";
   }
 
-  const Index n = points.size();
+  const Index local = points.size();
+  const bool parallel = comm_.distributed();
+  const bool root = comm_.rank() == 0;
+  // Several ranks: the global row count and this rank's first row (rank order).
+  Index n = local, first = 0;
+  if (parallel) {
+    std::vector<int> counts;
+    const std::vector<std::int64_t> all = comm_.all_gather({static_cast<std::int64_t>(local)}, counts);
+    n = 0;
+    for (int r = 0; r < comm_.size(); ++r) {
+      if (r < comm_.rank()) first += all[r];
+      n += all[r];
+    }
+  }
+  if (parallel && nodes) throw Error("node output (OTM) is not written by several ranks");
   const int index = count();
   const std::string path = h5_path(index);
   const std::string file = std::filesystem::path(path).filename().string();  // relative to the xdmf
   const int nc = dim_ == 3 ? 8 : 4;  // corners per domain
 
   {
-    AtomicPath out(path);
+    // Rank 0 alone owns the temporary file's fate (an AtomicPath of another rank would unlink it).
+    std::optional<AtomicPath> out;
+    if (root) out.emplace(path);
+    const std::string tmp = path + ".tmp";
     {
       H5Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "create file access list");
 #if H5_VERSION_GE(1, 10, 7)
       H5Pset_file_locking(fapl, false, true);  // locks fail on some parallel file systems
 #endif
-      H5Id h5(H5Fcreate(out.tmp().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose,
-              "create '" + out.tmp() + "'");
-      write_dataset(h5, "time", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {}, &time, "s");
+      H5Id dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "create transfer list");
+      RowSlice rows;
+      if (parallel) {
+        MPI_Comm c;
+        const std::uintptr_t h = comm_.native_handle();
+        std::memcpy(&c, &h, sizeof c);
+        if (H5Pset_fapl_mpio(fapl, c, MPI_INFO_NULL) < 0) throw Error("HDF5: cannot set MPI-IO file access");
+        if (H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE) < 0) throw Error("HDF5: cannot set collective transfers");
+        rows = RowSlice{static_cast<hsize_t>(first), static_cast<hsize_t>(local), dxpl, root};
+      }
+      H5Id h5(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose, "create '" + tmp + "'");
+      write_dataset(h5, "time", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {}, &time, "s", rows);
       const std::int64_t step64 = step;
-      write_dataset(h5, "step", H5T_NATIVE_INT64, H5T_STD_I64LE, {}, &step64, "");
+      write_dataset(h5, "step", H5T_NATIVE_INT64, H5T_STD_I64LE, {}, &step64, "", rows);
 
       std::vector<const FieldInfo*> datasets = sel;
       if (!x_selected) datasets.push_back(&points.info("x"));
@@ -198,16 +268,16 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
         std::vector<hsize_t> dims{static_cast<hsize_t>(n)};
         if (f->ncomp != 1) dims.push_back(static_cast<hsize_t>(f->ncomp));
         if (f->type == FieldType::Real)
-          write_dataset(h5, f->name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, dims, points.real(f->name), f->unit);
+          write_dataset(h5, f->name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, dims, points.real(f->name), f->unit, rows);
         else
-          write_dataset(h5, f->name, H5T_NATIVE_INT64, H5T_STD_I64LE, dims, points.ints(f->name), f->unit);
+          write_dataset(h5, f->name, H5T_NATIVE_INT64, H5T_STD_I64LE, dims, points.ints(f->name), f->unit, rows);
       }
 
       // Polyvertex connectivity: readers differ on implicit connectivity, so it is explicit.
-      std::vector<std::int64_t> verts(static_cast<size_t>(n));
-      for (Index p = 0; p < n; ++p) verts[p] = p;
+      std::vector<std::int64_t> verts(static_cast<size_t>(local));
+      for (Index p = 0; p < local; ++p) verts[p] = first + p;
       write_dataset(h5, "vertex_cells", H5T_NATIVE_INT64, H5T_STD_I64LE, {static_cast<hsize_t>(n)},
-                    verts.data(), "");
+                    verts.data(), "", rows);
 
       if (domains_) {
         const Vec3* x = points.view<Vec3>("x");
@@ -218,19 +288,22 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
                                      {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
         static const int s2[4][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
         const int(*sign)[3] = dim_ == 3 ? s3 : s2;
-        std::vector<Vec3> corners(static_cast<size_t>(n * nc));
-        std::vector<std::int64_t> cells(static_cast<size_t>(n * nc));
-        for_each(0, n, [&](Index p) {
+        std::vector<Vec3> corners(static_cast<size_t>(local * nc));
+        std::vector<std::int64_t> cells(static_cast<size_t>(local * nc));
+        for_each(0, local, [&](Index p) {
           for (int k = 0; k < nc; ++k) {
             const Vec3 r{{sign[k][0] * h[p][0], sign[k][1] * h[p][1], sign[k][2] * h[p][2]}};
             corners[p * nc + k] = x[p] + F[p] * r;
-            cells[p * nc + k] = p * nc + k;
+            cells[p * nc + k] = (first + p) * nc + k;
           }
         });
+        RowSlice corner_rows = rows;  // nc corner rows per particle
+        corner_rows.first *= static_cast<hsize_t>(nc);
+        corner_rows.rows *= static_cast<hsize_t>(nc);
         write_dataset(h5, "domain_points", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE,
-                      {static_cast<hsize_t>(n * nc), 3}, corners.data(), points.info("x").unit);
+                      {static_cast<hsize_t>(n * nc), 3}, corners.data(), points.info("x").unit, corner_rows);
         write_dataset(h5, "domain_cells", H5T_NATIVE_INT64, H5T_STD_I64LE,
-                      {static_cast<hsize_t>(n), static_cast<hsize_t>(nc)}, cells.data(), "");
+                      {static_cast<hsize_t>(n), static_cast<hsize_t>(nc)}, cells.data(), "", rows);
       }
       if (nodes) {
         // The second point cloud (OTM nodes): every real field, prefixed, with its own vertices.
@@ -245,9 +318,9 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
         for (Index a = 0; a < nn; ++a) nv[a] = a;
         write_dataset(h5, "node_cells", H5T_NATIVE_INT64, H5T_STD_I64LE, {static_cast<hsize_t>(nn)}, nv.data(), "");
       }
-      h5.close("close '" + out.tmp() + "'");
+      h5.close("close '" + tmp + "'");  // collective: every rank's rows are in the file
     }
-    out.commit();
+    if (root) out->commit();
   }
 
   // XDMF grid(s) of this output: particles (Polyvertex), with domains the deformed cells, with
@@ -286,7 +359,7 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
                          attributes(file, node_fields, nn, "Node", in + "  ", "node_"), in);
   }
   if (collection) g += "      </Grid>\n";
-  append_xdmf(g);
+  if (root) append_xdmf(g);
   ++count_;
 }
 
@@ -311,6 +384,11 @@ ParticleWriter::State ParticleWriter::state_at(int count, std::size_t body_end) 
 
 void ParticleWriter::restore(const State& s) {
   namespace fs = std::filesystem;
+  if (comm_.rank() != 0) {  // several ranks: rank 0 alone touches the files
+    count_ = s.count;
+    xdmf_body_end_ = s.xdmf_body.size();
+    return;
+  }
   // Outputs the interrupted run wrote after the checkpoint: numbered s.count and on.
   for (int k = s.count;; ++k) {
     std::error_code ec;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/communicator.hpp"
 #include "core/field_store.hpp"
 
 namespace ballista {
@@ -27,6 +28,11 @@ class ParticleWriter {
   /// node_<field> (every real field of that store, "x" required) with node_cells, and becomes a
   /// second grid "nodes" beside the particles in the output's spatial collection.
   void write(double time, long step, const FieldStore& points, const FieldStore* nodes = nullptr);
+  /// Several MPI ranks: write() becomes collective. Every rank calls it with its own points; one
+  /// file per output is written through MPI-IO (parallel HDF5), each rank its rows, in rank order;
+  /// rank 0 alone commits it (fsync, rename) and writes the XDMF index. restore() removes and
+  /// rewrites files on rank 0 only.
+  void set_communicator(const Communicator& comm) { comm_ = comm; }
 
   /// Checkpoint: the output count and the index's text up to its footer.
   struct State {
@@ -58,6 +64,7 @@ class ParticleWriter {
   void append_xdmf(const std::string& grid);
 
   int count_ = 0;                 // outputs written
+  Communicator comm_;             // several ranks: collective writes (set_communicator)
   std::size_t xdmf_body_end_ = 0;  // byte offset of the index's footer (where the next grid goes)
 };
 

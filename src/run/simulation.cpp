@@ -170,15 +170,11 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   const Dimension dim = sc.simulation.dimension;
   ParticleWriter writer(opt.out_dir, output_fields(sc, pts), sc.output.domains,
                         dim == Dimension::ThreeD ? 3 : 2);
-  // A particle file of the current state: several ranks gather their particles on rank 0, which
-  // writes them in id order (points/point_exchange.hpp); collective.
+  // A particle file of the current state; several ranks write it together (parallel HDF5, each
+  // rank its particles in rank order; io/particle_writer.hpp): collective.
+  writer.set_communicator(comm);
   auto write_output = [&] {
-    if (!comm.distributed()) {
-      writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
-      return;
-    }
-    const FieldStore all = gather_points(comm, solver->points());
-    if (root) writer.write(solver->time(), solver->steps(), all, solver->output_nodes());
+    writer.write(solver->time(), solver->steps(), solver->points(), solver->output_nodes());
   };
 
   std::vector<std::string> columns = {"time", "step", "dt", "kinetic_energy", "internal_energy",
@@ -240,7 +236,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     ParticleWriter::State ws;
     ws.count = static_cast<int>(restart->integer("run.outputs"));
     ws.xdmf_body = restart->text("run.xdmf");
-    if (root) writer.restore(ws);  // removes the particle files written after the checkpoint
+    writer.restore(ws);  // removes the particle files written after the checkpoint (rank 0)
     if (penetration) penetration->load_state(*restart);
     if (!tracker.empty()) {  // rank 0's: it alone writes the tracks
       if (!restart->has("tracks.open"))
