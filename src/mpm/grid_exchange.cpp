@@ -4,7 +4,8 @@
 
 namespace ballista {
 
-void GridExchange::plan(const Communicator& comm, const ActiveBlocks& blocks, Index node_count) {
+void GridExchange::plan(const Communicator& comm, const ActiveBlocks& blocks, Index node_count,
+                        const std::vector<int>* neighbours) {
   blocks_ = &blocks;
   node_count_ = node_count;
   if (counted_.size() != static_cast<std::size_t>(node_count)) counted_.assign(node_count, 1);
@@ -21,25 +22,42 @@ void GridExchange::plan(const Communicator& comm, const ActiveBlocks& blocks, In
   peer_blocks_.clear();
   shared_.clear();
   if (!comm.distributed()) return;
-  // Every rank's active blocks (ascending lists, concatenated in rank order). O(active blocks of
-  // all ranks) per step: a neighbour-only exchange of the lists is the step to 10^3 ranks
-  // (docs/performance.md, scaling model).
   const std::vector<Index>& mine = blocks.active_list();
-  std::vector<std::int64_t> mine64(mine.begin(), mine.end());
-  std::vector<int> counts;
-  const std::vector<std::int64_t> all = comm.all_gather(mine64, counts);
   const int me = comm.rank();
-  std::vector<std::vector<Index>> with(comm.size());
-  std::size_t at = 0;
-  for (int r = 0; r < comm.size(); ++r) {
-    const auto first = all.begin() + static_cast<std::ptrdiff_t>(at);
-    const auto last = first + counts[r];
-    at += static_cast<std::size_t>(counts[r]);
-    if (r == me) continue;
-    std::set_intersection(mine.begin(), mine.end(), first, last, std::back_inserter(with[r]));
-    if (!with[r].empty()) {
+  auto add_peer = [&](int r, const std::vector<Index>& theirs) {
+    std::vector<Index> with;
+    std::set_intersection(mine.begin(), mine.end(), theirs.begin(), theirs.end(), std::back_inserter(with));
+    if (!with.empty()) {
       peers_.push_back(r);
-      peer_blocks_.push_back(std::move(with[r]));
+      peer_blocks_.push_back(std::move(with));
+    }
+  };
+  if (neighbours) {
+    // The lists go to the neighbours only (sizes first, then the lists; block indices are exact
+    // in doubles): O(neighbours) messages per rank, whatever the rank count.
+    std::vector<int> nb(*neighbours);
+    std::sort(nb.begin(), nb.end());
+    std::vector<std::vector<double>> send(nb.size(), std::vector<double>{static_cast<double>(mine.size())});
+    std::vector<std::vector<double>> recv(nb.size(), std::vector<double>(1));
+    comm.exchange(nb, send, recv);
+    for (std::size_t k = 0; k < nb.size(); ++k) {
+      send[k].assign(mine.begin(), mine.end());
+      recv[k].assign(static_cast<std::size_t>(recv[k][0]), 0.0);
+    }
+    comm.exchange(nb, send, recv);
+    for (std::size_t k = 0; k < nb.size(); ++k)
+      add_peer(nb[k], std::vector<Index>(recv[k].begin(), recv[k].end()));
+  } else {
+    // Every rank's active blocks (ascending lists, concatenated in rank order): O(active blocks of
+    // all ranks) per step.
+    std::vector<std::int64_t> mine64(mine.begin(), mine.end());
+    std::vector<int> counts;
+    const std::vector<std::int64_t> all = comm.all_gather(mine64, counts);
+    std::size_t at = 0;
+    for (int r = 0; r < comm.size(); ++r) {
+      const auto first = all.begin() + static_cast<std::ptrdiff_t>(at);
+      at += static_cast<std::size_t>(counts[r]);
+      if (r != me) add_peer(r, std::vector<Index>(first, first + counts[r]));
     }
   }
   // Merge the per-peer lists into one ascending list of shared blocks with their sharers.

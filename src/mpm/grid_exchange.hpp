@@ -24,7 +24,10 @@ class GridExchange {
   };
 
   /// Which ranks share each of this rank's active blocks (collective; after ActiveBlocks::finish).
-  void plan(const Communicator& comm, const ActiveBlocks& blocks, Index node_count);
+  /// With `neighbours` (the ranks whose regions come near this one's, the same relation on every
+  /// rank) the active-block lists go only to them; without, every rank's list to every rank.
+  void plan(const Communicator& comm, const ActiveBlocks& blocks, Index node_count,
+            const std::vector<int>* neighbours = nullptr);
   /// Sums the arrays over the sharers of every shared block, in rank order (collective).
   void sum(const Communicator& comm, const std::vector<Array>& arrays, int fields);
   /// Per node: 0 for the nodes of blocks shared with a lower rank (which books their work), else 1.

@@ -214,7 +214,10 @@ StepLimiter MpmSolver::step_limiter() const {
 }
 
 void MpmSolver::activate_pending() {
-  if (pts_.activate(time_)) sort_by_cell();
+  const bool added = pts_.activate(time_);
+  if (added) sort_by_cell();
+  // Several ranks: whether any rank added particles that may lie outside its region.
+  activated_this_step_ = comm_.distributed() && comm_.any(added);
 }
 
 void MpmSolver::sort_by_cell() {
@@ -271,7 +274,23 @@ void MpmSolver::mark_active_blocks() {
   if (comm_.distributed())
     for (const MirrorFace& mf : mirror_faces_) blocks_.mark_mirror_images(mf.axis, mf.node, ghost_);
   blocks_.finish();
-  if (comm_.distributed()) exchange_.plan(comm_, blocks_, grid_.geom.node_count());
+  if (comm_.distributed()) {
+    // Every particle is inside its rank's region after the migration at the start of the step,
+    // so a block two ranks share lies within both regions grown by the stencil's reach and a
+    // block: only ranks whose grown regions meet exchange their lists. Not so before the first
+    // partition, or when bodies were activated this step (they join their rank's region at the
+    // next migration): then every rank's list goes to every rank.
+    const double reach = static_cast<double>(comm_.max(static_cast<std::int64_t>(reach_)));
+    const double margin = (reach + 2.0 + ActiveBlocks::kBlock) * grid_.geom.h;
+    if (partition_.ready() && !activated_this_step_) {
+      const std::vector<int> nb = partition_.neighbours(margin);
+      exchange_.plan(comm_, blocks_, grid_.geom.node_count(), &nb);
+      neighbour_sum_ += static_cast<double>(nb.size());
+      ++neighbour_plans_;
+    } else {
+      exchange_.plan(comm_, blocks_, grid_.geom.node_count());
+    }
+  }
   // Blocks no particle reaches any more go back to zero, as a dense pass would leave them.
   const Index nn = grid_.geom.node_count();
   const bool multi = grid_.fields > 1;
@@ -827,7 +846,10 @@ std::vector<std::pair<std::string, double>> MpmSolver::result_values() const {
           {"max_particle_imbalance", max_imbalance_},
           // This rank's halo (rank 0's in the summary): the scaling model's measured input.
           {"halo_bytes_per_step_rank0", halo_bytes_ / steps},
-          {"halo_messages_per_step_rank0", halo_messages_ / steps}};
+          {"halo_messages_per_step_rank0", halo_messages_ / steps},
+          // Ranks rank 0 exchanged its block list with (mean over the steps that used the
+          // neighbour exchange; the others went to every rank).
+          {"neighbour_ranks_rank0", neighbour_plans_ > 0 ? neighbour_sum_ / neighbour_plans_ : 0.0}};
 }
 
 void MpmSolver::save_state(StateArchive& a) const {

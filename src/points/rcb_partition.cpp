@@ -137,6 +137,21 @@ void RcbPartition::restore_boxes(const std::vector<double>& boxes) {
   ready_ = true;
 }
 
+std::vector<int> RcbPartition::neighbours(double margin) const {
+  std::vector<int> out;
+  if (!ready_ || boxes_.empty()) return out;
+  const double* mine = boxes_.data() + 6 * comm_.rank();
+  for (int r = 0; r < comm_.size(); ++r) {
+    if (r == comm_.rank()) continue;
+    const double* b = boxes_.data() + 6 * r;
+    bool overlap = true;
+    for (int a = 0; a < dim_; ++a)  // [lo - m, hi + m] of both: they overlap if the gap is below 2 m
+      overlap = overlap && b[a] - margin <= mine[3 + a] + margin && mine[a] - margin <= b[3 + a] + margin;
+    if (overlap) out.push_back(r);
+  }
+  return out;
+}
+
 int RcbPartition::owner(const Vec3& x) const {
   if (!comm_.distributed()) return 0;
   if (!ready_) return comm_.rank();

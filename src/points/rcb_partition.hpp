@@ -34,6 +34,9 @@ class RcbPartition {
   /// checkpoint; restore_boxes() makes owner() answer as it did then.
   const std::vector<double>& boxes() const { return boxes_; }
   void restore_boxes(const std::vector<double>& boxes);
+  /// The ranks whose region, grown by `margin` on every side, overlaps this rank's grown by as
+  /// much (a symmetric relation; after a partition).
+  std::vector<int> neighbours(double margin) const;
   /// Owners of n points (no communication).
   void owners(const Vec3* x, Index n, std::vector<int>& out) const;
   bool ready() const { return ready_; }

@@ -189,6 +189,9 @@ def main():
     ap.add_argument("--set", action="append", default=[])
     ap.add_argument("--tol", type=float, default=1e-12)
     ap.add_argument("--empty-rank", action="store_true")
+    ap.add_argument("--max-neighbours", type=float, default=-1,
+                    help="rank 0 must have exchanged its block lists with at most this many ranks on average "
+                         "(the neighbour exchange, not every rank)")
     ap.add_argument("--expect-failure", action="store_true",
                     help="the serial run fails (exit 3); every distributed run must fail the same way")
     a = ap.parse_args()
@@ -215,6 +218,10 @@ def main():
                 bad.append(f"summary says {s['statistics'].get('ranks')} ranks")
             if a.empty_rank and n == max(ranks) and sr.get("fewest_particles_on_a_rank", -1) != 0:
                 bad.append(f"no rank was left empty (fewest particles on a rank: {sr.get('fewest_particles_on_a_rank')})")
+            if a.max_neighbours >= 0 and n == max(ranks) and not (
+                    0 < sr.get("neighbour_ranks_rank0", 0) <= a.max_neighbours):
+                bad.append(f"rank 0 exchanged block lists with {sr.get('neighbour_ranks_rank0')} ranks on average "
+                           f"(at most {a.max_neighbours} expected)")
             print(f"{n} ranks x {t} threads: largest relative difference {worst:.3g}; "
                   f"repartitions {sr.get('repartitions', 0):g}, migrated {sr.get('particles_migrated', 0):g}, "
                   f"halo {sr.get('halo_bytes_per_step_rank0', 0):.4g} B and "
