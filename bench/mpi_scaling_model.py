@@ -17,8 +17,9 @@ Assumptions (written into the output too):
   - two halo exchanges per step (the full P2G pass and the MUSL momentum pass);
   - network: 10 GB/s per rank, 2 us per message, allreduce 5 us x log2(P), 12 allreduces per step
     (time step, migration counts, imbalance, failure agreement, block plan, energies);
-  - the all-gather of the active-block lists (what the code does today): every rank receives
-    every rank's list, 8 bytes per block of 512 nodes; its time at the network bandwidth;
+  - an all-gather of the active-block lists as an upper bound (the code sends them to the
+    neighbouring ranks only): every rank receives every rank's list, 8 bytes per block of 512
+    nodes; its time at the network bandwidth;
   - the migration's two all-to-alls per step (counts, then particles): log2(P) rounds of one
     latency each (Bruck), plus P counts of 4 bytes;
   - load imbalance: the particles are repartitioned at mpm.rebalance_imbalance = 0.1, so the
