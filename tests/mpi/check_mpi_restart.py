@@ -23,10 +23,11 @@ import argparse, glob, json, os, shutil, signal, subprocess, sys, time
 import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path[:0] = [here, os.path.join(here, "..", "restart")]
+import check_mpi  # noqa: E402
 from check_mpi import compare  # noqa: E402
-
-WALL_KEYS = {"wall_time", "particle_steps_per_second", "deck", "restarted_from", "timing", "threads"}
+from check_restart import strip  # noqa: E402  (summary.json without its wall-clock entries)
 ENV = dict(os.environ, OMP_WAIT_POLICY="passive")
 
 
@@ -37,17 +38,7 @@ def launcher(n, ballista):
 
 
 def run(cmd):
-    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=ENV)
-    if r.returncode != 0:
-        sys.exit(f"FAILED ({r.returncode}): {' '.join(cmd)}\n{r.stdout[-3000:]}")
-
-
-def strip(obj):
-    if isinstance(obj, dict):
-        return {k: strip(v) for k, v in obj.items() if k not in WALL_KEYS}
-    if isinstance(obj, list):
-        return [strip(v) for v in obj]
-    return obj
+    check_mpi.run(cmd, ENV)
 
 
 def bitwise(ref, other):
