@@ -115,7 +115,7 @@ void GridExchange::sum(const Communicator& comm, const std::vector<Array>& array
   comm.exchange(peers_, send_, recv_);
   // Totals in rank order: every sharer adds the same partials in the same order.
   const int me = comm.rank();
-  std::vector<std::size_t> pos(np, 0);
+  std::vector<std::size_t> pos(np, 0), start(np, 0);
   std::vector<int> order;
   for (const Shared& s : shared_) {
     order.clear();  // sharers in ascending rank, -1 for this rank
@@ -129,7 +129,6 @@ void GridExchange::sum(const Communicator& comm, const std::vector<Array>& array
     }
     if (!placed) order.push_back(-1);
     std::size_t j = 0;
-    std::vector<std::size_t> start(np);
     for (int k : s.peers) start[k] = pos[k];
     for_each_value(s.block, [&](double& own) {
       double acc = 0.0;
