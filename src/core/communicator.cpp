@@ -65,11 +65,18 @@ Communicator Communicator::world() {
   return c;
 }
 
+namespace {
+/// One value reduced over every rank.
+template <class T>
+T all_reduce(T local, MPI_Datatype type, MPI_Op op, std::uintptr_t handle) {
+  T global{};
+  check(MPI_Allreduce(&local, &global, 1, type, op, comm_of(handle)), "MPI_Allreduce");
+  return global;
+}
+}  // namespace
+
 double Communicator::sum(double local) const {
-  if (!distributed()) return local;
-  double g = 0.0;
-  check(MPI_Allreduce(&local, &g, 1, MPI_DOUBLE, MPI_SUM, comm_of(handle_)), "MPI_Allreduce");
-  return g;
+  return distributed() ? all_reduce(local, MPI_DOUBLE, MPI_SUM, handle_) : local;
 }
 
 void Communicator::sum(double* values, int n) const {
@@ -83,45 +90,28 @@ void Communicator::sum(std::int64_t* values, int n) const {
 }
 
 double Communicator::min(double local) const {
-  if (!distributed()) return local;
-  double g = 0.0;
-  check(MPI_Allreduce(&local, &g, 1, MPI_DOUBLE, MPI_MIN, comm_of(handle_)), "MPI_Allreduce");
-  return g;
+  return distributed() ? all_reduce(local, MPI_DOUBLE, MPI_MIN, handle_) : local;
 }
 
 double Communicator::max(double local) const {
-  if (!distributed()) return local;
-  double g = 0.0;
-  check(MPI_Allreduce(&local, &g, 1, MPI_DOUBLE, MPI_MAX, comm_of(handle_)), "MPI_Allreduce");
-  return g;
+  return distributed() ? all_reduce(local, MPI_DOUBLE, MPI_MAX, handle_) : local;
 }
 
 std::int64_t Communicator::sum(std::int64_t local) const {
-  if (!distributed()) return local;
-  std::int64_t g = 0;
-  check(MPI_Allreduce(&local, &g, 1, MPI_INT64_T, MPI_SUM, comm_of(handle_)), "MPI_Allreduce");
-  return g;
+  return distributed() ? all_reduce(local, MPI_INT64_T, MPI_SUM, handle_) : local;
 }
 
 std::int64_t Communicator::max(std::int64_t local) const {
-  if (!distributed()) return local;
-  std::int64_t g = 0;
-  check(MPI_Allreduce(&local, &g, 1, MPI_INT64_T, MPI_MAX, comm_of(handle_)), "MPI_Allreduce");
-  return g;
+  return distributed() ? all_reduce(local, MPI_INT64_T, MPI_MAX, handle_) : local;
 }
 
 bool Communicator::any(bool local) const {
-  if (!distributed()) return local;
-  int l = local ? 1 : 0, g = 0;
-  check(MPI_Allreduce(&l, &g, 1, MPI_INT, MPI_LOR, comm_of(handle_)), "MPI_Allreduce");
-  return g != 0;
+  return distributed() ? all_reduce(local ? 1 : 0, MPI_INT, MPI_LOR, handle_) != 0 : local;
 }
 
 int Communicator::lowest_rank_with(bool flag) const {
   if (!distributed()) return flag ? 0 : 1;
-  int l = flag ? rank_ : size_, g = 0;
-  check(MPI_Allreduce(&l, &g, 1, MPI_INT, MPI_MIN, comm_of(handle_)), "MPI_Allreduce");
-  return g;
+  return all_reduce(flag ? rank_ : size_, MPI_INT, MPI_MIN, handle_);
 }
 
 int Communicator::rank_of_max(double key) const {

@@ -145,11 +145,16 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     // Every rank seeded every body: keep a share, then the first partition moves each particle to
     // the rank owning its region.
     pts_.keep_share(comm_);
-    const std::vector<int> dest = partition_.partition(points_.view<Vec3>("x"), points_.ints("id"), points_.size());
-    migrated_ += static_cast<double>(comm_.sum(static_cast<std::int64_t>(migrate_points(comm_, points_, dest))));
-    pts_.mark_reordered();
+    migrated_ += static_cast<double>(comm_.sum(static_cast<std::int64_t>(cut_and_migrate())));
   }
   sort_by_cell();
+}
+
+Index MpmSolver::cut_and_migrate() {
+  const std::vector<int> dest = partition_.partition(points_.view<Vec3>("x"), points_.ints("id"), points_.size());
+  const Index moved = migrate_points(comm_, points_, dest);
+  pts_.mark_reordered();
+  return moved;
 }
 
 void MpmSolver::redistribute() {
@@ -169,18 +174,14 @@ void MpmSolver::redistribute() {
   // repartition every step).
   if (imbalance > rebalance_ && imbalance > imbalance_after_partition_ + rebalance_) {
     const int before = partition_.partitions();
-    dest = partition_.partition(points_.view<Vec3>("x"), points_.ints("id"), points_.size());
-    moved += migrate_points(comm_, points_, dest);
+    moved += cut_and_migrate();
     if (partition_.partitions() > before) ++repartitions_;
     const double m = comm_.max(static_cast<double>(points_.size()));
     imbalance_after_partition_ = mean > 0.0 ? m / mean - 1.0 : 0.0;
   }
   const std::int64_t all_moved = comm_.sum(static_cast<std::int64_t>(moved));
   migrated_ += static_cast<double>(all_moved);
-  if (moved > 0) {
-    pts_.mark_reordered();
-    sort_by_cell();
-  }
+  if (moved > 0) sort_by_cell();
 }
 
 void MpmSolver::begin_stage(int stage, double damping) {
@@ -608,6 +609,8 @@ void MpmSolver::update_grid(double dt) {
         if (counted[i % nn]) o[0] += dw;
       }, w);
     } else {
+      // One expression, as before the ranks: the compiler contracts it alike, so serial results
+      // stay bitwise what they were.
       deterministic_sum<1>(0, nall, [&](Index i, double* o) { o[0] += integrate(i); }, w);
     }
     damping_work_ += comm_.sum(w[0]);
@@ -885,12 +888,9 @@ void MpmSolver::load_state(const StateArchive& a) {
       imbalance_after_partition_ = d[6];
     } else {
       // Another rank count (or a serial checkpoint): cut anew and move the particles there.
-      const std::vector<int> dest =
-          partition_.partition(points_.view<Vec3>("x"), points_.ints("id"), points_.size());
-      migrate_points(comm_, points_, dest);
+      cut_and_migrate();
       imbalance_after_partition_ = 0.0;
     }
-    pts_.mark_reordered();
   }
   time_ = a.real("mpm.time");
   steps_ = static_cast<long>(a.integer("mpm.steps"));

@@ -79,6 +79,9 @@ class MpmSolver final : public Solver {
   /// Several ranks: particles that left this rank's region go to its owner; a repartition when the
   /// largest rank holds more than (1 + mpm.rebalance_imbalance) times the mean (collective).
   void redistribute();
+  /// Several ranks: new cuts from where the particles are, and the particles moved to them
+  /// (collective); returns how many this rank sent and received.
+  Index cut_and_migrate();
   void step_local(double dt);
   void sort_by_cell();
   void build_slabs();

@@ -152,25 +152,24 @@ PointSet::PointSet(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
 
 void PointSet::keep_share(const Communicator& comm) {
   if (!comm.distributed()) return;
-  auto share = [&](Index n, std::vector<char>& keep) {
-    const Index lo = n * comm.rank() / comm.size(), hi = n * (comm.rank() + 1) / comm.size();
-    keep.assign(static_cast<std::size_t>(n), 0);
-    for (Index p = lo; p < hi; ++p) keep[p] = 1;
+  auto range = [&](Index n) {
+    return std::pair<Index, Index>{n * comm.rank() / comm.size(), n * (comm.rank() + 1) / comm.size()};
   };
-  std::vector<char> keep;
-  share(points_.size(), keep);
+  const auto [lo, hi] = range(points_.size());
+  const auto [plo, phi] = range(pending_.size());
+  keep_ranges(lo, hi, plo, phi);
+}
+
+void PointSet::keep_ranges(Index first, Index last, Index first_pending, Index last_pending) {
+  std::vector<char> keep(static_cast<std::size_t>(points_.size()), 0);
+  std::fill(keep.begin() + first, keep.begin() + last, 1);
   points_.compact(keep);
-  share(pending_.size(), keep);
-  std::vector<double> activation;
-  std::vector<int> stage;
-  for (Index p = 0; p < pending_.size(); ++p)
-    if (keep[p]) {
-      activation.push_back(pending_activation_[p]);
-      stage.push_back(pending_stage_[p]);
-    }
+  keep.assign(static_cast<std::size_t>(pending_.size()), 0);
+  std::fill(keep.begin() + first_pending, keep.begin() + last_pending, 1);
   pending_.compact(keep);
-  pending_activation_.swap(activation);
-  pending_stage_.swap(stage);
+  pending_activation_ = std::vector<double>(pending_activation_.begin() + first_pending,
+                                            pending_activation_.begin() + last_pending);
+  pending_stage_ = std::vector<int>(pending_stage_.begin() + first_pending, pending_stage_.begin() + last_pending);
   groups_dirty_ = true;
 }
 
@@ -411,20 +410,7 @@ bool PointSet::load_state(const StateArchive& a) {
         first += counts[2 * q];
         first_pending += counts[2 * q + 1];
       }
-      std::vector<char> keep(static_cast<std::size_t>(points_.size()), 0);
-      for (Index p = first; p < first + counts[2 * me]; ++p) keep[p] = 1;
-      points_.compact(keep);
-      keep.assign(np, 0);
-      std::vector<double> activation;
-      std::vector<int> stage;
-      for (Index p = first_pending; p < first_pending + counts[2 * me + 1]; ++p) {
-        keep[p] = 1;
-        activation.push_back(pending_activation_[p]);
-        stage.push_back(pending_stage_[p]);
-      }
-      pending_.compact(keep);
-      pending_activation_.swap(activation);
-      pending_stage_.swap(stage);
+      keep_ranges(first, first + counts[2 * me], first_pending, first_pending + counts[2 * me + 1]);
       const auto& by_rank = a.reals("points.removed_by_rank", static_cast<std::size_t>(7 * P));
       r.assign(by_rank.begin() + 7 * me, by_rank.begin() + 7 * (me + 1));
       own = true;

@@ -101,6 +101,9 @@ class PointSet {
   bool load_state(const StateArchive& archive);
 
  private:
+  /// Keeps active points [first, last) and pending points [first_pending, last_pending).
+  void keep_ranges(Index first, Index last, Index first_pending, Index last_pending);
+
   Scenario scenario_;
   std::vector<std::unique_ptr<Material>> materials_;
   Communicator comm_;

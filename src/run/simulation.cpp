@@ -43,6 +43,16 @@ std::vector<std::unique_ptr<Material>> make_materials(const Scenario& sc) {
   return out;
 }
 
+namespace {
+/// Several ranks: a solver that does not run distributed is refused (run_simulation asks before
+/// anything is written, make_solver again for its other callers).
+void check_distributed(const Scenario& sc, const SolverFactory& f, const Communicator& comm) {
+  if (comm.distributed() && !f.distributed)
+    throw Error("solver '" + sc.simulation.solver + "' runs on one MPI rank only so far (" +
+                std::to_string(comm.size()) + " ranks were started); run it without mpirun, or with -np 1");
+}
+}  // namespace
+
 std::unique_ptr<Solver> make_solver(const Scenario& sc, const Communicator& comm) {
   const SolverFactory* f = find_solver(sc.simulation.solver);
   if (!f) {
@@ -50,9 +60,7 @@ std::unique_ptr<Solver> make_solver(const Scenario& sc, const Communicator& comm
     for (const auto& s : solver_registry()) names += (names.empty() ? "" : ", ") + s.name;
     throw Error("unknown solver '" + sc.simulation.solver + "' (registered: " + names + ")");
   }
-  if (comm.distributed() && !f->distributed)
-    throw Error("solver '" + sc.simulation.solver + "' runs on one MPI rank only so far (" +
-                std::to_string(comm.size()) + " ranks were started); run it without mpirun, or with -np 1");
+  check_distributed(sc, *f, comm);
   return f->create(sc, make_materials(sc), comm);
 }
 
@@ -126,14 +134,6 @@ void check_layout(const StateArchive& a, const Scenario& sc, const std::string& 
               "models)");
 }
 
-/// Several ranks: what does not run distributed yet is refused before anything is written.
-void check_distributed(const Scenario& sc, const Communicator& comm) {
-  if (!comm.distributed()) return;
-  if (const SolverFactory* f = find_solver(sc.simulation.solver); f && !f->distributed)
-    throw Error("solver '" + sc.simulation.solver + "' runs on one MPI rank only so far (" +
-                std::to_string(comm.size()) + " ranks were started); run it without mpirun, or with -np 1");
-}
-
 }  // namespace
 
 RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
@@ -141,7 +141,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   // Every rank runs this loop; rank 0 alone writes files (docs/parallel.md).
   const Communicator comm = Communicator::world();
   const bool root = comm.rank() == 0;
-  check_distributed(sc, comm);
+  if (const SolverFactory* f = find_solver(sc.simulation.solver)) check_distributed(sc, *f, comm);
   // A restart continues the results folder it was written in: nothing there is cleared.
   std::optional<StateArchive> restart;
   if (!opt.restart_from.empty()) {
