@@ -204,14 +204,9 @@ double MpmSolver::stable_dt() {
 }
 
 StepLimiter MpmSolver::step_limiter() const {
-  // Serial and per point through the virtual wave_speed: only for diagnostics (the run loop
-  // calls it when the stable step reaches a new low). Several ranks: the rank with the fastest
-  // signal names its particle to all (collective).
-  StepLimiter l = pts_.step_limiter();
-  if (!comm_.distributed()) return l;
-  const int root = comm_.rank_of_max(l.id >= 0 ? l.wave_speed + l.speed : -1.0);
-  comm_.broadcast(&l, sizeof l, root);
-  return l;
+  // Per point through the virtual wave_speed: only for diagnostics (the run loop calls it when the
+  // stable step reaches a new low); collective on several ranks (PointSet::step_limiter).
+  return pts_.step_limiter();
 }
 
 void MpmSolver::activate_pending() {

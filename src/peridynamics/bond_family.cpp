@@ -123,4 +123,27 @@ BondFamily build_gas_family(const Vec3* x0, Index n, double delta, double dx, in
   return build_family(x0, n, delta, dx, dim, [&](Index p, Index o) { return gas[p] || gas[o]; });
 }
 
+BondFamily restrict_family(const BondFamily& f, const std::vector<char>& keep, const std::vector<char>& owned) {
+  const Index n = f.points();
+  std::vector<std::int32_t> renumber(static_cast<std::size_t>(n), -1);
+  std::int32_t m = 0;
+  for (Index p = 0; p < n; ++p)
+    if (keep[p]) renumber[p] = m++;
+  BondFamily out;
+  out.offset.assign(1, 0);
+  for (Index p = 0; p < n; ++p) {
+    if (!keep[p]) continue;
+    for (Index k = f.offset[p]; k < f.offset[p + 1]; ++k) {
+      const Index q = f.other[k];
+      if (!keep[q] || !(owned[p] || owned[q])) continue;
+      out.other.push_back(renumber[q]);  // renumbering keeps the order: rows stay sorted
+      out.length0.push_back(f.length0[k]);
+      out.volume_factor.push_back(f.volume_factor[k]);
+      out.broken.push_back(f.broken[k]);
+    }
+    out.offset.push_back(static_cast<Index>(out.other.size()));
+  }
+  return out;
+}
+
 }  // namespace ballista::pd

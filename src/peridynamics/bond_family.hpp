@@ -54,6 +54,11 @@ struct BondFamily {
 BondFamily build_bond_family(const Vec3* x0, Index n, double delta, double dx, int dim,
                              const std::int64_t* body = nullptr, const std::uint8_t* gas = nullptr);
 
+/// Several ranks (issue 16): the family of `f` restricted to the points with keep[p] != 0
+/// (renumbered in their order) and to the bonds with at least one end owned (owned[p] != 0), so a
+/// rank's own points keep their whole rows and its ghost copies only their bonds to own points.
+BondFamily restrict_family(const BondFamily& f, const std::vector<char>& keep, const std::vector<char>& owned);
+
 /// The gas family: every pair within the horizon with at least one gas end, across bodies (a gas
 /// point's row holds all its neighbours, a solid point's row only its gas neighbours). Same
 /// horizon rule, partial volumes and row order as build_bond_family.

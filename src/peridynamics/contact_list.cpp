@@ -22,7 +22,7 @@ bool ContactList::stale(const Vec3* x, Index n, const std::uint8_t* skip) const 
 
 void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const std::int64_t* body, Index n,
                         double delta, double dx, double skin, int dim, const std::uint8_t* skip,
-                        const std::uint8_t* gas) {
+                        const std::uint8_t* gas, const std::int64_t* key) {
   list.skin = skin;
   list.x_build.assign(x, x + n);
   ++list.builds;
@@ -82,8 +82,13 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
     for (Index p = c * kChunk; p < std::min(n, (c + 1) * kChunk); ++p) {
       const size_t first = buf.size();
       visit(p, [&](Index q, double d) { buf.emplace_back(static_cast<std::int32_t>(q), d); });
-      // Increasing neighbour index: the force sums run in a fixed order (thread-count independent).
-      std::sort(buf.begin() + static_cast<std::ptrdiff_t>(first), buf.end());
+      // Increasing neighbour index (or key): the force sums run in a fixed order (thread-count and,
+      // by id, decomposition independent).
+      if (key)
+        std::sort(buf.begin() + static_cast<std::ptrdiff_t>(first), buf.end(),
+                  [&](const auto& a, const auto& b) { return key[a.first] < key[b.first]; });
+      else
+        std::sort(buf.begin() + static_cast<std::ptrdiff_t>(first), buf.end());
       count[p] = static_cast<Index>(buf.size() - first);
     }
   });

@@ -37,9 +37,11 @@ struct ContactList {
 /// Builds the list of never-bonded pairs (different `body`, or reference distance > delta) within
 /// 1.35 dx + skin of each other at the positions x (x0: reference positions). Points with
 /// skip[p] != 0 (vented gas) take no part; two points with gas != 0 (detonation products) are
-/// never a pair: the gas has no contact stiffness of its own, only the solids it meets.
+/// never a pair: the gas has no contact stiffness of its own, only the solids it meets. Rows are
+/// in increasing `key` of the other point (the global id on several ranks, whose ghosts are not in
+/// id order; null: the index), so the force sums run in the serial run's order.
 void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const std::int64_t* body, Index n,
                         double delta, double dx, double skin, int dim, const std::uint8_t* skip = nullptr,
-                        const std::uint8_t* gas = nullptr);
+                        const std::uint8_t* gas = nullptr, const std::int64_t* key = nullptr);
 
 }  // namespace ballista::pd

@@ -4,6 +4,7 @@
 // union-find. A point with no intact bond left is a fragment of its own.
 #include <vector>
 
+#include "core/communicator.hpp"
 #include "core/field_store.hpp"
 #include "core/tensor.hpp"
 #include "peridynamics/bond_family.hpp"
@@ -25,5 +26,13 @@ struct Fragment {
 /// with skip[p] != 0 (detonation products) are never part of a fragment.
 std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& store,
                                      double damage_threshold = 2.0, const std::uint8_t* skip = nullptr);
+
+/// Several ranks (collective, issue 16): the fragments of every rank's own points, found on rank 0
+/// over the points gathered in id order and their intact bonds (each sent once, from its lower-id
+/// end), so they are the serial run's, bit for bit; empty on the other ranks. `own[i]` is the row
+/// in `bonds` of the store's point i, `ids` the ids of the rows' points.
+std::vector<Fragment> find_fragments_gathered(const Communicator& comm, const BondFamily& bonds,
+                                              const std::vector<Index>& own, const std::int64_t* ids,
+                                              const FieldStore& store, double damage_threshold);
 
 }  // namespace ballista::pd

@@ -1,28 +1,60 @@
 // Checkpoint and restart of the peridynamic solver (issue 16, docs/restart.md): what a step
 // carries to the next beyond the point fields. Everything the constructor derives from the deck
-// (bond families, constants, blocks, mirrors) is rebuilt identically and is only checked here.
+// (bond families, constants, blocks, mirrors, the partition) is rebuilt identically. Per-point
+// values and bond rows are written in the points' order of the checkpoint (rank order on several
+// ranks, gathered to rank 0); a point's row is its whole family in id order of the other ends, the
+// same on any rank count, so a checkpoint restarts on any number of ranks.
+#include <algorithm>
+
 #include "core/error.hpp"
 #include "peridynamics/pd_solver.hpp"
+#include "points/point_exchange.hpp"
 
 namespace ballista {
 
 void PdSolver::save_state(StateArchive& a) const {
-  pts_.save_state(a);
+  pts_.save_state(a);  // collective: rank 0's archive holds every rank's points
+  const auto& own = local_.own;
+  const bool contacts_built = contact_on_ && contact_.builds > 0;
+  // Each own point's value, or bond row, gathered to rank 0 in the store's order.
+  auto gathered = [&](std::vector<double> mine) {
+    return comm_.distributed() ? gather_values(comm_, mine) : mine;
+  };
+  auto per_point = [&](const std::vector<double>& v) {
+    std::vector<double> out;
+    out.reserve(own.size());
+    for (Index l : own) out.push_back(v[l]);
+    return gathered(std::move(out));
+  };
+  std::vector<double> row_length, broken, plastic, x_build;
+  for (Index l : own) {
+    row_length.push_back(static_cast<double>(bonds_.offset[l + 1] - bonds_.offset[l]));
+    for (Index k = bonds_.offset[l]; k < bonds_.offset[l + 1]; ++k) {
+      broken.push_back(bonds_.broken[k]);
+      if (!sp_.empty()) plastic.push_back(sp_[k]);
+    }
+    if (contacts_built) x_build.insert(x_build.end(), contact_.x_build[l].v, contact_.x_build[l].v + 3);
+  }
+  row_length = gathered(std::move(row_length));
+  broken = gathered(std::move(broken));
+  plastic = gathered(std::move(plastic));
+  x_build = gathered(std::move(x_build));
+  const std::vector<double> s0 = per_point(s0_), dissipated = per_point(dissipated_),
+                            contact_energy = per_point(contact_energy_), stiffness = per_point(stiff_contact_);
+  if (comm_.rank() != 0) return;
   a.put_real("pd.time", time_);
   a.put_int("pd.steps", steps_);
   a.put("pd.scalars", std::vector<double>{external_work_, damping_, next_fragment_time_});
   a.put("pd.counters", std::vector<std::int64_t>{static_cast<std::int64_t>(vented_count_),
                                                  static_cast<std::int64_t>(gas_rate_limited_)});
-  a.put_integers("pd.bond_broken", bonds_.broken);
-  a.put("pd.plastic_stretch", sp_);
-  a.put("pd.critical_stretch", s0_);
-  a.put("pd.dissipated", dissipated_);
-  a.put("pd.contact_energy", contact_energy_);
-  a.put("pd.contact_stiffness", stiff_contact_);
-  a.put_integers("pd.contact.offset", contact_.offset);
-  a.put_integers("pd.contact.other", contact_.other);
-  a.put("pd.contact.reach", contact_.reach);
-  a.put_records("pd.contact.x_build", contact_.x_build);
+  a.put("pd.row_length", std::vector<std::int64_t>(row_length.begin(), row_length.end()));
+  a.put("pd.bond_broken", std::vector<std::int64_t>(broken.begin(), broken.end()));
+  a.put("pd.plastic_stretch", plastic);
+  a.put("pd.critical_stretch", s0);
+  a.put("pd.dissipated", dissipated);
+  a.put("pd.contact_energy", contact_energy);
+  a.put("pd.contact_stiffness", stiffness);
+  a.put("pd.contact.x_build", x_build);
   a.put("pd.contact.state", std::vector<double>{contact_.skin, static_cast<double>(contact_.builds)});
   a.put("pd.gas.x", gas_x_);
   a.put("pd.gas.g", gas_g_);
@@ -36,10 +68,72 @@ void PdSolver::save_state(StateArchive& a) const {
 }
 
 void PdSolver::load_state(const StateArchive& a) {
-  pts_.load_state(a);
-  if (points_.size() != bonds_.points())
+  // This rank's points (the deck's partition) back from the checkpoint, in id order.
+  const Index n = static_cast<Index>(local_.own.size());
+  std::vector<std::int64_t> ids(static_cast<std::size_t>(n));
+  for (Index i = 0; i < n; ++i) ids[i] = local_.id[local_.own[i]];
+  pts_.load_state(a, ids);
+  if (points_.size() != n)
     throw Error("the checkpoint holds " + std::to_string(points_.size()) + " peridynamic points, this deck seeds " +
-                std::to_string(bonds_.points()));
+                std::to_string(n));
+  // Where each own point sits in the checkpoint's order, and where its row starts.
+  const auto& saved_id = a.ints("points.id");
+  const auto m = saved_id.size();
+  std::vector<std::pair<std::int64_t, std::size_t>> by_id(m);
+  for (std::size_t j = 0; j < m; ++j) by_id[j] = {saved_id[j], j};
+  std::sort(by_id.begin(), by_id.end());
+  const auto& length = a.ints("pd.row_length", m);
+  std::vector<std::size_t> row_start(m + 1, 0);
+  for (std::size_t j = 0; j < m; ++j) row_start[j + 1] = row_start[j] + static_cast<std::size_t>(length[j]);
+  const auto& broken = a.ints("pd.bond_broken", row_start[m]);
+  const auto& plastic = a.reals("pd.plastic_stretch", sp_.empty() ? 0 : row_start[m]);
+  const auto& s0 = a.reals("pd.critical_stretch", m);
+  const auto& dissipated = a.reals("pd.dissipated", m);
+  const auto& contact_energy = a.reals("pd.contact_energy", m);
+  const auto& stiffness = a.reals("pd.contact_stiffness", m);
+  const auto& cs = a.reals("pd.contact.state", 2);
+  const long builds = static_cast<long>(cs[1]);
+  const bool contacts_built = contact_on_ && builds > 0;
+  const auto& x_build = a.reals("pd.contact.x_build", contacts_built ? 3 * m : 0);
+  for (Index i = 0; i < n; ++i) {
+    const Index l = local_.own[i];
+    const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::pair<std::int64_t, std::size_t>{ids[i], 0});
+    if (it == by_id.end() || it->first != ids[i])
+      throw Error("the checkpoint lacks peridynamic point " + std::to_string(ids[i]));
+    const std::size_t j = it->second;
+    const Index k0 = bonds_.offset[l], len = bonds_.offset[l + 1] - k0;
+    if (len != length[j])
+      throw Error("point " + std::to_string(ids[i]) + " has " + std::to_string(len) + " bonds in this deck, " +
+                  std::to_string(length[j]) + " in the checkpoint");
+    for (Index k = 0; k < len; ++k) {
+      bonds_.broken[k0 + k] = static_cast<std::uint8_t>(broken[row_start[j] + k]);
+      if (!sp_.empty()) sp_[k0 + k] = plastic[row_start[j] + k];
+    }
+    s0_[l] = s0[j];
+    dissipated_[l] = dissipated[j];
+    contact_energy_[l] = contact_energy[j];
+    stiff_contact_[l] = stiffness[j];
+    if (contacts_built) local_.x[l] = Vec3{{x_build[3 * j], x_build[3 * j + 1], x_build[3 * j + 2]}};
+  }
+  // A ghost's copy of a bond is its own end's (broken flags and plastic stretches are kept equal).
+  for (Index l : local_.own)
+    for (Index k = bonds_.offset[l]; k < bonds_.offset[l + 1]; ++k) {
+      const Index q = bonds_.other[k];
+      if (!local_.ghost[q]) continue;
+      const Index kq = bonds_.offset[q] + mirror_[k];
+      bonds_.broken[kq] = bonds_.broken[k];
+      if (!sp_.empty()) sp_[kq] = sp_[k];
+    }
+  // The contact list as it was built: built again at the positions of that build (same pairs, same
+  // order), then the ghosts take the restored positions.
+  if (contacts_built) {
+    halo_.update(comm_, local_, s0_);
+    rebuild_contacts();
+    contact_.builds = builds;
+  }
+  contact_.skin = cs[0];
+  sync_local();
+  x_prev_ = local_.x;
   time_ = a.real("pd.time");
   steps_ = static_cast<long>(a.integer("pd.steps"));
   const auto& sc = a.reals("pd.scalars", 3);
@@ -49,19 +143,6 @@ void PdSolver::load_state(const StateArchive& a) {
   const auto& cn = a.ints("pd.counters", 2);
   vented_count_ = static_cast<Index>(cn[0]);
   gas_rate_limited_ = static_cast<Index>(cn[1]);
-  a.get_integers("pd.bond_broken", bonds_.broken, bonds_.broken.size());
-  sp_ = a.reals("pd.plastic_stretch", sp_.size());
-  s0_ = a.reals("pd.critical_stretch", s0_.size());
-  dissipated_ = a.reals("pd.dissipated", dissipated_.size());
-  contact_energy_ = a.reals("pd.contact_energy", contact_energy_.size());
-  stiff_contact_ = a.reals("pd.contact_stiffness", stiff_contact_.size());
-  a.get_integers("pd.contact.offset", contact_.offset);
-  a.get_integers("pd.contact.other", contact_.other);
-  contact_.reach = a.reals("pd.contact.reach", contact_.other.size());
-  a.get_records("pd.contact.x_build", contact_.x_build);
-  const auto& cs = a.reals("pd.contact.state", 2);
-  contact_.skin = cs[0];
-  contact_.builds = static_cast<long>(cs[1]);
   gas_x_ = a.reals("pd.gas.x", gas_x_.size());
   gas_g_ = a.reals("pd.gas.g", gas_g_.size());
   a.get_integers("pd.gas.vented", vented_, vented_.size());

@@ -8,10 +8,12 @@
 #include <limits>
 #include <numbers>
 
+#include "core/agreed_failure.hpp"
 #include "core/error.hpp"
 #include "geometry/seeding.hpp"
 #include "peridynamics/bond_pass.hpp"
 #include "peridynamics/fragments.hpp"
+#include "points/rcb_partition.hpp"
 #include "points/solver_registry.hpp"
 #include "scenario/material_model.hpp"
 
@@ -193,20 +195,26 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   // Fields of this solver: damage (output) and the acceleration of the last force evaluation.
   points_.add_real("damage", 1, "1");
   points_.add_real("pd_accel", 3, "m/s^2", false);
-  const Index n = points_.size();
-  const auto* x0 = points_.view<Vec3>("x0");
+  if (comm_.distributed())
+    if (const MaterialSpec* m = first_material_of_model(sc, "explosive"))
+      throw DeckError(m->mark.file, m->mark.line, m->mark.column, m->mark.key_path + ".model",
+                      "an explosive (a peridynamic gas) runs on one MPI rank only so far (issue 16): run without "
+                      "mpirun or with -np 1");
   const auto build_start = std::chrono::steady_clock::now();
+  build_local_points(correct);
+  const Index n = points_.size();  // own points
+  const Index nl = local_.size(), nb = local_.bond_local;
+  const auto& own = local_.own;
   gas_.assign(static_cast<size_t>(n), 0);
   {
     const auto* mt = points_.ints("material");
     for (Index p = 0; p < n; ++p) gas_[p] = gas_material_[mt[p]];
   }
   has_gas_ = std::find(gas_.begin(), gas_.end(), 1) != gas_.end();
-  bonds_ = pd::build_bond_family(x0, n, delta_, correct ? dx_ : 0.0, dim_, points_.ints("body"), gas_.data());
   if (has_gas_) build_gas();
-  s0_.assign(static_cast<size_t>(n), kInf);
-  const auto* mat = points_.ints("material");
-  for (Index p = 0; p < n; ++p) {
+  s0_.assign(static_cast<size_t>(nl), kInf);
+  const auto* mat = local_.material.data();
+  for (Index p = 0; p < nb; ++p) {
     double s = kInf;
     for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k)
       s = std::min(s, s00_[mat[p] * nmat_ + mat[bonds_.other[k]]]);
@@ -214,18 +222,18 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   }
   // Scatter of the critical stretch (stretch_scatter): s00 of each point times 1 + sigma z, z a
   // standard normal drawn from the point's id (splitmix64 + Box-Muller: the same for any thread
-  // count or run), truncated to [1 - 3 sigma, 1 + 3 sigma]. A flawless lattice breaks with its own
-  // symmetry (an expanding ring into identical fragments); real materials carry flaws (Grady 2006
-  // ch. 2). The smaller s0 of a bond's two ends still decides.
+  // count, rank count or run), truncated to [1 - 3 sigma, 1 + 3 sigma]. A flawless lattice breaks
+  // with its own symmetry (an expanding ring into identical fragments); real materials carry flaws
+  // (Grady 2006 ch. 2). The smaller s0 of a bond's two ends still decides.
   if (const double sigma = P.at("stretch_scatter"); sigma > 0.0) {
-    const auto* id = points_.ints("id");
+    const auto* id = local_.id.data();
     auto mix = [](std::uint64_t z) {
       z += 0x9e3779b97f4a7c15ULL;
       z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
       z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
       return z ^ (z >> 31);
     };
-    for (Index p = 0; p < n; ++p) {
+    for (Index p = 0; p < nb; ++p) {
       const std::uint64_t h1 = mix(static_cast<std::uint64_t>(id[p]) * 2 + 1), h2 = mix(h1);
       const double u1 = (static_cast<double>(h1 >> 11) + 0.5) / 9007199254740992.0;  // (0, 1)
       const double u2 = static_cast<double>(h2 >> 11) / 9007199254740992.0;
@@ -233,25 +241,22 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
       s0_[p] *= 1.0 + sigma * std::clamp(z, -3.0, 3.0);
     }
   }
+  halo_.update_bond_values(comm_, local_, s0_);  // a ghost's row is partial: its s0 is its owner's
   s00_point_ = s0_;
   if (std::isfinite(yield_stretch_)) sp_.assign(bonds_.other.size(), 0.0);
-  dissipated_.assign(static_cast<size_t>(n), 0.0);
-  contact_energy_.assign(static_cast<size_t>(n), 0.0);
+  dissipated_.assign(static_cast<size_t>(nl), 0.0);
+  contact_energy_.assign(static_cast<size_t>(nl), 0.0);
   contact_.skin = P.at("contact_skin") * dx_;
-  if (contact_on_)
-    pd::build_contact_list(contact_, points_.view<Vec3>("x"), x0, points_.ints("body"), n, delta_, dx_, contact_.skin,
-                           dim_, skip_vented(), skip_gas());
-  const auto* vol0 = points_.real("volume0");
+  const auto* vol0 = local_.vol0.data();
   // The damage denominator of each point, sum_j beta V_j, and for the half-bond force pass (each
   // bond evaluated once, from its lower-index end): where each row's upper part starts, where each
   // bond sits in its other end's row, and the blocks of points (compute_forces).
-  vol_all_.assign(static_cast<size_t>(n), 0.0);
-  upper_.assign(static_cast<size_t>(n), 0);
+  vol_all_.assign(static_cast<size_t>(nb), 0.0);
+  upper_.assign(static_cast<size_t>(nb), 0);
   mirror_.assign(bonds_.other.size(), 0);
   inv_len0_.resize(bonds_.other.size());
   for_each(0, static_cast<Index>(inv_len0_.size()), [&](Index k) { inv_len0_[k] = 1.0 / bonds_.length0[k]; });
-  Index span = 1;
-  for_each(0, n, [&](Index p) {
+  for_each(0, nb, [&](Index p) {
     double va = 0.0;
     const Index k0 = bonds_.offset[p], k1 = bonds_.offset[p + 1];
     for (Index k = k0; k < k1; ++k) {
@@ -266,34 +271,49 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     upper_[p] = std::upper_bound(bonds_.other.data() + k0, bonds_.other.data() + k1, static_cast<std::int32_t>(p)) -
                 bonds_.other.data();
   });
-  for (Index p = 0; p < n; ++p)
-    if (bonds_.offset[p + 1] > bonds_.offset[p]) span = std::max<Index>(span, bonds_.other[bonds_.offset[p + 1] - 1] - p);
-  // Blocks at least `span` long (a bond of block b ends in b or b + 1), at least 64 of them when the
-  // points allow (so that two phases keep every thread busy); a function of the bonds only.
-  const Index block = std::max(span, (n + 63) / 64);
-  block_start_.clear();
-  for (Index p = 0; p < n; p += block) block_start_.push_back(p);
-  block_start_.push_back(n);
+  // Blocks of the half-bond pass over ids: block b holds ids [bB, (b + 1)B), B at least the largest
+  // id span of a bond (a bond of block b ends in b or b + 1) and at least 64 blocks when the points
+  // allow (so that two phases keep every thread busy). A function of the bonds only, so on several
+  // ranks each own point receives its bonds' contributions in the serial order.
+  {
+    const auto* id = local_.id.data();
+    std::int64_t span = 1, top = 0;
+    for (Index p = 0; p < nb; ++p) {
+      top = std::max(top, id[p] + 1);
+      if (bonds_.offset[p + 1] > bonds_.offset[p]) span = std::max(span, id[bonds_.other[bonds_.offset[p + 1] - 1]] - id[p]);
+    }
+    span = comm_.max(span);
+    top = comm_.max(top);
+    const std::int64_t block = std::max<std::int64_t>(span, (global_points_ + 63) / 64);
+    block_start_.clear();
+    Index l = 0;
+    for (std::int64_t b = 0; b < top; b += block) {
+      while (l < nb && id[l] < b) ++l;
+      block_start_.push_back(l);
+    }
+    block_start_.push_back(nb);
+  }
   bond_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
-  stiff_bond_.assign(static_cast<size_t>(n), 0.0);
-  stiff_contact_.assign(static_cast<size_t>(n), 0.0);
-  x_prev_.assign(points_.view<Vec3>("x"), points_.view<Vec3>("x") + n);
+  stiff_bond_.assign(static_cast<size_t>(nb), 0.0);
+  stiff_contact_.assign(static_cast<size_t>(nl), 0.0);
+  x_prev_ = local_.x;
   // Surface correction (surface_correction: energy; Madenci & Oterkus 2014 §4.2, reviewed by Le &
   // Bobaru, Comput. Mech. 61 (2018) 499): a point near a free surface misses part of its family and
   // is softer; under a uniform dilatation its energy density is c eps^2 m1_p / 4 instead of the
   // interior c eps^2 m1 / 4, so its factor is lambda_p = m1 / m1_p, and a bond is stiffened by the
   // mean of its two ends' factors (forces and energies; the critical stretch is left as it is).
   if (P.choices.at("surface_correction") == "energy") {
-    surface_factor_.assign(static_cast<size_t>(n), 1.0);
-    for_each(0, n, [&](Index p) {
+    surface_factor_.assign(static_cast<size_t>(nb), 1.0);
+    for_each(0, nb, [&](Index p) {
       double m1p = 0.0;
       for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k)
         m1p += bonds_.length0[k] * bonds_.volume_factor[k] * vol0[bonds_.other[k]];
       if (m1p > 0.0) surface_factor_[p] = moments.m1 / m1p;
     });
+    halo_.update_bond_values(comm_, local_, surface_factor_);
   }
   // Stable step of each point (Silling & Askari 2005 eq. 17): dt < sqrt(2 rho / sum_j V_j c/|xi|).
-  for_each(0, n, [&](Index p) {
+  for_each(0, nb, [&](Index p) {
     double sum = 0.0;
     for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k) {
       const Index q = bonds_.other[k];
@@ -303,7 +323,8 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     stiff_bond_[p] = sum;
   });
   // Pre-cracks (deck `cracks`): bonds whose ends lie on either side of the segment, in the x-y plane.
-  const auto* bid = points_.ints("body");
+  const auto* bid = local_.body.data();
+  const auto* x0 = local_.x0.data();
   for (const CrackSpec& crack : sc.cracks) {
     const int body = crack.body.empty() ? -1 : body_index(sc, crack.body);
     const Vec3 a = crack.from, b = crack.to;
@@ -328,29 +349,174 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
       throw DeckError(crack.mark.file, crack.mark.line, crack.mark.column, crack.mark.key_path,
                       "this crack cuts no bond: check that the segment crosses the body (x-y plane)");
   }
+  (void)own;
+  sync_local();
+  x_prev_ = local_.x;
+  if (contact_on_) rebuild_contacts();
   compute_forces();
+}
+
+void PdSolver::build_local_points(bool correct) {
+  // Every rank seeded every body (PointSet): the owner of each point by RCB of the reference
+  // positions, each rank computing the cuts for its contiguous share, the owners then known to all.
+  const Index n_all = points_.size();
+  const auto* id = points_.ints("id");
+  const auto* x0 = points_.view<Vec3>("x0");
+  for (Index p = 1; p < n_all; ++p)
+    if (id[p] <= id[p - 1]) throw Error("peridynamics: the seeded points are not in increasing id order");
+  global_points_ = n_all;
+  const int me = comm_.rank();
+  std::vector<int> owner(static_cast<size_t>(n_all), 0);
+  if (comm_.distributed()) {
+    const Index lo = n_all * me / comm_.size(), hi = n_all * (me + 1) / comm_.size();
+    RcbPartition rcb(comm_, dim_);
+    const std::vector<int> dest = rcb.partition(x0 + lo, id + lo, hi - lo);
+    std::vector<int> counts;
+    const std::vector<std::int64_t> all = comm_.all_gather(std::vector<std::int64_t>(dest.begin(), dest.end()), counts);
+    if (static_cast<Index>(all.size()) != n_all) throw Error("peridynamics: the partition lost points");
+    for (Index p = 0; p < n_all; ++p) owner[p] = static_cast<int>(all[p]);
+  }
+  // Candidates: own points and every point within the horizon of this rank's own points' box.
+  constexpr double kBig = std::numeric_limits<double>::infinity();
+  Vec3 lo{{kBig, kBig, kBig}}, hi{{-kBig, -kBig, -kBig}};
+  for (Index p = 0; p < n_all; ++p)
+    if (owner[p] == me)
+      for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], x0[p][c]), hi[c] = std::max(hi[c], x0[p][c]);
+  const double grow = delta_ * (1.0 + 1e-6);
+  std::vector<Index> cand;
+  for (Index p = 0; p < n_all; ++p) {
+    bool near = owner[p] == me;
+    if (!near) {
+      near = true;
+      for (int c = 0; c < dim_; ++c) near = near && x0[p][c] >= lo[c] - grow && x0[p][c] <= hi[c] + grow;
+    }
+    if (near) cand.push_back(p);
+  }
+  const Index nc = static_cast<Index>(cand.size());
+  std::vector<Vec3> cx0(static_cast<size_t>(nc));
+  std::vector<std::int64_t> cbody(static_cast<size_t>(nc));
+  std::vector<std::uint8_t> cgas(static_cast<size_t>(nc));
+  const auto* body = points_.ints("body");
+  const auto* mat = points_.ints("material");
+  for (Index c = 0; c < nc; ++c) {
+    cx0[c] = x0[cand[c]];
+    cbody[c] = body[cand[c]];
+    cgas[c] = gas_material_[mat[cand[c]]];
+  }
+  bonds_ = pd::build_bond_family(cx0.data(), nc, delta_, correct ? dx_ : 0.0, dim_, cbody.data(), cgas.data());
+  std::vector<char> keep(static_cast<size_t>(nc), 1);
+  if (comm_.distributed()) {
+    // Ghosts: the candidates bonded to an own point; their rows keep only those bonds.
+    std::vector<char> owned(static_cast<size_t>(nc), 0);
+    for (Index c = 0; c < nc; ++c) owned[c] = owner[cand[c]] == me;
+    for (Index c = 0; c < nc; ++c) {
+      if (owned[c]) continue;
+      keep[c] = 0;
+      for (Index k = bonds_.offset[c]; k < bonds_.offset[c + 1] && !keep[c]; ++k) keep[c] = owned[bonds_.other[k]];
+    }
+    bonds_ = pd::restrict_family(bonds_, keep, owned);
+  }
+  const auto* x = points_.view<Vec3>("x");
+  const auto* vol0 = points_.real("volume0");
+  local_ = pd::LocalPoints{};
+  std::vector<int> ghost_owner;
+  for (Index c = 0; c < nc; ++c) {
+    if (!keep[c]) continue;
+    const Index p = cand[c];
+    local_.push(id[p], body[p], mat[p], x0[p], x[p], vol0[p], owner[p] == me);
+    ghost_owner.push_back(owner[p]);
+  }
+  local_.bond_local = local_.size();
+  halo_.plan_bond_ghosts(comm_, local_, ghost_owner);
+  if (comm_.distributed()) {
+    std::vector<char> mine(static_cast<size_t>(n_all), 0);
+    for (Index p = 0; p < n_all; ++p) mine[p] = owner[p] == me;
+    pts_.keep(mine);  // the store holds the own points, in id order
+  }
+}
+
+void PdSolver::sync_local() {
+  const Index n = points_.size(), nl = local_.size();
+  const auto* x = points_.view<Vec3>("x");
+  const auto& own = local_.own;
+  for_each(0, n, [&](Index i) { local_.x[own[i]] = x[i]; });
+  if (!comm_.distributed()) return;
+  for (Index l = 0; l < nl; ++l)
+    if (local_.ghost[l]) x_prev_[l] = local_.x[l];
+  halo_.update(comm_, local_, s0_);
+}
+
+bool PdSolver::contacts_stale() const {
+  if (!comm_.distributed()) return contact_.stale(local_.x.data(), local_.size(), skip_vented());
+  return comm_.any(contact_.stale(local_.x.data(), local_.size(), local_.ghost.data()));
+}
+
+void PdSolver::resize_local_arrays() {
+  const auto nl = static_cast<size_t>(local_.size());
+  x_prev_.resize(nl), s0_.resize(nl), dissipated_.resize(nl), contact_energy_.resize(nl), stiff_contact_.resize(nl);
+}
+
+void PdSolver::rebuild_contacts() {
+  const double cutoff = 1.35 * dx_ + contact_.skin;  // contact_list.hpp
+  if (!comm_.distributed()) {
+    pd::build_contact_list(contact_, local_.x.data(), local_.x0.data(), local_.body.data(), local_.size(), delta_, dx_,
+                           contact_.skin, dim_, skip_vented(), skip_gas());
+    return;
+  }
+  halo_.gather_contact_ghosts(comm_, local_, cutoff, dim_);
+  resize_local_arrays();
+  const Index nl = local_.size();
+  pd::build_contact_list(contact_, local_.x.data(), local_.x0.data(), local_.body.data(), nl, delta_, dx_,
+                         contact_.skin, dim_, nullptr, nullptr, local_.id.data());
+  // Keep the contact ghosts some own point's row names; only own rows stay (ghost rows are their
+  // owners' business).
+  std::vector<char> needed(static_cast<size_t>(nl), 0);
+  for (Index l : local_.own)
+    for (Index k = contact_.offset[l]; k < contact_.offset[l + 1]; ++k) needed[contact_.other[k]] = 1;
+  const std::vector<Index> renumber = halo_.keep_contact_ghosts(comm_, local_, needed);
+  const Index m = local_.size();
+  pd::ContactList kept;
+  kept.skin = contact_.skin;
+  kept.builds = contact_.builds;
+  kept.offset.assign(static_cast<size_t>(m) + 1, 0);
+  kept.x_build.resize(static_cast<size_t>(m));
+  for (Index l = 0; l < nl; ++l)
+    if (renumber[l] >= 0) kept.x_build[renumber[l]] = contact_.x_build[l];
+  for (Index l = 0; l < local_.bond_local; ++l) {
+    if (!local_.ghost[l])
+      for (Index k = contact_.offset[l]; k < contact_.offset[l + 1]; ++k) {
+        kept.other.push_back(static_cast<std::int32_t>(renumber[contact_.other[k]]));
+        kept.reach.push_back(contact_.reach[k]);
+      }
+    kept.offset[l + 1] = static_cast<Index>(kept.other.size());
+  }
+  for (Index l = local_.bond_local; l < m; ++l) kept.offset[l + 1] = kept.offset[l];
+  contact_ = std::move(kept);
+  resize_local_arrays();
 }
 
 void PdSolver::refresh() {
   loads_current_ = false;
-  x_prev_.assign(points_.view<Vec3>("x"), points_.view<Vec3>("x") + points_.size());
+  sync_local();
+  x_prev_ = local_.x;
   compute_forces();
 }
 
 Index PdSolver::cut_bonds(const std::function<bool(Index, Index)>& cut) {
-  Index count = 0;
+  // Every local row (a ghost's copies too), counted at own points (collective).
+  std::int64_t count = 0;
   for (Index p = 0; p < bonds_.points(); ++p)
     for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k) {
       const Index q = bonds_.other[k];
       if (bonds_.broken[k] || !(cut(p, q) || cut(q, p))) continue;
       bonds_.broken[k] = 1;
-      ++count;
+      count += local_.ghost[p] ? 0 : 1;
     }
-  return count / 2;  // each bond is stored at both of its ends (the test above is symmetric)
+  return static_cast<Index>(comm_.sum(count) / 2);  // each bond is stored at both of its ends (the test is symmetric)
 }
 
 Index PdSolver::break_bonds(const std::function<bool(const Vec3&, const Vec3&)>& cut) {
-  const auto* x0 = points_.view<Vec3>("x0");
+  const auto* x0 = local_.x0.data();
   const Index count = cut_bonds([&](Index p, Index q) { return cut(x0[p], x0[q]); });
   compute_forces();
   return count;
@@ -367,10 +533,12 @@ double PdSolver::stable_dt() {
   const Index n = points_.size();
   const auto* vol0 = points_.real("volume0");
   const auto* mass = points_.real("mass");
+  const Index* own = local_.own.data();
   double dt = kInf;
 #pragma omp parallel for schedule(static) reduction(min : dt) if (n > kParallelThreshold)
   for (Index p = 0; p < n; ++p) {
-    const double sum = stiff_bond_[p] + stiff_contact_[p];
+    const Index l = own[p];
+    const double sum = stiff_bond_[l] + stiff_contact_[l];
     if (sum > 0.0) dt = std::min(dt, std::sqrt(2.0 * mass[p] / vol0[p] / sum));
   }
   if (has_gas_) dt = std::min(dt, gas_stable_dt());
@@ -381,11 +549,13 @@ double PdSolver::stable_dt() {
 }
 
 void PdSolver::compute_forces() {
-  const Index n = points_.size();
-  const auto* x = points_.view<Vec3>("x");
-  const auto* vol0 = points_.real("volume0");
+  // Over the local points (own and ghosts, local_.x current: sync_local); results to own points.
+  const Index n = points_.size(), nl = local_.size();
+  const auto* x = local_.x.data();
+  const auto* vol0 = local_.vol0.data();
   const auto* mass = points_.real("mass");
-  const auto* mat = points_.ints("material");
+  const auto* mat = local_.material.data();
+  const Index* own = local_.own.data();
   auto* acc = points_.view<Vec3>("pd_accel");
   auto* damage = points_.real("damage");
   auto* eint = points_.real("internal_energy");
@@ -408,10 +578,10 @@ void PdSolver::compute_forces() {
   const double cs_over_c = 15.0 / delta_, range = 1.35 * dx_;
   // Per-point sums of this evaluation (each bond adds to both of its ends).
   Acc& A = acc_;
-  A.resize(n);
-  for_each(0, n, [&](Index p) { A.clear(p); });
+  A.resize(nl);
+  for_each(0, nl, [&](Index p) { A.clear(p); });
 
-  if (n == 0) return;
+  if (nl == 0) return;
   pd::BondPassArgs args{x[0].v,   vol0,       mat,        c_.data(),  nmat_,   s0,          len0, inv_len0_.data(), beta,
                         other,     mirror,     broken,     bonds_.offset.data(),  upper_.data(), plastic ? sp : nullptr,
                         sy,        alpha,      contact,    bonded_contact,        cs_over_c, range, xprev[0].v,
@@ -431,10 +601,11 @@ void PdSolver::compute_forces() {
   // Never-bonded neighbours (other bodies, or beyond the horizon): both rows hold the pair, so each
   // point sums its own row. Then each point's results.
   std::vector<double>& s0_next = s0_next_;
-  s0_next.resize(static_cast<size_t>(n));
+  s0_next.resize(static_cast<size_t>(nl));
   const bool gas_on = has_gas_;
   const pd::GasPassArgs gas_args = gas_pass_args();
-  for_each(0, n, [&](Index p) {
+  for_each(0, n, [&](Index i) {
+    const Index p = own[i];  // the same on one rank (gas only there)
     Vec3 f = A.f[p];
     double e_contact = A.e_contact[p], k_contact = A.k_contact[p];
     if (contact)
@@ -449,14 +620,14 @@ void PdSolver::compute_forces() {
         e_contact += 0.25 * cs * o * o * vol0[q] * vol0[p];
       }
     if (gas_on) f += pd::gas_force(gas_args, p);
-    acc[p] = (1.0 / mass[p]) * f;
-    damage[p] = std::min(1.0, A.vol_broken[p] / vol_all_[p]);  // round-off of the two sums: never above 1
+    acc[i] = (1.0 / mass[i]) * f;
+    damage[i] = std::min(1.0, A.vol_broken[p] / vol_all_[p]);  // round-off of the two sums: never above 1
     dissipated_[p] += A.dis[p];
     contact_energy_[p] = e_contact;
     stiff_contact_[p] = k_contact;
-    if (!gas_on || !gas_[p]) {  // a gas point's energy is the material's stress-power integral
-      eint[p] = A.energy[p] + dissipated_[p] + e_contact;
-      wdis[p] = dissipated_[p];
+    if (!gas_on || !gas_[i]) {  // a gas point's energy is the material's stress-power integral
+      eint[i] = A.energy[p] + dissipated_[p] + e_contact;
+      wdis[i] = dissipated_[p];
     }
     const double s00 = s00_point_[p];
     s0_next[p] = alpha > 0.0 && std::isfinite(A.smx[p]) ? s00 + A.smx[p] : s00;
@@ -465,6 +636,18 @@ void PdSolver::compute_forces() {
 }
 
 void PdSolver::step(double dt) {
+  // A failure on one rank (a point not finite or out of the box, found after the step's last
+  // collective) stops every rank with the lowest failing rank's diagnostic (core/agreed_failure.hpp).
+  std::exception_ptr failure;
+  try {
+    advance(dt);
+  } catch (const std::exception&) {
+    failure = std::current_exception();
+  }
+  rethrow_agreed(comm_, failure);
+}
+
+void PdSolver::advance(double dt) {
   // Velocity Verlet (Silling & Askari 2005 §4 use the explicit central difference; Verlet is the
   // same scheme with synchronised velocities): v_{n+1/2} = v_n + dt/2 a_n, x_{n+1} = x_n + dt
   // v_{n+1/2}, a_{n+1} from the bonds at x_{n+1}, v_{n+1} = v_{n+1/2} + dt/2 a_{n+1}. External
@@ -482,13 +665,13 @@ void PdSolver::step(double dt) {
   const double c = damping_;
   std::vector<Vec3>& v_half = v_half_;
   v_half.resize(static_cast<size_t>(n));
-  x_prev_.resize(static_cast<size_t>(n));
   Vec3* x_prev = x_prev_.data();
+  const Index* own = local_.own.data();
   {
     const auto* acc = points_.view<Vec3>("pd_accel");
     const std::uint8_t* vented = vented_.empty() ? nullptr : vented_.data();
     for_each(0, n, [&](Index p) {
-      x_prev[p] = x[p];
+      x_prev[own[p]] = x[p];
       if (vented && vented[p]) {  // vented gas flies on, force-free and out of the balance
         v_half[p] = Vec3{};
         x[p] += dt * vent_velocity_[p];
@@ -502,14 +685,13 @@ void PdSolver::step(double dt) {
     });
   }
   if (has_gas_) update_gas(dt);
-  if (contact_on_ && contact_.stale(x, n, skip_vented()))
-    pd::build_contact_list(contact_, x, points_.view<Vec3>("x0"), points_.ints("body"), n, delta_, dx_,
-                           contact_.skin, dim_, skip_vented(), skip_gas());
+  sync_local();
+  if (contact_on_ && contacts_stale()) rebuild_contacts();
   compute_forces();
   time_ += dt;
   ++steps_;
   if (time_ >= next_fragment_time_ * (1.0 - 1e-12)) {
-    auto rows = fragment_rows();
+    auto rows = fragment_rows(fragments());
     fragment_rows_.insert(fragment_rows_.end(), rows.begin(), rows.end());
     while (next_fragment_time_ <= time_ * (1.0 + 1e-12)) next_fragment_time_ += fragment_interval_;
   }
@@ -566,7 +748,7 @@ EnergyTotals PdSolver::energies() const {
     // joins the internal energy here.
     double s[1];
     deterministic_sum<1>(0, points_.size(), [&](Index p, double* o) {
-      if (gas_[p]) o[0] += contact_energy_[p];
+      if (gas_[p]) o[0] += contact_energy_[local_.own[p]];
     }, s);
     e.internal += thickness_ * comm_.sum(s[0]);
   }
@@ -574,18 +756,24 @@ EnergyTotals PdSolver::energies() const {
 }
 
 Index PdSolver::broken_bonds() const {
-  Index k = 0;
-  for (auto b : bonds_.broken) k += b;
-  return k / 2;  // each bond is stored at both of its ends
+  std::int64_t k = 0;
+  for (Index l : local_.own)
+    for (Index b = bonds_.offset[l]; b < bonds_.offset[l + 1]; ++b) k += bonds_.broken[b];
+  return static_cast<Index>(comm_.sum(k) / 2);  // each bond is stored at both of its ends
 }
 
 std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
-  const std::vector<pd::Fragment> frags = pd::find_fragments(bonds_, points_, fragment_threshold_, skip_gas());
+  // Collective: the fragments are found on rank 0 (empty elsewhere), kept for result_tables().
+  const std::vector<pd::Fragment> frags = fragments();
+  final_rows_ = fragment_rows(frags);
+  final_rows_time_ = time_;
   double total = 0.0, dmax = 0.0;
   for (const auto& f : frags) total += f.mass;
   const auto* damage = points_.real("damage");
   for (Index p = 0; p < points_.size(); ++p) dmax = std::max(dmax, damage[p]);
-  return {{"broken_bonds", static_cast<double>(broken_bonds())},
+  dmax = comm_.max(dmax);
+  const double broken = static_cast<double>(broken_bonds());
+  return {{"broken_bonds", broken},
           {"fragment_count", static_cast<double>(frags.size())},
           {"largest_fragment_mass", frags.empty() ? 0.0 : thickness_ * frags.front().mass},
           {"mean_fragment_mass", frags.empty() ? 0.0 : thickness_ * total / static_cast<double>(frags.size())},
@@ -596,11 +784,22 @@ std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
           {"bytes_per_bond_end", kSolverBytesPerBond + (sp_.empty() ? 0.0 : sizeof(double))},
           {"gas_bonds", static_cast<double>(gas_bonds_.bonds()) / 2.0},
           {"vented_gas_points", static_cast<double>(vented_count_)},
-          {"gas_rate_limited_steps", static_cast<double>(gas_rate_limited_)}};
+          {"gas_rate_limited_steps", static_cast<double>(gas_rate_limited_)},
+          // Several ranks: what rank 0 sends its neighbours per step (its own points' ghost copies), one
+          // message per neighbouring rank.
+          {"ranks", static_cast<double>(comm_.size())},
+          {"fewest_particles_on_a_rank", comm_.min(static_cast<double>(points_.size()))},
+          {"most_particles_on_a_rank", comm_.max(static_cast<double>(points_.size()))},
+          {"halo_bytes_per_step_rank0", static_cast<double>(halo_.bytes_per_update())},
+          {"halo_messages_per_step_rank0", static_cast<double>(halo_.peers().size())}};
 }
 
-std::vector<std::vector<double>> PdSolver::fragment_rows() const {
-  const std::vector<pd::Fragment> frags = pd::find_fragments(bonds_, points_, fragment_threshold_, skip_gas());
+std::vector<pd::Fragment> PdSolver::fragments() const {
+  if (!comm_.distributed()) return pd::find_fragments(bonds_, points_, fragment_threshold_, skip_gas());
+  return pd::find_fragments_gathered(comm_, bonds_, local_.own, local_.id.data(), points_, fragment_threshold_);
+}
+
+std::vector<std::vector<double>> PdSolver::fragment_rows(const std::vector<pd::Fragment>& frags) const {
   std::vector<std::vector<double>> rows;
   for (size_t k = 0; k < frags.size(); ++k) {
     const pd::Fragment& f = frags[k];
@@ -633,7 +832,8 @@ std::vector<std::string> PdSolver::history_columns() const {
 }
 
 std::vector<double> PdSolver::history_values() const {
-  std::vector<double> v = loads_.history_values(scenario_);
+  std::vector<double> v = loads_.history_values(scenario_);  // indenter reactions: sums over points
+  comm_.sum(v.data(), static_cast<int>(v.size()));
   for (double& f : v) f *= thickness_;  // 2D: per unit thickness -> the plate's
   const auto* damage = points_.real("damage");
   // The mean damage is of the solids (gas points have no bonds to break).
@@ -642,7 +842,7 @@ std::vector<double> PdSolver::history_values() const {
   deterministic_sum<3>(0, points_.size(), [&](Index p, double* o) {
     const bool solid = !(gas && gas[p]);
     o[0] += solid ? damage[p] : 0.0;
-    o[1] += contact_energy_[p];
+    o[1] += contact_energy_[local_.own[p]];
     o[2] += solid ? 1.0 : 0.0;
   }, e);
   const double count = comm_.sum(e[2]);
@@ -659,7 +859,8 @@ std::vector<ResultTable> PdSolver::result_tables() const {
                 {"time", "fragment", "points", "mass", "x", "y", "z", "vx", "vy", "vz", "speed", "kinetic_energy"},
                 fragment_rows_};
   if (t.rows.empty() || t.rows.back()[0] != time_) {
-    auto now = fragment_rows();
+    // Rank 0 only: the rows result_values() found (collective), or on one rank found now.
+    auto now = final_rows_time_ == time_ ? final_rows_ : fragment_rows(fragments());
     t.rows.insert(t.rows.end(), now.begin(), now.end());
   }
   return {t};
@@ -667,10 +868,9 @@ std::vector<ResultTable> PdSolver::result_tables() const {
 
 namespace {
 
-// One rank only so far (SolverFactory::distributed is false): the run refuses more.
 std::unique_ptr<Solver> make_pd(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials,
-                                const Communicator&) {
-  return std::make_unique<PdSolver>(sc, std::move(materials));
+                                const Communicator& comm) {
+  return std::make_unique<PdSolver>(sc, std::move(materials), comm);
 }
 
 /// An optional word parameter: one of `choices`, the first the default.
@@ -740,4 +940,5 @@ BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
     {"3d", "plane_strain", "plane_stress"},
     "peridynamics",
     ballista::pd_params(),
-    &ballista::make_pd})
+    &ballista::make_pd,
+    true})

@@ -15,6 +15,12 @@
 //
 // The points layer (seeding, loads, removal, energies, diagnostics) is shared with MPM: this file
 // owns only the bonds, the force and the time integration.
+//
+// Several MPI ranks (issue 16, peridynamics/pd_halo.hpp): the points are partitioned once by RCB of
+// their reference positions; the bond pass runs over each rank's own points and ghost copies in
+// the local numbering of pd_halo.hpp. Arrays named per local point are indexed by that numbering,
+// the point fields (the store) by the own points' order; local_.own maps the one to the other (the
+// identity on one rank). Detonation products (the gas) run on one rank only so far.
 #include <functional>
 #include <limits>
 #include <memory>
@@ -25,7 +31,9 @@
 #include "materials/material.hpp"
 #include "peridynamics/bond_family.hpp"
 #include "peridynamics/contact_list.hpp"
+#include "peridynamics/fragments.hpp"
 #include "peridynamics/gas_pass.hpp"
+#include "peridynamics/pd_halo.hpp"
 #include "points/point_loads.hpp"
 #include "points/point_set.hpp"
 #include "scenario/scenario.hpp"
@@ -67,9 +75,12 @@ class PdSolver final : public Solver {
   std::vector<double> history_values() const override;
 
   /// Checkpoint (pd_checkpoint.cpp): the points, the broken flags and plastic stretches of the
-  /// bonds, the contact list as last built, the critical stretches, the gas state, the energy
+  /// bonds (each point's row in id order of its neighbours), the positions of the last contact
+  /// list build (the list is rebuilt from them), the critical stretches, the gas state, the energy
   /// bookkeeping and the fragment snapshots. The bond families and constants are rebuilt from
-  /// the deck by the constructor (deterministic), so they are not stored.
+  /// the deck by the constructor (deterministic), so they are not stored. Several ranks: every
+  /// rank's rows and values gathered to rank 0 in the points' order, a checkpoint any rank count
+  /// (and a serial run) reads.
   void save_state(StateArchive& archive) const override;
   /// Wall time of the bond families and their solver arrays (summary.json timing.bond_build_seconds).
   std::vector<std::pair<std::string, double>> timing_values() const override {
@@ -77,6 +88,7 @@ class PdSolver final : public Solver {
   }
   void load_state(const StateArchive& archive) override;
 
+  /// The bonds of the local points (one rank: every point, in store order).
   const pd::BondFamily& bonds() const { return bonds_; }
   const pd::ContactList& contacts() const { return contact_; }
   double horizon() const { return delta_; }
@@ -86,7 +98,7 @@ class PdSolver final : public Solver {
   double critical_stretch(int a, int b) const { return s00_[a * nmat_ + b]; }
   /// s00 of point p (the smallest over its family's material pairs, times its stretch_scatter factor).
   double point_critical_stretch(Index p) const { return s00_point_[p]; }
-  /// Bonds broken so far (each counted once).
+  /// Bonds broken so far (each counted once; over every rank, collective).
   Index broken_bonds() const;
   /// Re-evaluates the bond forces, energies and damage at the current positions without advancing
   /// time (after positions were set from outside, e.g. by a test imposing a deformation).
@@ -100,9 +112,27 @@ class PdSolver final : public Solver {
   /// Marks broken every intact bond p-q with cut(p, q) or cut(q, p), at both ends, with nothing
   /// dissipated (pre-cracks); returns how many bonds. Forces are not re-evaluated.
   Index cut_bonds(const std::function<bool(Index, Index)>& cut);
+  /// The partition (several ranks), the local points with their ghosts and the bond family of the
+  /// local points (pd_halo.hpp); one rank: the family of every point.
+  void build_local_points(bool correct);
+  /// Own points' positions into the local copies, and the ghosts' from their owners (collective);
+  /// the ghosts' previous positions become their step-start positions.
+  void sync_local();
+  /// True on every rank if some own point moved more than skin/2 since the last build (collective).
+  bool contacts_stale() const;
+  /// Builds the contact list at the current local positions (several ranks: with the contact
+  /// ghosts gathered anew; collective).
+  void rebuild_contacts();
+  /// Per-local-point solver arrays to the current local point count (contact ghosts changed).
+  void resize_local_arrays();
+  /// The fragments now (several ranks: found on rank 0 over every rank's points and intact bonds,
+  /// empty elsewhere; collective).
+  std::vector<pd::Fragment> fragments() const;
   /// Bond forces (per unit mass, into field pd_accel), stretches, failures, s0 for the next step,
   /// damage and the per-point bond energies.
   void compute_forces();
+  /// One step of this rank (step() agrees on failures across ranks).
+  void advance(double dt);
 
   // ---- detonation products as a peridynamic gas (gas_pass.hpp, pd_gas.cpp) -------------------
   /// The gas family of the explosive points and their neighbours, V_i and the stable-step sums.
@@ -130,7 +160,10 @@ class PdSolver final : public Solver {
   FieldStore& points_;
   PointLoads loads_;
   bool loads_current_ = false;  ///< loads_ holds the loads at the current positions and time
-  pd::BondFamily bonds_;
+  pd::BondFamily bonds_;        ///< rows of the local points [0, local_.bond_local)
+  pd::LocalPoints local_;       ///< own points and ghosts (pd_halo.hpp)
+  pd::PdHalo halo_;
+  Index global_points_ = 0;     ///< points over every rank
   double dx_ = 0.0, delta_ = 0.0;
   int dim_ = 3;             ///< 3, or 2 (plane strain / plane stress: points in the x-y plane)
   double thickness_ = 1.0;  ///< m, 2D: totals (energies, masses) are per this thickness
@@ -184,8 +217,11 @@ class PdSolver final : public Solver {
   double fragment_threshold_ = 2.0;  ///< points with more damage are left out of fragments
   double next_fragment_time_ = 0.0;
   std::vector<std::vector<double>> fragment_rows_;  ///< snapshots so far (fragments.csv rows)
-  /// fragments.csv rows of the fragments now (time, fragment, points, mass, centre, velocity, speed, KE).
-  std::vector<std::vector<double>> fragment_rows() const;
+  /// fragments.csv rows of `frags` (time, fragment, points, mass, centre, velocity, speed, KE).
+  std::vector<std::vector<double>> fragment_rows(const std::vector<pd::Fragment>& frags) const;
+  /// The rows at the end, found by result_values() (collective) for result_tables() (rank 0 only).
+  mutable std::vector<std::vector<double>> final_rows_;
+  mutable double final_rows_time_ = -1.0;
   std::vector<std::uint8_t> gas_material_;  ///< per material: an explosive (a peridynamic gas)
   std::vector<std::uint8_t> gas_;           ///< per point: 1 for gas points
   bool has_gas_ = false;

@@ -3,8 +3,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <limits>
+#include <numeric>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -160,6 +162,12 @@ void PointSet::keep_share(const Communicator& comm) {
   keep_ranges(lo, hi, plo, phi);
 }
 
+void PointSet::keep(const std::vector<char>& keep) {
+  if (pending_.size() > 0) throw Error("PointSet::keep: pending points are not supported");
+  points_.compact(keep);
+  groups_dirty_ = true;
+}
+
 void PointSet::keep_ranges(Index first, Index last, Index first_pending, Index last_pending) {
   std::vector<char> keep(static_cast<std::size_t>(points_.size()), 0);
   std::fill(keep.begin() + first, keep.begin() + last, 1);
@@ -248,6 +256,9 @@ StepLimiter PointSet::step_limiter() const {
       out = {id[p], static_cast<int>(bid[p]), c, s, J};
     }
   }
+  if (!comm_.distributed()) return out;
+  const int root = comm_.rank_of_max(out.id >= 0 ? out.wave_speed + out.speed : -1.0);
+  comm_.broadcast(&out, sizeof out, root);
   return out;
 }
 
@@ -426,6 +437,45 @@ bool PointSet::load_state(const StateArchive& a) {
   inserted_energy_ = r[6];
   groups_dirty_ = true;
   return own;
+}
+
+bool PointSet::load_state(const StateArchive& a, const std::vector<std::int64_t>& ids) {
+  a.get_fields("points.", points_);
+  a.get_fields("pending.", pending_);
+  if (pending_.size() > 0) throw Error("PointSet::load_state: pending points are not supported with an id list");
+  stage_start_ = a.reals("points.stage_start", stage_start_.size());
+  // Every rank read every point: keep this rank's, then put them in id order (the checkpoint holds
+  // them in the writing ranks' order).
+  const auto* id = points_.ints("id");
+  std::vector<char> keep_mask(static_cast<std::size_t>(points_.size()), 0);
+  for (Index p = 0; p < points_.size(); ++p) keep_mask[p] = std::binary_search(ids.begin(), ids.end(), id[p]);
+  points_.compact(keep_mask);
+  std::vector<Index> order(static_cast<std::size_t>(points_.size()));
+  std::iota(order.begin(), order.end(), Index{0});
+  id = points_.ints("id");
+  std::sort(order.begin(), order.end(), [&](Index p, Index q) { return id[p] < id[q]; });
+  points_.permute(order);
+  if (points_.size() != static_cast<Index>(ids.size()))
+    throw Error("the checkpoint lacks " + std::to_string(static_cast<Index>(ids.size()) - points_.size()) +
+                " of this rank's points");
+  pending_activation_.clear();
+  pending_stage_.clear();
+  const int P = comm_.size(), me = comm_.rank();
+  std::vector<double> r = a.reals("points.removed", 7);
+  const bool same = a.has("points.rank_counts") && a.ints("points.rank_counts").size() == static_cast<std::size_t>(2 * P);
+  if (same) {
+    const auto& by_rank = a.reals("points.removed_by_rank", static_cast<std::size_t>(7 * P));
+    r.assign(by_rank.begin() + 7 * me, by_rank.begin() + 7 * (me + 1));
+  } else if (me != 0) {
+    r.assign(7, 0.0);  // the totals once, on rank 0
+  }
+  removed_mass_ = r[0];
+  removed_energy_ = r[1];
+  removed_chemical_ = r[2];
+  removed_momentum_ = Vec3{{r[3], r[4], r[5]}};
+  inserted_energy_ = r[6];
+  groups_dirty_ = true;
+  return same;
 }
 
 }  // namespace ballista

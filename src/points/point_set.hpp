@@ -46,6 +46,9 @@ class PointSet {
   /// the active and of the pending points, and the solver's partition then moves them to their
   /// owners. Mass, momentum and energy totals are sums over the ranks (energies()).
   void keep_share(const Communicator& comm);
+  /// Several ranks: keeps the active points with keep[p] != 0 (a solver's own partition of every
+  /// rank's full seeding: peridynamics), without booking anything as removed. No pending points.
+  void keep(const std::vector<char>& keep);
   const Communicator& communicator() const { return comm_; }
 
   // ---- activation --------------------------------------------------------------------------
@@ -64,7 +67,8 @@ class PointSet {
   const std::vector<std::vector<Index>>& material_groups();
   /// Largest c + |v| over this rank's points (c the dilatational wave speed of each material).
   double max_signal_speed();
-  /// The point with the largest c + |v| (serial, through the virtual wave speed: diagnostics).
+  /// The point with the largest c + |v| (per point through the virtual wave speed: diagnostics).
+  /// Several ranks (collective): the rank with the fastest signal names its point to all.
   StepLimiter step_limiter() const;
   /// Stress update of every point through its material, from F (already at t_{n+1}) and L over dt;
   /// stress power and plastic work accumulate in internal_energy and plastic_work. A non-finite
@@ -99,6 +103,10 @@ class PointSet {
   /// order (true: the caller keeps its decomposition); any other gives each rank a contiguous share
   /// and the totals to rank 0 (false: the caller repartitions).
   bool load_state(const StateArchive& archive);
+  /// Exactly the active points whose ids are in `ids` (sorted), in id order, from a checkpoint
+  /// written on any rank count (a solver whose partition is fixed by the deck: peridynamics). True if the checkpoint was
+  /// written on as many ranks (each rank's removal bookkeeping back), else the totals go to rank 0.
+  bool load_state(const StateArchive& archive, const std::vector<std::int64_t>& ids);
 
  private:
   /// Keeps active points [first, last) and pending points [first_pending, last_pending).

@@ -114,6 +114,45 @@ TEST(PdBonds, FamilyMatchesBruteForceSearch) {
     for (Index k = g.offset[p]; k < g.offset[p + 1]; ++k) EXPECT_EQ(body[g.other[k]], body[p]);
 }
 
+TEST(PdBonds, RestrictedFamilyKeepsOwnRowsWholeAndGhostRowsToOwnPoints) {
+  // A rank's family (several MPI ranks, pd_halo.hpp): own points x < 3, ghosts the others within
+  // the horizon of an own point, a point farther off dropped. Each own row must be its whole
+  // family row (same neighbours, same order, same lengths), each ghost row exactly its bonds to
+  // own points, and every bond in both of its ends' rows.
+  std::vector<Vec3> x;
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 8; ++i) x.push_back(Vec3{{static_cast<double>(i), static_cast<double>(j), 0.0}});
+  const Index n = static_cast<Index>(x.size());
+  const double delta = 2.1;
+  const pd::BondFamily f = pd::build_bond_family(x.data(), n, delta, 0.0, 2);
+  std::vector<char> owned(static_cast<size_t>(n)), keep(static_cast<size_t>(n));
+  for (Index p = 0; p < n; ++p) {
+    owned[p] = x[p][0] < 3.0;
+    keep[p] = x[p][0] < 3.0 + delta;
+  }
+  const pd::BondFamily g = pd::restrict_family(f, keep, owned);
+  std::vector<Index> kept;  // new index -> old index
+  for (Index p = 0; p < n; ++p)
+    if (keep[p]) kept.push_back(p);
+  ASSERT_EQ(g.points(), static_cast<Index>(kept.size()));
+  for (Index a = 0; a < g.points(); ++a) {
+    const Index p = kept[a];
+    std::vector<Index> want;
+    for (Index k = f.offset[p]; k < f.offset[p + 1]; ++k)
+      if (keep[f.other[k]] && (owned[p] || owned[f.other[k]])) want.push_back(f.other[k]);
+    if (owned[p]) EXPECT_EQ(static_cast<Index>(want.size()), f.offset[p + 1] - f.offset[p]) << "own row cut";
+    ASSERT_EQ(g.offset[a + 1] - g.offset[a], static_cast<Index>(want.size())) << "point " << p;
+    for (size_t k = 0; k < want.size(); ++k) {
+      const Index b = g.other[g.offset[a] + static_cast<Index>(k)];
+      EXPECT_EQ(kept[b], want[k]);
+      EXPECT_EQ(g.length0[g.offset[a] + static_cast<Index>(k)], norm(x[want[k]] - x[p]));
+      // The mirror end holds a.
+      const auto* row = g.other.data() + g.offset[b];
+      EXPECT_TRUE(std::binary_search(row, g.other.data() + g.offset[b + 1], static_cast<std::int32_t>(a)));
+    }
+  }
+}
+
 TEST(PdBonds, PartialVolumeFactorIsLinearAcrossOneSpacing) {
   EXPECT_EQ(pd::partial_volume_factor(2.4, 3.0, 1.0), 1.0);
   EXPECT_EQ(pd::partial_volume_factor(2.5, 3.0, 1.0), 1.0);
