@@ -69,7 +69,8 @@ std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& 
 
 std::vector<Fragment> find_fragments_gathered(const Communicator& comm, const BondFamily& bonds,
                                               const std::vector<Index>& own, const std::int64_t* ids,
-                                              const FieldStore& store, double damage_threshold) {
+                                              const FieldStore& store, double damage_threshold,
+                                              const std::vector<std::uint8_t>& skip_material) {
   // Each own point: its id, then the ids of its intact bonds' higher-id ends (count first).
   std::vector<std::int64_t> mine;
   for (Index l : own) {
@@ -109,7 +110,14 @@ std::vector<Fragment> find_fragments_gathered(const Communicator& comm, const Bo
   f.broken.assign(edges.size(), 0);
   std::vector<Index> fill(f.offset.begin(), f.offset.end() - 1);
   for (const auto& e : edges) f.other[fill[e.first]++] = static_cast<std::int32_t>(e.second);
-  return find_fragments(f, all, damage_threshold, nullptr);
+  std::vector<std::uint8_t> skip(static_cast<std::size_t>(n), 0);
+  const auto* mat = all.ints("material");
+  bool any = false;
+  for (Index p = 0; p < n; ++p) {
+    skip[p] = mat[p] >= 0 && mat[p] < static_cast<std::int64_t>(skip_material.size()) && skip_material[mat[p]];
+    any = any || skip[p];
+  }
+  return find_fragments(f, all, damage_threshold, any ? skip.data() : nullptr);
 }
 
 }  // namespace ballista::pd

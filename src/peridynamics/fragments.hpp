@@ -30,9 +30,11 @@ std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& 
 /// Several ranks (collective, issue 16): the fragments of every rank's own points, found on rank 0
 /// over the points gathered in id order and their intact bonds (each sent once, from its lower-id
 /// end), so they are the serial run's, bit for bit; empty on the other ranks. `own[i]` is the row
-/// in `bonds` of the store's point i, `ids` the ids of the rows' points.
+/// in `bonds` of the store's point i, `ids` the ids of the rows' points; points of a material m
+/// with skip_material[m] != 0 (detonation products) are never part of a fragment.
 std::vector<Fragment> find_fragments_gathered(const Communicator& comm, const BondFamily& bonds,
                                               const std::vector<Index>& own, const std::int64_t* ids,
-                                              const FieldStore& store, double damage_threshold);
+                                              const FieldStore& store, double damage_threshold,
+                                              const std::vector<std::uint8_t>& skip_material = {});
 
 }  // namespace ballista::pd

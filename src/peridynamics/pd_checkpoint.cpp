@@ -41,12 +41,30 @@ void PdSolver::save_state(StateArchive& a) const {
   x_build = gathered(std::move(x_build));
   const std::vector<double> s0 = per_point(s0_), dissipated = per_point(dissipated_),
                             contact_energy = per_point(contact_energy_), stiffness = per_point(stiff_contact_);
+  // The products (per own point; empty without gas).
+  std::vector<double> gas_x, gas_g, vented, vent_velocity;
+  if (has_gas_) {
+    gas_x = per_point(gas_x_);
+    gas_g = per_point(gas_g_);
+    std::vector<double> flag, vel;
+    for (Index l : own) {
+      flag.push_back(vented_[l]);
+      vel.insert(vel.end(), vent_velocity_[l].v, vent_velocity_[l].v + 3);
+    }
+    vented = gathered(std::move(flag));
+    vent_velocity = gathered(std::move(vel));
+  }
+  // Counters: each rank's (a restart on as many ranks takes its own back) and the totals.
+  const std::vector<double> counts{static_cast<double>(vented_count_), static_cast<double>(gas_rate_limited_)};
+  const std::vector<double> counts_by_rank = gathered(counts);
+  std::vector<double> totals = counts;
+  comm_.sum(totals.data(), static_cast<int>(totals.size()));
   if (comm_.rank() != 0) return;
   a.put_real("pd.time", time_);
   a.put_int("pd.steps", steps_);
   a.put("pd.scalars", std::vector<double>{external_work_, damping_, next_fragment_time_});
-  a.put("pd.counters", std::vector<std::int64_t>{static_cast<std::int64_t>(vented_count_),
-                                                 static_cast<std::int64_t>(gas_rate_limited_)});
+  a.put("pd.counters", std::vector<std::int64_t>(totals.begin(), totals.end()));
+  a.put("pd.counters_by_rank", std::vector<std::int64_t>(counts_by_rank.begin(), counts_by_rank.end()));
   a.put("pd.row_length", std::vector<std::int64_t>(row_length.begin(), row_length.end()));
   a.put("pd.bond_broken", std::vector<std::int64_t>(broken.begin(), broken.end()));
   a.put("pd.plastic_stretch", plastic);
@@ -56,10 +74,10 @@ void PdSolver::save_state(StateArchive& a) const {
   a.put("pd.contact_stiffness", stiffness);
   a.put("pd.contact.x_build", x_build);
   a.put("pd.contact.state", std::vector<double>{contact_.skin, static_cast<double>(contact_.builds)});
-  a.put("pd.gas.x", gas_x_);
-  a.put("pd.gas.g", gas_g_);
-  a.put_integers("pd.gas.vented", vented_);
-  a.put_records("pd.gas.vent_velocity", vent_velocity_);
+  a.put("pd.gas.x", gas_x);
+  a.put("pd.gas.g", gas_g);
+  a.put("pd.gas.vented", std::vector<std::int64_t>(vented.begin(), vented.end()));
+  a.put("pd.gas.vent_velocity", vent_velocity);
   std::vector<double> rows;
   const std::size_t width = fragment_rows_.empty() ? 0 : fragment_rows_.front().size();
   for (const auto& r : fragment_rows_) rows.insert(rows.end(), r.begin(), r.end());
@@ -95,6 +113,10 @@ void PdSolver::load_state(const StateArchive& a) {
   const long builds = static_cast<long>(cs[1]);
   const bool contacts_built = contact_on_ && builds > 0;
   const auto& x_build = a.reals("pd.contact.x_build", contacts_built ? 3 * m : 0);
+  const auto& gas_x = a.reals("pd.gas.x", has_gas_ ? m : 0);
+  const auto& gas_g = a.reals("pd.gas.g", has_gas_ ? m : 0);
+  const auto& vented = a.ints("pd.gas.vented", has_gas_ ? m : 0);
+  const auto& vent_velocity = a.reals("pd.gas.vent_velocity", has_gas_ ? 3 * m : 0);
   for (Index i = 0; i < n; ++i) {
     const Index l = local_.own[i];
     const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::pair<std::int64_t, std::size_t>{ids[i], 0});
@@ -114,6 +136,12 @@ void PdSolver::load_state(const StateArchive& a) {
     contact_energy_[l] = contact_energy[j];
     stiff_contact_[l] = stiffness[j];
     if (contacts_built) local_.x[l] = Vec3{{x_build[3 * j], x_build[3 * j + 1], x_build[3 * j + 2]}};
+    if (has_gas_) {
+      gas_x_[l] = gas_x[j];
+      gas_g_[l] = gas_g[j];
+      vented_[l] = static_cast<std::uint8_t>(vented[j]);
+      vent_velocity_[l] = Vec3{{vent_velocity[3 * j], vent_velocity[3 * j + 1], vent_velocity[3 * j + 2]}};
+    }
   }
   // A ghost's copy of a bond is its own end's (broken flags and plastic stretches are kept equal).
   for (Index l : local_.own)
@@ -140,13 +168,12 @@ void PdSolver::load_state(const StateArchive& a) {
   external_work_ = sc[0];
   damping_ = sc[1];
   next_fragment_time_ = sc[2];
+  const auto& by_rank = a.ints("pd.counters_by_rank");
+  const bool same_ranks = by_rank.size() == static_cast<std::size_t>(2 * comm_.size());
   const auto& cn = a.ints("pd.counters", 2);
-  vented_count_ = static_cast<Index>(cn[0]);
-  gas_rate_limited_ = static_cast<Index>(cn[1]);
-  gas_x_ = a.reals("pd.gas.x", gas_x_.size());
-  gas_g_ = a.reals("pd.gas.g", gas_g_.size());
-  a.get_integers("pd.gas.vented", vented_, vented_.size());
-  a.get_records("pd.gas.vent_velocity", vent_velocity_);
+  const std::size_t at = 2 * static_cast<std::size_t>(comm_.rank());
+  vented_count_ = same_ranks ? static_cast<Index>(by_rank[at]) : comm_.rank() == 0 ? static_cast<Index>(cn[0]) : 0;
+  gas_rate_limited_ = same_ranks ? static_cast<Index>(by_rank[at + 1]) : comm_.rank() == 0 ? static_cast<Index>(cn[1]) : 0;
   const auto width = static_cast<std::size_t>(a.integer("pd.fragment_row_width"));
   const auto& rows = a.reals("pd.fragment_rows");
   fragment_rows_.clear();

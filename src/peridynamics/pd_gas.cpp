@@ -12,11 +12,11 @@
 namespace ballista {
 
 void PdSolver::build_gas() {
-  const Index n = points_.size();
-  const auto* x0 = points_.view<Vec3>("x0");
-  const auto* vol0 = points_.real("volume0");
-  const bool correct = scenario_.solver_params.choices.at("volume_correction") == "partial";
-  gas_bonds_ = pd::build_gas_family(x0, n, delta_, correct ? dx_ : 0.0, dim_, gas_.data());
+  // The gas family was built with the bonds (build_local_points); arrays per local point.
+  const Index n = local_.size(), nb = local_.bond_local;
+  const auto* vol0 = local_.vol0.data();
+  gas_local_.assign(static_cast<size_t>(n), 0);
+  for (Index l = 0; l < n; ++l) gas_local_[l] = gas_material_[local_.material[l]];
   gas_volume_.assign(static_cast<size_t>(n), 0.0);
   gas_inv_len_.assign(static_cast<size_t>(n), 0.0);
   gas_x_.assign(static_cast<size_t>(n), 1.0);
@@ -24,8 +24,8 @@ void PdSolver::build_gas() {
   vented_.assign(static_cast<size_t>(n), 0);
   vent_velocity_.assign(static_cast<size_t>(n), Vec3{});
   const pd::GasPassArgs a = gas_pass_args();
-  for_each(0, n, [&](Index p) {
-    if (!gas_[p]) return;
+  for_each(0, nb, [&](Index p) {
+    if (!gas_local_[p]) return;
     double v = 0.0;
     for (Index k = gas_bonds_.offset[p]; k < gas_bonds_.offset[p + 1]; ++k)
       v += gas_bonds_.volume_factor[k] * vol0[gas_bonds_.other[k]];
@@ -35,8 +35,8 @@ void PdSolver::build_gas() {
 }
 
 pd::GasPassArgs PdSolver::gas_pass_args() const {
-  return {points_.view<Vec3>("x"), points_.real("volume0"), &gas_bonds_, gas_.data(), gas_volume_.data(),
-          gas_g_.data(),           dim_};
+  // Over the local points (own and ghosts; positions from sync_local).
+  return {local_.x.data(), local_.vol0.data(), &gas_bonds_, gas_local_.data(), gas_volume_.data(), gas_g_.data(), dim_};
 }
 
 void PdSolver::update_gas(double dt) {
@@ -47,27 +47,29 @@ void PdSolver::update_gas(double dt) {
   const auto* vol0 = points_.real("volume0");
   const pd::GasPassArgs a = gas_pass_args();
   const double inv_d = 1.0 / dim_;
+  const Index* own = local_.own.data();
   std::atomic<Index> limited{0};
   // X at t_{n+1}; the deformation the material sees is the isotropic F = X^(1/d) (in the plane
   // in 2D), reached from the old one by L = a I over dt, (1 + a dt)^d = X_new / X_old, so that
   // the adapter's F_old = (I + dt L)^-1 F_new and J_old = X_old are exact.
   for_each(0, n, [&](Index p) {
-    if (!gas_[p] || vented_[p]) {
+    const Index l = own[p];  // the gas arrays are per local point
+    if (!gas_[p] || vented_[l]) {
       if (gas_[p]) L[p] = Mat3{};
       return;
     }
-    const double x_old = gas_x_[p], x_measured = pd::density_measure(a, p);
+    const double x_old = gas_x_[l], x_measured = pd::density_measure(a, l);
     const double x_new = std::clamp(x_measured, x_old / pd::kGasMaxStepRatio, x_old * pd::kGasMaxStepRatio);
     if (x_new != x_measured) limited.fetch_add(1, std::memory_order_relaxed);
     const double s = std::pow(x_new, inv_d), rate = dt > 0.0 ? (std::pow(x_new / x_old, inv_d) - 1.0) / dt : 0.0;
-    Mat3 f = Mat3::identity(), l;
+    Mat3 f = Mat3::identity(), lg;
     for (int d = 0; d < dim_; ++d) {
       f(d, d) = s;
-      l(d, d) = rate;
+      lg(d, d) = rate;
     }
     F[p] = f;
-    L[p] = l;
-    gas_x_[p] = x_new;
+    L[p] = lg;
+    gas_x_[l] = x_new;
     volume[p] = vol0[p] * x_new;
   });
   gas_rate_limited_ += limited.load();
@@ -78,10 +80,11 @@ void PdSolver::update_gas(double dt) {
   const double expo = 1.0 + pd::kGasExponent / dim_;
   for_each(0, n, [&](Index p) {
     if (!gas_[p]) return;
+    const Index l = own[p];
     const double P = -trace(stress[p]) / 3.0;
-    gas_g_[p] = vented_[p] || !(gas_volume_[p] > 0.0)
+    gas_g_[l] = vented_[l] || !(gas_volume_[l] > 0.0)
                     ? 0.0
-                    : dim_ * P * std::pow(gas_x_[p], expo) * vol0[p] / gas_volume_[p];
+                    : dim_ * P * std::pow(gas_x_[l], expo) * vol0[p] / gas_volume_[l];
   });
 }
 
@@ -95,13 +98,15 @@ double PdSolver::gas_stable_dt() const {
   const auto* mat = points_.ints("material");
   const auto& mats = pts_.materials();
   const double coef = dim_ == 3 ? 18.0 : 8.0;
+  const Index* own = local_.own.data();
   double dt = std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static) reduction(min : dt) if (n > kParallelThreshold)
   for (Index p = 0; p < n; ++p) {
-    if (!gas_[p] || vented_[p] || !(gas_inv_len_[p] > 0.0)) continue;
-    const double X = gas_x_[p], c = mats[mat[p]]->wave_speed(points_, p, X);
+    const Index l = own[p];
+    if (!gas_[p] || vented_[l] || !(gas_inv_len_[l] > 0.0)) continue;
+    const double X = gas_x_[l], c = mats[mat[p]]->wave_speed(points_, p, X);
     // rho0 / (coef rho0 c^2 / (X m1) * sum) = X m1 / (coef c^2 sum)
-    if (c > 0.0) dt = std::min(dt, std::sqrt(2.0 * X * m1_ / (coef * c * c * gas_inv_len_[p])));
+    if (c > 0.0) dt = std::min(dt, std::sqrt(2.0 * X * m1_ / (coef * c * c * gas_inv_len_[l])));
   }
   return comm_.min(dt_safety_ * dt);
 }
@@ -113,15 +118,16 @@ void PdSolver::vent_escaped_gas() {
   auto* eint = points_.real("internal_energy");
   const GridSpec& g = scenario_.grid;
   for (Index p = 0; p < n; ++p) {
-    if (!gas_[p] || vented_[p]) continue;
+    const Index l = local_.own[p];
+    if (!gas_[p] || vented_[l]) continue;
     if (g.contains(x[p])) continue;
     pts_.book_vented(p);
-    vented_[p] = 1;
+    vented_[l] = 1;
     ++vented_count_;
-    vent_velocity_[p] = v[p];  // it flies on (pd_solver.cpp), out of the balance
+    vent_velocity_[l] = v[p];  // it flies on (pd_solver.cpp), out of the balance
     v[p] = Vec3{};
     eint[p] = 0.0;
-    gas_g_[p] = 0.0;
+    gas_g_[l] = 0.0;
   }
 }
 

@@ -28,8 +28,8 @@ T read(const std::vector<char>& buf, std::size_t& at) {
 
 }  // namespace
 
-void LocalPoints::push(std::int64_t i, std::int64_t b, std::int64_t m, const Vec3& r0, const Vec3& r, double v0,
-                       bool is_own) {
+void LocalPoints::push(std::int64_t i, std::int64_t b, std::int64_t m, const Vec3& r0,
+                       const Vec3& r, double v0, bool is_own) {
   if (is_own) own.push_back(size());
   id.push_back(i);
   body.push_back(b);
@@ -42,10 +42,12 @@ void LocalPoints::push(std::int64_t i, std::int64_t b, std::int64_t m, const Vec
 
 void LocalPoints::truncate(Index n) {
   const auto m = static_cast<std::size_t>(n);
-  id.resize(m), body.resize(m), material.resize(m), x0.resize(m), x.resize(m), vol0.resize(m), ghost.resize(m);
+  id.resize(m), body.resize(m), material.resize(m), x0.resize(m), x.resize(m), vol0.resize(m),
+      ghost.resize(m);
 }
 
-void PdHalo::plan_bond_ghosts(const Communicator& comm, const LocalPoints& local, const std::vector<int>& owner) {
+void PdHalo::plan_bond_ghosts(const Communicator& comm, const LocalPoints& local,
+                              const std::vector<int>& owner) {
   ranks_ = comm.size();
   const auto P = static_cast<std::size_t>(ranks_);
   bond_send_.assign(P, {});
@@ -58,7 +60,8 @@ void PdHalo::plan_bond_ghosts(const Communicator& comm, const LocalPoints& local
   for (Index l = 0; l < local.bond_local; ++l)
     if (local.ghost[l]) {
       const int r = owner[l];
-      if (r == comm.rank() || r < 0 || r >= ranks_) throw Error("PdHalo: a ghost without a valid owner");
+      if (r == comm.rank() || r < 0 || r >= ranks_)
+        throw Error("PdHalo: a ghost without a valid owner");
       bond_recv_[r].push_back(l);
       append(ask[r], local.id[l]);
     }
@@ -72,8 +75,8 @@ void PdHalo::plan_bond_ghosts(const Communicator& comm, const LocalPoints& local
       const auto want = read<std::int64_t>(asked[r], at);
       const auto it = std::lower_bound(own_ids.begin(), own_ids.end(), want);
       if (it == own_ids.end() || *it != want)
-        throw Error("PdHalo: rank " + std::to_string(r) + " asked for point " + std::to_string(want) +
-                    ", which this rank does not own");
+        throw Error("PdHalo: rank " + std::to_string(r) + " asked for point " +
+                    std::to_string(want) + ", which this rank does not own");
       bond_send_[r].push_back(local.own[static_cast<std::size_t>(it - own_ids.begin())]);
     }
   }
@@ -87,8 +90,10 @@ void PdHalo::update(const Communicator& comm, LocalPoints& local, std::vector<do
     const int r = peer[k];
     auto& b = send[k];
     b.reserve(4 * bond_send_[r].size() + 3 * contact_send_[r].size());
-    for (Index l : bond_send_[r]) b.insert(b.end(), {local.x[l][0], local.x[l][1], local.x[l][2], s0[l]});
-    for (Index l : contact_send_[r]) b.insert(b.end(), {local.x[l][0], local.x[l][1], local.x[l][2]});
+    for (Index l : bond_send_[r])
+      b.insert(b.end(), {local.x[l][0], local.x[l][1], local.x[l][2], s0[l]});
+    for (Index l : contact_send_[r])
+      b.insert(b.end(), {local.x[l][0], local.x[l][1], local.x[l][2]});
     recv[k].resize(4 * bond_recv_[r].size() + 3 * contact_recv_[r].size());
   }
   comm.exchange(peer, send, recv);
@@ -107,7 +112,8 @@ void PdHalo::update(const Communicator& comm, LocalPoints& local, std::vector<do
   }
 }
 
-void PdHalo::update_bond_values(const Communicator& comm, const LocalPoints&, std::vector<double>& values) const {
+void PdHalo::update_bond_values(const Communicator& comm, const LocalPoints&,
+                                std::vector<double>& values) const {
   if (!comm.distributed()) return;
   std::vector<int> peer;
   for (int r = 0; r < ranks_; ++r)
@@ -122,7 +128,8 @@ void PdHalo::update_bond_values(const Communicator& comm, const LocalPoints&, st
     for (std::size_t j = 0; j < recv[k].size(); ++j) values[bond_recv_[peer[k]][j]] = recv[k][j];
 }
 
-void PdHalo::gather_contact_ghosts(const Communicator& comm, LocalPoints& local, double cutoff, int dim) {
+void PdHalo::gather_contact_ghosts(const Communicator& comm, LocalPoints& local, double cutoff,
+                                   int dim, const std::uint8_t* skip) {
   if (!comm.distributed()) return;
   const auto P = static_cast<std::size_t>(ranks_);
   local.truncate(local.bond_local);
@@ -138,7 +145,7 @@ void PdHalo::gather_contact_ghosts(const Communicator& comm, LocalPoints& local,
   double* mine = boxes.data() + 6 * comm.rank();
   for (int c = 0; c < 3; ++c) mine[c] = kInf, mine[3 + c] = -kInf;
   for (Index l : local.own)
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < 3 && !(skip && skip[l]); ++c) {
       mine[c] = std::min(mine[c], local.x[l][c]);
       mine[3 + c] = std::max(mine[3 + c], local.x[l][c]);
     }
@@ -154,7 +161,7 @@ void PdHalo::gather_contact_ghosts(const Communicator& comm, LocalPoints& local,
     const double* b = boxes.data() + 6 * r;
     for (Index l : bond_send_[r]) mark[l] = 1;
     for (Index l : local.own) {
-      if (mark[l]) continue;
+      if (mark[l] || (skip && skip[l])) continue;
       const Vec3& y = local.x[l];
       bool inside = true;
       for (int c = 0; c < dim; ++c) inside = inside && y[c] >= b[c] && y[c] <= b[3 + c];
@@ -206,14 +213,17 @@ std::vector<Index> PdHalo::keep_contact_ghosts(const Communicator& comm, LocalPo
     contact_recv_[r].push_back(w);
     renumber[l] = w;
     local.id[w] = local.id[l], local.body[w] = local.body[l], local.material[w] = local.material[l];
-    local.x0[w] = local.x0[l], local.x[w] = local.x[l], local.vol0[w] = local.vol0[l], local.ghost[w] = 1;
+    local.x0[w] = local.x0[l], local.x[w] = local.x[l], local.vol0[w] = local.vol0[l],
+    local.ghost[w] = 1;
     ++w;
   }
   local.truncate(w);
   const std::vector<std::vector<char>> kept = comm.all_to_all(keep_msg);
   for (std::size_t r = 0; r < P; ++r) {
     std::size_t at = 0;
-    while (at < kept[r].size()) contact_send_[r].push_back(offered_[r][static_cast<std::size_t>(read<std::int64_t>(kept[r], at))]);
+    while (at < kept[r].size())
+      contact_send_[r].push_back(
+          offered_[r][static_cast<std::size_t>(read<std::int64_t>(kept[r], at))]);
   }
   offered_.assign(P, {});
   contact_source_.clear();
@@ -226,7 +236,8 @@ std::vector<int> PdHalo::peers() const {
   // what it sends and what it receives).
   std::vector<int> out;
   for (int r = 0; r < static_cast<int>(bond_send_.size()); ++r)
-    if (!bond_send_[r].empty() || !bond_recv_[r].empty() || !contact_send_[r].empty() || !contact_recv_[r].empty())
+    if (!bond_send_[r].empty() || !bond_recv_[r].empty() || !contact_send_[r].empty() ||
+        !contact_recv_[r].empty())
       out.push_back(r);
   return out;
 }
@@ -234,7 +245,8 @@ std::vector<int> PdHalo::peers() const {
 std::int64_t PdHalo::bytes_per_update() const {
   std::int64_t b = 0;
   for (std::size_t r = 0; r < bond_send_.size(); ++r)
-    b += static_cast<std::int64_t>(sizeof(double) * (4 * bond_send_[r].size() + 3 * contact_send_[r].size()));
+    b += static_cast<std::int64_t>(sizeof(double) *
+                                   (4 * bond_send_[r].size() + 3 * contact_send_[r].size()));
   return b;
 }
 

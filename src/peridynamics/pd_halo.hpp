@@ -32,8 +32,8 @@ struct LocalPoints {
 
   Index size() const { return static_cast<Index>(id.size()); }
   /// Appends a point (a ghost unless `is_own`).
-  void push(std::int64_t id, std::int64_t body, std::int64_t material, const Vec3& x0, const Vec3& x, double vol0,
-            bool is_own);
+  void push(std::int64_t id, std::int64_t body, std::int64_t material, const Vec3& x0,
+            const Vec3& x, double vol0, bool is_own);
   /// Drops every point from `n` on.
   void truncate(Index n);
 };
@@ -42,19 +42,24 @@ class PdHalo {
  public:
   /// Collective. The bond ghosts of `local` (ghost[l] set, owner[l] their ranks) are requested from
   /// their owners; afterwards update() refreshes them.
-  void plan_bond_ghosts(const Communicator& comm, const LocalPoints& local, const std::vector<int>& owner);
+  void plan_bond_ghosts(const Communicator& comm, const LocalPoints& local,
+                        const std::vector<int>& owner);
   /// Collective: every ghost gets its owner's x and s0 (bond ghosts) or x (contact ghosts).
   void update(const Communicator& comm, LocalPoints& local, std::vector<double>& s0) const;
   /// Collective: the bond ghosts get their owners' values of a per-point array (setup).
-  void update_bond_values(const Communicator& comm, const LocalPoints& local, std::vector<double>& values) const;
+  void update_bond_values(const Communicator& comm, const LocalPoints& local,
+                          std::vector<double>& values) const;
 
   /// Collective, at a contact list build: drops the contact ghosts and appends every other rank's
   /// points within `cutoff` of this rank's own points' bounding box at the current positions (in
-  /// the x-y plane when dim is 2) that are not bond ghosts here already.
-  void gather_contact_ghosts(const Communicator& comm, LocalPoints& local, double cutoff, int dim);
+  /// the x-y plane when dim is 2) that are not bond ghosts here already; own points with
+  /// skip[l] != 0 (vented gas) are offered to none.
+  void gather_contact_ghosts(const Communicator& comm, LocalPoints& local, double cutoff, int dim,
+                             const std::uint8_t* skip = nullptr);
   /// Collective: keeps the contact ghosts with needed[l] != 0 (l from bond_local on; the others are
   /// dropped) and tells their owners; returns each local point's new index (-1: dropped).
-  std::vector<Index> keep_contact_ghosts(const Communicator& comm, LocalPoints& local, const std::vector<char>& needed);
+  std::vector<Index> keep_contact_ghosts(const Communicator& comm, LocalPoints& local,
+                                         const std::vector<char>& needed);
 
   /// Ranks this rank exchanges ghosts with, and the bytes it sends per update (summary, docs).
   std::vector<int> peers() const;

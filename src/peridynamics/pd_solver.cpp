@@ -195,11 +195,6 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   // Fields of this solver: damage (output) and the acceleration of the last force evaluation.
   points_.add_real("damage", 1, "1");
   points_.add_real("pd_accel", 3, "m/s^2", false);
-  if (comm_.distributed())
-    if (const MaterialSpec* m = first_material_of_model(sc, "explosive"))
-      throw DeckError(m->mark.file, m->mark.line, m->mark.column, m->mark.key_path + ".model",
-                      "an explosive (a peridynamic gas) runs on one MPI rank only so far (issue 16): run without "
-                      "mpirun or with -np 1");
   const auto build_start = std::chrono::steady_clock::now();
   build_local_points(correct);
   const Index n = points_.size();  // own points
@@ -210,7 +205,8 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     const auto* mt = points_.ints("material");
     for (Index p = 0; p < n; ++p) gas_[p] = gas_material_[mt[p]];
   }
-  has_gas_ = std::find(gas_.begin(), gas_.end(), 1) != gas_.end();
+  // Every rank takes part in the gas's exchanges and reductions if any rank holds gas.
+  has_gas_ = comm_.any(std::find(gas_.begin(), gas_.end(), 1) != gas_.end());
   if (has_gas_) build_gas();
   s0_.assign(static_cast<size_t>(nl), kInf);
   const auto* mat = local_.material.data();
@@ -404,17 +400,23 @@ void PdSolver::build_local_points(bool correct) {
     cgas[c] = gas_material_[mat[cand[c]]];
   }
   bonds_ = pd::build_bond_family(cx0.data(), nc, delta_, correct ? dx_ : 0.0, dim_, cbody.data(), cgas.data());
+  // Detonation products: the gas family (every pair within the horizon with a gas end, gas_pass.hpp).
+  const bool any_gas = std::find(gas_material_.begin(), gas_material_.end(), 1) != gas_material_.end();
+  if (any_gas) gas_bonds_ = pd::build_gas_family(cx0.data(), nc, delta_, correct ? dx_ : 0.0, dim_, cgas.data());
   std::vector<char> keep(static_cast<size_t>(nc), 1);
   if (comm_.distributed()) {
-    // Ghosts: the candidates bonded to an own point; their rows keep only those bonds.
+    // Ghosts: the candidates bonded (or gas-bonded) to an own point; their rows keep only those bonds.
     std::vector<char> owned(static_cast<size_t>(nc), 0);
     for (Index c = 0; c < nc; ++c) owned[c] = owner[cand[c]] == me;
-    for (Index c = 0; c < nc; ++c) {
-      if (owned[c]) continue;
-      keep[c] = 0;
-      for (Index k = bonds_.offset[c]; k < bonds_.offset[c + 1] && !keep[c]; ++k) keep[c] = owned[bonds_.other[k]];
-    }
+    auto bonded_to_own = [&](const pd::BondFamily& f, Index c) {
+      for (Index k = f.offset[c]; k < f.offset[c + 1]; ++k)
+        if (owned[f.other[k]]) return true;
+      return false;
+    };
+    for (Index c = 0; c < nc; ++c)
+      keep[c] = owned[c] || bonded_to_own(bonds_, c) || (any_gas && bonded_to_own(gas_bonds_, c));
     bonds_ = pd::restrict_family(bonds_, keep, owned);
+    if (any_gas) gas_bonds_ = pd::restrict_family(gas_bonds_, keep, owned);
   }
   const auto* x = points_.view<Vec3>("x");
   const auto* vol0 = points_.real("volume0");
@@ -448,12 +450,28 @@ void PdSolver::sync_local() {
 
 bool PdSolver::contacts_stale() const {
   if (!comm_.distributed()) return contact_.stale(local_.x.data(), local_.size(), skip_vented());
-  return comm_.any(contact_.stale(local_.x.data(), local_.size(), local_.ghost.data()));
+  // Own points only (each rank checks its own), vented gas aside.
+  const std::uint8_t* skip = local_.ghost.data();
+  std::vector<std::uint8_t> mask;
+  if (has_gas_) {
+    mask.assign(local_.ghost.begin(), local_.ghost.end());
+    for (Index l = 0; l < local_.size(); ++l) mask[l] |= vented_[l];
+    skip = mask.data();
+  }
+  return comm_.any(contact_.stale(local_.x.data(), local_.size(), skip));
 }
 
 void PdSolver::resize_local_arrays() {
   const auto nl = static_cast<size_t>(local_.size());
   x_prev_.resize(nl), s0_.resize(nl), dissipated_.resize(nl), contact_energy_.resize(nl), stiff_contact_.resize(nl);
+  if (!has_gas_) return;
+  // Contact ghosts: gas or not by their material; never vented (only unvented points are offered).
+  gas_local_.resize(nl);
+  vented_.resize(nl);
+  for (Index l = local_.bond_local; l < local_.size(); ++l) {
+    gas_local_[l] = gas_material_[local_.material[l]];
+    vented_[l] = 0;
+  }
 }
 
 void PdSolver::rebuild_contacts() {
@@ -463,11 +481,17 @@ void PdSolver::rebuild_contacts() {
                            contact_.skin, dim_, skip_vented(), skip_gas());
     return;
   }
-  halo_.gather_contact_ghosts(comm_, local_, cutoff, dim_);
+  if (has_gas_) {
+    // The bond ghosts' vented flags from their owners (vented points take no part in contact).
+    std::vector<double> flag(vented_.begin(), vented_.end());
+    halo_.update_bond_values(comm_, local_, flag);
+    for (Index l = 0; l < local_.bond_local; ++l) vented_[l] = flag[l] != 0.0;
+  }
+  halo_.gather_contact_ghosts(comm_, local_, cutoff, dim_, skip_vented());
   resize_local_arrays();
   const Index nl = local_.size();
   pd::build_contact_list(contact_, local_.x.data(), local_.x0.data(), local_.body.data(), nl, delta_, dx_,
-                         contact_.skin, dim_, nullptr, nullptr, local_.id.data());
+                         contact_.skin, dim_, skip_vented(), has_gas_ ? gas_local_.data() : nullptr, local_.id.data());
   // Keep the contact ghosts some own point's row names; only own rows stay (ghost rows are their
   // owners' business).
   std::vector<char> needed(static_cast<size_t>(nl), 0);
@@ -672,9 +696,9 @@ void PdSolver::advance(double dt) {
     const std::uint8_t* vented = vented_.empty() ? nullptr : vented_.data();
     for_each(0, n, [&](Index p) {
       x_prev[own[p]] = x[p];
-      if (vented && vented[p]) {  // vented gas flies on, force-free and out of the balance
+      if (vented && vented[own[p]]) {  // vented gas flies on, force-free and out of the balance
         v_half[p] = Vec3{};
-        x[p] += dt * vent_velocity_[p];
+        x[p] += dt * vent_velocity_[own[p]];
         return;
       }
       Vec3 a = acc[p] - c * v[p];
@@ -684,8 +708,19 @@ void PdSolver::advance(double dt) {
       x[p] += dt * v[p];
     });
   }
-  if (has_gas_) update_gas(dt);
   sync_local();
+  // Several ranks: a failure of the products' update (a non-finite pressure) is thrown only after
+  // the step's last exchange, so that the other ranks are not left waiting in it.
+  std::exception_ptr gas_failure;
+  if (has_gas_) {
+    try {
+      update_gas(dt);
+    } catch (const std::exception&) {
+      if (!comm_.distributed()) throw;
+      gas_failure = std::current_exception();
+    }
+    halo_.update_bond_values(comm_, local_, gas_g_);  // the ghosts' push G for the pair forces
+  }
   if (contact_on_ && contacts_stale()) rebuild_contacts();
   compute_forces();
   time_ += dt;
@@ -706,13 +741,13 @@ void PdSolver::advance(double dt) {
   std::atomic<bool> left{false};
   const std::uint8_t* vented = vented_.empty() ? nullptr : vented_.data();
   for_each(0, n, [&](Index p) {
-    if (vented && vented[p]) return;
+    if (vented && vented[own[p]]) return;
     Vec3 a = acc[p] - c * v[p];
     if (has_ext) a += (1.0 / mass[p]) * f1[p];
     v[p] += (0.5 * dt) * a;
     bool ok = all_finite(x[p]) && all_finite(v[p]);
     const bool inside = g.contains(x[p]);
-    if (ok && !inside && vented) {  // gas leaving the box is vented below, not a failure
+    if (ok && !inside && vented && gas_[p]) {  // gas leaving the box is vented below, not a failure (a solid is)
       left = true;
       return;
     }
@@ -732,6 +767,7 @@ void PdSolver::advance(double dt) {
     }, w);
     external_work_ += dt * comm_.sum(w[0]);
   }
+  if (gas_failure) std::rethrow_exception(gas_failure);
   if (left) vent_escaped_gas();
   // A non-finite position or velocity, or a point leaving the grid box, stops the run.
   if (const Index p = bad.load(); p < n) {
@@ -773,7 +809,11 @@ std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
   for (Index p = 0; p < points_.size(); ++p) dmax = std::max(dmax, damage[p]);
   dmax = comm_.max(dmax);
   const double broken = static_cast<double>(broken_bonds());
-  return {{"broken_bonds", broken},
+  std::int64_t gas_bonds = 0;  // each counted at both ends, at own points
+  if (has_gas_)
+    for (Index l : local_.own) gas_bonds += gas_bonds_.offset[l + 1] - gas_bonds_.offset[l];
+  gas_bonds = comm_.sum(gas_bonds);
+  std::vector<std::pair<std::string, double>> out{{"broken_bonds", broken},
           {"fragment_count", static_cast<double>(frags.size())},
           {"largest_fragment_mass", frags.empty() ? 0.0 : thickness_ * frags.front().mass},
           {"mean_fragment_mass", frags.empty() ? 0.0 : thickness_ * total / static_cast<double>(frags.size())},
@@ -782,21 +822,27 @@ std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
           // contact list rebuilds, and the storage per bond end.
           {"contact_list_builds", static_cast<double>(contact_.builds)},
           {"bytes_per_bond_end", kSolverBytesPerBond + (sp_.empty() ? 0.0 : sizeof(double))},
-          {"gas_bonds", static_cast<double>(gas_bonds_.bonds()) / 2.0},
-          {"vented_gas_points", static_cast<double>(vented_count_)},
-          {"gas_rate_limited_steps", static_cast<double>(gas_rate_limited_)},
-          // Several ranks: what rank 0 sends its neighbours per step (its own points' ghost copies), one
-          // message per neighbouring rank.
-          {"ranks", static_cast<double>(comm_.size())},
-          {"fewest_particles_on_a_rank", comm_.min(static_cast<double>(points_.size()))},
-          {"most_particles_on_a_rank", comm_.max(static_cast<double>(points_.size()))},
-          {"halo_bytes_per_step_rank0", static_cast<double>(halo_.bytes_per_update())},
-          {"halo_messages_per_step_rank0", static_cast<double>(halo_.peers().size())}};
+          {"gas_bonds", static_cast<double>(gas_bonds) / 2.0},
+          {"vented_gas_points", static_cast<double>(comm_.sum(static_cast<std::int64_t>(vented_count_)))},
+          {"gas_rate_limited_steps", static_cast<double>(comm_.sum(static_cast<std::int64_t>(gas_rate_limited_)))}};
+  if (comm_.distributed()) {
+    // Several ranks: how the points are shared, and what rank 0 sends its neighbours per step
+    // (its own points' ghost copies), one message per neighbouring rank.
+    const double n = static_cast<double>(points_.size());
+    const double fewest = comm_.min(n), most = comm_.max(n);  // collective: every rank reports
+    out.insert(out.end(), {{"ranks", static_cast<double>(comm_.size())},
+                           {"fewest_particles_on_a_rank", fewest},
+                           {"most_particles_on_a_rank", most},
+                           {"halo_bytes_per_step_rank0", static_cast<double>(halo_.bytes_per_update())},
+                           {"halo_messages_per_step_rank0", static_cast<double>(halo_.peers().size())}});
+  }
+  return out;
 }
 
 std::vector<pd::Fragment> PdSolver::fragments() const {
   if (!comm_.distributed()) return pd::find_fragments(bonds_, points_, fragment_threshold_, skip_gas());
-  return pd::find_fragments_gathered(comm_, bonds_, local_.own, local_.id.data(), points_, fragment_threshold_);
+  return pd::find_fragments_gathered(comm_, bonds_, local_.own, local_.id.data(), points_, fragment_threshold_,
+                                     gas_material_);
 }
 
 std::vector<std::vector<double>> PdSolver::fragment_rows(const std::vector<pd::Fragment>& frags) const {

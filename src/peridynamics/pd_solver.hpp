@@ -20,7 +20,8 @@
 // their reference positions; the bond pass runs over each rank's own points and ghost copies in
 // the local numbering of pd_halo.hpp. Arrays named per local point are indexed by that numbering,
 // the point fields (the store) by the own points' order; local_.own maps the one to the other (the
-// identity on one rank). Detonation products (the gas) run on one rank only so far.
+// identity on one rank). Detonation products (the gas) have their own ghosts: the gas family's
+// neighbours, their push G exchanged after the products' update (pd_gas.cpp).
 #include <functional>
 #include <limits>
 #include <memory>
@@ -149,9 +150,9 @@ class PdSolver final : public Solver {
   /// zeroed so that the energies do not count them), without pressure, so that their neighbours
   /// still near the box see them move away rather than pile up at the box face.
   void vent_escaped_gas();
-  /// 1 for every gas point (fragments are of the solids only); null without gas.
+  /// 1 for every gas point of the store (fragments are of the solids only); null without gas.
   const std::uint8_t* skip_gas() const { return has_gas_ ? gas_.data() : nullptr; }
-  /// 1 for every vented gas point (out of the contact list); null without gas.
+  /// 1 for every vented gas point, per local point (out of the contact list); null without gas.
   const std::uint8_t* skip_vented() const { return has_gas_ ? vented_.data() : nullptr; }
 
   Scenario scenario_;
@@ -223,15 +224,17 @@ class PdSolver final : public Solver {
   mutable std::vector<std::vector<double>> final_rows_;
   mutable double final_rows_time_ = -1.0;
   std::vector<std::uint8_t> gas_material_;  ///< per material: an explosive (a peridynamic gas)
-  std::vector<std::uint8_t> gas_;           ///< per point: 1 for gas points
+  std::vector<std::uint8_t> gas_;           ///< per own point (store order): 1 for gas points
+  std::vector<std::uint8_t> gas_local_;     ///< per local point: 1 for gas points
   bool has_gas_ = false;
   double m1_ = 0.0;                   ///< the family moment m1 of the bond constants (gas stable step)
   pd::BondFamily gas_bonds_;          ///< build_gas_family
+  // Per local point (own points' values; a ghost's G and vented flag come from its owner).
   std::vector<double> gas_volume_;    ///< V_i = sum_j beta dV_j of each gas point, m^3
   std::vector<double> gas_inv_len_;   ///< sum_j beta dV_j / |xi| of each gas point, 1/m^2
   std::vector<double> gas_x_;         ///< X of each gas point (1 elsewhere)
   std::vector<double> gas_g_;         ///< G_i of each gas point, Pa
-  std::vector<std::uint8_t> vented_;  ///< per point: gas vented (left the box); empty without gas
+  std::vector<std::uint8_t> vented_;  ///< gas vented (left the box); empty without gas
   std::vector<Vec3> vent_velocity_;   ///< m/s, the velocity each vented point left the box with
   Index vented_count_ = 0;
   Index gas_rate_limited_ = 0;        ///< point-steps whose X change was limited (gas_pass.hpp)

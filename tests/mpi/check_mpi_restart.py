@@ -75,6 +75,8 @@ def main():
     ap.add_argument("--term", type=int, default=0)
     ap.add_argument("--set", action="append", default=[])
     ap.add_argument("--tol", type=float, default=1e-11)
+    ap.add_argument("--checkpoint", type=int, default=-1,
+                    help="restart from this checkpoint (index into the sorted list; default: the middle one)")
     a = ap.parse_args()
     shutil.rmtree(a.workdir, ignore_errors=True)
     os.makedirs(a.workdir)
@@ -95,7 +97,7 @@ def main():
         cks = sorted(glob.glob(os.path.join(ref, "checkpoints", "checkpoint_*.h5")))
         if len(cks) < 3:
             sys.exit(f"{ref}: only {len(cks)} checkpoints; shorten output.checkpoint_interval")
-        keep = cks[len(cks) // 2]
+        keep = cks[len(cks) // 2 if a.checkpoint < 0 else min(a.checkpoint, len(cks) - 1)]
         out = os.path.join(a.workdir, f"restart_{w}_on_{r}")
         shutil.copytree(ref, out)
         for f in glob.glob(os.path.join(out, "checkpoints", "checkpoint_*.h5")):

@@ -8,7 +8,6 @@ import os, shutil, subprocess, sys
 
 CASES = [
     # (deck, extra arguments, text the error must contain)
-    ("exploding_cylinder_pd.yaml", [], "an explosive (a peridynamic gas) runs on one MPI rank only"),
     ("taylor_bar_otm.yaml", [], "solver 'otm' runs on one MPI rank only"),
     ("taylor_bar_mpm.yaml", ["--set", "mpm.anti_locking=fbar"], "fbar runs on one MPI rank only"),
 ]
