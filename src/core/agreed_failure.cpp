@@ -1,6 +1,7 @@
 #include "core/agreed_failure.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "core/error.hpp"
@@ -30,8 +31,15 @@ void rethrow_agreed(const Communicator& comm, std::exception_ptr local) {
     }
   }
   if (!comm.any(kind > 0)) return;
-  int root = comm.lowest_rank_with(kind == 2);
-  if (root >= comm.size()) root = comm.lowest_rank_with(kind == 1);
+  int root = comm.size();
+  if (comm.any(kind == 2)) {
+    // The lowest particle id among the ranks' failures: each rank reports the first failing point
+    // of its own order, so with points in id order (peridynamics) this is the serial run's choice.
+    const std::int64_t lowest = -comm.max(kind == 2 ? -id : std::numeric_limits<std::int64_t>::min());
+    root = comm.lowest_rank_with(kind == 2 && id == lowest);
+  } else {
+    root = comm.lowest_rank_with(kind == 1);
+  }
   message = comm.broadcast(message, root);
   comm.broadcast(&id, sizeof id, root);
   if (id >= 0) throw ParticleError(id, message);

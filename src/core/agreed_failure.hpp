@@ -1,7 +1,8 @@
 #pragma once
 // A failure seen by one rank stops every rank with the same diagnostic (issue 16): a solver step
-// catches what its rank threw, then all ranks agree here. The lowest rank with a particle's
-// failure (ParticleError: it names the particle) wins, else the lowest rank with any failure;
+// catches what its rank threw, then all ranks agree here. Of the ranks with a particle's failure
+// (ParticleError: it names the particle) the one naming the lowest particle id wins, else the
+// lowest rank with any failure;
 // its message (and particle id) is sent to every rank and thrown there. With one rank this
 // rethrows the local failure unchanged.
 #include <exception>

@@ -155,8 +155,8 @@ class Reader {
         root_.fail(f.section, "section '" + f.section + "' belongs to solver '" + f.name +
                                   "', but simulation.solver is '" + solver.name + "'");
     DeckNode n = root_.map(solver.section, false);
-    std::map<std::string, DeckMark> marks;
-    for (const ParamSpec& p : solver.params) read_param(n, p.name, p, sc_.solver_params, marks);
+    if (root_.has(solver.section)) sc_.solver_section_mark = root_.mark_of(solver.section);
+    for (const ParamSpec& p : solver.params) read_param(n, p.name, p, sc_.solver_params, sc_.solver_param_marks);
     n.finish();
   }
 

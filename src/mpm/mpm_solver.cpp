@@ -138,9 +138,9 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   }
   if (comm_.distributed() && anti_locking_ == AntiLocking::FBar)
     // The cell average would see only this rank's particles of a cell shared with another rank.
-    throw DeckError(sc.file, 0, 0, "mpm.anti_locking",
-                    "fbar runs on one MPI rank only so far (" + std::to_string(comm_.size()) +
-                        " ranks were started; docs/parallel.md)");
+    throw_solver_param_error(sc, "mpm", "anti_locking",
+                             "fbar runs on one MPI rank only so far (" + std::to_string(comm_.size()) +
+                                 " ranks were started; docs/parallel.md)");
   if (comm_.distributed()) {
     // Every rank seeded every body: keep a share, then the first partition moves each particle to
     // the rank owning its region.

@@ -25,7 +25,7 @@ constexpr double kTinyMass = 1e-300;
 constexpr const char* kNodeGroupField = "node_group";
 
 [[noreturn]] void section_error(const Scenario& sc, const std::string& key, const std::string& message) {
-  throw DeckError(sc.file, 0, 0, "otm." + key, message);
+  throw_solver_param_error(sc, "otm", key, message);  // at the key's line
 }
 
 }  // namespace

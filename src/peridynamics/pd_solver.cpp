@@ -26,9 +26,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// position and inverse length (the micro-plastic stretch adds 8 B when present).
 constexpr double kSolverBytesPerBond = pd::BondFamily::kBytesPerBond + sizeof(std::int32_t) + sizeof(double);
 
-/// A DeckError at a key of the peridynamics section (the solver checks what the specs cannot).
+/// A DeckError at a key of the peridynamics section (the solver checks what the specs cannot),
+/// at the key's line.
 [[noreturn]] void section_error(const Scenario& sc, const std::string& key, const std::string& message) {
-  throw DeckError(sc.file, 0, 0, "peridynamics." + key, message);
+  throw_solver_param_error(sc, "peridynamics", key, message);
 }
 
 }  // namespace

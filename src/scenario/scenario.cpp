@@ -1,5 +1,7 @@
 #include "scenario/scenario.hpp"
 
+#include "core/error.hpp"
+
 namespace ballista {
 
 double LoadCurve::at(double time) const {
@@ -16,6 +18,14 @@ int body_index(const Scenario& sc, const std::string& name) {
   for (size_t b = 0; b < sc.bodies.size(); ++b)
     if (sc.bodies[b].name == name) return static_cast<int>(b);
   return -1;
+}
+
+void throw_solver_param_error(const Scenario& sc, const std::string& section, const std::string& key,
+                              const std::string& message) {
+  const std::string path = key.empty() ? section : section + "." + key;
+  const auto it = sc.solver_param_marks.find(key);
+  const DeckMark& m = it != sc.solver_param_marks.end() ? it->second : sc.solver_section_mark;
+  throw DeckError(m.file.empty() ? sc.file : m.file, m.line, m.column, path, message);
 }
 
 }  // namespace ballista

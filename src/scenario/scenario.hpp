@@ -260,6 +260,9 @@ struct Scenario {
   /// The solver's own deck section (its name is the solver's registered section, e.g. `mpm`),
   /// read against the parameters the solver registered (points/solver_registry.hpp).
   ParamValues solver_params;
+  /// Where each solver parameter the deck gave is (key: the parameter's name), and the section.
+  std::map<std::string, DeckMark> solver_param_marks;
+  DeckMark solver_section_mark;
   GridSpec grid;
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;
@@ -276,5 +279,11 @@ struct Scenario {
 
 /// Index of the body named `name` in deck order, -1 if there is none (or name is empty).
 int body_index(const Scenario& sc, const std::string& name);
+
+/// A DeckError about the solver parameter `key` (a solver's own check, beyond the registered
+/// ranges): at the line of its value if the deck gave it, else at the solver's section, else at
+/// the file; key path <section>.<key> (`key` empty: the section itself).
+[[noreturn]] void throw_solver_param_error(const Scenario& sc, const std::string& section, const std::string& key,
+                                           const std::string& message);
 
 }  // namespace ballista

@@ -571,3 +571,26 @@ detonation: {points: [{position: [0, 1.0e-3], time: 0}]}
 
 }  // namespace
 }  // namespace ballista
+
+TEST(PdSolver, ParameterErrorsNameTheLineOfTheKey) {
+  // The solver's own checks of its section (here: horizon and m both given) point at the line of
+  // the offending key, as the deck reader's range checks do.
+  const std::string yaml = R"(simulation: {solver: peridynamics, dimension: plane_strain, end_time: 1.0e-6}
+peridynamics:
+  m: 3
+  horizon: 3.0e-3
+materials:
+  steel: {model: linear_elastic, density: 7850, youngs_modulus: 200e9, poisson_ratio: 0.25}
+grid: {lower: [-0.01, -0.01], upper: [0.01, 0.01], cell_size: 1.0e-3}
+bodies:
+  - {name: plate, material: steel, shape: {type: box, lower: [0, 0], upper: [5.0e-3, 5.0e-3]}}
+)";
+  try {
+    solver_for(yaml);
+    FAIL() << "expected a DeckError";
+  } catch (const DeckError& e) {
+    EXPECT_EQ(e.key_path(), "peridynamics.horizon");
+    EXPECT_EQ(e.line(), 4) << e.what();  // 1-based: the line of `horizon:`
+    EXPECT_NE(std::string(e.what()).find("not both"), std::string::npos) << e.what();
+  }
+}
