@@ -4,6 +4,7 @@
 #include <bit>
 #include <cstring>
 #include <limits>
+#include <unordered_map>
 
 #include "core/error.hpp"
 
@@ -80,6 +81,8 @@ void PdHalo::plan_bond_ghosts(const Communicator& comm, const LocalPoints& local
       bond_send_[r].push_back(local.own[static_cast<std::size_t>(it - own_ids.begin())]);
     }
   }
+  bond_sent_ = bond_send_;
+  for (auto& v : bond_sent_) std::sort(v.begin(), v.end());
 }
 
 void PdHalo::update(const Communicator& comm, LocalPoints& local, std::vector<double>& s0) const {
@@ -137,45 +140,57 @@ void PdHalo::gather_contact_ghosts(const Communicator& comm, LocalPoints& local,
   contact_recv_.assign(P, {});
   contact_source_.clear();
   contact_slot_.clear();
-  // Every rank's bounding box of its own points now, grown by the cutoff (a hair more, so that no
-  // pair at the cutoff is lost to round-off): a point of this rank within the cutoff of one of r's
-  // lies in r's box.
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  std::vector<double> boxes(6 * P, 0.0);
-  double* mine = boxes.data() + 6 * comm.rank();
-  for (int c = 0; c < 3; ++c) mine[c] = kInf, mine[3 + c] = -kInf;
+  // The cells (edge: the cutoff, a hair more, so that no pair at the cutoff is lost to round-off)
+  // that hold this rank's own points now: a point of another rank within the cutoff of one of
+  // them lies in one of the 3^dim cells around that point's cell. The ranks all-gather their
+  // occupied cells, so a rank offers another only its points next to that rank's cells (a bounding
+  // box per rank would offer every point between the fragments of a cloud that has spread out).
+  const double cell = cutoff * (1.0 + 1e-6);
+  constexpr std::int64_t kOff = std::int64_t{1} << 20;  // cell coordinates in [-2^20, 2^20): 21 bits each
+  auto coord = [&](double v) {
+    return std::clamp(static_cast<std::int64_t>(std::floor(v / cell)), -kOff + 1, kOff - 2);
+  };
+  auto key = [&](std::int64_t i, std::int64_t j, std::int64_t k) { return ((i + kOff) << 42) | ((j + kOff) << 21) | (k + kOff); };
+  const int reach_z = dim == 3 ? 1 : 0;  // 2D: the points lie in one plane
+  std::vector<std::int64_t> mine;
   for (Index l : local.own)
-    for (int c = 0; c < 3 && !(skip && skip[l]); ++c) {
-      mine[c] = std::min(mine[c], local.x[l][c]);
-      mine[3 + c] = std::max(mine[3 + c], local.x[l][c]);
-    }
-  const double grow = cutoff * (1.0 + 1e-6);
-  for (int c = 0; c < 3; ++c) mine[c] -= grow, mine[3 + c] += grow;
-  comm.sum(boxes.data(), static_cast<int>(boxes.size()));
-  // Offer each rank the own points in its box that are not its bond ghosts already.
-  std::vector<char> mark(static_cast<std::size_t>(local.size()), 0);
+    if (!(skip && skip[l])) mine.push_back(key(coord(local.x[l][0]), coord(local.x[l][1]), coord(local.x[l][2])));
+  std::sort(mine.begin(), mine.end());
+  mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+  std::vector<int> counts;
+  const std::vector<std::int64_t> all = comm.all_gather(mine, counts);
+  std::unordered_map<std::int64_t, std::vector<int>> holders;  // cell -> the other ranks with points in it
+  holders.reserve(all.size());
+  std::size_t at_cell = 0;
+  for (int r = 0; r < ranks_; ++r)
+    for (int j = 0; j < counts[r]; ++j, ++at_cell)
+      if (r != comm.rank()) holders[all[at_cell]].push_back(r);
+  // Offer each rank the own points next to its cells that are not its bond ghosts already.
   std::vector<std::vector<char>> offer(P);
   offered_.assign(P, {});
-  for (int r = 0; r < ranks_; ++r) {
-    if (r == comm.rank()) continue;
-    const double* b = boxes.data() + 6 * r;
-    for (Index l : bond_send_[r]) mark[l] = 1;
-    for (Index l : local.own) {
-      if (mark[l] || (skip && skip[l])) continue;
-      const Vec3& y = local.x[l];
-      bool inside = true;
-      for (int c = 0; c < dim; ++c) inside = inside && y[c] >= b[c] && y[c] <= b[3 + c];
-      if (!inside) continue;
-      offered_[r].push_back(l);
-      auto& o = offer[r];
-      append(o, local.id[l]);
-      append(o, local.body[l]);
-      append(o, local.material[l]);
-      append(o, local.x0[l]);
-      append(o, local.x[l]);
-      append(o, local.vol0[l]);
-    }
-    for (Index l : bond_send_[r]) mark[l] = 0;
+  std::vector<Index> seen(P, -1);  // the point last offered to each rank
+  for (Index l : local.own) {
+    if (skip && skip[l]) continue;
+    const std::int64_t i0 = coord(local.x[l][0]), j0 = coord(local.x[l][1]), k0 = coord(local.x[l][2]);
+    for (std::int64_t i = i0 - 1; i <= i0 + 1; ++i)
+      for (std::int64_t j = j0 - 1; j <= j0 + 1; ++j)
+        for (std::int64_t k = k0 - reach_z; k <= k0 + reach_z; ++k) {
+          const auto it = holders.find(key(i, j, k));
+          if (it == holders.end()) continue;
+          for (int r : it->second) {
+            if (seen[r] == l) continue;
+            seen[r] = l;
+            if (std::binary_search(bond_sent_[r].begin(), bond_sent_[r].end(), l)) continue;  // a bond ghost there
+            offered_[r].push_back(l);
+            auto& o = offer[r];
+            append(o, local.id[l]);
+            append(o, local.body[l]);
+            append(o, local.material[l]);
+            append(o, local.x0[l]);
+            append(o, local.x[l]);
+            append(o, local.vol0[l]);
+          }
+        }
   }
   const std::vector<std::vector<char>> got = comm.all_to_all(offer);
   for (int r = 0; r < ranks_; ++r) {

@@ -6,7 +6,7 @@
 // A rank holds its own points (the PointSet's store) and ghost copies of others':
 //  - bond ghosts: every point bonded to an own point (fixed for the run);
 //  - contact ghosts: every other point within the contact cutoff of an own point when the contact
-//    list was last built (found anew at each build from the ranks' bounding boxes).
+//    list was last built (found anew at each build from the cells the ranks' points occupy).
 // Local numbering: own points and bond ghosts interleaved in increasing id, then the contact
 // ghosts. Every own point then has its serial bond row, in the serial order, so the forces,
 // breaks and sums of a bond pass over blocks of ids are those of the serial run, bit for bit.
@@ -51,9 +51,10 @@ class PdHalo {
                           std::vector<double>& values) const;
 
   /// Collective, at a contact list build: drops the contact ghosts and appends every other rank's
-  /// points within `cutoff` of this rank's own points' bounding box at the current positions (in
-  /// the x-y plane when dim is 2) that are not bond ghosts here already; own points with
-  /// skip[l] != 0 (vented gas) are offered to none.
+  /// points in the cells (of edge `cutoff`) around this rank's own points at the current positions
+  /// (in the x-y plane when dim is 2) that are not bond ghosts here already: every point within
+  /// the cutoff of an own point, and few more. Own points with skip[l] != 0 (vented gas) take no
+  /// part.
   void gather_contact_ghosts(const Communicator& comm, LocalPoints& local, double cutoff, int dim,
                              const std::uint8_t* skip = nullptr);
   /// Collective: keeps the contact ghosts with needed[l] != 0 (l from bond_local on; the others are
@@ -70,6 +71,7 @@ class PdHalo {
   // Per rank r: local indices of own points whose values r needs (send) and of ghosts r owns
   // (receive), bond ghosts first, each in the order the receiver asked for them.
   std::vector<std::vector<Index>> bond_send_, bond_recv_, contact_send_, contact_recv_;
+  std::vector<std::vector<Index>> bond_sent_;  ///< bond_send_ sorted (is a point a bond ghost there?)
   // At a contact ghost gather: what this rank offered each rank (local indices), and for each
   // received contact ghost its source rank and place in that rank's offer.
   std::vector<std::vector<Index>> offered_;
