@@ -192,6 +192,7 @@ void PdHalo::gather_contact_ghosts(const Communicator& comm, LocalPoints& local,
           }
         }
   }
+  for (const auto& o : offer) offered_bytes_ += static_cast<std::int64_t>(o.size());
   const std::vector<std::vector<char>> got = comm.all_to_all(offer);
   for (int r = 0; r < ranks_; ++r) {
     std::size_t at = 0;

@@ -65,6 +65,9 @@ class PdHalo {
   /// Ranks this rank exchanges ghosts with, and the bytes it sends per update (summary, docs).
   std::vector<int> peers() const;
   std::int64_t bytes_per_update() const;
+  /// Bytes this rank offered other ranks at contact list builds so far (the candidates sent
+  /// before each receiver keeps the ones in range).
+  std::int64_t offered_bytes() const { return offered_bytes_; }
 
  private:
   int ranks_ = 1;
@@ -76,6 +79,7 @@ class PdHalo {
   // received contact ghost its source rank and place in that rank's offer.
   std::vector<std::vector<Index>> offered_;
   std::vector<int> contact_source_;
+  std::int64_t offered_bytes_ = 0;
   std::vector<Index> contact_slot_;
 };
 

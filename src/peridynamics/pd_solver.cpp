@@ -835,7 +835,9 @@ std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
                            {"fewest_particles_on_a_rank", fewest},
                            {"most_particles_on_a_rank", most},
                            {"halo_bytes_per_step_rank0", static_cast<double>(halo_.bytes_per_update())},
-                           {"halo_messages_per_step_rank0", static_cast<double>(halo_.peers().size())}});
+                           {"halo_messages_per_step_rank0", static_cast<double>(halo_.peers().size())},
+                           {"contact_ghost_offer_bytes_per_build_rank0",
+                            static_cast<double>(halo_.offered_bytes()) / std::max<double>(1.0, contact_.builds)}});
   }
   return out;
 }
