@@ -54,10 +54,12 @@ void PdSolver::save_state(StateArchive& a) const {
     vented = gathered(std::move(flag));
     vent_velocity = gathered(std::move(vel));
   }
-  // Counters: each rank's (a restart on as many ranks takes its own back) and the totals.
-  const std::vector<double> counts{static_cast<double>(vented_count_), static_cast<double>(gas_rate_limited_)};
+  // Counters: each rank's (a restart on as many ranks takes its own back) and the totals (the
+  // contact ghosts' offered bytes are per rank only: they depend on the decomposition).
+  const std::vector<double> counts{static_cast<double>(vented_count_), static_cast<double>(gas_rate_limited_),
+                                   static_cast<double>(halo_.offered_bytes())};
   const std::vector<double> counts_by_rank = gathered(counts);
-  std::vector<double> totals = counts;
+  std::vector<double> totals(counts.begin(), counts.begin() + 2);
   comm_.sum(totals.data(), static_cast<int>(totals.size()));
   if (comm_.rank() != 0) return;
   a.put_real("pd.time", time_);
@@ -169,11 +171,12 @@ void PdSolver::load_state(const StateArchive& a) {
   damping_ = sc[1];
   next_fragment_time_ = sc[2];
   const auto& by_rank = a.ints("pd.counters_by_rank");
-  const bool same_ranks = by_rank.size() == static_cast<std::size_t>(2 * comm_.size());
+  const bool same_ranks = by_rank.size() == static_cast<std::size_t>(3 * comm_.size());
   const auto& cn = a.ints("pd.counters", 2);
-  const std::size_t at = 2 * static_cast<std::size_t>(comm_.rank());
+  const std::size_t at = 3 * static_cast<std::size_t>(comm_.rank());
   vented_count_ = same_ranks ? static_cast<Index>(by_rank[at]) : comm_.rank() == 0 ? static_cast<Index>(cn[0]) : 0;
   gas_rate_limited_ = same_ranks ? static_cast<Index>(by_rank[at + 1]) : comm_.rank() == 0 ? static_cast<Index>(cn[1]) : 0;
+  halo_.set_offered_bytes(same_ranks ? by_rank[at + 2] : 0);
   const auto width = static_cast<std::size_t>(a.integer("pd.fragment_row_width"));
   const auto& rows = a.reals("pd.fragment_rows");
   fragment_rows_.clear();

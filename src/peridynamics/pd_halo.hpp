@@ -68,6 +68,7 @@ class PdHalo {
   /// Bytes this rank offered other ranks at contact list builds so far (the candidates sent
   /// before each receiver keeps the ones in range).
   std::int64_t offered_bytes() const { return offered_bytes_; }
+  void set_offered_bytes(std::int64_t b) { offered_bytes_ = b; }  ///< restart
 
  private:
   int ranks_ = 1;
