@@ -26,23 +26,16 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 BOND_ENDS_PER_POINT=113.8  # the cube's mean family size (docs/performance.md, peridynamics throughput)
 
-run_case() {  # ranks threads steps dir
-  local ranks=$1 threads=$2 steps=$3 dir=$4
-  if [ "$ranks" = 1 ]; then
-    "$exe" run "$deck" -o "$dir" -q --no-plots --threads "$threads" --set simulation.max_steps="$steps" >/dev/null 2>&1
-  else
-    mpirun --oversubscribe --allow-run-as-root -np "$ranks" "$exe" run "$deck" -o "$dir" -q --no-plots \
-      --threads "$threads" --set simulation.max_steps="$steps" >/dev/null 2>&1
-  fi
-}
+# shellcheck source=bench/mpi_run_case.sh
+source "$(dirname "$0")/mpi_run_case.sh"
 
 echo "peridynamic cube, 125,000 points, marginal throughput over steps $STEPS_SHORT..$STEPS_LONG"
 printf "%-16s %14s %16s %14s %16s %14s\n" "ranks x threads" "M p-steps/s" "M bonds/s" "s per step" "halo B/step r0" \
   "msgs/step r0"
 for c in $CASES; do
   ranks=${c%x*}; threads=${c#*x}
-  run_case "$ranks" "$threads" "$STEPS_SHORT" "$out/short_$c"
-  run_case "$ranks" "$threads" "$STEPS_LONG" "$out/long_$c"
+  run_case "$exe" "$deck" "$ranks" "$threads" "$STEPS_SHORT" "$out/short_$c"
+  run_case "$exe" "$deck" "$ranks" "$threads" "$STEPS_LONG" "$out/long_$c"
   $PY - "$out/short_$c/summary.json" "$out/long_$c/summary.json" "$c" "$BOND_ENDS_PER_POINT" <<'PYEOF'
 import json, sys
 a, b = (json.load(open(f)) for f in sys.argv[1:3])

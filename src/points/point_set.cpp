@@ -409,11 +409,10 @@ bool PointSet::load_state(const StateArchive& a) {
   const auto& st = a.ints("pending.stage", np);
   pending_stage_.assign(st.begin(), st.end());
   stage_start_ = a.reals("points.stage_start", stage_start_.size());
-  std::vector<double> r = a.reals("points.removed", 7);
-  bool own = false;
+  const bool own = written_on_as_many_ranks(a);
   if (comm_.distributed()) {
     const int P = comm_.size(), me = comm_.rank();
-    if (a.has("points.rank_counts") && a.ints("points.rank_counts").size() == static_cast<std::size_t>(2 * P)) {
+    if (own) {
       // Written on as many ranks: this rank's segment of the active and of the pending points.
       const auto& counts = a.ints("points.rank_counts", static_cast<std::size_t>(2 * P));
       Index first = 0, first_pending = 0;
@@ -422,13 +421,26 @@ bool PointSet::load_state(const StateArchive& a) {
         first_pending += counts[2 * q + 1];
       }
       keep_ranges(first, first + counts[2 * me], first_pending, first_pending + counts[2 * me + 1]);
-      const auto& by_rank = a.reals("points.removed_by_rank", static_cast<std::size_t>(7 * P));
-      r.assign(by_rank.begin() + 7 * me, by_rank.begin() + 7 * (me + 1));
-      own = true;
     } else {
       keep_share(comm_);
-      if (me != 0) r.assign(7, 0.0);  // the totals once, on rank 0
     }
+  }
+  restore_removed(a, own);
+  return own;
+}
+
+bool PointSet::written_on_as_many_ranks(const StateArchive& a) const {
+  return comm_.distributed() && a.has("points.rank_counts") &&
+         a.ints("points.rank_counts").size() == static_cast<std::size_t>(2 * comm_.size());
+}
+
+void PointSet::restore_removed(const StateArchive& a, bool own) {
+  std::vector<double> r = a.reals("points.removed", 7);
+  if (own) {  // this rank's own bookkeeping
+    const auto& by_rank = a.reals("points.removed_by_rank", static_cast<std::size_t>(7 * comm_.size()));
+    r.assign(by_rank.begin() + 7 * comm_.rank(), by_rank.begin() + 7 * (comm_.rank() + 1));
+  } else if (comm_.rank() != 0) {
+    r.assign(7, 0.0);  // the totals once, on rank 0
   }
   removed_mass_ = r[0];
   removed_energy_ = r[1];
@@ -436,7 +448,6 @@ bool PointSet::load_state(const StateArchive& a) {
   removed_momentum_ = Vec3{{r[3], r[4], r[5]}};
   inserted_energy_ = r[6];
   groups_dirty_ = true;
-  return own;
 }
 
 bool PointSet::load_state(const StateArchive& a, const std::vector<std::int64_t>& ids) {
@@ -460,21 +471,8 @@ bool PointSet::load_state(const StateArchive& a, const std::vector<std::int64_t>
                 " of this rank's points");
   pending_activation_.clear();
   pending_stage_.clear();
-  const int P = comm_.size(), me = comm_.rank();
-  std::vector<double> r = a.reals("points.removed", 7);
-  const bool same = a.has("points.rank_counts") && a.ints("points.rank_counts").size() == static_cast<std::size_t>(2 * P);
-  if (same) {
-    const auto& by_rank = a.reals("points.removed_by_rank", static_cast<std::size_t>(7 * P));
-    r.assign(by_rank.begin() + 7 * me, by_rank.begin() + 7 * (me + 1));
-  } else if (me != 0) {
-    r.assign(7, 0.0);  // the totals once, on rank 0
-  }
-  removed_mass_ = r[0];
-  removed_energy_ = r[1];
-  removed_chemical_ = r[2];
-  removed_momentum_ = Vec3{{r[3], r[4], r[5]}};
-  inserted_energy_ = r[6];
-  groups_dirty_ = true;
+  const bool same = written_on_as_many_ranks(a);
+  restore_removed(a, same);
   return same;
 }
 

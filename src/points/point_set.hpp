@@ -111,6 +111,11 @@ class PointSet {
  private:
   /// Keeps active points [first, last) and pending points [first_pending, last_pending).
   void keep_ranges(Index first, Index last, Index first_pending, Index last_pending);
+  /// Several ranks: the checkpoint was written on this many ranks (each rank's share is in it).
+  bool written_on_as_many_ranks(const StateArchive& archive) const;
+  /// The removal and insertion bookkeeping from a checkpoint: this rank's own (`own`), else the
+  /// totals on rank 0 and zeros elsewhere (counted once).
+  void restore_removed(const StateArchive& archive, bool own);
 
   Scenario scenario_;
   std::vector<std::unique_ptr<Material>> materials_;
