@@ -30,23 +30,30 @@ void axial_radial(const ShapeSpec& s, const Vec3& x, int dim, double& axial, dou
 }  // namespace
 
 bool shape_contains(const ShapeSpec& s, const Vec3& x, int dim) {
+  // Closed shapes with a tolerance of 1e-12 of their size: a lattice point that lies on a face in
+  // exact arithmetic is inside whatever the round-off of its coordinates (an optimised and a
+  // sanitizer build computed such points on either side of the face).
+  constexpr double kTol = 1e-12;
   const int nd = dim == 3 ? 3 : 2;
   if (s.type == "box") {
-    for (int k = 0; k < nd; ++k)
-      if (x[k] < s.lower[k] || x[k] > s.upper[k]) return false;
+    for (int k = 0; k < nd; ++k) {
+      const double tol = kTol * (s.upper[k] - s.lower[k]);
+      if (x[k] < s.lower[k] - tol || x[k] > s.upper[k] + tol) return false;
+    }
     return true;
   }
   if (s.type == "sphere") {
     double r2 = 0.0;
     for (int k = 0; k < nd; ++k) r2 += (x[k] - s.center[k]) * (x[k] - s.center[k]);
-    return r2 <= s.radius * s.radius;
+    return r2 <= s.radius * s.radius * (1.0 + 2.0 * kTol);
   }
   if (s.type == "cylinder" || s.type == "tube") {
     double axial, radial;
     axial_radial(s, x, dim, axial, radial);
-    const bool in_length = (dim == 2 && s.axis == 2) || (axial >= 0.0 && axial <= s.length);
+    const double tl = kTol * s.length, tr = kTol * s.radius;
+    const bool in_length = (dim == 2 && s.axis == 2) || (axial >= -tl && axial <= s.length + tl);
     const double rin = s.type == "tube" ? s.inner_radius : -1.0;
-    return in_length && radial <= s.radius && radial >= rin;
+    return in_length && radial <= s.radius + tr && radial >= rin - tr;
   }
   throw Error("unknown shape type '" + s.type + "'");
 }

@@ -220,3 +220,25 @@ TEST(Shape, UnknownTypeIsAnError) {
   s.type = "cone";
   EXPECT_THROW(shape_contains(s, Vec3{}, 3), Error);
 }
+
+TEST(Shape, LatticePointsOnAFaceAreInsideWhateverTheirRoundOff) {
+  // The lattice of the Kalthoff-Winkler deck at 2 mm: y_k = -0.104 + (k + 1/2) 0.002 puts points
+  // exactly on the faces y = -0.025 (k = 39) and y = 0.025 (k = 64) in exact arithmetic; their
+  // computed coordinates miss the faces by round-off, one on each side. Both rows must be inside
+  // (a symmetric body stays symmetric), and so must the rows on a sphere's and a cylinder's surface.
+  ShapeSpec box;
+  box.type = "box";
+  box.lower = Vec3{{-1.0, -0.025, -1.0}};
+  box.upper = Vec3{{1.0, 0.025, 1.0}};
+  int inside = 0;
+  for (int k = 0; k < 104; ++k) inside += shape_contains(box, Vec3{{0.0, -0.104 + (k + 0.5) * 0.002, 0.0}}, 3);
+  EXPECT_EQ(inside, 26);  // k = 39 ... 64
+  // A point a thousandth of a spacing outside is still outside (the tolerance is 1e-12 of the size).
+  EXPECT_FALSE(shape_contains(box, Vec3{{0.0, 0.025 + 2e-6, 0.0}}, 3));
+  ShapeSpec sphere;
+  sphere.type = "sphere";
+  sphere.center = Vec3{{0.1, 0.0, 0.0}};
+  sphere.radius = 0.3;
+  EXPECT_TRUE(shape_contains(sphere, Vec3{{0.4, 0.0, 0.0}}, 3));  // (0.4 - 0.1)^2 > 0.3^2 in binary
+  EXPECT_FALSE(shape_contains(sphere, Vec3{{0.4 + 1e-6, 0.0, 0.0}}, 3));
+}
