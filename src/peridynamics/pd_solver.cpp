@@ -200,7 +200,6 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   build_local_points(correct);
   const Index n = points_.size();  // own points
   const Index nl = local_.size(), nb = local_.bond_local;
-  const auto& own = local_.own;
   gas_.assign(static_cast<size_t>(n), 0);
   {
     const auto* mt = points_.ints("material");
@@ -346,7 +345,6 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
       throw DeckError(crack.mark.file, crack.mark.line, crack.mark.column, crack.mark.key_path,
                       "this crack cuts no bond: check that the segment crosses the body (x-y plane)");
   }
-  (void)own;
   sync_local();
   x_prev_ = local_.x;
   if (contact_on_) rebuild_contacts();
