@@ -37,4 +37,48 @@ double illinois_root(F&& f, double a, double fa, double b, double fb, double xto
   return x;
 }
 
+/// Root of f by the secant method through the two latest points, kept in the bracket [a, b]
+/// (fa, fb of opposite signs, or one zero): the bracket is kept exactly as illinois_root keeps it
+/// (the retained end's value halved when the same end is kept twice), and each step takes the
+/// secant point if it lies inside the bracket and the last step at least halved |f|, the Illinois
+/// point otherwise. The secant's order (1.618) beats Illinois' (~1.44) near a smooth root, and the
+/// bracket keeps the guarantee. Stops as illinois_root, and also after a step shorter than xtol
+/// (secant steps approach the root from one side, so the bracket need not shrink); same return
+/// value.
+template <class F>
+double bracketed_secant_root(F&& f, double a, double fa, double b, double fb, double xtol, double ftol,
+                             int max_it = 100) {
+  double x = b, fx = fb, x_prev = a, f_prev = fa;
+  int side = 0;
+  bool moved = true;
+  for (int it = 0; it < max_it && moved && std::abs(fx) > ftol && std::abs(b - a) > xtol; ++it) {
+    const bool progress = std::abs(fx) <= 0.5 * std::abs(f_prev);
+    double next = (progress && std::isfinite(fx) && std::isfinite(f_prev) && fx != f_prev)
+                      ? x - fx * (x - x_prev) / (fx - f_prev)
+                      : NAN;
+    if (!(std::min(a, b) < next && next < std::max(a, b))) {
+      const bool finite = std::isfinite(fa) && std::isfinite(fb) && fb != fa;
+      next = finite ? (a * fb - b * fa) / (fb - fa) : 0.5 * (a + b);
+      if (!(std::min(a, b) < next && next < std::max(a, b))) next = 0.5 * (a + b);
+    }
+    moved = std::abs(next - x) > xtol;
+    x_prev = x;
+    f_prev = fx;
+    x = next;
+    fx = f(x);
+    if ((fx > 0.0) == (fa > 0.0)) {
+      a = x;
+      fa = fx;
+      if (side == -1) fb *= 0.5;
+      side = -1;
+    } else {
+      b = x;
+      fb = fx;
+      if (side == 1) fa *= 0.5;
+      side = 1;
+    }
+  }
+  return x;
+}
+
 }  // namespace ballista
