@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "core/illinois.hpp"
+#include "materials/geomodel_coupled_return.hpp"
 #include "materials/geomodel_return.hpp"
 #include "materials/geomodel_surface.hpp"
 #include "materials/material_adapter.hpp"
@@ -249,17 +250,21 @@ struct Geomodel {
   // ---- Constitutive pieces ----
   /// Pore pressure at plastic volumetric strain evp (0 when drained).
   /// `guess` >= 0: a nearby value to start the Newton solve from (e.g. the state's last value).
-  static double pore_pressure(const Params& p, double evp, double guess = -1.0) {
+  /// `dpf_devp`, if given, receives the derivative dpf/devp (0 drained or cavitated).
+  static double pore_pressure(const Params& p, double evp, double guess = -1.0, double* dpf_devp = nullptr) {
+    if (dpf_devp) *dpf_devp = 0.0;
     if (!p.fluid() || evp >= p.ev_cavitation) return 0.0;  // drained, or cavitated
-    return geo_pore_pressure(evp, p.crush.initial_porosity(), p.pf0, p.Kf, p.Km, std::max(guess, 0.0));
+    return geo_pore_pressure(evp, p.crush.initial_porosity(), p.pf0, p.Kf, p.Km, std::max(guess, 0.0), dpf_devp);
   }
   /// The yield surface (in effective I1) at plastic volumetric strain evp.
-  static GeoSurface surface(const Params& p, double evp) {
+  /// `kappa_guess`: a nearby branch point to start its Newton solve from (same answer).
+  static GeoSurface surface(const Params& p, double evp,
+                            double kappa_guess = std::numeric_limits<double>::quiet_NaN()) {
     GeoSurface s;
     s.limit = p.limit;
     if (p.crush.active()) {
       s.X = p.crush.cap(evp);
-      s.kappa = geo_cap_kappa(p.limit, p.cap_ratio, s.X);
+      s.kappa = geo_cap_kappa(p.limit, p.cap_ratio, s.X, kappa_guess);
     }
     return s;
   }
@@ -315,34 +320,39 @@ struct Geomodel {
     Mat3 dep;            ///< plastic strain increment
     double work = 0.0;   ///< effective stress : plastic strain increment, J/m^3
     double d_eqps = 0.0;
+    double pf = -1.0;    ///< pore pressure at the updated evp (plastic substeps; a guess for later solves)
   };
 
   /// Plastic volumetric strain increment of the non-hardening return from trial (I1_t, s_t) onto
   /// the surface at evp; fills the returned point.
   /// `pf_out` comes in as a guess from an earlier solve (e.g. of the same trial), which speeds up
-  /// the pore-pressure Newton solve.
+  /// the pore-pressure Newton solve; `hint` carries the warm starts of the previous return of the
+  /// same trial (geomodel_return.hpp) and is updated.
   static double return_at(const Params& p, double evp, double c, double K, double I1_t, double rj2_t, GeoPoint& out,
-                          double& pf_out) {
+                          double& pf_out, GeoReturnHint& hint) {
     pf_out = pore_pressure(p, evp, pf_out);  // in: a guess (the caller's latest value)
     const double i1e_t = I1_t + 3.0 * pf_out;
-    const GeoSurface s = surface(p, evp);
+    const GeoSurface s = surface(p, evp, hint.kappa);
+    hint.kappa = s.kappa;
     if (!(s.f(i1e_t, rj2_t) > 0.0)) {
       out = {i1e_t, rj2_t};
       return 0.0;
     }
-    out = geo_closest_point(s, c, i1e_t, rj2_t);
+    out = geo_closest_point(s, c, i1e_t, rj2_t, nullptr, &hint);
     const double I1_new = out.i1 - 3.0 * pf_out;
     return (I1_t - I1_new) / (3.0 * K);
   }
 
   /// One substep of inviscid elastic-plastic update from sigma (total stress) with strain increment
   /// deps. Returns false for an elastic substep.
-  /// `pf_n`: the pore pressure at the start of the substep (computed if negative). The moduli are
+  /// `pf_n`, `X_n`: the pore pressure and the cap position at the start of the substep (computed if
+  /// negative, NaN: the caller of a single substep knows them). The moduli are
   /// taken at the midpoint of the elastic trial (explicit midpoint rule: second order in the
   /// step for the pressure-dependent bulk modulus, against first order at the start point).
   static bool substep(const Params& p, Mat3& sigma, double& evp, const Mat3& deps, Substep& out,
-                      double pf_n = -1.0) {
+                      double pf_n = -1.0, double X_n = std::numeric_limits<double>::quiet_NaN()) {
     if (pf_n < 0.0) pf_n = pore_pressure(p, evp);
+    if (std::isnan(X_n)) X_n = cap_at(p, evp);
     const double tr_e = trace(deps);
     double K, G;
     const double i1e_n = trace(sigma) + 3.0 * pf_n;
@@ -363,20 +373,24 @@ struct Geomodel {
       rj2_t = 0.0;
       s_t = Mat3{};
     }
-    if (!(yield_value(p, cap_at(p, evp), I1_t + 3.0 * pf_n, rj2_t) > 0.0) && !std::isnan(I1_t)) {
+    if (!(yield_value(p, X_n, I1_t + 3.0 * pf_n, rj2_t) > 0.0) && !std::isnan(I1_t)) {
       sigma = sig_t;
       return false;
     }
     const double c = std::sqrt(1.5 * K * p.beta / G);
     GeoPoint pt;
     double pf = pf_n;  // guess for the pore-pressure solves
-    const double d0 = return_at(p, evp, c, K, I1_t, rj2_t, pt, pf);
-    // With hardening the surface moves with evp: solve for the consistent increment, and return
-    // onto the surface of the final state, so that the stress always lies on the surface of its
-    // own internal state (pt, pf are those of that return).
-    const double d = (p.hardening() && d0 != 0.0 && !on_unmoved_limit_surface(p, evp, evp + d0, pt))
-                         ? consistent_increment(p, evp, c, K, I1_t, rj2_t, d0, pt, pf)
-                         : d0;
+    double d;
+    if (!piece_return(p, evp, pf_n, c, K, I1_t, rj2_t, pt, pf, d)) {
+      GeoReturnHint hint;
+      const double d0 = return_at(p, evp, c, K, I1_t, rj2_t, pt, pf, hint);
+      // With hardening the surface moves with evp: solve for the consistent increment, and return
+      // onto the surface of the final state, so that the stress always lies on the surface of its
+      // own internal state (pt, pf are those of that return).
+      d = (p.hardening() && d0 != 0.0 && !on_unmoved_limit_surface(p, evp, evp + d0, pt))
+              ? hardening_increment(p, evp, c, K, I1_t, rj2_t, d0, pt, pf, hint)
+              : d0;
+    }
     const double scale = rj2_t > 0.0 ? pt.rootj2 / rj2_t : 0.0;
     const double mean = (pt.i1 - 3.0 * pf) / 3.0;
     Mat3 sig = scale * s_t;
@@ -397,6 +411,7 @@ struct Geomodel {
     sig_eff(1, 1) += pf;
     sig_eff(2, 2) += pf;
     out.work = ddot(sig_eff, out.dep);
+    out.pf = pf;
     sigma = sig;
     // The state's evp is the one whose surface holds the stress; it equals evp + dv to the
     // tolerance of the consistency iteration.
@@ -409,13 +424,118 @@ struct Geomodel {
   /// surface does not depend on evp, so the point is also the closest point of the updated surface
   /// (the elastic region is convex and the surface around the point is unchanged: a local closest
   /// point of a convex set is the global one) and the non-hardening increment is consistent.
+  /// I1' > kappa exactly when I1' - X > CR Ff(I1') (k - X - CR Ff(k) increases with k and is zero
+  /// at kappa), which needs no solve for kappa.
   static bool on_unmoved_limit_surface(const Params& p, double evp_old, double evp_new, const GeoPoint& pt) {
     if (p.fluid()) return false;  // the pore pressure moves the whole surface
-    auto kappa = [&](double evp) {
-      const double X = cap_at(p, evp);
-      return std::isfinite(X) ? geo_cap_kappa(p.limit, p.cap_ratio, X) : X;
-    };
-    return pt.i1 > kappa(evp_old) && pt.i1 > kappa(evp_new);
+    const double cr_ff = p.cap_ratio * p.limit.value(pt.i1);
+    return pt.i1 - cap_at(p, evp_old) > cr_ff && pt.i1 - cap_at(p, evp_new) > cr_ff;
+  }
+
+  /// The coupled-return problem (geomodel_coupled_return.hpp) of a trial at evp.
+  static auto coupled_problem(const Params& p, double evp, double c, double K, double I1_t, double rj2_t,
+                              double pf_guess) {
+    auto pore = [&p](double e, double guess, double& dpf) { return pore_pressure(p, e, guess, &dpf); };
+    return GeoCoupledProblem<decltype(pore)>{p.limit, p.cap_ratio, p.crush, pore, evp, c, K, I1_t, rj2_t, pf_guess};
+  }
+
+  /// The hardening return solved piece by piece, without the general path's full returns (false,
+  /// nothing done, where it does not apply or is not certified). With the pore pressure pf_n of
+  /// evp and the effective trial I1' = I1_t + 3 pf_n:
+  ///  - a trial outside the cap region (I1' - X >= CR Ff(I1'), i.e. I1' >= kappa, no kappa solve
+  ///    needed) is projected onto the limit surface alone. If the point lies outside the cap
+  ///    region it is the return: drained, if the cap before and after the increment leaves it
+  ///    there (on_unmoved_limit_surface); with a pore fluid, whose pressure moves the trial, after
+  ///    Newton on the point and the increment together (geo_limit_coupled_return);
+  ///  - a trial under the cap, or whose limit-surface projection lies under it, returns onto the
+  ///    cap (the projection lies at an I1 below the trial's, geomodel_projection.hpp): Newton on
+  ///    the cap angle and the increment together (geo_cap_coupled_return), from the angle of the
+  ///    trial (or of that projection) in the unit-scaled ellipse.
+  static bool piece_return(const Params& p, double evp, double pf_n, double c, double K, double I1_t, double rj2_t,
+                           GeoPoint& pt, double& pf, double& d) {
+    if (!p.hardening() || !p.crush.active() || !(rj2_t > 0.0)) return false;
+    const double X = p.crush.cap(evp);
+    if (!std::isfinite(X)) return false;
+    const auto P = coupled_problem(p, evp, c, K, I1_t, rj2_t, pf_n);
+    auto tol = [&](double di) { return increment_tol(di, evp); };
+    GeoCoupledResult r;
+    const double i1e_t = I1_t + 3.0 * pf_n;
+    double i1_start = i1e_t;
+    if (i1e_t - X >= p.cap_ratio * p.limit.value(i1e_t)) {
+      GeoPoint q;
+      const double scale = std::abs(i1e_t) + c * rj2_t + (std::isfinite(p.limit.peak_i1) ? std::abs(p.limit.peak_i1) : 0.0);
+      if (!geo_project_on_limit(p.limit, c, i1e_t, rj2_t, 1e-14 * scale, q)) return false;
+      if (q.i1 - X >= p.cap_ratio * q.rootj2) {  // outside the cap region (rootj2 = Ff there)
+        if (!p.fluid()) {
+          const double d0 = (I1_t - q.i1) / (3.0 * K);
+          if (!on_unmoved_limit_surface(p, evp, evp + d0, q)) return false;
+          pt = q;
+          pf = 0.0;
+          d = d0;
+          return true;
+        }
+        if (!geo_limit_coupled_return(P, q.i1 / std::sqrt(3.0), 1e-14 * scale, tol, r)) return false;
+        pt = r.q;
+        pf = r.pf;
+        d = r.d;
+        return true;
+      }
+      i1_start = q.i1;
+    }
+    const double kappa = geo_cap_kappa(p.limit, p.cap_ratio, X);
+    const double theta0 = std::atan2(rj2_t / p.limit.value(kappa), (kappa - i1_start) / (kappa - X));
+    if (!geo_cap_coupled_return(P, theta0, kappa, tol, r)) return false;
+    pt = r.q;
+    pf = r.pf;
+    d = r.d;
+    return true;
+  }
+
+  /// Tolerance on the plastic volumetric strain increment: 1e-10 of it, but not below
+  /// 1e-14 (1 + |evp|), the noise floor of the return (closest point to ~1e-13 of the stress,
+  /// divided by K).
+  static double increment_tol(double d0, double evp) {
+    return std::max(1e-10 * std::abs(d0), 1e-14 * (1.0 + std::abs(evp)));
+  }
+
+  /// The consistent increment of a return whose surface moves with evp, and its returned point:
+  /// on the cap by Newton on the cap angle and the increment together
+  /// (geomodel_coupled_return.hpp), otherwise, or if that is not certified, by the consistency
+  /// iteration around full returns.
+  static double hardening_increment(const Params& p, double evp, double c, double K, double I1_t, double rj2_t,
+                                    double d0, GeoPoint& pt, double& pf, GeoReturnHint& hint) {
+    if (hint.on_cap) {
+      GeoCoupledResult r;
+      if (geo_cap_coupled_return(coupled_problem(p, evp, c, K, I1_t, rj2_t, pf), hint.theta, hint.kappa,
+                                 [&](double) { return increment_tol(d0, evp); }, r)) {
+        pt = r.q;
+        pf = r.pf;
+        return r.d;
+      }
+    }
+    return consistent_increment(p, evp, c, K, I1_t, rj2_t, d0, pt, pf, hint);
+  }
+
+  /// First probe of the consistency iteration after the non-hardening return, which gave the
+  /// increment d0 and landed on a drained, hardening cap at angle theta of `hint`:
+  /// phi(d) = inc(d) - d, linearised at d = 0 with the returned point held at its cap angle, is
+  /// d0 - (1 + H) d with H = X'(evp) dI1/dX / (3K), dI1/dX = cos theta + kappa'(X) (1 - cos theta)
+  /// (I1 = kappa - (kappa - X) cos theta) and kappa'(X) = 1/(1 - CR Ff'(kappa)) (from
+  /// kappa - X = CR Ff(kappa)). The probe takes 0.9 H, so that it lands just short of the root and
+  /// brackets it with 0 (phi(probe) has the sign of phi(d0)). Compaction only (d0 < 0, evp <= 0):
+  /// there the return sits near the cap tip and the linearisation holds (the probe leaves |phi| at
+  /// ~5 % of |d0|, against ~40 % for d0); a dilating shear return moves along the cap as the cap
+  /// retracts, which the held angle misses. d0 itself where this does not apply.
+  static double predicted_increment(const Params& p, double evp, double K, double d0, const GeoReturnHint& hint) {
+    if (p.fluid() || !hint.on_cap || !p.crush.active() || p.crush.fixed || !std::isfinite(hint.kappa) ||
+        !(d0 < 0.0) || !(evp <= 0.0))
+      return d0;
+    // dX/devp of the crush curve in compaction (geomodel_surface.hpp): 1/(P1 (P3 + evp)).
+    const double dX = 1.0 / (p.crush.p1 * (p.crush.p3 + evp));
+    const double dkappa = 1.0 / (1.0 - p.cap_ratio * p.limit.slope(hint.kappa));
+    const double cs = std::cos(hint.theta);
+    const double H = dX * (cs + dkappa * (1.0 - cs)) / (3.0 * K);
+    return (H > 0.0 && std::isfinite(H)) ? d0 / (1.0 + 0.9 * H) : d0;
   }
 
   /// Consistency bisection (Homel et al. 2015 §5): the plastic volumetric strain increment d with
@@ -424,10 +544,11 @@ struct Geomodel {
   /// surface softens (a retracting cap overtaking the stress) the bracket is widened; if no root is
   /// found, d0 is kept. The iteration runs in u = ln(P3 + evp) where the crush curve is
   /// logarithmic (X = P0 + (u - ln P3)/P1 in compaction), so that it stays well conditioned up to
-  /// full crush (evp -> -P3), and otherwise in evp itself; Illinois regula falsi, at most 80 steps.
+  /// full crush (evp -> -P3), and otherwise in evp itself; the secant method kept in the bracket
+  /// (core/illinois.hpp), at most 80 steps, from a linearised first probe (predicted_increment).
   /// Fills (pt, pf) with the return onto the surface of the returned increment.
   static double consistent_increment(const Params& p, double evp, double c, double K, double I1_t, double rj2_t,
-                                     double d0, GeoPoint& pt, double& pf) {
+                                     double d0, GeoPoint& pt, double& pf, GeoReturnHint& hint) {
     const bool logv = p.crush.active() && d0 < 0.0;
     const double P3 = p.crush.p3;
     // Map between the increment d and the iteration variable x.
@@ -435,13 +556,22 @@ struct Geomodel {
     auto to_x = [&](double d) { return logv ? std::log(std::max(P3 + evp + d, 1e-300)) : d; };
     auto phi = [&](double x, GeoPoint& q, double& pfq) {
       const double d = to_d(x);
-      return return_at(p, evp + d, c, K, I1_t, rj2_t, q, pfq) - d;
+      return return_at(p, evp + d, c, K, I1_t, rj2_t, q, pfq, hint) - d;
     };
     double a = to_x(0.0), fa = d0;  // phi(0) = d0
-    double b = to_x(d0);
     GeoPoint q;
     double pfq = pf;  // in: the pore-pressure guess (that of the non-hardening return)
+    // First probe: the linearised consistent increment on a drained cap, a bit short of it so that
+    // it usually brackets the root with 0. Otherwise (or if it falls short) the explicit d0.
+    const double d1 = predicted_increment(p, evp, K, d0, hint);
+    double b = to_x(d1);
     double fb = phi(b, q, pfq);
+    if (d1 != d0 && (fa > 0.0) == (fb > 0.0) && fb != 0.0) {
+      a = b;
+      fa = fb;
+      b = to_x(d0);
+      fb = phi(b, q, pfq);
+    }
     for (int grow = 0; grow < 30 && (fa > 0.0) == (fb > 0.0) && fb != 0.0; ++grow) {
       a = b;
       fa = fb;
@@ -450,18 +580,17 @@ struct Geomodel {
     }
     if ((fa > 0.0) == (fb > 0.0) && fb != 0.0) {
       const double d = d0;  // no root: the explicit increment
-      return_at(p, evp + d, c, K, I1_t, rj2_t, pt, pf);
+      return_at(p, evp + d, c, K, I1_t, rj2_t, pt, pf, hint);
       return d;
     }
-    // Tolerance on the increment: 1e-10 of it, but not below 1e-14 (1 + |evp|), the noise floor of
-    // the return (closest point to ~1e-13 of the stress, divided by K): the state stays on its own
-    // surface regardless (the returned point is the last evaluated one, whose return is kept).
-    const double tol = std::max(1e-10 * std::abs(d0), 1e-14 * (1.0 + std::abs(evp)));
+    // Tolerance (increment_tol): the state stays on its own surface regardless (the returned point
+    // is the last evaluated one, whose return is kept).
+    const double tol = increment_tol(d0, evp);
     GeoPoint qx = q;
     double pfx = pfq;
     auto phi_keep = [&](double x) { return phi(x, qx, pfx); };
     // xtol in x: for the log variable, dx = dd / (P3 + evp + d) >= dd.
-    const double x = illinois_root(phi_keep, a, fa, b, fb, tol, tol, 80);
+    const double x = bracketed_secant_root(phi_keep, a, fa, b, fb, tol, tol, 80);
     pt = qx;
     pf = pfx;
     return to_d(x);
@@ -471,6 +600,7 @@ struct Geomodel {
     const Mat3 eps = k.dt * k.D_bar;
     const Mat3 sigma_n = sigma;
     double eqps = st[0], evp = st[1];
+    const double evp_n = evp;
     // The pore pressure of the state (stored with a fluid: the value pore_pressure(evp) written at
     // the end of the previous step, which saves its Newton solve on every elastic step).
     const double pf_n = p.slot_pore_pressure >= 0 ? st[p.slot_pore_pressure] : 0.0;
@@ -481,7 +611,8 @@ struct Geomodel {
     moduli(p, i1e, evp, K, G);
     const double tr_e = trace(eps);
     const double dsig = std::sqrt(9.0 * K * K * tr_e * tr_e / 3.0 + 4.0 * G * G * ddot(deviator(eps), deviator(eps)));
-    double n_need = std::ceil(dsig / surface_size(p, cap_at(p, evp), i1e));
+    const double X_n = cap_at(p, evp);
+    double n_need = std::ceil(dsig / surface_size(p, X_n, i1e));
     if (p.B1 > 0.0) {
       double K2, G2;
       moduli(p, i1e + 3.0 * K * tr_e, evp, K2, G2);
@@ -500,11 +631,13 @@ struct Geomodel {
     }
     Mat3 dep_sum{};
     double work = 0.0, d_eqps = 0.0;
+    double pf_last = pf_n;  // the latest pore pressure known: a start for the final solve
     for (int i = 0; i < n; ++i) {
       Substep sub;
       if (w == 1.0) {
-        const bool plastic = n == 1 ? substep(p, sigma, evp, deps, sub, pf_n) : substep(p, sigma, evp, deps, sub);
+        const bool plastic = n == 1 ? substep(p, sigma, evp, deps, sub, pf_n, X_n) : substep(p, sigma, evp, deps, sub);
         if (plastic) {
+          pf_last = sub.pf;
           dep_sum += sub.dep;
           work += sub.work;
           d_eqps += sub.d_eqps;
@@ -531,12 +664,16 @@ struct Geomodel {
     st[0] = eqps;
     st[1] = evp;
     st[2] = n;
-    if (p.slot_porosity >= 0) {
-      st[p.slot_porosity] = p.crush.porosity(evp);
-      // After full crush there is no cap (X = -inf); the field keeps a finite marker, -DBL_MAX.
-      st[p.slot_cap] = std::max(p.crush.cap(evp), -std::numeric_limits<double>::max());
+    // The state's functions of evp, recomputed only if evp moved (an elastic step keeps the values
+    // written when evp was last changed, and the initial ones are those of evp = 0).
+    if (evp != evp_n) {
+      if (p.slot_porosity >= 0) {
+        st[p.slot_porosity] = p.crush.porosity(evp);
+        // After full crush there is no cap (X = -inf); the field keeps a finite marker, -DBL_MAX.
+        st[p.slot_cap] = std::max(p.crush.cap(evp), -std::numeric_limits<double>::max());
+      }
+      if (p.slot_pore_pressure >= 0) st[p.slot_pore_pressure] = pore_pressure(p, evp, pf_last);
     }
-    if (p.slot_pore_pressure >= 0) st[p.slot_pore_pressure] = pore_pressure(p, evp, pf_n);
     res.eqps = eqps;
     res.delta_eqps = d_eqps;
     res.plastic_work_density = work;

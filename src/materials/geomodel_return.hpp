@@ -22,14 +22,10 @@
 #include <numbers>
 
 #include "core/illinois.hpp"
+#include "materials/geomodel_projection.hpp"
 #include "materials/geomodel_surface.hpp"
 
 namespace ballista {
-
-struct GeoPoint {
-  double i1 = 0;      ///< effective I1 of the returned stress, Pa
-  double rootj2 = 0;  ///< its sqrt(J2), Pa
-};
 
 namespace geo_detail {
 
@@ -65,9 +61,10 @@ struct SurfaceDistance {
 
 }  // namespace geo_detail
 
-/// Closest point of the surface `s` to the trial point (effective I1 `i1_t`, sqrt(J2) `rj2_t`) in
-/// the space scaled by c = sqrt(3 K beta / (2 G)). The caller has checked that the trial point
-/// is outside (s.f > 0).
+/// The sampled search: closest point of the surface `s` to the trial point (effective I1 `i1_t`,
+/// sqrt(J2) `rj2_t`) in the space scaled by c = sqrt(3 K beta / (2 G)), without derivatives of the
+/// surface. geo_closest_point tries the certified Newton projections (geomodel_projection.hpp)
+/// first and falls back to this.
 ///
 /// The distance along the surface can have more than one local minimum: a trial point beyond a
 /// thin cap (a nearly crushed rock) has one near the cap tip and one on the limit surface, where
@@ -75,7 +72,7 @@ struct SurfaceDistance {
 /// the cap tip (uniform in the ellipse's angle on the cap, I1 = kappa - (kappa - X) cos theta) and
 /// uniform on the limit surface, refines every bracket where D' goes from - to + by Illinois
 /// regula falsi, adds an end of the interval where D' points outward, and keeps the nearest.
-inline GeoPoint geo_closest_point(const GeoSurface& s, double c, double i1_t, double rj2_t) {
+inline GeoPoint geo_closest_point_sampled(const GeoSurface& s, double c, double i1_t, double rj2_t) {
   const double s3 = std::sqrt(3.0), s2 = std::sqrt(2.0);
   const double zt = i1_t / s3, rt = c * s2 * rj2_t;
   const double zlo = s.lo() / s3, zhi = s.hi() / s3;
@@ -136,6 +133,56 @@ inline GeoPoint geo_closest_point(const GeoSurface& s, double c, double i1_t, do
   if (!(best < INFINITY))  // no stationary point bracketed (cannot happen for a smooth D): best sample
     for (int k = 0; k < n; ++k) consider(z[k]);
   return on_surface(best_z);
+}
+
+/// Which method found a closest point (tests and benchmarks count them).
+enum class GeoReturnPath { Hydrostat, Limit, Cap, Sampled };
+
+/// Tolerance in z of the Newton projection onto the limit surface: 1e-14 of the trial's scale.
+inline double geo_projection_tol(const GeoSurface& s, double c, double i1_t, double rj2_t) {
+  const double scale = std::abs(i1_t) + c * rj2_t + (std::isfinite(s.hi()) ? std::abs(s.hi()) : 0.0);
+  return 1e-14 * scale;
+}
+
+/// Warm starts for a sequence of nearby returns (the consistency iteration of a hardening return):
+/// the piece the previous return landed on, its cap angle and its cap's branch point (a start
+/// for geo_cap_kappa). Every solve is certified or globally convergent, so a hint changes the
+/// iterations taken, not the answer.
+struct GeoReturnHint {
+  bool on_cap = false;
+  double theta = std::numeric_limits<double>::quiet_NaN();
+  double kappa = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// Closest point of the surface `s` to the trial point (effective I1 `i1_t`, sqrt(J2) `rj2_t`) in
+/// the space scaled by c = sqrt(3 K beta / (2 G)); the caller has checked that the trial point is
+/// outside (s.f > 0). The certified Newton projections first (the limit surface, then the cap;
+/// the cap first if the hint says the previous return landed there), the sampled search if
+/// neither is certified.
+inline GeoPoint geo_closest_point(const GeoSurface& s, double c, double i1_t, double rj2_t,
+                                  GeoReturnPath* path = nullptr, GeoReturnHint* hint = nullptr) {
+  GeoReturnPath taken = GeoReturnPath::Sampled;
+  GeoPoint q;
+  double theta = std::numeric_limits<double>::quiet_NaN();
+  auto on_limit = [&] {
+    return geo_project_on_limit(s.limit, c, i1_t, rj2_t, geo_projection_tol(s, c, i1_t, rj2_t), q) &&
+           !(q.i1 < s.kappa);
+  };
+  auto on_cap = [&] { return geo_project_on_cap(s, c, i1_t, rj2_t, q, hint ? hint->theta : theta, &theta); };
+  if (rj2_t == 0.0)
+    taken = GeoReturnPath::Hydrostat;
+  else if (hint && hint->on_cap)
+    taken = on_cap() ? GeoReturnPath::Cap : on_limit() ? GeoReturnPath::Limit : GeoReturnPath::Sampled;
+  else
+    taken = on_limit() ? GeoReturnPath::Limit : on_cap() ? GeoReturnPath::Cap : GeoReturnPath::Sampled;
+  if (taken == GeoReturnPath::Hydrostat || taken == GeoReturnPath::Sampled)
+    q = geo_closest_point_sampled(s, c, i1_t, rj2_t);
+  if (path) *path = taken;
+  if (hint) {
+    hint->on_cap = taken == GeoReturnPath::Cap;
+    if (hint->on_cap) hint->theta = theta;
+  }
+  return q;
 }
 
 }  // namespace ballista

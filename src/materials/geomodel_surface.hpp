@@ -101,19 +101,37 @@ struct GeoCrushCurve {
 };
 
 /// The cap's branch point kappa: kappa - X = CR Ff(kappa). g(k) = k - X - CR Ff(k) is increasing
-/// and convex (Ff' <= 0, Ff'' <= 0), so Newton from kappa = PEAKI1 (g > 0) converges
-/// monotonically. Closed form for linear and constant Ff.
-inline double geo_cap_kappa(const GeoLimit& f, double cap_ratio, double X) {
+/// (g' >= 1) and convex (Ff' <= 0, Ff'' <= 0), so Newton from a point right of the root (e.g.
+/// PEAKI1, where g > 0) converges monotonically, and from a point left of it (e.g. X) its first
+/// step lands right of it (a convex function lies above its tangents) and it converges
+/// monotonically from there. `guess`, if
+/// finite, is such a start (a nearby kappa: a sequence of returns moves the cap a little); steps
+/// are kept left of PEAKI1, where g > 0, so an overshoot never reaches the exponential's overflow.
+/// Stops when the step is below 1e-15 of the scale, or when the quadratic error bound of the step
+/// just taken is: |k_new - kappa| <= max|g''| / (2 min g') dk^2 <= CR |Ff''| dk^2 (g' >= 1; |Ff''|
+/// grows with I1 by exp(a2 dk) ~ 1 across the step, covered by the factor 2 dropped from the
+/// denominator), which saves the confirming evaluation after a near start. `slope`, if given,
+/// receives Ff'(kappa) at the last evaluated point (for kappa'(X) = 1/(1 - CR Ff'), where that
+/// accuracy is plenty). Closed form for linear and constant Ff.
+inline double geo_cap_kappa(const GeoLimit& f, double cap_ratio, double X,
+                            double guess = std::numeric_limits<double>::quiet_NaN(), double* slope = nullptr) {
   if (!std::isfinite(X)) return X;
-  if (f.a3 == 0.0) return (X + cap_ratio * f.a1) / (1.0 + cap_ratio * f.a4);  // Ff linear in I1
-  double k = f.peak_i1;
+  if (f.a3 == 0.0) {  // Ff linear in I1
+    if (slope) *slope = -f.a4;
+    return (X + cap_ratio * f.a1) / (1.0 + cap_ratio * f.a4);
+  }
+  // Without a guess, start at X: g(X) = -CR Ff(X) < 0, and the first step lands on the root of the
+  // tangent of g at X, which (g convex) lies right of kappa and much nearer than PEAKI1.
+  double k = std::min(std::isfinite(guess) ? guess : X, f.peak_i1);
   for (int it = 0; it < 60; ++it) {
-    double v, dv;
-    f.value_slope(k, v, dv);
+    const double e = f.a3 * std::exp(f.a2 * k);
+    const double v = f.a1 - e - f.a4 * k, dv = -f.a2 * e - f.a4;
+    if (slope) *slope = dv;
     const double g = k - X - cap_ratio * v;
     const double dk = g / (1.0 - cap_ratio * dv);
-    k -= dk;
-    if (std::abs(dk) <= 1e-15 * (std::abs(k) + std::abs(X))) break;
+    k = std::min(k - dk, f.peak_i1);
+    const double tol = 1e-15 * (std::abs(k) + std::abs(X));
+    if (std::abs(dk) <= tol || cap_ratio * f.a2 * f.a2 * e * dk * dk <= tol) break;
   }
   return k;
 }
@@ -157,7 +175,10 @@ struct GeoSurface {
 /// cavitation strain), Newton starts there: from the right of the root its first step lands on
 /// the left (the tangent of a convex function lies below it; an overshoot past pf = 0 is cut back
 /// to pf = 0), then it converges monotonically.
-inline double geo_pore_pressure(double evp, double phi0, double pf0, double Kf, double Km, double guess = -1.0) {
+/// `dpf_devp`, if given, receives dpf/devp = exp(evp) / (d rhs/d dp) at the last Newton iterate
+/// (implicit differentiation of the saturation equation; 0 once cavitated).
+inline double geo_pore_pressure(double evp, double phi0, double pf0, double Kf, double Km, double guess = -1.0,
+                                double* dpf_devp = nullptr) {
   const double target = std::exp(evp);
   auto rhs = [&](double dp, double& d) {
     const double em = (1.0 - phi0) * std::exp(-dp / Km), ef = phi0 * std::exp(-dp / Kf);
@@ -165,15 +186,22 @@ inline double geo_pore_pressure(double evp, double phi0, double pf0, double Kf, 
     return em + ef - target;
   };
   double dp = guess >= 0.0 ? guess - pf0 : -pf0, d = 0.0;
+  if (dpf_devp) *dpf_devp = 0.0;
   if (guess < 0.0 && rhs(dp, d) <= 0.0) return 0.0;
   for (int it = 0; it < 100; ++it) {
     const double g = rhs(dp, d);
     const double step = g / d;
     // Never left of pf = 0: the root lies right of it (the fluid holds pressure), so a step from a
     // far-right guess that overshoots is cut back to a point from which Newton is monotone.
+    const bool clamped = dp - step < -pf0;
     dp = std::max(dp - step, -pf0);
-    if (std::abs(step) <= 1e-14 * (std::abs(dp) + pf0) + 1e-300) break;
+    // Stop at a step below the tolerance, or when the quadratic error bound of the step just taken
+    // is: |dp - root| <= |rhs''| / (2 |rhs'|) step^2 <= step^2 / (2 Kf) (rhs'' = em/Km^2 + ef/Kf^2
+    // <= |rhs'| / Kf for Kf < Km), which saves the confirming evaluation after a near guess.
+    const double tol = 1e-14 * (std::abs(dp) + pf0) + 1e-300;
+    if (std::abs(step) <= tol || (!clamped && step * step <= 2.0 * Kf * tol)) break;
   }
+  if (dpf_devp && pf0 + dp > 0.0) *dpf_devp = target / d;
   return std::max(0.0, pf0 + dp);
 }
 
