@@ -2,29 +2,46 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "points/cell_bins.hpp"
 
 namespace ballista::pd {
 
-bool ContactList::stale(const Vec3* x, Index n, const std::uint8_t* skip) const {
-  // skip: vented gas (no longer part of the run)
+double ContactList::solid_moved(const Vec3* x, Index n, const std::uint8_t* skip, const std::uint8_t* gas) const {
+  if (static_cast<Index>(x_build.size()) != n) return std::numeric_limits<double>::infinity();
+  double m2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : m2) if (n > kParallelThreshold)
+  for (Index p = 0; p < n; ++p) {
+    if ((skip && skip[p]) || (gas && gas[p])) continue;  // skip: vented gas (no longer part of the run)
+    const Vec3 d = x[p] - x_build[p];
+    m2 = std::max(m2, dot(d, d));
+  }
+  return std::sqrt(m2);
+}
+
+bool ContactList::stale(const Vec3* x, Index n, double moved_solid, const std::uint8_t* skip,
+                        const std::uint8_t* gas) const {
   if (static_cast<Index>(x_build.size()) != n) return true;
-  const double limit2 = 0.25 * skin * skin;
+  if (2.0 * moved_solid > skin) return true;
+  if (!gas) return false;
   bool moved = false;
 #pragma omp parallel for schedule(static) reduction(|| : moved) if (n > kParallelThreshold)
   for (Index p = 0; p < n; ++p) {
+    if (!gas[p] || (skip && skip[p])) continue;
+    const double budget = allowance[p] - moved_solid;  // > skin/2 here
     const Vec3 d = x[p] - x_build[p];
-    moved = moved || (dot(d, d) > limit2 && !(skip && skip[p]));
+    moved = moved || dot(d, d) > budget * budget;
   }
   return moved;
 }
 
 void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const std::int64_t* body, Index n,
                         double delta, double dx, double skin, int dim, const std::uint8_t* skip,
-                        const std::uint8_t* gas, const std::int64_t* key) {
+                        const std::uint8_t* gas, const std::int64_t* key, bool clearance) {
   list.skin = skin;
   list.x_build.assign(x, x + n);
+  list.allowance.clear();
   ++list.builds;
   list.offset.assign(static_cast<size_t>(n) + 1, 0);
   list.other.clear();
@@ -51,6 +68,21 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
   const double bin = cutoff * (1.0 + 1e-6);
   const CellBins solid_bins(solid_x.data(), static_cast<Index>(solid_ids.size()), bin, dim);
   const CellBins gas_bins(gas_x.data(), static_cast<Index>(gas_ids.size()), bin, dim);
+  // Gas allowances: the skin, or for a gas point whose bin is d >= 2 bins (chessboard) from every
+  // solid's bin, or which lies outside the solids' bounding box, its clearance less the contact
+  // distance (every solid is at least (d - 1) bin sizes away along one axis, and at least the
+  // distance to their box).
+  if (gas) {
+    list.allowance.assign(static_cast<size_t>(n), skin);
+    if (clearance && !solid_ids.empty()) {
+      const std::vector<std::uint8_t> dist = solid_bins.chessboard_distance(16);
+      for (Index i = 0; i < static_cast<Index>(gas_ids.size()); ++i) {
+        const int d = dist[solid_bins.bin_of(gas_x[i])];
+        const double clear = std::max((d - 1) * solid_bins.size(), solid_bins.outside_distance(gas_x[i]));
+        list.allowance[gas_ids[i]] = std::max(clear - range, skin);
+      }
+    }
+  }
   const double cut2 = cutoff * cutoff, delta2 = delta * delta * (1.0 + 2e-9);  // the bond family's tie rule
   auto visit = [&](Index p, auto&& emit) {
     if (skip && skip[p]) return;

@@ -11,8 +11,20 @@
 // bodies that start apart).
 //
 // The list holds every never-bonded pair within 1.35 dx + skin in the configuration of its last
-// build (cell binning, O(N)); it is rebuilt when some point has moved more than skin/2 since,
-// so no pair can come within 1.35 dx unseen (each end moved < skin/2).
+// build (cell binning, O(N)); it is rebuilt before a pair can come within 1.35 dx unseen, i.e.
+// when the displacements since the build of its two ends could sum to more than their distance at
+// the build minus 1.35 dx (Verlet's neighbour list, with the skin test of e.g. Allen & Tildesley,
+// Computer Simulation of Liquids, 2nd ed., §5.3.2, split by kind of point):
+//   - solid-solid pairs: every unlisted pair was more than 1.35 dx + skin apart, so the list is
+//     good while the solid that moved farthest moved at most skin/2 (m_s <= skin/2);
+//   - gas-solid pairs (gas-gas pairs do not exist): a gas point g and any solid were at least
+//     a_g + 1.35 dx apart at the build, a_g its allowance (skin, or for gas far from every solid
+//     its clearance to them, from the chessboard distance of its bin to the solids' bins), so the
+//     list is good while |dx_g| + m_s <= a_g.
+// Without gas this is the classic test (every point within skin/2). A charge's gas far inside the
+// case no longer forces a rebuild every step, and the gas next to it has the whole skin less the
+// solids' motion; the forces are those of any other list holding every pair within reach, in the
+// same order, so fewer rebuilds do not change the answer.
 #include <cstdint>
 #include <vector>
 
@@ -26,12 +38,20 @@ struct ContactList {
   std::vector<std::int32_t> other;  ///< the other point
   std::vector<double> reach;        ///< d = min(0.9 |xi|, 1.35 dx), m
   std::vector<Vec3> x_build;        ///< positions at the last build
+  std::vector<double> allowance;    ///< gas points' a_g (above), m; empty without gas
   double skin = 0.0;                ///< m
   long builds = 0;                  ///< number of builds so far
 
   Index pairs() const { return other.empty() ? 0 : static_cast<Index>(other.size()) / 2; }
-  /// True if some point (skip[p] == 0) moved more than skin/2 since the last build (or there was none).
-  bool stale(const Vec3* x, Index n, const std::uint8_t* skip = nullptr) const;
+  /// The largest displacement since the last build among the points with skip[p] == 0 that are
+  /// not gas (gas null: all of them), m.
+  double solid_moved(const Vec3* x, Index n, const std::uint8_t* skip = nullptr,
+                     const std::uint8_t* gas = nullptr) const;
+  /// True if a pair could have come within reach unseen since the last build (or there was none):
+  /// 2 m_s > skin, or some gas point (skip == 0) has |dx_g| + m_s > a_g. `moved_solid` is m_s over
+  /// every point that can pair with this rank's (on several ranks, the maximum over the ranks).
+  bool stale(const Vec3* x, Index n, double moved_solid, const std::uint8_t* skip = nullptr,
+             const std::uint8_t* gas = nullptr) const;
 };
 
 /// Builds the list of never-bonded pairs (different `body`, or reference distance > delta) within
@@ -39,9 +59,12 @@ struct ContactList {
 /// skip[p] != 0 (vented gas) take no part; two points with gas != 0 (detonation products) are
 /// never a pair: the gas has no contact stiffness of its own, only the solids it meets. Rows are
 /// in increasing `key` of the other point (the global id on several ranks, whose ghosts are not in
-/// id order; null: the index), so the force sums run in the serial run's order.
+/// id order; null: the index), so the force sums run in the serial run's order. `clearance`:
+/// give gas far from every solid its clearance as allowance (only where every solid that could
+/// come near is present, i.e. on one rank); otherwise each gas point's allowance is the skin.
 void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const std::int64_t* body, Index n,
                         double delta, double dx, double skin, int dim, const std::uint8_t* skip = nullptr,
-                        const std::uint8_t* gas = nullptr, const std::int64_t* key = nullptr);
+                        const std::uint8_t* gas = nullptr, const std::int64_t* key = nullptr,
+                        bool clearance = false);
 
 }  // namespace ballista::pd

@@ -76,6 +76,7 @@ void PdSolver::save_state(StateArchive& a) const {
   a.put("pd.contact_stiffness", stiffness);
   a.put("pd.contact.x_build", x_build);
   a.put("pd.contact.state", std::vector<double>{contact_.skin, static_cast<double>(contact_.builds)});
+  a.put_real("pd.contact.vented_at_build", vented_at_build_);
   a.put("pd.gas.x", gas_x);
   a.put("pd.gas.g", gas_g);
   a.put("pd.gas.vented", std::vector<std::int64_t>(vented.begin(), vented.end()));
@@ -162,6 +163,9 @@ void PdSolver::load_state(const StateArchive& a) {
     contact_.builds = builds;
   }
   contact_.skin = cs[0];
+  // The vented count at that build (a vent since then rebuilds the list at the next step, as it
+  // would have; checkpoints from before this key rebuild at the first step).
+  vented_at_build_ = a.has("pd.contact.vented_at_build") ? a.real("pd.contact.vented_at_build") : -1.0;
   sync_local();
   x_prev_ = local_.x;
   time_ = a.real("pd.time");

@@ -448,8 +448,15 @@ void PdSolver::sync_local() {
 }
 
 bool PdSolver::contacts_stale() const {
-  if (!comm_.distributed()) return contact_.stale(local_.x.data(), local_.size(), skip_vented());
-  // Own points only (each rank checks its own), vented gas aside.
+  // A point vented since the build leaves the list at once (vented points take no part in contact).
+  if (has_gas_ && comm_.sum(static_cast<double>(vented_count_)) != vented_at_build_) return true;
+  if (!comm_.distributed()) {
+    const double ms = contact_.solid_moved(local_.x.data(), local_.size(), skip_vented(), skip_gas());
+    return contact_.stale(local_.x.data(), local_.size(), ms, skip_vented(), skip_gas());
+  }
+  // Own points only (each rank checks its own), vented gas aside; the solids' largest motion over
+  // every rank (a gas point's partners may be another rank's).
+  const std::uint8_t* gas = has_gas_ ? gas_local_.data() : nullptr;
   const std::uint8_t* skip = local_.ghost.data();
   std::vector<std::uint8_t> mask;
   if (has_gas_) {
@@ -457,7 +464,8 @@ bool PdSolver::contacts_stale() const {
     for (Index l = 0; l < local_.size(); ++l) mask[l] |= vented_[l];
     skip = mask.data();
   }
-  return comm_.any(contact_.stale(local_.x.data(), local_.size(), skip));
+  const double ms = comm_.max(contact_.solid_moved(local_.x.data(), local_.size(), skip, gas));
+  return comm_.any(contact_.stale(local_.x.data(), local_.size(), ms, skip, gas));
 }
 
 void PdSolver::resize_local_arrays() {
@@ -475,9 +483,11 @@ void PdSolver::resize_local_arrays() {
 
 void PdSolver::rebuild_contacts() {
   const double cutoff = 1.35 * dx_ + contact_.skin;  // contact_list.hpp
+  if (has_gas_) vented_at_build_ = comm_.sum(static_cast<double>(vented_count_));
   if (!comm_.distributed()) {
+    // One rank holds every solid: gas far from them may move by its clearance.
     pd::build_contact_list(contact_, local_.x.data(), local_.x0.data(), local_.body.data(), local_.size(), delta_, dx_,
-                           contact_.skin, dim_, skip_vented(), skip_gas());
+                           contact_.skin, dim_, skip_vented(), skip_gas(), nullptr, true);
     return;
   }
   if (has_gas_) {
@@ -503,8 +513,12 @@ void PdSolver::rebuild_contacts() {
   kept.builds = contact_.builds;
   kept.offset.assign(static_cast<size_t>(m) + 1, 0);
   kept.x_build.resize(static_cast<size_t>(m));
+  if (!contact_.allowance.empty()) kept.allowance.resize(static_cast<size_t>(m));
   for (Index l = 0; l < nl; ++l)
-    if (renumber[l] >= 0) kept.x_build[renumber[l]] = contact_.x_build[l];
+    if (renumber[l] >= 0) {
+      kept.x_build[renumber[l]] = contact_.x_build[l];
+      if (!kept.allowance.empty()) kept.allowance[renumber[l]] = contact_.allowance[l];
+    }
   for (Index l = 0; l < local_.bond_local; ++l) {
     if (!local_.ghost[l])
       for (Index k = contact_.offset[l]; k < contact_.offset[l + 1]; ++k) {

@@ -4,6 +4,7 @@
 // the points into them, and a visit of the points in the 3^dim bins around a position. O(N) to
 // build; a search of radius at most the bin size finds every neighbour in the surrounding bins.
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -51,6 +52,60 @@ class CellBins {
     for (int a = 0; a < dim_; ++a)
       if (!(y[a] >= lo_[a] - size_ && y[a] <= hi_[a] + size_)) return false;
     return true;
+  }
+
+  /// The bin size actually used (at least the one asked for).
+  double size() const { return size_; }
+
+  /// For every bin, its chessboard distance in bins to the nearest bin holding a point, capped at
+  /// `cap` (all `cap` without points). Two-pass chamfer over the 3^dim neighbourhood with unit
+  /// weights, exact for the chessboard metric (Rosenfeld & Pfaltz, J. ACM 13 (1966) 471). A point
+  /// in bin b is at least (d[b] - 1) bin sizes from every binned point, along one axis.
+  std::vector<std::uint8_t> chessboard_distance(std::uint8_t cap) const {
+    const Index nbins = static_cast<Index>(nb_[0]) * nb_[1] * nb_[2];
+    std::vector<std::uint8_t> d(static_cast<size_t>(nbins), cap);
+    for (Index b = 0; b < nbins; ++b)
+      if (start_[b + 1] > start_[b]) d[b] = 0;
+    const int zr = dim_ == 3 ? 1 : 0;
+    auto pass = [&](int sign) {
+      for (Index i = 0; i < nbins; ++i) {
+        const Index b = sign > 0 ? i : nbins - 1 - i;
+        const int c0 = static_cast<int>(b % nb_[0]), c1 = static_cast<int>((b / nb_[0]) % nb_[1]),
+                  c2 = static_cast<int>(b / (static_cast<Index>(nb_[0]) * nb_[1]));
+        std::uint8_t best = d[b];
+        for (int dz = -zr; dz <= zr; ++dz)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+              // Only the neighbours already visited in this pass's order (raster before b, or after).
+              const Index off = (static_cast<Index>(dz) * nb_[1] + dy) * nb_[0] + dx;
+              if (sign > 0 ? off >= 0 : off <= 0) continue;
+              const int b0 = c0 + dx, b1 = c1 + dy, b2 = c2 + dz;
+              if (b0 < 0 || b1 < 0 || b2 < 0 || b0 >= nb_[0] || b1 >= nb_[1] || b2 >= nb_[2]) continue;
+              const std::uint8_t v = d[(static_cast<Index>(b2) * nb_[1] + b1) * nb_[0] + b0];
+              if (v + 1 < best) best = static_cast<std::uint8_t>(v + 1);
+            }
+        d[b] = best;
+      }
+    };
+    pass(+1);
+    pass(-1);
+    return d;
+  }
+
+  /// How far y lies outside the points' bounding box along the farthest axis (0 inside): every
+  /// binned point is at least this far from y (a position clamped into the edge bins is farther
+  /// from the points than its bin says).
+  double outside_distance(const Vec3& y) const {
+    double d = 0.0;
+    for (int a = 0; a < dim_; ++a) d = std::max({d, lo_[a] - y[a], y[a] - hi_[a]});
+    return d;
+  }
+
+  /// The bin of position y (clamped into the bins), as an index into chessboard_distance().
+  Index bin_of(const Vec3& y) const {
+    int c[3];
+    cell(y, c);
+    return (static_cast<Index>(c[2]) * nb_[1] + c[1]) * nb_[0] + c[0];
   }
 
   /// Calls f(q) for every point q in the bins around position y (q may be the point at y itself).

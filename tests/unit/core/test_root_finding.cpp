@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/illinois.hpp"
 
@@ -46,13 +47,16 @@ TEST(RootFinding, SecantAndIllinoisFindTheRoot) {
 }
 
 // On smooth functions the secant through the latest points (order 1.618) needs no more
-// evaluations than Illinois (order ~1.44), and strictly fewer on at least one of them.
+// evaluations than Illinois (order ~1.44), and strictly fewer on at least one of them. Stopped at
+// |f| <= 1e-9, well above the round-off floor (at the floor |f| is noise, neither method
+// progresses, and the counts depend on the compiler's floating-point contractions).
 TEST(RootFinding, SecantIsNoSlowerOnSmoothFunctions) {
   int fewer = 0;
   for (auto f : {cubic, expo}) {
     Counted fs{f}, fi{f};
-    bracketed_secant_root(fs, 1.0, f(1.0), 3.0, f(3.0), 1e-14, 0.0, 200);
-    illinois_root(fi, 1.0, f(1.0), 3.0, f(3.0), 1e-14, 0.0, 200);
+    bracketed_secant_root(fs, 1.0, f(1.0), 3.0, f(3.0), 0.0, 1e-9, 200);
+    illinois_root(fi, 1.0, f(1.0), 3.0, f(3.0), 0.0, 1e-9, 200);
+    std::printf("secant %d, Illinois %d evaluations\n", fs.calls, fi.calls);
     EXPECT_LE(fs.calls, fi.calls);
     fewer += fs.calls < fi.calls;
   }

@@ -140,7 +140,9 @@ TEST(PdBonds, RestrictedFamilyKeepsOwnRowsWholeAndGhostRowsToOwnPoints) {
     std::vector<Index> want;
     for (Index k = f.offset[p]; k < f.offset[p + 1]; ++k)
       if (keep[f.other[k]] && (owned[p] || owned[f.other[k]])) want.push_back(f.other[k]);
-    if (owned[p]) EXPECT_EQ(static_cast<Index>(want.size()), f.offset[p + 1] - f.offset[p]) << "own row cut";
+    if (owned[p]) {
+      EXPECT_EQ(static_cast<Index>(want.size()), f.offset[p + 1] - f.offset[p]) << "own row cut";
+    }
     ASSERT_EQ(g.offset[a + 1] - g.offset[a], static_cast<Index>(want.size())) << "point " << p;
     for (size_t k = 0; k < want.size(); ++k) {
       const Index b = g.other[g.offset[a] + static_cast<Index>(k)];

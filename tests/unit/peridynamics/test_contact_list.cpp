@@ -1,0 +1,174 @@
+// The contact list's rebuild test (peridynamics/contact_list.hpp) and the chessboard distance of
+// the cell bins it uses (points/cell_bins.hpp): the distance's bound against brute force; a gas point far
+// from every solid may move by its clearance, one next to them by the skin less the solids'
+// motion, and solids by half the skin; and the guarantee behind it: after any motion the test
+// accepts, every pair within contact reach is in the list (against a rebuild).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <random>
+#include <set>
+#include <vector>
+
+#include "peridynamics/contact_list.hpp"
+#include "points/cell_bins.hpp"
+
+namespace ballista {
+namespace {
+
+TEST(CellBins, ChessboardDistanceBoundsTheNearestPoint) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int dim : {2, 3}) {
+    std::vector<Vec3> x;
+    for (int k = 0; k < 40; ++k) x.push_back(Vec3{{20.0 * u(rng), 12.0 * u(rng), dim == 3 ? 9.0 * u(rng) : 0.0}});
+    const CellBins bins(x.data(), static_cast<Index>(x.size()), 1.0, dim);
+    const std::vector<std::uint8_t> d = bins.chessboard_distance(5);
+    // Direct check: distance 0 exactly at the occupied bins, and the bound it promises: every
+    // point is at least (d - 1) bin sizes from a probe in a bin at distance d.
+    for (int k = 0; k < 2000; ++k) {
+      const Vec3 y{{20.0 * u(rng), 12.0 * u(rng), dim == 3 ? 9.0 * u(rng) : 0.0}};
+      const int dist = d[bins.bin_of(y)];
+      double nearest = INFINITY;
+      for (const Vec3& p : x) {
+        double cheb = 0.0;
+        for (int a = 0; a < dim; ++a) cheb = std::max(cheb, std::abs(p[a] - y[a]));
+        nearest = std::min(nearest, cheb);
+      }
+      EXPECT_GE(nearest, (dist - 1) * bins.size() - 1e-12) << "dim " << dim;
+      // Tight: the nearest point is within (d + 1) bin sizes (or the cap was reached).
+      bool inside = true;  // the upper bound holds inside the points' box (outside, bins clamp)
+      for (int a = 0; a < dim; ++a) {
+        double lo = INFINITY, hi = -INFINITY;
+        for (const Vec3& p : x) lo = std::min(lo, p[a]), hi = std::max(hi, p[a]);
+        inside = inside && y[a] >= lo && y[a] <= hi;
+      }
+      EXPECT_GE(nearest, bins.outside_distance(y) - 1e-12);
+      if (dist < 5 && inside) {
+        EXPECT_LE(nearest, (dist + 1) * bins.size() + 1e-12) << "dim " << dim;
+      }
+    }
+    for (const Vec3& p : x) EXPECT_EQ(d[bins.bin_of(p)], 0);
+  }
+}
+
+// A column of solid points along z and a cloud of gas points around it out to 20 dx.
+struct GasAroundColumn {
+  std::vector<Vec3> x, x0;
+  std::vector<std::int64_t> body;
+  std::vector<std::uint8_t> gas;
+};
+
+GasAroundColumn column_in_gas(double dx) {
+  GasAroundColumn s;
+  for (int k = 0; k < 20; ++k) {
+    s.x.push_back(Vec3{{0.0, 0.0, k * dx}});
+    s.body.push_back(0);
+    s.gas.push_back(0);
+  }
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int k = 0; k < 400; ++k) {
+    s.x.push_back(Vec3{{20 * dx * u(rng), 20 * dx * u(rng), 10 * dx + 10 * dx * u(rng)}});
+    s.body.push_back(1);
+    s.gas.push_back(1);
+  }
+  s.x0 = s.x;
+  return s;
+}
+
+// Every never-bonded solid-gas or solid-solid pair within reach (1.35 dx) of each other at x.
+std::set<std::pair<Index, Index>> within_reach(const GasAroundColumn& s, const std::vector<Vec3>& x, double dx) {
+  std::set<std::pair<Index, Index>> out;
+  const Index n = static_cast<Index>(x.size());
+  for (Index p = 0; p < n; ++p)
+    for (Index q = p + 1; q < n; ++q) {
+      if (s.gas[p] && s.gas[q]) continue;
+      if (s.body[p] == s.body[q]) continue;  // one body here is bonded within the horizon (delta large)
+      if (norm(x[q] - x[p]) < 1.35 * dx) out.insert({p, q});
+    }
+  return out;
+}
+
+TEST(PdContactList, GasFarFromTheSolidsMovesByItsClearance) {
+  const double dx = 1e-3, skin = 0.5 * dx, delta = 100 * dx;
+  GasAroundColumn s = column_in_gas(dx);
+  const Index n = static_cast<Index>(s.x.size());
+  pd::ContactList list;
+  pd::build_contact_list(list, s.x.data(), s.x0.data(), s.body.data(), n, delta, dx, skin, 3, nullptr, s.gas.data(),
+                         nullptr, true);
+  // A far gas point (the farthest from the column) may move several skins; a near one only the skin.
+  Index far = -1, near = -1;
+  double dfar = 0.0, dnear = INFINITY;
+  for (Index p = 0; p < n; ++p) {
+    if (!s.gas[p]) continue;
+    const double r = std::hypot(s.x[p][0], s.x[p][1]);
+    if (r > dfar) dfar = r, far = p;
+    if (r < dnear) dnear = r, near = p;
+  }
+  EXPECT_GT(list.allowance[far], 10 * skin);
+  EXPECT_DOUBLE_EQ(list.allowance[near], skin);
+  std::vector<Vec3> x = s.x;
+  x[far] += Vec3{{0.9 * list.allowance[far], 0.0, 0.0}};
+  EXPECT_FALSE(list.stale(x.data(), n, list.solid_moved(x.data(), n, nullptr, s.gas.data()), nullptr, s.gas.data()));
+  x[far] += Vec3{{0.2 * list.allowance[far], 0.0, 0.0}};
+  EXPECT_TRUE(list.stale(x.data(), n, list.solid_moved(x.data(), n, nullptr, s.gas.data()), nullptr, s.gas.data()));
+  // The near gas point: 0.9 skin alone is fine, with the column moved by 0.2 skin it is not; the
+  // column alone rebuilds past skin/2.
+  x = s.x;
+  x[near] += Vec3{{0.9 * skin, 0.0, 0.0}};
+  EXPECT_FALSE(list.stale(x.data(), n, list.solid_moved(x.data(), n, nullptr, s.gas.data()), nullptr, s.gas.data()));
+  for (Index p = 0; p < 20; ++p) x[p] += Vec3{{0.0, 0.2 * skin, 0.0}};
+  EXPECT_TRUE(list.stale(x.data(), n, list.solid_moved(x.data(), n, nullptr, s.gas.data()), nullptr, s.gas.data()));
+  x = s.x;
+  for (Index p = 0; p < 20; ++p) x[p] += Vec3{{0.0, 0.51 * skin, 0.0}};
+  EXPECT_TRUE(list.stale(x.data(), n, list.solid_moved(x.data(), n, nullptr, s.gas.data()), nullptr, s.gas.data()));
+  // Without gas flags it is the classic test: any point past skin/2.
+  x = s.x;
+  x[far] += Vec3{{0.51 * skin, 0.0, 0.0}};
+  pd::ContactList plain;
+  pd::build_contact_list(plain, s.x.data(), s.x0.data(), s.body.data(), n, delta, dx, skin, 3);
+  EXPECT_TRUE(plain.stale(x.data(), n, plain.solid_moved(x.data(), n)));
+}
+
+// The guarantee: random motions of gas and solids, the list rebuilt only when the test says so;
+// after every move every pair within reach is in the list.
+TEST(PdContactList, NoPairComesWithinReachUnseen) {
+  const double dx = 1e-3, skin = 0.5 * dx, delta = 100 * dx;
+  GasAroundColumn s = column_in_gas(dx);
+  const Index n = static_cast<Index>(s.x.size());
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> x = s.x, vel(static_cast<size_t>(n));
+  for (Index p = 0; p < n; ++p)  // gas converging on the column at up to 0.3 dx per move, solids 0.05 dx
+    vel[p] = s.gas[p] ? Vec3{{-0.3 * dx * x[p][0] / (20 * dx) + 0.02 * dx * u(rng), -0.3 * dx * x[p][1] / (20 * dx), 0.0}}
+                      : Vec3{{0.05 * dx * u(rng), 0.05 * dx * u(rng), 0.0}};
+  pd::ContactList list;
+  pd::build_contact_list(list, x.data(), s.x0.data(), s.body.data(), n, delta, dx, skin, 3, nullptr, s.gas.data(),
+                         nullptr, true);
+  int builds = 1, pairs_seen = 0;
+  for (int step = 0; step < 60; ++step) {
+    for (Index p = 0; p < n; ++p) x[p] += vel[p];
+    if (list.stale(x.data(), n, list.solid_moved(x.data(), n, nullptr, s.gas.data()), nullptr, s.gas.data())) {
+      pd::build_contact_list(list, x.data(), s.x0.data(), s.body.data(), n, delta, dx, skin, 3, nullptr,
+                             s.gas.data(), nullptr, true);
+      ++builds;
+    }
+    for (const auto& [p, q] : within_reach(s, x, dx)) {
+      ++pairs_seen;
+      const auto* row = list.other.data();
+      const bool found = std::find(row + list.offset[p], row + list.offset[p + 1], static_cast<std::int32_t>(q)) !=
+                         row + list.offset[p + 1];
+      ASSERT_TRUE(found) << "step " << step << ": pair " << p << "-" << q << " within reach but not listed";
+    }
+  }
+  EXPECT_GT(pairs_seen, 50);  // the gas did reach the column
+  EXPECT_LT(builds, 50);      // and the list was not rebuilt every move
+  std::printf("contact list: %d builds in 60 moves, %d pair-moves within reach\n", builds, pairs_seen);
+}
+
+}  // namespace
+}  // namespace ballista
