@@ -9,6 +9,27 @@
 
 namespace ballista {
 
+namespace illinois_detail {
+
+/// Puts the new point (x, fx) in place of the bracket end of its sign; when the same end is
+/// replaced twice running, the retained end's value is halved (the Illinois modification).
+/// side: -1/+1 the end replaced last (a/b), 0 none yet.
+inline void replace_end(double x, double fx, double& a, double& fa, double& b, double& fb, int& side) {
+  if ((fx > 0.0) == (fa > 0.0)) {
+    a = x;
+    fa = fx;
+    if (side == -1) fb *= 0.5;
+    side = -1;
+  } else {
+    b = x;
+    fb = fx;
+    if (side == 1) fa *= 0.5;
+    side = 1;
+  }
+}
+
+}  // namespace illinois_detail
+
 /// Root of f in the bracket [a, b] (either order) with fa = f(a) and fb = f(b) of opposite signs
 /// (or one zero). Stops when |f(x)| <= ftol, when the bracket is narrower than xtol, or after
 /// max_it evaluations. Returns the last point at which f was evaluated (b if none was), so that
@@ -22,17 +43,7 @@ double illinois_root(F&& f, double a, double fa, double b, double fb, double xto
     x = finite ? (a * fb - b * fa) / (fb - fa) : 0.5 * (a + b);
     if (!(std::min(a, b) < x && x < std::max(a, b))) x = 0.5 * (a + b);
     fx = f(x);
-    if ((fx > 0.0) == (fa > 0.0)) {
-      a = x;
-      fa = fx;
-      if (side == -1) fb *= 0.5;
-      side = -1;
-    } else {
-      b = x;
-      fb = fx;
-      if (side == 1) fa *= 0.5;
-      side = 1;
-    }
+    illinois_detail::replace_end(x, fx, a, fa, b, fb, side);
   }
   return x;
 }
@@ -66,17 +77,7 @@ double bracketed_secant_root(F&& f, double a, double fa, double b, double fb, do
     f_prev = fx;
     x = next;
     fx = f(x);
-    if ((fx > 0.0) == (fa > 0.0)) {
-      a = x;
-      fa = fx;
-      if (side == -1) fb *= 0.5;
-      side = -1;
-    } else {
-      b = x;
-      fb = fx;
-      if (side == 1) fa *= 0.5;
-      side = 1;
-    }
+    illinois_detail::replace_end(x, fx, a, fa, b, fb, side);
   }
   return x;
 }

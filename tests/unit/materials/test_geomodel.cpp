@@ -134,6 +134,20 @@ TEST(GeomodelReturn, LinearConeMatchesTheClosedFormProjection) {
   EXPECT_GT(face, 50);
 }
 
+// A capped surface to return onto, and the box of trial points around it.
+struct ReturnCase {
+  GeoLimit limit;
+  double X, cap_ratio, i1_lo, i1_hi, rj2_hi;
+
+  GeoSurface surface() const {
+    GeoSurface s;
+    s.limit = limit;
+    s.X = X;
+    s.kappa = geo_cap_kappa(limit, cap_ratio, X);
+    return s;
+  }
+};
+
 // The returned point must be the closest: no surface sample is nearer (in the transformed
 // metric) than the returned point, to 1e-9 of the distance. Surfaces: a nonlinear limit surface
 // with a moderate cap, and a linear one with a thin cap far out (a nearly crushed rock, where the
@@ -141,20 +155,13 @@ TEST(GeomodelReturn, LinearConeMatchesTheClosedFormProjection) {
 // lies: the case an earlier 12-point uniform sampling got wrong), for several scalings c and
 // trials all around, beyond the cap tip included.
 TEST(GeomodelReturn, ReturnIsTheClosestPoint) {
-  struct Case {
-    GeoLimit limit;
-    double X, cap_ratio, i1_lo, i1_hi, rj2_hi;
-  };
-  const Case cases[] = {{GeoLimit::make(20e6, 0.45, 150e6, 0.05), -400e6, 0.6, -900e6, 50e6, 300e6},
+  const ReturnCase cases[] = {{GeoLimit::make(20e6, 0.45, 150e6, 0.05), -400e6, 0.6, -900e6, 50e6, 300e6},
                         {GeoLimit::make(30e6, 0.5, NAN, 0.0), -2.464e9, 0.5, -3.2e9, 50e6, 1.5e9}};
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   int tested = 0;
-  for (const Case& k : cases) {
-    GeoSurface s;
-    s.limit = k.limit;
-    s.X = k.X;
-    s.kappa = geo_cap_kappa(s.limit, k.cap_ratio, s.X);
+  for (const ReturnCase& k : cases) {
+    const GeoSurface s = k.surface();
     for (double c : {0.7, 1.3, 1.8, 2.6}) {
       for (int t = 0; t < 80; ++t) {
         const double i1 = k.i1_lo + (k.i1_hi - k.i1_lo) * u(rng), rj2 = k.rj2_hi * u(rng);
@@ -187,25 +194,18 @@ TEST(GeomodelReturn, ReturnIsTheClosestPoint) {
 // this guards) is off by a finite fraction. The
 // sampled fallback must stay rare (under 2 % of the trials), or the fast path is not doing its job.
 TEST(GeomodelReturn, NewtonProjectionIsTheSampledClosestPoint) {
-  struct Case {
-    GeoLimit limit;
-    double X, cap_ratio, i1_lo, i1_hi, rj2_hi;
-  };
   const GeoLimit berea = GeoLimit::make(33e6, 0.40, 320e6, 0.0);
   GeoLimit mises;
   mises.a1 = 100e6;
-  const Case cases[] = {{berea, -1.14e9, 3.4, -2.5e9, 100e6, 500e6},
+  const ReturnCase cases[] = {{berea, -1.14e9, 3.4, -2.5e9, 100e6, 500e6},
                         {berea, -3.0e9, 3.4, -5e9, 100e6, 800e6},
                         {GeoLimit::make(30e6, 0.5, NAN, 0.0), -2.464e9, 0.5, -3.2e9, 50e6, 1.5e9},
                         {mises, -500e6, 1.0, -900e6, 500e6, 300e6}};
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   int tested = 0, sampled = 0, limit = 0, cap = 0;
-  for (const Case& k : cases) {
-    GeoSurface s;
-    s.limit = k.limit;
-    s.X = k.X;
-    s.kappa = geo_cap_kappa(s.limit, k.cap_ratio, s.X);
+  for (const ReturnCase& k : cases) {
+    const GeoSurface s = k.surface();
     for (double c : {0.5, 1.0, 1.7, 3.0}) {
       for (int t = 0; t < 400; ++t) {
         const double i1 = k.i1_lo + (k.i1_hi - k.i1_lo) * u(rng), rj2 = k.rj2_hi * u(rng);
