@@ -2,7 +2,8 @@
 // default update; plain USL with linear shape functions inverts surface particles here within
 // ~100 steps, the cell-crossing instability).
 // Reports particle-steps per second for 1e5 and 1e6 particles, linear and GIMP shape functions,
-// and the thread counts given by --threads (default 1 and 2). Setup is not timed.
+// on 1 and 2 threads, and for 1e4 and 1e7 particles (linear, 2 threads: the scaling in size).
+// Setup is not timed.
 //   ./build/bench/mpm_block_impact_bench [--benchmark_filter=...]
 // Figures and the exact command are recorded in docs/performance.md.
 #include <benchmark/benchmark.h>
@@ -70,6 +71,9 @@ void BM_EmptyBox(benchmark::State& state) {
 BENCHMARK(BM_EmptyBox)->Arg(1)->Arg(10)->Arg(100)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_BlockImpact, linear, std::string("linear"))
     ->ArgsProduct({{100000, 1000000}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+// The cost per particle-step across sizes (issue 17: flat from 1e4 to 1e7): linear, 2 threads.
+BENCHMARK_CAPTURE(BM_BlockImpact, scaling_linear, std::string("linear"))
+    ->ArgsProduct({{10000, 10000000}, {2}})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_BlockImpact, gimp, std::string("gimp"))
     ->ArgsProduct({{100000, 1000000}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 
