@@ -463,8 +463,8 @@ struct Geomodel {
     double i1_start = i1e_t;
     if (i1e_t - X >= p.cap_ratio * p.limit.value(i1e_t)) {
       GeoPoint q;
-      const double scale = std::abs(i1e_t) + c * rj2_t + (std::isfinite(p.limit.peak_i1) ? std::abs(p.limit.peak_i1) : 0.0);
-      if (!geo_project_on_limit(p.limit, c, i1e_t, rj2_t, 1e-14 * scale, q)) return false;
+      const double z_tol = geo_projection_tol(p.limit, c, i1e_t, rj2_t);
+      if (!geo_project_on_limit(p.limit, c, i1e_t, rj2_t, z_tol, q)) return false;
       if (q.i1 - X >= p.cap_ratio * q.rootj2) {  // outside the cap region (rootj2 = Ff there)
         if (!p.fluid()) {
           const double d0 = (I1_t - q.i1) / (3.0 * K);
@@ -474,7 +474,7 @@ struct Geomodel {
           d = d0;
           return true;
         }
-        if (!geo_limit_coupled_return(P, q.i1 / std::sqrt(3.0), 1e-14 * scale, tol, r)) return false;
+        if (!geo_limit_coupled_return(P, q.i1 / std::sqrt(3.0), z_tol, tol, r)) return false;
         pt = r.q;
         pf = r.pf;
         d = r.d;
@@ -516,28 +516,6 @@ struct Geomodel {
     return consistent_increment(p, evp, c, K, I1_t, rj2_t, d0, pt, pf, hint);
   }
 
-  /// First probe of the consistency iteration after the non-hardening return, which gave the
-  /// increment d0 and landed on a drained, hardening cap at angle theta of `hint`:
-  /// phi(d) = inc(d) - d, linearised at d = 0 with the returned point held at its cap angle, is
-  /// d0 - (1 + H) d with H = X'(evp) dI1/dX / (3K), dI1/dX = cos theta + kappa'(X) (1 - cos theta)
-  /// (I1 = kappa - (kappa - X) cos theta) and kappa'(X) = 1/(1 - CR Ff'(kappa)) (from
-  /// kappa - X = CR Ff(kappa)). The probe takes 0.9 H, so that it lands just short of the root and
-  /// brackets it with 0 (phi(probe) has the sign of phi(d0)). Compaction only (d0 < 0, evp <= 0):
-  /// there the return sits near the cap tip and the linearisation holds (the probe leaves |phi| at
-  /// ~5 % of |d0|, against ~40 % for d0); a dilating shear return moves along the cap as the cap
-  /// retracts, which the held angle misses. d0 itself where this does not apply.
-  static double predicted_increment(const Params& p, double evp, double K, double d0, const GeoReturnHint& hint) {
-    if (p.fluid() || !hint.on_cap || !p.crush.active() || p.crush.fixed || !std::isfinite(hint.kappa) ||
-        !(d0 < 0.0) || !(evp <= 0.0))
-      return d0;
-    // dX/devp of the crush curve in compaction (geomodel_surface.hpp): 1/(P1 (P3 + evp)).
-    const double dX = 1.0 / (p.crush.p1 * (p.crush.p3 + evp));
-    const double dkappa = 1.0 / (1.0 - p.cap_ratio * p.limit.slope(hint.kappa));
-    const double cs = std::cos(hint.theta);
-    const double H = dX * (cs + dkappa * (1.0 - cs)) / (3.0 * K);
-    return (H > 0.0 && std::isfinite(H)) ? d0 / (1.0 + 0.9 * H) : d0;
-  }
-
   /// Consistency bisection (Homel et al. 2015 §5): the plastic volumetric strain increment d with
   /// d = (increment of the non-hardening return onto the surface at evp + d). phi(d) = inc(d) - d is
   /// decreasing for a hardening cap and for pore pressure, so [d0, 0] brackets the root. If the
@@ -545,7 +523,7 @@ struct Geomodel {
   /// found, d0 is kept. The iteration runs in u = ln(P3 + evp) where the crush curve is
   /// logarithmic (X = P0 + (u - ln P3)/P1 in compaction), so that it stays well conditioned up to
   /// full crush (evp -> -P3), and otherwise in evp itself; the secant method kept in the bracket
-  /// (core/illinois.hpp), at most 80 steps, from a linearised first probe (predicted_increment).
+  /// (core/illinois.hpp), at most 80 steps.
   /// Fills (pt, pf) with the return onto the surface of the returned increment.
   static double consistent_increment(const Params& p, double evp, double c, double K, double I1_t, double rj2_t,
                                      double d0, GeoPoint& pt, double& pf, GeoReturnHint& hint) {
@@ -559,19 +537,10 @@ struct Geomodel {
       return return_at(p, evp + d, c, K, I1_t, rj2_t, q, pfq, hint) - d;
     };
     double a = to_x(0.0), fa = d0;  // phi(0) = d0
+    double b = to_x(d0);
     GeoPoint q;
     double pfq = pf;  // in: the pore-pressure guess (that of the non-hardening return)
-    // First probe: the linearised consistent increment on a drained cap, a bit short of it so that
-    // it usually brackets the root with 0. Otherwise (or if it falls short) the explicit d0.
-    const double d1 = predicted_increment(p, evp, K, d0, hint);
-    double b = to_x(d1);
     double fb = phi(b, q, pfq);
-    if (d1 != d0 && (fa > 0.0) == (fb > 0.0) && fb != 0.0) {
-      a = b;
-      fa = fb;
-      b = to_x(d0);
-      fb = phi(b, q, pfq);
-    }
     for (int grow = 0; grow < 30 && (fa > 0.0) == (fb > 0.0) && fb != 0.0; ++grow) {
       a = b;
       fa = fb;

@@ -48,21 +48,6 @@ struct GeoCoupledResult {
   int iterations = 0;
 };
 
-namespace geo_detail {
-
-/// Crush curve X(e) and its slope (thesis eq. 4.5 and its dilatation branch,
-/// geomodel_surface.hpp); a fixed cap does not move.
-inline double crush_cap_and_slope(const GeoCrushCurve& crush, double e, double& dX) {
-  const double X = crush.cap(e);
-  if (crush.fixed)
-    dX = 0.0;
-  else
-    dX = e <= 0.0 ? 1.0 / (crush.p1 * (crush.p3 + e)) : X / ((1.0 + e) * crush.p0 * crush.p1 * crush.p3);
-  return X;
-}
-
-}  // namespace geo_detail
-
 /// Return onto the cap, from angle `theta0` and d = 0; `kappa0` starts the branch-point solves.
 /// Converged when the Newton step in theta is below 1e-14 and that in d below `d_tol(d)`.
 template <class Pore, class Tol>
@@ -76,8 +61,7 @@ bool geo_cap_coupled_return(const GeoCoupledProblem<Pore>& P, double theta0, dou
   for (int it = 0; it < 20; ++it) {
     const double e = P.evp + d;
     if (!(P.crush.p3 + e > 0.0)) return false;  // past full crush: no cap
-    double dX;
-    const double X = geo_detail::crush_cap_and_slope(P.crush, e, dX);
+    const double X = P.crush.cap(e), dX = P.crush.slope(e, X);
     // pf from the previous one moved along its tangent (then its solve ends early too).
     pf = P.pore(e, it == 0 ? P.pf_guess : std::max(0.0, pf + dpf * (e - e_prev)), dpf);
     e_prev = e;
@@ -97,7 +81,7 @@ bool geo_cap_coupled_return(const GeoCoupledProblem<Pore>& P, double theta0, dou
     const double i1 = kappa - w * cs, i1p = w * sn, i1pp = w * cs;
     const double i1_x = dk - dw * cs, i1p_x = dw * sn;
     double v, d1, d2;
-    geo_detail::limit_derivatives(P.f, i1, v, d1, d2);
+    P.f.derivatives(i1, v, d1, d2);
     const double fp = d1 * i1p, fpp = d2 * i1p * i1p + d1 * i1pp;  // dFf/dtheta, d2Ff/dtheta2
     const double v_x = d1 * i1_x, fp_x = d2 * i1_x * i1p + d1 * i1p_x;
     const double z = i1 / s3, zp = i1p / s3, zpp = i1pp / s3, z_x = i1_x / s3, zp_x = i1p_x / s3;
@@ -146,7 +130,7 @@ bool geo_limit_coupled_return(const GeoCoupledProblem<Pore>& P, double z0, doubl
     e_prev = e;
     const double zt = (P.I1_t + 3.0 * pf) / s3;
     double v, d1, d2;
-    geo_detail::limit_derivatives(P.f, s3 * z, v, d1, d2);
+    P.f.derivatives(s3 * z, v, d1, d2);
     const double h = k * v, hp = k * s3 * d1, hpp = 3.0 * k * d2;
     const double R1 = (z - zt) + (h - rt) * hp;
     const double R2 = (P.I1_t - s3 * z + 3.0 * pf) / K3 - d;
@@ -162,8 +146,7 @@ bool geo_limit_coupled_return(const GeoCoupledProblem<Pore>& P, double z0, doubl
     if (std::abs(dz) <= z_tol && std::abs(dd) <= d_tol(d)) {
       // Certificate: stationary, trial above the surface (outward side of the tangent), and the
       // point right of the cap's branch point of the surface of e (I1 - X >= CR Ff).
-      double dX;
-      const double X = P.crush.active() ? geo_detail::crush_cap_and_slope(P.crush, e, dX) : -INFINITY;
+      const double X = P.crush.active() ? P.crush.cap(e) : -INFINITY;
       if (!(J11 > 0.0) || !(rt - h > 0.0) || !(s3 * z - X >= P.cap_ratio * v)) return false;
       out.d = d;
       out.q = {s3 * z, std::max(0.0, v)};

@@ -45,20 +45,6 @@ struct GeoPoint {
 
 namespace geo_detail {
 
-/// Ff and its first two derivatives in I1 (one exponential).
-inline void limit_derivatives(const GeoLimit& f, double i1, double& v, double& d1, double& d2) {
-  if (f.a3 == 0.0) {
-    v = f.a1 - f.a4 * i1;
-    d1 = -f.a4;
-    d2 = 0.0;
-    return;
-  }
-  const double e = f.a3 * std::exp(f.a2 * i1);
-  v = f.a1 - e - f.a4 * i1;
-  d1 = -f.a2 * e - f.a4;
-  d2 = -f.a2 * f.a2 * e;
-}
-
 /// Newton's method for a root of F on [lo, hi] with F(lo) <= 0 <= F(hi) (not evaluated), kept in
 /// the bracket by bisection when a step leaves it or F' <= 0. `eval(t, F, dF)` evaluates at t and
 /// records what the caller needs of that point. Returns true when a step shorter than `tol` was
@@ -109,7 +95,7 @@ inline bool geo_project_on_limit(const GeoLimit& f, double c, double i1_t, doubl
   double ff = 0.0;
   auto eval = [&](double z, double& F, double& dF) {
     double v, d1, d2;
-    geo_detail::limit_derivatives(f, s3 * z, v, d1, d2);
+    f.derivatives(s3 * z, v, d1, d2);
     const double h = k * v, hp = k * s3 * d1, hpp = 3.0 * k * d2;
     F = (z - zt) + (h - rt) * hp;
     dF = 1.0 + hp * hp + (h - rt) * hpp;
@@ -137,7 +123,7 @@ inline bool geo_project_on_cap(const GeoSurface& s, double c, double i1_t, doubl
     const double cs = std::cos(th);
     const double i1 = s.kappa - w * cs, i1p = w * sn, i1pp = w * cs;
     double v, d1, d2;
-    geo_detail::limit_derivatives(s.limit, i1, v, d1, d2);
+    s.limit.derivatives(i1, v, d1, d2);
     const double fp = d1 * i1p, fpp = d2 * i1p * i1p + d1 * i1pp;  // dFf/dtheta, d2Ff/dtheta2
     const double g = v * sn, gp = fp * sn + v * cs, gpp = fpp * sn + 2.0 * fp * cs - v * sn;
     z = i1 / s3;

@@ -139,8 +139,8 @@ inline GeoPoint geo_closest_point_sampled(const GeoSurface& s, double c, double 
 enum class GeoReturnPath { Hydrostat, Limit, Cap, Sampled };
 
 /// Tolerance in z of the Newton projection onto the limit surface: 1e-14 of the trial's scale.
-inline double geo_projection_tol(const GeoSurface& s, double c, double i1_t, double rj2_t) {
-  const double scale = std::abs(i1_t) + c * rj2_t + (std::isfinite(s.hi()) ? std::abs(s.hi()) : 0.0);
+inline double geo_projection_tol(const GeoLimit& f, double c, double i1_t, double rj2_t) {
+  const double scale = std::abs(i1_t) + c * rj2_t + (std::isfinite(f.peak_i1) ? std::abs(f.peak_i1) : 0.0);
   return 1e-14 * scale;
 }
 
@@ -165,7 +165,7 @@ inline GeoPoint geo_closest_point(const GeoSurface& s, double c, double i1_t, do
   GeoPoint q;
   double theta = std::numeric_limits<double>::quiet_NaN();
   auto on_limit = [&] {
-    return geo_project_on_limit(s.limit, c, i1_t, rj2_t, geo_projection_tol(s, c, i1_t, rj2_t), q) &&
+    return geo_project_on_limit(s.limit, c, i1_t, rj2_t, geo_projection_tol(s.limit, c, i1_t, rj2_t), q) &&
            !(q.i1 < s.kappa);
   };
   auto on_cap = [&] { return geo_project_on_cap(s, c, i1_t, rj2_t, q, hint ? hint->theta : theta, &theta); };

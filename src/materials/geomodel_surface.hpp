@@ -49,6 +49,19 @@ struct GeoLimit {
     v = a1 - e - a4 * i1;
     d = -a2 * e - a4;
   }
+  /// Ff and its first two derivatives in I1 (one exponential; Ff'' = -a2^2 a3 exp(a2 I1) <= 0).
+  void derivatives(double i1, double& v, double& d1, double& d2) const {
+    if (a3 == 0.0) {
+      v = a1 - a4 * i1;
+      d1 = -a4;
+      d2 = 0.0;
+      return;
+    }
+    const double e = a3 * std::exp(a2 * i1);
+    v = a1 - e - a4 * i1;
+    d1 = -a2 * e - a4;
+    d2 = -a2 * a2 * e;
+  }
 
   /// Coefficients from the user parameters (derived here from Ff(PEAKI1) = 0, -Ff'(PEAKI1) =
   /// FSLOPE, Ff -> STREN + YSLOPE |I1| as I1 -> -inf):
@@ -91,6 +104,12 @@ struct GeoCrushCurve {
     }
     return p0 * std::pow(1.0 + evp, 1.0 / (p0 * p1 * p3));
   }
+  /// dX/devp at evp, given X = cap(evp): 1/(P1 (P3 + evp)) in compaction, X / ((1 + evp) P0 P1 P3)
+  /// in dilatation (the derivatives of the two branches above, equal at evp = 0); 0 for a fixed cap.
+  double slope(double evp, double X) const {
+    if (fixed) return 0.0;
+    return evp <= 0.0 ? 1.0 / (p1 * (p3 + evp)) : X / ((1.0 + evp) * p0 * p1 * p3);
+  }
   /// Porosity phi = 1 - exp(-(P3 + evp)) (eq. 4.6), clamped at 0 past full crush and, after
   /// extreme dilatation (P3 + evp > 37, where 1 - exp(-x) rounds to 1), at the largest double
   /// below 1: the porosity of a body is < 1 however far it has been torn apart.
@@ -124,14 +143,14 @@ inline double geo_cap_kappa(const GeoLimit& f, double cap_ratio, double X,
   // tangent of g at X, which (g convex) lies right of kappa and much nearer than PEAKI1.
   double k = std::min(std::isfinite(guess) ? guess : X, f.peak_i1);
   for (int it = 0; it < 60; ++it) {
-    const double e = f.a3 * std::exp(f.a2 * k);
-    const double v = f.a1 - e - f.a4 * k, dv = -f.a2 * e - f.a4;
+    double v, dv, d2v;
+    f.derivatives(k, v, dv, d2v);
     if (slope) *slope = dv;
     const double g = k - X - cap_ratio * v;
     const double dk = g / (1.0 - cap_ratio * dv);
     k = std::min(k - dk, f.peak_i1);
     const double tol = 1e-15 * (std::abs(k) + std::abs(X));
-    if (std::abs(dk) <= tol || cap_ratio * f.a2 * f.a2 * e * dk * dk <= tol) break;
+    if (std::abs(dk) <= tol || -cap_ratio * d2v * dk * dk <= tol) break;
   }
   return k;
 }
