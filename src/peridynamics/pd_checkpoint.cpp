@@ -61,6 +61,7 @@ void PdSolver::save_state(StateArchive& a) const {
   const std::vector<double> counts_by_rank = gathered(counts);
   std::vector<double> totals(counts.begin(), counts.begin() + 2);
   comm_.sum(totals.data(), static_cast<int>(totals.size()));
+  const bool vented_since_build = comm_.any(vented_since_build_);
   if (comm_.rank() != 0) return;
   a.put_real("pd.time", time_);
   a.put_int("pd.steps", steps_);
@@ -76,7 +77,7 @@ void PdSolver::save_state(StateArchive& a) const {
   a.put("pd.contact_stiffness", stiffness);
   a.put("pd.contact.x_build", x_build);
   a.put("pd.contact.state", std::vector<double>{contact_.skin, static_cast<double>(contact_.builds)});
-  a.put_real("pd.contact.vented_at_build", vented_at_build_);
+  a.put_int("pd.contact.vented_since_build", vented_since_build ? 1 : 0);
   a.put("pd.gas.x", gas_x);
   a.put("pd.gas.g", gas_g);
   a.put("pd.gas.vented", std::vector<std::int64_t>(vented.begin(), vented.end()));
@@ -163,9 +164,9 @@ void PdSolver::load_state(const StateArchive& a) {
     contact_.builds = builds;
   }
   contact_.skin = cs[0];
-  // The vented count at that build (a vent since then rebuilds the list at the next step, as it
-  // would have; checkpoints from before this key rebuild at the first step).
-  vented_at_build_ = a.has("pd.contact.vented_at_build") ? a.real("pd.contact.vented_at_build") : -1.0;
+  // Whether a point vented since that build (the list is then rebuilt at the next step, as it
+  // would have been; checkpoints without this key rebuild at the first step).
+  vented_since_build_ = !a.has("pd.contact.vented_since_build") || a.integer("pd.contact.vented_since_build") != 0;
   sync_local();
   x_prev_ = local_.x;
   time_ = a.real("pd.time");

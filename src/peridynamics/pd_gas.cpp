@@ -129,6 +129,7 @@ void PdSolver::vent_escaped_gas() {
     pts_.book_vented(p);
     vented_[l] = 1;
     ++vented_count_;
+    vented_since_build_ = true;
     vent_velocity_[l] = v[p];  // it flies on (pd_solver.cpp), out of the balance
     v[p] = Vec3{};
     eint[p] = 0.0;

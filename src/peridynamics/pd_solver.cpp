@@ -449,8 +449,8 @@ void PdSolver::sync_local() {
 
 bool PdSolver::contacts_stale() const {
   // A point vented since the build leaves the list at once (vented points take no part in contact).
-  if (has_gas_ && comm_.sum(static_cast<double>(vented_count_)) != vented_at_build_) return true;
   if (!comm_.distributed()) {
+    if (vented_since_build_) return true;
     const double ms = contact_.solid_moved(local_.x.data(), local_.size(), skip_vented(), skip_gas());
     return contact_.stale(local_.x.data(), local_.size(), ms, skip_vented(), skip_gas());
   }
@@ -465,7 +465,7 @@ bool PdSolver::contacts_stale() const {
     skip = mask.data();
   }
   const double ms = comm_.max(contact_.solid_moved(local_.x.data(), local_.size(), skip, gas));
-  return comm_.any(contact_.stale(local_.x.data(), local_.size(), ms, skip, gas));
+  return comm_.any(vented_since_build_ || contact_.stale(local_.x.data(), local_.size(), ms, skip, gas));
 }
 
 void PdSolver::resize_local_arrays() {
@@ -483,7 +483,7 @@ void PdSolver::resize_local_arrays() {
 
 void PdSolver::rebuild_contacts() {
   const double cutoff = 1.35 * dx_ + contact_.skin;  // contact_list.hpp
-  if (has_gas_) vented_at_build_ = comm_.sum(static_cast<double>(vented_count_));
+  vented_since_build_ = false;
   if (!comm_.distributed()) {
     // One rank holds every solid: gas far from them may move by its clearance.
     pd::build_contact_list(contact_, local_.x.data(), local_.x0.data(), local_.body.data(), local_.size(), delta_, dx_,

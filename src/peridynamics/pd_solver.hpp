@@ -237,7 +237,7 @@ class PdSolver final : public Solver {
   std::vector<std::uint8_t> vented_;  ///< gas vented (left the box); empty without gas
   std::vector<Vec3> vent_velocity_;   ///< m/s, the velocity each vented point left the box with
   Index vented_count_ = 0;
-  double vented_at_build_ = 0.0;  ///< vented points over every rank at the last contact list build
+  bool vented_since_build_ = false;  ///< this rank vented a point since the last contact list build
   Index gas_rate_limited_ = 0;        ///< point-steps whose X change was limited (gas_pass.hpp)
   double time_ = 0.0;
   long steps_ = 0;
