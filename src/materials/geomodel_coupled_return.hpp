@@ -45,7 +45,6 @@ struct GeoCoupledResult {
   double d = 0;   ///< plastic volumetric strain increment
   GeoPoint q;     ///< returned point (effective I1, sqrt(J2)) on the surface of evp + d
   double pf = 0;  ///< pore pressure at evp + d
-  int iterations = 0;
 };
 
 /// Return onto the cap, from angle `theta0` and d = 0; `kappa0` starts the branch-point solves.
@@ -98,7 +97,6 @@ bool geo_cap_coupled_return(const GeoCoupledProblem<Pore>& P, double theta0, dou
     if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return false;
     const double dth = (-R1 * J22 + R2 * J12) / det;
     const double dd = (-R2 * J11 + R1 * J21) / det;
-    out.iterations = it + 1;
     if (std::abs(dth) <= 1e-14 && std::abs(dd) <= d_tol(d)) {
       // Converged at the evaluated point: certify it as the projection onto its own surface.
       if (!(J11 > 0.0) || !((zt - z) * -rp + (rt - r) * zp > 0.0)) return false;
@@ -142,7 +140,6 @@ bool geo_limit_coupled_return(const GeoCoupledProblem<Pore>& P, double z0, doubl
     if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return false;
     const double dz = (-R1 * J22 + R2 * J12) / det;
     const double dd = (-R2 * J11 + R1 * J21) / det;
-    out.iterations = it + 1;
     if (std::abs(dz) <= z_tol && std::abs(dd) <= d_tol(d)) {
       // Certificate: stationary, trial above the surface (outward side of the tangent), and the
       // point right of the cap's branch point of the surface of e (I1 - X >= CR Ff).
