@@ -17,6 +17,7 @@
 // case. Bonds (rather than contact) because the gas-case interface is then exactly the gas's own
 // pressure with no penalty stiffness to choose; a gas bond never breaks and never pulls.
 #include <cstdint>
+#include <vector>
 
 #include "core/tensor.hpp"
 #include "peridynamics/bond_family.hpp"
@@ -48,6 +49,12 @@ struct GasPassArgs {
   const double* family_volume;  ///< V_i = sum_j beta dV_j of gas points, m^3
   const double* g;           ///< G_i = d P_i X_i^(1+m/d) dV0_i / V_i of gas points, Pa (0: no push)
   int dim = 3;
+  /// The family renewed in the current configuration (build_renewed_gas_family), per row entry:
+  /// the other end's reference length and the weight of this row's point in the other end's
+  /// measure (volume_factor holds the other end's weight in this row's). nullptr: the reference
+  /// family, one length and one partial-volume factor per bond.
+  const double* length_other = nullptr;
+  const float* weight_other = nullptr;
 };
 
 /// X_i of gas point i at the current positions (1 in the reference configuration).
@@ -58,5 +65,20 @@ Vec3 gas_force(const GasPassArgs& a, Index p);
 
 /// sum_j beta dV_j / |xi| over the gas row of p, 1/m^2 (the stable step of a gas point, pd_solver.cpp).
 double gas_inverse_length_sum(const GasPassArgs& a, Index p);
+
+/// The gas family renewed in the current configuration x (peridynamics.gas_refamily_steps): every
+/// pair of gas points within delta min(s_p, s_q), s = X^(1/d) (capped at 2.5), and every gas point
+/// and solid within delta; skip[p] != 0 leaves gas point p out (vented). A quadrature of the current neighbourhood,
+/// so each neighbour weighs by its current volume dV0 X (volume_factor: the other end's X; a solid
+/// end 1). Each row entry holds its own end's reference length |y| X_p^(-1/d) (a solid end: |y|)
+/// and, in length_other and weight_other, the other end's length and this end's weight, so that
+/// density_measure gives every gas point its X back and gas_force stays equal and opposite.
+struct RenewedGasFamily {
+  BondFamily family;
+  std::vector<double> length_other;
+  std::vector<float> weight_other;
+};
+RenewedGasFamily build_renewed_gas_family(const Vec3* x, Index n, const std::uint8_t* gas, const std::uint8_t* skip,
+                                          const double* X, double delta, int dim);
 
 }  // namespace ballista::pd

@@ -54,6 +54,15 @@ void PdSolver::save_state(StateArchive& a) const {
     vented = gathered(std::move(flag));
     vent_velocity = gathered(std::move(vel));
   }
+  // The inputs of the last renewal of the gas family (one rank only: pd_gas.cpp): a restart builds
+  // the same family from them.
+  std::vector<double> renewal;
+  if (!renewal_.x.empty())
+    for (Index l : own) {
+      renewal.insert(renewal.end(), renewal_.x[l].v, renewal_.x[l].v + 3);
+      renewal.push_back(renewal_.X[l]);
+      renewal.push_back(renewal_.skip[l]);
+    }
   // Counters: each rank's (a restart on as many ranks takes its own back) and the totals (the
   // contact ghosts' offered bytes are per rank only: they depend on the decomposition).
   const std::vector<double> counts{static_cast<double>(vented_count_), static_cast<double>(gas_rate_limited_),
@@ -82,6 +91,10 @@ void PdSolver::save_state(StateArchive& a) const {
   a.put("pd.gas.g", gas_g);
   a.put("pd.gas.vented", std::vector<std::int64_t>(vented.begin(), vented.end()));
   a.put("pd.gas.vent_velocity", vent_velocity);
+  if (!renewal.empty()) {
+    a.put("pd.gas.renewal", renewal);
+    a.put_int("pd.gas.renewals", gas_renewals_);
+  }
   std::vector<double> rows;
   const std::size_t width = fragment_rows_.empty() ? 0 : fragment_rows_.front().size();
   for (const auto& r : fragment_rows_) rows.insert(rows.end(), r.begin(), r.end());
@@ -121,6 +134,17 @@ void PdSolver::load_state(const StateArchive& a) {
   const auto& gas_g = a.reals("pd.gas.g", has_gas_ ? m : 0);
   const auto& vented = a.ints("pd.gas.vented", has_gas_ ? m : 0);
   const auto& vent_velocity = a.reals("pd.gas.vent_velocity", has_gas_ ? 3 * m : 0);
+  const bool renewed = a.has("pd.gas.renewal");
+  if (renewed && comm_.distributed())
+    throw Error("the checkpoint's gas family was renewed in the current configuration "
+                "(peridynamics.gas_refamily_steps): restart it on one MPI rank");
+  static const std::vector<double> kNone;
+  const auto& renewal = renewed ? a.reals("pd.gas.renewal", 5 * m) : kNone;
+  if (renewed) {
+    renewal_.x.assign(static_cast<size_t>(local_.size()), Vec3{});
+    renewal_.X.assign(static_cast<size_t>(local_.size()), 1.0);
+    renewal_.skip.assign(static_cast<size_t>(local_.size()), 0);
+  }
   for (Index i = 0; i < n; ++i) {
     const Index l = local_.own[i];
     const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::pair<std::int64_t, std::size_t>{ids[i], 0});
@@ -146,6 +170,16 @@ void PdSolver::load_state(const StateArchive& a) {
       vented_[l] = static_cast<std::uint8_t>(vented[j]);
       vent_velocity_[l] = Vec3{{vent_velocity[3 * j], vent_velocity[3 * j + 1], vent_velocity[3 * j + 2]}};
     }
+    if (renewed) {
+      const double* r = &renewal[5 * j];
+      renewal_.x[l] = Vec3{{r[0], r[1], r[2]}};
+      renewal_.X[l] = r[3];
+      renewal_.skip[l] = static_cast<std::uint8_t>(r[4]);
+    }
+  }
+  if (renewed) {
+    build_renewed_gas_family();
+    gas_renewals_ = static_cast<long>(a.integer("pd.gas.renewals"));
   }
   // A ghost's copy of a bond is its own end's (broken flags and plastic stretches are kept equal).
   for (Index l : local_.own)

@@ -36,7 +36,9 @@ void PdSolver::build_gas() {
 
 pd::GasPassArgs PdSolver::gas_pass_args() const {
   // Over the local points (own and ghosts; positions from sync_local).
-  return {local_.x.data(), local_.vol0.data(), &gas_bonds_, gas_local_.data(), gas_volume_.data(), gas_g_.data(), dim_};
+  return {local_.x.data(), local_.vol0.data(), &gas_bonds_, gas_local_.data(), gas_volume_.data(), gas_g_.data(), dim_,
+          gas_len_other_.empty() ? nullptr : gas_len_other_.data(),
+          gas_weight_other_.empty() ? nullptr : gas_weight_other_.data()};
 }
 
 void PdSolver::update_gas(double dt) {
@@ -75,6 +77,7 @@ void PdSolver::update_gas(double dt) {
   gas_rate_limited_ += limited.load();
   // The products' pressure through the library: program burn, JWL / ideal gas, energy -P dV.
   pts_.update_stress(dt, steps_ + 1, time_ + dt, gas_material_);
+  if (gas_refamily_every_ > 0 && (steps_ + 1) % gas_refamily_every_ == 0) refamily_gas();
   // G_i = d P_i X_i^(1+m/d) dV0_i / V_i (gas_pass.hpp); a vented point pushes nothing.
   const auto* stress = points_.view<Mat3>("stress");
   const double expo = 1.0 + pd::kGasExponent / dim_;
@@ -85,6 +88,38 @@ void PdSolver::update_gas(double dt) {
     gas_g_[l] = vented_[l] || !(gas_volume_[l] > 0.0)
                     ? 0.0
                     : dim_ * P * std::pow(gas_x_[l], expo) * vol0[p] / gas_volume_[l];
+  });
+}
+
+void PdSolver::refamily_gas() {
+  // The inputs are kept: a restart builds the same family from them (pd_checkpoint.cpp).
+  renewal_.x = local_.x;
+  renewal_.X = gas_x_;
+  renewal_.skip = vented_;
+  build_renewed_gas_family();
+}
+
+void PdSolver::build_renewed_gas_family() {
+  pd::RenewedGasFamily r = pd::build_renewed_gas_family(renewal_.x.data(), local_.size(), gas_local_.data(),
+                                                         renewal_.skip.data(), renewal_.X.data(), delta_, dim_);
+  gas_bonds_ = std::move(r.family);
+  gas_len_other_ = std::move(r.length_other);
+  gas_weight_other_ = std::move(r.weight_other);
+  ++gas_renewals_;
+  const Index n = local_.size();
+  const auto* vol0 = local_.vol0.data();
+  const pd::GasPassArgs a = gas_pass_args();
+  for_each(0, n, [&](Index p) {
+    if (!gas_local_[p]) return;
+    double v = 0.0, v0 = 0.0;
+    for (Index k = gas_bonds_.offset[p]; k < gas_bonds_.offset[p + 1]; ++k) {
+      v += gas_bonds_.volume_factor[k] * vol0[gas_bonds_.other[k]];
+      v0 += vol0[gas_bonds_.other[k]];
+    }
+    gas_volume_[p] = v;
+    // The stable step's sum with the weights divided by their mean: G_i carries 1/V_i, so the
+    // current-volume weights scale each bond's stiffness by w_j / mean(w), not by w_j.
+    gas_inv_len_[p] = v > 0.0 ? pd::gas_inverse_length_sum(a, p) * v0 / v : 0.0;
   });
 }
 

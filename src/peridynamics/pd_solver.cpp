@@ -208,6 +208,16 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   // Every rank takes part in the gas's exchanges and reductions if any rank holds gas.
   has_gas_ = comm_.any(std::find(gas_.begin(), gas_.end(), 1) != gas_.end());
   if (has_gas_) build_gas();
+  if (const double every = P.at("gas_refamily_steps"); every > 0.0) {
+    if (every != std::floor(every)) section_error(sc, "gas_refamily_steps", "expected a whole number of steps");
+    // The renewed family needs every neighbour within the current horizon, which another rank's
+    // points may be: one rank only so far (docs/parallel.md).
+    if (has_gas_ && comm_.distributed())
+      section_error(sc, "gas_refamily_steps",
+                    "renewing the gas family runs on one MPI rank only so far (" + std::to_string(comm_.size()) +
+                        " ranks were started; set it to 0 or run on one rank)");
+    gas_refamily_every_ = static_cast<int>(every);
+  }
   s0_.assign(static_cast<size_t>(nl), kInf);
   const auto* mat = local_.material.data();
   for (Index p = 0; p < nb; ++p) {
@@ -837,7 +847,8 @@ std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
           {"bytes_per_bond_end", kSolverBytesPerBond + (sp_.empty() ? 0.0 : sizeof(double))},
           {"gas_bonds", static_cast<double>(gas_bonds) / 2.0},
           {"vented_gas_points", static_cast<double>(comm_.sum(static_cast<std::int64_t>(vented_count_)))},
-          {"gas_rate_limited_steps", static_cast<double>(comm_.sum(static_cast<std::int64_t>(gas_rate_limited_)))}};
+          {"gas_rate_limited_steps", static_cast<double>(comm_.sum(static_cast<std::int64_t>(gas_rate_limited_)))},
+          {"gas_family_renewals", static_cast<double>(gas_renewals_)}};
   if (comm_.distributed()) {
     // Several ranks: how the points are shared, and what rank 0 sends its neighbours per step
     // (its own points' ghost copies), one message per neighbouring rank.
@@ -986,9 +997,13 @@ std::vector<ParamSpec> pd_params() {
       "work: a breaking bond stops acting and dissipates its trapezoidal work over the step (energy "
       "conserving); lammps: it acts once more and dissipates U(s) (LAMMPS PERI's order, for comparisons)",
       {"work", "lammps"});
+  ParamSpec refam{"gas_refamily_steps", "1",
+                   "detonation products: steps between renewals of the gas family in the current configuration "
+                   "(0: the reference family throughout; pd_gas.cpp)",
+                   false, 0.0, 0.0, 1.0e6};
   ParamSpec skin{"contact_skin", "1", "contact list skin over the lattice spacing (rebuilt after skin/2 of motion)",
                  false, 0.5, 0.0, 10.0, true};
-  return {m, horizon, vc, thick, cal, surf, yield, s0, g0, alpha, scatter, safety, fint, fthr, contact, pairs, rule, skin};
+  return {m, horizon, vc, thick, cal, surf, yield, s0, g0, alpha, scatter, safety, fint, fthr, contact, pairs, rule, skin, refam};
 }
 
 }  // namespace

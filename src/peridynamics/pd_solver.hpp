@@ -142,6 +142,12 @@ class PdSolver final : public Solver {
   /// X of every gas point at the current positions, F = X^(1/d) I and L over dt, the material's
   /// update at t + dt (burn, pressure, -P dV booked as internal energy), then G_i for the forces.
   void update_gas(double dt);
+  /// The gas family renewed at the current positions and X (peridynamics.gas_refamily_steps,
+  /// pd::build_renewed_gas_family), its inputs kept for a checkpoint.
+  void refamily_gas();
+  /// The family from the kept inputs (renewal_), with the gas points' family volumes and stable
+  /// step sums (also on restart).
+  void build_renewed_gas_family();
   /// Smallest stable step of the gas points: Silling & Askari's bound with the micromodulus of
   /// the products' current bulk modulus rho c^2.
   double gas_stable_dt() const;
@@ -229,6 +235,16 @@ class PdSolver final : public Solver {
   bool has_gas_ = false;
   double m1_ = 0.0;                   ///< the family moment m1 of the bond constants (gas stable step)
   pd::BondFamily gas_bonds_;          ///< build_gas_family
+  std::vector<double> gas_len_other_; ///< after refamily_gas: the other end's reference length per row entry, m
+  std::vector<float> gas_weight_other_;  ///< after refamily_gas: this end's weight in the other end's measure
+  int gas_refamily_every_ = 0;        ///< steps between renewals of the gas family (0: never)
+  long gas_renewals_ = 0;             ///< renewals so far (result value)
+  /// The inputs of the last renewal of the gas family, per local point (empty before the first).
+  struct GasRenewal {
+    std::vector<Vec3> x;               ///< positions, m
+    std::vector<double> X;             ///< density measures
+    std::vector<std::uint8_t> skip;    ///< vented then
+  } renewal_;
   // Per local point (own points' values; a ghost's G and vented flag come from its owner).
   std::vector<double> gas_volume_;    ///< V_i = sum_j beta dV_j of each gas point, m^3
   std::vector<double> gas_inv_len_;   ///< sum_j beta dV_j / |xi| of each gas point, 1/m^2

@@ -46,16 +46,22 @@ class CellBins {
     for (Index p = 0; p < n; ++p) order_[fill[bin[p]]++] = p;
   }
 
-  /// False if y is farther than one bin outside the points' bounding box along some axis: no point
-  /// is within a bin size of it (visit would clamp it into the edge bins and scan them for nothing).
-  bool near(const Vec3& y) const {
+  /// False if y is farther than `reach` bins outside the points' bounding box along some axis: no
+  /// point is within reach bin sizes of it (visit would clamp it into the edge bins and scan them
+  /// for nothing).
+  bool near(const Vec3& y, int reach = 1) const {
+    const double margin = reach * size_;
     for (int a = 0; a < dim_; ++a)
-      if (!(y[a] >= lo_[a] - size_ && y[a] <= hi_[a] + size_)) return false;
+      if (!(y[a] >= lo_[a] - margin && y[a] <= hi_[a] + margin)) return false;
     return true;
   }
 
   /// The bin size actually used (at least the one asked for).
   double size() const { return size_; }
+
+  /// The points in bin order (bin by bin, each bin's in increasing index): arrays permuted so and
+  /// binned again are scanned contiguously by visit.
+  const std::vector<Index>& order() const { return order_; }
 
   /// For every bin, its chessboard distance in bins to the nearest bin holding a point, capped at
   /// `cap` (all `cap` without points). Two-pass chamfer over the 3^dim neighbourhood with unit
@@ -108,15 +114,16 @@ class CellBins {
     return (static_cast<Index>(c[2]) * nb_[1] + c[1]) * nb_[0] + c[0];
   }
 
-  /// Calls f(q) for every point q in the bins around position y (q may be the point at y itself).
+  /// Calls f(q) for every point q in the bins around position y (q may be the point at y itself):
+  /// those within `reach` bins along each axis (1: the 3^dim bins, every point within a bin size).
   template <class F>
-  void visit(const Vec3& y, F&& f) const {
+  void visit(const Vec3& y, F&& f, int reach = 1) const {
     int c[3];
     cell(y, c);
-    const int zr = dim_ == 3 ? 1 : 0;
+    const int zr = dim_ == 3 ? reach : 0;
     for (int dz = -zr; dz <= zr; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -reach; dy <= reach; ++dy)
+        for (int dx = -reach; dx <= reach; ++dx) {
           const int b0 = c[0] + dx, b1 = c[1] + dy, b2 = c[2] + dz;
           if (b0 < 0 || b1 < 0 || b2 < 0 || b0 >= nb_[0] || b1 >= nb_[1] || b2 >= nb_[2]) continue;
           const Index b = (static_cast<Index>(b2) * nb_[1] + b1) * nb_[0] + b0;
