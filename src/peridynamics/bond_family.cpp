@@ -38,6 +38,19 @@ LatticeMoments lattice_moments(double delta, double dx, bool partial, int dim) {
   return m;
 }
 
+BondFamily family_with_rows(const std::vector<Index>& count) {
+  const Index n = static_cast<Index>(count.size());
+  BondFamily f;
+  f.offset.assign(static_cast<size_t>(n) + 1, 0);
+  for (Index p = 0; p < n; ++p) f.offset[p + 1] = f.offset[p] + count[p];
+  const auto nbond = static_cast<size_t>(f.offset[n]);
+  f.other.resize(nbond);
+  f.length0.resize(nbond);
+  f.volume_factor.resize(nbond);
+  f.broken.assign(nbond, 0);
+  return f;
+}
+
 namespace {
 
 /// The families of build_bond_family and build_gas_family: the pairs within the horizon that
@@ -77,12 +90,7 @@ BondFamily build_family(const Vec3* x0, Index n, double delta, double dx, int di
     visit(p, [&](Index, double, double) { ++k; });
     count[p] = k;
   });
-  for (Index p = 0; p < n; ++p) f.offset[p + 1] = f.offset[p] + count[p];
-  const Index nbond = f.offset[n];
-  f.other.resize(static_cast<size_t>(nbond));
-  f.length0.resize(static_cast<size_t>(nbond));
-  f.volume_factor.resize(static_cast<size_t>(nbond));
-  f.broken.assign(static_cast<size_t>(nbond), 0);
+  f = family_with_rows(count);
   for_each(0, n, [&](Index p) {
     Index k = f.offset[p];
     visit(p, [&](Index o, double r, double w) {

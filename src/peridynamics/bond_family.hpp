@@ -46,6 +46,10 @@ struct BondFamily {
   static constexpr double kBytesPerBond = sizeof(std::int32_t) + sizeof(double) + sizeof(float) + 1;
 };
 
+/// A family with rows of count[p] bonds each (offsets set, arrays sized, no bond broken; the
+/// caller fills other, length0 and volume_factor).
+BondFamily family_with_rows(const std::vector<Index>& count);
+
 /// Families of the n reference positions x0 with horizon delta; `dx` is the lattice spacing used
 /// by the partial-volume correction (0: no correction). With `body` given, only points of the same
 /// body are bonded (bodies are separate objects that meet through contact). Neighbours within each

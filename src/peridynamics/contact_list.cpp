@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "peridynamics/chunked_rows.hpp"
 #include "points/cell_bins.hpp"
 
 namespace ballista::pd {
@@ -106,24 +107,20 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
   // depend on the thread count), then into the rows. Pairs are rare (most neighbours are bonded),
   // so the buffers stay small.
   constexpr Index kChunk = 4096;
-  const Index nchunk = (n + kChunk - 1) / kChunk;
-  std::vector<std::vector<std::pair<std::int32_t, double>>> found(static_cast<size_t>(nchunk));
-  std::vector<Index> count(static_cast<size_t>(n), 0);
-  for_each(0, nchunk, [&](Index c) {
-    auto& buf = found[c];
-    for (Index p = c * kChunk; p < std::min(n, (c + 1) * kChunk); ++p) {
-      const size_t first = buf.size();
-      visit(p, [&](Index q, double d) { buf.emplace_back(static_cast<std::int32_t>(q), d); });
-      // Increasing neighbour index (or key): the force sums run in a fixed order (thread-count and,
-      // by id, decomposition independent).
-      if (key)
-        std::sort(buf.begin() + static_cast<std::ptrdiff_t>(first), buf.end(),
-                  [&](const auto& a, const auto& b) { return key[a.first] < key[b.first]; });
-      else
-        std::sort(buf.begin() + static_cast<std::ptrdiff_t>(first), buf.end());
-      count[p] = static_cast<Index>(buf.size() - first);
-    }
+  const ChunkedRows rows = chunked_rows(n, kChunk, [&](Index p, auto& buf) {
+    const size_t first = buf.size();
+    visit(p, [&](Index q, double d) { buf.emplace_back(static_cast<std::int32_t>(q), d); });
+    // Increasing neighbour index (or key): the force sums run in a fixed order (thread-count and,
+    // by id, decomposition independent).
+    if (key)
+      std::sort(buf.begin() + static_cast<std::ptrdiff_t>(first), buf.end(),
+                [&](const auto& a, const auto& b) { return key[a.first] < key[b.first]; });
+    else
+      std::sort(buf.begin() + static_cast<std::ptrdiff_t>(first), buf.end());
   });
+  const Index nchunk = static_cast<Index>(rows.found.size());
+  const auto& found = rows.found;
+  const auto& count = rows.count;
   for (Index p = 0; p < n; ++p) list.offset[p + 1] = list.offset[p] + count[p];
   list.other.resize(static_cast<size_t>(list.offset[n]));
   list.reach.resize(list.other.size());

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "peridynamics/chunked_rows.hpp"
 #include "points/cell_bins.hpp"
 
 namespace ballista::pd {
@@ -147,43 +148,32 @@ RenewedGasFamily build_renewed_gas_family(const Vec3* x, Index n, const std::uin
   // thread count): among the gas within delta min(s_p, s_q) and among the solids within delta.
   // A solid's row is the transpose of the gas rows' solid entries, in increasing gas index.
   constexpr Index kChunk = 2048;
-  const Index nchunk = (n + kChunk - 1) / kChunk;
-  std::vector<std::vector<std::pair<std::int32_t, double>>> found(static_cast<size_t>(nchunk));
-  std::vector<Index> count(static_cast<size_t>(n), 0);
-  for_each(0, nchunk, [&](Index c) {
-    auto& buf = found[c];
-    for (Index p = c * kChunk; p < std::min(n, (c + 1) * kChunk); ++p) {
-      if (!gas[p] || skip[p]) continue;
-      const size_t first = buf.size();
-      const Vec3 xp = x[p];
-      const double sp = s[p];
-      auto test = [&](Index q, const Vec3& xq, double sq) {
-        if (q == p) return;
-        Vec3 y = xq - xp;
-        if (dim == 2) y[2] = 0.0;
-        const double R = delta * std::min(sp, sq), r2 = dot(y, y);
-        if (r2 > R * R || r2 == 0.0) return;
-        buf.emplace_back(static_cast<std::int32_t>(q), std::sqrt(r2));
-      };
-      const CellBins& bins = sp > 1.5 ? gas_bins_wide : gas_bins;
-      const int reach = static_cast<int>(std::ceil(delta * sp / bins.size()));
-      if (bins.near(xp, reach))
-        bins.visit(xp, [&](Index i) { test(gas_pts[i].id, gas_pts[i].x, gas_pts[i].s); }, reach);
-      if (solid_bins.near(xp)) solid_bins.visit(xp, [&](Index i) { test(solid_ids[i], solid_x[i], 1.0); });
-      count[p] = static_cast<Index>(buf.size() - first);
-    }
+  ChunkedRows rows = chunked_rows(n, kChunk, [&](Index p, auto& buf) {
+    if (!gas[p] || skip[p]) return;
+    const Vec3 xp = x[p];
+    const double sp = s[p];
+    auto test = [&](Index q, const Vec3& xq, double sq) {
+      if (q == p) return;
+      Vec3 y = xq - xp;
+      if (dim == 2) y[2] = 0.0;
+      const double R = delta * std::min(sp, sq), r2 = dot(y, y);
+      if (r2 > R * R || r2 == 0.0) return;
+      buf.emplace_back(static_cast<std::int32_t>(q), std::sqrt(r2));
+    };
+    const CellBins& bins = sp > 1.5 ? gas_bins_wide : gas_bins;
+    const int reach = static_cast<int>(std::ceil(delta * sp / bins.size()));
+    if (bins.near(xp, reach))
+      bins.visit(xp, [&](Index i) { test(gas_pts[i].id, gas_pts[i].x, gas_pts[i].s); }, reach);
+    if (solid_bins.near(xp)) solid_bins.visit(xp, [&](Index i) { test(solid_ids[i], solid_x[i], 1.0); });
   });
+  const Index nchunk = static_cast<Index>(rows.found.size());
+  const auto& found = rows.found;
+  std::vector<Index>& count = rows.count;
   for (const auto& buf : found)
     for (const auto& e : buf)
       if (!gas[e.first]) ++count[e.first];
-  pd::BondFamily f;
-  f.offset.assign(static_cast<size_t>(n) + 1, 0);
-  for (Index l = 0; l < n; ++l) f.offset[l + 1] = f.offset[l] + count[l];
-  const Index nb = f.offset[n];
-  f.other.resize(static_cast<size_t>(nb));
-  f.length0.resize(static_cast<size_t>(nb));
-  f.volume_factor.resize(static_cast<size_t>(nb));
-  f.broken.assign(static_cast<size_t>(nb), 0);
+  BondFamily f = family_with_rows(count);
+  const Index nb = f.bonds();
   std::vector<double> other(static_cast<size_t>(nb));
   std::vector<float> weight_other(static_cast<size_t>(nb));
   auto put = [&](Index k, Index l, Index q, double len) {

@@ -1,0 +1,39 @@
+#pragma once
+// Rows of pairs found by one search per point, in parallel, independent of the thread count: the
+// points are cut into fixed chunks, each chunk's pairs go to its own buffer in point order, and
+// count[p] says how many are p's (the contact list, the renewed gas family). The caller turns the
+// counts into row offsets and copies each chunk's buffer to its rows.
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "core/parallel.hpp"
+
+namespace ballista::pd {
+
+struct ChunkedRows {
+  Index chunk = 0;
+  std::vector<std::vector<std::pair<std::int32_t, double>>> found;  ///< per chunk: (other end, value)
+  std::vector<Index> count;                                        ///< pairs of each point
+};
+
+/// search(p, buf) appends point p's pairs to buf (and may reorder what it appended).
+template <class Search>
+ChunkedRows chunked_rows(Index n, Index chunk, Search&& search) {
+  ChunkedRows r;
+  r.chunk = chunk;
+  const Index nchunk = (n + chunk - 1) / chunk;
+  r.found.resize(static_cast<size_t>(nchunk));
+  r.count.assign(static_cast<size_t>(n), 0);
+  for_each(0, nchunk, [&](Index c) {
+    auto& buf = r.found[c];
+    for (Index p = c * chunk; p < std::min(n, (c + 1) * chunk); ++p) {
+      const size_t first = buf.size();
+      search(p, buf);
+      r.count[p] = static_cast<Index>(buf.size() - first);
+    }
+  });
+  return r;
+}
+
+}  // namespace ballista::pd
