@@ -1,0 +1,49 @@
+#!/usr/bin/python3
+"""Radial velocity of a tube's case by thirds of its length, from a Ballista run's last particle file.
+
+The exploding cylinder (examples/exploding_cylinder_pd.yaml, 3D peridynamics, tube along z) or the
+same tube in axisymmetric MPM (x the radius, y the axis): the mass-weighted radial velocity of the
+case (body 0) over the first, middle and last third of the tube's length, by current axial
+position. The run must write the fields v and body (--set 'output.fields=[v,body]'); 3D points
+weigh alike (one lattice), axisymmetric particles by their radius (mass per radian). Used for
+docs/validation.md "Why the case was slow".
+
+Usage: validation/case_velocity_thirds.py RUN_DIR [--length 0.098]
+"""
+import argparse
+import glob
+import sys
+
+import h5py
+import numpy as np
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("run_dir")
+    ap.add_argument("--length", type=float, default=0.098, help="tube length, m (it starts at axial 0)")
+    a = ap.parse_args()
+    files = sorted(glob.glob(a.run_dir + "/particles_*.h5"))
+    if not files:
+        sys.exit(f"no particle files in {a.run_dir}")
+    with h5py.File(files[-1]) as f:
+        if "body" not in f:
+            sys.exit("the run did not write the field body: --set 'output.fields=[v,body]'")
+        x, v, body, t = f["x"][:], f["v"][:], f["body"][:], f["time"][()]
+    case = body == 0
+    x, v = x[case], v[case]
+    three_d = np.any(x[:, 2] != 0.0)
+    if three_d:
+        r = np.hypot(x[:, 0], x[:, 1])
+        vr = (x[:, 0] * v[:, 0] + x[:, 1] * v[:, 1]) / r
+        z, w = x[:, 2], np.ones(len(r))
+    else:
+        r, vr, z, w = x[:, 0], v[:, 0], x[:, 1], x[:, 0]
+    print(f"t = {t * 1e6:.2f} us, {'3D' if three_d else 'axisymmetric'}, {len(r)} case points")
+    for name, lo, hi in (("first", 0, 1 / 3), ("middle", 1 / 3, 2 / 3), ("last", 2 / 3, 1)):
+        s = (z >= lo * a.length) & (z < hi * a.length)
+        print(f"{name:6s} third: {np.sum(w[s] * vr[s]) / np.sum(w[s]):7.0f} m/s, mean radius {1e3 * r[s].mean():.1f} mm")
+
+
+if __name__ == "__main__":
+    main()
