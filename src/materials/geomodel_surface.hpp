@@ -40,14 +40,8 @@ struct GeoLimit {
   double slope(double i1) const { return a3 == 0.0 ? -a4 : -a2 * a3 * std::exp(a2 * i1) - a4; }
   /// Ff and dFf/dI1 with one exponential.
   void value_slope(double i1, double& v, double& d) const {
-    if (a3 == 0.0) {
-      v = a1 - a4 * i1;
-      d = -a4;
-      return;
-    }
-    const double e = a3 * std::exp(a2 * i1);
-    v = a1 - e - a4 * i1;
-    d = -a2 * e - a4;
+    double d2;
+    derivatives(i1, v, d, d2);
   }
   /// Ff and its first two derivatives in I1 (one exponential; Ff'' = -a2^2 a3 exp(a2 I1) <= 0).
   void derivatives(double i1, double& v, double& d1, double& d2) const {
