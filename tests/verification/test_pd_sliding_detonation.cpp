@@ -32,17 +32,10 @@ constexpr double kLength = 98.0e-3;  // the example's tube (examples/exploding_c
 /// `axis` is the tube's axis (2: z in 3D, 1: y in axisymmetric runs, where x is the radius).
 double middle_third_velocity(const FieldStore& pts, int axis) {
   const auto* x = pts.view<Vec3>("x");
-  const auto* v = pts.view<Vec3>("v");
-  const auto* m = pts.real("mass");
   const auto* body = pts.ints("body");
-  double mv = 0.0, mm = 0.0;
-  for (Index p = 0; p < pts.size(); ++p) {
-    if (body[p] != 0 || x[p][axis] < kLength / 3.0 || x[p][axis] >= 2.0 * kLength / 3.0) continue;
-    const double vr = axis == 2 ? (x[p][0] * v[p][0] + x[p][1] * v[p][1]) / std::hypot(x[p][0], x[p][1]) : v[p][0];
-    mv += m[p] * vr;
-    mm += m[p];
-  }
-  return mv / mm;
+  return verification::mean_radial_velocity(pts, axis == 1, [&](Index p) {
+    return body[p] == 0 && x[p][axis] >= kLength / 3.0 && x[p][axis] < 2.0 * kLength / 3.0;
+  });
 }
 
 std::string pd_deck(int renew_every) {

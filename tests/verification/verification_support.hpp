@@ -62,6 +62,23 @@ inline void advance(Solver& solver, double end, double interval = 0.0) {
   }
 }
 
+/// Mass-weighted mean radial velocity of the points keep(p) selects, m/s: about the z axis
+/// (3D, plane strain), or v_r = v_x in an axisymmetric run (x the radius).
+template <class Keep>
+double mean_radial_velocity(const FieldStore& pts, bool axisymmetric, Keep&& keep) {
+  const auto* x = pts.view<Vec3>("x");
+  const auto* v = pts.view<Vec3>("v");
+  const auto* m = pts.real("mass");
+  double mv = 0.0, mm = 0.0;
+  for (Index p = 0; p < pts.size(); ++p) {
+    if (!keep(p)) continue;
+    mv += axisymmetric ? m[p] * v[p][0]
+                       : m[p] * (v[p][0] * x[p][0] + v[p][1] * x[p][1]) / std::hypot(x[p][0], x[p][1]);
+    mm += m[p];
+  }
+  return mv / mm;
+}
+
 /// Steps to `end` at the solver's stable step (the last one shortened to end there, 1e-15 s past to
 /// absorb round-off) and returns the largest |total energy - initial total| after any step, J: the
 /// worst energy residual of the run (EnergyTotals::total, the balance every solver books).
