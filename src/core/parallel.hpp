@@ -56,6 +56,25 @@ inline void for_each_heavy(Index begin, Index end, F&& f) {
   for (Index i = begin; i < end; ++i) f(i);
 }
 
+/// Calls f(c) for c in [0, nchunk): each c a chunk of thousands of iterations (a fixed cut, so
+/// results do not depend on the thread count), in parallel whenever there are two, handed out one
+/// at a time (chunks cost unevenly). for_each would run fewer than kParallelThreshold chunks on
+/// one thread.
+template <class F>
+inline void for_each_chunk(Index nchunk, F&& f) {
+#pragma omp parallel for schedule(dynamic, 1) if (nchunk > 1)
+  for (Index c = 0; c < nchunk; ++c) f(c);
+}
+
+/// for_each for loops whose cheap iterations cost unevenly by index (a peridynamic step: the
+/// gas points, stored after the case's, carry the gas pairs too): a static split would leave one
+/// thread with most of the work.
+template <class F>
+inline void for_each_uneven(Index begin, Index end, F&& f) {
+#pragma omp parallel for schedule(dynamic, 512) if (end - begin > kParallelThreshold)
+  for (Index i = begin; i < end; ++i) f(i);
+}
+
 /// Chunk size for reductions: fixed, so chunk boundaries (and thus round-off) do not depend on
 /// the number of threads.
 inline constexpr Index kReduceChunk = 4096;

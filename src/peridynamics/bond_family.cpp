@@ -38,16 +38,21 @@ LatticeMoments lattice_moments(double delta, double dx, bool partial, int dim) {
   return m;
 }
 
-BondFamily family_with_rows(const std::vector<Index>& count) {
+void family_with_rows(const std::vector<Index>& count, BondFamily& f) {
   const Index n = static_cast<Index>(count.size());
-  BondFamily f;
-  f.offset.assign(static_cast<size_t>(n) + 1, 0);
+  f.offset.resize(static_cast<size_t>(n) + 1);
+  f.offset[0] = 0;
   for (Index p = 0; p < n; ++p) f.offset[p + 1] = f.offset[p] + count[p];
   const auto nbond = static_cast<size_t>(f.offset[n]);
   f.other.resize(nbond);
   f.length0.resize(nbond);
   f.volume_factor.resize(nbond);
   f.broken.assign(nbond, 0);
+}
+
+BondFamily family_with_rows(const std::vector<Index>& count) {
+  BondFamily f;
+  family_with_rows(count, f);
   return f;
 }
 

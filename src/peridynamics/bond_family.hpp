@@ -49,6 +49,8 @@ struct BondFamily {
 /// A family with rows of count[p] bonds each (offsets set, arrays sized, no bond broken; the
 /// caller fills other, length0 and volume_factor).
 BondFamily family_with_rows(const std::vector<Index>& count);
+/// The same into `f`, reusing its arrays' capacity.
+void family_with_rows(const std::vector<Index>& count, BondFamily& f);
 
 /// Families of the n reference positions x0 with horizon delta; `dx` is the lattice spacing used
 /// by the partial-volume correction (0: no correction). With `body` given, only points of the same

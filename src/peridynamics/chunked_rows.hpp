@@ -17,22 +17,29 @@ struct ChunkedRows {
   std::vector<Index> count;                                        ///< pairs of each point
 };
 
-/// search(p, buf) appends point p's pairs to buf (and may reorder what it appended).
+/// search(p, buf) appends point p's pairs to buf (and may reorder what it appended). Into `r`,
+/// reusing its buffers' capacity (a search repeated every few steps maps no new pages).
 template <class Search>
-ChunkedRows chunked_rows(Index n, Index chunk, Search&& search) {
-  ChunkedRows r;
+void chunked_rows(Index n, Index chunk, Search&& search, ChunkedRows& r) {
   r.chunk = chunk;
   const Index nchunk = (n + chunk - 1) / chunk;
   r.found.resize(static_cast<size_t>(nchunk));
-  r.count.assign(static_cast<size_t>(n), 0);
-  for_each(0, nchunk, [&](Index c) {
+  r.count.resize(static_cast<size_t>(n));  // every entry is written below
+  for_each_chunk(nchunk, [&](Index c) {
     auto& buf = r.found[c];
+    buf.clear();
     for (Index p = c * chunk; p < std::min(n, (c + 1) * chunk); ++p) {
       const size_t first = buf.size();
       search(p, buf);
       r.count[p] = static_cast<Index>(buf.size() - first);
     }
   });
+}
+
+template <class Search>
+ChunkedRows chunked_rows(Index n, Index chunk, Search&& search) {
+  ChunkedRows r;
+  chunked_rows(n, chunk, search, r);
   return r;
 }
 

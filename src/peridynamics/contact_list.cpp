@@ -99,15 +99,17 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
       emit(q, std::min(0.9 * std::sqrt(r02), range));
     };
     // Gas escaped beyond the solids' box is far from every solid: not clamped into the edge bins.
-    if (solid_bins.near(x[p])) solid_bins.visit(x[p], [&](Index i) { test(solid_ids[i]); });
-    if (!(gas && gas[p]) && gas_bins.near(x[p])) gas_bins.visit(x[p], [&](Index i) { test(gas_ids[i]); });
+    if (solid_bins.near(x[p])) solid_bins.visit_within(x[p], cutoff, [&](Index i) { test(solid_ids[i]); });
+    if (!(gas && gas[p]) && gas_bins.near(x[p]))
+      gas_bins.visit_within(x[p], cutoff, [&](Index i) { test(gas_ids[i]); });
   };
   // One search per point (the list is rebuilt often: a point driven at 100 m/s crosses the half-skin
   // in a dozen steps): the pairs go to per-chunk buffers (fixed chunks, so the result does not
   // depend on the thread count), then into the rows. Pairs are rare (most neighbours are bonded),
   // so the buffers stay small.
   constexpr Index kChunk = 4096;
-  const ChunkedRows rows = chunked_rows(n, kChunk, [&](Index p, auto& buf) {
+  ChunkedRows& rows = list.scratch;
+  chunked_rows(n, kChunk, [&](Index p, auto& buf) {
     const size_t first = buf.size();
     visit(p, [&](Index q, double d) { buf.emplace_back(static_cast<std::int32_t>(q), d); });
     // Increasing neighbour index (or key): the force sums run in a fixed order (thread-count and,
@@ -117,14 +119,14 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
                 [&](const auto& a, const auto& b) { return key[a.first] < key[b.first]; });
     else
       std::sort(buf.begin() + static_cast<std::ptrdiff_t>(first), buf.end());
-  });
+  }, rows);
   const Index nchunk = static_cast<Index>(rows.found.size());
   const auto& found = rows.found;
   const auto& count = rows.count;
   for (Index p = 0; p < n; ++p) list.offset[p + 1] = list.offset[p] + count[p];
   list.other.resize(static_cast<size_t>(list.offset[n]));
   list.reach.resize(list.other.size());
-  for_each(0, nchunk, [&](Index c) {
+  for_each_chunk(nchunk, [&](Index c) {
     Index k = list.offset[c * kChunk];
     for (const auto& [q, d] : found[c]) {
       list.other[k] = q;

@@ -30,6 +30,7 @@
 
 #include "core/parallel.hpp"
 #include "core/tensor.hpp"
+#include "peridynamics/chunked_rows.hpp"
 
 namespace ballista::pd {
 
@@ -41,6 +42,7 @@ struct ContactList {
   std::vector<double> allowance;    ///< gas points' a_g (above), m; empty without gas
   double skin = 0.0;                ///< m
   long builds = 0;                  ///< number of builds so far
+  ChunkedRows scratch;              ///< the search's per-chunk buffers, kept between builds (no new pages)
 
   Index pairs() const { return other.empty() ? 0 : static_cast<Index>(other.size()) / 2; }
   /// The largest displacement since the last build among the points with skip[p] == 0 that are

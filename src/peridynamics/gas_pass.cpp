@@ -87,8 +87,16 @@ double gas_inverse_length_sum(const GasPassArgs& a, Index p) {
   return s;
 }
 
-RenewedGasFamily build_renewed_gas_family(const Vec3* x, Index n, const std::uint8_t* gas,
-                                          const std::uint8_t* skip, const double* X, double delta, int dim) {
+RenewedGasFamily build_renewed_gas_family(const Vec3* x, Index n, const std::uint8_t* gas, const std::uint8_t* skip,
+                                          const double* X, double delta, int dim) {
+  RenewedGasFamily out;
+  GasRenewalWorkspace ws;
+  build_renewed_gas_family(x, n, gas, skip, X, delta, dim, out, ws);
+  return out;
+}
+
+void build_renewed_gas_family(const Vec3* x, Index n, const std::uint8_t* gas, const std::uint8_t* skip,
+                              const double* X, double delta, int dim, RenewedGasFamily& out, GasRenewalWorkspace& ws) {
   // The products are a fluid: their reference neighbourhood is a quadrature of the local density,
   // not a material memory. Where the gas shears along the case (a detonation sliding along a
   // tube drives the products axially past the wall at km/s), a family fixed in the reference
@@ -106,18 +114,22 @@ RenewedGasFamily build_renewed_gas_family(const Vec3* x, Index n, const std::uin
   // grown ten times larger); any weights give X back at the renewal. Partial volumes are not applied.
   constexpr double kHorizonGrowthCap = 2.5;
   const double inv_d = 1.0 / dim;
-  std::vector<double> s(static_cast<size_t>(n), 1.0), root(static_cast<size_t>(n), 1.0);
+  // Every array below is resized, not allocated: its pages are mapped by an earlier renewal.
+  std::vector<double>& s = ws.s;
+  std::vector<double>& root = ws.root;
+  s.resize(static_cast<size_t>(n));
+  root.resize(static_cast<size_t>(n));
   // The gas in bin order (binned twice: the second binning scans each bin's points contiguously),
   // in bins of half the horizon (an expanded point's search box then hugs its sphere more closely).
-  struct Binned {
-    Vec3 x;
-    double s;
-    Index id;
-  };
-  std::vector<Binned> gas_pts;
-  std::vector<Index> solid_ids;
-  std::vector<Vec3> solid_x;
+  using Binned = GasRenewalWorkspace::Binned;
+  std::vector<Binned>& gas_pts = ws.gas_pts;
+  std::vector<Index>& solid_ids = ws.solid_ids;
+  std::vector<Vec3>& solid_x = ws.solid_x;
+  gas_pts.clear();
+  solid_ids.clear();
+  solid_x.clear();
   for (Index l = 0; l < n; ++l) {
+    s[l] = root[l] = 1.0;
     if (gas[l]) {
       if (skip[l]) continue;  // vented: pushes nothing, in no family
       root[l] = std::pow(X[l], inv_d);
@@ -129,53 +141,62 @@ RenewedGasFamily build_renewed_gas_family(const Vec3* x, Index n, const std::uin
     }
   }
   const double half = 0.5 * delta * (1.0 + 1e-6);
+  std::vector<Vec3>& gas_x = ws.gas_x;
+  const Index ng = static_cast<Index>(gas_pts.size());
+  gas_x.resize(static_cast<size_t>(ng));
+  for_each(0, ng, [&](Index i) { gas_x[i] = gas_pts[i].x; });
   {
-    std::vector<Vec3> gx(gas_pts.size());
-    for (size_t i = 0; i < gas_pts.size(); ++i) gx[i] = gas_pts[i].x;
-    const CellBins first(gx.data(), static_cast<Index>(gx.size()), half, dim);
-    std::vector<Binned> sorted(gas_pts.size());
-    for (size_t i = 0; i < gas_pts.size(); ++i) sorted[i] = gas_pts[first.order()[i]];
-    gas_pts.swap(sorted);
+    const CellBins first(gas_x.data(), ng, half, dim);
+    ws.sorted.resize(static_cast<size_t>(ng));
+    for_each(0, ng, [&](Index i) { ws.sorted[i] = gas_pts[first.order()[i]]; });
+    gas_pts.swap(ws.sorted);
   }
-  std::vector<Vec3> gas_x(gas_pts.size());
-  for (size_t i = 0; i < gas_pts.size(); ++i) gas_x[i] = gas_pts[i].x;
-  const CellBins gas_bins(gas_x.data(), static_cast<Index>(gas_x.size()), half, dim);
+  for_each(0, ng, [&](Index i) { gas_x[i] = gas_pts[i].x; });
+  const CellBins gas_bins(gas_x.data(), ng, half, dim);
   // Much expanded gas (s > 1.5) searches bins of the whole horizon instead: its box of half bins
   // would be mostly empty bins (s = 2.5: 11^3 of them against 7^3).
-  const CellBins gas_bins_wide(gas_x.data(), static_cast<Index>(gas_x.size()), 2.0 * half, dim);
+  const CellBins gas_bins_wide(gas_x.data(), ng, 2.0 * half, dim);
   const CellBins solid_bins(solid_x.data(), static_cast<Index>(solid_ids.size()), delta * (1.0 + 1e-6), dim);
   // One search per gas point into per-chunk buffers (fixed chunks: the rows do not depend on the
   // thread count): among the gas within delta min(s_p, s_q) and among the solids within delta.
   // A solid's row is the transpose of the gas rows' solid entries, in increasing gas index.
   constexpr Index kChunk = 2048;
-  ChunkedRows rows = chunked_rows(n, kChunk, [&](Index p, auto& buf) {
-    if (!gas[p] || skip[p]) return;
-    const Vec3 xp = x[p];
-    const double sp = s[p];
-    auto test = [&](Index q, const Vec3& xq, double sq) {
-      if (q == p) return;
-      Vec3 y = xq - xp;
-      if (dim == 2) y[2] = 0.0;
-      const double R = delta * std::min(sp, sq), r2 = dot(y, y);
-      if (r2 > R * R || r2 == 0.0) return;
-      buf.emplace_back(static_cast<std::int32_t>(q), std::sqrt(r2));
-    };
-    const CellBins& bins = sp > 1.5 ? gas_bins_wide : gas_bins;
-    const int reach = static_cast<int>(std::ceil(delta * sp / bins.size()));
-    if (bins.near(xp, reach))
-      bins.visit(xp, [&](Index i) { test(gas_pts[i].id, gas_pts[i].x, gas_pts[i].s); }, reach);
-    if (solid_bins.near(xp)) solid_bins.visit(xp, [&](Index i) { test(solid_ids[i], solid_x[i], 1.0); });
-  });
+  ChunkedRows& rows = ws.rows;
+  chunked_rows(
+      n, kChunk,
+      [&](Index p, auto& buf) {
+        if (!gas[p] || skip[p]) return;
+        const Vec3 xp = x[p];
+        const double sp = s[p];
+        auto test = [&](Index q, const Vec3& xq, double sq) {
+          if (q == p) return;
+          Vec3 y = xq - xp;
+          if (dim == 2) y[2] = 0.0;
+          const double R = delta * std::min(sp, sq), r2 = dot(y, y);
+          if (r2 > R * R || r2 == 0.0) return;
+          buf.emplace_back(static_cast<std::int32_t>(q), std::sqrt(r2));
+        };
+        const CellBins& bins = sp > 1.5 ? gas_bins_wide : gas_bins;
+        const int reach = static_cast<int>(std::ceil(delta * sp / bins.size()));
+        if (bins.near(xp, reach))
+          bins.visit_within(xp, delta * sp, [&](Index i) { test(gas_pts[i].id, gas_pts[i].x, gas_pts[i].s); }, reach);
+        if (solid_bins.near(xp))
+          solid_bins.visit_within(xp, delta, [&](Index i) { test(solid_ids[i], solid_x[i], 1.0); });
+      },
+      rows);
   const Index nchunk = static_cast<Index>(rows.found.size());
   const auto& found = rows.found;
   std::vector<Index>& count = rows.count;
   for (const auto& buf : found)
     for (const auto& e : buf)
       if (!gas[e.first]) ++count[e.first];
-  BondFamily f = family_with_rows(count);
+  BondFamily& f = out.family;
+  family_with_rows(count, f);
   const Index nb = f.bonds();
-  std::vector<double> other(static_cast<size_t>(nb));
-  std::vector<float> weight_other(static_cast<size_t>(nb));
+  std::vector<double>& other = out.length_other;
+  std::vector<float>& weight_other = out.weight_other;
+  other.resize(static_cast<size_t>(nb));
+  weight_other.resize(static_cast<size_t>(nb));
   auto put = [&](Index k, Index l, Index q, double len) {
     f.other[k] = static_cast<std::int32_t>(q);
     f.length0[k] = gas[l] ? len / root[l] : len;
@@ -183,7 +204,7 @@ RenewedGasFamily build_renewed_gas_family(const Vec3* x, Index n, const std::uin
     f.volume_factor[k] = gas[q] ? static_cast<float>(X[q]) : 1.0f;
     weight_other[k] = gas[l] ? static_cast<float>(X[l]) : 1.0f;
   };
-  for_each(0, nchunk, [&](Index c) {  // the gas rows
+  for_each_chunk(nchunk, [&](Index c) {  // the gas rows
     size_t e = 0;
     const auto& buf = found[c];
     for (Index l = c * kChunk; l < std::min(n, (c + 1) * kChunk); ++l) {
@@ -191,7 +212,8 @@ RenewedGasFamily build_renewed_gas_family(const Vec3* x, Index n, const std::uin
       for (Index k = f.offset[l]; k < f.offset[l + 1]; ++k, ++e) put(k, l, buf[e].first, buf[e].second);
     }
   });
-  std::vector<Index> cursor(f.offset.begin(), f.offset.end() - 1);  // the solid rows, in gas order
+  std::vector<Index>& cursor = ws.cursor;  // the solid rows, in gas order
+  cursor.assign(f.offset.begin(), f.offset.end() - 1);
   for (Index c = 0; c < nchunk; ++c) {
     size_t e = 0;
     const auto& buf = found[c];
@@ -203,7 +225,6 @@ RenewedGasFamily build_renewed_gas_family(const Vec3* x, Index n, const std::uin
       }
     }
   }
-  return {std::move(f), std::move(other), std::move(weight_other)};
 }
 
 }  // namespace ballista::pd

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "peridynamics/pd_solver.hpp"
 
@@ -24,7 +25,7 @@ void PdSolver::build_gas() {
   vented_.assign(static_cast<size_t>(n), 0);
   vent_velocity_.assign(static_cast<size_t>(n), Vec3{});
   const pd::GasPassArgs a = gas_pass_args();
-  for_each(0, nb, [&](Index p) {
+  for_each_uneven(0, nb, [&](Index p) {
     if (!gas_local_[p]) return;
     double v = 0.0;
     for (Index k = gas_bonds_.offset[p]; k < gas_bonds_.offset[p + 1]; ++k)
@@ -54,7 +55,7 @@ void PdSolver::update_gas(double dt) {
   // X at t_{n+1}; the deformation the material sees is the isotropic F = X^(1/d) (in the plane
   // in 2D), reached from the old one by L = a I over dt, (1 + a dt)^d = X_new / X_old, so that
   // the adapter's F_old = (I + dt L)^-1 F_new and J_old = X_old are exact.
-  for_each(0, n, [&](Index p) {
+  for_each_uneven(0, n, [&](Index p) {
     const Index l = own[p];  // the gas arrays are per local point
     if (!gas_[p] || vented_[l]) {
       if (gas_[p]) L[p] = Mat3{};
@@ -100,16 +101,17 @@ void PdSolver::refamily_gas() {
 }
 
 void PdSolver::build_renewed_gas_family() {
-  pd::RenewedGasFamily r = pd::build_renewed_gas_family(renewal_.x.data(), local_.size(), gas_local_.data(),
-                                                         renewal_.skip.data(), renewal_.X.data(), delta_, dim_);
-  gas_bonds_ = std::move(r.family);
-  gas_len_other_ = std::move(r.length_other);
-  gas_weight_other_ = std::move(r.weight_other);
+  // Built into the spare storage (the family before last: its pages are mapped), then swapped in.
+  pd::build_renewed_gas_family(renewal_.x.data(), local_.size(), gas_local_.data(), renewal_.skip.data(),
+                               renewal_.X.data(), delta_, dim_, gas_spare_, gas_workspace_);
+  std::swap(gas_bonds_, gas_spare_.family);
+  std::swap(gas_len_other_, gas_spare_.length_other);
+  std::swap(gas_weight_other_, gas_spare_.weight_other);
   ++gas_renewals_;
   const Index n = local_.size();
   const auto* vol0 = local_.vol0.data();
   const pd::GasPassArgs a = gas_pass_args();
-  for_each(0, n, [&](Index p) {
+  for_each_uneven(0, n, [&](Index p) {
     if (!gas_local_[p]) return;
     double v = 0.0, v0 = 0.0;
     for (Index k = gas_bonds_.offset[p]; k < gas_bonds_.offset[p + 1]; ++k) {

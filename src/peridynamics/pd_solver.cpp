@@ -651,7 +651,7 @@ void PdSolver::compute_forces() {
   s0_next.resize(static_cast<size_t>(nl));
   const bool gas_on = has_gas_;
   const pd::GasPassArgs gas_args = gas_pass_args();
-  for_each(0, n, [&](Index i) {
+  for_each_uneven(0, n, [&](Index i) {  // gas points carry their gas pairs too
     const Index p = own[i];  // the same on one rank (gas only there)
     Vec3 f = A.f[p];
     double e_contact = A.e_contact[p], k_contact = A.k_contact[p];

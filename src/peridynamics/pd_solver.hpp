@@ -237,6 +237,8 @@ class PdSolver final : public Solver {
   pd::BondFamily gas_bonds_;          ///< build_gas_family
   std::vector<double> gas_len_other_; ///< after refamily_gas: the other end's reference length per row entry, m
   std::vector<float> gas_weight_other_;  ///< after refamily_gas: this end's weight in the other end's measure
+  pd::RenewedGasFamily gas_spare_;    ///< the family before the current one: storage for the next renewal
+  pd::GasRenewalWorkspace gas_workspace_;  ///< the renewal search's buffers, kept between renewals
   int gas_refamily_every_ = 0;        ///< steps between renewals of the gas family (0: never)
   long gas_renewals_ = 0;             ///< renewals so far (result value)
   /// The inputs of the last renewal of the gas family, per local point (empty before the first).

@@ -131,6 +131,46 @@ class CellBins {
         }
   }
 
+  /// Calls f(q) for every point q in the bins within `reach` bins of y whose box comes within
+  /// `radius` of y: visit() without the corner bins that hold no point within radius (a sphere
+  /// meets ~2/3 of its box of bins), the points in visit()'s order. radius <= reach * size().
+  template <class F>
+  void visit_within(const Vec3& y, double radius, F&& f, int reach = 1) const {
+    constexpr int kMaxReach = 8;
+    if (reach > kMaxReach) {
+      visit(y, f, reach);
+      return;
+    }
+    int c[3];
+    cell(y, c);
+    // Squared gap between y and the bins at offset k along each axis (0 for y's own slab).
+    double gap2[3][2 * kMaxReach + 1] = {};
+    for (int a = 0; a < dim_; ++a)
+      for (int k = -reach; k <= reach; ++k) {
+        const double lo = lo_[a] + (c[a] + k) * size_, hi = lo + size_;
+        const double g = std::max({0.0, lo - y[a], y[a] - hi});
+        gap2[a][k + reach] = g * g;
+      }
+    // A hair of slack: a bin's box is computed, and a point on its face may round to either side.
+    const double r2 = radius * radius * (1.0 + 1e-9);
+    const int zr = dim_ == 3 ? reach : 0;
+    for (int dz = -zr; dz <= zr; ++dz) {
+      const double gz = gap2[2][dz + reach];
+      if (gz > r2) continue;
+      for (int dy = -reach; dy <= reach; ++dy) {
+        const double gyz = gz + gap2[1][dy + reach];
+        if (gyz > r2) continue;
+        for (int dx = -reach; dx <= reach; ++dx) {
+          if (gyz + gap2[0][dx + reach] > r2) continue;
+          const int b0 = c[0] + dx, b1 = c[1] + dy, b2 = c[2] + dz;
+          if (b0 < 0 || b1 < 0 || b2 < 0 || b0 >= nb_[0] || b1 >= nb_[1] || b2 >= nb_[2]) continue;
+          const Index b = (static_cast<Index>(b2) * nb_[1] + b1) * nb_[0] + b0;
+          for (Index i = start_[b]; i < start_[b + 1]; ++i) f(order_[i]);
+        }
+      }
+    }
+  }
+
  private:
   void cell(const Vec3& y, int c[3]) const {
     for (int a = 0; a < 3; ++a)
