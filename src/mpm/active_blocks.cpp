@@ -23,7 +23,7 @@ void ActiveBlocks::mark(const Vec3* x, Index n, int reach) {
   // its blocks once: each chunk remembers the last cell it marked.
   constexpr Index kChunk = 1024;
   const Index chunks = (n + kChunk - 1) / kChunk;
-  for_each(0, chunks, [&](Index ch) {
+  for_each_chunk(chunks, [&](Index ch) {
     int last[3] = {-1, -1, -1};
     for (Index p = ch * kChunk; p < std::min(n, (ch + 1) * kChunk); ++p) {
       int c[3] = {0, 0, 0};
