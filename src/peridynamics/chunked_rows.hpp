@@ -3,6 +3,7 @@
 // points are cut into fixed chunks, each chunk's pairs go to its own buffer in point order, and
 // count[p] says how many are p's (the contact list, the renewed gas family). The caller turns the
 // counts into row offsets and copies each chunk's buffer to its rows.
+#include <algorithm>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -12,7 +13,6 @@
 namespace ballista::pd {
 
 struct ChunkedRows {
-  Index chunk = 0;
   std::vector<std::vector<std::pair<std::int32_t, double>>> found;  ///< per chunk: (other end, value)
   std::vector<Index> count;                                        ///< pairs of each point
 };
@@ -21,7 +21,6 @@ struct ChunkedRows {
 /// reusing its buffers' capacity (a search repeated every few steps maps no new pages).
 template <class Search>
 void chunked_rows(Index n, Index chunk, Search&& search, ChunkedRows& r) {
-  r.chunk = chunk;
   const Index nchunk = (n + chunk - 1) / chunk;
   r.found.resize(static_cast<size_t>(nchunk));
   r.count.resize(static_cast<size_t>(n));  // every entry is written below
@@ -34,13 +33,6 @@ void chunked_rows(Index n, Index chunk, Search&& search, ChunkedRows& r) {
       r.count[p] = static_cast<Index>(buf.size() - first);
     }
   });
-}
-
-template <class Search>
-ChunkedRows chunked_rows(Index n, Index chunk, Search&& search) {
-  ChunkedRows r;
-  chunked_rows(n, chunk, search, r);
-  return r;
 }
 
 }  // namespace ballista::pd
