@@ -94,8 +94,7 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
                 const GridSpec& grid, Dimension dim, FieldStore& points, std::int64_t& next_id) {
   const int nd = dim == Dimension::ThreeD ? 3 : 2;
   const double h = grid.cell_size;
-  const int ppc = body.particles_per_cell;
-  const double dx = h / ppc;
+  const double dx = seed_spacing(body, h);
   Vec3 lo, hi;
   shape_bounds(body.shape, nd, lo, hi);
   // Lattice aligned with the grid: sub-cell centres grid.lower + (i + 1/2) dx.
@@ -203,7 +202,7 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
 
 double lattice_point_bound(const BodySpec& body, const GridSpec& grid, Dimension dim) {
   const int nd = dim == Dimension::ThreeD ? 3 : 2;
-  const double dx = grid.cell_size / body.particles_per_cell;
+  const double dx = seed_spacing(body, grid.cell_size);
   auto bound = [&](const ShapeSpec& shape) {
     Vec3 lo, hi;
     shape_bounds(shape, nd, lo, hi);
@@ -225,7 +224,7 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
   const std::string field = "load_area_" + std::to_string(k);
   points.add_real(field, 3, "m^2", false);
   const int nd = dim == Dimension::ThreeD ? 3 : 2;
-  const double dx = h / body.particles_per_cell;
+  const double dx = seed_spacing(body, h);
   const ShapeSpec& s = body.shape;
   const auto* bid = points.ints("body");
   const auto* x0 = points.view<Vec3>("x0");

@@ -9,8 +9,14 @@ namespace ballista {
 /// Declares the fields every solver's points carry (positions, velocity, F, stress, mass, ...).
 void declare_point_fields(FieldStore& points);
 
+/// The spacing of the lattice `body` is seeded on: its own point_spacing if given (peridynamics),
+/// else the grid cell size over particles_per_cell, m.
+inline double seed_spacing(const BodySpec& body, double cell_size) {
+  return body.point_spacing > 0.0 ? body.point_spacing : cell_size / body.particles_per_cell;
+}
+
 /// Appends the points of `body` to `points`: particles_per_cell^dim points per grid cell of size
-/// h, at sub-cell centres inside the shape. Mass = rho0 * volume; in axisymmetric runs volumes
+/// h (or the lattice of the body's point_spacing), at sub-cell centres inside the shape. Mass = rho0 * volume; in axisymmetric runs volumes
 /// and masses are per radian (volume = r * area), in plane strain per metre of thickness.
 /// Ids continue from next_id. Returns the number of points added (error if zero).
 Index seed_body(const BodySpec& body, int body_index, int material_index, const Material& material,

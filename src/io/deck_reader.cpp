@@ -276,6 +276,10 @@ class Reader {
       if (std::find(materials.begin(), materials.end(), body.material) == materials.end())
         b.fail("material", "unknown material '" + body.material + "'" + suggest(body.material, materials));
       body.particles_per_cell = static_cast<int>(b.integer("particles_per_cell", 2, 1, 8));
+      body.point_spacing = b.optional_number("point_spacing", NumberRange::positive("m")).value_or(0.0);
+      if (body.point_spacing > 0.0 && sc_.simulation.solver != "peridynamics")
+        b.fail("point_spacing", "a body's own lattice spacing is a peridynamics key (solver '" + sc_.simulation.solver +
+                                    "' seeds particles_per_cell per grid cell)");
       body.activation_time = b.number("activation_time", 0.0, NumberRange::non_negative("s"));
       // Exactly one of shape (a plain body), rod or jet (penetrators made of segments).
       const int given = int(b.has("shape")) + int(b.has("rod")) + int(b.has("jet"));

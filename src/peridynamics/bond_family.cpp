@@ -58,10 +58,17 @@ BondFamily family_with_rows(const std::vector<Index>& count) {
 
 namespace {
 
-/// The families of build_bond_family and build_gas_family: the pairs within the horizon that
-/// `accept(p, o)` admits (a symmetric test, so that each bond is in both ends' rows).
-template <class Accept>
-BondFamily build_family(const Vec3* x0, Index n, double delta, double dx, int dim, const Accept& accept) {
+/// The horizon and partial-volume spacing of one candidate pair (delta <= 0: not a pair).
+struct PairRule {
+  double delta = 0.0;
+  double dx = 0.0;
+};
+
+/// The families of build_bond_family and build_gas_family: the pairs within their horizon that
+/// `rule(p, o)` admits (a symmetric rule, so that each bond is in both ends' rows); no pair's
+/// horizon exceeds `reach`.
+template <class Rule>
+BondFamily build_family(const Vec3* x0, Index n, double reach, int dim, const Rule& rule) {
   if (n > std::numeric_limits<std::int32_t>::max())
     throw Error("peridynamics: more than 2^31 points in one bond family");
   BondFamily f;
@@ -71,21 +78,22 @@ BondFamily build_family(const Vec3* x0, Index n, double delta, double dx, int di
   // at the horizon (|xi| <= delta); the correction scales those within dx/2 of it (as LAMMPS PERI).
   // Bins a hair wider than the horizon: two points exactly delta apart along an axis could otherwise
   // round into bins two apart and never be compared (found by the energy-release verification).
-  const CellBins bins(x0, n, delta * (1.0 + 1e-6), dim);
+  const CellBins bins(x0, n, reach * (1.0 + 1e-6), dim);
   // Lattice points at exactly the horizon (m = 3 on a cubic lattice: 30 of them) must be in or out
   // for every point alike, whatever the round-off of their coordinates: the test admits a relative
   // 1e-9 beyond delta (LAMMPS sidesteps the tie with delta = 3.0002 dx).
-  const double reach2 = delta * delta * (1.0 + 2e-9);
   // Two passes over the same search: count each row, then fill it (rows sorted by index).
   auto visit = [&](Index p, auto&& emit) {
     bins.visit(x0[p], [&](Index o) {
-      if (o == p || !accept(p, o)) return;
+      if (o == p) return;
+      const PairRule pr = rule(p, o);
+      if (!(pr.delta > 0.0)) return;
       Vec3 d = x0[o] - x0[p];
       if (dim == 2) d[2] = 0.0;
       const double r2 = dot(d, d);
-      if (r2 > reach2) return;
+      if (r2 > pr.delta * pr.delta * (1.0 + 2e-9)) return;
       const double r = std::sqrt(r2);
-      const double w = partial_volume_factor(r, delta, dx);
+      const double w = partial_volume_factor(r, pr.delta, pr.dx);
       if (w > 0.0) emit(o, r, w);
     });
   };
@@ -127,13 +135,27 @@ BondFamily build_family(const Vec3* x0, Index n, double delta, double dx, int di
 
 BondFamily build_bond_family(const Vec3* x0, Index n, double delta, double dx, int dim, const std::int64_t* body,
                              const std::uint8_t* gas) {
-  return build_family(x0, n, delta, dx, dim, [&](Index p, Index o) {
-    return (!body || body[o] == body[p]) && !(gas && (gas[p] || gas[o]));
+  return build_family(x0, n, delta, dim, [&](Index p, Index o) {
+    const bool bonded = (!body || body[o] == body[p]) && !(gas && (gas[p] || gas[o]));
+    return bonded ? PairRule{delta, dx} : PairRule{};
   });
 }
 
-BondFamily build_gas_family(const Vec3* x0, Index n, double delta, double dx, int dim, const std::uint8_t* gas) {
-  return build_family(x0, n, delta, dx, dim, [&](Index p, Index o) { return gas[p] || gas[o]; });
+BondFamily build_gas_family(const Vec3* x0, Index n, double delta, double dx, int dim, const std::uint8_t* gas,
+                            const double* scale) {
+  double top = 1.0;
+  if (scale)
+    for (Index p = 0; p < n; ++p)
+      if (gas[p]) top = std::max(top, scale[p]);
+  return build_family(x0, n, delta * top, dim, [&](Index p, Index o) {
+    if (!gas[p] && !gas[o]) return PairRule{};
+    if (!scale) return PairRule{delta, dx};
+    // The gas ends' horizons (a solid end takes the gas end's); the spacing of the finer end for
+    // the partial volume (a solid's cell is dx).
+    const double sp = gas[p] ? scale[p] : 1.0, so = gas[o] ? scale[o] : 1.0;
+    const double reach = gas[p] && gas[o] ? std::min(sp, so) : (gas[p] ? sp : so);
+    return PairRule{delta * reach, dx * std::min(sp, so)};
+  });
 }
 
 BondFamily restrict_family(const BondFamily& f, const std::vector<char>& keep, const std::vector<char>& owned) {

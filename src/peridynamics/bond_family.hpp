@@ -68,6 +68,11 @@ BondFamily restrict_family(const BondFamily& f, const std::vector<char>& keep, c
 /// The gas family: every pair within the horizon with at least one gas end, across bodies (a gas
 /// point's row holds all its neighbours, a solid point's row only its gas neighbours). Same
 /// horizon rule, partial volumes and row order as build_bond_family.
-BondFamily build_gas_family(const Vec3* x0, Index n, double delta, double dx, int dim, const std::uint8_t* gas);
+/// `scale` (per point, nullptr: all 1): a gas point seeded on a lattice `scale` times coarser than
+/// dx (a body's point_spacing) has the horizon scale x delta. Two gas ends pair within the smaller
+/// of their horizons, a gas point and a solid within the gas point's; the partial volume takes the
+/// finer end's spacing (a solid's is dx).
+BondFamily build_gas_family(const Vec3* x0, Index n, double delta, double dx, int dim, const std::uint8_t* gas,
+                            const double* scale = nullptr);
 
 }  // namespace ballista::pd

@@ -37,9 +37,67 @@ bool ContactList::stale(const Vec3* x, Index n, double moved_solid, const std::u
   return moved;
 }
 
+bool ContactList::stale_relative(const Vec3* x, Index n, int dim, const std::uint8_t* skip,
+                                 const std::uint8_t* gas) const {
+  if (static_cast<Index>(x_build.size()) != n) return true;
+  if (!(max_reach > 0.0)) return true;
+  RelativeScratch& r = relative;
+  r.x.clear();
+  r.id.clear();
+  for (Index p = 0; p < n; ++p) {
+    if (skip && skip[p]) continue;
+    r.x.push_back(x[p]);
+    r.id.push_back(p);
+  }
+  const Index m = static_cast<Index>(r.id.size());
+  // Bins of at least the largest reach: two points within reach are in neighbouring bins.
+  const CellBins bins(r.x.data(), m, max_reach, dim);
+  const Index nbins = bins.bin_count();
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  r.box.resize(static_cast<size_t>(12 * nbins));
+  const auto& order = bins.order();
+  for_each(0, nbins, [&](Index b) {
+    double* bx = &r.box[static_cast<size_t>(12 * b)];
+    for (int k = 0; k < 12; ++k) bx[k] = (k % 6) < 3 ? kInf : -kInf;
+    for (Index i = bins.bin_first(b); i < bins.bin_last(b); ++i) {
+      const Index p = r.id[order[i]];
+      const Vec3 d = x[p] - x_build[p];
+      double* k = bx + (gas && gas[p] ? 6 : 0);
+      for (int a = 0; a < 3; ++a) {
+        k[a] = std::min(k[a], d[a]);
+        k[3 + a] = std::max(k[3 + a], d[a]);
+      }
+    }
+  });
+  // The diagonal of the box spanning two displacement boxes bounds the relative motion of any
+  // point of one and any point of the other.
+  const double skin2 = skin * skin;
+  auto too_far = [&](const double* a, const double* b) {
+    if (!(a[0] <= a[3]) || !(b[0] <= b[3])) return false;  // an empty box
+    double s2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double w = std::max(a[3 + k], b[3 + k]) - std::min(a[k], b[k]);
+      s2 += w * w;
+    }
+    return s2 > skin2;
+  };
+  bool moved = false;
+#pragma omp parallel for schedule(dynamic, 4096) reduction(|| : moved) if (nbins > kParallelThreshold)
+  for (Index b = 0; b < nbins; ++b) {
+    if (moved) continue;
+    const double* solid = &r.box[static_cast<size_t>(12 * b)];
+    if (!(solid[0] <= solid[3])) continue;  // no solid here (gas-gas pairs do not exist)
+    bins.visit_neighbour_bins(b, [&](Index c) {
+      const double* other = &r.box[static_cast<size_t>(12 * c)];
+      moved = moved || too_far(solid, other) || too_far(solid, other + 6);
+    });
+  }
+  return moved;
+}
+
 void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const std::int64_t* body, Index n,
                         double delta, double dx, double skin, int dim, const std::uint8_t* skip,
-                        const std::uint8_t* gas, const std::int64_t* key, bool clearance) {
+                        const std::uint8_t* gas, const std::int64_t* key, bool clearance, const double* scale) {
   list.skin = skin;
   list.x_build.assign(x, x + n);
   list.allowance.clear();
@@ -49,7 +107,19 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
   list.reach.clear();
   if (n == 0) return;
   const double range = 1.35 * dx;  // S&A 2005 / LAMMPS: the contact distance never exceeds 1.35 dx
-  const double cutoff = range + skin;
+  // A point of a lattice `a` times coarser (gas seeded at its body's point_spacing) is a cell a
+  // times wider: its pairs reach the sum of the two half-cells, range (a_p + a_q)/2. Contact stays
+  // the one short-range law; only the size of the points it keeps apart changes.
+  auto scale_of = [&](Index p) { return scale && gas && gas[p] ? scale[p] : 1.0; };
+  auto pair_range = [&](Index p, Index q) { return 0.5 * range * (scale_of(p) + scale_of(q)); };
+  double top = 1.0;
+  if (scale && gas)
+    for (Index p = 0; p < n; ++p)
+      if (gas[p] && !(skip && skip[p])) top = std::max(top, scale[p]);
+  // Solid-solid pairs search within range + skin; gas-solid pairs within their own reach + skin
+  // (at most cutoff_gas): a coarse gas lattice does not widen the solids' search among themselves.
+  list.max_reach = 0.5 * range * (1.0 + top);
+  const double cutoff = range + skin, cutoff_gas = list.max_reach + skin;
   // Bins a hair wider than the cutoff (no pair at the cutoff lost to round-off), over the points
   // that take part (vented gas flying far off would stretch the bins over its whole cloud), in two
   // sets when there is gas: a gas point looks only among the solids (gas-gas pairs are never
@@ -66,9 +136,25 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
       solid_x.push_back(x[p]);
     }
   }
-  const double bin = cutoff * (1.0 + 1e-6);
-  const CellBins solid_bins(solid_x.data(), static_cast<Index>(solid_ids.size()), bin, dim);
-  const CellBins gas_bins(gas_x.data(), static_cast<Index>(gas_ids.size()), bin, dim);
+  // The solids in bin order, with what the search reads of them side by side, then binned again:
+  // a bin's solids are then one contiguous run of memory (the search of 10^5-10^6 solids was
+  // bound by the scattered reads of x, x0 and body through the bins' index order).
+  const Index ns = static_cast<Index>(solid_ids.size());
+  auto& packed = list.packed;
+  auto& packed_x = list.packed_x;
+  packed.resize(static_cast<size_t>(ns));
+  packed_x.resize(static_cast<size_t>(ns));
+  {
+    const CellBins first(solid_x.data(), ns, cutoff * (1.0 + 1e-6), dim);
+    for_each(0, ns, [&](Index i) {
+      const Index q = solid_ids[first.order()[i]];
+      packed[i] = {x[q], x0[q], body[q], q};
+      packed_x[i] = x[q];
+    });
+  }
+  // Stable binning of points already in bin order: order() is the identity.
+  const CellBins solid_bins(packed_x.data(), ns, cutoff * (1.0 + 1e-6), dim);
+  const CellBins gas_bins(gas_x.data(), static_cast<Index>(gas_ids.size()), cutoff_gas * (1.0 + 1e-6), dim);
   // Gas allowances: the skin, or for a gas point whose bin is d >= 2 bins (chessboard) from every
   // solid's bin, or which lies outside the solids' bounding box, its clearance less the contact
   // distance (every solid is at least (d - 1) bin sizes away along one axis, and at least the
@@ -80,28 +166,51 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
       for (Index i = 0; i < static_cast<Index>(gas_ids.size()); ++i) {
         const int d = dist[solid_bins.bin_of(gas_x[i])];
         const double clear = std::max((d - 1) * solid_bins.size(), solid_bins.outside_distance(gas_x[i]));
-        list.allowance[gas_ids[i]] = std::max(clear - range, skin);
+        list.allowance[gas_ids[i]] = std::max(clear - 0.5 * range * (1.0 + scale_of(gas_ids[i])), skin);
       }
     }
   }
-  const double cut2 = cutoff * cutoff, delta2 = delta * delta * (1.0 + 2e-9);  // the bond family's tie rule
+  const double delta2 = delta * delta * (1.0 + 2e-9);  // the bond family's tie rule
   auto visit = [&](Index p, auto&& emit) {
     if (skip && skip[p]) return;
     auto test = [&](Index q) {
       if (q == p) return;
       Vec3 d = x[q] - x[p];
       if (dim == 2) d[2] = 0.0;
-      if (dot(d, d) > cut2) return;
+      const double reach = pair_range(p, q), cut = reach + skin;
+      if (dot(d, d) > cut * cut) return;
       Vec3 d0 = x0[q] - x0[p];
       if (dim == 2) d0[2] = 0.0;
       const double r02 = dot(d0, d0);
       if (body[p] == body[q] && r02 <= delta2) return;  // bonded (or once bonded): the bond loop's
-      emit(q, std::min(0.9 * std::sqrt(r02), range));
+      emit(q, std::min(0.9 * std::sqrt(r02), reach));
+    };
+    // A solid candidate, read from the packed copy (the same test as above).
+    const Vec3 xp = x[p], x0p = x0[p];
+    const std::int64_t bp = body[p];
+    const double sp = scale_of(p);
+    auto test_solid = [&](Index i) {
+      const ContactList::PackedSolid& c = packed[i];
+      if (c.id == p) return;
+      Vec3 d = c.x - xp;
+      if (dim == 2) d[2] = 0.0;
+      const double reach = 0.5 * range * (sp + 1.0), cut = reach + skin;
+      if (dot(d, d) > cut * cut) return;
+      Vec3 d0 = c.x0 - x0p;
+      if (dim == 2) d0[2] = 0.0;
+      const double r02 = dot(d0, d0);
+      if (c.body == bp && r02 <= delta2) return;  // bonded (or once bonded): the bond loop's
+      emit(c.id, std::min(0.9 * std::sqrt(r02), reach));
     };
     // Gas escaped beyond the solids' box is far from every solid: not clamped into the edge bins.
-    if (solid_bins.near(x[p])) solid_bins.visit_within(x[p], cutoff, [&](Index i) { test(solid_ids[i]); });
-    if (!(gas && gas[p]) && gas_bins.near(x[p]))
-      gas_bins.visit_within(x[p], cutoff, [&](Index i) { test(gas_ids[i]); });
+    if (gas && gas[p]) {
+      const double cut = 0.5 * range * (1.0 + sp) + skin;
+      const int reach = static_cast<int>(std::ceil(cut / solid_bins.size() - 1e-9));
+      if (solid_bins.near(xp, reach)) solid_bins.visit_within(xp, cut, test_solid, reach);
+      return;
+    }
+    if (solid_bins.near(xp)) solid_bins.visit_within(xp, cutoff, test_solid);
+    if (gas_bins.near(x[p])) gas_bins.visit_within(x[p], cutoff_gas, [&](Index i) { test(gas_ids[i]); });
   };
   // One search per point (the list is rebuilt often: a point driven at 100 m/s crosses the half-skin
   // in a dozen steps): the pairs go to per-chunk buffers (fixed chunks, so the result does not

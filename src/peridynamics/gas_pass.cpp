@@ -88,22 +88,24 @@ double gas_inverse_length_sum(const GasPassArgs& a, Index p) {
 }
 
 RenewedGasFamily build_renewed_gas_family(const Vec3* x, Index n, const std::uint8_t* gas, const std::uint8_t* skip,
-                                          const double* X, double delta, int dim) {
+                                          const double* X, double delta, int dim, const double* scale) {
   RenewedGasFamily out;
   GasRenewalWorkspace ws;
-  build_renewed_gas_family(x, n, gas, skip, X, delta, dim, out, ws);
+  build_renewed_gas_family(x, n, gas, skip, X, delta, dim, out, ws, scale);
   return out;
 }
 
 void build_renewed_gas_family(const Vec3* x, Index n, const std::uint8_t* gas, const std::uint8_t* skip,
-                              const double* X, double delta, int dim, RenewedGasFamily& out, GasRenewalWorkspace& ws) {
+                              const double* X, double delta, int dim, RenewedGasFamily& out, GasRenewalWorkspace& ws,
+                              const double* scale) {
   // The products are a fluid: their reference neighbourhood is a quadrature of the local density,
   // not a material memory. Where the gas shears along the case (a detonation sliding along a
   // tube drives the products axially past the wall at km/s), a family fixed in the reference
   // configuration keeps the case points a gas point started beside and loses the ones it flows
   // past, so the products push the wall only through the contact springs. Renewed, the family is
   // every pair of gas points currently within delta min(s_p, s_q), s = X^(1/d) (its spacing has
-  // grown so; capped at kHorizonGrowthCap), and every gas point and solid within delta (a solid's
+  // grown so; capped at kHorizonGrowthCap; times the lattice scale of a coarser gas lattice), and
+  // every gas point and solid within delta (times the gas point's lattice scale; a solid's
   // s is 1; spanning the gas end's s instead changes the velocities below by < 1 % and costs the
   // search of hundreds of case points per gas point): symmetric, so each pair sits in both rows as
   // gas_force needs. Each end keeps its own
@@ -132,8 +134,9 @@ void build_renewed_gas_family(const Vec3* x, Index n, const std::uint8_t* gas, c
     s[l] = root[l] = 1.0;
     if (gas[l]) {
       if (skip[l]) continue;  // vented: pushes nothing, in no family
+      const double a = scale ? scale[l] : 1.0;
       root[l] = std::pow(X[l], inv_d);
-      s[l] = std::clamp(root[l], 1.0, kHorizonGrowthCap);
+      s[l] = a * std::clamp(root[l], 1.0, kHorizonGrowthCap);
       gas_pts.push_back({x[l], s[l], l});
     } else {
       solid_ids.push_back(l);
@@ -167,7 +170,7 @@ void build_renewed_gas_family(const Vec3* x, Index n, const std::uint8_t* gas, c
       [&](Index p, auto& buf) {
         if (!gas[p] || skip[p]) return;
         const Vec3 xp = x[p];
-        const double sp = s[p];
+        const double sp = s[p], ap = scale ? scale[p] : 1.0;
         auto test = [&](Index q, const Vec3& xq, double sq) {
           if (q == p) return;
           Vec3 y = xq - xp;
@@ -180,8 +183,10 @@ void build_renewed_gas_family(const Vec3* x, Index n, const std::uint8_t* gas, c
         const int reach = static_cast<int>(std::ceil(delta * sp / bins.size()));
         if (bins.near(xp, reach))
           bins.visit_within(xp, delta * sp, [&](Index i) { test(gas_pts[i].id, gas_pts[i].x, gas_pts[i].s); }, reach);
-        if (solid_bins.near(xp))
-          solid_bins.visit_within(xp, delta, [&](Index i) { test(solid_ids[i], solid_x[i], 1.0); });
+        // A solid's s is 1: the pair's reach is the gas end's delta x ap.
+        const int solid_reach = static_cast<int>(std::ceil(ap - 1e-9));
+        if (solid_bins.near(xp, solid_reach))
+          solid_bins.visit_within(xp, delta * ap, [&](Index i) { test(solid_ids[i], solid_x[i], ap); }, solid_reach);
       },
       rows);
   const Index nchunk = static_cast<Index>(rows.found.size());

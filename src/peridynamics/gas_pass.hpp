@@ -79,8 +79,11 @@ struct RenewedGasFamily {
   std::vector<double> length_other;
   std::vector<float> weight_other;
 };
+/// `scale` (nullptr: all 1): a gas point seeded `scale` times coarser than the lattice of delta
+/// (build_gas_family) searches scale times farther: s = scale X^(1/d) (X^(1/d) capped at 2.5), and
+/// solids within scale x delta.
 RenewedGasFamily build_renewed_gas_family(const Vec3* x, Index n, const std::uint8_t* gas, const std::uint8_t* skip,
-                                          const double* X, double delta, int dim);
+                                          const double* X, double delta, int dim, const double* scale = nullptr);
 
 /// Storage a renewal reuses from the last one: the family's arrays (hundreds of MB at 10^6 points)
 /// and the search's buffers. Allocated afresh, each renewal would zero newly mapped pages on one
@@ -88,7 +91,7 @@ RenewedGasFamily build_renewed_gas_family(const Vec3* x, Index n, const std::uin
 struct GasRenewalWorkspace {
   struct Binned {
     Vec3 x;
-    double s;
+    double s;  ///< the horizon over delta
     Index id;
   };
   ChunkedRows rows;
@@ -99,6 +102,7 @@ struct GasRenewalWorkspace {
 };
 /// The same family written into `out`, reusing the capacity of out's and ws's arrays.
 void build_renewed_gas_family(const Vec3* x, Index n, const std::uint8_t* gas, const std::uint8_t* skip,
-                              const double* X, double delta, int dim, RenewedGasFamily& out, GasRenewalWorkspace& ws);
+                              const double* X, double delta, int dim, RenewedGasFamily& out, GasRenewalWorkspace& ws,
+                              const double* scale = nullptr);
 
 }  // namespace ballista::pd

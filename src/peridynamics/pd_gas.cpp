@@ -17,7 +17,11 @@ void PdSolver::build_gas() {
   const Index n = local_.size(), nb = local_.bond_local;
   const auto* vol0 = local_.vol0.data();
   gas_local_.assign(static_cast<size_t>(n), 0);
-  for (Index l = 0; l < n; ++l) gas_local_[l] = gas_material_[local_.material[l]];
+  gas_scale_.assign(static_cast<size_t>(n), 1.0);
+  for (Index l = 0; l < n; ++l) {
+    gas_local_[l] = gas_material_[local_.material[l]];
+    if (gas_local_[l]) gas_scale_[l] = body_scale_[local_.body[l]];
+  }
   gas_volume_.assign(static_cast<size_t>(n), 0.0);
   gas_inv_len_.assign(static_cast<size_t>(n), 0.0);
   gas_x_.assign(static_cast<size_t>(n), 1.0);
@@ -103,7 +107,8 @@ void PdSolver::refamily_gas() {
 void PdSolver::build_renewed_gas_family() {
   // Built into the spare storage (the family before last: its pages are mapped), then swapped in.
   pd::build_renewed_gas_family(renewal_.x.data(), local_.size(), gas_local_.data(), renewal_.skip.data(),
-                               renewal_.X.data(), delta_, dim_, gas_spare_, gas_workspace_);
+                               renewal_.X.data(), delta_, dim_, gas_spare_, gas_workspace_,
+                               max_scale_ > 1.0 ? gas_scale_.data() : nullptr);
   std::swap(gas_bonds_, gas_spare_.family);
   std::swap(gas_len_other_, gas_spare_.length_other);
   std::swap(gas_weight_other_, gas_spare_.weight_other);
@@ -130,7 +135,8 @@ double PdSolver::gas_stable_dt() const {
   // a PMB solid of the products' current bulk modulus K = rho c^2 = rho0 c^2 / X (c = 18 K/m1 in
   // 3D, 8 K/m1 in 2D: the calibration of the solid bonds, pd_solver.cpp). Linearised about a
   // uniform state, the gas bond's stiffness is that of the pressure's dependence on X, which is
-  // this K; the reference lengths are kept (the spacing only grows as the gas expands).
+  // this K; the reference lengths are kept (the spacing only grows as the gas expands). A gas
+  // lattice `a` times coarser has the moment m1 a^(d+1) of its horizon (m1 ~ delta^(d+1)).
   // The safety factor is applied here and again in stable_dt (0.64 for the gas with the default
   // 0.8), on purpose: with it once, the Gurney cylinder of tests/verification/test_pd_gas.cpp
   // (0.5 mm, M/C = 1) closes its energy balance to 3.0 % of the chemical energy instead of 1.5 %,
@@ -148,7 +154,8 @@ double PdSolver::gas_stable_dt() const {
     if (!gas_[p] || vented_[l] || !(gas_inv_len_[l] > 0.0)) continue;
     const double X = gas_x_[l], c = mats[mat[p]]->wave_speed(points_, p, X);
     // rho0 / (coef rho0 c^2 / (X m1) * sum) = X m1 / (coef c^2 sum)
-    if (c > 0.0) dt = std::min(dt, std::sqrt(2.0 * X * m1_ / (coef * c * c * gas_inv_len_[l])));
+    const double m1 = m1_ * std::pow(gas_scale_[l], dim_ + 1);
+    if (c > 0.0) dt = std::min(dt, std::sqrt(2.0 * X * m1 / (coef * c * c * gas_inv_len_[l])));
   }
   return comm_.min(dt_safety_ * dt);
 }

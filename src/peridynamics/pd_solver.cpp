@@ -114,6 +114,30 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   if (sc.simulation.on_particle_exit != "stop")
     section_error(sc, "", "simulation.on_particle_exit: delete is not supported by the peridynamics solver yet");
 
+  // Bodies on their own, coarser lattice (bodies[].point_spacing): only the products. A solid's
+  // bonds are calibrated on the lattice of grid.cell_size (lattice_moments); the gas is a pressure
+  // whose measure X is a normalised average over whatever family it has, so a coarser gas lattice
+  // scales its horizon with its spacing (build_gas_family) and keeps every relation.
+  body_scale_.assign(sc.bodies.size(), 1.0);
+  for (size_t b = 0; b < sc.bodies.size(); ++b) {
+    const BodySpec& body = sc.bodies[b];
+    if (!(body.point_spacing > 0.0)) continue;
+    const MaterialSpec* ms = nullptr;
+    for (const MaterialSpec& m : sc.materials)
+      if (m.name == body.material) ms = &m;
+    auto fail = [&](const std::string& what) {
+      throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path + ".point_spacing", what);
+    };
+    if (!ms || ms->model != "explosive")
+      fail("only an explosive body (the products, a peridynamic gas) may take its own lattice spacing: a solid's "
+           "bonds are calibrated on grid.cell_size = " + fmt::format("{:g}", dx_) + " m");
+    if (body.point_spacing < dx_ * (1.0 - 1e-12))
+      fail(fmt::format("expected at least grid.cell_size = {:g} m (the products may be coarser than the case, not finer), "
+                       "got {:g} m", dx_, body.point_spacing));
+    body_scale_[b] = std::max(1.0, body.point_spacing / dx_);
+    max_scale_ = std::max(max_scale_, body_scale_[b]);
+  }
+
   // Bond constants per material pair: c = 18 K/(pi delta^4) (Silling & Askari 2005 eq. 22) for each
   // material, two materials' bond as their two half-bonds in series (harmonic mean); the critical
   // stretch of a mixed bond is the smaller one.
@@ -387,7 +411,7 @@ void PdSolver::build_local_points(bool correct) {
   for (Index p = 0; p < n_all; ++p)
     if (owner[p] == me)
       for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], x0[p][c]), hi[c] = std::max(hi[c], x0[p][c]);
-  const double grow = delta_ * (1.0 + 1e-6);
+  const double grow = delta_ * max_scale_ * (1.0 + 1e-6);  // a coarse gas lattice reaches farther
   std::vector<Index> cand;
   for (Index p = 0; p < n_all; ++p) {
     bool near = owner[p] == me;
@@ -411,7 +435,12 @@ void PdSolver::build_local_points(bool correct) {
   bonds_ = pd::build_bond_family(cx0.data(), nc, delta_, correct ? dx_ : 0.0, dim_, cbody.data(), cgas.data());
   // Detonation products: the gas family (every pair within the horizon with a gas end, gas_pass.hpp).
   const bool any_gas = std::find(gas_material_.begin(), gas_material_.end(), 1) != gas_material_.end();
-  if (any_gas) gas_bonds_ = pd::build_gas_family(cx0.data(), nc, delta_, correct ? dx_ : 0.0, dim_, cgas.data());
+  if (any_gas) {
+    std::vector<double> cscale(static_cast<size_t>(nc), 1.0);
+    for (Index c = 0; c < nc; ++c) cscale[c] = cgas[c] ? body_scale_[cbody[c]] : 1.0;
+    gas_bonds_ = pd::build_gas_family(cx0.data(), nc, delta_, correct ? dx_ : 0.0, dim_, cgas.data(),
+                                      max_scale_ > 1.0 ? cscale.data() : nullptr);
+  }
   std::vector<char> keep(static_cast<size_t>(nc), 1);
   if (comm_.distributed()) {
     // Ghosts: the candidates bonded (or gas-bonded) to an own point; their rows keep only those bonds.
@@ -458,11 +487,16 @@ void PdSolver::sync_local() {
 }
 
 bool PdSolver::contacts_stale() const {
-  // A point vented since the build leaves the list at once (vented points take no part in contact).
+  // Vented points take no part in contact. On one rank the force loop skips their pairs (every
+  // point's vented flag is current), so venting needs no rebuild; on several ranks a ghost's flag
+  // is its owner's, so a point vented since the build leaves the list at once.
   if (!comm_.distributed()) {
-    if (vented_since_build_) return true;
     const double ms = contact_.solid_moved(local_.x.data(), local_.size(), skip_vented(), skip_gas());
-    return contact_.stale(local_.x.data(), local_.size(), ms, skip_vented(), skip_gas());
+    if (!contact_.stale(local_.x.data(), local_.size(), ms, skip_vented(), skip_gas())) return false;
+    // Every point has moved far, but maybe together (an expanding case): the test on relative
+    // motion, which costs a binning, decides (contact_list.hpp). Either test passing keeps every
+    // pair within reach listed, and the forces do not depend on the list beyond that.
+    return contact_.stale_relative(local_.x.data(), local_.size(), dim_, skip_vented(), skip_gas());
   }
   // Own points only (each rank checks its own), vented gas aside; the solids' largest motion over
   // every rank (a gas point's partners may be another rank's).
@@ -484,20 +518,23 @@ void PdSolver::resize_local_arrays() {
   if (!has_gas_) return;
   // Contact ghosts: gas or not by their material; never vented (only unvented points are offered).
   gas_local_.resize(nl);
+  gas_scale_.resize(nl);
   vented_.resize(nl);
   for (Index l = local_.bond_local; l < local_.size(); ++l) {
     gas_local_[l] = gas_material_[local_.material[l]];
+    gas_scale_[l] = gas_local_[l] ? body_scale_[local_.body[l]] : 1.0;
     vented_[l] = 0;
   }
 }
 
 void PdSolver::rebuild_contacts() {
-  const double cutoff = 1.35 * dx_ + contact_.skin;  // contact_list.hpp
+  const double cutoff = 0.675 * dx_ * (1.0 + max_scale_) + contact_.skin;  // the farthest pair's (contact_list.hpp)
   vented_since_build_ = false;
   if (!comm_.distributed()) {
     // One rank holds every solid: gas far from them may move by its clearance.
     pd::build_contact_list(contact_, local_.x.data(), local_.x0.data(), local_.body.data(), local_.size(), delta_, dx_,
-                           contact_.skin, dim_, skip_vented(), skip_gas(), nullptr, true);
+                           contact_.skin, dim_, skip_vented(), skip_gas(), nullptr, true,
+                           max_scale_ > 1.0 ? gas_scale_.data() : nullptr);
     return;
   }
   if (has_gas_) {
@@ -510,7 +547,8 @@ void PdSolver::rebuild_contacts() {
   resize_local_arrays();
   const Index nl = local_.size();
   pd::build_contact_list(contact_, local_.x.data(), local_.x0.data(), local_.body.data(), nl, delta_, dx_,
-                         contact_.skin, dim_, skip_vented(), has_gas_ ? gas_local_.data() : nullptr, local_.id.data());
+                         contact_.skin, dim_, skip_vented(), has_gas_ ? gas_local_.data() : nullptr, local_.id.data(),
+                         false, max_scale_ > 1.0 && has_gas_ ? gas_scale_.data() : nullptr);
   // Keep the contact ghosts some own point's row names; only own rows stay (ghost rows are their
   // owners' business).
   std::vector<char> needed(static_cast<size_t>(nl), 0);
@@ -520,6 +558,7 @@ void PdSolver::rebuild_contacts() {
   const Index m = local_.size();
   pd::ContactList kept;
   kept.skin = contact_.skin;
+  kept.max_reach = contact_.max_reach;
   kept.builds = contact_.builds;
   kept.offset.assign(static_cast<size_t>(m) + 1, 0);
   kept.x_build.resize(static_cast<size_t>(m));
@@ -651,13 +690,15 @@ void PdSolver::compute_forces() {
   s0_next.resize(static_cast<size_t>(nl));
   const bool gas_on = has_gas_;
   const pd::GasPassArgs gas_args = gas_pass_args();
+  const std::uint8_t* vent = has_gas_ ? vented_.data() : nullptr;
   for_each_uneven(0, n, [&](Index i) {  // gas points carry their gas pairs too
     const Index p = own[i];  // the same on one rank (gas only there)
     Vec3 f = A.f[p];
     double e_contact = A.e_contact[p], k_contact = A.k_contact[p];
-    if (contact)
+    if (contact && !(vent && vent[p]))
       for (Index k = contact_.offset[p]; k < contact_.offset[p + 1]; ++k) {
         const Index q = contact_.other[k];
+        if (vent && vent[q]) continue;  // vented since the build (contacts_stale)
         const Vec3 y = x[q] - x[p];
         const double r = norm(y), d = contact_.reach[k];
         if (r >= d) continue;

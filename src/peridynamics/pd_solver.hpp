@@ -234,6 +234,9 @@ class PdSolver final : public Solver {
   std::vector<std::uint8_t> gas_local_;     ///< per local point: 1 for gas points
   bool has_gas_ = false;
   double m1_ = 0.0;                   ///< the family moment m1 of the bond constants (gas stable step)
+  std::vector<double> body_scale_;    ///< per body: its lattice spacing over dx (point_spacing; 1 by default)
+  double max_scale_ = 1.0;            ///< the largest of them
+  std::vector<double> gas_scale_;     ///< per local point: its body's scale for gas, 1 for solids
   pd::BondFamily gas_bonds_;          ///< build_gas_family
   std::vector<double> gas_len_other_; ///< after refamily_gas: the other end's reference length per row entry, m
   std::vector<float> gas_weight_other_;  ///< after refamily_gas: this end's weight in the other end's measure

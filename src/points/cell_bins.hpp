@@ -59,6 +59,26 @@ class CellBins {
   /// The bin size actually used (at least the one asked for).
   double size() const { return size_; }
 
+  /// Number of bins, and the positions in order() of bin b's points: [first, last).
+  Index bin_count() const { return static_cast<Index>(start_.size()) - 1; }
+  Index bin_first(Index b) const { return start_[b]; }
+  Index bin_last(Index b) const { return start_[b + 1]; }
+
+  /// Calls f(b2) for every bin b2 within one bin of bin b along each axis (b itself included).
+  template <class F>
+  void visit_neighbour_bins(Index b, F&& f) const {
+    const int c0 = static_cast<int>(b % nb_[0]), c1 = static_cast<int>((b / nb_[0]) % nb_[1]),
+              c2 = static_cast<int>(b / (static_cast<Index>(nb_[0]) * nb_[1]));
+    const int zr = dim_ == 3 ? 1 : 0;
+    for (int dz = -zr; dz <= zr; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int b0 = c0 + dx, b1 = c1 + dy, b2 = c2 + dz;
+          if (b0 < 0 || b1 < 0 || b2 < 0 || b0 >= nb_[0] || b1 >= nb_[1] || b2 >= nb_[2]) continue;
+          f((static_cast<Index>(b2) * nb_[1] + b1) * nb_[0] + b0);
+        }
+  }
+
   /// The points in bin order (bin by bin, each bin's in increasing index): arrays permuted so and
   /// binned again are scanned contiguously by visit.
   const std::vector<Index>& order() const { return order_; }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "geometry/seeding.hpp"
 #include "points/program_burn.hpp"
 
 namespace ballista {
@@ -41,7 +42,9 @@ Index light_explosives(const Scenario& sc, FieldStore& points, int ppc_override)
     if (mi < 0 || !is_explosive_material[mi]) continue;
     if (b.activation_time > 0.0 || b.activation_stage > 0 || !b.segments.empty())
       deck_error("", "explosive body '" + b.name + "' has a later activation: not supported by the program burn");
-    const double s = sc.grid.cell_size / (ppc_override > 0 ? ppc_override : b.particles_per_cell);
+    BodySpec seeded = b;
+    if (ppc_override > 0) seeded.particles_per_cell = ppc_override;
+    const double s = seed_spacing(seeded, sc.grid.cell_size);
     if (spacing > 0.0 && std::abs(s / spacing - 1.0) > 1e-12)
       deck_error("", "explosive bodies with different point spacings are not supported by the program burn yet");
     spacing = s;

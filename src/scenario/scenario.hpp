@@ -113,6 +113,9 @@ struct BodySpec {
   std::string material;
   ShapeSpec shape;               ///< plain bodies; for rods and jets the first segment's shape
   int particles_per_cell = 2;    ///< per direction
+  /// Peridynamics: this body's lattice spacing, m (0: grid.cell_size). Only explosive bodies (the
+  /// products, a peridynamic gas) may be coarser than the case they drive (docs/deck.md).
+  double point_spacing = 0.0;
   Vec3 velocity;                 ///< initial velocity, m/s
   /// Initial radial speed away from the shape's axis (cylinders and tubes), added to velocity, m/s:
   /// an expanding ring or cylinder (fragmentation, seed 001).

@@ -170,5 +170,127 @@ TEST(PdContactList, NoPairComesWithinReachUnseen) {
   std::printf("contact list: %d builds in 60 moves, %d pair-moves within reach\n", builds, pairs_seen);
 }
 
+// Gas on a coarser lattice (bodies[].point_spacing, scale a): a gas-solid pair reaches
+// 1.35 dx (a + 1)/2, the sum of the two half-cells, and the list holds exactly the pairs within
+// that plus the skin, with that reach (the column's points are 1 dx apart; gas at scale 2 reaches
+// 2.03 dx instead of 1.35 dx). The rebuild guarantee holds with the wider reach.
+TEST(PdContactList, CoarseGasReachesTheSumOfTheHalfCells) {
+  const double dx = 1e-3, skin = 0.5 * dx, delta = 100 * dx;
+  GasAroundColumn s = column_in_gas(dx);
+  const Index n = static_cast<Index>(s.x.size());
+  std::vector<double> scale(static_cast<size_t>(n), 1.0);
+  for (Index p = 0; p < n; ++p)
+    if (s.gas[p]) scale[p] = 2.0;
+  pd::ContactList list;
+  pd::build_contact_list(list, s.x.data(), s.x0.data(), s.body.data(), n, delta, dx, skin, 3, nullptr, s.gas.data(),
+                         nullptr, true, scale.data());
+  std::set<std::pair<Index, Index>> expected, listed;
+  for (Index p = 0; p < n; ++p)
+    for (Index q = 0; q < n; ++q) {
+      if (p == q || (s.gas[p] && s.gas[q]) || s.body[p] == s.body[q]) continue;
+      if (norm(s.x[q] - s.x[p]) <= 1.35 * dx * 0.5 * (scale[p] + scale[q]) + skin) expected.insert({p, q});
+    }
+  for (Index p = 0; p < n; ++p)
+    for (Index k = list.offset[p]; k < list.offset[p + 1]; ++k) {
+      const Index q = list.other[k];
+      listed.insert({p, q});
+      const double r0 = norm(s.x0[q] - s.x0[p]);
+      EXPECT_DOUBLE_EQ(list.reach[k], std::min(0.9 * r0, 1.35 * dx * 0.5 * (scale[p] + scale[q])));
+    }
+  EXPECT_EQ(listed, expected);
+  EXPECT_GT(expected.size(), within_reach(s, s.x, dx).size());  // more pairs than at scale 1
+  // Gas converging on the column: every pair within the wider reach stays listed between rebuilds.
+  std::vector<Vec3> x = s.x;
+  int builds = 1;
+  for (int step = 0; step < 40; ++step) {
+    for (Index p = 0; p < n; ++p)
+      if (s.gas[p]) x[p] += Vec3{{-0.3 * dx * x[p][0] / (20 * dx), -0.3 * dx * x[p][1] / (20 * dx), 0.0}};
+    if (list.stale(x.data(), n, list.solid_moved(x.data(), n, nullptr, s.gas.data()), nullptr, s.gas.data())) {
+      pd::build_contact_list(list, x.data(), s.x0.data(), s.body.data(), n, delta, dx, skin, 3, nullptr, s.gas.data(),
+                             nullptr, true, scale.data());
+      ++builds;
+    }
+    for (Index p = 0; p < n; ++p)
+      for (Index q = 0; q < n; ++q) {
+        if (p == q || (s.gas[p] && s.gas[q]) || s.body[p] == s.body[q]) continue;
+        if (norm(x[q] - x[p]) >= 1.35 * dx * 0.5 * (scale[p] + scale[q])) continue;
+        const auto* row = list.other.data();
+        ASSERT_NE(std::find(row + list.offset[p], row + list.offset[p + 1], static_cast<std::int32_t>(q)),
+                  row + list.offset[p + 1])
+            << "step " << step << ": pair " << p << "-" << q << " within reach but not listed";
+      }
+  }
+  EXPECT_LT(builds, 40);
+}
+
+// The test on relative motion (ContactList::stale_relative): random motions of gas and solids
+// on top of a uniform expansion of everything about the column's axis and a drift of everything
+// along x (a case flying and expanding as a whole), the list rebuilt only when the classic test
+// and the relative one both say so; after every move every pair within reach is listed. With the
+// gas converging on the column pairs keep coming within reach; without, the drift alone moves
+// every point past half the skin each move, so the classic test rebuilds far more often.
+TEST(PdContactList, RelativeMotionTestMissesNoPair) {
+  const double dx = 1e-3, skin = 0.5 * dx, delta = 100 * dx;
+  GasAroundColumn s = column_in_gas(dx);
+  const Index n = static_cast<Index>(s.x.size());
+  auto run = [&](bool relative, double converge) {
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<Vec3> vel(static_cast<size_t>(n));
+    for (Index p = 0; p < n; ++p)
+      vel[p] = s.gas[p] ? Vec3{{-converge * dx * s.x[p][0] / (20 * dx) + 0.02 * dx * u(rng),
+                                -converge * dx * s.x[p][1] / (20 * dx), 0.01 * dx * u(rng)}}
+                        : Vec3{{0.02 * dx * u(rng), 0.02 * dx * u(rng), 0.0}};
+    std::vector<Vec3> x = s.x;
+    pd::ContactList list;
+    pd::build_contact_list(list, x.data(), s.x0.data(), s.body.data(), n, delta, dx, skin, 3, nullptr, s.gas.data(),
+                           nullptr, true);
+    int builds = 1, seen = 0;
+    for (int step = 0; step < 60; ++step) {
+      for (Index p = 0; p < n; ++p) {
+        x[p] += vel[p];
+        x[p] += Vec3{{0.3 * dx + 0.01 * x[p][0], 0.01 * x[p][1], 0.0}};  // drift, 1 % expansion per move
+      }
+      bool stale = list.stale(x.data(), n, list.solid_moved(x.data(), n, nullptr, s.gas.data()), nullptr, s.gas.data());
+      if (stale && relative) stale = list.stale_relative(x.data(), n, 3, nullptr, s.gas.data());
+      if (stale) {
+        pd::build_contact_list(list, x.data(), s.x0.data(), s.body.data(), n, delta, dx, skin, 3, nullptr,
+                               s.gas.data(), nullptr, true);
+        ++builds;
+      }
+      for (const auto& [p, q] : within_reach(s, x, dx)) {
+        ++seen;
+        const auto* row = list.other.data();
+        EXPECT_NE(std::find(row + list.offset[p], row + list.offset[p + 1], static_cast<std::int32_t>(q)),
+                  row + list.offset[p + 1])
+            << (relative ? "relative" : "classic") << " step " << step << ": pair " << p << "-" << q << " unlisted";
+      }
+    }
+    return std::pair<int, int>{builds, seen};
+  };
+  // Converging gas: pairs keep arriving, none is missed.
+  const auto [converging_builds, seen] = run(true, 0.2);
+  EXPECT_GT(seen, 50);
+  EXPECT_GT(converging_builds, 1);
+  // Drifting and expanding together: far fewer builds.
+  const int classic = run(false, 0.0).first, relative = run(true, 0.0).first;
+  std::printf("contact list drifting and expanding: %d builds with the classic test, %d with the relative one; "
+              "%d with converging gas (%d pair-moves within reach)\n",
+              classic, relative, converging_builds, seen);
+  EXPECT_GT(classic, 30);  // the drift alone passes skin/2 every move
+  EXPECT_LT(relative, classic / 3);
+  // A pair that does close in: two solids of different bodies approaching head-on by 0.6 skin
+  // each is stale; moving both together by the same distance is not.
+  std::vector<Vec3> x = {Vec3{{0.0, 0.0, 0.0}}, Vec3{{3.0 * dx, 0.0, 0.0}}};
+  const std::vector<Vec3> x0 = x;
+  const std::vector<std::int64_t> body = {0, 1};
+  pd::ContactList pair;
+  pd::build_contact_list(pair, x.data(), x0.data(), body.data(), 2, delta, dx, skin, 3);
+  std::vector<Vec3> together = {x[0] + Vec3{{5.0 * skin, 0.0, 0.0}}, x[1] + Vec3{{5.0 * skin, 0.0, 0.0}}};
+  EXPECT_FALSE(pair.stale_relative(together.data(), 2, 3));
+  std::vector<Vec3> closing = {x[0] + Vec3{{0.6 * skin, 0.0, 0.0}}, x[1] - Vec3{{0.6 * skin, 0.0, 0.0}}};
+  EXPECT_TRUE(pair.stale_relative(closing.data(), 2, 3));
+}
+
 }  // namespace
 }  // namespace ballista

@@ -4,7 +4,8 @@
 // the state (every gas point's density measure gives its X back, so the pressure and the gas
 // energy are continuous), keep Newton's third law (each pair in both rows, forces summing to zero),
 // and hold exactly the pairs the rule names: two gas points within delta min(s_p, s_q), s = X^(1/d)
-// (capped at 2.5), a gas point and a solid within delta.
+// (capped at 2.5), a gas point and a solid within delta; with a coarser gas lattice (a body's
+// point_spacing, scale a) s = a X^(1/d) and a gas point reaches solids within a delta.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,7 +21,9 @@
 namespace ballista {
 namespace {
 
-TEST(GasRenewal, MeasureContinuousForcesBalancedPairsByTheRule) {
+/// The checks of the renewal on the sheared cloud; `coarse`: a third of the gas points (every
+/// third in storage order) on a lattice twice as coarse (scale 2), the rest scale 1.
+void check_renewal(bool coarse) {
   for (int dim : {2, 3}) {
     // A lattice of spacing 1 (gas for z-free coordinate i < 8, a solid wall beyond), sheared
     // (x += 0.8 y: the products sliding past the case) and jittered, then given densities
@@ -44,20 +47,25 @@ TEST(GasRenewal, MeasureContinuousForcesBalancedPairsByTheRule) {
         }
     const Index n = static_cast<Index>(x.size());
     const double delta = 3.0;
-    const pd::RenewedGasFamily r = pd::build_renewed_gas_family(x.data(), n, gas.data(), skip.data(), X.data(), delta, dim);
+    std::vector<double> scale(static_cast<size_t>(n), 1.0);
+    if (coarse)
+      for (Index p = 0; p < n; ++p)
+        if (gas[p] && p % 3 == 0) scale[p] = 2.0;
+    const pd::RenewedGasFamily r = pd::build_renewed_gas_family(x.data(), n, gas.data(), skip.data(), X.data(), delta,
+                                                                dim, coarse ? scale.data() : nullptr);
     const pd::BondFamily& f = r.family;
     ASSERT_EQ(f.points(), n);
     ASSERT_EQ(r.length_other.size(), f.other.size());
     ASSERT_EQ(r.weight_other.size(), f.other.size());
 
     // The pairs: exactly those of the rule, found by brute force, each in both rows.
-    auto s_of = [&](Index p) { return gas[p] ? std::clamp(std::pow(X[p], 1.0 / dim), 1.0, 2.5) : 1.0; };
+    auto s_of = [&](Index p) { return gas[p] ? scale[p] * std::clamp(std::pow(X[p], 1.0 / dim), 1.0, 2.5) : 1.0; };
     std::set<std::pair<Index, Index>> expected, listed;
     for (Index p = 0; p < n; ++p)
       for (Index q = 0; q < n; ++q) {
         if (p == q || !(gas[p] || gas[q]) || (gas[p] && skip[p]) || (gas[q] && skip[q])) continue;
-        // Between two gas points the smaller horizon; a gas-solid pair the reference horizon.
-        const double R = delta * std::min(s_of(p), s_of(q));
+        // Between two gas points the smaller horizon; a gas-solid pair the gas end's lattice horizon.
+        const double R = gas[p] && gas[q] ? delta * std::min(s_of(p), s_of(q)) : delta * (gas[p] ? scale[p] : scale[q]);
         Vec3 y = x[q] - x[p];
         if (dim == 2) y[2] = 0.0;
         if (dot(y, y) <= R * R) expected.insert({p, q});
@@ -91,6 +99,12 @@ TEST(GasRenewal, MeasureContinuousForcesBalancedPairsByTheRule) {
     EXPECT_GT(fmax, 0.0);
   }
 }
+
+TEST(GasRenewal, MeasureContinuousForcesBalancedPairsByTheRule) { check_renewal(false); }
+
+// A coarser gas lattice (bodies[].point_spacing): the same guarantees, the horizon and the reach
+// to the solids scaled per gas point.
+TEST(GasRenewal, CoarseGasLatticeScalesItsHorizon) { check_renewal(true); }
 
 }  // namespace
 }  // namespace ballista

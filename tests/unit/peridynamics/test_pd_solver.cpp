@@ -571,6 +571,50 @@ detonation: {points: [{position: [0, 1.0e-3], time: 0}]}
   }
 }
 
+// A body's own lattice (bodies[].point_spacing) is for the products only, coarser than the case:
+// a solid's bonds are calibrated on grid.cell_size, and another solver seeds per grid cell. Each
+// refusal names the key path (and the reason).
+TEST(PdSolver, PointSpacingOnlyForCoarserProducts) {
+  auto deck = [](const std::string& solver, const std::string& charge_extra, const std::string& plate_extra) {
+    return "simulation: {solver: " + solver + R"(, dimension: plane_strain, end_time: 1.0e-7}
+materials:
+  tnt: {preset: tnt}
+  steel: {model: linear_elastic, density: 7850, bulk_modulus: 160.0e9, shear_modulus: 79.0e9}
+grid: {lower: [-0.01, -0.01], upper: [0.01, 0.01], cell_size: 0.5e-3}
+bodies:
+  - {name: charge, material: tnt, shape: {type: box, lower: [-4.0e-3, -4.0e-3], upper: [2.0e-3, 4.0e-3]})" +
+           charge_extra + R"(}
+  - {name: plate, material: steel, shape: {type: box, lower: [2.0e-3, -4.0e-3], upper: [4.0e-3, 4.0e-3]})" +
+           plate_extra + R"(}
+detonation: {points: [{position: [-4.0e-3, 0], time: 0}]}
+)";
+  };
+  auto refused = [&](const std::string& yaml, const std::string& key, const std::string& words) {
+    try {
+      const Scenario sc = parse_deck(yaml, "spacing.yaml");
+      make_solver(sc);
+      ADD_FAILURE() << "expected a DeckError at " << key;
+    } catch (const DeckError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  refused(deck("peridynamics", "", ", point_spacing: 1.0e-3"), "bodies.1.point_spacing", "only an explosive body");
+  refused(deck("peridynamics", ", point_spacing: 0.25e-3", ""), "bodies.0.point_spacing", "at least grid.cell_size");
+  refused(deck("mpm", ", point_spacing: 1.0e-3", ""), "bodies.0.point_spacing", "peridynamics key");
+  // Accepted: the charge on a lattice twice as coarse, a quarter of the points per area.
+  const Scenario fine = parse_deck(deck("peridynamics", "", ""), "fine.yaml");
+  const Scenario coarse = parse_deck(deck("peridynamics", ", point_spacing: 1.0e-3", ""), "coarse.yaml");
+  const auto a = make_solver(fine), b = make_solver(coarse);
+  auto gas_points = [](Solver& s) {
+    Index k = 0;
+    const auto* body = s.points().ints("body");
+    for (Index p = 0; p < s.points().size(); ++p) k += body[p] == 0;
+    return k;
+  };
+  EXPECT_EQ(gas_points(*a), 4 * gas_points(*b));
+}
+
 }  // namespace
 }  // namespace ballista
 
