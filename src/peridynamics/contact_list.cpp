@@ -51,7 +51,7 @@ bool ContactList::stale_relative(const Vec3* x, Index n, int dim, const std::uin
   }
   const Index m = static_cast<Index>(r.id.size());
   // Bins of at least the largest reach: two points within reach are in neighbouring bins.
-  const CellBins bins(r.x.data(), m, max_reach, dim);
+  const CellBins bins(r.x.data(), m, max_reach * (1.0 + 1e-6), dim);
   const Index nbins = bins.bin_count();
   constexpr double kInf = std::numeric_limits<double>::infinity();
   r.box.resize(static_cast<size_t>(12 * nbins));
@@ -205,7 +205,7 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
     // Gas escaped beyond the solids' box is far from every solid: not clamped into the edge bins.
     if (gas && gas[p]) {
       const double cut = 0.5 * range * (1.0 + sp) + skin;
-      const int reach = static_cast<int>(std::ceil(cut / solid_bins.size() - 1e-9));
+      const int reach = static_cast<int>(std::ceil(cut / solid_bins.size()));
       if (solid_bins.near(xp, reach)) solid_bins.visit_within(xp, cut, test_solid, reach);
       return;
     }

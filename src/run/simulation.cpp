@@ -112,8 +112,12 @@ std::string layout_signature(const Scenario& sc) {
                               sc.grid.upper[0], sc.grid.upper[1], sc.grid.upper[2], sc.grid.cell_size) +
                   "\n";
   for (const auto& m : sc.materials) s += "material " + m.name + " " + m.model + "\n";
-  for (const auto& b : sc.bodies)
-    s += "body " + b.name + " " + b.material + " " + std::to_string(b.particles_per_cell) + "\n";
+  for (const auto& b : sc.bodies) {
+    s += "body " + b.name + " " + b.material + " " + std::to_string(b.particles_per_cell);
+    // Only when given: checkpoints written before point_spacing existed keep their signature.
+    if (b.point_spacing > 0.0) s += fmt::format(" point_spacing {:.17g}", b.point_spacing);
+    s += "\n";
+  }
   return s;
 }
 

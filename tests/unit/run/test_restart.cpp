@@ -183,6 +183,33 @@ TEST(Restart, WhatCannotBeContinuedIsRefused) {
   EXPECT_NE(grid.find("grid"), std::string::npos) << grid;
 }
 
+// Peridynamic products on their own lattice (bodies[].point_spacing): a restart with another
+// spacing would seed other gas points under the checkpoint's ids, so it is refused, naming the body.
+TEST(Restart, AnotherPointSpacingIsRefused) {
+  const std::string deck_pd = R"(
+simulation: {solver: peridynamics, dimension: plane_strain, end_time: 2.0e-6}
+materials:
+  tnt: {preset: tnt}
+  steel: {model: linear_elastic, density: 7850, bulk_modulus: 160.0e9, shear_modulus: 79.0e9}
+grid: {lower: [-0.01, -0.01], upper: [0.01, 0.01], cell_size: 0.5e-3}
+bodies:
+  - {name: charge, material: tnt, point_spacing: 1.0e-3, shape: {type: box, lower: [-4.0e-3, -4.0e-3], upper: [2.0e-3, 4.0e-3]}}
+  - {name: plate, material: steel, shape: {type: box, lower: [2.0e-3, -4.0e-3], upper: [4.0e-3, 4.0e-3]}}
+detonation: {points: [{position: [-4.0e-3, 0], time: 0}]}
+output: {interval: 1.0e-6, checkpoint_interval: 1.0e-6}
+)";
+  TempDir dir("restart_point_spacing");
+  ASSERT_TRUE(run_simulation(parse_deck(deck_pd, "pd.yaml"), options(dir.path)).ok);
+  const auto [from, deck] = newest_checkpoint(dir.path.string());
+  const std::string err = error_of([&] {
+    run_simulation(parse_deck(deck, "d.yaml", {"bodies.0.point_spacing=1.5e-3"}), options(dir.path, from));
+  });
+  EXPECT_NE(err.find("does not match the checkpoint"), std::string::npos) << err;
+  EXPECT_NE(err.find("body charge"), std::string::npos) << err;
+  // The same spacing continues.
+  EXPECT_TRUE(run_simulation(parse_deck(deck, "d.yaml"), options(dir.path, from)).ok);
+}
+
 TEST(Restart, WallClockCheckpointsKeepTheNewestTwo) {
   // --checkpoint-every-minutes with a tiny interval: a checkpoint after every step (none at the
   // end), of which the newest output.checkpoint_keep = 2 remain: the last two steps before the end.
