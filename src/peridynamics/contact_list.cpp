@@ -111,14 +111,15 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
   // times wider: its pairs reach the sum of the two half-cells, range (a_p + a_q)/2. Contact stays
   // the one short-range law; only the size of the points it keeps apart changes.
   auto scale_of = [&](Index p) { return scale && gas && gas[p] ? scale[p] : 1.0; };
-  auto pair_range = [&](Index p, Index q) { return 0.5 * range * (scale_of(p) + scale_of(q)); };
+  // The reach of a pair of p with a solid (a solid's scale is 1).
+  auto reach_to_solid = [&](double sp) { return 0.5 * range * (sp + 1.0); };
   double top = 1.0;
   if (scale && gas)
     for (Index p = 0; p < n; ++p)
       if (gas[p] && !(skip && skip[p])) top = std::max(top, scale[p]);
   // Solid-solid pairs search within range + skin; gas-solid pairs within their own reach + skin
   // (at most cutoff_gas): a coarse gas lattice does not widen the solids' search among themselves.
-  list.max_reach = 0.5 * range * (1.0 + top);
+  list.max_reach = reach_to_solid(top);
   const double cutoff = range + skin, cutoff_gas = list.max_reach + skin;
   // Bins a hair wider than the cutoff (no pair at the cutoff lost to round-off), over the points
   // that take part (vented gas flying far off would stretch the bins over its whole cloud), in two
@@ -166,51 +167,49 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
       for (Index i = 0; i < static_cast<Index>(gas_ids.size()); ++i) {
         const int d = dist[solid_bins.bin_of(gas_x[i])];
         const double clear = std::max((d - 1) * solid_bins.size(), solid_bins.outside_distance(gas_x[i]));
-        list.allowance[gas_ids[i]] = std::max(clear - 0.5 * range * (1.0 + scale_of(gas_ids[i])), skin);
+        list.allowance[gas_ids[i]] = std::max(clear - reach_to_solid(scale_of(gas_ids[i])), skin);
       }
     }
   }
   const double delta2 = delta * delta * (1.0 + 2e-9);  // the bond family's tie rule
   auto visit = [&](Index p, auto&& emit) {
     if (skip && skip[p]) return;
-    auto test = [&](Index q) {
-      if (q == p) return;
-      Vec3 d = x[q] - x[p];
-      if (dim == 2) d[2] = 0.0;
-      const double reach = pair_range(p, q), cut = reach + skin;
-      if (dot(d, d) > cut * cut) return;
-      Vec3 d0 = x0[q] - x0[p];
-      if (dim == 2) d0[2] = 0.0;
-      const double r02 = dot(d0, d0);
-      if (body[p] == body[q] && r02 <= delta2) return;  // bonded (or once bonded): the bond loop's
-      emit(q, std::min(0.9 * std::sqrt(r02), reach));
-    };
-    // A solid candidate, read from the packed copy (the same test as above).
     const Vec3 xp = x[p], x0p = x0[p];
     const std::int64_t bp = body[p];
     const double sp = scale_of(p);
-    auto test_solid = [&](Index i) {
-      const ContactList::PackedSolid& c = packed[i];
-      if (c.id == p) return;
-      Vec3 d = c.x - xp;
+    // A candidate q (its position, reference position and body), listed if within reach + skin
+    // and never bonded to p. Gas-gas pairs never get here: every pair has a solid end.
+    auto consider = [&](Index q, const Vec3& xq, const Vec3& x0q, std::int64_t bq, double reach) {
+      if (q == p) return;
+      Vec3 d = xq - xp;
       if (dim == 2) d[2] = 0.0;
-      const double reach = 0.5 * range * (sp + 1.0), cut = reach + skin;
+      const double cut = reach + skin;
       if (dot(d, d) > cut * cut) return;
-      Vec3 d0 = c.x0 - x0p;
+      Vec3 d0 = x0q - x0p;
       if (dim == 2) d0[2] = 0.0;
       const double r02 = dot(d0, d0);
-      if (c.body == bp && r02 <= delta2) return;  // bonded (or once bonded): the bond loop's
-      emit(c.id, std::min(0.9 * std::sqrt(r02), reach));
+      if (bq == bp && r02 <= delta2) return;  // bonded (or once bonded): the bond loop's
+      emit(q, std::min(0.9 * std::sqrt(r02), reach));
+    };
+    // Solids are read from the packed copy.
+    const double reach_solid = reach_to_solid(sp);
+    auto solid = [&](Index i) {
+      const ContactList::PackedSolid& c = packed[i];
+      consider(c.id, c.x, c.x0, c.body, reach_solid);
     };
     // Gas escaped beyond the solids' box is far from every solid: not clamped into the edge bins.
     if (gas && gas[p]) {
-      const double cut = 0.5 * range * (1.0 + sp) + skin;
+      const double cut = reach_solid + skin;
       const int reach = static_cast<int>(std::ceil(cut / solid_bins.size()));
-      if (solid_bins.near(xp, reach)) solid_bins.visit_within(xp, cut, test_solid, reach);
+      if (solid_bins.near(xp, reach)) solid_bins.visit_within(xp, cut, solid, reach);
       return;
     }
-    if (solid_bins.near(xp)) solid_bins.visit_within(xp, cutoff, test_solid);
-    if (gas_bins.near(x[p])) gas_bins.visit_within(x[p], cutoff_gas, [&](Index i) { test(gas_ids[i]); });
+    if (solid_bins.near(xp)) solid_bins.visit_within(xp, cutoff, solid);
+    if (gas_bins.near(xp))
+      gas_bins.visit_within(xp, cutoff_gas, [&](Index i) {
+        const Index q = gas_ids[i];
+        consider(q, x[q], x0[q], body[q], reach_to_solid(scale_of(q)));
+      });
   };
   // One search per point (the list is rebuilt often: a point driven at 100 m/s crosses the half-skin
   // in a dozen steps): the pairs go to per-chunk buffers (fixed chunks, so the result does not

@@ -114,30 +114,6 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   if (sc.simulation.on_particle_exit != "stop")
     section_error(sc, "", "simulation.on_particle_exit: delete is not supported by the peridynamics solver yet");
 
-  // Bodies on their own, coarser lattice (bodies[].point_spacing): only the products. A solid's
-  // bonds are calibrated on the lattice of grid.cell_size (lattice_moments); the gas is a pressure
-  // whose measure X is a normalised average over whatever family it has, so a coarser gas lattice
-  // scales its horizon with its spacing (build_gas_family) and keeps every relation.
-  body_scale_.assign(sc.bodies.size(), 1.0);
-  for (size_t b = 0; b < sc.bodies.size(); ++b) {
-    const BodySpec& body = sc.bodies[b];
-    if (!(body.point_spacing > 0.0)) continue;
-    const MaterialSpec* ms = nullptr;
-    for (const MaterialSpec& m : sc.materials)
-      if (m.name == body.material) ms = &m;
-    auto fail = [&](const std::string& what) {
-      throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path + ".point_spacing", what);
-    };
-    if (!ms || ms->model != "explosive")
-      fail("only an explosive body (the products, a peridynamic gas) may take its own lattice spacing: a solid's "
-           "bonds are calibrated on grid.cell_size = " + fmt::format("{:g}", dx_) + " m");
-    if (body.point_spacing < dx_ * (1.0 - 1e-12))
-      fail(fmt::format("expected at least grid.cell_size = {:g} m (the products may be coarser than the case, not finer), "
-                       "got {:g} m", dx_, body.point_spacing));
-    body_scale_[b] = std::max(1.0, body.point_spacing / dx_);
-    max_scale_ = std::max(max_scale_, body_scale_[b]);
-  }
-
   // Bond constants per material pair: c = 18 K/(pi delta^4) (Silling & Askari 2005 eq. 22) for each
   // material, two materials' bond as their two half-bonds in series (harmonic mean); the critical
   // stretch of a mixed bond is the smaller one.
@@ -157,6 +133,28 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   std::vector<double> kd(nmat_), c(nmat_), s0(nmat_);
   gas_material_.assign(static_cast<size_t>(nmat_), 0);
   for (int a = 0; a < nmat_; ++a) gas_material_[a] = std::string(mats[a]->model()) == "explosive";
+  // Bodies on their own, coarser lattice (bodies[].point_spacing): only the products. A solid's
+  // bonds are calibrated on the lattice of grid.cell_size (lattice_moments); the gas is a pressure
+  // whose measure X is a normalised average over whatever family it has, so a coarser gas lattice
+  // scales its horizon with its spacing (build_gas_family) and keeps every relation.
+  body_scale_.assign(sc.bodies.size(), 1.0);
+  for (size_t b = 0; b < sc.bodies.size(); ++b) {
+    const BodySpec& body = sc.bodies[b];
+    if (!(body.point_spacing > 0.0)) continue;
+    auto fail = [&](const std::string& what) {
+      throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path + ".point_spacing", what);
+    };
+    bool gas = false;
+    for (int a = 0; a < nmat_; ++a) gas = gas || (mats[a]->name() == body.material && gas_material_[a]);
+    if (!gas)
+      fail("only an explosive body (the products, a peridynamic gas) may take its own lattice spacing: a solid's "
+           "bonds are calibrated on grid.cell_size = " + fmt::format("{:g}", dx_) + " m");
+    if (body.point_spacing < dx_ * (1.0 - 1e-12))
+      fail(fmt::format("expected at least grid.cell_size = {:g} m (the products may be coarser than the case, not finer), "
+                       "got {:g} m", dx_, body.point_spacing));
+    body_scale_[b] = std::max(1.0, body.point_spacing / dx_);
+    max_scale_ = std::max(max_scale_, body_scale_[b]);
+  }
   for (int a = 0; a < nmat_; ++a) {
     if (gas_material_[a]) continue;  // no bonds: its stiffness is its pressure (gas_pass.hpp)
     const ProbedModuli mod = probe_moduli(*mats[a]);

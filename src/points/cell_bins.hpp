@@ -92,24 +92,15 @@ class CellBins {
     std::vector<std::uint8_t> d(static_cast<size_t>(nbins), cap);
     for (Index b = 0; b < nbins; ++b)
       if (start_[b + 1] > start_[b]) d[b] = 0;
-    const int zr = dim_ == 3 ? 1 : 0;
     auto pass = [&](int sign) {
       for (Index i = 0; i < nbins; ++i) {
         const Index b = sign > 0 ? i : nbins - 1 - i;
-        const int c0 = static_cast<int>(b % nb_[0]), c1 = static_cast<int>((b / nb_[0]) % nb_[1]),
-                  c2 = static_cast<int>(b / (static_cast<Index>(nb_[0]) * nb_[1]));
         std::uint8_t best = d[b];
-        for (int dz = -zr; dz <= zr; ++dz)
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-              // Only the neighbours already visited in this pass's order (raster before b, or after).
-              const Index off = (static_cast<Index>(dz) * nb_[1] + dy) * nb_[0] + dx;
-              if (sign > 0 ? off >= 0 : off <= 0) continue;
-              const int b0 = c0 + dx, b1 = c1 + dy, b2 = c2 + dz;
-              if (b0 < 0 || b1 < 0 || b2 < 0 || b0 >= nb_[0] || b1 >= nb_[1] || b2 >= nb_[2]) continue;
-              const std::uint8_t v = d[(static_cast<Index>(b2) * nb_[1] + b1) * nb_[0] + b0];
-              if (v + 1 < best) best = static_cast<std::uint8_t>(v + 1);
-            }
+        visit_neighbour_bins(b, [&](Index c) {
+          // Only the neighbours already visited in this pass's order (raster before b, or after).
+          if (sign > 0 ? c >= b : c <= b) return;
+          if (d[c] + 1 < best) best = static_cast<std::uint8_t>(d[c] + 1);
+        });
         d[b] = best;
       }
     };
