@@ -107,6 +107,7 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   shape_ = parse_shape_kind(sc.solver_params.choices.at("shape_function"));
   musl_ = sc.solver_params.choices.at("update") == "musl";
   flip_ = sc.solver_params.at("flip");
+  xpic_order_ = static_cast<int>(sc.solver_params.at("xpic_order"));
   sort_every_ = static_cast<int>(sc.solver_params.at("sort_every"));
   anti_locking_ = parse_anti_locking(sc.solver_params.choices.at("anti_locking"));
   rebalance_ = sc.solver_params.at("rebalance_imbalance");
@@ -338,10 +339,10 @@ void MpmSolver::build_slabs() {
 }
 
 template <int Dim, ShapeKind K>
-void MpmSolver::particles_to_grid(bool momentum_only) {
+void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
   const GridGeometry& g = grid_.geom;
   const auto* x = points_.view<Vec3>("x");
-  const auto* v = points_.view<Vec3>("v");
+  const auto* v = v_source ? v_source : points_.view<Vec3>("v");
   const auto* F = points_.view<Mat3>("F");
   const auto* half = points_.view<Vec3>("half_size");
   const auto* mass = points_.real("mass");
@@ -628,6 +629,57 @@ void MpmSolver::update_grid(double dt) {
   }
 }
 
+template <int Dim, ShapeKind K>
+void MpmSolver::xpic_velocity(double dt) {
+  // XPIC(m) (Hammerquist & Nairn, CMAME 318 (2017) 724, eqs. 27-30; the recursion of NairnMPM's
+  // XPICExtrapolationTask): with A = S+ S the grid -> particle -> grid map (interpolation, then the
+  // mass-weighted projection), v* = sum_{k=1..m} (-1)^(k+1) C(m,k) A^(k-1) v, the truncated series
+  // of A^-1 applied to the lumped grid velocity v. S v* is the part of the particle velocities the
+  // grid can carry, without their null-space noise; PIC (m = 1) takes S v and so also damps the
+  // carried part. The PIC share of the update then uses v* + dt a (a: this step's constrained
+  // acceleration, contact impulses included), under the same face and axis conditions.
+  const GridGeometry& g = grid_.geom;
+  const Index nall = g.node_count() * grid_.fields;
+  const int m = xpic_order_;
+  const Index n = points_.size();
+  const auto* half = points_.view<Vec3>("half_size");
+  xpic_.prev.resize(nall);
+  xpic_.target.resize(nall);
+  xpic_.at_points.resize(n);
+  Vec3* prev = xpic_.prev.data();
+  Vec3* star = xpic_.target.data();
+  // k = 1: C(m,1) v; v = v_new - dt a is the mapped velocity the update started from.
+  for_each_active_node([&](Index i) {
+    prev[i] = static_cast<double>(m) * (grid_.velocity_new[i] - dt * grid_.accel[i]);
+    star[i] = prev[i];
+  });
+  double sign = -1.0;
+  for (int k = 2; k <= m; ++k) {
+    if (!mirror_faces_.empty()) fill_mirror_ghosts(prev);
+    // Interpolate to the points, then map back (momentum pass into grid_.velocity, which update_grid
+    // no longer needs), times C(m,k) / C(m,k-1) = (m - k + 1) / k.
+    for_each(0, n, [&](Index p) {
+      Stencil<Dim> st;
+      stencil_of<Dim, K>(g, spline_faces_, x_[p], half[p], F_[p], st);
+      const Index fo = field_offset(p);
+      Vec3 u;
+      for (int j = 0; j < st.count; ++j) u += st.w[j] * prev[fo + st.node[j]];
+      xpic_.at_points[p] = u;
+    });
+    particles_to_grid<Dim, K>(true, xpic_.at_points.data());
+    const double scale = static_cast<double>(m - k + 1) / k;
+    for_each_active_node([&](Index i) {
+      const double mi = grid_.mass[i];
+      prev[i] = mi > kTinyMass ? (scale / mi) * grid_.velocity[i] : Vec3{};
+      star[i] += sign * prev[i];
+    });
+    sign = -sign;
+  }
+  for_each_active_node([&](Index i) { star[i] += dt * grid_.accel[i]; });
+  apply_velocity_bcs(star);
+  if (!mirror_faces_.empty()) fill_mirror_ghosts(star);
+}
+
 inline void MpmSolver::finish_point(Index p, const Mat3& l, const Vec3& disp, double dt,
                                     std::atomic<Index>& bad, std::atomic<Index>& out) {
   L_[p] = l;
@@ -657,6 +709,8 @@ void MpmSolver::grid_to_particles(double dt) {
   const bool has_ext = !fext.empty();
   const bool defer = musl_;  // MUSL: L, F and positions after the second projection
   const double flip = flip_;
+  const bool xpic = xpic_order_ > 1;
+  const Vec3* vx = xpic ? xpic_.target.data() : nullptr;
   const Index n = points_.size();
   if (defer) displacement_.resize(n);
   const auto* mass = points_.real("mass");
@@ -667,7 +721,7 @@ void MpmSolver::grid_to_particles(double dt) {
     const Vec3 xp = x_[p];
     stencil_of<Dim, K>(g, spline_faces_, xp, half[p], F_[p], st);
     const Index fo = field_offset(p);
-    Vec3 vg, acc;
+    Vec3 vg, acc, vpic;
     Mat3 l;
     for (int k = 0; k < st.count; ++k) {
       const Index I = fo + st.node[k];
@@ -675,6 +729,7 @@ void MpmSolver::grid_to_particles(double dt) {
       const double w = st.w[k];
       vg += w * u;
       acc += w * ga[I];
+      if (xpic) vpic += w * vx[I];
       const Vec3& dN = st.grad[k];
       for (int i = 0; i < Dim; ++i)
         for (int j = 0; j < Dim; ++j) l(i, j) += u[i] * dN[j];
@@ -682,8 +737,9 @@ void MpmSolver::grid_to_particles(double dt) {
     // Axisymmetric hoop rate v_r / r (thesis seed 000 ch. 5: Uintah's axisymmetric MPM).
     if (axisym) l(2, 2) = vg[0] / xp[0];
     const Vec3 v_old = v[p];
-    // FLIP/PIC blend: flip (v + dt a) + (1 - flip) v_grid (Brackbill & Ruppel 1986 FLIP).
-    v[p] = flip * (v_old + dt * acc) + (1.0 - flip) * vg;
+    // FLIP/PIC blend: flip (v + dt a) + (1 - flip) v_grid (Brackbill & Ruppel 1986 FLIP); with
+    // XPIC(m) the PIC share is S (v* + dt a) instead of S (v + dt a) (xpic_velocity).
+    v[p] = flip * (v_old + dt * acc) + (1.0 - flip) * (xpic ? vpic : vg);
     if (has_ext) o[0] += dot(fext[p], 0.5 * (v_old + v[p]));
     // What the PIC share of the blend takes from the kinetic energy of the pure FLIP update
     // (FLIP alone conserves it to the order of the time step; PIC damps the grid's null space).
@@ -758,6 +814,7 @@ void MpmSolver::step_impl(double dt) {
   mark_active_blocks();
   particles_to_grid<Dim, K>(false);
   update_grid(dt);
+  if (xpic_order_ > 1) xpic_velocity<Dim, K>(dt);
   grid_to_particles<Dim, K>(dt);
   if (musl_) {
     // Map the updated particle momenta back with the same shape functions, then L from them.
@@ -935,7 +992,12 @@ std::vector<ParamSpec> mpm_params() {
                     false, 0};
   locking.choices = anti_locking_names();
   locking.default_choice = "none";
-  return {shape, update, flip, sort, locking, rebalance};
+  ParamSpec xpic{"xpic_order", "1",
+                 "order m of XPIC for the PIC share (1 - flip) of the update: 1 = PIC; m > 1 keeps the part of the "
+                 "particle velocities the grid can carry (Hammerquist & Nairn, CMAME 318 (2017) 724)",
+                 false, 1, 1, 8};
+  xpic.integer = true;
+  return {shape, update, flip, sort, locking, rebalance, xpic};
 }
 
 }  // namespace

@@ -86,7 +86,10 @@ class MpmSolver final : public Solver {
   void sort_by_cell();
   void build_slabs();
   template <int Dim, ShapeKind K> void step_impl(double dt);
-  template <int Dim, ShapeKind K> void particles_to_grid(bool momentum_only);
+  /// P2G; `momentum_only` maps only the momenta m_p v_p (of `v_source` if given) into grid_.velocity.
+  template <int Dim, ShapeKind K> void particles_to_grid(bool momentum_only, const Vec3* v_source = nullptr);
+  /// XPIC(m): the grid velocity the PIC share of the update reads, into xpic_.target.
+  template <int Dim, ShapeKind K> void xpic_velocity(double dt);
   template <int Dim, ShapeKind K> void grid_to_particles(double dt);
   template <int Dim, ShapeKind K> void velocity_gradient_from_grid(double dt);
   void finish_point(Index p, const Mat3& l, const Vec3& disp, double dt, std::atomic<Index>& bad,
@@ -140,6 +143,11 @@ class MpmSolver final : public Solver {
   std::vector<MirrorFace> mirror_faces_;
   bool musl_;
   double flip_;
+  int xpic_order_ = 1;  ///< mpm.xpic_order (1: the PIC share is plain PIC)
+  struct XpicScratch {
+    std::vector<Vec3> prev, target;  ///< per node of every field: C(m,k) A^(k-1) v, then v* + dt a
+    std::vector<Vec3> at_points;     ///< per point: the interpolated prev
+  } xpic_;
   int sort_every_ = 20;  ///< steps between particle sorts (0 = never)
   double damping_;
   AntiLocking anti_locking_ = AntiLocking::None;  ///< mpm.anti_locking
