@@ -37,10 +37,11 @@ struct EnergyTotals {
   double contact = 0.0;   ///< multi-field grid contact (normal and frictional impulses)
   double friction = 0.0;  ///< the frictional part of `contact` (already inside it)
   double transfer = 0.0;  ///< the PIC share of a FLIP/PIC velocity update (relative to pure FLIP)
+  double boundary = 0.0;  ///< the grid face and axis conditions' impulses on the nodes
   /// Energy balance: kinetic + internal + removed - external - inserted - the discretisation's
   /// booked work; constant in an exact solution, and its change is the unexplained residual.
   double total() const {
-    return kinetic + internal + removed_energy - external - inserted_energy - damping - contact - transfer;
+    return kinetic + internal + removed_energy - external - inserted_energy - damping - contact - transfer - boundary;
   }
 };
 

@@ -511,12 +511,25 @@ void MpmSolver::fill_mirror_ghosts(Vec3* v) {
   }
 }
 
-void MpmSolver::apply_velocity_bcs(Vec3* vel_all) {
-  // Every field's nodes obey the face conditions. The faces are at rest, so their reactions do no
-  // work on the material (what the constraint takes from the grid's kinetic energy within a step
-  // is a discretisation error, left in the energy residual).
+double MpmSolver::apply_velocity_bcs(Vec3* vel_all, const Vec3* v_start) {
+  // Every field's nodes obey the face conditions. The faces are at rest, so in the continuum their
+  // reactions do no work; on the grid the constraint stops the normal momentum a node carries into
+  // the face (or onto the axis) within the step, an inelastic impulse m c. With `v_start` its work
+  // m c . (v_start + v_after) / 2 is returned (the FLIP midpoint, as for contact: grid_contact.hpp),
+  // the "boundary work" of the energy audit (issue 13); nodes of a lower rank are booked there.
   const GridGeometry& g = grid_.geom;
   const Index nn = g.node_count();
+  const std::uint8_t* counted = comm_.distributed() ? exchange_.counted() : nullptr;
+  double work = 0.0;
+  // Sets component a of node I of field f to u_new, booking the impulse.
+  auto constrain = [&](int f, Index I, int a, double u_new) {
+    Vec3& u = vel_all[f * nn + I];
+    if (v_start && u[a] != u_new && (!counted || counted[I])) {
+      const Index k = f * nn + I;
+      work += grid_.mass[k] * (u_new - u[a]) * 0.5 * (v_start[k][a] + u_new);
+    }
+    u[a] = u_new;
+  };
   for (int f = 0; f < grid_.fields; ++f) {
     Vec3* vel = vel_all + f * nn;
     if (dimension_ == Dimension::Axisymmetric && layout_.box_lower[0] == 0.0) {
@@ -524,7 +537,7 @@ void MpmSolver::apply_velocity_bcs(Vec3* vel_all) {
       // the x_min condition says; without this the hoop rate v_r / r of the particles next to the
       // axis is unbounded.
       for (int i = 0; i <= layout_.box_first[0]; ++i)
-        for (int j = 0; j < g.nodes[1]; ++j) vel[g.node_index(i, j, 0)][0] = 0.0;
+        for (int j = 0; j < g.nodes[1]; ++j) constrain(f, g.node_index(i, j, 0), 0, 0.0);
     }
     for (int a = 0; a < dim_; ++a) {
       for (int side = 0; side < 2; ++side) {
@@ -539,12 +552,15 @@ void MpmSolver::apply_velocity_bcs(Vec3* vel_all) {
             for (int k = 0; k < g.nodes[b2]; ++k) {
               int ijk[3];
               ijk[a] = i; ijk[b1] = j; ijk[b2] = k;
-              Vec3& u = vel[g.node_index(ijk[0], ijk[1], ijk[2])];
+              const Index I = g.node_index(ijk[0], ijk[1], ijk[2]);
+              const Vec3& u = vel[I];
               switch (bc) {
-                case FaceBC::Fixed: u = Vec3{}; break;
-                case FaceBC::Symmetry: u[a] = 0.0; break;
+                case FaceBC::Fixed:
+                  for (int c = 0; c < 3; ++c) constrain(f, I, c, 0.0);
+                  break;
+                case FaceBC::Symmetry: constrain(f, I, a, 0.0); break;
                 case FaceBC::Wall:  // rigid frictionless wall: no velocity into the wall, separation allowed
-                  if (side == 0) u[a] = std::max(u[a], 0.0); else u[a] = std::min(u[a], 0.0);
+                  constrain(f, I, a, side == 0 ? std::max(u[a], 0.0) : std::min(u[a], 0.0));
                   break;
                 case FaceBC::Free: break;
               }
@@ -552,6 +568,7 @@ void MpmSolver::apply_velocity_bcs(Vec3* vel_all) {
       }
     }
   }
+  return work;
 }
 
 void MpmSolver::apply_contact(Vec3* vel, bool book, const Vec3* v_start) {
@@ -613,11 +630,12 @@ void MpmSolver::update_grid(double dt) {
   } else {
     for_each_active_node([&](Index i) { integrate(i); });
   }
-  apply_velocity_bcs(grid_.velocity_new.data());
+  double bw = apply_velocity_bcs(grid_.velocity_new.data(), grid_.velocity.data());
   if (multi) {
     apply_contact(grid_.velocity_new.data(), true, grid_.velocity.data());
-    apply_velocity_bcs(grid_.velocity_new.data());  // contact may have moved a face node
+    bw += apply_velocity_bcs(grid_.velocity_new.data(), grid_.velocity.data());  // contact may have moved a face node
   }
+  boundary_work_ += comm_.sum(bw);
   // The acceleration handed to the particles is the constrained change of velocity.
   for_each_active_node([&](Index i) {
     const Vec3& v0 = multi ? grid_.accel[i] : grid_.velocity[i];
@@ -721,7 +739,7 @@ void MpmSolver::grid_to_particles(double dt) {
     const Vec3 xp = x_[p];
     stencil_of<Dim, K>(g, spline_faces_, xp, half[p], F_[p], st);
     const Index fo = field_offset(p);
-    Vec3 vg, acc, vpic;
+    Vec3 vg, acc;
     Mat3 l;
     for (int k = 0; k < st.count; ++k) {
       const Index I = fo + st.node[k];
@@ -729,7 +747,6 @@ void MpmSolver::grid_to_particles(double dt) {
       const double w = st.w[k];
       vg += w * u;
       acc += w * ga[I];
-      if (xpic) vpic += w * vx[I];
       const Vec3& dN = st.grad[k];
       for (int i = 0; i < Dim; ++i)
         for (int j = 0; j < Dim; ++j) l(i, j) += u[i] * dN[j];
@@ -739,7 +756,13 @@ void MpmSolver::grid_to_particles(double dt) {
     const Vec3 v_old = v[p];
     // FLIP/PIC blend: flip (v + dt a) + (1 - flip) v_grid (Brackbill & Ruppel 1986 FLIP); with
     // XPIC(m) the PIC share is S (v* + dt a) instead of S (v + dt a) (xpic_velocity).
-    v[p] = flip * (v_old + dt * acc) + (1.0 - flip) * (xpic ? vpic : vg);
+    if (xpic) {
+      Vec3 vpic;
+      for (int k = 0; k < st.count; ++k) vpic += st.w[k] * vx[fo + st.node[k]];
+      v[p] = flip * (v_old + dt * acc) + (1.0 - flip) * vpic;
+    } else {
+      v[p] = flip * (v_old + dt * acc) + (1.0 - flip) * vg;
+    }
     if (has_ext) o[0] += dot(fext[p], 0.5 * (v_old + v[p]));
     // What the PIC share of the blend takes from the kinetic energy of the pure FLIP update
     // (FLIP alone conserves it to the order of the time step; PIC damps the grid's null space).
@@ -913,6 +936,7 @@ void MpmSolver::save_state(StateArchive& a) const {
   a.put_int("mpm.steps", steps_);
   a.put("mpm.work", std::vector<double>{external_work_, damping_work_, contact_work_, friction_work_,
                                         transfer_work_, damping_});
+  a.put_real("mpm.boundary_work", boundary_work_);
   if (comm_.distributed()) {
     // The decomposition: the region boxes (a restart on as many ranks migrates exactly as the
     // uninterrupted run) and rank 0's statistics.
@@ -953,6 +977,8 @@ void MpmSolver::load_state(const StateArchive& a) {
   friction_work_ = w[3];
   transfer_work_ = w[4];
   damping_ = w[5];
+  // Checkpoints written before the boundary work was booked carry none.
+  boundary_work_ = a.has("mpm.boundary_work") ? a.real("mpm.boundary_work") : 0.0;
 }
 
 EnergyTotals MpmSolver::energies() const {
@@ -962,6 +988,7 @@ EnergyTotals MpmSolver::energies() const {
   e.contact = k * contact_work_;
   e.friction = k * friction_work_;
   e.transfer = k * transfer_work_;
+  e.boundary = k * boundary_work_;
   return e;
 }
 

@@ -96,8 +96,9 @@ class MpmSolver final : public Solver {
                     std::atomic<Index>& out);
   void bind_fields();
   void update_grid(double dt);
-  /// Imposes the face and axis conditions on every field's nodal velocities.
-  void apply_velocity_bcs(Vec3* vel);
+  /// Imposes the face and axis conditions on every field's nodal velocities; with `v_start` (the
+  /// step's start velocities) returns the work of the constraint impulses (this rank's share).
+  double apply_velocity_bcs(Vec3* vel, const Vec3* v_start = nullptr);
   /// Cubic B-spline at symmetry faces and the axis: folds what the stencils put on the ghost nodes
   /// beyond a mirror face onto their mirror images inside (normal component negated) and leaves
   /// the ghosts empty; all arrays of the first P2G pass, or only the momentum (MUSL remap).
@@ -193,6 +194,7 @@ class MpmSolver final : public Solver {
   double damping_work_ = 0.0;
   double contact_work_ = 0.0, friction_work_ = 0.0;
   double transfer_work_ = 0.0;
+  double boundary_work_ = 0.0;
 };
 
 }  // namespace ballista

@@ -15,11 +15,11 @@ TEST(B6TaylorBarSlow, AxisymmetricFullResolution) {
   expect_in_acceptance_bands(f);
   // Seeding exact in axisymmetry (see the CI test).
   EXPECT_NEAR(f.ke0, ke0_whole_bar(), 1e-12 * ke0_whole_bar());
-  // Energy residual after the booked terms (the PIC share of the FLIP/PIC blend is booked since
-  // issue 13; what remains is the grid's loss at the rigid wall), first order in h: measured 0.75 %
-  // (3.6 % and 1.6 % at 0.8 and 0.4 mm; 1.75 % before the PIC share was booked). Issue 13's bound
-  // for the Taylor bar is 2 %.
-  EXPECT_LT(f.worst_balance, 0.02);
+  // Energy residual after the booked terms (the PIC share of the FLIP/PIC blend and the wall's
+  // impulses on its nodes, issue 13), first order in h: measured 0.39 % (2.2 % and 0.88 % at 0.8
+  // and 0.4 mm; 0.75 % before the wall's impulses were booked, 1.75 % before the PIC share was).
+  // Bound 0.6 %, under issue 13's 2 % for the Taylor bar.
+  EXPECT_LT(f.worst_balance, 0.006);
   EXPECT_LT(f.ke_end, 0.01 * f.ke0);
 }
 

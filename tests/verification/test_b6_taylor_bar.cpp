@@ -28,12 +28,13 @@ TEST(B6TaylorBar, AxisymmetricWithinPublishedBands) {
   // r dr exactly, so the seeding error is zero and only round-off remains (measured 2e-15).
   EXPECT_NEAR(f.ke0, ke0_whole_bar(), 1e-12 * ke0_whole_bar());
   // Energy balance: no external work, so kinetic + internal (elastic + plastic) minus the booked
-  // PIC share of the deck's FLIP/PIC blend (flip 0.99; total_energy, docs/deck.md "Energy audit")
-  // must stay at KE0 up to the rigid-wall loss (each step the wall zeroes the inward velocity of
-  // its nodes, an inelastic collision of that nodal mass), first order in h. Measured 1.6 % at
-  // 0.4 mm (3.5 % before the PIC share was booked); issue 13's bound for the Taylor bar is 2 %
-  // (0.75 % at the full 0.2 mm, slow_b6_taylor_bar.cpp).
-  EXPECT_LT(f.worst_balance, 0.02);
+  // PIC share of the deck's FLIP/PIC blend (flip 0.99) and the booked boundary work (each step the
+  // wall zeroes the inward velocity of its nodes, an inelastic impulse on that nodal mass;
+  // total_energy, docs/deck.md "Energy audit") must stay at KE0 up to the time-integration error,
+  // first order in h. Measured 0.88 % at 0.4 mm (1.6 % before the wall's impulses were booked,
+  // 3.5 % before the PIC share was); bound 1.2 %, under issue 13's 2 % (0.39 % at the full 0.2 mm,
+  // slow_b6_taylor_bar.cpp).
+  EXPECT_LT(f.worst_balance, 0.012);
   // The bar has nearly stopped at 80 us: < 1 % of KE0 left (measured 0.06 %), so the figures are
   // measured at the end of the plastic flow, as in the FE references.
   EXPECT_LT(f.ke_end, 0.01 * f.ke0);
@@ -65,8 +66,9 @@ TEST(B6TaylorBar, ThreeDimensionalQuarterBarWithinPublishedBands) {
   EXPECT_NEAR(f.ke0, ke0_lattice, 1e-12 * ke0_lattice);
   // Energy balance: the residual (see the axisymmetric test) falls about linearly with the cell
   // size: before the PIC share was booked 7.7 %, 5.9 %, 4.0 % at 0.8, 0.6, 0.4 mm (3D); with it
-  // 3.6 % at 0.8 mm. At this coarse size the bound is 10 %; the 5 % acceptance band is asserted at
-  // 0.4 mm in slow_b6_taylor_bar.cpp.
-  EXPECT_LT(f.worst_balance, 0.10);
+  // 3.6 % at 0.8 mm, and 2.3 % with the wall's and the symmetry planes' impulses booked too. At
+  // this coarse size the bound is 4 %; the 5 % acceptance band is asserted at 0.4 mm in
+  // slow_b6_taylor_bar.cpp.
+  EXPECT_LT(f.worst_balance, 0.04);
   EXPECT_LT(f.ke_end, 0.01 * f.ke0);
 }
