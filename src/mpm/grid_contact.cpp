@@ -4,7 +4,7 @@
 
 namespace ballista {
 
-ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, const Vec3* v_start) {
+ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, const Vec3* v_start, Vec3* impulse) {
   const int nf = g.fields;
   const Index nn = g.nodes;
   double w[2];
@@ -58,6 +58,7 @@ ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, 
         o[1] += m * dot(ct, vmid);
       }
       vel[k] = vnew;
+      if (impulse) impulse[k] += c;
     }
   }, w);
   return {w[0], w[1]};

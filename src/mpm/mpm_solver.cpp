@@ -511,23 +511,18 @@ void MpmSolver::fill_mirror_ghosts(Vec3* v) {
   }
 }
 
-double MpmSolver::apply_velocity_bcs(Vec3* vel_all, const Vec3* v_start) {
+void MpmSolver::apply_velocity_bcs(Vec3* vel_all, std::vector<BoundaryImpulse>* impulses) {
   // Every field's nodes obey the face conditions. The faces are at rest, so in the continuum their
   // reactions do no work; on the grid the constraint stops the normal momentum a node carries into
-  // the face (or onto the axis) within the step, an inelastic impulse m c. With `v_start` its work
-  // m c . (v_start + v_after) / 2 is returned (the FLIP midpoint, as for contact: grid_contact.hpp),
-  // the "boundary work" of the energy audit (issue 13); nodes of a lower rank are booked there.
+  // the face (or onto the axis) within the step, an inelastic impulse m c. With `impulses` each
+  // change c is recorded, and book_impulses books its work as the "boundary work" of the energy
+  // audit (issue 13).
   const GridGeometry& g = grid_.geom;
   const Index nn = g.node_count();
-  const std::uint8_t* counted = comm_.distributed() ? exchange_.counted() : nullptr;
-  double work = 0.0;
-  // Sets component a of node I of field f to u_new, booking the impulse.
+  // Sets component a of node I of field f to u_new, recording the change.
   auto constrain = [&](int f, Index I, int a, double u_new) {
     Vec3& u = vel_all[f * nn + I];
-    if (v_start && u[a] != u_new && (!counted || counted[I])) {
-      const Index k = f * nn + I;
-      work += grid_.mass[k] * (u_new - u[a]) * 0.5 * (v_start[k][a] + u_new);
-    }
+    if (impulses && u[a] != u_new) impulses->push_back({f * nn + I, a, u_new - u[a]});
     u[a] = u_new;
   };
   for (int f = 0; f < grid_.fields; ++f) {
@@ -568,18 +563,46 @@ double MpmSolver::apply_velocity_bcs(Vec3* vel_all, const Vec3* v_start) {
       }
     }
   }
-  return work;
 }
 
 void MpmSolver::apply_contact(Vec3* vel, bool book, const Vec3* v_start) {
   if (grid_.fields < 2) return;
   const FieldGrid fg{grid_.fields, grid_.geom.node_count(), grid_.mass.data(), grid_.grad.data(),
                      scenario_.contact.field_friction.data(), comm_.distributed() ? exchange_.counted() : nullptr};
-  const ContactWork w = apply_grid_contact(fg, vel, kTinyMass, v_start);
-  if (book) {
-    contact_work_ += comm_.sum(w.total);
-    friction_work_ += comm_.sum(w.friction);
-  }
+  // Booked passes add their corrections to grid_.impulse (booked in book_impulses); the frictional
+  // part is booked per pass with that pass's midpoint (a breakdown of the contact work).
+  const ContactWork w = apply_grid_contact(fg, vel, kTinyMass, v_start, book ? grid_.impulse.data() : nullptr);
+  if (book) friction_work_ += comm_.sum(w.friction);
+}
+
+void MpmSolver::book_impulses() {
+  // The particles' FLIP kinetic-energy change is sum_I m_I dv_I . (v0_I + v_end_I) / 2 up to the
+  // Jensen term (minus half the spread of the increments over a particle's nodes): dv_I = v_end -
+  // v0 is the node's whole change in the step, v0 the mapped velocity before any correction. So
+  // every impulse of the step, contact or constraint, does the work m c . (v0 + v_end) / 2, with
+  // one midpoint for all of them; booked so, the impulses and the nodal forces add up to exactly
+  // the grid's kinetic-energy change (issue 13; the energy identities of the MPM update:
+  // Bardenhagen, JCP 180 (2002) 383). Nodes shared with a lower rank are booked there.
+  const Index nall = grid_.geom.node_count() * grid_.fields;
+  const bool multi = grid_.fields > 1;
+  const Vec3* v0 = multi ? grid_.accel.data() : grid_.velocity.data();
+  const Vec3* v1 = grid_.velocity_new.data();
+  const std::uint8_t* counted = comm_.distributed() ? exchange_.counted() : nullptr;
+  const Index nn = grid_.geom.node_count();
+  double bw = 0.0;
+  for (const BoundaryImpulse& b : boundary_impulses_)  // serial: a fixed order
+    if (!counted || counted[b.node % nn])
+      bw += grid_.mass[b.node] * b.change * 0.5 * (v0[b.node][b.axis] + v1[b.node][b.axis]);
+  boundary_work_ += comm_.sum(bw);
+  if (!multi) return;
+  const Vec3* c = grid_.impulse.data();
+  double w[1];
+  deterministic_sum<1>(0, nall, [&](Index k, double* o) {
+    if (counted && !counted[k % nn]) return;
+    const double m = grid_.mass[k];
+    if (m > kTinyMass) o[0] += m * dot(c[k], 0.5 * (v0[k] + v1[k]));
+  }, w);
+  contact_work_ += comm_.sum(w[0]);
 }
 
 void MpmSolver::update_grid(double dt) {
@@ -592,10 +615,14 @@ void MpmSolver::update_grid(double dt) {
   // every node in a fixed order (its round-off does not depend on which blocks are active).
   const Index nall = grid_.geom.node_count() * grid_.fields;
   const bool multi = grid_.fields > 1;
+  if (multi) grid_.impulse.resize(nall);
   for_each_active_node([&](Index i) {
     const double m = grid_.mass[i];
     grid_.velocity[i] = m > kTinyMass ? (1.0 / m) * grid_.velocity[i] : Vec3{};
-    if (multi) grid_.accel[i] = grid_.velocity[i];  // kept: the velocity before contact
+    if (multi) {
+      grid_.accel[i] = grid_.velocity[i];  // kept: the velocity before contact
+      grid_.impulse[i] = Vec3{};
+    }
   });
   apply_contact(grid_.velocity.data(), true);
   // Explicit Euler per node; returns the work of the damping force -c m v over the step
@@ -630,12 +657,13 @@ void MpmSolver::update_grid(double dt) {
   } else {
     for_each_active_node([&](Index i) { integrate(i); });
   }
-  double bw = apply_velocity_bcs(grid_.velocity_new.data(), grid_.velocity.data());
+  boundary_impulses_.clear();
+  apply_velocity_bcs(grid_.velocity_new.data(), &boundary_impulses_);
   if (multi) {
     apply_contact(grid_.velocity_new.data(), true, grid_.velocity.data());
-    bw += apply_velocity_bcs(grid_.velocity_new.data(), grid_.velocity.data());  // contact may have moved a face node
+    apply_velocity_bcs(grid_.velocity_new.data(), &boundary_impulses_);  // contact may have moved a face node
   }
-  boundary_work_ += comm_.sum(bw);
+  book_impulses();
   // The acceleration handed to the particles is the constrained change of velocity.
   for_each_active_node([&](Index i) {
     const Vec3& v0 = multi ? grid_.accel[i] : grid_.velocity[i];

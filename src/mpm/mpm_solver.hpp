@@ -34,6 +34,7 @@ struct GridData {
   std::vector<Vec3> velocity_new;///< m/s at t_{n+1} after boundary conditions
   std::vector<Vec3> accel;       ///< m/s^2 over the step (after boundary conditions)
   std::vector<Vec3> grad;        ///< kg/m: sum_p m_p grad N_I, outward from the field's material (several fields only)
+  std::vector<Vec3> impulse;     ///< m/s: the step's contact corrections per node (several fields only)
   void resize(Index n) {
     if (fields > 1) grad.assign(n, Vec3{});
     mass.assign(n, 0.0);
@@ -96,9 +97,18 @@ class MpmSolver final : public Solver {
                     std::atomic<Index>& out);
   void bind_fields();
   void update_grid(double dt);
-  /// Imposes the face and axis conditions on every field's nodal velocities; with `v_start` (the
-  /// step's start velocities) returns the work of the constraint impulses (this rank's share).
-  double apply_velocity_bcs(Vec3* vel, const Vec3* v_start = nullptr);
+  /// One velocity change a face or axis condition made at a node (field-major node index).
+  struct BoundaryImpulse {
+    Index node;
+    int axis;
+    double change;  ///< m/s
+  };
+  /// Imposes the face and axis conditions on every field's nodal velocities; records each change
+  /// in `impulses` if given.
+  void apply_velocity_bcs(Vec3* vel, std::vector<BoundaryImpulse>* impulses = nullptr);
+  /// Books the work of this step's contact and boundary impulses with the step's midpoint velocity.
+  void book_impulses();
+  std::vector<BoundaryImpulse> boundary_impulses_;  ///< this step's, for book_impulses
   /// Cubic B-spline at symmetry faces and the axis: folds what the stencils put on the ghost nodes
   /// beyond a mirror face onto their mirror images inside (normal component negated) and leaves
   /// the ghosts empty; all arrays of the first P2G pass, or only the momentum (MUSL remap).
