@@ -108,6 +108,7 @@ TEST(MpmContact, SlidingBlockDeceleratesAtMuG) {
   Scenario sc = parse_deck(kSlide, "slide.yaml");
   ASSERT_EQ(sc.contact.fields, 2);
   std::unique_ptr<Solver> s = make_solver(sc);
+  const EnergyTotals e0 = s->energies();
   advance(*s, 0.05);
   const double v1 = body_state(*s, 1).velocity()[0];
   advance(*s, 0.15);
@@ -116,10 +117,16 @@ TEST(MpmContact, SlidingBlockDeceleratesAtMuG) {
   std::printf("sliding block: deceleration %.4f m/s^2, mu g = %.4f (ratio %.4f)\n", decel, mu * g, decel / (mu * g));
   report("slide_decel_over_mu_g", decel / (mu * g));
   EXPECT_NEAR(decel / (mu * g), 1.0, 0.06);
-  // Friction work booked: the residual of the energy balance stays small (measured 0.66 %).
+  // Friction work booked: the residual of the energy balance stays small (measured 0.49 % of the
+  // initial kinetic energy with the impulses booked at the step's midpoint, 0.66 % with each
+  // pass's own; bound 1 %). The frictional part is booked per pass, a breakdown within 0.3 % of
+  // the contact work it is part of.
   const EnergyTotals e = s->energies();
   EXPECT_LT(e.contact, 0.0);
   EXPECT_LT(e.friction, 0.0);
+  std::printf("sliding block: contact work %.4e J, friction %.4e J, external %.4e J, residual %.4e J of KE0 %.4e J\n",
+              e.contact, e.friction, e.external, e.total() - e0.total(), e0.kinetic);
+  EXPECT_LT(std::abs(e.total() - e0.total()), 0.01 * e0.kinetic);
 
   // Without friction the block keeps sliding: measured 0.944 m/s after 0.2 s (the corners'
   // ploughing again: 0.095 mu g; 0.955 m/s after 0.1 s); with mu = 0.3 it would be 0.71 m/s.
