@@ -4,7 +4,8 @@
 
 namespace ballista {
 
-ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, const Vec3* v_start, Vec3* impulse) {
+ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, const Vec3* v_start, Vec3* impulse,
+                               Vec3* friction_impulse) {
   const int nf = g.fields;
   const Index nn = g.nodes;
   double w[2];
@@ -58,7 +59,10 @@ ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, 
         o[1] += m * dot(ct, vmid);
       }
       vel[k] = vnew;
-      if (impulse) impulse[k] += c;
+      if (impulse) {
+        impulse[k] += c;
+        friction_impulse[k] += ct;
+      }
     }
   }, w);
   return {w[0], w[1]};

@@ -44,9 +44,10 @@ struct FieldGrid {
 /// other fields'), i.e. out of k towards the others (an "average" of the two bodies' mass-gradient
 /// normals, as in Nairn's multimaterial MPM, which makes the two normals of a pair exactly
 /// opposite so that the pair's momentum is conserved).
-/// With `impulse` (fields x nodes) each correction c is also added to impulse[k], so that the
-/// caller can book the step's contact impulses with one midpoint (MpmSolver::update_grid).
+/// With `impulse` (fields x nodes) each correction c is also added to impulse[k], and its
+/// tangential (friction) part to friction_impulse[k], so that the caller can book the step's
+/// contact impulses with one midpoint (MpmSolver::book_impulses).
 ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, const Vec3* v_start = nullptr,
-                               Vec3* impulse = nullptr);
+                               Vec3* impulse = nullptr, Vec3* friction_impulse = nullptr);
 
 }  // namespace ballista

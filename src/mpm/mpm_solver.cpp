@@ -84,7 +84,8 @@ namespace {
 // Grid storage per node and velocity field: mass and the four Vec3 arrays of GridData, plus the
 // mass gradient with several fields (for the memory estimate).
 double bytes_per_node(int fields) {
-  return fields * (sizeof(double) + 4 * sizeof(Vec3) + (fields > 1 ? sizeof(Vec3) : 0));
+  // mass; velocity, force, velocity_new, accel; several fields: grad, impulse, friction_impulse.
+  return fields * (sizeof(double) + 4 * sizeof(Vec3) + (fields > 1 ? 3 * sizeof(Vec3) : 0));
 }
 
 double grid_bytes(const GridGeometry& g, int fields) {
@@ -569,10 +570,10 @@ void MpmSolver::apply_contact(Vec3* vel, bool book, const Vec3* v_start) {
   if (grid_.fields < 2) return;
   const FieldGrid fg{grid_.fields, grid_.geom.node_count(), grid_.mass.data(), grid_.grad.data(),
                      scenario_.contact.field_friction.data(), comm_.distributed() ? exchange_.counted() : nullptr};
-  // Booked passes add their corrections to grid_.impulse (booked in book_impulses); the frictional
-  // part is booked per pass with that pass's midpoint (a breakdown of the contact work).
-  const ContactWork w = apply_grid_contact(fg, vel, kTinyMass, v_start, book ? grid_.impulse.data() : nullptr);
-  if (book) friction_work_ += comm_.sum(w.friction);
+  // Booked passes add their corrections to grid_.impulse and their frictional parts to
+  // grid_.friction_impulse; book_impulses books both with the step's midpoint.
+  if (book) apply_grid_contact(fg, vel, kTinyMass, v_start, grid_.impulse.data(), grid_.friction_impulse.data());
+  else apply_grid_contact(fg, vel, kTinyMass, v_start);
 }
 
 void MpmSolver::book_impulses() {
@@ -596,13 +597,19 @@ void MpmSolver::book_impulses() {
   boundary_work_ += comm_.sum(bw);
   if (!multi) return;
   const Vec3* c = grid_.impulse.data();
-  double w[1];
-  deterministic_sum<1>(0, nall, [&](Index k, double* o) {
+  const Vec3* ct = grid_.friction_impulse.data();
+  double w[2];
+  deterministic_sum<2>(0, nall, [&](Index k, double* o) {
     if (counted && !counted[k % nn]) return;
     const double m = grid_.mass[k];
-    if (m > kTinyMass) o[0] += m * dot(c[k], 0.5 * (v0[k] + v1[k]));
+    if (!(m > kTinyMass)) return;
+    const Vec3 vmid = 0.5 * (v0[k] + v1[k]);
+    o[0] += m * dot(c[k], vmid);
+    o[1] += m * dot(ct[k], vmid);
   }, w);
-  contact_work_ += comm_.sum(w[0]);
+  comm_.sum(w, 2);
+  contact_work_ += w[0];
+  friction_work_ += w[1];
 }
 
 void MpmSolver::update_grid(double dt) {
@@ -615,13 +622,17 @@ void MpmSolver::update_grid(double dt) {
   // every node in a fixed order (its round-off does not depend on which blocks are active).
   const Index nall = grid_.geom.node_count() * grid_.fields;
   const bool multi = grid_.fields > 1;
-  if (multi) grid_.impulse.resize(nall);
+  if (multi) {
+    grid_.impulse.resize(nall);
+    grid_.friction_impulse.resize(nall);
+  }
   for_each_active_node([&](Index i) {
     const double m = grid_.mass[i];
     grid_.velocity[i] = m > kTinyMass ? (1.0 / m) * grid_.velocity[i] : Vec3{};
     if (multi) {
       grid_.accel[i] = grid_.velocity[i];  // kept: the velocity before contact
       grid_.impulse[i] = Vec3{};
+      grid_.friction_impulse[i] = Vec3{};
     }
   });
   apply_contact(grid_.velocity.data(), true);

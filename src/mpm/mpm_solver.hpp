@@ -35,6 +35,7 @@ struct GridData {
   std::vector<Vec3> accel;       ///< m/s^2 over the step (after boundary conditions)
   std::vector<Vec3> grad;        ///< kg/m: sum_p m_p grad N_I, outward from the field's material (several fields only)
   std::vector<Vec3> impulse;     ///< m/s: the step's contact corrections per node (several fields only)
+  std::vector<Vec3> friction_impulse;  ///< m/s: their tangential (Coulomb) parts
   void resize(Index n) {
     if (fields > 1) grad.assign(n, Vec3{});
     mass.assign(n, 0.0);
