@@ -1,10 +1,12 @@
 #include "io/history_writer.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <vector>
 
 #include "core/error.hpp"
 
@@ -72,10 +74,30 @@ HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> columns,
   if (!file_) throw Error("cannot open '" + path_ + "': " + std::strerror(errno));
   std::string first(h.size(), '\0');
   if (std::fread(first.data(), 1, first.size(), file_) != first.size() || first != h) {
+    // Name the difference: the file's first line against this run's columns.
+    std::rewind(file_);
+    std::string line;
+    for (int c; (c = std::fgetc(file_)) != EOF && c != '\n';) line += static_cast<char>(c);
     std::fclose(file_);
     file_ = nullptr;
-    throw Error("cannot continue '" + path_ + "': its header differs from this run's columns (were probes, stages or "
-                "loads changed by --set at the restart?)");
+    std::vector<std::string> theirs;
+    std::string cell;
+    bool quoted = false;
+    for (char c : line + ",") {
+      if (c == '"') quoted = !quoted;
+      else if (c == ',' && !quoted) { theirs.push_back(cell); cell.clear(); }
+      else cell += c;
+    }
+    auto missing = [](const std::vector<std::string>& a, const std::vector<std::string>& b) {
+      std::string out;
+      for (const std::string& x : a)
+        if (std::find(b.begin(), b.end(), x) == b.end()) out += (out.empty() ? "" : ", ") + x;
+      return out.empty() ? std::string("none") : out;
+    };
+    throw Error("cannot continue '" + path_ + "': its header differs from this run's columns (this run adds: " +
+                missing(columns_, theirs) + "; the file has, and this run does not write: " + missing(theirs, columns_) +
+                "). Were probes, stages or loads changed by --set at the restart, or was the checkpoint written by "
+                "another version of Ballista? Restart it with that version, or run the deck anew.");
   }
   std::fseek(file_, 0, SEEK_END);
   bytes_ = resume_bytes;

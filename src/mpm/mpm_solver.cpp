@@ -1016,8 +1016,7 @@ void MpmSolver::load_state(const StateArchive& a) {
   friction_work_ = w[3];
   transfer_work_ = w[4];
   damping_ = w[5];
-  // Checkpoints written before the boundary work was booked carry none.
-  boundary_work_ = a.has("mpm.boundary_work") ? a.real("mpm.boundary_work") : 0.0;
+  boundary_work_ = a.real("mpm.boundary_work");
 }
 
 EnergyTotals MpmSolver::energies() const {

@@ -84,3 +84,32 @@ TEST(OutputHistory, RejectsBadSetup) {
   EXPECT_THROW(HistoryWriter((d.path / "no" / "h.csv").string(), {"t"}), Error);
   EXPECT_THROW(HistoryWriter((d.path / "h.csv").string(), {}), Error);
 }
+
+TEST(OutputHistory, ResumeWithOtherColumnsNamesTheDifference) {
+  // A checkpoint's history written with other columns (an older version, or probes changed by
+  // --set) cannot be continued; the error names what differs. The same columns continue.
+  ballista::test::TempDir d{"ballista_output"};
+  const std::string path = (d.path / "h.csv").string();
+  long long bytes = 0;
+  {
+    HistoryWriter w(path, {"time", "kinetic_energy", "old_probe"});
+    w.row({0.0, 1.0, 2.0});
+    bytes = w.bytes();
+    w.row({1.0, 3.0, 4.0});  // after the checkpoint: dropped on resume
+  }
+  try {
+    HistoryWriter w(path, {"time", "kinetic_energy", "boundary_work"}, bytes);
+    FAIL() << "resumed a history with other columns";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("this run adds: boundary_work"), std::string::npos) << m;
+    EXPECT_NE(m.find("this run does not write: old_probe"), std::string::npos) << m;
+  }
+  {
+    HistoryWriter w(path, {"time", "kinetic_energy", "old_probe"}, bytes);
+    w.row({2.0, 5.0, 6.0});
+  }
+  const auto lines = lines_of(path);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[2], "2,5,6");
+}
