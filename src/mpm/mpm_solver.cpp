@@ -83,13 +83,19 @@ MpmSolver::GridLayout MpmSolver::layout_grid(const Scenario& sc, int ghost) {
 namespace {
 // Grid storage per node and velocity field: mass and the four Vec3 arrays of GridData, plus the
 // mass gradient with several fields (for the memory estimate).
-double bytes_per_node(int fields) {
-  // mass; velocity, force, velocity_new, accel; several fields: grad, impulse, friction_impulse.
-  return fields * (sizeof(double) + 4 * sizeof(Vec3) + (fields > 1 ? 3 * sizeof(Vec3) : 0));
+/// Whether the deck asks for XPIC's two extra node arrays (mpm.xpic_order > 1 with a PIC share).
+bool xpic_arrays(const Scenario& sc) {
+  return sc.solver_params.at("xpic_order") > 1 && sc.solver_params.at("flip") < 1.0;
 }
 
-double grid_bytes(const GridGeometry& g, int fields) {
-  return static_cast<double>(g.node_count()) * bytes_per_node(fields);
+double bytes_per_node(int fields, bool xpic) {
+  // mass; velocity, force, velocity_new, accel; several fields: grad, impulse, friction_impulse;
+  // XPIC: prev, target.
+  return fields * (sizeof(double) + 4 * sizeof(Vec3) + (fields > 1 ? 3 * sizeof(Vec3) : 0) + (xpic ? 2 * sizeof(Vec3) : 0));
+}
+
+double grid_bytes(const GridGeometry& g, int fields, bool xpic) {
+  return static_cast<double>(g.node_count()) * bytes_per_node(fields, xpic);
 }
 }  // namespace
 
@@ -97,9 +103,9 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     : scenario_(sc),
       comm_(comm),
       layout_(layout_grid(sc, kGhostLayers)),
-      pts_(sc, std::move(materials), SeedLattice{sc.grid, 0}, grid_bytes(layout_.geom, sc.contact.fields),
+      pts_(sc, std::move(materials), SeedLattice{sc.grid, 0}, grid_bytes(layout_.geom, sc.contact.fields, xpic_arrays(sc)),
            fmt::format("{:.3g} grid nodes x {:g} B", static_cast<double>(layout_.geom.node_count()),
-                       bytes_per_node(sc.contact.fields)),
+                       bytes_per_node(sc.contact.fields, xpic_arrays(sc))),
            comm),
       points_(pts_.store()),
       partition_(comm, axis_count(sc.simulation.dimension)) {
@@ -577,6 +583,8 @@ void MpmSolver::apply_contact(Vec3* vel, bool book, const Vec3* v_start) {
 }
 
 void MpmSolver::book_impulses() {
+  // (The damping work, booked in update_grid, uses its own midpoint (v + v_new) / 2 before the
+  // conditions and the second contact pass: the same except at the nodes those touch.)
   // The particles' FLIP kinetic-energy change is sum_I m_I dv_I . (v0_I + v_end_I) / 2 up to the
   // Jensen term (minus half the spread of the increments over a particle's nodes): dv_I = v_end -
   // v0 is the node's whole change in the step, v0 the mapped velocity before any correction. So
@@ -766,7 +774,7 @@ void MpmSolver::grid_to_particles(double dt) {
   const bool has_ext = !fext.empty();
   const bool defer = musl_;  // MUSL: L, F and positions after the second projection
   const double flip = flip_;
-  const bool xpic = xpic_order_ > 1;
+  const bool xpic = xpic_active();
   const Vec3* vx = xpic ? xpic_.target.data() : nullptr;
   const Index n = points_.size();
   if (defer) displacement_.resize(n);
@@ -876,7 +884,7 @@ void MpmSolver::step_impl(double dt) {
   mark_active_blocks();
   particles_to_grid<Dim, K>(false);
   update_grid(dt);
-  if (xpic_order_ > 1) xpic_velocity<Dim, K>(dt);
+  if (xpic_active()) xpic_velocity<Dim, K>(dt);
   grid_to_particles<Dim, K>(dt);
   if (musl_) {
     // Map the updated particle momenta back with the same shape functions, then L from them.

@@ -156,6 +156,8 @@ class MpmSolver final : public Solver {
   bool musl_;
   double flip_;
   int xpic_order_ = 1;  ///< mpm.xpic_order (1: the PIC share is plain PIC)
+  /// XPIC runs only where it acts: order > 1 and a PIC share (flip < 1).
+  bool xpic_active() const { return xpic_order_ > 1 && flip_ < 1.0; }
   struct XpicScratch {
     std::vector<Vec3> prev, target;  ///< per node of every field: C(m,k) A^(k-1) v, then v* + dt a
     std::vector<Vec3> at_points;     ///< per point: the interpolated prev
