@@ -4,8 +4,7 @@
 
 namespace ballista {
 
-ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, const Vec3* v_start, Vec3* impulse,
-                               Vec3* friction_impulse) {
+ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, Vec3* impulse, Vec3* friction_impulse) {
   const int nf = g.fields;
   const Index nn = g.nodes;
   double w[2];
@@ -52,8 +51,8 @@ ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, 
       if (mup > 0.0) ct = -(mup * dvn / vt) * dvt;
       const Vec3 c = -dvn * n + ct;
       const Vec3 vnew = vel[k] + c;
-      // Work of the impulse m c over the step (midpoint velocity; grid_contact.hpp).
-      const Vec3 vmid = 0.5 * ((v_start ? v_start[k] : vel[k]) + vnew);
+      // Work of the impulse m c in this pass: the kinetic-energy change of the correction.
+      const Vec3 vmid = 0.5 * (vel[k] + vnew);
       if (!g.counted || g.counted[i]) {
         o[0] += m * dot(c, vmid);
         o[1] += m * dot(ct, vmid);

@@ -37,11 +37,9 @@ struct FieldGrid {
 };
 
 /// Applies contact to the nodal velocities `vel` (fields x nodes) in place and returns the work of
-/// the contact impulses m c of this pass alone: with the midpoint velocity (v_start + v_after) / 2
-/// when `v_start` (the velocity at the start of the step, before the nodal forces acted) is given,
-/// otherwise with (v_before + v_after) / 2, which is the kinetic-energy change the correction makes.
-/// The MPM solver books the step's impulses with one midpoint from `impulse` instead
-/// (MpmSolver::book_impulses). Nodes lighter than tiny_mass carry no material. The contact
+/// the contact impulses m c of this pass alone, with the midpoint velocity (v_before + v_after) / 2:
+/// the kinetic-energy change the correction makes. The MPM solver books the step's impulses with
+/// one midpoint from `impulse` instead (MpmSolver::book_impulses). Nodes lighter than tiny_mass carry no material. The contact
 /// normal of field k at a node is the unit vector of (field k's outward vector - the sum of the
 /// other fields'), i.e. out of k towards the others (an "average" of the two bodies' mass-gradient
 /// normals, as in Nairn's multimaterial MPM, which makes the two normals of a pair exactly
@@ -49,7 +47,7 @@ struct FieldGrid {
 /// With `impulse` (fields x nodes) each correction c is also added to impulse[k], and its
 /// tangential (friction) part to friction_impulse[k], so that the caller can book the step's
 /// contact impulses with one midpoint (MpmSolver::book_impulses).
-ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, const Vec3* v_start = nullptr,
-                               Vec3* impulse = nullptr, Vec3* friction_impulse = nullptr);
+ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, Vec3* impulse = nullptr,
+                               Vec3* friction_impulse = nullptr);
 
 }  // namespace ballista

@@ -81,16 +81,14 @@ MpmSolver::GridLayout MpmSolver::layout_grid(const Scenario& sc, int ghost) {
 }
 
 namespace {
-// Grid storage per node and velocity field: mass and the four Vec3 arrays of GridData, plus the
-// mass gradient with several fields (for the memory estimate).
 /// Whether the deck asks for XPIC's two extra node arrays (mpm.xpic_order > 1 with a PIC share).
 bool xpic_arrays(const Scenario& sc) {
   return sc.solver_params.at("xpic_order") > 1 && sc.solver_params.at("flip") < 1.0;
 }
 
+/// Grid storage per node and velocity field, for the memory estimate: mass; velocity, force,
+/// velocity_new, accel; several fields: grad, impulse, friction_impulse; XPIC: prev, target.
 double bytes_per_node(int fields, bool xpic) {
-  // mass; velocity, force, velocity_new, accel; several fields: grad, impulse, friction_impulse;
-  // XPIC: prev, target.
   return fields * (sizeof(double) + 4 * sizeof(Vec3) + (fields > 1 ? 3 * sizeof(Vec3) : 0) + (xpic ? 2 * sizeof(Vec3) : 0));
 }
 
@@ -572,14 +570,14 @@ void MpmSolver::apply_velocity_bcs(Vec3* vel_all, std::vector<BoundaryImpulse>* 
   }
 }
 
-void MpmSolver::apply_contact(Vec3* vel, bool book, const Vec3* v_start) {
+void MpmSolver::apply_contact(Vec3* vel, bool book) {
   if (grid_.fields < 2) return;
   const FieldGrid fg{grid_.fields, grid_.geom.node_count(), grid_.mass.data(), grid_.grad.data(),
                      scenario_.contact.field_friction.data(), comm_.distributed() ? exchange_.counted() : nullptr};
   // Booked passes add their corrections to grid_.impulse and their frictional parts to
   // grid_.friction_impulse; book_impulses books both with the step's midpoint.
-  if (book) apply_grid_contact(fg, vel, kTinyMass, v_start, grid_.impulse.data(), grid_.friction_impulse.data());
-  else apply_grid_contact(fg, vel, kTinyMass, v_start);
+  if (book) apply_grid_contact(fg, vel, kTinyMass, grid_.impulse.data(), grid_.friction_impulse.data());
+  else apply_grid_contact(fg, vel, kTinyMass);
 }
 
 void MpmSolver::book_impulses() {
@@ -624,8 +622,8 @@ void MpmSolver::update_grid(double dt) {
   // v_I = p_I / m_I; a_I = f_I / m_I - c v_I (damping, thesis seed 000 eq. 5.1); explicit Euler.
   // Contact acts on the mapped velocities and again on the updated ones (grid_contact.hpp); the
   // acceleration handed to the particles is measured from the mapped velocity before contact, so
-  // that the particles receive both contact impulses (Nairn, Hammerquist & Smith 2020). The work of
-  // the damping and of the contact impulses is booked (grid_contact.hpp for the latter).
+  // that the particles receive both contact impulses (Nairn, Hammerquist & Smith 2020). The damping
+  // work is booked here, the contact and boundary impulses' in book_impulses.
   // Node passes over the active blocks only (active_blocks.hpp); the damping work is summed over
   // every node in a fixed order (its round-off does not depend on which blocks are active).
   const Index nall = grid_.geom.node_count() * grid_.fields;
@@ -679,7 +677,7 @@ void MpmSolver::update_grid(double dt) {
   boundary_impulses_.clear();
   apply_velocity_bcs(grid_.velocity_new.data(), &boundary_impulses_);
   if (multi) {
-    apply_contact(grid_.velocity_new.data(), true, grid_.velocity.data());
+    apply_contact(grid_.velocity_new.data(), true);
     apply_velocity_bcs(grid_.velocity_new.data(), &boundary_impulses_);  // contact may have moved a face node
   }
   book_impulses();

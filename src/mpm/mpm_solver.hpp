@@ -116,8 +116,9 @@ class MpmSolver final : public Solver {
   void fold_mirror_faces(bool momentum_only);
   /// ... and sets the ghost nodes of every field to the mirror image of the inside values.
   void fill_mirror_ghosts(Vec3* v);
-  /// Multi-field contact on `vel` (every field); books its work if `book` (v_start: grid_contact.hpp).
-  void apply_contact(Vec3* vel, bool book, const Vec3* v_start = nullptr);
+  /// Multi-field contact on `vel` (every field); with `book` its impulses go to grid_.impulse and
+  /// grid_.friction_impulse for book_impulses.
+  void apply_contact(Vec3* vel, bool book);
   /// Offset of point p's velocity field in the grid arrays.
   Index field_offset(Index p) const {
     return grid_.fields > 1 ? scenario_.contact.body_field[body_[p]] * grid_.geom.node_count() : 0;
