@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
     quiet_rank.open("/dev/null");
     restore_cout.saved = std::cout.rdbuf(quiet_rank.rdbuf());
   }
-  CLI::App app{"Ballista: solids under extreme deformation (MPM; peridynamics and OTM planned)"};
+  CLI::App app{"Ballista: solids under extreme deformation (MPM, peridynamics and OTM)"};
   app.set_version_flag("--version", std::string("ballista ") + BALLISTA_VERSION);
   app.require_subcommand(1);
 

@@ -1,5 +1,5 @@
 #pragma once
-// What the run loop needs from any discretisation (MPM today; peridynamics and OTM later).
+// What the run loop needs from any discretisation (MPM, peridynamics, OTM).
 #include <cstdint>
 #include <string>
 #include <utility>

@@ -652,8 +652,8 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       HistoryWriter csv((fs::path(opt.out_dir) / (t.name + ".csv")).string(), t.columns);
       for (const auto& row : t.rows) csv.row(row);
     }
-    // No figure when interrupted: mpirun kills the ranks about a second after forwarding SIGTERM
-    // (Open MPI's odls_base_sigkill_timeout), too soon for matplotlib; the restarted run draws it.
+    // No figure when interrupted: mpirun SIGKILLs the ranks odls_base_sigkill_timeout (1 s by
+    // default) after it passed SIGTERM on, too soon for matplotlib; the restarted run draws it.
     report_fragments(tables, opt.out_dir, opt.plots && !result.interrupted, summary.root());  // a table named "fragments"
   } catch (const std::exception& w) {
     spdlog::error("the solver's results could not be written: {}", w.what());

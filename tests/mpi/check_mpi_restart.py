@@ -73,6 +73,12 @@ def main():
     ap.add_argument("--pairs", default="2:2,2:1,1:2,2:4")
     ap.add_argument("--kill", type=int, default=0)
     ap.add_argument("--term", type=int, default=0)
+    # Open MPI 4.1's mpirun, signalled, sends the ranks SIGTERM odls_base_sigkill_timeout seconds
+    # later and SIGKILL as long again after that (default 1 s, measured): one second can be too
+    # short on a loaded machine for the ranks to agree, checkpoint and write summary.json; the
+    # deck must then still be running that long after its second checkpoint (docs/restart.md).
+    ap.add_argument("--term-delay", type=int, default=0,
+                    help="odls_base_sigkill_timeout for the SIGTERM run, s (0: Open MPI's default, 1 s)")
     ap.add_argument("--set", action="append", default=[])
     ap.add_argument("--tol", type=float, default=1e-11)
     ap.add_argument("--checkpoint", type=int, default=-1,
@@ -118,8 +124,11 @@ def main():
             continue
         ref = reference(w)
         out = os.path.join(a.workdir, f"{sig.name}_{w}")
+        env = dict(ENV)
+        if sig == signal.SIGTERM and a.term_delay > 0:
+            env["OMPI_MCA_odls_base_sigkill_timeout"] = str(a.term_delay)
         p = subprocess.Popen(launcher(w, a.ballista) + ["run", a.deck, "-o", out] + common + sets,
-                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=ENV, start_new_session=True)
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env, start_new_session=True)
         deadline = time.time() + 120
         while time.time() < deadline and p.poll() is None:
             if len(glob.glob(os.path.join(out, "checkpoints", "checkpoint_*.h5"))) >= 2:
