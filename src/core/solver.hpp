@@ -36,7 +36,7 @@ struct EnergyTotals {
   double damping = 0.0;   ///< grid damping -c m v (stages and simulation.damping)
   double contact = 0.0;   ///< multi-field grid contact (normal and frictional impulses)
   double friction = 0.0;  ///< the frictional part of `contact` (already inside it)
-  double transfer = 0.0;  ///< the PIC share of a FLIP/PIC velocity update (relative to pure FLIP)
+  double transfer = 0.0;  ///< particle-grid transfer: the PIC share of the FLIP/PIC update (usl, musl), the whole particle-minus-grid kinetic energy change (usavg)
   double boundary = 0.0;  ///< the grid face and axis conditions' impulses on the nodes
   /// Energy balance: kinetic + internal + removed - external - inserted - the discretisation's
   /// booked work; constant in an exact solution, and its change is the unexplained residual.

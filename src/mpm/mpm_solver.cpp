@@ -111,6 +111,7 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   dim_ = axis_count(dimension_);
   shape_ = parse_shape_kind(sc.solver_params.choices.at("shape_function"));
   musl_ = sc.solver_params.choices.at("update") == "musl";
+  usavg_ = sc.solver_params.choices.at("update") == "usavg";
   flip_ = sc.solver_params.at("flip");
   xpic_order_ = static_cast<int>(sc.solver_params.at("xpic_order"));
   sort_every_ = static_cast<int>(sc.solver_params.at("sort_every"));
@@ -142,6 +143,12 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
         }
       }
   }
+  if (usavg_ && shape_ == ShapeKind::Cpdi)
+    // CPDI's domains follow F, which the first stress half changes within the step: the second
+    // mapping and the update would use other weights than the first, and momentum would drift.
+    throw_solver_param_error(sc, "mpm", "update",
+                             "usavg does not work with shape_function: cpdi yet (its weights follow F, which the "
+                             "first half of the stress update changes within the step); use gimp or bspline3");
   if (comm_.distributed() && anti_locking_ == AntiLocking::FBar)
     // The cell average would see only this rank's particles of a cell shared with another rank.
     throw_solver_param_error(sc, "mpm", "anti_locking",
@@ -580,7 +587,7 @@ void MpmSolver::apply_contact(Vec3* vel, bool book) {
   else apply_grid_contact(fg, vel, kTinyMass);
 }
 
-void MpmSolver::book_impulses() {
+void MpmSolver::book_impulses(const Vec3* v0, const Vec3* v1) {
   // (The damping work, booked in update_grid, uses its own midpoint (v + v_new) / 2 before the
   // conditions and the second contact pass: the same except at the nodes those touch.)
   // The particles' FLIP kinetic-energy change is sum_I m_I dv_I . (v0_I + v_end_I) / 2 up to the
@@ -590,10 +597,11 @@ void MpmSolver::book_impulses() {
   // one midpoint for all of them; booked so, the impulses and the nodal forces add up to exactly
   // the grid's kinetic-energy change (issue 13; the energy identities of the MPM update:
   // Bardenhagen, JCP 180 (2002) 383). Nodes shared with a lower rank are booked there.
+  // USAVG books in two parts (first_half_stress_update): the constraints on the mapped velocity
+  // with (v0 + v_n) / 2, exactly their kinetic-energy change, and the rest of the step with
+  // (v_n + v_end) / 2, the velocity whose strain rate the two stress halves see.
   const Index nall = grid_.geom.node_count() * grid_.fields;
   const bool multi = grid_.fields > 1;
-  const Vec3* v0 = multi ? grid_.accel.data() : grid_.velocity.data();
-  const Vec3* v1 = grid_.velocity_new.data();
   const std::uint8_t* counted = comm_.distributed() ? exchange_.counted() : nullptr;
   const Index nn = grid_.geom.node_count();
   double bw = 0.0;
@@ -635,13 +643,15 @@ void MpmSolver::update_grid(double dt) {
   for_each_active_node([&](Index i) {
     const double m = grid_.mass[i];
     grid_.velocity[i] = m > kTinyMass ? (1.0 / m) * grid_.velocity[i] : Vec3{};
+    if (multi || usavg_) grid_.accel[i] = grid_.velocity[i];  // kept: the velocity before contact
     if (multi) {
-      grid_.accel[i] = grid_.velocity[i];  // kept: the velocity before contact
       grid_.impulse[i] = Vec3{};
       grid_.friction_impulse[i] = Vec3{};
     }
+    // USAVG: the step goes on from v_n, the constrained velocity of the first half.
+    if (usavg_) grid_.velocity[i] = usavg_start_[i];
   });
-  apply_contact(grid_.velocity.data(), true);
+  if (!usavg_) apply_contact(grid_.velocity.data(), true);
   // Explicit Euler per node; returns the work of the damping force -c m v over the step
   // (midpoint velocity), which is summed only when there is damping.
   auto integrate = [&](Index i) {
@@ -680,10 +690,15 @@ void MpmSolver::update_grid(double dt) {
     apply_contact(grid_.velocity_new.data(), true);
     apply_velocity_bcs(grid_.velocity_new.data(), &boundary_impulses_);  // contact may have moved a face node
   }
-  book_impulses();
+  if (usavg_) {
+    book_impulses(grid_.velocity.data(), grid_.velocity_new.data());  // from v_n
+  } else {
+    book_impulses(multi ? grid_.accel.data() : grid_.velocity.data(), grid_.velocity_new.data());
+  }
   // The acceleration handed to the particles is the constrained change of velocity.
+  const bool kept = multi || usavg_;  // the mapped velocity is in accel
   for_each_active_node([&](Index i) {
-    const Vec3& v0 = multi ? grid_.accel[i] : grid_.velocity[i];
+    const Vec3& v0 = kept ? grid_.accel[i] : grid_.velocity[i];
     grid_.accel[i] = (1.0 / dt) * (grid_.velocity_new[i] - v0);
   });
   if (!mirror_faces_.empty()) {  // cubic B-spline: the ghosts beyond a mirror face read the image
@@ -771,6 +786,11 @@ void MpmSolver::grid_to_particles(double dt) {
   const std::vector<Vec3>& fext = loads_.total();
   const bool has_ext = !fext.empty();
   const bool defer = musl_;  // MUSL: L, F and positions after the second projection
+  const double f_dt = usavg_ ? 0.5 * dt : dt;  // USAVG: the second half of the strain increment
+  const bool exact_transfer = usavg_;
+  const Vec3* vs = usavg_ ? usavg_start_.data() : nullptr;
+  const std::vector<Vec3>& ftrac = loads_.traction();
+  const bool has_trac = !ftrac.empty();
   const double flip = flip_;
   const bool xpic = xpic_active();
   const Vec3* vx = xpic ? xpic_.target.data() : nullptr;
@@ -808,10 +828,25 @@ void MpmSolver::grid_to_particles(double dt) {
     } else {
       v[p] = flip * (v_old + dt * acc) + (1.0 - flip) * vg;
     }
-    if (has_ext) o[0] += dot(fext[p], 0.5 * (v_old + v[p]));
+    if (has_ext && exact_transfer) {
+      // USAVG: the loads work on the grid, at the nodes' velocity of the step, (v_n + v_end) / 2,
+      // as the grid's kinetic-energy identity counts them (tractions below, at their own points).
+      Vec3 vm;
+      for (int k = 0; k < st.count; ++k) {
+        const Index I = fo + st.node[k];
+        vm += (0.5 * st.w[k]) * (vs[I] + vn[I]);
+      }
+      o[0] += dot(has_trac ? fext[p] - ftrac[p] : fext[p], vm);
+    } else if (has_ext) {
+      o[0] += dot(fext[p], 0.5 * (v_old + v[p]));
+    }
     // What the PIC share of the blend takes from the kinetic energy of the pure FLIP update
     // (FLIP alone conserves it to the order of the time step; PIC damps the grid's null space).
-    if (flip < 1.0) {
+    // USAVG books the whole transfer instead: the particles' kinetic-energy change here, less the
+    // grid's (grid_kinetic_energy_change), the measure issue 13 asks for.
+    if (exact_transfer) {
+      o[1] += 0.5 * mass[p] * (dot(v[p], v[p]) - dot(v_old, v_old));
+    } else if (flip < 1.0) {
       const Vec3 v_flip = v_old + dt * acc;
       o[1] += 0.5 * mass[p] * (dot(v[p], v[p]) - dot(v_flip, v_flip));
     }
@@ -820,8 +855,20 @@ void MpmSolver::grid_to_particles(double dt) {
       displacement_[p] = dt * vg;
       return;
     }
-    finish_point(p, l, dt * vg, dt, bad, out);
+    finish_point(p, l, dt * vg, f_dt, bad, out);
   }, pw);
+  if (exact_transfer && has_trac) {
+    // Tractions are spread from their surface points (particles_to_grid); serial, few points.
+    Stencil<Dim> st;
+    for (const PointLoads::SurfaceForce& sf : loads_.surface_forces()) {
+      if constexpr (K == ShapeKind::BSpline3) bspline3_stencil<Dim>(g, sf.point, st, spline_faces_);
+      else linear_stencil<Dim>(g, sf.point, st);
+      const Index fo = field_offset(sf.index);
+      Vec3 vm;
+      for (int k = 0; k < st.count; ++k) vm += (0.5 * st.w[k]) * (vs[fo + st.node[k]] + vn[fo + st.node[k]]);
+      pw[0] += dot(sf.force, vm);
+    }
+  }
   comm_.sum(pw, 2);
   external_work_ += dt * pw[0];
   transfer_work_ += pw[1];
@@ -830,7 +877,7 @@ void MpmSolver::grid_to_particles(double dt) {
 }
 
 template <int Dim, ShapeKind K>
-void MpmSolver::velocity_gradient_from_grid(double dt) {
+void MpmSolver::velocity_gradient_from_grid(double dt, bool move) {
   // Modified USL (Sulsky, Zhou & Schreyer, CPC 87 (1995) 236): L from the grid velocity that the
   // updated particle momenta map back to, with the shape functions of this step.
   const GridGeometry& g = grid_.geom;
@@ -853,7 +900,7 @@ void MpmSolver::velocity_gradient_from_grid(double dt) {
       vr += st.w[k] * u[0];
     }
     if (axisym) l(2, 2) = vr / xp[0];
-    finish_point(p, l, displacement_[p], dt, bad, out);
+    finish_point(p, l, move ? displacement_[p] : Vec3{}, dt, bad, out);
   });
   first_bad_ = bad.load();
   first_out_ = out.load();
@@ -881,16 +928,18 @@ void MpmSolver::step_impl(double dt) {
   loads_.compute(scenario_, points_, time_);
   mark_active_blocks();
   particles_to_grid<Dim, K>(false);
+  if (usavg_) {
+    first_half_stress_update<Dim, K>(dt);
+    particles_to_grid<Dim, K>(false);  // the forces of the half-updated stress
+  }
   update_grid(dt);
   if (xpic_active()) xpic_velocity<Dim, K>(dt);
   grid_to_particles<Dim, K>(dt);
+  if (usavg_) transfer_work_ -= grid_kinetic_energy_change(dt);
   if (musl_) {
     // Map the updated particle momenta back with the same shape functions, then L from them.
     particles_to_grid<Dim, K>(true);
-    for_each_active_node([&](Index i) {
-      const double m = grid_.mass[i];
-      grid_.velocity_new[i] = m > kTinyMass ? (1.0 / m) * grid_.velocity[i] : Vec3{};
-    });
+    velocity_from_momentum();
     // Kinematics only (the particle velocities are final): the same constraints, nothing booked.
     apply_velocity_bcs(grid_.velocity_new.data());
     if (grid_.fields > 1) {
@@ -898,7 +947,7 @@ void MpmSolver::step_impl(double dt) {
       apply_velocity_bcs(grid_.velocity_new.data());
     }
     if (!mirror_faces_.empty()) fill_mirror_ghosts(grid_.velocity_new.data());
-    velocity_gradient_from_grid<Dim, K>(dt);
+    velocity_gradient_from_grid<Dim, K>(dt, true);
   }
   // The step's kinematics are done: count it, so that failure messages, outputs and statistics
   // name the step whose state they show.
@@ -906,9 +955,75 @@ void MpmSolver::step_impl(double dt) {
   ++steps_;
   if (first_bad_ < points_.size())
     fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0 or NaN)");
+  const double sdt = usavg_ ? 0.5 * dt : dt;  // USAVG: the second half
   if (anti_locking_ == AntiLocking::FBar)  // volumetric increment averaged per cell (anti_locking.hpp)
-    fbar_.apply(grid_.geom, dimension_, dt, {points_.size(), x_, L_, F_, vol_, vol0_});
-  pts_.update_stress(dt, steps_, time_);
+    fbar_.apply(grid_.geom, dimension_, sdt, {points_.size(), x_, L_, F_, vol_, vol0_});
+  pts_.update_stress(sdt, steps_, time_);
+}
+
+template <int Dim, ShapeKind K>
+void MpmSolver::first_half_stress_update(double dt) {
+  // USAVG (Nairn, CMES 4 (2003) 649): the stress takes half its increment from the mapped grid
+  // velocity v_n before the forces are computed, and the other half from v_{n+1} after the grid
+  // update. On the grid this is position Verlet, x_{n+1/2} = x_n + dt/2 v_n, v_{n+1} = v_n + dt
+  // a(x_{n+1/2}), x_{n+1} = x_{n+1/2} + dt/2 v_{n+1}: symplectic and second order, where USL
+  // (x_{n+1} = x_n + dt v_{n+1}) is first order and MUSL's remapped velocity, nearly the next
+  // step's v_n, makes it USF-like (for a linear oscillator the amplification matrix of USF has
+  // determinant 1 + k dt^2: energy grows). The particles' velocities do not change here; they
+  // receive the constraints' impulses with the grid update (update_grid).
+  const bool multi = grid_.fields > 1;
+  const Index nall = grid_.geom.node_count() * grid_.fields;
+  usavg_start_.resize(nall);
+  if (multi) {
+    grid_.impulse.resize(nall);
+    grid_.friction_impulse.resize(nall);
+  }
+  for_each_active_node([&](Index i) {
+    const double m = grid_.mass[i];
+    grid_.accel[i] = m > kTinyMass ? (1.0 / m) * grid_.velocity[i] : Vec3{};  // v0, scratch
+    usavg_start_[i] = grid_.accel[i];
+    if (multi) grid_.impulse[i] = grid_.friction_impulse[i] = Vec3{};
+  });
+  // Contact, then the conditions, on v0 (booked with (v0 + v_n) / 2); update_grid goes on from
+  // this v_n.
+  apply_contact(usavg_start_.data(), true);
+  boundary_impulses_.clear();
+  apply_velocity_bcs(usavg_start_.data(), &boundary_impulses_);
+  book_impulses(grid_.accel.data(), usavg_start_.data());
+  for_each_active_node([&](Index i) { grid_.velocity_new[i] = usavg_start_[i]; });
+  if (!mirror_faces_.empty()) fill_mirror_ghosts(grid_.velocity_new.data());
+  velocity_gradient_from_grid<Dim, K>(0.5 * dt, false);
+  if (first_bad_ < points_.size())
+    fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0 or NaN) in the first half of the step");
+  if (anti_locking_ == AntiLocking::FBar)
+    fbar_.apply(grid_.geom, dimension_, 0.5 * dt, {points_.size(), x_, L_, F_, vol_, vol0_});
+  pts_.update_stress(0.5 * dt, steps_, time_);
+}
+
+double MpmSolver::grid_kinetic_energy_change(double dt) {
+  // sum_I m_I (|v_I,n+1|^2 - |v_I,n|^2) / 2 with v_I,n the mapped velocity before any constraint
+  // (v_I,n+1 - dt a_I, as update_grid defines a_I): with the one-midpoint booking the nodal forces
+  // and impulses do exactly this work (book_impulses). Every node in a fixed order, each shared
+  // node by its lowest sharer.
+  const Index nall = grid_.geom.node_count() * grid_.fields;
+  const Index nn = grid_.geom.node_count();
+  const std::uint8_t* counted = comm_.distributed() ? exchange_.counted() : nullptr;
+  double w[1];
+  deterministic_sum<1>(0, nall, [&](Index i, double* o) {
+    const double m = grid_.mass[i];
+    if (!(m > kTinyMass) || (counted && !counted[i % nn])) return;
+    const Vec3& v1 = grid_.velocity_new[i];
+    const Vec3 v0 = v1 - dt * grid_.accel[i];
+    o[0] += 0.5 * m * (dot(v1, v1) - dot(v0, v0));
+  }, w);
+  return comm_.sum(w[0]);
+}
+
+void MpmSolver::velocity_from_momentum() {
+  for_each_active_node([&](Index i) {
+    const double m = grid_.mass[i];
+    grid_.velocity_new[i] = m > kTinyMass ? (1.0 / m) * grid_.velocity[i] : Vec3{};
+  });
 }
 
 void MpmSolver::bind_fields() {
@@ -1047,8 +1162,10 @@ std::vector<ParamSpec> mpm_params() {
   ParamSpec shape{"shape_function", "-", "particle-grid shape functions (docs/deck.md)", false, 0};
   shape.choices = shape_kind_names();
   shape.default_choice = "linear";
-  ParamSpec update{"update", "-", "usl or musl (modified USL: robust against cell-crossing at free surfaces)", false, 0};
-  update.choices = {"usl", "musl"};
+  ParamSpec update{"update", "-",
+                   "usl, musl (modified USL: robust against cell-crossing at free surfaces) or usavg (half the stress "
+                   "update before the forces, half after: energy-consistent)", false, 0};
+  update.choices = {"usl", "musl", "usavg"};
   update.default_choice = "musl";
   ParamSpec flip{"flip", "1", "FLIP fraction of the velocity update (1 FLIP, 0 PIC)", false, 1.0, 0.0, 1.0};
   ParamSpec sort{"sort_every", "steps", "steps between particle sorts by cell (0 = never)", false, 20, 0, 2147483647.0};

@@ -93,7 +93,10 @@ class MpmSolver final : public Solver {
   /// XPIC(m): the grid velocity the PIC share of the update reads, into xpic_.target.
   template <int Dim, ShapeKind K> void xpic_velocity(double dt);
   template <int Dim, ShapeKind K> void grid_to_particles(double dt);
-  template <int Dim, ShapeKind K> void velocity_gradient_from_grid(double dt);
+  template <int Dim, ShapeKind K> void velocity_gradient_from_grid(double dt, bool move);
+  template <int Dim, ShapeKind K> void first_half_stress_update(double dt);
+  void velocity_from_momentum();  // velocity_new = momentum / mass at the active nodes
+  double grid_kinetic_energy_change(double dt);  // over the step, after update_grid
   void finish_point(Index p, const Mat3& l, const Vec3& disp, double dt, std::atomic<Index>& bad,
                     std::atomic<Index>& out);
   void bind_fields();
@@ -108,7 +111,8 @@ class MpmSolver final : public Solver {
   /// in `impulses` if given.
   void apply_velocity_bcs(Vec3* vel, std::vector<BoundaryImpulse>* impulses = nullptr);
   /// Books the work of this step's contact and boundary impulses with the step's midpoint velocity.
-  void book_impulses();
+  void book_impulses(const Vec3* v_start, const Vec3* v_end);
+  std::vector<Vec3> usavg_start_;  ///< USAVG: the constrained grid velocity v_n of the first half, m/s
   std::vector<BoundaryImpulse> boundary_impulses_;  ///< this step's, for book_impulses
   /// Cubic B-spline at symmetry faces and the axis: folds what the stencils put on the ghost nodes
   /// beyond a mirror face onto their mirror images inside (normal component negated) and leaves
@@ -155,6 +159,7 @@ class MpmSolver final : public Solver {
   };
   std::vector<MirrorFace> mirror_faces_;
   bool musl_;
+  bool usavg_ = false;  // update: usavg (first_half_stress_update)
   double flip_;
   int xpic_order_ = 1;  ///< mpm.xpic_order (1: the PIC share is plain PIC)
   /// XPIC runs only where it acts: order > 1 and a PIC share (flip < 1).
