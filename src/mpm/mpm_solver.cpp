@@ -855,6 +855,17 @@ void MpmSolver::grid_to_particles(double dt) {
       displacement_[p] = dt * vg;
       return;
     }
+    if (exact_transfer) {
+      // USAVG moves the point with the velocity whose two halves its strain took, (v_n + v_end)
+      // / 2, so that x and F stay consistent (position Verlet within the step).
+      Vec3 vm;
+      for (int k = 0; k < st.count; ++k) {
+        const Index I = fo + st.node[k];
+        vm += (0.5 * st.w[k]) * (vs[I] + vn[I]);
+      }
+      finish_point(p, l, dt * vm, f_dt, bad, out);
+      return;
+    }
     finish_point(p, l, dt * vg, f_dt, bad, out);
   }, pw);
   if (exact_transfer && has_trac) {
@@ -965,11 +976,13 @@ template <int Dim, ShapeKind K>
 void MpmSolver::first_half_stress_update(double dt) {
   // USAVG (Nairn, CMES 4 (2003) 649): the stress takes half its increment from the mapped grid
   // velocity v_n before the forces are computed, and the other half from v_{n+1} after the grid
-  // update. On the grid this is position Verlet, x_{n+1/2} = x_n + dt/2 v_n, v_{n+1} = v_n + dt
-  // a(x_{n+1/2}), x_{n+1} = x_{n+1/2} + dt/2 v_{n+1}: symplectic and second order, where USL
-  // (x_{n+1} = x_n + dt v_{n+1}) is first order and MUSL's remapped velocity, nearly the next
-  // step's v_n, makes it USF-like (for a linear oscillator the amplification matrix of USF has
-  // determinant 1 + k dt^2: energy grows). The particles' velocities do not change here; they
+  // update. Within the step this is position Verlet, x_{n+1/2} = x_n + dt/2 v_n, v_{n+1} = v_n +
+  // dt a(x_{n+1/2}), x_{n+1} = x_{n+1/2} + dt/2 v_{n+1}: symplectic, where USL (x_{n+1} = x_n + dt
+  // v_{n+1}) is symplectic Euler and MUSL's remapped velocity, nearly the next step's v_n, makes
+  // it update-stress-first-like (for a linear oscillator the amplification matrix of USF has
+  // determinant 1 + k dt^2: energy grows). Over many steps all three are first order in time,
+  // since each step starts from the velocity mapped from the particles, not from the grid's
+  // updated one (MpmSolver.TemporalOrderOfTheUpdateSchemes). The particles' velocities do not change here; they
   // receive the constraints' impulses with the grid update (update_grid).
   const bool multi = grid_.fields > 1;
   const Index nall = grid_.geom.node_count() * grid_.fields;
@@ -990,6 +1003,7 @@ void MpmSolver::first_half_stress_update(double dt) {
   boundary_impulses_.clear();
   apply_velocity_bcs(usavg_start_.data(), &boundary_impulses_);
   book_impulses(grid_.accel.data(), usavg_start_.data());
+  if (!mirror_faces_.empty()) fill_mirror_ghosts(usavg_start_.data());  // G2P reads it there too
   for_each_active_node([&](Index i) { grid_.velocity_new[i] = usavg_start_[i]; });
   if (!mirror_faces_.empty()) fill_mirror_ghosts(grid_.velocity_new.data());
   velocity_gradient_from_grid<Dim, K>(0.5 * dt, false);
