@@ -86,14 +86,20 @@ bool xpic_arrays(const Scenario& sc) {
   return sc.solver_params.at("xpic_order") > 1 && sc.solver_params.at("flip") < 1.0;
 }
 
-/// Grid storage per node and velocity field, for the memory estimate: mass; velocity, force,
-/// velocity_new, accel; several fields: grad, impulse, friction_impulse; XPIC: prev, target.
-double bytes_per_node(int fields, bool xpic) {
-  return fields * (sizeof(double) + 4 * sizeof(Vec3) + (fields > 1 ? 3 * sizeof(Vec3) : 0) + (xpic ? 2 * sizeof(Vec3) : 0));
+/// The extra node arrays a deck asks for, as a count of Vec3 per node and field: XPIC's prev and
+/// target (mpm.xpic_order > 1 with a PIC share), USAVG's constrained first-half velocity.
+int extra_node_arrays(const Scenario& sc) {
+  return (xpic_arrays(sc) ? 2 : 0) + (sc.solver_params.choices.at("update") == "usavg" ? 1 : 0);
 }
 
-double grid_bytes(const GridGeometry& g, int fields, bool xpic) {
-  return static_cast<double>(g.node_count()) * bytes_per_node(fields, xpic);
+/// Grid storage per node and velocity field, for the memory estimate: mass; velocity, force,
+/// velocity_new, accel; several fields: grad, impulse, friction_impulse; the extra arrays.
+double bytes_per_node(int fields, int extra) {
+  return fields * (sizeof(double) + 4 * sizeof(Vec3) + (fields > 1 ? 3 * sizeof(Vec3) : 0) + extra * sizeof(Vec3));
+}
+
+double grid_bytes(const GridGeometry& g, int fields, int extra) {
+  return static_cast<double>(g.node_count()) * bytes_per_node(fields, extra);
 }
 }  // namespace
 
@@ -101,9 +107,9 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     : scenario_(sc),
       comm_(comm),
       layout_(layout_grid(sc, kGhostLayers)),
-      pts_(sc, std::move(materials), SeedLattice{sc.grid, 0}, grid_bytes(layout_.geom, sc.contact.fields, xpic_arrays(sc)),
+      pts_(sc, std::move(materials), SeedLattice{sc.grid, 0}, grid_bytes(layout_.geom, sc.contact.fields, extra_node_arrays(sc)),
            fmt::format("{:.3g} grid nodes x {:g} B", static_cast<double>(layout_.geom.node_count()),
-                       bytes_per_node(sc.contact.fields, xpic_arrays(sc))),
+                       bytes_per_node(sc.contact.fields, extra_node_arrays(sc))),
            comm),
       points_(pts_.store()),
       partition_(comm, axis_count(sc.simulation.dimension)) {
@@ -889,8 +895,10 @@ void MpmSolver::grid_to_particles(double dt) {
 
 template <int Dim, ShapeKind K>
 void MpmSolver::velocity_gradient_from_grid(double dt, bool move) {
-  // Modified USL (Sulsky, Zhou & Schreyer, CPC 87 (1995) 236): L from the grid velocity that the
-  // updated particle momenta map back to, with the shape functions of this step.
+  // L, F and the volume from the grid velocity in velocity_new, with the shape functions of this
+  // step: for MUSL (Sulsky, Zhou & Schreyer, CPC 87 (1995) 236) the velocity the updated particle
+  // momenta map back to, with the points moved by `displacement_`; for USAVG's first half the
+  // constrained mapped velocity, the points left in place (`move` false).
   const GridGeometry& g = grid_.geom;
   const auto* half = points_.view<Vec3>("half_size");
   const Vec3* vg = grid_.velocity_new.data();
@@ -982,8 +990,8 @@ void MpmSolver::first_half_stress_update(double dt) {
   // it update-stress-first-like (for a linear oscillator the amplification matrix of USF has
   // determinant 1 + k dt^2: energy grows). Over many steps all three are first order in time,
   // since each step starts from the velocity mapped from the particles, not from the grid's
-  // updated one (MpmSolver.TemporalOrderOfTheUpdateSchemes). The particles' velocities do not change here; they
-  // receive the constraints' impulses with the grid update (update_grid).
+  // updated one (MpmSolver.TemporalOrderOfTheUpdateSchemes). The particles' velocities do not
+  // change here; they receive the constraints' impulses with the grid update (update_grid).
   const bool multi = grid_.fields > 1;
   const Index nall = grid_.geom.node_count() * grid_.fields;
   usavg_start_.resize(nall);
@@ -1015,10 +1023,10 @@ void MpmSolver::first_half_stress_update(double dt) {
 }
 
 double MpmSolver::grid_kinetic_energy_change(double dt) {
-  // sum_I m_I (|v_I,n+1|^2 - |v_I,n|^2) / 2 with v_I,n the mapped velocity before any constraint
-  // (v_I,n+1 - dt a_I, as update_grid defines a_I): with the one-midpoint booking the nodal forces
-  // and impulses do exactly this work (book_impulses). Every node in a fixed order, each shared
-  // node by its lowest sharer.
+  // sum_I m_I (|v_I,end|^2 - |v_I,0|^2) / 2 with v_I,0 the mapped velocity before any constraint
+  // (v_I,end - dt a_I, as update_grid defines a_I): the nodal forces and impulses, as book_impulses
+  // books them, do exactly this work. Every node in a fixed order, each shared node by its lowest
+  // sharer.
   const Index nall = grid_.geom.node_count() * grid_.fields;
   const Index nn = grid_.geom.node_count();
   const std::uint8_t* counted = comm_.distributed() ? exchange_.counted() : nullptr;
