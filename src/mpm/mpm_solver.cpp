@@ -1015,8 +1015,9 @@ void MpmSolver::first_half_stress_update(double dt) {
   for_each_active_node([&](Index i) { grid_.velocity_new[i] = usavg_start_[i]; });
   if (!mirror_faces_.empty()) fill_mirror_ghosts(grid_.velocity_new.data());
   velocity_gradient_from_grid<Dim, K>(0.5 * dt, false);
-  if (first_bad_ < points_.size())
-    fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0 or NaN) in the first half of the step");
+  if (first_bad_ < points_.size())  // named as the step it happens in (steps_ counts completed ones)
+    pts_.fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0 or NaN) in the first half of the step",
+              steps_ + 1, time_);
   if (anti_locking_ == AntiLocking::FBar)
     fbar_.apply(grid_.geom, dimension_, 0.5 * dt, {points_.size(), x_, L_, F_, vol_, vol0_});
   pts_.update_stress(0.5 * dt, steps_, time_);
