@@ -77,6 +77,10 @@ def main():
     # later and SIGKILL as long again after that (default 1 s, measured): one second can be too
     # short on a loaded machine for the ranks to agree, checkpoint and write summary.json; the
     # deck must then still be running that long after its second checkpoint (docs/restart.md).
+    # The SIGTERM run must still be going a delay (and, on a loaded machine, the checkpoint polling)
+    # after its second checkpoint: --term-set lengthens it (and its own uninterrupted reference).
+    ap.add_argument("--term-set", action="append", default=[],
+                    help="key=value for the SIGTERM run and its reference only (e.g. a later end_time)")
     ap.add_argument("--term-delay", type=int, default=0,
                     help="odls_base_sigkill_timeout for the SIGTERM run, s (0: Open MPI's default, 1 s)")
     ap.add_argument("--set", action="append", default=[])
@@ -90,11 +94,14 @@ def main():
     common = ["-q", "--no-plots", "--threads", "1"]
     refs = {}
 
-    def reference(w):
-        if w not in refs:
-            refs[w] = os.path.join(a.workdir, f"uninterrupted_{w}")
-            run(launcher(w, a.ballista) + ["run", a.deck, "-o", refs[w]] + common + sets)
-        return refs[w]
+    term_sets = sum((["--set", s] for s in a.term_set), [])
+
+    def reference(w, extra=()):
+        key = (w, tuple(extra))
+        if key not in refs:
+            refs[key] = os.path.join(a.workdir, f"uninterrupted_{w}" + ("_term" if extra else ""))
+            run(launcher(w, a.ballista) + ["run", a.deck, "-o", refs[key]] + common + sets + list(extra))
+        return refs[key]
 
     failures = []
     for pair in [p for p in a.pairs.split(",") if p]:
@@ -122,12 +129,13 @@ def main():
     for sig, w in ((signal.SIGKILL, a.kill), (signal.SIGTERM, a.term)):
         if not w:
             continue
-        ref = reference(w)
+        extra = term_sets if sig == signal.SIGTERM else []
+        ref = reference(w, extra)
         out = os.path.join(a.workdir, f"{sig.name}_{w}")
         env = dict(ENV)
         if sig == signal.SIGTERM and a.term_delay > 0:
             env["OMPI_MCA_odls_base_sigkill_timeout"] = str(a.term_delay)
-        p = subprocess.Popen(launcher(w, a.ballista) + ["run", a.deck, "-o", out] + common + sets,
+        p = subprocess.Popen(launcher(w, a.ballista) + ["run", a.deck, "-o", out] + common + sets + extra,
                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env, start_new_session=True)
         deadline = time.time() + 120
         while time.time() < deadline and p.poll() is None:
