@@ -51,6 +51,14 @@ inline void stencil_of(const GridGeometry& g, const SplineFaces& faces, const Ve
   }
 }
 
+/// The weights at a surface-traction point: a point load, so the kernel itself (the cubic
+/// B-spline, or the linear hat for every other shape function), not a particle domain.
+template <int Dim, ShapeKind K>
+inline void surface_point_stencil(const GridGeometry& g, const SplineFaces& faces, const Vec3& x, Stencil<Dim>& s) {
+  if constexpr (K == ShapeKind::BSpline3) bspline3_stencil<Dim>(g, x, s, faces);
+  else linear_stencil<Dim>(g, x, s);
+}
+
 }  // namespace
 
 MpmSolver::GridLayout MpmSolver::layout_grid(const Scenario& sc, int ghost) {
@@ -391,8 +399,7 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
     // Tractions at the surface points, with the kernel's weights there (serial: few points).
     Stencil<Dim> st;
     for (const PointLoads::SurfaceForce& sf : loads_.surface_forces()) {
-      if constexpr (K == ShapeKind::BSpline3) bspline3_stencil<Dim>(g, sf.point, st, spline_faces_);
-      else linear_stencil<Dim>(g, sf.point, st);
+      surface_point_stencil<Dim, K>(g, spline_faces_, sf.point, st);
       const Index fo = field_offset(sf.index);
       for (int k = 0; k < st.count; ++k) gf[fo + st.node[k]] += st.w[k] * sf.force;
     }
@@ -779,10 +786,12 @@ inline void MpmSolver::finish_point(Index p, const Mat3& l, const Vec3& disp, do
     if (!(x[a] >= layout_.box_lower[a] && x[a] <= layout_.box_upper[a])) record_min(out, p);
 }
 
-template <int Dim, ShapeKind K>
+template <int Dim, ShapeKind K, bool Usavg>
 void MpmSolver::grid_to_particles(double dt) {
   // One pass per point: grid velocity, acceleration and velocity gradient at the point; FLIP/PIC
-  // velocity update; position, F and volume update (USL); failure and exit detection.
+  // velocity update; position, F and volume update (USL); failure and exit detection. USAVG's
+  // bookkeeping is compiled into its own instance (Usavg), so the USL/MUSL pass stays as lean as
+  // it was.
   const GridGeometry& g = grid_.geom;
   auto* v = points_.view<Vec3>("v");
   const auto* half = points_.view<Vec3>("half_size");
@@ -792,11 +801,11 @@ void MpmSolver::grid_to_particles(double dt) {
   const std::vector<Vec3>& fext = loads_.total();
   const bool has_ext = !fext.empty();
   const bool defer = musl_;  // MUSL: L, F and positions after the second projection
-  const double f_dt = usavg_ ? 0.5 * dt : dt;  // USAVG: the second half of the strain increment
-  const bool exact_transfer = usavg_;
-  const Vec3* vs = usavg_ ? usavg_start_.data() : nullptr;
-  const std::vector<Vec3>& ftrac = loads_.traction();
-  const bool has_trac = !ftrac.empty();
+  const double f_dt = Usavg ? 0.5 * dt : dt;  // USAVG: the second half of the strain increment
+  constexpr bool exact_transfer = Usavg;
+  [[maybe_unused]] const Vec3* vs = Usavg ? usavg_start_.data() : nullptr;
+  [[maybe_unused]] const std::vector<Vec3>& ftrac = loads_.traction();
+  [[maybe_unused]] const bool has_trac = !ftrac.empty();
   const double flip = flip_;
   const bool xpic = xpic_active();
   const Vec3* vx = xpic ? xpic_.target.data() : nullptr;
@@ -834,15 +843,17 @@ void MpmSolver::grid_to_particles(double dt) {
     } else {
       v[p] = flip * (v_old + dt * acc) + (1.0 - flip) * vg;
     }
-    if (has_ext && exact_transfer) {
-      // USAVG: the loads work on the grid, at the nodes' velocity of the step, (v_n + v_end) / 2,
-      // as the grid's kinetic-energy identity counts them (tractions below, at their own points).
-      Vec3 vm;
-      for (int k = 0; k < st.count; ++k) {
-        const Index I = fo + st.node[k];
-        vm += (0.5 * st.w[k]) * (vs[I] + vn[I]);
+    if constexpr (exact_transfer) {
+      if (has_ext) {
+        // USAVG: the loads work on the grid, at the nodes' velocity of the step, (v_n + v_end) / 2,
+        // as the grid's kinetic-energy identity counts them (tractions below, at their own points).
+        Vec3 vm;
+        for (int k = 0; k < st.count; ++k) {
+          const Index I = fo + st.node[k];
+          vm += (0.5 * st.w[k]) * (vs[I] + vn[I]);
+        }
+        o[0] += dot(has_trac ? fext[p] - ftrac[p] : fext[p], vm);
       }
-      o[0] += dot(has_trac ? fext[p] - ftrac[p] : fext[p], vm);
     } else if (has_ext) {
       o[0] += dot(fext[p], 0.5 * (v_old + v[p]));
     }
@@ -850,7 +861,7 @@ void MpmSolver::grid_to_particles(double dt) {
     // (FLIP alone conserves it to the order of the time step; PIC damps the grid's null space).
     // USAVG books the whole transfer instead: the particles' kinetic-energy change here, less the
     // grid's (grid_kinetic_energy_change), the measure issue 13 asks for.
-    if (exact_transfer) {
+    if constexpr (exact_transfer) {
       o[1] += 0.5 * mass[p] * (dot(v[p], v[p]) - dot(v_old, v_old));
     } else if (flip < 1.0) {
       const Vec3 v_flip = v_old + dt * acc;
@@ -861,7 +872,7 @@ void MpmSolver::grid_to_particles(double dt) {
       displacement_[p] = dt * vg;
       return;
     }
-    if (exact_transfer) {
+    if constexpr (exact_transfer) {
       // USAVG moves the point with the velocity whose two halves its strain took, (v_n + v_end)
       // / 2, so that x and F stay consistent (position Verlet within the step).
       Vec3 vm;
@@ -874,16 +885,17 @@ void MpmSolver::grid_to_particles(double dt) {
     }
     finish_point(p, l, dt * vg, f_dt, bad, out);
   }, pw);
-  if (exact_transfer && has_trac) {
-    // Tractions are spread from their surface points (particles_to_grid); serial, few points.
-    Stencil<Dim> st;
-    for (const PointLoads::SurfaceForce& sf : loads_.surface_forces()) {
-      if constexpr (K == ShapeKind::BSpline3) bspline3_stencil<Dim>(g, sf.point, st, spline_faces_);
-      else linear_stencil<Dim>(g, sf.point, st);
-      const Index fo = field_offset(sf.index);
-      Vec3 vm;
-      for (int k = 0; k < st.count; ++k) vm += (0.5 * st.w[k]) * (vs[fo + st.node[k]] + vn[fo + st.node[k]]);
-      pw[0] += dot(sf.force, vm);
+  if constexpr (Usavg) {
+    if (has_trac) {
+      // Tractions are spread from their surface points (particles_to_grid); serial, few points.
+      Stencil<Dim> st;
+      for (const PointLoads::SurfaceForce& sf : loads_.surface_forces()) {
+        surface_point_stencil<Dim, K>(g, spline_faces_, sf.point, st);
+        const Index fo = field_offset(sf.index);
+        Vec3 vm;
+        for (int k = 0; k < st.count; ++k) vm += (0.5 * st.w[k]) * (vs[fo + st.node[k]] + vn[fo + st.node[k]]);
+        pw[0] += dot(sf.force, vm);
+      }
     }
   }
   comm_.sum(pw, 2);
@@ -953,8 +965,12 @@ void MpmSolver::step_impl(double dt) {
   }
   update_grid(dt);
   if (xpic_active()) xpic_velocity<Dim, K>(dt);
-  grid_to_particles<Dim, K>(dt);
-  if (usavg_) transfer_work_ -= grid_kinetic_energy_change(dt);
+  if (usavg_) {
+    grid_to_particles<Dim, K, true>(dt);
+    transfer_work_ -= grid_kinetic_energy_change(dt);
+  } else {
+    grid_to_particles<Dim, K, false>(dt);
+  }
   if (musl_) {
     // Map the updated particle momenta back with the same shape functions, then L from them.
     particles_to_grid<Dim, K>(true);

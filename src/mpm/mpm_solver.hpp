@@ -92,7 +92,7 @@ class MpmSolver final : public Solver {
   template <int Dim, ShapeKind K> void particles_to_grid(bool momentum_only, const Vec3* v_source = nullptr);
   /// XPIC(m): the grid velocity the PIC share of the update reads, into xpic_.target.
   template <int Dim, ShapeKind K> void xpic_velocity(double dt);
-  template <int Dim, ShapeKind K> void grid_to_particles(double dt);
+  template <int Dim, ShapeKind K, bool Usavg> void grid_to_particles(double dt);
   template <int Dim, ShapeKind K> void velocity_gradient_from_grid(double dt, bool move);
   template <int Dim, ShapeKind K> void first_half_stress_update(double dt);
   void velocity_from_momentum();  // velocity_new = momentum / mass at the active nodes
