@@ -3,7 +3,8 @@
 // ~100 steps, the cell-crossing instability).
 // Reports particle-steps per second for 1e5 and 1e6 particles, linear and GIMP shape functions,
 // on 1 and 2 threads, and for 1e4 and 1e7 particles (linear, 2 threads: the scaling in size);
-// GIMP with mpm.update usavg (its second material update, mapping and gradient pass per step).
+// GIMP with mpm.update usavg (its second material update, mapping and gradient pass per step),
+// and with the artificial bulk viscosity on top (mpm.bulk_viscosity_*: its pass per stress update).
 // Setup is not timed.
 //   ./build/bench/mpm_block_impact_bench [--benchmark_filter=...]
 // Figures and the exact command are recorded in docs/performance.md.
@@ -11,6 +12,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "block_impact_deck.hpp"
 #include "core/parallel.hpp"
@@ -24,11 +26,12 @@ std::string deck(long particles, const std::string& shape, double box_volume_rat
   return ballista::bench::block_impact_deck(particles, shape, box_volume_ratio, update);
 }
 
-void BM_BlockImpact(benchmark::State& state, std::string shape, std::string update = "musl") {
+void BM_BlockImpact(benchmark::State& state, std::string shape, std::string update = "musl",
+                    std::vector<std::string> overrides = {}) {
   const long target = state.range(0);
   const int threads = static_cast<int>(state.range(1));
   ballista::set_threads(threads);
-  const ballista::Scenario sc = ballista::parse_deck(deck(target, shape, 0.0, update), "bench.yaml");
+  const ballista::Scenario sc = ballista::parse_deck(deck(target, shape, 0.0, update), "bench.yaml", overrides);
   auto solver = ballista::make_solver(sc);
   const double n = static_cast<double>(solver->points().size());
   // Warm-up steps: first touch of the grid and the first sort are not steady state.
@@ -80,5 +83,8 @@ BENCHMARK_CAPTURE(BM_BlockImpact, gimp, std::string("gimp"))
     ->ArgsProduct({{100000, 1000000}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK_CAPTURE(BM_BlockImpact, gimp_usavg, std::string("gimp"), std::string("usavg"))
     ->ArgsProduct({{100000, 1000000}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK_CAPTURE(BM_BlockImpact, gimp_usavg_bulk_viscosity, std::string("gimp"), std::string("usavg"),
+                  std::vector<std::string>{"mpm.bulk_viscosity_linear=0.2", "mpm.bulk_viscosity_quadratic=2"})
+    ->ArgsProduct({{1000000}, {2}})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 
 BENCHMARK_MAIN();

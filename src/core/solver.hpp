@@ -38,6 +38,9 @@ struct EnergyTotals {
   double friction = 0.0;  ///< the frictional part of `contact` (already inside it)
   double transfer = 0.0;  ///< particle-grid transfer: the PIC share of the FLIP/PIC update (usl, musl), the whole particle-minus-grid kinetic energy change (usavg)
   double boundary = 0.0;  ///< the grid face and axis conditions' impulses on the nodes
+  /// J, the heat of the artificial bulk viscosity (MPM, mpm.bulk_viscosity_*): a breakdown of
+  /// `internal`, like `plastic`, not a separate term of total().
+  double viscous = 0.0;
   /// Energy balance: kinetic + internal + removed - external - inserted - the discretisation's
   /// booked work; constant in an exact solution, and its change is the unexplained residual.
   double total() const {

@@ -187,6 +187,15 @@ class Material {
   virtual double wave_speed(const FieldStore& store, Index p, double J) const = 0;
   /// max over the points of (wave speed + |v|), m/s: the signal speed of the Courant condition.
   virtual double max_signal_speed(const FieldStore& store, const Index* points, Index count) const = 0;
+  /// The dilatational wave speed of each of the points, m/s, into c[p] (indexed by point, not by k).
+  virtual void wave_speeds(const FieldStore& store, const Index* points, Index count, double* c) const = 0;
+  /// True if the model keeps the EOS energy density (kEosEnergyField, J/m^3 of reference volume):
+  /// heat from outside the model (artificial viscosity) must enter it to reach its pressure.
+  bool has_state(const std::string& field) const {
+    for (const auto& s : state_fields())
+      if (s.name == field) return true;
+    return false;
+  }
 };
 
 /// The batch every caller of Material::update builds: `count` points of `store` with the common

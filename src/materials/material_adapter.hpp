@@ -73,6 +73,20 @@ class MaterialAdapter final : public Material {
     return vmax;
   }
 
+  void wave_speeds(const FieldStore& store, const Index* points, Index count, double* c) const override {
+    const int ns = static_cast<int>(state_.size());
+    std::vector<const double*> sptr(ns);
+    for (int s = 0; s < ns; ++s) sptr[s] = store.real(state_[s].name);
+    const Mat3* F = store.view<Mat3>("F");
+#pragma omp parallel for schedule(static) if (count > kParallelThreshold)
+    for (Index k = 0; k < count; ++k) {
+      const Index p = points[k];
+      double st[kMaxState];
+      for (int s = 0; s < ns; ++s) st[s] = sptr[s][p];
+      c[p] = Model::wave_speed(params_, st, det(F[p]));
+    }
+  }
+
   double wave_speed(const FieldStore& store, Index p, double J) const override {
     double st[kMaxState];
     for (size_t s = 0; s < state_.size(); ++s) st[s] = store.real(state_[s].name)[p];

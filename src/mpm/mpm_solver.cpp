@@ -126,6 +126,8 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   shape_ = parse_shape_kind(sc.solver_params.choices.at("shape_function"));
   musl_ = sc.solver_params.choices.at("update") == "musl";
   usavg_ = sc.solver_params.choices.at("update") == "usavg";
+  bulk_viscosity_ = {sc.solver_params.at("bulk_viscosity_linear"), sc.solver_params.at("bulk_viscosity_quadratic")};
+  if (bulk_viscosity_.active()) pts_.add_real(kBulkViscosityField, 1, "Pa");
   flip_ = sc.solver_params.at("flip");
   xpic_order_ = static_cast<int>(sc.solver_params.at("xpic_order"));
   sort_every_ = static_cast<int>(sc.solver_params.at("sort_every"));
@@ -222,7 +224,8 @@ double MpmSolver::reporting_scale() const {
 
 double MpmSolver::stable_dt() {
   // dt = CFL h / max_p (c_p + |v_p|)  (Courant condition with the dilatational wave speed).
-  const double local_max = pts_.max_signal_speed();
+  // With the bulk viscosity, its signal speed (Q + sqrt(Q^2 + c^2) + |v|) of the last step's rates.
+  const double local_max = std::max(pts_.max_signal_speed(), viscous_speed_);
   const double speed = comm_.max(local_max);
   double dt = speed > 0.0 ? scenario_.simulation.cfl * grid_.geom.h / speed
                           : scenario_.simulation.end_time;
@@ -390,6 +393,7 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
       std::fill(gp + b, gp + e, Vec3{});
     });
   const bool axisym = dimension_ == Dimension::Axisymmetric;
+  const double* bq = bulk_viscosity_.active() ? points_.real(kBulkViscosityField) : nullptr;
   const std::vector<Vec3>& fext = loads_.total();
   const std::vector<Vec3>& ftrac = loads_.traction();
   const bool has_ext = !fext.empty();
@@ -419,9 +423,12 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
           continue;
         }
         // f_I = -V_p sigma_p grad N_I + N_I f_ext,p (Sulsky et al. 1994, eq. 14); axisymmetric
-        // adds the hoop term -V_p sigma_tt N_I / r_p to the radial force (per-radian volume).
-        const Mat3 Vs = vol[p] * stress[p];
-        const double hoop = axisym ? vol[p] * stress[p](2, 2) / x[p][0] : 0.0;
+        // adds the hoop term -V_p sigma_tt N_I / r_p to the radial force (per-radian volume). The
+        // bulk viscosity's pressure q acts beside the material's stress: sigma - q I.
+        Mat3 Vs = vol[p] * stress[p];
+        if (bq)
+          for (int i = 0; i < 3; ++i) Vs(i, i) -= vol[p] * bq[p];
+        const double hoop = axisym ? Vs(2, 2) / x[p][0] : 0.0;
         // Surface tractions are spread from their own points below.
         const Vec3 fe = has_ext ? (has_trac ? fext[p] - ftrac[p] : fext[p]) : Vec3{};
         for (int k = 0; k < st.count; ++k) {
@@ -994,6 +1001,13 @@ void MpmSolver::step_impl(double dt) {
   if (anti_locking_ == AntiLocking::FBar)  // volumetric increment averaged per cell (anti_locking.hpp)
     fbar_.apply(grid_.geom, dimension_, sdt, {points_.size(), x_, L_, F_, vol_, vol0_});
   pts_.update_stress(sdt, steps_, time_);
+  if (bulk_viscosity_.active()) bulk_viscosity_pass(sdt, false);
+}
+
+void MpmSolver::bulk_viscosity_pass(double dt, bool book_new) {
+  const BulkViscosityPass r = apply_bulk_viscosity(pts_, bulk_viscosity_, grid_.geom.h, dt, book_new, wave_scratch_);
+  viscous_work_ += comm_.sum(r.work);
+  viscous_speed_ = r.signal_speed;  // stable_dt takes the maximum over the ranks
 }
 
 template <int Dim, ShapeKind K>
@@ -1037,6 +1051,7 @@ void MpmSolver::first_half_stress_update(double dt) {
   if (anti_locking_ == AntiLocking::FBar)
     fbar_.apply(grid_.geom, dimension_, 0.5 * dt, {points_.size(), x_, L_, F_, vol_, vol0_});
   pts_.update_stress(0.5 * dt, steps_, time_);
+  if (bulk_viscosity_.active()) bulk_viscosity_pass(0.5 * dt, true);  // the q the step's forces use
 }
 
 double MpmSolver::grid_kinetic_energy_change(double dt) {
@@ -1136,6 +1151,7 @@ void MpmSolver::save_state(StateArchive& a) const {
   a.put("mpm.work", std::vector<double>{external_work_, damping_work_, contact_work_, friction_work_,
                                         transfer_work_, damping_});
   a.put_real("mpm.boundary_work", boundary_work_);
+  a.put("mpm.bulk_viscosity", std::vector<double>{viscous_work_, viscous_speed_});
   if (comm_.distributed()) {
     // The decomposition: the region boxes (a restart on as many ranks migrates exactly as the
     // uninterrupted run) and rank 0's statistics.
@@ -1177,6 +1193,11 @@ void MpmSolver::load_state(const StateArchive& a) {
   transfer_work_ = w[4];
   damping_ = w[5];
   boundary_work_ = a.real("mpm.boundary_work");
+  if (a.has("mpm.bulk_viscosity")) {
+    const auto& bv = a.reals("mpm.bulk_viscosity", 2);
+    viscous_work_ = bv[0];
+    viscous_speed_ = bv[1];
+  }
 }
 
 EnergyTotals MpmSolver::energies() const {
@@ -1187,6 +1208,7 @@ EnergyTotals MpmSolver::energies() const {
   e.friction = k * friction_work_;
   e.transfer = k * transfer_work_;
   e.boundary = k * boundary_work_;
+  e.viscous = k * viscous_work_;
   return e;
 }
 
@@ -1224,7 +1246,15 @@ std::vector<ParamSpec> mpm_params() {
                  "particle velocities the grid can carry (Hammerquist & Nairn, CMAME 318 (2017) 724)",
                  false, 1, 1, 8};
   xpic.integer = true;
-  return {shape, update, flip, sort, locking, rebalance, xpic};
+  ParamSpec bv_linear{"bulk_viscosity_linear", "1",
+                      "C_L of the artificial bulk viscosity q = rho l |tr D| (C_L c + C_Q l |tr D|) in compression, l the "
+                      "cell size (Wilkins, J. Comput. Phys. 36 (1980) 281): 0 = off; LS-DYNA 0.06, Uintah 0.2",
+                      false, 0.0, 0.0, 10.0};
+  ParamSpec bv_quadratic{"bulk_viscosity_quadratic", "1",
+                         "C_Q of the artificial bulk viscosity (see bulk_viscosity_linear): 0 = off; LS-DYNA 1.5, "
+                         "Uintah 2.0",
+                         false, 0.0, 0.0, 100.0};
+  return {shape, update, flip, sort, locking, rebalance, xpic, bv_linear, bv_quadratic};
 }
 
 }  // namespace

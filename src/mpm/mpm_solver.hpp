@@ -13,6 +13,7 @@
 #include "materials/material.hpp"
 #include "mpm/active_blocks.hpp"
 #include "mpm/anti_locking.hpp"
+#include "mpm/bulk_viscosity.hpp"
 #include "mpm/grid_exchange.hpp"
 #include "mpm/grid_geometry.hpp"
 #include "mpm/shape_functions.hpp"
@@ -160,6 +161,11 @@ class MpmSolver final : public Solver {
   std::vector<MirrorFace> mirror_faces_;
   bool musl_;
   bool usavg_ = false;  // update: usavg (first_half_stress_update)
+  BulkViscosity bulk_viscosity_;  ///< mpm.bulk_viscosity_linear / _quadratic (bulk_viscosity.hpp)
+  double viscous_speed_ = 0.0;    ///< the last pass's signal speed with q, m/s (stable_dt)
+  std::vector<double> wave_scratch_;
+  /// After a stress update over dt: books the viscous heating, sets q (apply_bulk_viscosity).
+  void bulk_viscosity_pass(double dt, bool book_new);
   double flip_;
   int xpic_order_ = 1;  ///< mpm.xpic_order (1: the PIC share is plain PIC)
   /// XPIC runs only where it acts: order > 1 and a PIC share (flip < 1).
@@ -214,6 +220,7 @@ class MpmSolver final : public Solver {
   double contact_work_ = 0.0, friction_work_ = 0.0;
   double transfer_work_ = 0.0;
   double boundary_work_ = 0.0;
+  double viscous_work_ = 0.0;
 };
 
 }  // namespace ballista

@@ -38,6 +38,11 @@ class PointSet {
   FieldStore& store() { return points_; }
   const FieldStore& store() const { return points_; }
   const Scenario& scenario() const { return scenario_; }
+  /// Declares a solver's own real field on the active and the pending points (zero-initialised).
+  void add_real(const std::string& name, int ncomp, const std::string& unit, bool output = true) {
+    points_.add_real(name, ncomp, unit, output);
+    pending_.add_real(name, ncomp, unit, output);
+  }
   const std::vector<std::unique_ptr<Material>>& materials() const { return materials_; }
   /// Names of the per-load surface fields ("load_area_<k>") of the pressure loads.
   const std::vector<std::string>& load_area_fields() const { return load_area_fields_; }

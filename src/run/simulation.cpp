@@ -186,7 +186,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
                                       "mass", "momentum_x", "momentum_y", "momentum_z",
                                       "removed_mass", "removed_energy", "inserted_energy",
                                       "damping_work", "contact_work", "friction_work", "transfer_work",
-                                      "eroded_internal_energy", "chemical_energy", "boundary_work"};
+                                      "eroded_internal_energy", "chemical_energy", "boundary_work", "viscous_work"};
   for (const auto& pr : sc.probes) columns.push_back(pr.name);
   // Stages: the preparation stages of the deck, then the main stage (index nstages).
   const int nstages = static_cast<int>(sc.stages.size());
@@ -296,7 +296,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
                                e.internal, e.plastic, e.external, e.total(), drift, e.mass,
                                e.momentum[0], e.momentum[1], e.momentum[2], e.removed_mass,
                                e.removed_energy, e.inserted_energy, e.damping, e.contact, e.friction,
-                               e.transfer, e.eroded, e.chemical, e.boundary};
+                               e.transfer, e.eroded, e.chemical, e.boundary, e.viscous};
     for (double v : probe_values(e)) row.push_back(v);
     if (nstages > 0) row.push_back(rs.stage);
     for (double v : solver->history_values()) row.push_back(v);
@@ -699,6 +699,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   en["friction_work"] = e.friction;
   en["transfer_work"] = e.transfer;
   en["boundary_work"] = e.boundary;
+  en["viscous_work"] = e.viscous;
   en["eroded_internal_energy"] = e.eroded;
   en["chemical_energy"] = e.chemical;
   en["scale"] = energy_scale;

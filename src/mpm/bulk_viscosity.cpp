@@ -1,0 +1,54 @@
+#include "mpm/bulk_viscosity.hpp"
+
+#include <algorithm>
+
+#include "core/parallel.hpp"
+#include "materials/eos.hpp"
+
+namespace ballista {
+
+BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, double cell, double dt, bool book_new,
+                                       std::vector<double>& c) {
+  FieldStore& s = pts.store();
+  const Index n = s.size();
+  c.resize(static_cast<std::size_t>(n));
+  // The sound speed of each point at its current J, and whether its model keeps an EOS energy.
+  const auto& groups = pts.material_groups();
+  const auto& materials = pts.materials();
+  std::vector<std::uint8_t> eos_energy(materials.size(), 0);
+  for (std::size_t m = 0; m < materials.size(); ++m) {
+    if (groups[m].empty()) continue;
+    materials[m]->wave_speeds(s, groups[m].data(), static_cast<Index>(groups[m].size()), c.data());
+    eos_energy[m] = materials[m]->has_state(kEosEnergyField) ? 1 : 0;
+  }
+  double* q = s.real(kBulkViscosityField);
+  double* eint = s.real("internal_energy");
+  double* E = s.has(kEosEnergyField) ? s.real(kEosEnergyField) : nullptr;
+  const auto* mat = s.ints("material");
+  const auto* mass = s.real("mass");
+  const auto* vol = s.real("volume");
+  const auto* vol0 = s.real("volume0");
+  const auto* L = s.view<Mat3>("L");
+  const auto* v = s.view<Vec3>("v");
+  double out[1];
+  deterministic_sum<1>(0, n, [&](Index p, double* o) {
+    const double trD = L[p](0, 0) + L[p](1, 1) + L[p](2, 2);
+    const double q_new = bulk_viscosity_pressure(bv, mass[p] / vol[p], c[p], cell, trD);
+    // Heat = q (-dV): the pressure times the volume the point lost over dt (positive: q acts in
+    // compression only), with the volume at the end of the update.
+    const double w = (book_new ? q_new : q[p]) * (-trD) * vol[p] * dt;
+    eint[p] += w;
+    if (E && eos_energy[mat[p]]) E[p] += w / vol0[p];  // per reference volume (eos.hpp)
+    q[p] = q_new;
+    o[0] += w;
+  }, out);
+  double vmax = 0.0;
+#pragma omp parallel for reduction(max : vmax) schedule(static) if (n > kParallelThreshold)
+  for (Index p = 0; p < n; ++p) {
+    const double trD = L[p](0, 0) + L[p](1, 1) + L[p](2, 2);
+    vmax = std::max(vmax, bulk_viscosity_signal_speed(bv, c[p], cell, trD) + norm(v[p]));
+  }
+  return {out[0], vmax};
+}
+
+}  // namespace ballista
