@@ -196,6 +196,9 @@ class Material {
       if (s.name == field) return true;
     return false;
   }
+  /// True if the material's failed points carry no stress at all (erosion zero_stress): they
+  /// must not resist compression through anything else either (artificial viscosity).
+  virtual bool failed_points_are_stress_free() const { return false; }
 };
 
 /// The batch every caller of Material::update builds: `count` points of `store` with the common

@@ -41,6 +41,9 @@ class MaterialAdapter final : public Material {
   std::vector<StateFieldSpec> state_fields() const override { return state_; }
   const typename Model::Params& params() const { return params_; }
   const FailureModel& failure() const { return failure_; }
+  bool failed_points_are_stress_free() const override {
+    return failure_.active() && failure_.erosion == ErosionRule::ZeroStress;
+  }
 
   Mat3 initial_stress(const Mat3& F) const override {
     Mat3 R, U;

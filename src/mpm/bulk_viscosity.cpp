@@ -4,6 +4,7 @@
 
 #include "core/parallel.hpp"
 #include "materials/eos.hpp"
+#include "materials/failure.hpp"
 
 namespace ballista {
 
@@ -15,12 +16,14 @@ BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, d
   // The sound speed of each point at its current J, and whether its model keeps an EOS energy.
   const auto& groups = pts.material_groups();
   const auto& materials = pts.materials();
-  std::vector<std::uint8_t> eos_energy(materials.size(), 0);
+  std::vector<std::uint8_t> eos_energy(materials.size(), 0), stress_free_failed(materials.size(), 0);
   for (std::size_t m = 0; m < materials.size(); ++m) {
     if (groups[m].empty()) continue;
     materials[m]->wave_speeds(s, groups[m].data(), static_cast<Index>(groups[m].size()), c.data());
     eos_energy[m] = materials[m]->has_state(kEosEnergyField) ? 1 : 0;
+    stress_free_failed[m] = materials[m]->failed_points_are_stress_free() ? 1 : 0;
   }
+  const double* failed = s.has(kFailedField) ? s.real(kFailedField) : nullptr;
   double* q = s.real(kBulkViscosityField);
   double* eint = s.real("internal_energy");
   double* E = s.has(kEosEnergyField) ? s.real(kEosEnergyField) : nullptr;
@@ -33,7 +36,9 @@ BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, d
   double out[1];
   deterministic_sum<1>(0, n, [&](Index p, double* o) {
     const double trD = L[p](0, 0) + L[p](1, 1) + L[p](2, 2);
-    const double q_new = bulk_viscosity_pressure(bv, mass[p] / vol[p], c[p], cell, trD);
+    // Eroded to zero stress (thesis eq. 6.13-6.14): the point carries no pressure, viscous or not.
+    const bool stress_free = failed && stress_free_failed[mat[p]] && failed[p] > 0.0;
+    const double q_new = stress_free ? 0.0 : bulk_viscosity_pressure(bv, mass[p] / vol[p], c[p], cell, trD);
     // Heat = q (-dV): the pressure times the volume the point lost over dt (positive: q acts in
     // compression only), with the volume at the end of the update.
     const double w = (book_new ? q_new : q[p]) * (-trD) * vol[p] * dt;
@@ -42,11 +47,14 @@ BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, d
     q[p] = q_new;
     o[0] += w;
   }, out);
+  // The Courant speed with q; points without q (expanding, or eroded to zero stress: debris that
+  // offers no resistance is squeezed at any rate) keep c.
   double vmax = 0.0;
 #pragma omp parallel for reduction(max : vmax) schedule(static) if (n > kParallelThreshold)
   for (Index p = 0; p < n; ++p) {
     const double trD = L[p](0, 0) + L[p](1, 1) + L[p](2, 2);
-    vmax = std::max(vmax, bulk_viscosity_signal_speed(bv, c[p], cell, trD) + norm(v[p]));
+    const double cq = q[p] > 0.0 ? bulk_viscosity_signal_speed(bv, c[p], cell, trD) : c[p];
+    vmax = std::max(vmax, cq + norm(v[p]));
   }
   return {out[0], vmax};
 }

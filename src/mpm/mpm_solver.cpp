@@ -1006,7 +1006,9 @@ void MpmSolver::step_impl(double dt) {
 
 void MpmSolver::bulk_viscosity_pass(double dt, bool book_new) {
   const BulkViscosityPass r = apply_bulk_viscosity(pts_, bulk_viscosity_, grid_.geom.h, dt, book_new, wave_scratch_);
-  viscous_work_ += comm_.sum(r.work);
+  // This rank's share only: a collective here would not match a rank that failed in the step
+  // (rethrow_agreed); energies() and save_state() sum it.
+  viscous_work_ += r.work;
   viscous_speed_ = r.signal_speed;  // stable_dt takes the maximum over the ranks
 }
 
@@ -1151,7 +1153,8 @@ void MpmSolver::save_state(StateArchive& a) const {
   a.put("mpm.work", std::vector<double>{external_work_, damping_work_, contact_work_, friction_work_,
                                         transfer_work_, damping_});
   a.put_real("mpm.boundary_work", boundary_work_);
-  a.put("mpm.bulk_viscosity", std::vector<double>{viscous_work_, viscous_speed_});
+  // Collective (as pts_.save_state): the total heat and the largest speed of every rank.
+  a.put("mpm.bulk_viscosity", std::vector<double>{comm_.sum(viscous_work_), comm_.max(viscous_speed_)});
   if (comm_.distributed()) {
     // The decomposition: the region boxes (a restart on as many ranks migrates exactly as the
     // uninterrupted run) and rank 0's statistics.
@@ -1195,7 +1198,7 @@ void MpmSolver::load_state(const StateArchive& a) {
   boundary_work_ = a.real("mpm.boundary_work");
   if (a.has("mpm.bulk_viscosity")) {
     const auto& bv = a.reals("mpm.bulk_viscosity", 2);
-    viscous_work_ = bv[0];
+    viscous_work_ = comm_.rank() == 0 ? bv[0] : 0.0;  // the total, held by rank 0 (energies() sums)
     viscous_speed_ = bv[1];
   }
 }
@@ -1208,7 +1211,7 @@ EnergyTotals MpmSolver::energies() const {
   e.friction = k * friction_work_;
   e.transfer = k * transfer_work_;
   e.boundary = k * boundary_work_;
-  e.viscous = k * viscous_work_;
+  e.viscous = k * comm_.sum(viscous_work_);
   return e;
 }
 
