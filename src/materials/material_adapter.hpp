@@ -60,34 +60,18 @@ class MaterialAdapter final : public Material {
   }
 
   double max_signal_speed(const FieldStore& store, const Index* points, Index count) const override {
-    const int ns = static_cast<int>(state_.size());
-    std::vector<const double*> sptr(ns);
-    for (int s = 0; s < ns; ++s) sptr[s] = store.real(state_[s].name);
-    const Mat3* F = store.view<Mat3>("F");
+    const PointWaveSpeed speed(*this, store);
     const Vec3* v = store.view<Vec3>("v");
     double vmax = 0.0;
 #pragma omp parallel for reduction(max : vmax) schedule(static) if (count > kParallelThreshold)
-    for (Index k = 0; k < count; ++k) {
-      const Index p = points[k];
-      double st[kMaxState];
-      for (int s = 0; s < ns; ++s) st[s] = sptr[s][p];
-      vmax = std::max(vmax, Model::wave_speed(params_, st, det(F[p])) + norm(v[p]));
-    }
+    for (Index k = 0; k < count; ++k) vmax = std::max(vmax, speed(points[k]) + norm(v[points[k]]));
     return vmax;
   }
 
   void wave_speeds(const FieldStore& store, const Index* points, Index count, double* c) const override {
-    const int ns = static_cast<int>(state_.size());
-    std::vector<const double*> sptr(ns);
-    for (int s = 0; s < ns; ++s) sptr[s] = store.real(state_[s].name);
-    const Mat3* F = store.view<Mat3>("F");
+    const PointWaveSpeed speed(*this, store);
 #pragma omp parallel for schedule(static) if (count > kParallelThreshold)
-    for (Index k = 0; k < count; ++k) {
-      const Index p = points[k];
-      double st[kMaxState];
-      for (int s = 0; s < ns; ++s) st[s] = sptr[s][p];
-      c[p] = Model::wave_speed(params_, st, det(F[p]));
-    }
+    for (Index k = 0; k < count; ++k) c[points[k]] = speed(points[k]);
   }
 
   double wave_speed(const FieldStore& store, Index p, double J) const override {
@@ -98,6 +82,27 @@ class MaterialAdapter final : public Material {
 
  private:
   using Params = typename Model::Params;
+
+  /// The model's wave speed of a point from its state fields and J = det F (the fields looked up
+  /// once per batch): shared by max_signal_speed and wave_speeds.
+  class PointWaveSpeed {
+   public:
+    PointWaveSpeed(const MaterialAdapter& m, const FieldStore& store)
+        : params_(m.params_), ns_(static_cast<int>(m.state_.size())), F_(store.view<Mat3>("F")) {
+      for (int s = 0; s < ns_; ++s) sptr_[s] = store.real(m.state_[s].name);
+    }
+    double operator()(Index p) const {
+      double st[kMaxState];
+      for (int s = 0; s < ns_; ++s) st[s] = sptr_[s][p];
+      return Model::wave_speed(params_, st, det(F_[p]));
+    }
+
+   private:
+    const Params& params_;
+    int ns_;
+    const Mat3* F_;
+    const double* sptr_[kMaxState] = {};
+  };
 
   template <bool kFailure>
   void update_batch(const MaterialBatch& b) const {

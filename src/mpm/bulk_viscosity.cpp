@@ -46,16 +46,13 @@ BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, d
     if (E && eos_energy[mat[p]]) E[p] += w / vol0[p];  // per reference volume (eos.hpp)
     q[p] = q_new;
     o[0] += w;
+    // The Courant speed with q, + |v|, in place of c; points without q (expanding, or eroded to
+    // zero stress: debris that offers no resistance is squeezed at any rate) keep c.
+    c[p] = (q_new > 0.0 ? bulk_viscosity_signal_speed(bv, c[p], cell, trD) : c[p]) + norm(v[p]);
   }, out);
-  // The Courant speed with q; points without q (expanding, or eroded to zero stress: debris that
-  // offers no resistance is squeezed at any rate) keep c.
   double vmax = 0.0;
 #pragma omp parallel for reduction(max : vmax) schedule(static) if (n > kParallelThreshold)
-  for (Index p = 0; p < n; ++p) {
-    const double trD = L[p](0, 0) + L[p](1, 1) + L[p](2, 2);
-    const double cq = q[p] > 0.0 ? bulk_viscosity_signal_speed(bv, c[p], cell, trD) : c[p];
-    vmax = std::max(vmax, cq + norm(v[p]));
-  }
+  for (Index p = 0; p < n; ++p) vmax = std::max(vmax, c[p]);
   return {out[0], vmax};
 }
 

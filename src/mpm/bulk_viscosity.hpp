@@ -9,6 +9,9 @@
 // bound as J -> 1 - 1/s and collapse the stable time step (docs/validation.md, "Shock ringing").
 // The viscous pressure spreads the jump over a few cells and turns the jump's energy into heat.
 #include <cmath>
+#include <vector>
+
+#include "points/point_set.hpp"
 
 namespace ballista {
 
@@ -36,14 +39,6 @@ inline double bulk_viscosity_signal_speed(const BulkViscosity& bv, double c, dou
   const double Q = bv.linear * c + bv.quadratic * l * (-trD);
   return Q + std::sqrt(Q * Q + c * c);
 }
-
-}  // namespace ballista
-
-#include <vector>
-
-#include "points/point_set.hpp"
-
-namespace ballista {
 
 /// The point field holding q (Pa): the forces use stress - q I (MpmSolver::particles_to_grid).
 inline constexpr const char* kBulkViscosityField = "bulk_viscosity";

@@ -1196,11 +1196,9 @@ void MpmSolver::load_state(const StateArchive& a) {
   transfer_work_ = w[4];
   damping_ = w[5];
   boundary_work_ = a.real("mpm.boundary_work");
-  if (a.has("mpm.bulk_viscosity")) {
-    const auto& bv = a.reals("mpm.bulk_viscosity", 2);
-    viscous_work_ = comm_.rank() == 0 ? bv[0] : 0.0;  // the total, held by rank 0 (energies() sums)
-    viscous_speed_ = bv[1];
-  }
+  const auto& bv = a.reals("mpm.bulk_viscosity", 2);
+  viscous_work_ = comm_.rank() == 0 ? bv[0] : 0.0;  // the total, held by rank 0 (energies() sums)
+  viscous_speed_ = bv[1];
 }
 
 EnergyTotals MpmSolver::energies() const {
