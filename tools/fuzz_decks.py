@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Fuzz the ballista command line with mutated input (issue 11, "Hardening").
+"""Fuzz the ballista command line with mutated input (issue 11, "Hardening"; issue 35, its second round).
 
 Sources (each case mutates one of them):
   run:<stem>      examples/*.yaml (not drive_*) and validation/rod_sandstone_reduced.yaml through
@@ -9,7 +9,21 @@ Sources (each case mutates one of them):
   ftable:<stem>   an F-table CSV (examples/*.csv) mutated, driven by a drive deck that names it;
   jettable        the jet segment table of examples/jet_casing_sandstone_mpm.yaml written as a CSV
                   (jet.file) and mutated;
-  models:<name>   `ballista models NAME -p key=value ...` with mutated parameters and options.
+  models:<name>   `ballista models NAME -p key=value ...` with mutated parameters and options;
+and, since issue 35 (about 15 % of the cases; --kinds picks kinds):
+  solver:<stem>   targeted mutations of the peridynamics, OTM and detonation decks (pd_*,
+                  exploding_cylinder_pd, taylor_bar_otm*, explosive_sandwich_mpm): the solver's own
+                  section keys, detonation points, times, edge_radius and burn_cells,
+                  bodies[].point_spacing, grid.boundary faces, an explosive material no body uses
+                  (tools/fuzz_solvers.py);
+  overlap:<stem>  two bodies that overlap by several lattice cells, or that exactly touch (a shared
+                  face), in the multi-body decks and by a copy or a split of a body in the others
+                  (tools/fuzz_solvers.py);
+  checkpoint:<stem> a short run with checkpoints, restarted with a later end time from an undamaged
+                  copy (the reference) and from a damaged one: bit flips, truncation, swapped names,
+                  a checkpoint of another run, an empty file, all deleted (tools/fuzz_checkpoints.py);
+  concurrent:<stem> two runs into one folder at once (tools/fuzz_folders.py);
+  userfile:<stem> a run into a folder holding user files (tools/fuzz_folders.py).
 
 Mutations: deleted keys, wrong types, non-finite and extreme values, unknown and duplicate keys,
 truncation at a random byte, binary garbage, YAML alias bombs, multiple documents, custom tags,
@@ -27,13 +41,22 @@ address-space limit and an output-size limit. Outcomes:
                      out_of_memory (std::bad_alloc under --mem-limit-mb: an unbounded allocation or a
                      size check that ignores the process's limit), ignored_input (exit 0 although the
                      input had a duplicate or unknown key, a custom tag, a second document or a table
-                     row the summary does not count), baseline_failed (see --baseline).
+                     row the summary does not count), baseline_failed (see --baseline);
+                     overlap_accepted (exit 0, or a refusal that does not name both bodies, on a deck
+                     built with two clearly overlapping bodies), touching_refused (touching bodies
+                     refused with a message about an overlap), corrupt_checkpoint_accepted (a restart
+                     from a damaged checkpoint folder exits 0 with results other than the undamaged
+                     folder's), concurrent_runs_mixed (two runs into one folder at once: both exit 0,
+                     neither completes, or the surviving folder is inconsistent), user_file_deleted
+                     (a user's file in the results folder deleted or changed by a run).
 The output folder gets results.jsonl (one line per case), summary.json and summary.md, and for
 every failing case cases/<id>/ with the mutated input files, repro.sh (the exact command line) and
 the captured stdout/stderr. Case k depends only on (--seed, k): `--only k` reruns one case.
 Exit status 1 if any failure class occurred, else 0.
 
   /usr/bin/python3 tools/fuzz_decks.py --ballista build/ballista --out out/fuzz --seed 1 --cases 200 --jobs 2
+  /usr/bin/python3 tools/fuzz_decks.py --ballista build/ballista --out out/fuzz35 --seed 1 --cases 10000 \
+      --jobs 2 --kinds new      # only the issue-35 kinds (solver, overlap, checkpoint, concurrent, userfile)
 """
 import argparse
 import concurrent.futures
@@ -50,11 +73,22 @@ import subprocess
 import sys
 import threading
 import time
+import types
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from fuzz_yaml import (YamlSubsetError, _copy, _delete, _dotted, _flow, _is_number,  # noqa: E402
+                       _paths, _set, yaml_dump, yaml_load)
+import fuzz_checkpoints  # noqa: E402
+import fuzz_folders  # noqa: E402
+import fuzz_solvers  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 FAILURE_CLASSES = ["signal", "uncaught", "hang", "nonfinite_success", "error_too_long", "silent_failure",
-                   "runaway_output", "out_of_memory", "ignored_input", "baseline_failed"]
+                   "runaway_output", "out_of_memory", "ignored_input", "baseline_failed",
+                   # issue 35
+                   "overlap_accepted", "touching_refused", "corrupt_checkpoint_accepted", "concurrent_runs_mixed",
+                   "user_file_deleted"]
 CORE_TAGS = ("!!str", "!!int", "!!float", "!!map", "!!seq", "!!bool", "!!null")
 ALL_CLASSES = ["ok", "rejected"] + FAILURE_CLASSES
 
@@ -119,300 +153,6 @@ WRONG_TYPES = ["abc", "\"42\"", "'nan'", "{a: 1}", "{}", "[]", "[1, 2]", "[[1, 2
                "\"\"", "2026-11-24", "[nan, inf]", "{x: {y: {z: 1}}}", "!!binary aGVsbG8=", "1.5", "-7", "0"]
 TAGS = ["!!python/object/apply:os.system [\"true\"]", "!custom", "!!str", "!!int", "!!float", "!!map", "!!seq",
         "!<tag:example.com,2000:x>", "!!binary", "!!timestamp", "!local"]
-
-
-# ---------------------------------------------------------------------------------------------
-# A small YAML subset reader/writer (block maps and sequences, flow [..] and {..}, anchors and
-# aliases (expanded), comments). Scalars keep their source text; maps are dicts, sequences lists.
-# ---------------------------------------------------------------------------------------------
-class YamlSubsetError(Exception):
-    pass
-
-
-def _strip_comment(line):
-    out, q = [], None
-    for i, c in enumerate(line):
-        if q:
-            if c == q:
-                q = None
-        elif c in "'\"":
-            q = c
-        elif c == "#" and (i == 0 or line[i - 1] in " \t"):
-            break
-        out.append(c)
-    return "".join(out).rstrip()
-
-
-def _split_key(text):
-    """'key: rest' -> (key, rest) at the first ': ' (or trailing ':') outside brackets/quotes."""
-    depth, q = 0, None
-    for i, c in enumerate(text):
-        if q:
-            if c == q:
-                q = None
-            continue
-        if c in "'\"":
-            q = c
-        elif c in "[{":
-            depth += 1
-        elif c in "]}":
-            depth -= 1
-        elif c == ":" and depth == 0 and (i + 1 == len(text) or text[i + 1] == " "):
-            return text[:i].strip(), text[i + 1:].strip()
-    return None
-
-
-class _Flow:
-    def __init__(self, s, anchors):
-        self.s, self.i, self.anchors = s, 0, anchors
-
-    def ws(self):
-        while self.i < len(self.s) and self.s[self.i] in " \t":
-            self.i += 1
-
-    def value(self, stops):
-        self.ws()
-        if self.i >= len(self.s):
-            return ""
-        c = self.s[self.i]
-        if c == "[":
-            self.i += 1
-            out = []
-            while True:
-                self.ws()
-                if self.s[self.i:self.i + 1] == "]":
-                    self.i += 1
-                    return out
-                out.append(self.value(",]"))
-                self.ws()
-                if self.s[self.i:self.i + 1] == ",":
-                    self.i += 1
-                elif self.s[self.i:self.i + 1] == "]":
-                    self.i += 1
-                    return out
-                else:
-                    raise YamlSubsetError("bad flow sequence")
-        if c == "{":
-            self.i += 1
-            out = {}
-            while True:
-                self.ws()
-                if self.s[self.i:self.i + 1] == "}":
-                    self.i += 1
-                    return out
-                k = self.scalar(":,}").strip()
-                if self.s[self.i:self.i + 1] != ":":
-                    raise YamlSubsetError("bad flow map")
-                self.i += 1
-                out[k] = self.value(",}")
-                self.ws()
-                if self.s[self.i:self.i + 1] == ",":
-                    self.i += 1
-                elif self.s[self.i:self.i + 1] == "}":
-                    self.i += 1
-                    return out
-                else:
-                    raise YamlSubsetError("bad flow map")
-        v = self.scalar(stops).strip()
-        if v.startswith("*") and v[1:] in self.anchors:
-            return _copy(self.anchors[v[1:]])
-        return v
-
-    def scalar(self, stops):
-        start, q = self.i, None
-        while self.i < len(self.s):
-            c = self.s[self.i]
-            if q:
-                if c == q:
-                    q = None
-            elif c in "'\"":
-                q = c
-            elif c in stops:
-                break
-            self.i += 1
-        return self.s[start:self.i]
-
-
-def _copy(node):
-    if isinstance(node, dict):
-        return {k: _copy(v) for k, v in node.items()}
-    if isinstance(node, list):
-        return [_copy(v) for v in node]
-    return node
-
-
-def _inline(rest, anchors):
-    anchor = None
-    if rest.startswith("&"):
-        parts = rest.split(None, 1)
-        anchor = parts[0][1:]
-        rest = parts[1] if len(parts) > 1 else ""
-    if rest == "":
-        return anchor, None
-    f = _Flow(rest, anchors)
-    v = f.value("")
-    if anchor:
-        anchors[anchor] = v
-    return anchor, v
-
-
-def yaml_load(text):
-    lines = []
-    for raw in text.splitlines():
-        s = _strip_comment(raw)
-        if s.strip() == "" or s.strip() == "---":
-            continue
-        lines.append((len(s) - len(s.lstrip(" ")), s.strip()))
-    anchors = {}
-    pos = [0]
-
-    def block(indent):
-        if pos[0] >= len(lines):
-            return None
-        ind, content = lines[pos[0]]
-        if content.startswith("- ") or content == "-":
-            return seq(ind)
-        return mapping(ind)
-
-    def child(parent_indent, anchor, seq_same_indent_ok):
-        if pos[0] < len(lines):
-            ind, content = lines[pos[0]]
-            if ind > parent_indent and content.startswith(("[", "{")):
-                text = content
-                pos[0] += 1
-                while text.count("[") + text.count("{") > text.count("]") + text.count("}") \
-                        and pos[0] < len(lines):
-                    text += " " + lines[pos[0]][1]
-                    pos[0] += 1
-                v = _Flow(text, anchors).value("")
-                if anchor:
-                    anchors[anchor] = v
-                return v
-            if ind > parent_indent or (seq_same_indent_ok and ind == parent_indent and content.startswith("-")):
-                v = block(ind)
-                if anchor:
-                    anchors[anchor] = v
-                return v
-        return ""
-
-    def mapping(indent):
-        out = {}
-        while pos[0] < len(lines):
-            ind, content = lines[pos[0]]
-            if ind != indent or content.startswith("- "):
-                break
-            kv = _split_key(content)
-            if kv is None:
-                raise YamlSubsetError(f"not a key: {content}")
-            k, rest = kv
-            pos[0] += 1
-            anchor, v = _inline(rest, anchors)
-            out[k] = v if v is not None else child(indent, anchor, True)
-        return out
-
-    def seq(indent):
-        out = []
-        while pos[0] < len(lines):
-            ind, content = lines[pos[0]]
-            if ind != indent or not (content.startswith("- ") or content == "-"):
-                break
-            rest = content[1:].strip()
-            if rest and not rest.startswith(("[", "{", "&", "*")) and _split_key(rest) is not None:
-                # "- key: value" starts a map at indent + 2
-                lines[pos[0]] = (indent + 2, rest)
-                out.append(mapping(indent + 2))
-                continue
-            pos[0] += 1
-            anchor, v = _inline(rest, anchors)
-            out.append(v if v is not None else child(indent, anchor, False))
-        return out
-
-    root = block(0)
-    if pos[0] != len(lines):
-        raise YamlSubsetError(f"unparsed line {lines[pos[0]]}")
-    return root
-
-
-def _flow(node):
-    if isinstance(node, dict):
-        return "{" + ", ".join(f"{k}: {_flow(v)}" for k, v in node.items()) + "}"
-    if isinstance(node, list):
-        return "[" + ", ".join(_flow(v) for v in node) + "]"
-    return node
-
-
-def _is_simple(node):
-    if isinstance(node, dict):
-        return all(not isinstance(v, (dict, list)) for v in node.values()) and len(node) <= 8
-    if isinstance(node, list):
-        return all(not isinstance(v, dict) for v in node)
-    return True
-
-
-def yaml_dump(node, indent=0):
-    pad = " " * indent
-    out = []
-    if isinstance(node, dict):
-        for k, v in node.items():
-            if isinstance(v, (dict, list)) and v and not (isinstance(v, list) and _is_simple(v)):
-                out.append(f"{pad}{k}:")
-                out.append(yaml_dump(v, indent + 2))
-            else:
-                out.append(f"{pad}{k}: {_flow(v)}")
-    elif isinstance(node, list):
-        for v in node:
-            if isinstance(v, dict) and v and not _is_simple(v):
-                sub = yaml_dump(v, indent + 2).split("\n")
-                out.append(f"{pad}- {sub[0].lstrip()}")
-                out.extend(sub[1:])
-            else:
-                out.append(f"{pad}- {_flow(v)}")
-    else:
-        out.append(pad + str(node))
-    return "\n".join(x for x in out if x != "")
-
-
-def _paths(node, prefix=()):
-    """Every (path, node) in the tree, containers included, root excluded."""
-    res = []
-    if isinstance(node, dict):
-        for k, v in node.items():
-            res.append((prefix + (k,), v))
-            res.extend(_paths(v, prefix + (k,)))
-    elif isinstance(node, list):
-        for i, v in enumerate(node):
-            res.append((prefix + (i,), v))
-            res.extend(_paths(v, prefix + (i,)))
-    return res
-
-
-def _get(node, path):
-    for p in path:
-        node = node[p]
-    return node
-
-
-def _set(node, path, value):
-    _get(node, path[:-1])[path[-1]] = value
-
-
-def _delete(node, path):
-    parent = _get(node, path[:-1])
-    del parent[path[-1]]
-
-
-def _dotted(path):
-    return ".".join(str(p) for p in path)
-
-
-def _is_number(s):
-    if not isinstance(s, str):
-        return False
-    try:
-        float(s)
-        return True
-    except ValueError:
-        return False
 
 
 # ---------------------------------------------------------------------------------------------
@@ -688,17 +428,42 @@ def discover_sources():
         sources.append(("jettable", "jet_casing_sandstone_mpm", jet))
     for m in MODELS:
         sources.append(("models", m, None))
+    # issue 35 (appended: the earlier sources keep their baseline numbers)
+    for kind, decks in (("solver", fuzz_solvers.SOLVER_DECKS), ("overlap", fuzz_solvers.OVERLAP_DECKS),
+                        ("checkpoint", fuzz_checkpoints.DECKS), ("concurrent", fuzz_folders.CONCURRENT_DECKS),
+                        ("userfile", fuzz_folders.USERFILE_DECKS)):
+        for stem in sorted(decks):
+            if os.path.exists(os.path.join(ex, stem + ".yaml")):
+                sources.append((kind, stem, os.path.join(ex, stem + ".yaml")))
     return sources
 
 
 # Sampling weights per source kind (each kind's weight is split over its sources).
 KIND_WEIGHTS = {"run": 0.45, "drive": 0.14, "ftable": 0.1, "jettable": 0.06, "models": 0.25}
+# Issue 35's kinds, as shares of all cases (with every kind present: 15 % in all). Whether case k is
+# one of them is drawn from its own stream ("seed:k:kind"), so the other cases are the same as
+# before these kinds existed. Checkpoint and concurrent cases run 2-4 commands each.
+NEW_KIND_WEIGHTS = {"solver": 0.06, "overlap": 0.035, "checkpoint": 0.025, "concurrent": 0.015, "userfile": 0.015}
+OLD_SHARE = 0.85
+MULTI_STEP = {"checkpoint", "concurrent", "userfile"}
 
 
 def pick_source(rng, sources):
     kinds = [k for k in KIND_WEIGHTS if any(s[0] == k for s in sources)]
     kind = rng.choices(kinds, weights=[KIND_WEIGHTS[k] for k in kinds])[0]
     return rng.choice([s for s in sources if s[0] == kind])
+
+
+def choose_source(index, seed, rng, sources):
+    new_kinds = [k for k in NEW_KIND_WEIGHTS if any(s[0] == k for s in sources)]
+    old_present = any(s[0] in KIND_WEIGHTS for s in sources)
+    if new_kinds:
+        wn = sum(NEW_KIND_WEIGHTS[k] for k in new_kinds)
+        rk = random.Random(f"{seed}:{index}:kind")
+        if rk.random() < wn / (wn + (OLD_SHARE if old_present else 0.0)):
+            kind = rk.choices(new_kinds, weights=[NEW_KIND_WEIGHTS[k] for k in new_kinds])[0]
+            return rk.choice([s for s in sources if s[0] == kind])
+    return pick_source(rng, sources)
 
 
 def read_text(path):
@@ -909,7 +674,7 @@ def make_case(index, seed, sources, case_dir, ballista, baseline=None):
     """Write the case's input files to case_dir; returns a dict with cmd, source, mutation.
     baseline: a source run without any mutation (--baseline: the reduced sizes must run ok)."""
     rng = random.Random(f"{seed}:{index}")
-    kind, stem, path = baseline or pick_source(rng, sources)
+    kind, stem, path = baseline or choose_source(index, seed, rng, sources)
     mut = baseline is None
     os.makedirs(case_dir, exist_ok=True)
     out_dir = os.path.join(case_dir, "out")
@@ -1015,6 +780,32 @@ def make_case(index, seed, sources, case_dir, ballista, baseline=None):
             descs.append(f"{opt} {v[:40]}")
             if opt == "--noise":
                 cmd += ["--seed", "1"]
+    elif kind in ("solver", "overlap"):
+        if kind == "solver":
+            deck, descs = fuzz_solvers.solver_deck(rng, read_text(path), stem, mut)
+        else:
+            deck, descs, expect = fuzz_solvers.overlap_deck(rng, read_text(path), stem, mut)
+            if expect:
+                case["expect"] = expect
+        with open(os.path.join(case_dir, "deck.yaml"), "wb") as f:
+            f.write(deck)
+        # the reduced size and simulation.max_steps are in the deck
+        cmd = [ballista, "run", os.path.join(case_dir, "deck.yaml"), "-o", out_dir, "--no-plots", "-q",
+               "--threads", "1"]
+    elif kind == "checkpoint":
+        plan = fuzz_checkpoints.make(rng, stem, path, case_dir, ballista, mut, os.path.join(REPO, "examples"))
+        case["plan"] = plan
+        descs, cmd = list(plan["mutation"]), plan["first"]
+    elif kind == "concurrent":
+        plan, descs = fuzz_folders.make_concurrent(rng, stem, path, case_dir, ballista, mut,
+                                                   os.path.join(REPO, "examples"))
+        case["plan"] = plan
+        cmd = plan["second"]
+    elif kind == "userfile":
+        plan, descs = fuzz_folders.make_userfile(rng, stem, path, case_dir, ballista, mut,
+                                                 os.path.join(REPO, "examples"))
+        case["plan"] = plan
+        cmd = plan["cmds"][-1][1]
     elif kind == "models":
         argv, descs = models_case(rng, stem) if mut else (models_case(None, stem), [])
         cmd = [ballista, "models"] + argv
@@ -1154,8 +945,7 @@ def _dir_size(path):
     return total
 
 
-def run_case(case, case_dir, a):
-    cmd = case["cmd"]
+def _limits(a):
     mem = a.mem_limit_mb * 1024 * 1024
 
     def limits():
@@ -1164,42 +954,73 @@ def run_case(case, case_dir, a):
         resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
         fs = a.max_output_mb * 1024 * 1024
         resource.setrlimit(resource.RLIMIT_FSIZE, (fs, fs))
+    return limits
 
+
+def start_cmd(cmd, cwd, a, so_path, se_path):
+    """Start cmd in its own process group (session) under the per-case limits; returns a handle for
+    finish_cmd. handle["paused"] holds seconds not counted against --time-limit (SIGSTOP)."""
     env = dict(os.environ, OMP_WAIT_POLICY="passive", OMP_NUM_THREADS="1")
-    so_path, se_path = os.path.join(case_dir, "stdout.txt"), os.path.join(case_dir, "stderr.txt")
-    t0 = time.monotonic()
+    so, se = open(so_path, "wb"), open(se_path, "wb")
+    p = subprocess.Popen(cmd, stdout=so, stderr=se, stdin=subprocess.DEVNULL, cwd=cwd, env=env,
+                         start_new_session=True, preexec_fn=_limits(a))
+    return {"p": p, "t0": time.monotonic(), "so": so, "se": se, "so_path": so_path, "se_path": se_path,
+            "paused": 0.0}
+
+
+def kill_group(h):
+    try:
+        os.killpg(h["p"].pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+    try:
+        os.killpg(h["p"].pid, signal.SIGCONT)  # a stopped group dies only when continued
+    except ProcessLookupError:
+        pass
+
+
+def finish_cmd(h, a, watch_dir):
+    """Wait for a started command under the time limit and the output-size limit of watch_dir (then
+    its process group is killed). Returns the raw outcome: rc, status (hang, runaway_output or
+    None), detail, stdout, stderr, stderr_len, wall."""
+    p, t0 = h["p"], h["t0"]
     status, detail = None, ""
-    with open(so_path, "wb") as so, open(se_path, "wb") as se:
-        p = subprocess.Popen(cmd, stdout=so, stderr=se, stdin=subprocess.DEVNULL, cwd=case_dir, env=env,
-                             start_new_session=True, preexec_fn=limits)
-        next_check = t0 + 1.0
-        while True:
-            try:
-                p.wait(timeout=0.05 if time.monotonic() - t0 < 1 else 0.25)
-                break
-            except subprocess.TimeoutExpired:
-                pass
-            now = time.monotonic()
-            if now - t0 > a.time_limit:
-                status, detail = "hang", f"no exit after {a.time_limit:g} s"
-            elif now >= next_check:
-                next_check = now + 1.0
-                if _dir_size(case_dir) > a.max_output_mb * 1024 * 1024:
-                    status, detail = "runaway_output", f"output over {a.max_output_mb} MB"
-            if status:
-                try:
-                    os.killpg(p.pid, signal.SIGKILL)
-                except ProcessLookupError:
-                    pass
-                p.wait()
-                break
-    wall = time.monotonic() - t0
-    rc = p.returncode
-    with open(so_path, "rb") as f:
+    next_check = t0 + 1.0
+    while True:
+        try:
+            p.wait(timeout=0.05 if time.monotonic() - t0 < 1 else 0.25)
+            break
+        except subprocess.TimeoutExpired:
+            pass
+        now = time.monotonic()
+        if now - t0 - h["paused"] > a.time_limit:
+            status, detail = "hang", f"no exit after {a.time_limit:g} s"
+        elif now >= next_check:
+            next_check = now + 1.0
+            if _dir_size(watch_dir) > a.max_output_mb * 1024 * 1024:
+                status, detail = "runaway_output", f"output over {a.max_output_mb} MB"
+        if status:
+            kill_group(h)
+            p.wait()
+            break
+    wall = time.monotonic() - t0 - h["paused"]
+    h["so"].close()
+    h["se"].close()
+    with open(h["so_path"], "rb") as f:
         stdout = f.read(2_000_000).decode("utf-8", "replace")
-    with open(se_path, "rb") as f:
+    with open(h["se_path"], "rb") as f:
         stderr = f.read(2_000_000).decode("utf-8", "replace")
-    stderr_len = len(stderr) if os.path.getsize(se_path) < 2_000_000 else os.path.getsize(se_path)
+    se_size = os.path.getsize(h["se_path"])
+    stderr_len = len(stderr) if se_size < 2_000_000 else se_size
+    return {"rc": p.returncode, "status": status, "detail": detail, "stdout": stdout, "stderr": stderr,
+            "stderr_len": stderr_len, "wall": wall}
+
+
+def classify(raw, a, out_dir, case=None, extra_json=()):
+    """The outcome class of a finished command (see the module docstring). case: its "mutation"
+    claims ("must be rejected") and "expect_rows" are checked on exit 0."""
+    rc, stdout, stderr = raw["rc"], raw["stdout"], raw["stderr"]
+    status, detail = raw["status"], raw["detail"]
     if status is None:
         if any(s in stderr for s in UNCAUGHT):
             status = "uncaught"
@@ -1217,13 +1038,12 @@ def run_case(case, case_dir, a):
             if -rc == signal.SIGXFSZ:
                 status, detail = "runaway_output", "file size limit (SIGXFSZ)"
         elif rc == 0:
-            bad = check_outputs(stdout, os.path.join(case_dir, "out"),
-                                [c for c in [os.path.join(case_dir, "models.json")]])
-            ignored = [m for m in case["mutation"] if "must be rejected" in m]
-            if "expect_rows" in case:
+            bad = check_outputs(stdout, out_dir, list(extra_json))
+            ignored = [m for m in (case or {}).get("mutation", []) if "must be rejected" in m]
+            if case and "expect_rows" in case:
                 sec, key, n = case["expect_rows"]
                 try:
-                    with open(os.path.join(case_dir, "out", "summary.json")) as f:
+                    with open(os.path.join(out_dir, "summary.json")) as f:
                         got = json.load(f)[sec][key]
                     if got != n:
                         ignored.append(f"table has {n} rows but summary {sec}.{key} = {got} (rows dropped)")
@@ -1242,11 +1062,37 @@ def run_case(case, case_dir, a):
                 status, detail = "silent_failure", f"exit {rc} without a message"
             else:
                 status = "rejected"
-        if status in ("ok", "rejected") and stderr_len > a.max_error_chars:
-            status, detail = "error_too_long", f"stderr {stderr_len} characters"
+        if status in ("ok", "rejected") and raw["stderr_len"] > a.max_error_chars:
+            status, detail = "error_too_long", f"stderr {raw['stderr_len']} characters"
     msg = (stderr.strip() or stdout.strip()).splitlines()
-    return {"class": status, "detail": detail[:1000], "exit": rc, "wall": round(wall, 3),
+    return {"class": status, "detail": detail[:1000], "exit": rc, "wall": round(raw["wall"], 3),
             "message": (msg[-1] if msg else "")[:300]}
+
+
+def run_cmd(cmd, cwd, a, tag, watch_dir, out_dir, case=None):
+    """Run one command to its end and classify it; stdout/stderr go to cwd/<tag>stdout.txt and
+    <tag>stderr.txt. Returns (result, raw)."""
+    h = start_cmd(cmd, cwd, a, os.path.join(watch_dir, f"{tag}stdout.txt"), os.path.join(watch_dir, f"{tag}stderr.txt"))
+    raw = finish_cmd(h, a, watch_dir)
+    return classify(raw, a, out_dir, case), raw
+
+
+RUNNER = types.SimpleNamespace(start_cmd=start_cmd, finish_cmd=finish_cmd, classify=classify, run_cmd=run_cmd)
+EXECUTE = {"checkpoint": fuzz_checkpoints.execute, "concurrent": fuzz_folders.execute_concurrent,
+           "userfile": fuzz_folders.execute_userfile}
+
+
+def run_case(case, case_dir, a):
+    if case["kind"] in EXECUTE:  # several commands: the module runs and classifies them
+        return EXECUTE[case["kind"]](case, case_dir, a, RUNNER)
+    h = start_cmd(case["cmd"], case_dir, a, os.path.join(case_dir, "stdout.txt"), os.path.join(case_dir, "stderr.txt"))
+    raw = finish_cmd(h, a, case_dir)
+    res = classify(raw, a, os.path.join(case_dir, "out"), case, [os.path.join(case_dir, "models.json")])
+    if case.get("expect"):  # overlap:<stem>: overlapping bodies must be refused, touching ones not
+        new = fuzz_solvers.expectation_class(case, res, raw["stderr"], raw["stdout"])
+        if new:
+            res["class"], res["detail"] = new[0], new[1][:1000]
+    return res
 
 
 def repro_script(case, case_dir):
@@ -1281,8 +1127,19 @@ def do_case(index, a, sources, cases_root):
             for n in names:
                 if n.endswith(".h5"):
                     os.remove(os.path.join(root, n))
+        kind = case["kind"]
+        if kind == "checkpoint":
+            fuzz_checkpoints.cleanup_kept(case_dir)
+            script = fuzz_checkpoints.repro(case, case_dir, os.path.dirname(os.path.abspath(__file__)))
+        elif kind == "concurrent":
+            script = fuzz_folders.repro_concurrent(case, case_dir, a.ballista)
+        elif kind == "userfile":
+            fuzz_folders.keep_userfiles(case, case_dir)
+            script = fuzz_folders.repro_userfile(case, case_dir, a.ballista)
+        else:
+            script = repro_script(case, case_dir)
         with open(os.path.join(case_dir, "repro.sh"), "w") as f:
-            f.write(repro_script(case, case_dir))
+            f.write(script)
         os.chmod(os.path.join(case_dir, "repro.sh"), 0o755)
         with open(os.path.join(case_dir, "case.json"), "w") as f:
             json.dump(case, f, indent=1)
@@ -1342,6 +1199,8 @@ def main():
     ap.add_argument("--max-error-chars", type=int, default=4000,
                     help="longest acceptable stderr in characters (an echoed bad value cut to ~2000 fits)")
     ap.add_argument("--source", action="append", help="only sources whose name contains this (repeatable)")
+    ap.add_argument("--kinds", help="only these source kinds, comma-separated: " + ", ".join(
+        list(KIND_WEIGHTS) + list(NEW_KIND_WEIGHTS)) + "; 'old' for the first five, 'new' for issue 35's")
     ap.add_argument("--baseline", action="store_true",
                     help="also run every source unmutated first; each must be ok (else class baseline_failed)")
     ap.add_argument("--keep-all", action="store_true", help="keep every case's folder, not only failures")
@@ -1352,6 +1211,19 @@ def main():
     if not os.access(a.ballista, os.X_OK):
         sys.exit(f"fuzz_decks: no executable {a.ballista}")
     sources = discover_sources()
+    if a.kinds:
+        want = set()
+        for k in a.kinds.split(","):
+            k = k.strip()
+            if k == "old":
+                want |= set(KIND_WEIGHTS)
+            elif k == "new":
+                want |= set(NEW_KIND_WEIGHTS)
+            elif k in KIND_WEIGHTS or k in NEW_KIND_WEIGHTS:
+                want.add(k)
+            else:
+                sys.exit(f"fuzz_decks: unknown kind {k!r} in --kinds")
+        sources = [s for s in sources if s[0] in want]
     if a.source:
         sources = [s for s in sources if any(x in f"{s[0]}:{s[1]}" for x in a.source)]
         if not sources:
