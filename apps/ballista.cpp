@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -16,6 +18,7 @@
 #include "driver/drive_run.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/deck_reader.hpp"
+#include "io/run_folder.hpp"
 #include "io/material_presets.hpp"
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
@@ -111,6 +114,15 @@ void print_info() {
   }
 }
 
+/// An error on standard error in one write, so that the lines of several ranks do not interleave
+/// ("error: error: ..."); a rank other than 0 names itself.
+void report_error(const char* kind, const std::string& what, const ballista::Communicator& world) {
+  const std::string line = (world.rank() == 0 ? std::string() : "rank " + std::to_string(world.rank()) + ": ") + kind +
+                           ballista::shorten(what, 2500) + "\n";
+  std::fwrite(line.data(), 1, line.size(), stderr);
+  std::fflush(stderr);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -159,7 +171,12 @@ int main(int argc, char** argv) {
                   "output.checkpoint_keep)")
       ->check(CLI::PositiveNumber);
   run->add_option("-o,--output", out_dir, "results folder (default out/<deck name>)");
-  run->add_option("--threads", threads, "OpenMP threads (default: the deck's, else all cores; at most the cores)");
+  run->add_option("--threads", threads, "OpenMP threads (default: the deck's, else all cores; at most the cores)")
+      ->check(CLI::Range(1, std::numeric_limits<int>::max()));  // more than the cores is clamped
+  bool overwrite = false;
+  run->add_flag("--overwrite", overwrite,
+                "write into a results folder that is not empty and holds no Ballista run (Ballista then replaces "
+                "only the files it writes itself)");
   run->add_option("--set", overrides, "override a deck value: key.path=value (repeatable)");
   run->add_flag("-q,--quiet", quiet, "no progress output");
   bool no_plots = false;
@@ -232,7 +249,21 @@ int main(int argc, char** argv) {
         throw ballista::Error("run: --restart continues in its own results folder; do not give -o");
       std::string restart_from;
       ballista::Scenario sc;
+      // Rank 0 holds the results folder for the whole command: the run, its figures and a re-run
+      // (io/run_folder.hpp); the other ranks learn whether it could.
+      std::optional<ballista::RunFolder> folder;
+      auto take_folder = [&](const std::string& dir, ballista::RunFolder::Mode mode) {
+        std::string refused;
+        if (world.rank() == 0) try {
+            folder.emplace(dir, mode, overwrite);
+          } catch (const std::exception& e) {
+            refused = e.what();
+          }
+        if (world.distributed()) refused = world.broadcast(refused, 0);
+        if (!refused.empty()) throw ballista::CollectiveError(refused);
+      };
       if (!restart_dir.empty()) {
+        take_folder(restart_dir, ballista::RunFolder::Mode::Continue);
         // The deck is the one the checkpoint was written with (its resolved text); --set still
         // applies, e.g. a later simulation.end_time.
         const auto [path, deck_text] = ballista::newest_checkpoint(restart_dir);
@@ -242,9 +273,11 @@ int main(int argc, char** argv) {
         std::cerr << "restarting from " << path << "\n";
       } else {
         sc = ballista::read_deck(deck, overrides);
+        if (out_dir.empty()) out_dir = "out/" + std::filesystem::path(deck).stem().string();
+        take_folder(out_dir, ballista::RunFolder::Mode::NewRun);
       }
-      if (out_dir.empty()) out_dir = "out/" + std::filesystem::path(deck).stem().string();
       ballista::RunOptions opt;
+      opt.folder_held = true;
       opt.restart_from = restart_from;
       opt.checkpoint_minutes = checkpoint_minutes;
       opt.out_dir = out_dir;
@@ -266,6 +299,7 @@ int main(int argc, char** argv) {
                   << first_particle << "\n";
         overrides.push_back("output.track.ids=[" + ids + "]");
         sc = ballista::read_deck(deck, overrides);
+        if (folder) folder->clear();
         r = ballista::run_simulation(sc, opt);
         if (r.ok || r.failed_particle != first_particle || r.failed_step != first_step)
           std::cerr << "warning: the re-run did not fail the same way (particle " << r.failed_particle << " at step "
@@ -299,10 +333,14 @@ int main(int argc, char** argv) {
       return r.ok ? 0 : r.interrupted ? 4 : 3;
     }
   } catch (const ballista::DeckError& e) {
-    std::cerr << "deck error: " << ballista::shorten(e.what(), 2500) << "\n";
+    // Every rank reads the same deck: rank 0 reports it.
+    if (world.rank() == 0) report_error("deck error: ", e.what(), world);
     return 2;
+  } catch (const ballista::CollectiveError& e) {
+    if (world.rank() == 0) report_error("error: ", e.what(), world);
+    return 1;
   } catch (const std::exception& e) {
-    std::cerr << "error: " << ballista::shorten(e.what(), 2500) << "\n";
+    report_error("error: ", e.what(), world);
     return 1;
   }
   return 0;

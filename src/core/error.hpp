@@ -45,6 +45,12 @@ class DeckError : public Error {
   std::string key_path_;
 };
 
+/// An error every MPI rank raised together, with the same message: rank 0 alone reports it.
+class CollectiveError : public Error {
+ public:
+  using Error::Error;
+};
+
 /// A run that cannot continue (NaN, inverted particle, energy blow-up, particle left the grid).
 class PhysicsError : public Error {
  public:

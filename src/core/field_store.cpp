@@ -21,6 +21,12 @@ void FieldStore::check_ncomp(const std::string& name, int ncomp) const {
                 " components, a view of " + std::to_string(ncomp) + " was requested");
 }
 
+void FieldStore::set_output(const std::string& name, bool output) {
+  const int k = find(name);
+  if (k < 0) throw Error("no field named '" + name + "'");
+  info_[static_cast<std::size_t>(k)].output = output;
+}
+
 const FieldInfo& FieldStore::info(const std::string& name) const {
   const int k = find(name);
   if (k < 0) throw Error("no field named '" + name + "'");

@@ -62,6 +62,9 @@ class FieldStore {
     return b;
   }
   const FieldInfo& info(const std::string& name) const;
+  /// Whether a declared field is written to the output (a solver clears it for a common field its
+  /// points never update, which would only carry placeholders).
+  void set_output(const std::string& name, bool output);
 
   /// Reorders every field: new point i is old point order[i].
   void permute(const std::vector<Index>& order);

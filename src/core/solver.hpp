@@ -26,6 +26,9 @@ struct EnergyTotals {
   double removed_mass = 0.0;   ///< kg carried off by deleted particles
   double removed_energy = 0.0; ///< J (kinetic + internal) carried off by deleted particles
   Vec3 removed_momentum;       ///< kg m/s carried off by deleted particles
+  /// Per body (deck order): points deleted, and the mass (kg) and kinetic + internal energy (J)
+  /// they carried off; and each body's seeded mass (kg), to tell how much of it is gone.
+  std::vector<double> removed_points_by_body, removed_mass_by_body, removed_energy_by_body, seeded_mass_by_body;
   double inserted_energy = 0.0;  ///< J (kinetic + internal) brought in by bodies activated after t = 0
   /// J, chemical energy released so far by burning explosive (deleted points included). Not a
   /// term of total(): the products' energy enters the stress-power integral `internal` as the work

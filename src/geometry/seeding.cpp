@@ -153,9 +153,19 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
   clipped.count *= static_cast<Index>(std::pow(static_cast<double>(stride), nd));
   clipped.sampled = stride > 1;
   if (clipped.count > 0) throw_clipped_body(body, grid, nd, clipped, static_cast<Index>(pos.size()));
-  if (pos.empty())
+  if (pos.empty()) {
+    // Inside the box but between lattice sites: a body thinner than the spacing along some axis.
+    static const char axes[3] = {'x', 'y', 'z'};
+    for (int a = 0; a < nd; ++a)
+      if (hi[a] - lo[a] < dx)
+        throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path,
+                        fmt::format("body '{}' is {:g} m thick along {}, less than its lattice spacing {:g} m, so "
+                                    "no particle lies inside it: refine the lattice (grid.cell_size, the body's "
+                                    "particles_per_cell or point_spacing)",
+                                    body.name, hi[a] - lo[a], axes[a], dx));
     throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path,
                     "body '" + body.name + "' has no particles inside the grid: check its shape, the grid box and cell_size");
+  }
 
   const Index n0 = points.size();
   const Index n = static_cast<Index>(pos.size());

@@ -1,6 +1,8 @@
 #include "geometry/shape.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/error.hpp"
 
@@ -54,6 +56,29 @@ bool shape_contains(const ShapeSpec& s, const Vec3& x, int dim) {
     const bool in_length = (dim == 2 && s.axis == 2) || (axial >= -tl && axial <= s.length + tl);
     const double rin = s.type == "tube" ? s.inner_radius : -1.0;
     return in_length && radial <= s.radius + tr && radial >= rin - tr;
+  }
+  throw Error("unknown shape type '" + s.type + "'");
+}
+
+double shape_depth(const ShapeSpec& s, const Vec3& x, int dim) {
+  const int nd = dim == 3 ? 3 : 2;
+  if (s.type == "box") {
+    double depth = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < nd; ++k) depth = std::min({depth, x[k] - s.lower[k], s.upper[k] - x[k]});
+    return depth;
+  }
+  if (s.type == "sphere") {
+    double r2 = 0.0;
+    for (int k = 0; k < nd; ++k) r2 += (x[k] - s.center[k]) * (x[k] - s.center[k]);
+    return s.radius - std::sqrt(r2);
+  }
+  if (s.type == "cylinder" || s.type == "tube") {
+    double axial, radial;
+    axial_radial(s, x, dim, axial, radial);
+    double depth = s.radius - radial;
+    if (!(dim == 2 && s.axis == 2)) depth = std::min({depth, axial, s.length - axial});
+    if (s.type == "tube") depth = std::min(depth, radial - s.inner_radius);
+    return depth;
   }
   throw Error("unknown shape type '" + s.type + "'");
 }

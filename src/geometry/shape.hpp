@@ -10,6 +10,11 @@ namespace ballista {
 /// rectangle 0 <= r <= radius, center.y <= y <= center.y + length in the (r, z) half plane.
 bool shape_contains(const ShapeSpec& s, const Vec3& x, int dim);
 
+/// How deep x lies inside the shape: the distance to its nearest face if inside (> 0), a
+/// negative number if outside (its size is not a distance then). Same 2D conventions as
+/// shape_contains. For overlap checks that must not count a point lying on a shared face.
+double shape_depth(const ShapeSpec& s, const Vec3& x, int dim);
+
 /// Axis-aligned bounding box of the shape (2D: z components are 0).
 void shape_bounds(const ShapeSpec& s, int dim, Vec3& lower, Vec3& upper);
 

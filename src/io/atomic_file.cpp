@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "core/error.hpp"
+#include "io/run_folder.hpp"
 
 namespace ballista {
 
@@ -18,6 +19,7 @@ std::string errno_text() { return std::strerror(errno); }
 std::string tmp_path_for(const std::string& path) { return path + ".tmp"; }
 
 void write_file_atomic(const std::string& path, const std::string& contents) {
+  note_output_file(path);
   const std::string tmp = tmp_path_for(path);
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw Error("cannot create '" + tmp + "': " + errno_text());
@@ -50,7 +52,9 @@ void commit_atomic(const std::string& tmp, const std::string& final_path) {
 }
 
 AtomicPath::AtomicPath(std::string final_path)
-    : final_(std::move(final_path)), tmp_(tmp_path_for(final_)) {}
+    : final_(std::move(final_path)), tmp_(tmp_path_for(final_)) {
+  note_output_file(final_);
+}
 
 AtomicPath::~AtomicPath() {
   if (!committed_) ::unlink(tmp_.c_str());

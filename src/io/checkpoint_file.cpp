@@ -10,6 +10,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "core/checksum.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/hdf5_handle.hpp"
@@ -20,14 +21,23 @@ namespace {
 
 constexpr const char* kFormat = "ballista-checkpoint-1";
 
+/// Every dataset carries the checksum of its values (core/checksum.hpp) as attribute "checksum":
+/// a damaged checkpoint is found when it is read, not continued from with other physics.
+constexpr const char* kChecksum = "checksum";
+
 void write_array(hid_t group, const std::string& name, hid_t mem_type, hid_t file_type, std::size_t n,
-                 const void* data) {
+                 std::size_t element_bytes, const void* data) {
   const hsize_t dims[1] = {static_cast<hsize_t>(n)};
   H5Id space(H5Screate_simple(1, dims, nullptr), H5Sclose, "create dataspace for '" + name + "'");
   H5Id dset(H5Dcreate2(group, name.c_str(), file_type, space, H5P_DEFAULT, untimed_dataset(), H5P_DEFAULT), H5Dclose,
             "create checkpoint dataset '" + name + "'");
   if (n > 0 && H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
     throw Error("HDF5: cannot write checkpoint dataset '" + name + "'");
+  const std::uint64_t sum = checksum64(data, n * element_bytes);
+  H5Id aspace(H5Screate(H5S_SCALAR), H5Sclose, "create attribute dataspace");
+  H5Id attr(H5Acreate2(dset, kChecksum, H5T_STD_U64LE, aspace, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+            "create the checksum of '" + name + "'");
+  if (H5Awrite(attr, H5T_NATIVE_UINT64, &sum) < 0) throw Error("HDF5: cannot write the checksum of '" + name + "'");
 }
 
 /// Names of the members of `group`, in the file's order.
@@ -45,15 +55,31 @@ std::vector<std::string> member_names(hid_t group) {
   return names;
 }
 
+/// The values of a dataset, checked against its stored checksum (a checkpoint written before
+/// checksums existed has none: `unverified` counts it).
 template <class T>
-std::vector<T> read_array(hid_t group, const std::string& name, hid_t mem_type) {
+std::vector<T> read_array(hid_t group, const std::string& name, hid_t mem_type, int* unverified = nullptr) {
   H5Id dset(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose, "open checkpoint dataset '" + name + "'");
   H5Id space(H5Dget_space(dset), H5Sclose, "get the dataspace of '" + name + "'");
   const hssize_t n = H5Sget_simple_extent_npoints(space);
   if (n < 0) throw Error("HDF5: bad extent of checkpoint dataset '" + name + "'");
+  // A damaged size field could ask for any amount: no dataset is larger than the file.
+  H5Id file(H5Iget_file_id(dset), H5Fclose, "find the file of '" + name + "'");
+  hsize_t file_bytes = 0;
+  if (H5Fget_filesize(file, &file_bytes) < 0 || static_cast<hsize_t>(n) * sizeof(T) > file_bytes)
+    throw Error("checkpoint dataset '" + name + "' claims " + std::to_string(n) + " values, more than the file holds");
   std::vector<T> v(static_cast<std::size_t>(n));
   if (n > 0 && H5Dread(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
     throw Error("HDF5: cannot read checkpoint dataset '" + name + "'");
+  if (H5Aexists(dset, kChecksum) <= 0) {
+    if (unverified) ++*unverified;
+    return v;
+  }
+  std::uint64_t stored = 0;
+  H5Id attr(H5Aopen(dset, kChecksum, H5P_DEFAULT), H5Aclose, "open the checksum of '" + name + "'");
+  if (H5Aread(attr, H5T_NATIVE_UINT64, &stored) < 0) throw Error("HDF5: cannot read the checksum of '" + name + "'");
+  if (checksum64(v.data(), v.size() * sizeof(T)) != stored)
+    throw Error("checkpoint dataset '" + name + "' is damaged (its checksum does not match its values)");
   return v;
 }
 
@@ -97,17 +123,17 @@ void write_checkpoint_file(const std::string& path, const StateArchive& archive)
     {
       H5Id g(H5Gcreate2(h5, "real", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create group 'real'");
       for (const auto& [k, v] : archive.all_reals())
-        write_array(g, k, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, v.size(), v.data());
+        write_array(g, k, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, v.size(), sizeof(double), v.data());
     }
     {
       H5Id g(H5Gcreate2(h5, "int", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create group 'int'");
       for (const auto& [k, v] : archive.all_ints())
-        write_array(g, k, H5T_NATIVE_INT64, H5T_STD_I64LE, v.size(), v.data());
+        write_array(g, k, H5T_NATIVE_INT64, H5T_STD_I64LE, v.size(), sizeof(std::int64_t), v.data());
     }
     {
       H5Id g(H5Gcreate2(h5, "text", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create group 'text'");
       for (const auto& [k, v] : archive.all_texts())
-        write_array(g, k, H5T_NATIVE_UCHAR, H5T_STD_U8LE, v.size(), v.data());
+        write_array(g, k, H5T_NATIVE_UCHAR, H5T_STD_U8LE, v.size(), 1, v.data());
     }
     h5.close("write '" + out.tmp() + "'");
   }
@@ -127,21 +153,33 @@ StateArchive read_checkpoint_file(const std::string& path) {
         throw Error("'" + path + "' is not a " + std::string(kFormat) + " file (format '" + fmt + "')");
     }
     StateArchive a;
+    int unverified = 0;
     {
       H5Id g(H5Gopen2(h5, "real", H5P_DEFAULT), H5Gclose, "open group 'real'");
-      for (const auto& k : member_names(g)) a.put(k, read_array<double>(g, k, H5T_NATIVE_DOUBLE));
+      for (const auto& k : member_names(g)) a.put(k, read_array<double>(g, k, H5T_NATIVE_DOUBLE, &unverified));
     }
     {
       H5Id g(H5Gopen2(h5, "int", H5P_DEFAULT), H5Gclose, "open group 'int'");
-      for (const auto& k : member_names(g)) a.put(k, read_array<std::int64_t>(g, k, H5T_NATIVE_INT64));
+      for (const auto& k : member_names(g))
+        a.put(k, read_array<std::int64_t>(g, k, H5T_NATIVE_INT64, &unverified));
     }
     {
       H5Id g(H5Gopen2(h5, "text", H5P_DEFAULT), H5Gclose, "open group 'text'");
       for (const auto& k : member_names(g)) {
-        const auto bytes = read_array<unsigned char>(g, k, H5T_NATIVE_UCHAR);
+        const auto bytes = read_array<unsigned char>(g, k, H5T_NATIVE_UCHAR, &unverified);
         a.put_text(k, std::string(bytes.begin(), bytes.end()));
       }
     }
+    if (unverified > 0)
+      spdlog::warn("{}: {} datasets carry no checksum (written by an older Ballista): their integrity is not checked",
+                   path, unverified);
+    // A checkpoint under another checkpoint's name (files swapped or copied) is not this step.
+    const std::string name = std::filesystem::path(path).filename().string();
+    static const std::regex kStep("checkpoint_([0-9]{12})\\.h5");
+    std::smatch m;
+    if (a.has("run.step") && std::regex_match(name, m, kStep) && std::stol(m[1].str()) != a.integer("run.step"))
+      throw Error("it holds step " + std::to_string(a.integer("run.step")) + " under the name of step " +
+                  std::to_string(std::stol(m[1].str())) + " (files renamed or swapped?)");
     return a;
   } catch (const Error& e) {
     throw Error("cannot read checkpoint '" + path + "': " + e.what());
@@ -168,7 +206,11 @@ std::pair<std::string, std::string> newest_checkpoint(const std::string& out_dir
   std::string why;
   for (auto it = all.rbegin(); it != all.rend(); ++it) {
     try {
-      return {*it, read_checkpoint_text(*it, "run.deck")};
+      // The whole file is read and checked, not only its deck: a damaged newer checkpoint gives
+      // way to the one before it here, before the run is set up from it.
+      const StateArchive a = read_checkpoint_file(*it);
+      if (!a.has("run.deck")) throw Error("cannot read checkpoint '" + *it + "': it holds no deck (run.deck)");
+      return {*it, a.text("run.deck")};
     } catch (const Error& e) {
       spdlog::warn("skipping {}: {}", *it, e.what());
       why = e.what();

@@ -53,6 +53,7 @@ const std::vector<std::string> kSections{"simulation", "grid",   "materials", "s
 const std::vector<std::string> kFaces{"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
 const std::vector<std::string> kFaceBCs{"free", "fixed", "symmetry", "wall"};
 constexpr long kLongMax = LONG_MAX;
+constexpr double kSpeedOfLight = 299792458.0;  ///< m/s
 
 FaceBC face_bc_from(const std::string& s) {
   if (s == "fixed") return FaceBC::Fixed;
@@ -182,7 +183,14 @@ class Reader {
       g.fail("cell_size", "the grid would have " + format_number(cells) +
                               " cells; check that lengths are in metres");
     DeckNode b = g.map("boundary", false);
-    for (int f = 0; f < 6; ++f) gr.faces[f] = face_bc_from(b.choice(kFaces[f], "free", kFaceBCs));
+    const SolverFactory& solver = *find_solver(sc_.simulation.solver);
+    for (int f = 0; f < 6; ++f) {
+      gr.faces[f] = face_bc_from(b.choice(kFaces[f], "free", kFaceBCs));
+      const auto& allowed = solver.face_conditions;
+      if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), gr.faces[f]) == allowed.end())
+        b.fail(kFaces[f], "solver '" + solver.name + "' imposes no " + face_bc_name(gr.faces[f]) + " face (" +
+                              solver.face_conditions_note + ")");
+    }
     if (sc_.simulation.dimension == Dimension::Axisymmetric && gr.lower[0] < 0.0)
       g.fail("lower", "expected x (the radius) >= 0 in an axisymmetric deck, got " + format_number(gr.lower[0]));
     b.finish();
@@ -295,7 +303,11 @@ class Reader {
           body.cutouts.push_back(shape(c));
         }
         body.velocity = b.vector("velocity", Vec3{}, vmin());
-        body.radial_speed = b.number("radial_velocity", 0.0, NumberRange::any("m/s"));
+        // Beyond the speed of light a velocity is a typo or an overflow, never an impact.
+        if (norm(body.velocity) >= kSpeedOfLight)
+          b.fail("velocity", "expected a speed below the speed of light (2.998e8 m/s), got " +
+                                 format_number(norm(body.velocity)) + " m/s");
+        body.radial_speed = b.number("radial_velocity", 0.0, NumberRange::between(-kSpeedOfLight, kSpeedOfLight, true, true, "m/s"));
         if (body.radial_speed != 0.0 && body.shape.type != "cylinder" && body.shape.type != "tube")
           b.fail("radial_velocity", "a radial velocity is away from the axis of a cylinder or tube; body '" +
                                         body.name + "' is a " + body.shape.type);
@@ -425,16 +437,30 @@ class Reader {
       det.mark = p.mark();
       det.position = p.vector("position", vmin());
       det.time = p.number("time", 0.0, NumberRange::non_negative("s"));
+      // Lighting times are sums of this time and path lengths over the detonation speed: beyond
+      // a second (a million times a munition's run) they mean "never", which is what an
+      // explosive that no body uses says.
+      if (det.time > 1.0)
+        p.fail("time", "expected a detonation time of at most 1 s, got " + format_number(det.time) +
+                           " s; a charge that must not go off during the run can be lit at any time after "
+                           "simulation.end_time");
       p.finish();
       ds.points.push_back(det);
     }
     d.finish();
-    const bool explosive = first_material_of_model(sc_, "explosive") != nullptr;
-    if (explosive && ds.points.empty())
-      d.fail("points", "a material is an explosive: give at least one detonator, e.g. "
+    // What lights is a body of an explosive material; an explosive material no body uses is inert.
+    std::string charge;
+    for (const BodySpec& b : sc_.bodies)
+      for (const MaterialSpec& m : sc_.materials)
+        if (charge.empty() && m.name == b.material && m.model == "explosive") charge = b.name;
+    const MaterialSpec* unused = first_material_of_model(sc_, "explosive");
+    if (!charge.empty() && ds.points.empty())
+      d.fail("points", "body '" + charge + "' is an explosive: give at least one detonator, e.g. "
                        "detonation: {points: [{position: [0, 0, 0], time: 0}]}");
-    if (!explosive && !ds.points.empty())
-      d.fail("points", "detonators are given but no material has model: explosive");
+    if (charge.empty() && !ds.points.empty())
+      d.fail("points", unused ? "detonators are given but no body is made of an explosive material (material '" +
+                                    unused->name + "' is one, and no body uses it)"
+                              : "detonators are given but no material has model: explosive");
   }
 
   /// `contact`: velocity fields and Coulomb friction between bodies on the MPM grid. Bodies are
@@ -796,7 +822,8 @@ class Reader {
       const double planned = std::ceil(sc_.simulation.end_time / out.interval) + 2.0 + sc_.stages.size();
       if (planned > static_cast<double>(out.max_outputs))
         o.fail("interval", "an output every " + format_number(out.interval) + " s over end_time " +
-                               format_number(sc_.simulation.end_time) + " s writes about " + format_number(planned) +
+                               format_number(sc_.simulation.end_time) + " s writes " +
+                               (std::isfinite(planned) ? "about " + format_number(planned) : std::string("more than 1e308")) +
                                " particle files, more than output.max_outputs = " +
                                std::to_string(out.max_outputs) +
                                "; lengthen the interval, or raise output.max_outputs to insist");

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "io/run_folder.hpp"
 
 namespace ballista {
 
@@ -48,6 +49,7 @@ std::string HistoryWriter::header() const {
 HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> columns)
     : path_(std::move(path)), columns_(std::move(columns)) {
   if (columns_.empty()) throw Error("history file '" + path_ + "' needs at least one column");
+  note_output_file(path_);
   file_ = std::fopen(path_.c_str(), "w");
   if (!file_) throw Error("cannot create '" + path_ + "': " + std::strerror(errno));
   const std::string h = header();

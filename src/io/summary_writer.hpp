@@ -5,6 +5,7 @@
 // \uXXXX, invalid UTF-8 bytes replaced by U+FFFD) so the file always parses.
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -26,7 +27,6 @@ class JsonValue {
   /// Array of the elements of v (numbers, strings, bools or JsonValues).
   template <class T>
   JsonValue(const std::vector<T>& v) : kind_(Kind::Array) {
-    items_.reserve(v.size());
     for (const T& e : v) items_.emplace_back(e);
   }
   static JsonValue array() { JsonValue j; j.kind_ = Kind::Array; return j; }
@@ -68,7 +68,10 @@ class JsonValue {
   double number_ = 0.0;
   std::string string_;
   std::vector<std::string> keys_;  // object keys, parallel to items_
-  std::vector<JsonValue> items_;   // array elements or object values
+  // Array elements or object values. A deque, not a vector: adding a member keeps references to
+  // the others valid (`JsonValue& st = summary["statistics"]; summary["deleted"] = ...;` then
+  // st["x"] = 1 must not write into freed storage).
+  std::deque<JsonValue> items_;
 };
 
 /// Every number in `v` that is NaN or infinite (written as null), as "key.path = value", key

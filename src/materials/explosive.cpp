@@ -125,7 +125,7 @@ struct Explosive {
     return p;
   }
 
-  // Verification hooks (`ballista verify` A1/A2/A6): an unlit charge of TNT's magnitude.
+  // Verification hooks (`ballista verify` A1, A2, A6): an unlit charge of TNT's magnitude.
   static ParamValues example_params() {
     ParamValues v{{"density", 1630.0}, {"detonation_speed", 6930.0}, {"cj_pressure", 21.0e9},
                   {"jwl.a", 371.2e9},  {"jwl.b", 3.231e9},          {"jwl.r1", 4.15},

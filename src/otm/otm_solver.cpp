@@ -28,14 +28,25 @@ constexpr const char* kNodeGroupField = "node_group";
   throw_solver_param_error(sc, "otm", key, message);  // at the key's line
 }
 
+/// Storage per point of its supports, this build's and the last one's (node index, N, grad N:
+/// 44 B per node): the nodes of the lattice within the support radius h sqrt(-ln(tol)/gamma), at
+/// least otm.min_support, for the memory estimate (the radius grows with the points' stretch).
+double support_bytes_per_point(const Scenario& sc) {
+  const ParamValues& P = sc.solver_params;
+  const double rho = std::sqrt(-std::log(P.at("support_tolerance")) / P.at("gamma"));  // in node spacings
+  const bool three_d = sc.simulation.dimension == Dimension::ThreeD;
+  const double nodes = three_d ? 4.0 / 3.0 * std::numbers::pi * rho * rho * rho : std::numbers::pi * rho * rho;
+  return 2.0 * 44.0 * std::max({nodes, P.at("min_support"), three_d ? 5.0 : 4.0});
+}
+
 }  // namespace
 
 OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials, Communicator comm)
     : scenario_(sc),
       comm_(comm),
-      // Points on each body's lattice (grid.cell_size / particles_per_cell), as for MPM; the support
-      // lists cost ~ (number of nodes in reach) x 44 B per point (node index, N, grad N).
-      pts_(sc, std::move(materials), SeedLattice{sc.grid, 0, 60.0 * 44.0}, 0.0, "", comm),
+      // Points on each body's lattice (grid.cell_size / particles_per_cell), as for MPM, with their
+      // support lists.
+      pts_(sc, std::move(materials), SeedLattice{sc.grid, 0, support_bytes_per_point(sc)}, 0.0, "", comm),
       points_(pts_.store()) {
   const ParamValues& P = sc.solver_params;
   if (pts_.pending() > 0)
@@ -175,6 +186,15 @@ void OtmSolver::report_failed_solve() {
   // The point, its support nodes and the state of the solve (never a NaN weight handed on).
   const Index p = sup_.failed;
   const Index k0 = sup_.offset[p], k1 = sup_.offset[p + 1];
+  // On the undeformed lattice nothing has moved: the support parameters cannot work at all.
+  if (steps_ == 0)
+    section_error(scenario_, "gamma",
+                  fmt::format("on the undeformed lattice point {} has {} support nodes within the support radius "
+                              "h sqrt(-ln(support_tolerance) / gamma) = {:.4g} m = {:.3g} h (otm.gamma = {:g}, "
+                              "otm.support_tolerance = {:g}), and its shape functions need at least {}: lower gamma "
+                              "(the Taylor bar examples use 1.8) or raise support_tolerance",
+                              p, k1 - k0, otm::support_radius(sopt_), otm::support_radius(sopt_) / sopt_.h,
+                              sopt_.gamma, sopt_.tolerance, sopt_.min_support > 0 ? sopt_.min_support : dim_ + 2));
   std::string nodes;
   for (Index k = k0; k < k1 && k < k0 + 8; ++k) {
     const Vec3& x = nodes_.x[sup_.node[k]];

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <limits>
 
 #include "core/error.hpp"
@@ -16,6 +17,21 @@ double partial_volume_factor(double xi, double delta, double dx) {
   // A bond within round-off of the horizon counts as exactly at it (factor 1/2): the same for all.
   if (std::abs(xi - delta) <= 1e-9 * delta) return 0.5;
   return (delta + 0.5 * dx - xi) / dx;
+}
+
+double lattice_family_size(double m, int dim) {
+  if (!(m >= 1.0) || !std::isfinite(m)) return 0.0;
+  if (m > 100.0) return dim == 3 ? 4.0 / 3.0 * std::numbers::pi * m * m * m : std::numbers::pi * m * m;
+  const int M = static_cast<int>(std::floor(m));
+  const double reach2 = m * m * (1.0 + 2e-9);  // the tie rule of build_bond_family
+  double count = 0.0;
+  for (int k = dim == 3 ? -M : 0; k <= (dim == 3 ? M : 0); ++k)
+    for (int j = -M; j <= M; ++j)
+      for (int i = -M; i <= M; ++i) {
+        const double r2 = double(i) * i + double(j) * j + double(k) * k;
+        if (r2 > 0.0 && r2 <= reach2) count += 1.0;
+      }
+  return count;
 }
 
 LatticeMoments lattice_moments(double delta, double dx, bool partial, int dim) {

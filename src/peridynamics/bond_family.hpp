@@ -33,6 +33,12 @@ struct LatticeMoments {
 };
 LatticeMoments lattice_moments(double delta, double dx, bool partial, int dim);
 
+/// Bond ends of an interior point's family on the cubic (dim 3) or square (dim 2) lattice with
+/// horizon m spacings: the lattice offsets 0 < |xi| <= m, ties at the horizon included as
+/// build_bond_family includes them (m = 3: 122 in 3D, 28 in 2D). Beyond m = 100 the continuum
+/// count 4/3 pi m^3 (pi m^2 in 2D), within 1 % there, since counting would be slow.
+double lattice_family_size(double m, int dim);
+
 struct BondFamily {
   std::vector<Index> offset;         ///< row start of each point (size n + 1)
   std::vector<std::int32_t> other;   ///< the other end of each bond

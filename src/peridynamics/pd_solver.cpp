@@ -1,6 +1,7 @@
 #include "peridynamics/pd_solver.hpp"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <atomic>
 #include <chrono>
@@ -11,6 +12,7 @@
 #include "core/agreed_failure.hpp"
 #include "core/error.hpp"
 #include "geometry/seeding.hpp"
+#include "geometry/shape.hpp"
 #include "peridynamics/bond_pass.hpp"
 #include "peridynamics/fragments.hpp"
 #include "points/rcb_partition.hpp"
@@ -30,6 +32,80 @@ constexpr double kSolverBytesPerBond = pd::BondFamily::kBytesPerBond + sizeof(st
 /// at the key's line.
 [[noreturn]] void section_error(const Scenario& sc, const std::string& key, const std::string& message) {
   throw_solver_param_error(sc, "peridynamics", key, message);
+}
+
+/// Bond ends per point of a full family (the memory estimate; fewer near a surface).
+double full_family_size(const Scenario& sc) {
+  const ParamValues& P = sc.solver_params;
+  const double dx = sc.grid.cell_size;
+  const double delta = P.given("horizon") ? P.at("horizon") : (P.given("m") ? P.at("m") : 3.0) * dx;
+  return pd::lattice_family_size(delta / dx, sc.simulation.dimension == Dimension::ThreeD ? 3 : 2);
+}
+
+/// A bond takes only a solid's elastic moduli (probe_moduli): a model whose plasticity, EOS or
+/// failure criterion the bonds would drop is refused, not run as another material. Micro-plastic
+/// bonds and bond failure are the peridynamics section's (yield_stress, critical_stretch).
+void check_bond_materials(const Scenario& sc) {
+  for (const MaterialSpec& m : sc.materials) {
+    if (m.model == "explosive") continue;  // a peridynamic gas: its pressure is the model's
+    auto at = [&](const std::string& key) {
+      const auto it = m.param_marks.find(key);
+      return it != m.param_marks.end() ? it->second : m.mark;
+    };
+    auto refuse = [&](const DeckMark& mark, const std::string& key, const std::string& what) {
+      throw DeckError(mark.file, mark.line, mark.column, m.mark.key_path + "." + key,
+                      "material '" + m.name + "': " + what +
+                          "; peridynamic bonds take only the elastic moduli (bulk and shear) of a material, so the rest "
+                          "would be dropped: use model linear_elastic, with peridynamics.yield_stress for "
+                          "micro-plastic bonds and critical_stretch or fracture_energy for their failure");
+    };
+    if (m.model != "linear_elastic") refuse(at("model"), "model", "model '" + m.model + "' is not elastic");
+    const auto crit = m.params.choices.find("failure.criterion");
+    if (crit != m.params.choices.end() && crit->second != "none")
+      refuse(at("failure.criterion"), "failure.criterion", "failure.criterion '" + crit->second + "' is a point's");
+    const auto eos = m.params.choices.find("eos.type");
+    if (eos != m.params.choices.end() && eos->second != "linear")
+      refuse(at("eos.type"), "eos.type", "eos.type '" + eos->second + "' is not linear");
+  }
+}
+
+/// The deck's horizon, checked before anything is seeded (a family as large as the body would
+/// cost its memory first): at least the lattice spacing, and, when it spans more than ten
+/// spacings, at most twice every solid body's largest extent; beyond that every point's family
+/// holds the whole body and its bonds cannot localise damage (beyond half of it, a warning: a
+/// test body of a few points at m = 3 is legal; the explosive's gas horizon scales with its own
+/// lattice). The bonds' materials too
+/// (check_bond_materials).
+const Scenario& checked_for_bonds(const Scenario& sc) {
+  check_bond_materials(sc);
+  const ParamValues& P = sc.solver_params;
+  const bool m_given = P.given("m"), h_given = P.given("horizon");
+  if (m_given && h_given) section_error(sc, "horizon", "give the horizon or m (horizon = m x lattice spacing), not both");
+  const double dx = sc.grid.cell_size;
+  const double delta = h_given ? P.at("horizon") : (m_given ? P.at("m") : 3.0) * dx;
+  const std::string key = h_given ? "horizon" : "m";
+  if (!(delta >= dx))
+    section_error(sc, key,
+                  fmt::format("the horizon {:g} m must be at least the lattice spacing grid.cell_size = {:g} m", delta, dx));
+  const int nd = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
+  for (const BodySpec& b : sc.bodies) {
+    const MaterialSpec* m = nullptr;
+    for (const MaterialSpec& ms : sc.materials)
+      if (ms.name == b.material) m = &ms;
+    if (m && m->model == "explosive") continue;
+    Vec3 lo, hi;
+    shape_bounds(b.shape, nd, lo, hi);
+    double extent = 0.0;
+    for (int k = 0; k < nd; ++k) extent = std::max(extent, hi[k] - lo[k]);
+    const std::string why = fmt::format(
+        "the horizon {:g} m is {} the largest extent of body '{}' ({:g} m): each point's family holds most of the "
+        "body, and its bonds cannot localise damage; use a horizon of a few lattice spacings (peridynamics.m, "
+        "default 3) or a finer lattice",
+        delta, delta > 2.0 * extent ? "more than twice" : "more than half", b.name, extent);
+    if (delta > 2.0 * extent && delta > 10.0 * dx) section_error(sc, key, why);
+    if (2.0 * delta > extent) spdlog::warn("{}", why);
+  }
+  return sc;
 }
 
 }  // namespace
@@ -69,16 +145,13 @@ ProbedModuli probe_moduli(const Material& material) {
 }
 
 PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials, Communicator comm)
-    : scenario_(sc),
+    : scenario_(checked_for_bonds(sc)),
       comm_(comm),
-      // Every body on the lattice of spacing grid.cell_size (one point per cell); bonds cost
-      // ~(4/3 pi m^3) bonds of 17 B per point (m = 3: ~1.9 kB).
-      pts_(sc, std::move(materials),
-           SeedLattice{sc.grid, 1,
-                       4.0 / 3.0 * std::numbers::pi *
-                           std::pow(std::isnan(sc.solver_params.at("m")) ? 3.0 : sc.solver_params.at("m"), 3) *
-                           kSolverBytesPerBond},
-           0.0, "", comm),
+      // Every body on the lattice of spacing grid.cell_size (one point per cell); each point holds
+      // its family's bond ends (m = 3 in 3D: 122 of kSolverBytesPerBond).
+      pts_(sc, std::move(materials), SeedLattice{sc.grid, 1, full_family_size(sc) * kSolverBytesPerBond}, 0.0,
+           fmt::format("families of {:g} bond ends per point, set by peridynamics.m or horizon", full_family_size(sc)),
+           comm),
       points_(pts_.store()) {
   const ParamValues& P = sc.solver_params;
   // Explosives are a peridynamic gas (gas_pass.hpp): a pressure from the material library, no
@@ -87,12 +160,7 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     throw DeckError(m->mark.file, m->mark.line, m->mark.column, m->mark.key_path + ".model",
                     "an explosive (a peridynamic gas) needs dimension 3d or plane_strain, not plane_stress");
   dx_ = sc.grid.cell_size;
-  const bool m_given = P.given("m"), h_given = P.given("horizon");
-  if (m_given && h_given) section_error(sc, "horizon", "give the horizon or m (horizon = m x lattice spacing), not both");
-  delta_ = h_given ? P.at("horizon") : (m_given ? P.at("m") : 3.0) * dx_;
-  if (!(delta_ >= dx_))
-    section_error(sc, h_given ? "horizon" : "m",
-                  fmt::format("the horizon {:g} m must be at least the lattice spacing grid.cell_size = {:g} m", delta_, dx_));
+  delta_ = P.given("horizon") ? P.at("horizon") : (P.given("m") ? P.at("m") : 3.0) * dx_;  // checked before seeding
   if (P.given("critical_stretch") && P.given("fracture_energy"))
     section_error(sc, "fracture_energy", "give critical_stretch or fracture_energy, not both");
   alpha_ = P.at("stretch_alpha");
@@ -133,6 +201,18 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   std::vector<double> kd(nmat_), c(nmat_), s0(nmat_);
   gas_material_.assign(static_cast<size_t>(nmat_), 0);
   for (int a = 0; a < nmat_; ++a) gas_material_[a] = std::string(mats[a]->model()) == "explosive";
+  // Bonds carry the solids' forces: their points keep F = I and zero stress, which the output and
+  // the failure diagnostics would show as if they were measured. The gas (an explosive) is fed F
+  // and has a pressure, so those two stay when it is present; the rotation, velocity gradient and
+  // MPM's particle half-size never mean anything here.
+  const bool gas = std::find(gas_material_.begin(), gas_material_.end(), 1) != gas_material_.end();
+  for (const char* name : {"R", "L", "half_size"}) points_.set_output(name, false);
+  if (!gas)
+    for (const char* name : {"F", "stress"}) points_.set_output(name, false);
+  if (sc.output.domains)
+    throw DeckError(sc.file, 0, 0, "output.domains",
+                    "peridynamic points have no deforming domain to draw (their bonds carry no F): set output.domains "
+                    "to false");
   // Bodies on their own, coarser lattice (bodies[].point_spacing): only the products. A solid's
   // bonds are calibrated on the lattice of grid.cell_size (lattice_moments); the gas is a pressure
   // whose measure X is a normalised average over whatever family it has, so a coarser gas lattice
@@ -1008,8 +1088,9 @@ std::vector<ParamSpec> pd_params() {
   ParamSpec fthr{"fragment_damage_threshold", "1",
                  "points with more damage are left out of the fragments (dust); default: none left out", false, nan,
                  0.0, 1.0};
+  // At most 1 km: beyond, the totals (mass, energies per plate) overflow before the run ends.
   ParamSpec thick{"thickness", "m", "2D runs: the plate thickness (totals are per this thickness; default 1 m)", false,
-                  nan, 0.0, kInf, true};
+                  nan, 0.0, 1.0e3, true};
   ParamSpec yield{"yield_stress", "Pa",
                   "micro-plastic bonds: uniaxial yield stress (bond yield stretch s_y = yield_stress / E_PD); "
                   "absent: micro-elastic bonds",
@@ -1056,4 +1137,8 @@ BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
     "peridynamics",
     ballista::pd_params(),
     &ballista::make_pd,
-    true})
+    true,
+    {ballista::FaceBC::Free},
+    "the box only bounds where points may go: a symmetry plane or fixed face would need mirror or frozen ghost "
+    "points across it, which the bond families do not have yet; model the whole body, or hold points with a "
+    "rigid indenter (loads: indenter)"})

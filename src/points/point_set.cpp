@@ -1,5 +1,6 @@
 #include "points/point_set.hpp"
 #include "points/point_exchange.hpp"
+#include "points/body_overlap.hpp"
 
 #include <fmt/format.h>
 
@@ -117,6 +118,17 @@ PointSet::PointSet(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
       auto* v = points_.view<Vec3>("v");
       for (Index p = n0; p < points_.size(); ++p) v[p] = mode.velocity(x0[p]);
     }
+  }
+  check_body_overlaps(sc, points_);
+  {
+    const std::size_t nb = sc.bodies.size();
+    seeded_mass_body_.assign(nb, 0.0);
+    removed_points_body_.assign(nb, 0.0);
+    removed_mass_body_.assign(nb, 0.0);
+    removed_energy_body_.assign(nb, 0.0);
+    const auto* body = points_.ints("body");
+    const auto* mass = points_.real("mass");
+    for (Index p = 0; p < points_.size(); ++p) seeded_mass_body_[static_cast<std::size_t>(body[p])] += mass[p];
   }
   for (size_t k = 0; k < sc.loads.size(); ++k) {
     const LoadSpec& load = sc.loads[k];
@@ -283,12 +295,18 @@ void PointSet::remove(const std::vector<char>& keep) {
   const auto* eint = points_.real("internal_energy");
   const double* chem = points_.has(kChemicalEnergyField) ? points_.real(kChemicalEnergyField) : nullptr;
   const auto* vol0 = points_.real("volume0");
+  const auto* body = points_.ints("body");
   for (Index p = 0; p < n; ++p) {
     if (keep[p]) continue;
+    const double energy = 0.5 * mass[p] * dot(v[p], v[p]) + eint[p];
     removed_mass_ += mass[p];
     removed_momentum_ += mass[p] * v[p];
-    removed_energy_ += 0.5 * mass[p] * dot(v[p], v[p]) + eint[p];
+    removed_energy_ += energy;
     if (chem) removed_chemical_ += chem[p] * vol0[p];
+    const std::size_t b = static_cast<std::size_t>(body[p]);
+    removed_points_body_[b] += 1.0;
+    removed_mass_body_[b] += mass[p];
+    removed_energy_body_[b] += energy;
   }
   points_.compact(keep);
   groups_dirty_ = true;
@@ -311,8 +329,10 @@ void PointSet::fail(Index p, const std::string& what, long step, double time) co
   const Mat3& s = points_.view<Mat3>("stress")[p];
   os << "particle " << id[p] << " of body '" << scenario_.bodies.at(bid[p]).name << "' " << what << " at step "
      << step << " (t = " << time << " s)\n"
-     << "  position [" << x[0] << ", " << x[1] << ", " << x[2] << "] m\n"
-     << "  F = [" << F(0, 0) << " " << F(0, 1) << " " << F(0, 2) << "; " << F(1, 0) << " " << F(1, 1) << " "
+     << "  position [" << x[0] << ", " << x[1] << ", " << x[2] << "] m";
+  // A solver whose points carry no deformation gradient (peridynamic bonds) has cleared F's output.
+  if (!points_.info("F").output) throw ParticleError(id[p], os.str());
+  os << "\n  F = [" << F(0, 0) << " " << F(0, 1) << " " << F(0, 2) << "; " << F(1, 0) << " " << F(1, 1) << " "
      << F(1, 2) << "; " << F(2, 0) << " " << F(2, 1) << " " << F(2, 2) << "], J = " << det(F) << "\n  stress = ["
      << s(0, 0) << " " << s(0, 1) << " " << s(0, 2) << "; " << s(1, 0) << " " << s(1, 1) << " " << s(1, 2) << "; "
      << s(2, 0) << " " << s(2, 1) << " " << s(2, 2) << "] Pa";
@@ -360,6 +380,17 @@ EnergyTotals PointSet::energies(double k, double external_work) const {
   e.removed_momentum = k * Vec3{{removed[2], removed[3], removed[4]}};
   e.inserted_energy = k * comm_.sum(inserted_energy_);
   e.chemical = k * (s[8] + comm_.sum(removed_chemical_));
+  const std::size_t nb = removed_points_body_.size();
+  std::vector<double> by_body = removed_points_body_;
+  by_body.insert(by_body.end(), removed_mass_body_.begin(), removed_mass_body_.end());
+  by_body.insert(by_body.end(), removed_energy_body_.begin(), removed_energy_body_.end());
+  comm_.sum(by_body.data(), static_cast<int>(by_body.size()));
+  e.removed_points_by_body.assign(by_body.begin(), by_body.begin() + nb);
+  for (std::size_t b = 0; b < nb; ++b) {
+    e.removed_mass_by_body.push_back(k * by_body[nb + b]);
+    e.removed_energy_by_body.push_back(k * by_body[2 * nb + b]);
+    e.seeded_mass_by_body.push_back(k * seeded_mass_body_[b]);
+  }
   return e;
 }
 
@@ -367,9 +398,20 @@ EnergyTotals PointSet::energies(double k, double external_work) const {
 
 namespace ballista {
 
+/// Entries of the removal record before the per-body ones (all that older checkpoints hold).
+constexpr std::size_t kRemovalTotals = 7;
+
+std::vector<double> PointSet::removal_record() const {
+  std::vector<double> r{removed_mass_,        removed_energy_,       removed_chemical_, removed_momentum_[0],
+                        removed_momentum_[1], removed_momentum_[2], inserted_energy_};
+  r.insert(r.end(), removed_points_body_.begin(), removed_points_body_.end());
+  r.insert(r.end(), removed_mass_body_.begin(), removed_mass_body_.end());
+  r.insert(r.end(), removed_energy_body_.begin(), removed_energy_body_.end());
+  return r;
+}
+
 void PointSet::save_state(StateArchive& a) const {
-  const std::vector<double> removed{removed_mass_, removed_energy_, removed_chemical_, removed_momentum_[0],
-                                    removed_momentum_[1], removed_momentum_[2], inserted_energy_};
+  const std::vector<double> removed = removal_record();
   if (!comm_.distributed()) {
     a.put_fields("points.", points_);
     a.put_fields("pending.", pending_);
@@ -435,12 +477,23 @@ bool PointSet::written_on_as_many_ranks(const StateArchive& a) const {
 }
 
 void PointSet::restore_removed(const StateArchive& a, bool own) {
-  std::vector<double> r = a.reals("points.removed", 7);
+  // A checkpoint written before the per-body record holds only the totals (its bodies lost none
+  // that are counted here).
+  const std::size_t full = removal_record().size();
+  const std::size_t n = a.reals("points.removed").size() == kRemovalTotals ? kRemovalTotals : full;
+  std::vector<double> r = a.reals("points.removed", n);
   if (own) {  // this rank's own bookkeeping
-    const auto& by_rank = a.reals("points.removed_by_rank", static_cast<std::size_t>(7 * comm_.size()));
-    r.assign(by_rank.begin() + 7 * comm_.rank(), by_rank.begin() + 7 * (comm_.rank() + 1));
+    const auto& by_rank = a.reals("points.removed_by_rank", n * static_cast<std::size_t>(comm_.size()));
+    r.assign(by_rank.begin() + n * comm_.rank(), by_rank.begin() + n * (comm_.rank() + 1));
   } else if (comm_.rank() != 0) {
-    r.assign(7, 0.0);  // the totals once, on rank 0
+    r.assign(n, 0.0);  // the totals once, on rank 0
+  }
+  r.resize(full, 0.0);
+  const std::size_t nb = removed_points_body_.size();
+  for (std::size_t b = 0; b < nb; ++b) {
+    removed_points_body_[b] = r[kRemovalTotals + b];
+    removed_mass_body_[b] = r[kRemovalTotals + nb + b];
+    removed_energy_body_[b] = r[kRemovalTotals + 2 * nb + b];
   }
   removed_mass_ = r[0];
   removed_energy_ = r[1];

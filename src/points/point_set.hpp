@@ -133,7 +133,13 @@ class PointSet {
   std::vector<std::vector<Index>> material_points_;  ///< indices per material
   bool groups_dirty_ = true;
   std::vector<std::string> load_area_fields_;
+  /// The removal and insertion bookkeeping as one record (checkpoints sum and split it by rank):
+  /// mass, energy, chemical energy, momentum (3), inserted energy, then per body the points, mass
+  /// and energy deleted.
+  std::vector<double> removal_record() const;
   double removed_mass_ = 0.0, removed_energy_ = 0.0;
+  std::vector<double> removed_points_body_, removed_mass_body_, removed_energy_body_;  ///< this rank's, per body
+  std::vector<double> seeded_mass_body_;  ///< kg per body (deck order), every rank's points
   double removed_chemical_ = 0.0;  ///< J, chemical energy released by points since deleted
   Vec3 removed_momentum_;
   double inserted_energy_ = 0.0;  ///< per-point sum of the energy of activated points (this rank)

@@ -24,7 +24,12 @@ struct SolverFactory {
   /// Builds the solver on `comm` (a solver that does not run distributed is only ever given one rank).
   std::unique_ptr<Solver> (*create)(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials,
                                     const Communicator& comm) = nullptr;
-  bool distributed = false;  ///< runs on several MPI ranks (issue 16)
+  bool distributed = false;  ///< runs on several MPI ranks
+  /// The grid.boundary conditions the solver imposes (a face given another one is a deck error,
+  /// never ignored); empty: every condition.
+  std::vector<FaceBC> face_conditions = {};
+  /// Why the solver imposes no other face condition (the deck error says it).
+  std::string face_conditions_note = {};
 };
 
 /// An optional word parameter of a solver section whose default is the first choice.

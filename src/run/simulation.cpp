@@ -15,15 +15,17 @@
 #include "core/parallel.hpp"
 #include "io/atomic_file.hpp"
 #include "io/checkpoint_file.hpp"
+#include "io/deck_changes.hpp"
 #include "io/history_writer.hpp"
-#include "io/output_folder.hpp"
 #include "io/particle_writer.hpp"
+#include "io/run_folder.hpp"
 #include "io/summary_writer.hpp"
 #include "points/point_exchange.hpp"
 #include "points/probe_registry.hpp"
 #include "points/solver_registry.hpp"
 #include "run/fragment_summary.hpp"
 #include "run/particle_tracker.hpp"
+#include "run/deletion_report.hpp"
 #include "run/interrupt.hpp"
 #include "run/progress.hpp"
 #include "run/run_state.hpp"
@@ -48,8 +50,9 @@ namespace {
 /// anything is written, make_solver again for its other callers).
 void check_distributed(const Scenario& sc, const SolverFactory& f, const Communicator& comm) {
   if (comm.distributed() && !f.distributed)
-    throw Error("solver '" + sc.simulation.solver + "' runs on one MPI rank only so far (" +
-                std::to_string(comm.size()) + " ranks were started); run it without mpirun, or with -np 1");
+    throw DeckError(sc.file, 0, 0, "simulation.solver",
+                    "solver '" + sc.simulation.solver + "' runs on one MPI rank only so far (" +
+                        std::to_string(comm.size()) + " ranks were started); run it without mpirun, or with -np 1");
 }
 }  // namespace
 
@@ -138,6 +141,26 @@ void check_layout(const StateArchive& a, const Scenario& sc, const std::string& 
               "models)");
 }
 
+/// Refuses a restart whose deck (the checkpoint's, with the --set overrides) changes more than the
+/// run's end, outputs, checkpoints, limits and guards (docs/restart.md), naming what it changes.
+void check_restart_changes(const StateArchive& a, const Scenario& sc, const std::string& path) {
+  std::vector<DeckChange> refused;
+  for (const DeckChange& c : deck_changes(a.text("run.deck"), sc.resolved_yaml))
+    if (!restart_may_change(c.key_path)) refused.push_back(c);
+  if (refused.empty()) return;
+  std::string list;
+  for (std::size_t k = 0; k < refused.size() && k < 5; ++k)
+    list += fmt::format("{}{} ({} -> {})", k ? ", " : "", refused[k].key_path,
+                        refused[k].before.empty() ? "not given" : shorten(refused[k].before, 60),
+                        refused[k].after.empty() ? "not given" : shorten(refused[k].after, 60));
+  if (refused.size() > 5) list += fmt::format(" and {} more", refused.size() - 5);
+  throw DeckError(sc.file, 0, 0, refused.front().key_path,
+                  "a restart continues the run of checkpoint " + path +
+                      " with its physics: it may change the end time, outputs, checkpoints, limits and guards "
+                      "(docs/restart.md), but the deck changes " + list +
+                      "; run the deck anew to change them");
+}
+
 }  // namespace
 
 RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
@@ -146,18 +169,25 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   const Communicator comm = Communicator::world();
   const bool root = comm.rank() == 0;
   if (const SolverFactory* f = find_solver(sc.simulation.solver)) check_distributed(sc, *f, comm);
-  // A restart continues the results folder it was written in: nothing there is cleared.
+  // Rank 0 holds the results folder for the run (io/run_folder.hpp): another run into it is
+  // refused, and a new run removes exactly the files of the previous one. A restart continues
+  // the folder it was written in: nothing there is cleared.
+  std::optional<RunFolder> folder;
+  if (root && !opt.folder_held)
+    folder.emplace(opt.out_dir, opt.restart_from.empty() ? RunFolder::Mode::NewRun : RunFolder::Mode::Continue,
+                   opt.overwrite);
   std::optional<StateArchive> restart;
   if (!opt.restart_from.empty()) {
     restart = read_checkpoint_file(opt.restart_from);  // every rank reads it
+    check_restart_changes(*restart, sc, opt.restart_from);
     check_layout(*restart, sc, opt.restart_from);
     // Checkpoints newer than the one restarted from belong to the abandoned continuation.
     if (root)
       if (const int n = remove_checkpoints_after(opt.out_dir, opt.restart_from))
         spdlog::info("removed {} checkpoints newer than {}", n, opt.restart_from);
   } else if (root) {
-    if (const int removed = prepare_run_folder(opt.out_dir))
-      spdlog::info("removed {} output files of an earlier run from {}", removed, opt.out_dir);
+    if (folder && folder->removed() > 0)
+      spdlog::info("removed {} output files of an earlier run from {}", folder->removed(), opt.out_dir);
     write_file_atomic((fs::path(opt.out_dir) / "resolved.yaml").string(), sc.resolved_yaml);
   }
   clear_interrupt();
@@ -166,7 +196,8 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
 
   std::unique_ptr<Solver> solver = make_solver(sc, comm);
   // Constants the solver derived from the deck (peridynamic bond constants), echoed as comments.
-  if (const std::string derived = solver->derived_constants(); !derived.empty() && !restart && root)
+  // A restart writes the deck it continues with (its end time, outputs and guards may differ).
+  if (const std::string derived = solver->derived_constants(); root && (restart || !derived.empty()))
     write_file_atomic((fs::path(opt.out_dir) / "resolved.yaml").string(), sc.resolved_yaml + derived);
   FieldStore& pts = solver->points();
   const std::vector<std::unique_ptr<Probe>> run_probes = make_probes(sc);
@@ -252,6 +283,11 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     // end_time after it began; the output clock stays where it was, within the new end.
     if (rs.stage == nstages) {
       rs.end = (nstages > 0 ? rs.stage_start : 0.0) + sc.simulation.end_time;
+      if (rs.end < solver->time() * (1.0 - 1e-12))
+        throw DeckError(sc.file, 0, 0, "simulation.end_time",
+                        fmt::format("simulation.end_time = {:g} s ends the run at t = {:.6g} s, before the checkpoint's "
+                                    "t = {:.6g} s: nothing is left to run; give a later end time",
+                                    sc.simulation.end_time, rs.end, solver->time()));
       rs.next_output = std::min(rs.next_output, rs.end);
       if (rs.next_output <= solver->time()) rs.next_output = std::min(rs.end, solver->time() + interval);
     }
@@ -276,6 +312,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
            std::abs(e.chemical);
   };
   if (!restart) rs.energy_scale = scale_of(solver->energies());
+  DeletionReport deletions(sc, solver->energies());
 
   auto probe_values = [&](const EnergyTotals& e) {
     const ProbeContext ctx{solver->points(), e, dim, comm};
@@ -291,6 +328,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   };
   auto history_row = [&](double dt) {
     const EnergyTotals e = solver->energies();
+    deletions.update(e, solver->steps(), solver->time());
     const double drift = drift_of(e);
     std::vector<double> row = {solver->time(), static_cast<double>(solver->steps()), dt, e.kinetic,
                                e.internal, e.plastic, e.external, e.total(), drift, e.mass,
@@ -356,6 +394,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     a.put_text("run.deck_file", restart ? restart->text("run.deck_file") : sc.file);
     a.put_text("run.solver", solver->name());
     a.put_text("run.layout", layout_signature(sc));
+    a.put_int("run.step", solver->steps());  // checked against the file's name when it is read
     solver->save_state(a);
     RunState saved = m.rs;
     saved.particle_steps = comm.sum(m.rs.particle_steps);  // each rank counts its own: the total
@@ -481,7 +520,8 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       if (checkpointing) good = marks_now();
       double dt = solver->stable_dt();
       if (!(dt > 0.0) || !std::isfinite(dt))
-        throw PhysicsError(fmt::format("time step collapsed (dt = {:.6g} s) at step {}", dt, solver->steps()));
+        throw PhysicsError(fmt::format("time step collapsed (dt = {:.6g} s) at step {}, set by {}", dt, solver->steps(),
+                                       describe_limiter(sc, solver->step_limiter())));
       if (solver->steps() >= sc.simulation.step_limit)
         throw PhysicsError(fmt::format(
             "the run reached simulation.step_limit = {} steps at t = {:.6g} s of {:.6g} s (dt = {:.6g} s, set by {}): "
@@ -666,7 +706,11 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
   st["wall_time"] = wall;
   st["threads"] = max_threads();
   st["ranks"] = comm.size();
-  st["particles"] = comm.sum(static_cast<std::int64_t>(solver->points().size()));
+  st["particles"] = comm.sum(static_cast<std::int64_t>(solver->points().size()));  // active at the end
+  st["particles_seeded"] = seeded;
+  std::int64_t deleted_points = 0;
+  for (double n : e.removed_points_by_body) deleted_points += static_cast<std::int64_t>(n);
+  st["particles_deleted"] = deleted_points;
   st["particle_steps"] = particle_steps;
   st["particle_steps_per_second"] = result.particle_steps_per_second;
   st["min_dt"] = std::isfinite(min_dt) ? min_dt : 0.0;
@@ -681,6 +725,12 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     lim["wave_speed"] = limiter.wave_speed;
     lim["speed"] = limiter.speed;
     lim["J"] = limiter.J;
+  }
+  // (After the statistics: a new member of the summary may move the one `st` refers to.)
+  if (deleted_points > 0) summary["deleted"] = deletions.summary(e);
+  if (const auto warnings = deletions.probe_warnings(e); !warnings.empty()) {
+    for (const auto& w : warnings) spdlog::warn("{}", w);
+    summary["warnings"] = warnings;
   }
   JsonValue& en = summary["energy"];
   en = JsonValue::object();

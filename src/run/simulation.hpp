@@ -19,6 +19,11 @@ struct RunOptions {
   bool plots = false;           ///< draw the figures of a fragments table (the CLI: unless --no-plots)
   std::string restart_from;     ///< checkpoint file to continue (its results folder is out_dir); "" = a new run
   double checkpoint_minutes = 0.0;  ///< > 0: also a checkpoint after this many wall minutes (docs/restart.md)
+  /// A new run into a folder that is not empty and holds no Ballista run (io/run_folder.hpp).
+  bool overwrite = false;
+  /// The caller holds out_dir as a RunFolder (the CLI, so that its figures and a re-run are
+  /// inside the lock) and has cleared it for a new run; otherwise the run takes the folder.
+  bool folder_held = false;
 };
 
 /// What a finished (or stopped) run reports.

@@ -49,11 +49,12 @@ std::string log_tail(const fs::path& log, size_t max_lines = 3) {
   return s;
 }
 
-/// Starts `exe run deck -o dir -q --set ...` with stdout and stderr going to dir/log.txt.
+/// Starts `exe run deck -o dir -q --overwrite --set ...` with stdout and stderr going to dir/log.txt.
 pid_t launch(const std::string& exe, const std::string& deck, const SweepRunSpec& r) {
   fs::create_directories(r.dir);
   fs::remove(r.dir / "summary.json");  // a summary left by an earlier sweep must not be read as this run's
-  std::vector<std::string> args{exe, "run", deck, "-o", r.dir.string(), "-q"};
+  // --overwrite: the folder already holds the sweep's own log.txt (io/run_folder.hpp).
+  std::vector<std::string> args{exe, "run", deck, "-o", r.dir.string(), "-q", "--overwrite"};
   for (const auto& o : r.overrides) {
     args.push_back("--set");
     args.push_back(o);

@@ -151,6 +151,15 @@ def main():
             else:
                 p.send_signal(signal.SIGTERM)
         code = p.wait()
+        if sig == signal.SIGKILL:
+            # The ranks die on their own schedule after mpirun: the restart waits for the group to
+            # be gone (a rank still alive holds the results folder, io/run_folder.hpp).
+            for _ in range(500):
+                try:
+                    os.killpg(p.pid, 0)
+                except ProcessLookupError:
+                    break
+                time.sleep(0.01)
         if not stopped:
             failures.append(f"{sig.name}: the run ended before the signal; lengthen the deck")
             continue

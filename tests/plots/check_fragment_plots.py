@@ -71,7 +71,11 @@ def run_deck(ballista, folder, names, interval, extra=()):
         f.write(deck(names, interval))
     out = os.path.join(folder, "out")
     os.makedirs(out)
-    for name in FIGS:  # figures of an earlier run: the run must clear them (io/output_folder.cpp)
+    # Figures of an earlier run, listed in its manifest as that run would have: the run must
+    # clear them (io/run_folder.hpp), so that a figure it does not draw is not a stale one.
+    with open(os.path.join(out, ".ballista-files"), "w") as f:
+        f.write("# ballista run of an earlier process\n" + "".join(n + "\n" for n in FIGS))
+    for name in FIGS:
         with open(os.path.join(out, name), "wb") as f:
             f.write(b"stale")
     rc, log = run([ballista, "run", path, "-o", out, "-q", "--threads", "1", *extra])

@@ -242,3 +242,25 @@ TEST(Shape, LatticePointsOnAFaceAreInsideWhateverTheirRoundOff) {
   EXPECT_TRUE(shape_contains(sphere, Vec3{{0.4, 0.0, 0.0}}, 3));  // (0.4 - 0.1)^2 > 0.3^2 in binary
   EXPECT_FALSE(shape_contains(sphere, Vec3{{0.4 + 1e-6, 0.0, 0.0}}, 3));
 }
+
+// shape_depth: the distance to the nearest face inside (exact for these convex shapes and the
+// tube's wall), negative outside, so that overlap checks can ignore points on a shared face.
+TEST(Shape, DepthIsTheDistanceToTheNearestFaceInsideAndNegativeOutside) {
+  const ShapeSpec b = box({{0.0, 0.0, 0.0}}, {{2.0, 4.0, 6.0}});
+  EXPECT_DOUBLE_EQ(shape_depth(b, {{1.0, 2.0, 3.0}}, 3), 1.0);
+  EXPECT_DOUBLE_EQ(shape_depth(b, {{0.25, 2.0, 3.0}}, 3), 0.25);
+  EXPECT_DOUBLE_EQ(shape_depth(b, {{1.0, 2.0, 6.0}}, 3), 0.0);  // on a face
+  EXPECT_LT(shape_depth(b, {{3.0, 2.0, 3.0}}, 3), 0.0);
+  EXPECT_DOUBLE_EQ(shape_depth(b, {{1.0, 3.5, 100.0}}, 2), 0.5);  // 2D ignores z
+  const ShapeSpec s = sphere({{1.0, 1.0, 1.0}}, 2.0);
+  EXPECT_DOUBLE_EQ(shape_depth(s, {{1.0, 1.0, 2.5}}, 3), 0.5);
+  EXPECT_DOUBLE_EQ(shape_depth(s, {{1.0, 1.0, 4.0}}, 3), -1.0);
+  const ShapeSpec t = cylinder({{0.0, 0.0, 0.0}}, 2, 2.0, 10.0, 1.0);  // tube 1 < r < 2, 0 < z < 10
+  EXPECT_DOUBLE_EQ(shape_depth(t, {{1.25, 0.0, 5.0}}, 3), 0.25);
+  EXPECT_DOUBLE_EQ(shape_depth(t, {{1.5, 0.0, 0.2}}, 3), 0.2);
+  EXPECT_LT(shape_depth(t, {{0.5, 0.0, 5.0}}, 3), 0.0);  // in the bore
+  EXPECT_DOUBLE_EQ(shape_depth(t, {{0.0, 1.5, 1e9}}, 2), 0.5);  // a 2D annulus has no length
+  const ShapeSpec axi = cylinder({{0.0, 1.0, 0.0}}, 1, 3.0, 4.0);  // r-z rectangle 0 < r < 3, 1 < z < 5
+  EXPECT_DOUBLE_EQ(shape_depth(axi, {{2.5, 3.0, 0.0}}, 2), 0.5);
+  EXPECT_DOUBLE_EQ(shape_depth(axi, {{1.0, 1.25, 0.0}}, 2), 0.25);
+}

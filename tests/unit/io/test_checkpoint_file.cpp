@@ -120,3 +120,63 @@ TEST(CheckpointFile, OnlyTheNewestAreKeptAndTemporaryFilesIgnored) {
   EXPECT_EQ(all[0], checkpoint_path(dir.path.string(), 20));
   EXPECT_EQ(all[1], checkpoint_path(dir.path.string(), 100));
 }
+
+namespace {
+
+/// Flips one bit of the first occurrence of `value`'s bytes in the file at `path`.
+void flip_bit_of(const std::string& path, double value) {
+  std::string bytes = ballista::test::slurp(path);
+  char pattern[sizeof value];
+  std::memcpy(pattern, &value, sizeof value);
+  const std::size_t at = bytes.find(std::string(pattern, sizeof value));
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 3] = static_cast<char>(bytes[at + 3] ^ 0x10);
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+StateArchive deck_archive(long step) {
+  StateArchive a;
+  std::vector<double> mass(1000);
+  for (std::size_t k = 0; k < mass.size(); ++k) mass[k] = 0.5 + static_cast<double>(k);
+  a.put("points.mass", mass);
+  a.put_text("run.deck", "simulation: {end_time: 1}\n");
+  a.put_int("run.step", step);
+  return a;
+}
+
+}  // namespace
+
+// A bit flipped in a checkpoint's values (a bad disk block, a partial copy) is found when the file
+// is read, by the checksum each dataset carries (core/checksum.hpp), and named.
+TEST(CheckpointFile, ADamagedValueIsFoundAndNamed) {
+  TempDir dir("ckpt_damaged");
+  const std::string path = checkpoint_path(dir.path.string(), 3);
+  write_checkpoint_file(path, deck_archive(3));
+  EXPECT_NO_THROW(read_checkpoint_file(path));
+  flip_bit_of(path, 700.5);
+  const std::string err = error_of([&] { read_checkpoint_file(path); });
+  EXPECT_NE(err.find("'points.mass' is damaged"), std::string::npos) << err;
+  EXPECT_NE(err.find(path), std::string::npos) << err;
+}
+
+TEST(CheckpointFile, ACheckpointUnderAnotherStepsNameIsRefused) {
+  TempDir dir("ckpt_swapped");
+  const std::string path = checkpoint_path(dir.path.string(), 7);
+  write_checkpoint_file(path, deck_archive(5));
+  const std::string err = error_of([&] { read_checkpoint_file(path); });
+  EXPECT_NE(err.find("holds step 5 under the name of step 7"), std::string::npos) << err;
+}
+
+TEST(CheckpointFile, ADamagedNewestCheckpointGivesWayToThePreviousOne) {
+  TempDir dir("ckpt_fallback");
+  const std::string older = checkpoint_path(dir.path.string(), 10), newer = checkpoint_path(dir.path.string(), 20);
+  write_checkpoint_file(older, deck_archive(10));
+  write_checkpoint_file(newer, deck_archive(20));
+  EXPECT_EQ(newest_checkpoint(dir.path.string()).first, newer);
+  flip_bit_of(newer, 42.5);
+  EXPECT_EQ(newest_checkpoint(dir.path.string()).first, older);
+  flip_bit_of(older, 42.5);
+  const std::string err = error_of([&] { newest_checkpoint(dir.path.string()); });
+  EXPECT_NE(err.find("no checkpoint of"), std::string::npos) << err;
+  EXPECT_NE(err.find("damaged"), std::string::npos) << err;
+}

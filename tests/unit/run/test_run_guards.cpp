@@ -153,7 +153,7 @@ TEST(RunGuards, SecondRunIntoTheSameFolderLeavesNoStaleFiles) {
   // First run: 5 outputs. Then a stale temporary (a run killed mid-write) and a user's own file.
   ASSERT_TRUE(run_simulation(parse_deck(deck("", "output: {interval: 2.5e-4}\n"), "d.yaml"), options(dir.path)).ok);
   EXPECT_EQ(test::h5_files(dir.path).size(), 5u);
-  std::ofstream(dir.path / "particles_000009.h5.tmp") << "partial";
+  std::ofstream(dir.path / "particles_000002.h5.tmp") << "partial";
   std::ofstream(dir.path / "notes.txt") << "mine";
   // Second run: first and last output only.
   ASSERT_TRUE(run_simulation(parse_deck(deck(), "d.yaml"), options(dir.path)).ok);

@@ -1,0 +1,61 @@
+#include "io/deck_changes.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <set>
+
+#include "core/error.hpp"
+
+namespace ballista {
+
+namespace {
+
+std::string text_of(const YAML::Node& n) {
+  if (!n.IsDefined() || n.IsNull()) return "";
+  if (n.IsScalar()) return n.Scalar();
+  YAML::Emitter e;
+  e << YAML::Flow << n;
+  return e.c_str();
+}
+
+void compare(const YAML::Node& a, const YAML::Node& b, const std::string& path, std::vector<DeckChange>& out) {
+  const bool a_map = a.IsDefined() && a.IsMap(), b_map = b.IsDefined() && b.IsMap();
+  if (a_map && b_map) {
+    std::set<std::string> keys;
+    for (const auto& kv : a) keys.insert(kv.first.Scalar());
+    for (const auto& kv : b) keys.insert(kv.first.Scalar());
+    for (const std::string& k : keys) compare(a[k], b[k], path.empty() ? k : path + "." + k, out);
+    return;
+  }
+  const bool a_seq = a.IsDefined() && a.IsSequence(), b_seq = b.IsDefined() && b.IsSequence();
+  if (a_seq && b_seq && a.size() == b.size()) {
+    for (std::size_t i = 0; i < a.size(); ++i) compare(a[i], b[i], path + "." + std::to_string(i), out);
+    return;
+  }
+  const std::string ta = text_of(a), tb = text_of(b);
+  if (ta != tb || a_map != b_map || a_seq != b_seq) out.push_back({path, ta, tb});
+}
+
+YAML::Node parse(const std::string& text, const char* which) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw Error(std::string("cannot compare the ") + which + " deck: " + e.what());
+  }
+}
+
+}  // namespace
+
+std::vector<DeckChange> deck_changes(const std::string& before_yaml, const std::string& after_yaml) {
+  std::vector<DeckChange> out;
+  compare(parse(before_yaml, "checkpoint's"), parse(after_yaml, "restart's"), "", out);
+  return out;
+}
+
+bool restart_may_change(const std::string& key_path) {
+  static const std::set<std::string> simulation{"simulation.end_time", "simulation.max_steps", "simulation.step_limit",
+                                                "simulation.energy_drift_limit", "simulation.threads"};
+  return simulation.count(key_path) > 0 || key_path.rfind("output.", 0) == 0 || key_path == "output";
+}
+
+}  // namespace ballista

@@ -1,0 +1,25 @@
+#pragma once
+// What a restart may change. A checkpoint stores the resolved deck of its run; `--restart DIR
+// --set key=value` resolves that deck again with the overrides. The two resolved texts are
+// compared key by key, and only the run's end, outputs, checkpoints, limits and guards may
+// differ (docs/restart.md): anything else would continue the run with other physics.
+#include <string>
+#include <vector>
+
+namespace ballista {
+
+/// One key whose value differs between two resolved decks ("" for a key one of them lacks).
+struct DeckChange {
+  std::string key_path;
+  std::string before, after;
+};
+
+/// The leaves (scalars, and lists or maps given or removed as a whole) that differ between two
+/// YAML texts, in key-path order; list elements by index. Throws Error if either does not parse.
+std::vector<DeckChange> deck_changes(const std::string& before_yaml, const std::string& after_yaml);
+
+/// True if a restart may change this key: simulation.end_time, max_steps, step_limit,
+/// energy_drift_limit and threads, and every output.* key.
+bool restart_may_change(const std::string& key_path);
+
+}  // namespace ballista
