@@ -827,14 +827,15 @@ def make_case(index, seed, sources, case_dir, ballista, baseline=None):
 # local-polynomial rates at the ends of the series, the channel radius of a bin with no target
 # material. Anywhere else, and "inf" anywhere, is a non-finite result.
 NAN_ALLOWED = {"history.csv": ("penetration_time",), "penetration.csv": ("rate", "cavity_rate"),
-               "channel.csv": ("radius",)}
+               "channel.csv": ("radius", "innermost_radius")}
 NONFINITE_TOKEN = re.compile(r"(?<![A-Za-z0-9_])[-+]?(nan|inf|infinity)(?![A-Za-z0-9_])", re.IGNORECASE)
 UNCAUGHT = ["terminate called", "what():", "Assertion `", "assertion failed", "AddressSanitizer",
             "runtime error:", "UndefinedBehaviorSanitizer", "Segmentation fault", "core dumped", "stack smashing",
             "double free", "free(): invalid", "malloc(): ", "corrupted size"]
-# summary.json keys that are null when not applicable (no impact, no steady phase, no stages).
+# summary.json keys that are null when not applicable (no impact, no steady phase, no stages; a
+# hole or tunnel with no material left to make a wall, or not reached yet).
 NULL_OK = {"main_stage_start", "arrival_time", "stop_time", "steady_rate", "rate_over_hydrodynamic",
-           "penetration_time", "min_dt_set_by"}
+           "penetration_time", "min_dt_set_by", "entrance_diameter", "min_diameter", "mean_diameter"}
 
 
 class _Bad(Exception):

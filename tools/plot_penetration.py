@@ -10,7 +10,7 @@ writes into OUT_DIR:
                           horizontal lines (thesis Fig. 7.4)
   penetration_rate.png    penetration rate against time, steady rate dashed, U_h (Fig. 7.5)
   penetrator_energy.png   penetrator kinetic energy, total and per segment (Figs. 7.6-7.7)
-  channel_profile.png     final channel radius against depth (mm)
+  channel_profile.png     hole radius through the layers and tunnel wall radius against depth (mm)
 A figure whose data are missing is skipped with a one-line note on stderr. Exit status 0 on
 success, 2 if OUT_DIR has no history.csv. Needs numpy and matplotlib (BALLISTA_PYTHON).
 """
@@ -220,15 +220,26 @@ def plot_channel(out_dir, ch, p):
         note("channel_profile.png skipped: no channel.csv with depth and radius")
         return
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
-    ax.plot(ch["depth"] * MM, ch["radius"] * MM, "k-", lw=1.4, label="channel radius")
+    ax.plot(ch["depth"] * MM, ch["radius"] * MM, "k-", lw=1.4, label="tunnel wall (dense material)")
+    if "innermost_radius" in ch:
+        ax.plot(ch["depth"] * MM, ch["innermost_radius"] * MM, "-", color="0.6", lw=0.8,
+                label="innermost intact material")
+    # The holes through the layers before the target (casing, cement) at their depths (< 0).
+    holes = p.get("holes") if isinstance(p.get("holes"), dict) else {}
+    for k, (name, h) in enumerate(holes.items()):
+        top, thick, d = h.get("face_depth"), h.get("thickness"), h.get("entrance_diameter")
+        if top is None or thick is None or d is None:
+            continue
+        c = plt.cm.tab10(k + 1)
+        ax.plot([top * MM, (top + thick) * MM], [0.5 * d * MM] * 2, "-", color=c, lw=2.2,
+                label=f"{name}: entrance hole {d * MM:.2f} mm dia.")
     rmax = number(p, "max_channel_radius")
     if rmax is not None:
-        ax.axhline(rmax * MM, ls="--", color="tab:red", lw=1.0, label=f"max radius {rmax * MM:.2f} mm")
-    ax.set_xlabel("depth below target surface [mm]")
-    ax.set_ylabel("channel radius [mm]")
-    ax.set_xlim(left=0)
+        ax.axhline(rmax * MM, ls="--", color="tab:red", lw=1.0, label=f"largest tunnel radius {rmax * MM:.2f} mm")
+    ax.set_xlabel("depth below the target's face [mm]")
+    ax.set_ylabel("radius [mm]")
     ax.set_ylim(bottom=0)
-    save(fig, ax, out_dir, "channel_profile.png", "Final perforation channel profile")
+    save(fig, ax, out_dir, "channel_profile.png", "Hole and tunnel radius along the line of flight")
 
 
 def main(argv):

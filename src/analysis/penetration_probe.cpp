@@ -12,6 +12,8 @@
 #include "analysis/axis_distance.hpp"
 #include "analysis/penetration_series.hpp"
 #include "core/error.hpp"
+#include "geometry/grid_axes.hpp"
+#include "geometry/shape.hpp"
 #include "io/history_writer.hpp"
 #include "materials/failure.hpp"
 #include "penetration/hydrodynamic.hpp"
@@ -21,6 +23,7 @@ namespace ballista {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 double density_of(const Scenario& sc, const std::string& material) {
   for (const auto& m : sc.materials)
@@ -47,6 +50,25 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
   length_ = ps.length;
   speed_ = ps.speed;
   cell_ = sc.grid.cell_size;
+  // A graded grid's finest cells across and along the line of flight, where the jet is.
+  lateral_cell_ = axial_cell_ = cell_;
+  if (sc.grid.graded()) {
+    const GridAxes axes = build_grid_axes(sc.grid, nd_);
+    lateral_cell_ = axial_cell_ = kInfinity;
+    for (int a = 0; a < nd_; ++a) (a == axis_ ? axial_cell_ : lateral_cell_) = std::min(a == axis_ ? axial_cell_ : lateral_cell_, axes.smallest(a));
+    cell_ = lateral_cell_;
+  }
+  lateral_geometry_ = sc.simulation.dimension == Dimension::Axisymmetric ? LateralGeometry::Axisymmetric
+                      : nd_ == 3                                         ? LateralGeometry::ThreeD
+                                                                         : LateralGeometry::PlaneStrain;
+  for (const std::string& name : spec_.layers) {
+    const int b = body_index(sc, name);
+    Vec3 lo, hi;
+    shape_bounds(sc.bodies.at(b).shape, nd_, lo, hi);
+    layers_.push_back(b);
+    layer_face_.push_back(direction_ < 0 ? hi[axis_] : lo[axis_]);
+    layer_thickness_.push_back(hi[axis_] - lo[axis_]);
+  }
   // Resolution of the penetrator: the thinnest segment's radius in cells. The hydrodynamic
   // verification (tests/verification/test_mpm_contact.cpp) reaches U_h within 1 % at 4 cells
   // across the radius and falls 7 % short at 2; a thinner penetrator is under-resolved.
@@ -203,8 +225,10 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
     }
   }
 
-  // Final channel: for each depth bin, the smallest distance from the line of flight of target
-  // material (inner edge of the particle domains) down to the cavity tip.
+  // Final channel: the tunnel's wall radius in each depth bin (analysis/hole_profile.hpp: where
+  // the target material is dense, so that debris lying in the tunnel is not wall), beside the
+  // innermost target material's distance from the line of flight (inner edge of the particle
+  // domains) down to the cavity tip.
   const auto* bid = pts.ints("body");
   const auto* x = pts.view<Vec3>("x");
   const auto* F = pts.view<Mat3>("F");
@@ -220,19 +244,75 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
     rr.push_back(std::max(0.0, lateral_of(x[p]) - reach));
   }
   const double channel_depth = std::max(out.at("final_cavity_depth").as_number(), max_depth);
-  const int bins = spec_.channel_bins > 0 ? spec_.channel_bins : std::max(1, static_cast<int>(std::ceil(channel_depth / cell_)));
-  double max_radius = 0.0;
+  const int bins = spec_.channel_bins > 0 ? spec_.channel_bins
+                                          : std::max(1, static_cast<int>(std::ceil(channel_depth / axial_cell_)));
+  double max_radius = 0.0, wall_sum = 0.0;
+  int wall_count = 0;
+  JsonValue tunnel = JsonValue::object();
   {
-    HistoryWriter csv((fs::path(out_dir) / "channel.csv").string(), {"depth", "radius"});
+    HistoryWriter csv((fs::path(out_dir) / "channel.csv").string(), {"depth", "radius", "innermost_radius"});
     if (channel_depth > 0 && !dd.empty()) {
       const ChannelProfile prof = channel_profile(dd, rr, channel_depth, bins);
+      const std::vector<double> wall =
+          wall_radii(lateral_points(pts, target_, surface_), 0.0, channel_depth, bins, lateral_geometry_, {lateral_cell_});
       for (size_t i = 0; i < prof.depth.size(); ++i) {
-        csv.row({prof.depth[i], prof.radius[i]});
-        if (std::isfinite(prof.radius[i])) max_radius = std::max(max_radius, prof.radius[i]);
+        csv.row({prof.depth[i], wall[i], prof.radius[i]});
+        if (std::isfinite(wall[i])) {
+          max_radius = std::max(max_radius, wall[i]);
+          wall_sum += wall[i];
+          ++wall_count;
+        }
       }
+      tunnel["entrance_diameter"] = std::isfinite(wall.front()) ? JsonValue(2.0 * wall.front()) : JsonValue();
     }
   }
   out["max_channel_radius"] = max_radius;
+  tunnel["mean_diameter"] = wall_count > 0 ? JsonValue(2.0 * wall_sum / wall_count) : JsonValue();
+  tunnel["depth"] = channel_depth;
+  out["tunnel"] = tunnel;
+  out["holes"] = layer_holes(pts);
+}
+
+std::vector<LateralPoint> PenetrationProbe::lateral_points(const FieldStore& pts, int body, double face) const {
+  const auto* bid = pts.ints("body");
+  const auto* x = pts.view<Vec3>("x");
+  const auto* F = pts.view<Mat3>("F");
+  const auto* half = pts.view<Vec3>("half_size");
+  const auto* vol = pts.real("volume");
+  const double* failed = pts.has(kFailedField) ? pts.real(kFailedField) : nullptr;
+  const int lat = axis_ == 1 ? 0 : 1;
+  std::vector<LateralPoint> out;
+  for (Index p = 0; p < pts.size(); ++p) {
+    if (bid[p] != body || (failed && failed[p] > 0.0)) continue;
+    // The point's lateral half-extent in the current configuration (its domain is F times a box).
+    double reach = 0.0;
+    for (int j = 0; j < nd_; ++j) reach += std::abs(F[p](lat, j)) * half[p][j];
+    out.push_back({direction_ * (x[p][axis_] - face), lateral_of(x[p]), vol[p], reach});
+  }
+  return out;
+}
+
+JsonValue PenetrationProbe::layer_holes(const FieldStore& pts) const {
+  // Each layer in axial bins of the finest cell through its thickness at the place it was seeded:
+  // the wall at its struck face (the entrance hole) and the narrowest wall through it (the hole a
+  // gauge passes). No wall in a bin: the layer has gone from there (not measured).
+  JsonValue holes = JsonValue::object();
+  for (std::size_t k = 0; k < layers_.size(); ++k) {
+    const int bins = std::max(2, static_cast<int>(std::lround(layer_thickness_[k] / axial_cell_)));
+    const std::vector<double> wall = wall_radii(lateral_points(pts, layers_[k], layer_face_[k]), 0.0,
+                                                layer_thickness_[k], bins, lateral_geometry_, {lateral_cell_});
+    double narrowest = kInfinity;
+    for (double w : wall)
+      if (std::isfinite(w)) narrowest = std::min(narrowest, w);
+    JsonValue& h = holes[spec_.layers[k]];
+    h = JsonValue::object();
+    h["entrance_diameter"] = std::isfinite(wall.front()) ? JsonValue(2.0 * wall.front()) : JsonValue();
+    h["min_diameter"] = std::isfinite(narrowest) ? JsonValue(2.0 * narrowest) : JsonValue();
+    h["perforated"] = std::isfinite(narrowest) && narrowest > 0.0;
+    h["thickness"] = layer_thickness_[k];
+    h["face_depth"] = depth_of_coordinate(layer_face_[k]);  // m, negative: above the target's face
+  }
+  return holes;
 }
 
 void PenetrationProbe::save_state(StateArchive& a, std::size_t samples) const {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/field_store.hpp"
+#include "analysis/hole_profile.hpp"
 #include "core/state_archive.hpp"
 #include "io/summary_writer.hpp"
 #include "scenario/scenario.hpp"
@@ -41,7 +42,8 @@ class PenetrationProbe {
   void load_state(const StateArchive& archive);
 
   /// Depth below the target's struck face along the direction of flight, m (negative above it).
-  double depth_of(const Vec3& x) const { return direction_ * (x[axis_] - surface_); }
+  double depth_of(const Vec3& x) const { return depth_of_coordinate(x[axis_]); }
+  double depth_of_coordinate(double axial) const { return direction_ * (axial - surface_); }
   /// Distance from the line of flight, m (the radius x in axisymmetric runs).
   double lateral_of(const Vec3& x) const;
 
@@ -53,7 +55,17 @@ class PenetrationProbe {
   double cavity_depth(const FieldStore& points) const;
 
  private:
+  /// The points of `body` (not failed) as lateral samples for the wall measurement, the axial
+  /// coordinate the depth below `face` along the flight.
+  std::vector<LateralPoint> lateral_points(const FieldStore& points, int body, double face) const;
+  /// summary.json "holes": the hole through each layer (entrance and smallest diameter).
+  JsonValue layer_holes(const FieldStore& points) const;
+
   PenetrationSpec spec_;
+  std::vector<int> layers_;  ///< body indices of spec_.layers
+  std::vector<double> layer_face_, layer_thickness_;  ///< m: struck face (axial coordinate) and thickness
+  LateralGeometry lateral_geometry_ = LateralGeometry::ThreeD;
+  double lateral_cell_ = 0.0, axial_cell_ = 0.0;  ///< m: the finest cells across and along the flight
   int penetrator_ = -1, target_ = -1;  ///< body indices
   int axis_ = 1, nd_ = 3;
   double direction_ = -1.0, surface_ = 0.0;

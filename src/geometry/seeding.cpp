@@ -1,10 +1,12 @@
 #include "geometry/seeding.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <fmt/format.h>
 
+#include "geometry/grid_axes.hpp"
 #include "geometry/shape.hpp"
 
 namespace ballista {
@@ -88,6 +90,34 @@ void count_if_clipped(const Vec3& x, const GridSpec& grid, int nd, const ShapeSp
                               extent));
 }
 
+/// The lattice sites of a graded grid along each axis within [lo, hi] (one cell beyond, so a
+/// shape's boundary sites are all there), with their spacings: n per cell at its sub-cell centres.
+struct GraduatedSites {
+  std::array<std::vector<double>, 3> at, spacing;
+};
+
+GraduatedSites graded_sites(const GridSpec& grid, int nd, int n, const Vec3& lo, const Vec3& hi) {
+  const GridAxes axes = build_grid_axes(grid, nd);
+  GraduatedSites s;
+  for (int a = 0; a < 3; ++a) {
+    if (a >= nd) {
+      s.at[a] = {0.0};
+      s.spacing[a] = {0.0};
+      continue;
+    }
+    const std::vector<double>& node = axes.node[a];
+    for (std::size_t c = 0; c + 1 < node.size(); ++c) {
+      const double h = node[c + 1] - node[c];
+      if (node[c + 1] < lo[a] - h || node[c] > hi[a] + h) continue;
+      for (int k = 0; k < n; ++k) {
+        s.at[a].push_back(node[c] + (k + 0.5) * (h / n));
+        s.spacing[a].push_back(h / n);
+      }
+    }
+  }
+  return s;
+}
+
 }  // namespace
 
 Index seed_body(const BodySpec& body, int body_index, int material_index, const Material& material,
@@ -126,13 +156,30 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
     to[a] = std::min(to[a], static_cast<int>(std::ceil((grid.upper[a] - grid.lower[a]) / dx)) + 1);
   }
   std::vector<Vec3> pos;
-  for (int k = from[2]; k <= to[2]; ++k)
-    for (int j = from[1]; j <= to[1]; ++j)
-      for (int i = from[0]; i <= to[0]; ++i) {
-        const Vec3 x = site(i, j, k);
-        if (dim == Dimension::Axisymmetric && !(x[0] > 0.0)) continue;  // r > 0 only
-        if (in_box(x) && shape_contains(body.shape, x, nd) && !in_cutout(x)) pos.push_back(x);
-      }
+  std::vector<Vec3> spacing;  // graded grids: each point's lattice spacing per axis
+  if (!grid.graded()) {
+    for (int k = from[2]; k <= to[2]; ++k)
+      for (int j = from[1]; j <= to[1]; ++j)
+        for (int i = from[0]; i <= to[0]; ++i) {
+          const Vec3 x = site(i, j, k);
+          if (dim == Dimension::Axisymmetric && !(x[0] > 0.0)) continue;  // r > 0 only
+          if (in_box(x) && shape_contains(body.shape, x, nd) && !in_cutout(x)) pos.push_back(x);
+        }
+  } else {
+    // Graded grid: particles_per_cell sites per axis in every cell, at its sub-cell centres, so
+    // the particles are as fine as the cells they start in.
+    const GraduatedSites sites = graded_sites(grid, nd, body.particles_per_cell, lo, hi);
+    for (std::size_t k = 0; k < sites.at[2].size(); ++k)
+      for (std::size_t j = 0; j < sites.at[1].size(); ++j)
+        for (std::size_t i = 0; i < sites.at[0].size(); ++i) {
+          const Vec3 x{{sites.at[0][i], sites.at[1][j], nd == 3 ? sites.at[2][k] : 0.0}};
+          if (dim == Dimension::Axisymmetric && !(x[0] > 0.0)) continue;
+          if (in_box(x) && shape_contains(body.shape, x, nd) && !in_cutout(x)) {
+            pos.push_back(x);
+            spacing.push_back(Vec3{{sites.spacing[0][i], sites.spacing[1][j], nd == 3 ? sites.spacing[2][k] : 0.0}});
+          }
+        }
+  }
   // Clipping: lattice points of the shape outside the box (issue 11). Every one is visited while
   // the bounding box has at most kExhaustive lattice points; beyond that a regular sample with
   // stride s per axis is taken and the count scaled by s^nd (a body that large is outside anyway).
@@ -182,8 +229,10 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
   auto* vol0 = points.real("volume0");
   auto* vol = points.real("volume");
   auto* half = points.view<Vec3>("half_size");
-  const double cell_volume = nd == 3 ? dx * dx * dx : dx * dx;
+  const double uniform_cell_volume = nd == 3 ? dx * dx * dx : dx * dx;
   for (Index q = 0; q < n; ++q) {
+    const Vec3 d = spacing.empty() ? Vec3{{dx, dx, nd == 3 ? dx : 0.0}} : spacing[q];
+    const double cell_volume = spacing.empty() ? uniform_cell_volume : (nd == 3 ? d[0] * d[1] * d[2] : d[0] * d[1]);
     const Index p = n0 + q;
     id[p] = next_id++;
     bid[p] = body_index;
@@ -205,7 +254,7 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
     vol0[p] = dim == Dimension::Axisymmetric ? pos[q][0] * cell_volume : cell_volume;
     vol[p] = vol0[p];
     mass[p] = material.density() * vol0[p];
-    half[p] = Vec3{{0.5 * dx, 0.5 * dx, nd == 3 ? 0.5 * dx : 0.0}};
+    half[p] = Vec3{{0.5 * d[0], 0.5 * d[1], nd == 3 ? 0.5 * d[2] : 0.0}};
   }
   return n;
 }
@@ -217,6 +266,11 @@ double lattice_point_bound(const BodySpec& body, const GridSpec& grid, Dimension
     Vec3 lo, hi;
     shape_bounds(shape, nd, lo, hi);
     double n = 1.0;
+    if (grid.graded()) {  // the graded lattice's sites over the bounding box
+      const GraduatedSites sites = graded_sites(grid, nd, body.particles_per_cell, lo, hi);
+      for (int a = 0; a < nd; ++a) n *= static_cast<double>(sites.at[a].size());
+      return n;
+    }
     for (int a = 0; a < nd; ++a) {
       const double extent = std::min(hi[a], grid.upper[a]) - std::max(lo[a], grid.lower[a]);
       n *= extent > 0.0 ? std::floor(extent / dx) + 1.0 : 0.0;
@@ -239,6 +293,7 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
   const auto* bid = points.ints("body");
   const auto* x0 = points.view<Vec3>("x0");
   const auto* vol0 = points.real("volume0");
+  const auto* half = points.view<Vec3>("half_size");
   auto* area = points.view<Vec3>(field);
   Index marked = 0;
   for (Index p = 0; p < points.size(); ++p) {
@@ -293,7 +348,10 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
     // radius r stands for surface at radius R: the area is scaled by (R/r) per curved direction,
     // leaving an O(dx^2/R^2) lattice error.
     const double mx = std::max({std::abs(N[0]), std::abs(N[1]), std::abs(N[2])});
-    const double w = dx * mx;
+    // The lattice spacing along the dominant normal axis: the point's own (a graded grid's
+    // particles are as fine as their cells; 2 * half_size = dx exactly on a uniform lattice).
+    const int dominant = std::abs(N[0]) == mx ? 0 : (std::abs(N[1]) == mx ? 1 : 2);
+    const double w = 2.0 * half[p][dominant] * mx;
     if (!(depth >= -1e-12 * dx && depth < w)) continue;
     // Axisymmetric: vol0 = r_p dA carries the point's radius, but the surface element's per-radian
     // area is r_s ds at the surface radius r_s = r_p + depth N_r (the point projected onto the

@@ -55,7 +55,9 @@ std::vector<DeckChange> deck_changes(const std::string& before_yaml, const std::
 bool restart_may_change(const std::string& key_path) {
   static const std::set<std::string> simulation{"simulation.end_time", "simulation.max_steps", "simulation.step_limit",
                                                 "simulation.energy_drift_limit", "simulation.threads"};
-  return simulation.count(key_path) > 0 || key_path.rfind("output.", 0) == 0 || key_path == "output";
+  // penetration.layers only chooses which holes the analysis measures (and older decks lack it).
+  return simulation.count(key_path) > 0 || key_path.rfind("output.", 0) == 0 || key_path == "output" ||
+         key_path.rfind("penetration.layers", 0) == 0;
 }
 
 }  // namespace ballista

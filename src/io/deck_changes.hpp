@@ -19,7 +19,8 @@ struct DeckChange {
 std::vector<DeckChange> deck_changes(const std::string& before_yaml, const std::string& after_yaml);
 
 /// True if a restart may change this key: simulation.end_time, max_steps, step_limit,
-/// energy_drift_limit and threads, and every output.* key.
+/// energy_drift_limit and threads, every output.* key, and penetration.layers (the holes the
+/// analysis measures).
 bool restart_may_change(const std::string& key_path);
 
 }  // namespace ballista

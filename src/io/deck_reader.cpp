@@ -12,6 +12,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "geometry/grid_axes.hpp"
 #include "io/deck_node.hpp"
 #include "io/text_file.hpp"
 #include "io/deck_overrides.hpp"
@@ -194,7 +195,40 @@ class Reader {
     if (sc_.simulation.dimension == Dimension::Axisymmetric && gr.lower[0] < 0.0)
       g.fail("lower", "expected x (the radius) >= 0 in an axisymmetric deck, got " + format_number(gr.lower[0]));
     b.finish();
+    refine(g, solver);
     g.finish();
+  }
+
+  /// grid.refine and grid.grading: bands of finer cells (a graded grid, geometry/grid_axes.hpp),
+  /// validated by building the axes (a zone outside the box, overlapping zones, a gap too short to
+  /// grade are errors at the zone).
+  void refine(DeckNode& g, const SolverFactory& solver) {
+    GridSpec& gr = sc_.grid;
+    gr.grading = g.number("grading", 1.2, NumberRange::between(1.05, 2.0));
+    DeckNode zs = g.list("refine", false);
+    if (zs.size() > 0) gr.refine_mark = g.mark_of("refine");
+    if (zs.size() > 0 && !solver.graded_grid)
+      zs.fail("solver '" + solver.name + "' runs on a uniform lattice: refine zones are an MPM grid's");
+    std::vector<std::string> axes{"x", "y"};
+    if (!two_d()) axes.push_back("z");
+    for (size_t i = 0; i < zs.size(); ++i) {
+      DeckNode z = zs.element(i);
+      RefineZone zone;
+      zone.mark = z.mark();
+      zone.axis = axis_from(z.choice("axis", axes));
+      zone.from = z.number("from", NumberRange::any("m"));
+      zone.to = z.number("to", NumberRange::any("m"));
+      zone.cell_size = z.number("cell_size", NumberRange::positive("m"));
+      z.finish();
+      gr.refine.push_back(zone);
+    }
+    if (gr.graded()) {
+      const GridAxes axes_built = build_grid_axes(gr, ndim());
+      double cells = 1.0;
+      for (int d = 0; d < ndim(); ++d) cells *= axes_built.cells(d);
+      if (cells > 2.0e9)
+        zs.fail("the graded grid would have " + format_number(cells) + " cells; check that lengths are in metres");
+    }
   }
 
   void materials() {
@@ -799,10 +833,26 @@ class Reader {
     const PenetratorSpec& ps = pb->penetrator;
     const double face = ps.direction < 0 ? hi[ps.axis] : lo[ps.axis];
     pe.surface = n.number("surface", face, NumberRange::any("m"));
-    pe.axis_radius = n.number("axis_radius", sc_.grid.cell_size, NumberRange::positive("m"));
-    pe.stop_tolerance = n.number("stop_tolerance", sc_.grid.cell_size, NumberRange::positive("m"));
+    // "One cell": on a graded grid the finest across the line of flight, where the jet is.
+    double cell = sc_.grid.cell_size;
+    if (sc_.grid.graded()) {
+      const GridAxes axes = build_grid_axes(sc_.grid, ndim());
+      for (int a = 0; a < ndim(); ++a)
+        if (a != ps.axis) cell = std::min(cell, axes.smallest(a));
+    }
+    pe.axis_radius = n.number("axis_radius", cell, NumberRange::positive("m"));
+    pe.stop_tolerance = n.number("stop_tolerance", cell, NumberRange::positive("m"));
     pe.rate_half_window = static_cast<int>(n.integer("rate_half_window", 3, 1, 1000));
     pe.channel_bins = static_cast<int>(n.integer("channel_bins", 0, 0, 100000));
+    std::vector<std::string> others;
+    for (const BodySpec& b : sc_.bodies)
+      if (b.name != pe.penetrator && b.name != pe.target) others.push_back(b.name);
+    pe.layers = n.strings("layers", others);
+    for (const std::string& l : pe.layers) {
+      if (!find_body(l)) n.fail("layers", "unknown body '" + l + "'" + suggest(l, body_names()));
+      if (l == pe.penetrator || l == pe.target)
+        n.fail("layers", "'" + l + "' is the penetrator or the target; layers are the bodies perforated before the target");
+    }
     n.finish();
   }
 

@@ -9,7 +9,7 @@
 namespace ballista {
 
 BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, double cell, double dt, bool book_new,
-                                       std::vector<double>& c) {
+                                       std::vector<double>& c, const double* cells) {
   FieldStore& s = pts.store();
   const Index n = s.size();
   c.resize(static_cast<std::size_t>(n));
@@ -38,7 +38,8 @@ BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, d
     const double trD = L[p](0, 0) + L[p](1, 1) + L[p](2, 2);
     // Eroded to zero stress (thesis eq. 6.13-6.14): the point carries no pressure, viscous or not.
     const bool stress_free = failed && stress_free_failed[mat[p]] && failed[p] > 0.0;
-    const double q_new = stress_free ? 0.0 : bulk_viscosity_pressure(bv, mass[p] / vol[p], c[p], cell, trD);
+    const double l = cells ? cells[p] : cell;
+    const double q_new = stress_free ? 0.0 : bulk_viscosity_pressure(bv, mass[p] / vol[p], c[p], l, trD);
     // Heat = q (-dV): the pressure times the volume the point lost over dt (positive: q acts in
     // compression only), with the volume at the end of the update.
     const double w = (book_new ? q_new : q[p]) * (-trD) * vol[p] * dt;
@@ -48,12 +49,15 @@ BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, d
     o[0] += w;
     // The Courant speed with q, + |v|, in place of c; points without q (expanding, or eroded to
     // zero stress: debris that offers no resistance is squeezed at any rate) keep c.
-    c[p] = (q_new > 0.0 ? bulk_viscosity_signal_speed(bv, c[p], cell, trD) : c[p]) + norm(v[p]);
+    c[p] = (q_new > 0.0 ? bulk_viscosity_signal_speed(bv, c[p], l, trD) : c[p]) + norm(v[p]);
   }, out);
-  double vmax = 0.0;
-#pragma omp parallel for reduction(max : vmax) schedule(static) if (n > kParallelThreshold)
-  for (Index p = 0; p < n; ++p) vmax = std::max(vmax, c[p]);
-  return {out[0], vmax};
+  double vmax = 0.0, rmax = 0.0;
+#pragma omp parallel for reduction(max : vmax, rmax) schedule(static) if (n > kParallelThreshold)
+  for (Index p = 0; p < n; ++p) {
+    vmax = std::max(vmax, c[p]);
+    rmax = std::max(rmax, c[p] / (cells ? cells[p] : cell));
+  }
+  return {out[0], vmax, rmax};
 }
 
 }  // namespace ballista

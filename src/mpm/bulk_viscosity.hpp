@@ -47,6 +47,7 @@ inline constexpr const char* kBulkViscosityField = "bulk_viscosity";
 struct BulkViscosityPass {
   double work = 0.0;          ///< J (per radian in axisymmetric runs): the viscous heating of the pass
   double signal_speed = 0.0;  ///< m/s: max over the points of bulk_viscosity_signal_speed + |v|
+  double signal_rate = 0.0;   ///< 1/s: max over the points of that speed over the point's cell length
 };
 
 /// One pass over the points after a stress update over dt (the whole step, or one of USAVG's
@@ -55,7 +56,8 @@ struct BulkViscosityPass {
 /// so the shocked state reaches the Hugoniot's pressure), then sets q from this L. The forces used
 /// the q stored before the pass (usl and musl; USAVG's second half), or the q of this L
 /// (`book_new`: USAVG's first half, whose q the step's forces use). `c` is scratch (one per point).
+/// l is `cell`, or on a graded grid each point's own cell length `cells[p]`.
 BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, double cell, double dt, bool book_new,
-                                       std::vector<double>& c);
+                                       std::vector<double>& c, const double* cells = nullptr);
 
 }  // namespace ballista

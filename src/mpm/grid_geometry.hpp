@@ -1,18 +1,25 @@
 #pragma once
 // Geometry of a block of the MPM background grid. Node indices are relative to the block origin
-// so that an MPI rank can own one block (with ghost layers) without changing any kernel.
+// so that an MPI rank can own one block (with ghost layers) without changing any kernel. A
+// uniform grid has cubic cells of size h; a graded grid (grid.refine) has per-axis node
+// coordinates (mpm/graded_axis.hpp), and h is then its smallest cell.
+#include <array>
 #include <cmath>
+#include <memory>
 
 #include "core/parallel.hpp"
 #include "core/tensor.hpp"
+#include "mpm/graded_axis.hpp"
 
 namespace ballista {
 
 struct GridGeometry {
   Vec3 origin;               ///< position of node (0,0,0) of this block, m
-  double h = 1.0;            ///< cell size, m (cubic cells)
+  double h = 1.0;            ///< cell size, m (cubic cells); a graded grid's smallest cell
   int nodes[3] = {1, 1, 1};  ///< node counts per axis (nodes[2] = 1 in 2D)
   int dim = 3;               ///< 2 or 3
+  /// Graded grids: each axis's node coordinates (block index order); null for a uniform grid.
+  std::shared_ptr<const std::array<GradedAxis, 3>> graded;
 
   Index node_count() const { return static_cast<Index>(nodes[0]) * nodes[1] * nodes[2]; }
   Index node_index(int i, int j, int k) const {
@@ -20,11 +27,16 @@ struct GridGeometry {
   }
   /// Index of the cell containing coordinate x along `axis` (cell c spans nodes c and c+1).
   int cell_of(double x, int axis) const {
+    if (graded) return (*graded)[axis].cell_of(x);
     return static_cast<int>(std::floor((x - origin[axis]) / h));
   }
   Vec3 node_position(int i, int j, int k) const {
+    if (graded)
+      return {{(*graded)[0].at(i), (*graded)[1].at(j), dim == 3 ? (*graded)[2].at(k) : origin[2]}};
     return {{origin[0] + i * h, origin[1] + j * h, dim == 3 ? origin[2] + k * h : origin[2]}};
   }
+  /// Edge of cell c along `axis`, m.
+  double cell_size(int c, int axis) const { return graded ? (*graded)[axis].cell_size(c) : h; }
 };
 
 }  // namespace ballista

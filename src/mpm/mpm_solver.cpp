@@ -13,6 +13,8 @@
 #include "core/parallel.hpp"
 #include "core/system_memory.hpp"
 #include "geometry/seeding.hpp"
+#include "geometry/grid_axes.hpp"
+#include "mpm/graded_shape_functions.hpp"
 #include "mpm/grid_contact.hpp"
 #include "points/mms_axis_aligned.hpp"
 #include "points/point_exchange.hpp"
@@ -33,13 +35,19 @@ void record_min(std::atomic<Index>& slot, Index p) {
   }
 }
 
-template <int Dim, ShapeKind K>
+/// The weights of one particle. G: the grid is graded (mpm/graded_shape_functions.hpp; no cubic
+/// B-spline there, the solver refuses it).
+template <int Dim, ShapeKind K, bool G>
 inline void stencil_of(const GridGeometry& g, const SplineFaces& faces, const Vec3& x, const Vec3& half,
                        const Mat3& F, Stencil<Dim>& s) {
+  static_assert(!(G && K == ShapeKind::BSpline3), "no cubic B-spline on a graded grid");
   if constexpr (K == ShapeKind::Linear) {
-    linear_stencil<Dim>(g, x, s);
+    if constexpr (G) graded_linear_stencil<Dim>(g, x, s);
+    else linear_stencil<Dim>(g, x, s);
   } else if constexpr (K == ShapeKind::Gimp) {
-    gimp_stencil<Dim>(g, x, half, s);  // uGIMP: reference half-size (Bardenhagen & Kober 2004)
+    // uGIMP: reference half-size (Bardenhagen & Kober 2004)
+    if constexpr (G) graded_gimp_stencil<Dim>(g, x, half, s);
+    else gimp_stencil<Dim>(g, x, half, s);
   } else if constexpr (K == ShapeKind::BSpline3) {
     bspline3_stencil<Dim>(g, x, s, faces);
   } else {
@@ -47,21 +55,24 @@ inline void stencil_of(const GridGeometry& g, const SplineFaces& faces, const Ve
     Mat3 r;
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) r(i, j) = F(i, j) * half[j];
-    cpdi_stencil<Dim>(g, x, r, s);
+    if constexpr (G) graded_cpdi_stencil<Dim>(g, x, r, s);
+    else cpdi_stencil<Dim>(g, x, r, s);
   }
 }
 
 /// The weights at a surface-traction point: a point load, so the kernel itself (the cubic
 /// B-spline, or the linear hat for every other shape function), not a particle domain.
-template <int Dim, ShapeKind K>
+template <int Dim, ShapeKind K, bool G>
 inline void surface_point_stencil(const GridGeometry& g, const SplineFaces& faces, const Vec3& x, Stencil<Dim>& s) {
   if constexpr (K == ShapeKind::BSpline3) bspline3_stencil<Dim>(g, x, s, faces);
+  else if constexpr (G) graded_linear_stencil<Dim>(g, x, s);
   else linear_stencil<Dim>(g, x, s);
 }
 
 }  // namespace
 
 MpmSolver::GridLayout MpmSolver::layout_grid(const Scenario& sc, int ghost) {
+  if (sc.grid.graded()) return layout_graded_grid(sc, ghost);
   // Grid block: the physical box plus ghost node layers so every stencil stays in the block.
   GridLayout L;
   const Dimension dimension = sc.simulation.dimension;
@@ -85,6 +96,42 @@ MpmSolver::GridLayout MpmSolver::layout_grid(const Scenario& sc, int ghost) {
       L.box_first[a] = L.box_last[a] = 0;
     }
   }
+  return L;
+}
+
+MpmSolver::GridLayout MpmSolver::layout_graded_grid(const Scenario& sc, int ghost) {
+  // The box's graded axes (geometry/grid_axes.hpp), each continued by `ghost` cells of its end
+  // cells' size on either side.
+  GridLayout L;
+  const int dim = axis_count(sc.simulation.dimension);
+  const GridAxes axes = build_grid_axes(sc.grid, dim);
+  GridGeometry& g = L.geom;
+  g.dim = dim;
+  g.h = sc.grid.cell_size;
+  auto graded = std::make_shared<std::array<GradedAxis, 3>>();
+  for (int a = 0; a < 3; ++a) {
+    if (a >= dim) {
+      L.box_lower[a] = L.box_upper[a] = g.origin[a] = 0.0;
+      g.nodes[a] = 1;
+      L.box_first[a] = L.box_last[a] = 0;
+      continue;
+    }
+    const std::vector<double>& box = axes.node[a];
+    const double first = box[1] - box[0], last = box.back() - box[box.size() - 2];
+    std::vector<double> nodes;
+    for (int k = ghost; k > 0; --k) nodes.push_back(box.front() - k * first);
+    nodes.insert(nodes.end(), box.begin(), box.end());
+    for (int k = 1; k <= ghost; ++k) nodes.push_back(box.back() + k * last);
+    (*graded)[a] = GradedAxis(nodes);
+    g.origin[a] = nodes.front();
+    g.nodes[a] = static_cast<int>(nodes.size());
+    g.h = std::min(g.h, axes.smallest(a));
+    L.box_lower[a] = box.front();
+    L.box_upper[a] = box.back();
+    L.box_first[a] = ghost;
+    L.box_last[a] = ghost + axes.cells(a);
+  }
+  g.graded = std::move(graded);
   return L;
 }
 
@@ -159,6 +206,14 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
         }
       }
   }
+  if (grid_.geom.graded && shape_ == ShapeKind::BSpline3)
+    throw_solver_param_error(sc, "mpm", "shape_function",
+                             "bspline3 does not run on a graded grid (grid.refine) yet: its basis on unequal cells "
+                             "(non-uniform knots) is not implemented; use gimp, linear or cpdi");
+  if (grid_.geom.graded && comm_.distributed())
+    throw DeckError(sc.grid.refine_mark.file, sc.grid.refine_mark.line, sc.grid.refine_mark.column, "grid.refine",
+                    "a graded grid runs on one MPI rank only so far (" + std::to_string(comm_.size()) +
+                        " ranks were started; docs/parallel.md)");
   if (usavg_ && shape_ == ShapeKind::Cpdi)
     // CPDI's domains follow F, which the first stress half changes within the step: the second
     // mapping and the update would use other weights than the first, and momentum would drift.
@@ -223,12 +278,46 @@ double MpmSolver::reporting_scale() const {
 }
 
 double MpmSolver::stable_dt() {
+  if (grid_.geom.graded) return graded_stable_dt();
   // dt = CFL h / max_p (c_p + |v_p|)  (Courant condition with the dilatational wave speed).
   // With the bulk viscosity, its signal speed (Q + sqrt(Q^2 + c^2) + |v|) of the last step's rates.
   const double local_max = std::max(pts_.max_signal_speed(), viscous_speed_);
   const double speed = comm_.max(local_max);
   double dt = speed > 0.0 ? scenario_.simulation.cfl * grid_.geom.h / speed
                           : scenario_.simulation.end_time;
+  if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
+  return dt;
+}
+
+void MpmSolver::update_cell_lengths() {
+  // The shortest edge of each point's cell: the length a signal crosses in the Courant condition
+  // and the viscous length of the bulk viscosity on a graded grid.
+  const GridGeometry& g = grid_.geom;
+  const auto* x = points_.view<Vec3>("x");
+  cell_length_.resize(static_cast<std::size_t>(points_.size()));
+  for_each(0, points_.size(), [&](Index p) {
+    double l = g.cell_size(g.cell_of(x[p][0], 0), 0);
+    for (int a = 1; a < dim_; ++a) l = std::min(l, g.cell_size(g.cell_of(x[p][a], a), a));
+    cell_length_[p] = l;
+  });
+}
+
+double MpmSolver::graded_stable_dt() {
+  // dt = CFL min_p l_p / (c_p + |v_p|): each point's signal crosses its own cell (l_p its shortest
+  // edge) within the step; with the bulk viscosity, the last pass's signal rates.
+  update_cell_lengths();
+  const auto* v = points_.view<Vec3>("v");
+  wave_scratch_.resize(static_cast<std::size_t>(points_.size()));
+  const auto& groups = pts_.material_groups();
+  for (std::size_t m = 0; m < groups.size(); ++m)
+    if (!groups[m].empty())
+      pts_.materials()[m]->wave_speeds(points_, groups[m].data(), static_cast<Index>(groups[m].size()),
+                                       wave_scratch_.data());
+  double rate = viscous_rate_;
+  const Index n = points_.size();
+#pragma omp parallel for reduction(max : rate) schedule(static) if (n > kParallelThreshold)
+  for (Index p = 0; p < n; ++p) rate = std::max(rate, (wave_scratch_[p] + norm(v[p])) / cell_length_[p]);
+  double dt = rate > 0.0 ? scenario_.simulation.cfl / rate : scenario_.simulation.end_time;
   if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
   return dt;
 }
@@ -367,7 +456,7 @@ void MpmSolver::build_slabs() {
   for (Index p = 0; p < n; ++p) slab_points_[slab_fill_[slab[p]]++] = p;
 }
 
-template <int Dim, ShapeKind K>
+template <int Dim, ShapeKind K, bool G>
 void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
   const GridGeometry& g = grid_.geom;
   const auto* x = points_.view<Vec3>("x");
@@ -403,7 +492,7 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
     // Tractions at the surface points, with the kernel's weights there (serial: few points).
     Stencil<Dim> st;
     for (const PointLoads::SurfaceForce& sf : loads_.surface_forces()) {
-      surface_point_stencil<Dim, K>(g, spline_faces_, sf.point, st);
+      surface_point_stencil<Dim, K, G>(g, spline_faces_, sf.point, st);
       const Index fo = field_offset(sf.index);
       for (int k = 0; k < st.count; ++k) gf[fo + st.node[k]] += st.w[k] * sf.force;
     }
@@ -414,7 +503,7 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
       Stencil<Dim> st;
       for (Index q = slab_start_[s]; q < slab_start_[s + 1]; ++q) {
         const Index p = slab_points_[q];
-        stencil_of<Dim, K>(g, spline_faces_, x[p], half[p], F[p], st);
+        stencil_of<Dim, K, G>(g, spline_faces_, x[p], half[p], F[p], st);
         const double m = mass[p];
         const Vec3 mv = m * v[p];
         const Index fo = field_offset(p);
@@ -727,7 +816,7 @@ void MpmSolver::update_grid(double dt) {
   }
 }
 
-template <int Dim, ShapeKind K>
+template <int Dim, ShapeKind K, bool G>
 void MpmSolver::xpic_velocity(double dt) {
   // XPIC(m) (Hammerquist & Nairn, CMAME 318 (2017) 724, eqs. 27-30; the recursion of NairnMPM's
   // XPICExtrapolationTask): with A = S+ S the grid -> particle -> grid map (interpolation, then the
@@ -758,13 +847,13 @@ void MpmSolver::xpic_velocity(double dt) {
     // no longer needs), times C(m,k) / C(m,k-1) = (m - k + 1) / k.
     for_each(0, n, [&](Index p) {
       Stencil<Dim> st;
-      stencil_of<Dim, K>(g, spline_faces_, x_[p], half[p], F_[p], st);
+      stencil_of<Dim, K, G>(g, spline_faces_, x_[p], half[p], F_[p], st);
       const Index fo = field_offset(p);
       Vec3 u;
       for (int j = 0; j < st.count; ++j) u += st.w[j] * prev[fo + st.node[j]];
       xpic_.at_points[p] = u;
     });
-    particles_to_grid<Dim, K>(true, xpic_.at_points.data());
+    particles_to_grid<Dim, K, G>(true, xpic_.at_points.data());
     const double scale = static_cast<double>(m - k + 1) / k;
     for_each_active_node([&](Index i) {
       const double mi = grid_.mass[i];
@@ -793,7 +882,7 @@ inline void MpmSolver::finish_point(Index p, const Mat3& l, const Vec3& disp, do
     if (!(x[a] >= layout_.box_lower[a] && x[a] <= layout_.box_upper[a])) record_min(out, p);
 }
 
-template <int Dim, ShapeKind K, bool Usavg>
+template <int Dim, ShapeKind K, bool G, bool Usavg>
 void MpmSolver::grid_to_particles(double dt) {
   // One pass per point: grid velocity, acceleration and velocity gradient at the point; FLIP/PIC
   // velocity update; position, F and volume update (USL); failure and exit detection. USAVG's
@@ -824,7 +913,7 @@ void MpmSolver::grid_to_particles(double dt) {
   deterministic_sum<2>(0, n, [&](Index p, double* o) {
     Stencil<Dim> st;
     const Vec3 xp = x_[p];
-    stencil_of<Dim, K>(g, spline_faces_, xp, half[p], F_[p], st);
+    stencil_of<Dim, K, G>(g, spline_faces_, xp, half[p], F_[p], st);
     const Index fo = field_offset(p);
     Vec3 vg, acc;
     Mat3 l;
@@ -897,7 +986,7 @@ void MpmSolver::grid_to_particles(double dt) {
       // Tractions are spread from their surface points (particles_to_grid); serial, few points.
       Stencil<Dim> st;
       for (const PointLoads::SurfaceForce& sf : loads_.surface_forces()) {
-        surface_point_stencil<Dim, K>(g, spline_faces_, sf.point, st);
+        surface_point_stencil<Dim, K, G>(g, spline_faces_, sf.point, st);
         const Index fo = field_offset(sf.index);
         Vec3 vm;
         for (int k = 0; k < st.count; ++k) vm += (0.5 * st.w[k]) * (vs[fo + st.node[k]] + vn[fo + st.node[k]]);
@@ -912,7 +1001,7 @@ void MpmSolver::grid_to_particles(double dt) {
   first_out_ = out.load();
 }
 
-template <int Dim, ShapeKind K>
+template <int Dim, ShapeKind K, bool G>
 void MpmSolver::velocity_gradient_from_grid(double dt, bool move) {
   // L, F and the volume from the grid velocity in velocity_new, with the shape functions of this
   // step: for MUSL (Sulsky, Zhou & Schreyer, CPC 87 (1995) 236) the velocity the updated particle
@@ -927,7 +1016,7 @@ void MpmSolver::velocity_gradient_from_grid(double dt, bool move) {
   for_each(0, n, [&](Index p) {
     Stencil<Dim> st;
     const Vec3 xp = x_[p];
-    stencil_of<Dim, K>(g, spline_faces_, xp, half[p], F_[p], st);
+    stencil_of<Dim, K, G>(g, spline_faces_, xp, half[p], F_[p], st);
     const Index fo = field_offset(p);
     Mat3 l;
     double vr = 0.0;
@@ -959,28 +1048,28 @@ void MpmSolver::handle_exits() {
 
 void MpmSolver::fail(Index p, const std::string& what) const { pts_.fail(p, what, steps_, time_); }
 
-template <int Dim, ShapeKind K>
+template <int Dim, ShapeKind K, bool G>
 void MpmSolver::step_impl(double dt) {
   bind_fields();
   build_slabs();
   loads_.compute(scenario_, points_, time_);
   mark_active_blocks();
-  particles_to_grid<Dim, K>(false);
+  particles_to_grid<Dim, K, G>(false);
   if (usavg_) {
-    first_half_stress_update<Dim, K>(dt);
-    particles_to_grid<Dim, K>(false);  // the forces of the half-updated stress
+    first_half_stress_update<Dim, K, G>(dt);
+    particles_to_grid<Dim, K, G>(false);  // the forces of the half-updated stress
   }
   update_grid(dt);
-  if (xpic_active()) xpic_velocity<Dim, K>(dt);
+  if (xpic_active()) xpic_velocity<Dim, K, G>(dt);
   if (usavg_) {
-    grid_to_particles<Dim, K, true>(dt);
+    grid_to_particles<Dim, K, G, true>(dt);
     transfer_work_ -= grid_kinetic_energy_change(dt);
   } else {
-    grid_to_particles<Dim, K, false>(dt);
+    grid_to_particles<Dim, K, G, false>(dt);
   }
   if (musl_) {
     // Map the updated particle momenta back with the same shape functions, then L from them.
-    particles_to_grid<Dim, K>(true);
+    particles_to_grid<Dim, K, G>(true);
     velocity_from_momentum();
     // Kinematics only (the particle velocities are final): the same constraints, nothing booked.
     apply_velocity_bcs(grid_.velocity_new.data());
@@ -989,7 +1078,7 @@ void MpmSolver::step_impl(double dt) {
       apply_velocity_bcs(grid_.velocity_new.data());
     }
     if (!mirror_faces_.empty()) fill_mirror_ghosts(grid_.velocity_new.data());
-    velocity_gradient_from_grid<Dim, K>(dt, true);
+    velocity_gradient_from_grid<Dim, K, G>(dt, true);
   }
   // The step's kinematics are done: count it, so that failure messages, outputs and statistics
   // name the step whose state they show.
@@ -1005,14 +1094,17 @@ void MpmSolver::step_impl(double dt) {
 }
 
 void MpmSolver::bulk_viscosity_pass(double dt, bool book_new) {
-  const BulkViscosityPass r = apply_bulk_viscosity(pts_, bulk_viscosity_, grid_.geom.h, dt, book_new, wave_scratch_);
+  if (grid_.geom.graded) update_cell_lengths();  // the viscous length is each point's cell
+  const BulkViscosityPass r = apply_bulk_viscosity(pts_, bulk_viscosity_, grid_.geom.h, dt, book_new, wave_scratch_,
+                                                   grid_.geom.graded ? cell_length_.data() : nullptr);
   // This rank's share only: a collective here would not match a rank that failed in the step
   // (rethrow_agreed); energies() and save_state() sum it.
   viscous_work_ += r.work;
   viscous_speed_ = r.signal_speed;  // stable_dt takes the maximum over the ranks
+  viscous_rate_ = r.signal_rate;
 }
 
-template <int Dim, ShapeKind K>
+template <int Dim, ShapeKind K, bool G>
 void MpmSolver::first_half_stress_update(double dt) {
   // USAVG (Nairn, CMES 4 (2003) 649): the stress takes half its increment from the mapped grid
   // velocity v_n before the forces are computed, and the other half from v_{n+1} after the grid
@@ -1046,7 +1138,7 @@ void MpmSolver::first_half_stress_update(double dt) {
   if (!mirror_faces_.empty()) fill_mirror_ghosts(usavg_start_.data());  // G2P reads it there too
   for_each_active_node([&](Index i) { grid_.velocity_new[i] = usavg_start_[i]; });
   if (!mirror_faces_.empty()) fill_mirror_ghosts(grid_.velocity_new.data());
-  velocity_gradient_from_grid<Dim, K>(0.5 * dt, false);
+  velocity_gradient_from_grid<Dim, K, G>(0.5 * dt, false);
   if (first_bad_ < points_.size())  // named as the step it happens in (steps_ counts completed ones)
     pts_.fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0 or NaN) in the first half of the step",
               steps_ + 1, time_);
@@ -1113,11 +1205,22 @@ void MpmSolver::step_local(double dt) {
   activate_pending();
   if (sort_every_ > 0 && steps_ % sort_every_ == 0) sort_by_cell();
   const bool three = dim_ == 3;
-  switch (shape_) {
-    case ShapeKind::Linear: three ? step_impl<3, ShapeKind::Linear>(dt) : step_impl<2, ShapeKind::Linear>(dt); break;
-    case ShapeKind::Gimp: three ? step_impl<3, ShapeKind::Gimp>(dt) : step_impl<2, ShapeKind::Gimp>(dt); break;
-    case ShapeKind::Cpdi: three ? step_impl<3, ShapeKind::Cpdi>(dt) : step_impl<2, ShapeKind::Cpdi>(dt); break;
-    case ShapeKind::BSpline3: three ? step_impl<3, ShapeKind::BSpline3>(dt) : step_impl<2, ShapeKind::BSpline3>(dt); break;
+  if (grid_.geom.graded) {  // no cubic B-spline on a graded grid (refused in the constructor)
+    switch (shape_) {
+      case ShapeKind::Linear: three ? step_impl<3, ShapeKind::Linear, true>(dt) : step_impl<2, ShapeKind::Linear, true>(dt); break;
+      case ShapeKind::Gimp: three ? step_impl<3, ShapeKind::Gimp, true>(dt) : step_impl<2, ShapeKind::Gimp, true>(dt); break;
+      case ShapeKind::Cpdi: three ? step_impl<3, ShapeKind::Cpdi, true>(dt) : step_impl<2, ShapeKind::Cpdi, true>(dt); break;
+      case ShapeKind::BSpline3: break;
+    }
+  } else {
+    switch (shape_) {
+      case ShapeKind::Linear: three ? step_impl<3, ShapeKind::Linear, false>(dt) : step_impl<2, ShapeKind::Linear, false>(dt); break;
+      case ShapeKind::Gimp: three ? step_impl<3, ShapeKind::Gimp, false>(dt) : step_impl<2, ShapeKind::Gimp, false>(dt); break;
+      case ShapeKind::Cpdi: three ? step_impl<3, ShapeKind::Cpdi, false>(dt) : step_impl<2, ShapeKind::Cpdi, false>(dt); break;
+      case ShapeKind::BSpline3:
+        three ? step_impl<3, ShapeKind::BSpline3, false>(dt) : step_impl<2, ShapeKind::BSpline3, false>(dt);
+        break;
+    }
   }
   handle_exits();
 }
@@ -1155,6 +1258,7 @@ void MpmSolver::save_state(StateArchive& a) const {
   a.put_real("mpm.boundary_work", boundary_work_);
   // Collective (as pts_.save_state): the total heat and the largest speed of every rank.
   a.put("mpm.bulk_viscosity", std::vector<double>{comm_.sum(viscous_work_), comm_.max(viscous_speed_)});
+  if (grid_.geom.graded) a.put_real("mpm.viscous_rate", viscous_rate_);  // one rank (graded grids)
   if (comm_.distributed()) {
     // The decomposition: the region boxes (a restart on as many ranks migrates exactly as the
     // uninterrupted run) and rank 0's statistics.
@@ -1199,6 +1303,7 @@ void MpmSolver::load_state(const StateArchive& a) {
   const auto& bv = a.reals("mpm.bulk_viscosity", 2);
   viscous_work_ = comm_.rank() == 0 ? bv[0] : 0.0;  // the total, held by rank 0 (energies() sums)
   viscous_speed_ = bv[1];
+  if (grid_.geom.graded) viscous_rate_ = a.real("mpm.viscous_rate");
 }
 
 EnergyTotals MpmSolver::energies() const {
@@ -1269,4 +1374,7 @@ BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
     "mpm",
     ballista::mpm_params(),
     &ballista::make_mpm,
+    true,
+    {},
+    "",
     true})

@@ -88,14 +88,14 @@ class MpmSolver final : public Solver {
   void step_local(double dt);
   void sort_by_cell();
   void build_slabs();
-  template <int Dim, ShapeKind K> void step_impl(double dt);
+  template <int Dim, ShapeKind K, bool G> void step_impl(double dt);
   /// P2G; `momentum_only` maps only the momenta m_p v_p (of `v_source` if given) into grid_.velocity.
-  template <int Dim, ShapeKind K> void particles_to_grid(bool momentum_only, const Vec3* v_source = nullptr);
+  template <int Dim, ShapeKind K, bool G> void particles_to_grid(bool momentum_only, const Vec3* v_source = nullptr);
   /// XPIC(m): the grid velocity the PIC share of the update reads, into xpic_.target.
-  template <int Dim, ShapeKind K> void xpic_velocity(double dt);
-  template <int Dim, ShapeKind K, bool Usavg> void grid_to_particles(double dt);
-  template <int Dim, ShapeKind K> void velocity_gradient_from_grid(double dt, bool move);
-  template <int Dim, ShapeKind K> void first_half_stress_update(double dt);
+  template <int Dim, ShapeKind K, bool G> void xpic_velocity(double dt);
+  template <int Dim, ShapeKind K, bool G, bool Usavg> void grid_to_particles(double dt);
+  template <int Dim, ShapeKind K, bool G> void velocity_gradient_from_grid(double dt, bool move);
+  template <int Dim, ShapeKind K, bool G> void first_half_stress_update(double dt);
   void velocity_from_momentum();  // velocity_new = momentum / mass at the active nodes
   double grid_kinetic_energy_change(double dt);  // over the step, after update_grid
   void finish_point(Index p, const Mat3& l, const Vec3& disp, double dt, std::atomic<Index>& bad,
@@ -139,6 +139,12 @@ class MpmSolver final : public Solver {
     int box_first[3], box_last[3];  ///< node index range of the physical box per axis
   };
   static GridLayout layout_grid(const Scenario& sc, int ghost);
+  static GridLayout layout_graded_grid(const Scenario& sc, int ghost);
+  /// Graded grids: the stable step from each point's own cell, and those cells' shortest edges.
+  double graded_stable_dt();
+  void update_cell_lengths();
+  std::vector<double> cell_length_;  ///< m, per point (graded grids)
+  double viscous_rate_ = 0.0;        ///< graded grids: the last viscous pass's max signal speed / cell, 1/s
   static constexpr int kGhostLayers = 3;  ///< ghost node layers beyond the box on each side
 
   Scenario scenario_;

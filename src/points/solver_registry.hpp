@@ -30,6 +30,9 @@ struct SolverFactory {
   std::vector<FaceBC> face_conditions = {};
   /// Why the solver imposes no other face condition (the deck error says it).
   std::string face_conditions_note = {};
+  /// Runs on a graded grid (grid.refine, geometry/grid_axes.hpp); otherwise refine zones are a
+  /// deck error.
+  bool graded_grid = false;
 };
 
 /// An optional word parameter of a solver section whose default is the first choice.

@@ -34,7 +34,7 @@ void DeletionReport::update(const EnergyTotals& e, long step, double time) {
     reported_[b] = now;
     const double f = share(e, b);
     const int decile = static_cast<int>(std::floor(10.0 * f));
-    const bool log = rows_[b] < kLoggedRows || decile > decile_[b];
+    const bool log = rows_[b] == 0 || decile > decile_[b];
     decile_[b] = std::max(decile_[b], decile);
     if (!log) continue;
     ++rows_[b];
@@ -42,7 +42,7 @@ void DeletionReport::update(const EnergyTotals& e, long step, double time) {
                  "kg ({:.3g} % of its mass) and {:.4g} J carried off{}",
                  step, time, fresh, sc_.bodies[b].name, now, e.removed_mass_by_body[b], 100.0 * f,
                  e.removed_energy_by_body[b],
-                 rows_[b] == kLoggedRows ? " (further deletions of this body are logged at each 10 % of its mass)" : "");
+                 rows_[b] == 1 ? " (logged again at each 10 % of its mass; summary.json lists them all)" : "");
   }
 }
 

@@ -17,15 +17,14 @@ class DeletionReport {
  public:
   /// Deletions already booked in `start` (a restart's checkpoint) are not reported again.
   DeletionReport(const Scenario& sc, const EnergyTotals& start);
-  /// Logs the deletions since the last call (at most kLoggedRows lines per body, then only when
-  /// the body's deleted share of its mass crosses another 10 %).
+  /// Logs the deletions since the last call: a body's first, then whenever its deleted share of
+  /// its mass crosses another 10 % (debris trickling out of the grid would fill the log).
   void update(const EnergyTotals& e, long step, double time);
   /// summary.json `deleted`: per body that lost points, their count, mass, energy and mass share.
   JsonValue summary(const EnergyTotals& e) const;
   /// One warning per probe whose body has lost more than half its mass (logged by the caller).
   std::vector<std::string> probe_warnings(const EnergyTotals& e) const;
 
-  static constexpr int kLoggedRows = 20;
 
  private:
   const Scenario& sc_;

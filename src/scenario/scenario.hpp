@@ -55,10 +55,26 @@ struct SimulationSpec {
   int threads = 0;                  ///< 0 = OpenMP default
 };
 
+/// A band of finer cells along one axis of the grid (grid.refine): cells of at most `cell_size`
+/// from `from` to `to`, graded into the coarse cells around it (geometry/grid_axes.hpp).
+struct RefineZone {
+  int axis = 0;            ///< 0 x, 1 y, 2 z
+  double from = 0.0;       ///< m
+  double to = 0.0;         ///< m
+  double cell_size = 0.0;  ///< m
+  DeckMark mark;
+};
+
 struct GridSpec {
   Vec3 lower;               ///< m; z ignored in 2D
   Vec3 upper;               ///< m
-  double cell_size = 0.0;   ///< m, cubic cells
+  double cell_size = 0.0;   ///< m: the cubic cells of a uniform grid; the largest cells of a graded one
+  /// Bands of finer cells: a rectilinear (graded) grid whose cells along each axis are the zones'
+  /// in the zones and grow by at most `grading` per cell to cell_size between them. Empty: uniform.
+  std::vector<RefineZone> refine;
+  double grading = 1.2;     ///< largest ratio of neighbouring cell sizes of a graded grid
+  DeckMark refine_mark;
+  bool graded() const { return !refine.empty(); }
   /// Per face: x_min, x_max, y_min, y_max, z_min, z_max.
   std::array<FaceBC, 6> faces{FaceBC::Free, FaceBC::Free, FaceBC::Free,
                               FaceBC::Free, FaceBC::Free, FaceBC::Free};
@@ -214,6 +230,9 @@ struct PenetrationSpec {
   double stop_tolerance = 0.0; ///< m: depth change below which penetration has stopped (0: one cell)
   int rate_half_window = 3;    ///< samples each side of the local-polynomial derivative
   int channel_bins = 0;        ///< bins of the channel profile (0: one per cell of the final depth)
+  /// Bodies the penetrator perforates before the target (casing, cement): the hole in each is
+  /// measured (entrance and smallest diameter). Default: every body but the penetrator and target.
+  std::vector<std::string> layers;
   DeckMark mark;
 };
 

@@ -1,0 +1,167 @@
+#!/usr/bin/env python3
+"""Grid study of the perforation demo: depth and hole diameters under refinement around the jet.
+
+Runs examples/jet_casing_sandstone_mpm.yaml at several levels of a graded grid (grid.refine): at
+level h the cells are h in a radial band around the line of flight (0 <= r < --band) and in an
+axial band along the jet's path (--path), graded to the deck's far-field cell_size outside;
+levels halve h (ratio 2). For each level it records what a gun designer reads, the depth of
+penetration into the rock, the casing's entrance-hole diameter, the cement's and the rock
+tunnel's entrance diameter, with the run's cost. From the three finest levels: the observed order
+p = log(|f1 - f2| / |f2 - f3|) / log 2, the Richardson estimate f3 + (f3 - f2) / (2^p - 1) and the
+finest level's distance from it (Roache, "Verification and Validation in Computational Science and
+Engineering", 1998, ch. 5; the grid convergence index uses the same extrapolation).
+
+Writes DIR/convergence.json, DIR/convergence.md (the table for docs/validation.md) and
+DIR/convergence.png. Long (the finest level takes tens of minutes on 2 cores); not in make test.
+
+  /usr/bin/python3 validation/perforation_convergence.py --ballista build/ballista --out out/perfconv
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DECK = os.path.join(REPO, "examples", "jet_casing_sandstone_mpm.yaml")
+QUANTITIES = [
+    ("depth", "depth into the rock", "mm"),
+    ("casing_hole", "casing entrance hole diameter", "mm"),
+    ("cement_hole", "cement entrance hole diameter", "mm"),
+    ("tunnel_entrance", "rock tunnel entrance diameter", "mm"),
+]
+
+
+def level_sets(h, far, band, path):
+    """--set overrides of one level: the bands at h (uniform when h is the far-field cell)."""
+    if abs(h - far) < 1e-12 * far:
+        return [f"grid.cell_size={far!r}"]
+    zones = (f"[{{axis: x, from: 0, to: {band!r}, cell_size: {h!r}}}, "
+             f"{{axis: y, from: {path[0]!r}, to: {path[1]!r}, cell_size: {h!r}}}]")
+    return [f"grid.cell_size={far!r}", f"grid.refine={zones}"]
+
+
+def run_level(a, h):
+    out = os.path.join(a.out, f"h_{h * 1e3:g}mm")
+    summary = os.path.join(out, "summary.json")
+    if a.reuse and os.path.exists(summary):
+        return json.load(open(summary)), None
+    cmd = [a.ballista, "run", DECK, "-o", out, "-q", "--no-plots", "--threads", str(a.threads), "--overwrite"]
+    for s in level_sets(h, a.far, a.band, a.path) + a.set:
+        cmd += ["--set", s]
+    print("running", " ".join(cmd), flush=True)
+    t0 = time.time()
+    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    wall = time.time() - t0
+    if p.returncode != 0:
+        print(p.stdout[-3000:])
+        raise SystemExit(f"level h = {h} failed (exit {p.returncode})")
+    return json.load(open(summary)), wall
+
+
+def extract(s):
+    pen = s["penetration"]
+    holes = pen.get("holes", {})
+    mm = lambda v: None if v is None else 1e3 * v
+    return {
+        "depth": mm(pen.get("final_depth")),
+        "casing_hole": mm(holes.get("casing", {}).get("entrance_diameter")),
+        "cement_hole": mm(holes.get("cement", {}).get("entrance_diameter")),
+        "tunnel_entrance": mm(pen.get("tunnel", {}).get("entrance_diameter")),
+        "cells_across_radius": pen.get("cells_across_radius"),
+        "particles": s["statistics"]["particles_seeded"],
+        "steps": s["statistics"]["steps"],
+        "wall_time": s["statistics"]["wall_time"],
+        "residual_over_scale": s["energy"]["residual_over_scale"],
+    }
+
+
+def richardson(f1, f2, f3, ratio=2.0):
+    """Observed order and extrapolated value from three levels, coarse to fine."""
+    if None in (f1, f2, f3):
+        return None, None
+    d12, d23 = f1 - f2, f2 - f3
+    if d23 == 0 or d12 == 0 or (d12 > 0) != (d23 > 0):
+        return None, None  # not monotone: no order
+    p = math.log(abs(d12) / abs(d23)) / math.log(ratio)
+    return p, f3 + d23 / (ratio ** p - 1.0)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--ballista", default=os.path.join(REPO, "build", "ballista"))
+    ap.add_argument("--out", default=os.path.join(REPO, "out", "perforation_convergence"))
+    ap.add_argument("--levels", type=float, nargs="+", default=[1.0e-3, 0.5e-3, 0.25e-3],
+                    help="cell sizes in the bands, m, coarse to fine (ratio 2)")
+    ap.add_argument("--far", type=float, default=1.0e-3, help="far-field cell size, m (the deck's)")
+    ap.add_argument("--band", type=float, default=6.0e-3, help="radius of the refined band around the line of flight, m")
+    ap.add_argument("--path", type=float, nargs=2, default=[20.0e-3, 135.0e-3],
+                    help="axial extent of the refined band, m (the jet's path through casing, cement and rock)")
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--set", action="append", default=[], help="further --set overrides for every level")
+    ap.add_argument("--reuse", action="store_true", help="reuse the summary of a level already run into --out")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    rows = []
+    for h in a.levels:
+        s, wall = run_level(a, h)
+        r = extract(s)
+        r["h"] = h
+        rows.append(r)
+        print(json.dumps(r), flush=True)
+    result = {"levels": rows, "band": a.band, "path": a.path, "far": a.far, "estimates": {}}
+    if len(rows) >= 3:
+        for key, what, unit in QUANTITIES:
+            f = [r[key] for r in rows[-3:]]
+            p, fr = richardson(*f)
+            est = {"observed_order": p, "richardson": fr}
+            if fr:
+                est["finest_relative_gap"] = abs(f[2] - fr) / abs(fr)
+            result["estimates"][key] = est
+    json.dump(result, open(os.path.join(a.out, "convergence.json"), "w"), indent=2)
+    lines = ["| band cell (mm) | cells across the tip radius | particles | steps | wall time (s) | depth (mm) | "
+             "casing hole (mm) | cement hole (mm) | rock tunnel entrance (mm) |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    fmt = lambda v: "—" if v is None else f"{v:.3g}"
+    for r in rows:
+        lines.append(f"| {r['h'] * 1e3:g} | {fmt(r['cells_across_radius'])} | {r['particles']} | {r['steps']} | "
+                     f"{r['wall_time']:.0f} | {fmt(r['depth'])} | {fmt(r['casing_hole'])} | {fmt(r['cement_hole'])} | "
+                     f"{fmt(r['tunnel_entrance'])} |")
+    if result["estimates"]:
+        for name, key in (("observed order", "observed_order"), ("Richardson estimate", "richardson"),
+                          ("finest vs Richardson", "finest_relative_gap")):
+            cells = []
+            for q, _, _ in QUANTITIES:
+                v = result["estimates"][q].get(key)
+                cells.append("—" if v is None else (f"{100 * v:.1f} %" if key == "finest_relative_gap" else f"{v:.3g}"))
+            lines.append(f"| {name} | | | | | " + " | ".join(cells) + " |")
+    open(os.path.join(a.out, "convergence.md"), "w").write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, axes = plt.subplots(1, len(QUANTITIES), figsize=(4 * len(QUANTITIES), 3.4))
+        hs = [r["h"] * 1e3 for r in rows]
+        for ax, (key, what, unit) in zip(axes, QUANTITIES):
+            ax.plot(hs, [r[key] for r in rows], "o-", label="Ballista")
+            fr = result["estimates"].get(key, {}).get("richardson")
+            if fr:
+                ax.axhline(fr, ls="--", color="gray", label="Richardson estimate")
+            ax.set_xscale("log", base=2)
+            ax.invert_xaxis()
+            ax.set_xlabel("cell size around the jet (mm)")
+            ax.set_ylabel(f"{what} ({unit})")
+            ax.legend(fontsize=8)
+        fig.suptitle("Perforation demo under refinement around the jet")
+        fig.tight_layout()
+        fig.savefig(os.path.join(a.out, "convergence.png"), dpi=110)
+    except ImportError as e:
+        print("no figure:", e)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
