@@ -14,7 +14,6 @@
 #include <regex>
 #include <set>
 #include <system_error>
-#include <thread>
 #include <vector>
 
 #include "core/error.hpp"
@@ -25,7 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kLockAttempts = 20;  ///< 100 ms apart
 
 /// The manifests of the folders this process holds, by absolute folder path.
 struct HeldFolder {
@@ -172,18 +170,9 @@ RunFolder::RunFolder(const std::string& dir, Mode mode, bool overwrite) : dir_(d
   manifest_ = manifest.string();
   fd_ = ::open(manifest.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0) throw Error("cannot open '" + manifest.string() + "': " + std::strerror(errno));
-  // A run killed a moment ago may still be closing its files (the ranks of an mpirun die after
-  // it): a held lock is retried for two seconds before the folder is called in use.
-  int err = 0;
-  for (int attempt = 1;; ++attempt) {
-    if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) {
-      err = 0;
-      break;
-    }
-    err = errno;
-    if (err != EWOULDBLOCK || attempt == kLockAttempts) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
+  // No waiting: a second run started while the first lives must not run after it and replace its
+  // results. (A run killed a moment ago releases the lock when its process is gone.)
+  const int err = ::flock(fd_, LOCK_EX | LOCK_NB) == 0 ? 0 : errno;
   if (err != 0) {
     std::string holder = read_all(fd_);
     holder = holder.substr(0, holder.find('\n'));

@@ -100,54 +100,8 @@ inline void graded_gimp_stencil(const GridGeometry& g, const Vec3& x, const Vec3
 /// linear hats at the corners.
 template <int Dim>
 inline void graded_cpdi_stencil(const GridGeometry& g, const Vec3& x, const Mat3& r, Stencil<Dim>& s) {
-  static_assert(Dim == 2 || Dim == 3);
-  constexpr int kCorners = 1 << Dim;
-  constexpr double kAvg = 1.0 / kCorners;
-  double G[Dim][Dim];
-  if constexpr (Dim == 2) {
-    const double r1x = r.a[0], r1y = r.a[3], r2x = r.a[1], r2y = r.a[4];
-    const double f = kAvg / (r1x * r2y - r2x * r1y);
-    G[0][0] = f * r2y;
-    G[0][1] = -f * r1y;
-    G[1][0] = -f * r2x;
-    G[1][1] = f * r1x;
-  } else {
-    const Mat3 C = cofactor(r);
-    const double f = kAvg / det(r);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) G[i][j] = f * C.a[3 * i + j];
-  }
-  const Index sy = shape_detail::stride_y(g);
-  const Index sz = Dim == 3 ? shape_detail::stride_z(g) : 0;
-  int m = 0;
-  for (int alpha = 0; alpha < kCorners; ++alpha) {
-    double xi[Dim];
-    for (int j = 0; j < Dim; ++j) xi[j] = (alpha >> j) & 1 ? 1.0 : -1.0;
-    int c[3] = {0, 0, 0};
-    double t[3] = {0.0, 0.0, 0.0};
-    double ga[3] = {0.0, 0.0, 0.0};
-    for (int d = 0; d < Dim; ++d) {
-      double xc = x[d];
-      for (int j = 0; j < Dim; ++j) xc += xi[j] * r.a[3 * d + j];
-      (*g.graded)[d].locate(xc, c[d], t[d]);
-      for (int j = 0; j < Dim; ++j) ga[d] += G[d][j] * xi[j];
-    }
-    const double wx[2] = {1.0 - t[0], t[0]}, wy[2] = {1.0 - t[1], t[1]};
-    const double wz[2] = {Dim == 3 ? 1.0 - t[2] : 1.0, Dim == 3 ? t[2] : 0.0};
-    const Index base = static_cast<Index>(c[2]) * sz + static_cast<Index>(c[1]) * sy + c[0];
-    for (int k = 0; k < (Dim == 3 ? 2 : 1); ++k)
-      for (int j = 0; j < 2; ++j) {
-        const double wyz = wy[j] * wz[k];
-        const Index row = base + k * sz + j * sy;
-        for (int i = 0; i < 2; ++i, ++m) {
-          const double S = wx[i] * wyz;
-          s.node[m] = row + i;
-          s.w[m] = kAvg * S;
-          s.grad[m] = Vec3{{S * ga[0], S * ga[1], S * ga[2]}};
-        }
-      }
-  }
-  s.count = m;
+  cpdi_stencil_located<Dim>(g, x, r, s,
+                            [&](int d, double xc, int& c, double& t) { (*g.graded)[d].locate(xc, c, t); });
 }
 
 }  // namespace ballista

@@ -404,12 +404,14 @@ inline void bspline3_stencil(const GridGeometry& g, const Vec3& x, Stencil<Dim>&
 /// paper's parallelepiped form). The signed det J is used, so either orientation is correct;
 /// r must be non-degenerate. Each corner contributes its 2^Dim linear nodes (4^Dim entries in
 /// total, duplicates included).
-template <int Dim>
-inline void cpdi_stencil(const GridGeometry& g, const Vec3& x, const Mat3& r, Stencil<Dim>& s) {
+/// CPDI1 with the corners' cells found by `locate(d, x_d, c, t)` (cell index and in-cell offset
+/// along axis d): the uniform grid's below, a graded grid's in mpm/graded_shape_functions.hpp.
+template <int Dim, class Locate>
+inline void cpdi_stencil_located(const GridGeometry& g, const Vec3& x, const Mat3& r, Stencil<Dim>& s,
+                                 const Locate& locate) {
   static_assert(Dim == 2 || Dim == 3);
   constexpr int kCorners = 1 << Dim;
   constexpr double kAvg = 1.0 / kCorners;
-  const double inv_h = 1.0 / g.h;
   // Rows of kAvg * J^{-T}: gradient of corner alpha is G * xi_alpha.
   double G[Dim][Dim];
   if constexpr (Dim == 2) {
@@ -443,7 +445,7 @@ inline void cpdi_stencil(const GridGeometry& g, const Vec3& x, const Mat3& r, St
     for (int d = 0; d < Dim; ++d) {
       double xc = x[d];
       for (int j = 0; j < Dim; ++j) xc += xi[j] * r.a[3 * d + j];
-      shape_detail::locate_fast(xc, g.origin[d], inv_h, c[d], t[d]);
+      locate(d, xc, c[d], t[d]);
       for (int j = 0; j < Dim; ++j) ga[d] += G[d][j] * xi[j];
     }
 #ifndef NDEBUG
@@ -466,6 +468,14 @@ inline void cpdi_stencil(const GridGeometry& g, const Vec3& x, const Mat3& r, St
       }
   }
   s.count = m;
+}
+
+template <int Dim>
+inline void cpdi_stencil(const GridGeometry& g, const Vec3& x, const Mat3& r, Stencil<Dim>& s) {
+  const double inv_h = 1.0 / g.h;
+  cpdi_stencil_located<Dim>(g, x, r, s, [&](int d, double xc, int& c, double& t) {
+    shape_detail::locate_fast(xc, g.origin[d], inv_h, c, t);
+  });
 }
 
 }  // namespace ballista

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,17 @@ inline std::vector<std::filesystem::path> h5_files(const std::filesystem::path& 
     if (e.path().extension() == ".h5") out.push_back(e.path());
   std::sort(out.begin(), out.end());
   return out;
+}
+
+/// The message of what `f` throws ("" if it throws nothing).
+template <class F>
+inline std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace ballista::test

@@ -17,21 +17,13 @@ namespace fs = std::filesystem;
 using namespace ballista;
 using ballista::test::slurp;
 using ballista::test::TempDir;
+using ballista::test::error_of;
 
 namespace {
 
 void touch(const fs::path& p, const std::string& text = "x") {
   fs::create_directories(p.parent_path());
   std::ofstream(p) << text;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 }  // namespace
