@@ -596,8 +596,9 @@ def csv_mutation(rng, text):
 
 def table_rows(data):
     """Rows of a CSV table as a reader should count them: every line but blank ones, '#' comments
-    and a first line that does not start with a number (the header)."""
-    rows = [l.strip() for l in data.decode("utf-8", "replace").replace("\r", "\n").split("\n")]
+    and a first line that does not start with a number (the header). Lines end at '\n' (a '\r'
+    inside a line, as binary garbage in a comment may have, does not start a new one)."""
+    rows = [l.strip() for l in data.decode("utf-8", "replace").split("\n")]
     rows = [l for l in rows if l and not l.startswith("#")]
     if rows:
         try:

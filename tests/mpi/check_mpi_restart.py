@@ -65,6 +65,34 @@ def bitwise(ref, other):
     return bad
 
 
+
+def session_members(sid):
+    """Pids of the live processes in session sid. Open MPI's mpirun puts each rank in a process
+    group of its own, so killing mpirun's group leaves the ranks running; the session (started by
+    Popen's start_new_session) holds them all."""
+    pids = []
+    for d in os.listdir("/proc"):
+        if not d.isdigit():
+            continue
+        try:
+            stat = open(f"/proc/{d}/stat").read()
+        except OSError:
+            continue
+        fields = stat[stat.rindex(")") + 2:].split()
+        # fields[0] is the state (field 3 of proc(5)), fields[3] the session id (field 6).
+        if fields[0] != "Z" and int(fields[3]) == sid:
+            pids.append(int(d))
+    return pids
+
+
+def kill_session(sid):
+    """SIGKILL to mpirun and every rank at once, as a crash of the whole job would."""
+    for pid in session_members(sid):
+        try:
+            os.kill(pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("ballista")
@@ -147,18 +175,17 @@ def main():
             # SIGKILL: mpirun and every rank at once (nothing can be written). SIGTERM: to mpirun,
             # which forwards it to the ranks; they agree, checkpoint the step they are in and exit 4.
             if sig == signal.SIGKILL:
-                os.killpg(p.pid, signal.SIGKILL)
+                kill_session(p.pid)
             else:
                 p.send_signal(signal.SIGTERM)
         code = p.wait()
         if sig == signal.SIGKILL:
-            # The ranks die on their own schedule after mpirun: the restart waits for the group to
-            # be gone (a rank still alive holds the results folder, io/run_folder.hpp).
-            for _ in range(500):
-                try:
-                    os.killpg(p.pid, 0)
-                except ProcessLookupError:
+            # A rank still alive holds the results folder (io/run_folder.hpp): the restart waits
+            # until every process of the job's session is gone.
+            for _ in range(1000):
+                if not session_members(p.pid):
                     break
+                kill_session(p.pid)
                 time.sleep(0.01)
         if not stopped:
             failures.append(f"{sig.name}: the run ended before the signal; lengthen the deck")
