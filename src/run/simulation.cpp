@@ -326,6 +326,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     rs.energy_scale = std::max(rs.energy_scale, scale_of(e));
     return rs.energy_scale > 0 ? std::abs(e.total() - total0) / rs.energy_scale : 0.0;
   };
+  std::string nonfinite_column;  // set by history_row
   auto history_row = [&](double dt) {
     const EnergyTotals e = solver->energies();
     deletions.update(e, solver->steps(), solver->time());
@@ -348,6 +349,12 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
           row.push_back(v);
     }
     if (history) history->row(row);
+    // The first column that overflowed or is not a number (this rank's row: rank 0 alone has the
+    // penetration columns); record_history stops the run on it.
+    nonfinite_column.clear();
+    for (size_t k = 0; k < row.size() && nonfinite_column.empty(); ++k)
+      if (!std::isfinite(row[k]))
+        nonfinite_column = fmt::format("'{}' = {}", k < columns.size() ? columns[k] : fmt::format("column {}", k + 1), row[k]);
     return drift;
   };
   // A history row, the worst drift so far and the drift guard (simulation.energy_drift_limit).
@@ -358,6 +365,14 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
       throw PhysicsError(fmt::format("energy drift {:.6g} exceeds the limit {:.6g} at step {} (t = {:.6g} s): the "
                                      "run is blowing up",
                                      drift, sc.simulation.energy_drift_limit, solver->steps(), solver->time()));
+    // A value that overflowed is garbage even when the energies still balance (a probe of a body
+    // whose mass overflows, say): the run stops on it instead of ending "ok" with inf in its tables.
+    if (comm.any(!nonfinite_column.empty()))
+      throw PhysicsError(fmt::format("non-finite value in history.csv at step {} (t = {:.6g} s): {}; a probe that "
+                                     "selects no particle, or a value that overflowed (check the deck's magnitudes: "
+                                     "densities, velocities, moduli)",
+                                     solver->steps(), solver->time(),
+                                     nonfinite_column.empty() ? "on rank 0" : nonfinite_column));
   };
 
   // ---- checkpoints (docs/restart.md) ---------------------------------------------------------

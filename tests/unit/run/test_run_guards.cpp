@@ -128,7 +128,7 @@ TEST(RunGuards, StepLimitStopsARunWhoseStepCollapsesLater) {
 TEST(RunGuards, NonFiniteProbeFailsTheRun) {
   // A max_radius probe whose plane (y = 0.5 m) no particle comes near measures nothing: NaN. It
   // used to be written as null in a completed summary (and a centre at 1e308 gave inf, now a deck
-  // error: the axis must cross the grid box).
+  // error: the axis must cross the grid box). The run stops at its first history row in the loop.
   ballista::test::TempDir dir{"ballista_guard"};
   const RunResult r = run_simulation(
       parse_deck(deck("", "probes:\n  - {name: r, type: max_radius, body: block, axis: y, plane: 0.5, distance: "
@@ -136,7 +136,8 @@ TEST(RunGuards, NonFiniteProbeFailsTheRun) {
                  "d.yaml"),
       options(dir.path));
   EXPECT_FALSE(r.ok);
-  EXPECT_NE(r.error.find("probes.r = nan"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("non-finite value in history.csv at step 1"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("'r' = nan"), std::string::npos) << r.error;
   const YAML::Node s = YAML::LoadFile((dir.path / "summary.json").string());
   EXPECT_EQ(s["status"].as<std::string>(), "failed");
   EXPECT_NE(s["error"].as<std::string>().find("non-finite"), std::string::npos);
@@ -146,6 +147,21 @@ TEST(RunGuards, NonFiniteProbeFailsTheRun) {
   });
   EXPECT_NE(msg.find("'probes.0.center'"), std::string::npos) << msg;
   EXPECT_NE(msg.find("axis must pass through the grid box"), std::string::npos) << msg;
+}
+
+TEST(RunGuards, OverflowedHistoryValueStopsTheRun) {
+  // The OTM Taylor bar with a density of 1.8e308 kg/m^3 (the largest double): a mass near 1e302 kg
+  // whose energies stay finite and balanced, but whose wall reaction overflows to inf. The run must
+  // stop at that row, not end "ok" with inf in history.csv (the fuzz found it).
+  ballista::test::TempDir dir{"ballista_guard"};
+  const RunResult r = run_simulation(
+      read_deck(std::string(BALLISTA_SOURCE_DIR) + "/examples/taylor_bar_otm.yaml",
+                {"materials.copper.density=1.7976931348623157e308", "simulation.end_time=1.0e-6",
+                 "output.history_every=1"}),
+      options(dir.path));
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("non-finite value in history.csv"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("'wall_force' = inf"), std::string::npos) << r.error;
 }
 
 TEST(RunGuards, SecondRunIntoTheSameFolderLeavesNoStaleFiles) {
