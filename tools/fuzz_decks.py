@@ -215,6 +215,8 @@ def tree_mutation(rng, tree, kind, protect=()):
         if v and rng.random() < 0.5:
             k = rng.choice(list(v.keys()))
             k2 = k[:-1] + chr(ord(k[-1]) ^ 1) if k else "x"
+            if k2.isdigit():  # 22 -> 23 is another valid component of a drive leg, not a typo
+                k2 = k + "x"
         else:
             k2 = rng.choice(["fuzz_unknown", "x", "Density", "1", "\"\"", "?", "-", "cell size", "<<"])
         v[k2] = rng.choice(["1", "abc", "{a: 1}", "[1]", "~"])
