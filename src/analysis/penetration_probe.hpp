@@ -24,6 +24,9 @@ class PenetrationProbe {
   /// History columns: penetration_time, penetration_depth, cavity_depth,
   /// penetrator_kinetic_energy, segment_kinetic_energy_<k> (k = 0 .. segments-1).
   std::vector<std::string> columns() const;
+  /// The columns whose `nan` means "not yet applicable" (penetration_time before the main stage),
+  /// not garbage.
+  static std::vector<std::string> nan_when_not_applicable() { return {"penetration_time"}; }
 
   /// Values of those columns for the current points. `fired` is false during preparation stages
   /// (time and depths are then NaN and 0, nothing is recorded); otherwise the sample at

@@ -229,6 +229,11 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     penetration = std::make_unique<PenetrationProbe>(sc);
     for (const auto& c : penetration->columns()) columns.push_back(c);
   }
+  // Columns where nan is a documented "not applicable yet" (docs/penetration.md), not garbage.
+  std::vector<bool> nan_allowed(columns.size(), false);
+  for (const std::string& c : PenetrationProbe::nan_when_not_applicable())
+    for (size_t k = 0; k < columns.size(); ++k)
+      if (penetration && columns[k] == c) nan_allowed[k] = true;
   const std::string history_path = (fs::path(opt.out_dir) / "history.csv").string();
   std::unique_ptr<HistoryWriter> history;  // rank 0's
   if (root)
@@ -353,7 +358,7 @@ RunResult run_simulation(const Scenario& sc, const RunOptions& opt) {
     // penetration columns); record_history stops the run on it.
     nonfinite_column.clear();
     for (size_t k = 0; k < row.size() && nonfinite_column.empty(); ++k)
-      if (!std::isfinite(row[k]))
+      if (std::isinf(row[k]) || (std::isnan(row[k]) && !(k < nan_allowed.size() && nan_allowed[k])))
         nonfinite_column = fmt::format("'{}' = {}", k < columns.size() ? columns[k] : fmt::format("column {}", k + 1), row[k]);
     return drift;
   };
