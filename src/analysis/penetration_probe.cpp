@@ -68,7 +68,28 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
     layers_.push_back(b);
     layer_face_.push_back(direction_ < 0 ? hi[axis_] : lo[axis_]);
     layer_thickness_.push_back(hi[axis_] - lo[axis_]);
+    layer_density_.push_back(density_of(sc, sc.bodies.at(b).material));
   }
+  layer_exit_.assign(layers_.size(), LayerExit{});
+  // Each segment's speed along the flight and mass per unit length of the modelled section: the
+  // full disk in axisymmetry (the reporting scale makes per-radian masses full ones), a disk (3D)
+  // or a strip 2r wide (plane strain) halved by each symmetry face through the line of flight.
+  double section_fraction = 1.0;
+  if (lateral_geometry_ != LateralGeometry::Axisymmetric)
+    for (int a = 0; a < nd_; ++a)
+      if (a != axis_ && (std::abs(sc.grid.lower[a] - line_point_[a]) < 1e-9 * std::max(1.0, std::abs(line_point_[a])) ||
+                         std::abs(sc.grid.upper[a] - line_point_[a]) < 1e-9 * std::max(1.0, std::abs(line_point_[a]))))
+        section_fraction *= 0.5;
+  const auto line_of = [&](double radius, double length, const Vec3& velocity) {
+    const double section = lateral_geometry_ == LateralGeometry::PlaneStrain ? 2.0 * radius : M_PI * radius * radius;
+    return JetSegmentLine{direction_ * velocity[axis_], rho_p_ * section * section_fraction, length};
+  };
+  if (pb.segments.empty()) {  // a rod: one piece at the penetrator's speed
+    Vec3 v{};
+    v[axis_] = direction_ * ps.speed;
+    jet_lines_.push_back(line_of(0.5 * ps.diameter, ps.length, v));
+  }
+  for (const SegmentSpec& seg : pb.segments) jet_lines_.push_back(line_of(seg.shape.radius, seg.shape.length, seg.velocity));
   // Resolution of the penetrator: the thinnest segment's radius in cells. The hydrodynamic
   // verification (tests/verification/test_mpm_contact.cpp) reaches U_h within 1 % at 4 cells
   // across the radius and falls 7 % short at 2; a thinner penetrator is under-resolved.
@@ -141,6 +162,7 @@ std::vector<double> PenetrationProbe::sample(const FieldStore& pts, bool fired, 
       t_.push_back(t);
       depth_.push_back(depth);
       cavity_.push_back(cavity);
+      record_layer_exits(pts, t, scale);
     }
   }
   std::vector<double> row = {fired ? t : kNaN, depth, cavity, total};
@@ -311,8 +333,52 @@ JsonValue PenetrationProbe::layer_holes(const FieldStore& pts) const {
     h["perforated"] = std::isfinite(narrowest) && narrowest > 0.0;
     h["thickness"] = layer_thickness_[k];
     h["face_depth"] = depth_of_coordinate(layer_face_[k]);  // m, negative: above the target's face
+    h["jet_behind"] = jet_behind(k);
   }
   return holes;
+}
+
+void PenetrationProbe::record_layer_exits(const FieldStore& pts, double time, double scale) {
+  bool pending = false;
+  for (const LayerExit& e : layer_exit_) pending = pending || !e.reached;
+  if (!pending) return;
+  // The front: the foremost penetrator point (above the target's face its depth is negative).
+  const auto* bid = pts.ints("body");
+  const auto* x = pts.view<Vec3>("x");
+  double front = -kInfinity;
+  for (Index p = 0; p < pts.size(); ++p)
+    if (bid[p] == penetrator_) front = std::max(front, depth_of(x[p]));
+  for (std::size_t k = 0; k < layers_.size(); ++k) {
+    LayerExit& e = layer_exit_[k];
+    if (e.reached || front < depth_of_coordinate(layer_face_[k]) + layer_thickness_[k]) continue;
+    e.reached = true;
+    e.sample = t_.size();
+    e.time = time;
+    e.jet = measure_jet_remainder(pts, penetrator_, jet_lines_, axis_, direction_, scale);
+  }
+}
+
+JsonValue PenetrationProbe::jet_behind(std::size_t k) const {
+  // Hydrodynamic erosion (thesis eq. 3.1-3.2, P = L sqrt(rho_p / rho_t)): a layer of thickness T
+  // consumes T sqrt(rho_layer / rho_p) of jet, summed over the layers the jet has gone through
+  // (those whose struck face is not below this one's).
+  double hydro = 0.0;
+  for (std::size_t j = 0; j < layers_.size(); ++j)
+    if (depth_of_coordinate(layer_face_[j]) <= depth_of_coordinate(layer_face_[k]) && rho_p_ > 0 && layer_density_[j] > 0)
+      hydro += layer_thickness_[j] * std::sqrt(layer_density_[j] / rho_p_);
+  JsonValue j = JsonValue::object();
+  const LayerExit& e = layer_exit_[k];
+  j["reached"] = e.reached;
+  j["time"] = e.reached ? JsonValue(e.time) : JsonValue();
+  j["consumed_length"] = e.reached ? JsonValue(e.jet.consumed_length) : JsonValue();
+  j["remaining_length"] = e.reached ? JsonValue(e.jet.remaining_length) : JsonValue();
+  j["tip_velocity"] = e.reached && e.jet.tip_segment >= 0 ? JsonValue(e.jet.tip_velocity) : JsonValue();
+  j["tip_segment"] = e.reached ? JsonValue(static_cast<double>(e.jet.tip_segment)) : JsonValue();
+  j["tip_initial_velocity"] = e.reached && e.jet.tip_segment >= 0
+                                  ? JsonValue(jet_lines_[static_cast<std::size_t>(e.jet.tip_segment)].speed)
+                                  : JsonValue();
+  j["hydrodynamic_consumed_length"] = hydro;
+  return j;
 }
 
 void PenetrationProbe::save_state(StateArchive& a, std::size_t samples) const {
@@ -322,12 +388,29 @@ void PenetrationProbe::save_state(StateArchive& a, std::size_t samples) const {
   a.put("penetration.time", first(t_));
   a.put("penetration.depth", first(depth_));
   a.put("penetration.cavity", first(cavity_));
+  // Per layer: sample (-1: not reached by the saved state), time, consumed, remaining, tip speed
+  // and tip segment.
+  std::vector<double> exits;
+  for (const LayerExit& e : layer_exit_) {
+    const bool kept = e.reached && e.sample <= samples;
+    exits.insert(exits.end(), {kept ? static_cast<double>(e.sample) : -1.0, e.time, e.jet.consumed_length,
+                               e.jet.remaining_length, e.jet.tip_velocity, static_cast<double>(e.jet.tip_segment)});
+  }
+  a.put("penetration.layer_exits", exits);
 }
 
 void PenetrationProbe::load_state(const StateArchive& a) {
   t_ = a.reals("penetration.time");
   depth_ = a.reals("penetration.depth", t_.size());
   cavity_ = a.reals("penetration.cavity", t_.size());
+  layer_exit_.assign(layers_.size(), LayerExit{});
+  if (!a.has("penetration.layer_exits")) return;  // a checkpoint from before the record: none yet
+  const std::vector<double>& r = a.reals("penetration.layer_exits", 6 * layers_.size());
+  for (std::size_t k = 0; k < layers_.size(); ++k) {
+    const double* q = &r[6 * k];
+    if (q[0] < 0) continue;
+    layer_exit_[k] = {true, static_cast<std::size_t>(q[0]), q[1], {q[2], q[3], q[4], static_cast<int>(q[5])}};
+  }
 }
 
 }  // namespace ballista

@@ -10,6 +10,7 @@
 
 #include "core/field_store.hpp"
 #include "analysis/hole_profile.hpp"
+#include "analysis/jet_remainder.hpp"
 #include "core/state_archive.hpp"
 #include "io/summary_writer.hpp"
 #include "scenario/scenario.hpp"
@@ -63,10 +64,25 @@ class PenetrationProbe {
   std::vector<LateralPoint> lateral_points(const FieldStore& points, int body, double face) const;
   /// summary.json "holes": the hole through each layer (entrance and smallest diameter).
   JsonValue layer_holes(const FieldStore& points) const;
+  /// Records what is left of the jet when its front first passes the back face of each layer.
+  void record_layer_exits(const FieldStore& points, double time, double scale);
+  /// summary.json holes.<layer>.jet_behind: that record beside the hydrodynamic erosion.
+  JsonValue jet_behind(std::size_t layer) const;
+
+  /// The jet when its front passed a layer's back face (sample: the series' length then).
+  struct LayerExit {
+    bool reached = false;
+    std::size_t sample = 0;
+    double time = 0.0;
+    JetRemainder jet;
+  };
 
   PenetrationSpec spec_;
   std::vector<int> layers_;  ///< body indices of spec_.layers
   std::vector<double> layer_face_, layer_thickness_;  ///< m: struck face (axial coordinate) and thickness
+  std::vector<double> layer_density_;                 ///< kg/m^3
+  std::vector<LayerExit> layer_exit_;
+  std::vector<JetSegmentLine> jet_lines_;             ///< the penetrator's segments, tip first
   LateralGeometry lateral_geometry_ = LateralGeometry::ThreeD;
   double lateral_cell_ = 0.0, axial_cell_ = 0.0;  ///< m: the finest cells across and along the flight
   int penetrator_ = -1, target_ = -1;  ///< body indices

@@ -87,4 +87,77 @@ TEST(PenetrationProbe, DepthCavityAndSegmentEnergies) {
   EXPECT_NEAR(out.at("max_channel_radius").as_number(), 1e-3, 1e-12);
 }
 
+// A 2 mm steel plate above the rock (y 22-24 mm) and the segmented tungsten rod (2 x 2 mm, 2 mm
+// in diameter) with its nose at 25 mm: the layer the jet-remainder record is taken behind.
+const char* kLayeredDeck = R"(simulation: {dimension: axisymmetric, end_time: 1.0e-6}
+grid: {lower: [0, 0], upper: [0.01, 0.04], cell_size: 1.0e-3}
+materials:
+  rock: {model: linear_elastic, density: 2300, youngs_modulus: 20e9, poisson_ratio: 0.2}
+  steel: {model: linear_elastic, density: 7850, youngs_modulus: 200e9, poisson_ratio: 0.3}
+  w: {model: linear_elastic, density: 18400, youngs_modulus: 350e9, poisson_ratio: 0.3}
+bodies:
+  - {name: target, material: rock, shape: {type: cylinder, center: [0, 0], axis: y, radius: 0.008, length: 0.02}}
+  - {name: plate, material: steel, shape: {type: cylinder, center: [0, 0.022], axis: y, radius: 0.008, length: 0.002}}
+  - name: rod
+    material: w
+    rod: {nose: [0, 0.025], diameter: 2e-3, length: 4e-3, speed: 1000, segment_ld: 1.0}
+penetration: {penetrator: rod, target: target, layers: [plate]}
+)";
+
+TEST(PenetrationProbe, JetRemainderBehindALayer) {
+  const Scenario sc = parse_deck(kLayeredDeck, "layers.yaml");
+  auto solver = make_solver(sc);
+  FieldStore& pts = solver->points();
+  PenetrationProbe probe(sc);
+  auto* x = pts.view<Vec3>("x");
+  auto* v = pts.view<Vec3>("v");
+  const auto* bid = pts.ints("body");
+  const auto* seg = pts.ints("segment");
+  const double scale = solver->reporting_scale();
+  // Nose 1 mm above the plate: nothing is recorded.
+  probe.sample(pts, true, 0.0, scale);
+  // Erode the leading row of segment 0 (the lowest of its four 0.5 mm rows: stopped, as eroded
+  // jet leaving the stagnation point) and put one intact point of it below the plate's back face.
+  // On the axisymmetric lattice the row's mass x 2 pi is exactly rho pi r^2 x 0.5 mm (particle
+  // radii 0.25 and 0.75 mm, sum r dr = R^2 / 2), so the consumed length is 0.5 mm exactly.
+  double lowest = 1.0;
+  for (Index p = 0; p < pts.size(); ++p)
+    if (bid[p] == 2 && seg[p] == 0) lowest = std::min(lowest, x[p][1]);
+  Index moved = -1;
+  for (Index p = 0; p < pts.size(); ++p) {
+    if (bid[p] != 2 || seg[p] != 0) continue;
+    if (x[p][1] < lowest + 1e-9) v[p] = Vec3{{0, 500.0, 0}};  // going back: eroded
+    else if (moved < 0) moved = p;
+  }
+  ASSERT_GE(moved, 0);
+  x[moved][1] = 0.0215;
+  probe.sample(pts, true, 1e-6, scale);
+
+  test::TempDir dir;
+  JsonValue out;
+  probe.finish(pts, dir.path.string(), 1e-6, out);
+  const JsonValue& j = out.at("holes").at("plate").at("jet_behind");
+  EXPECT_TRUE(j.at("reached").as_bool());
+  EXPECT_EQ(j.at("time").as_number(), 1e-6);
+  EXPECT_NEAR(j.at("consumed_length").as_number(), 0.5e-3, 1e-15);
+  EXPECT_NEAR(j.at("remaining_length").as_number(), 3.5e-3, 1e-15);
+  EXPECT_NEAR(j.at("tip_velocity").as_number(), 1000.0, 1e-9);  // the intact rows keep their speed
+  EXPECT_EQ(j.at("tip_segment").as_number(), 0.0);
+  // Thesis eq. 3.2 inverted: the plate consumes T sqrt(rho_plate / rho_rod) of the rod.
+  EXPECT_NEAR(j.at("hydrodynamic_consumed_length").as_number(), 2e-3 * std::sqrt(7850.0 / 18400.0), 1e-15);
+
+  // The record survives a checkpoint, and not in a state saved before it was taken.
+  StateArchive all, before;
+  probe.save_state(all);
+  probe.save_state(before, 1);
+  PenetrationProbe restored(sc), earlier(sc);
+  restored.load_state(all);
+  earlier.load_state(before);
+  JsonValue out2, out3;
+  restored.finish(pts, dir.path.string(), 1e-6, out2);
+  earlier.finish(pts, dir.path.string(), 1e-6, out3);
+  EXPECT_EQ(out2.at("holes").at("plate").at("jet_behind").at("consumed_length").as_number(), 0.5e-3);
+  EXPECT_FALSE(out3.at("holes").at("plate").at("jet_behind").at("reached").as_bool());
+}
+
 }  // namespace
