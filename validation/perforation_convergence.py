@@ -61,7 +61,17 @@ def run_level(a, h):
     return json.load(open(summary)), wall
 
 
-def extract(s):
+def first_main_step(out):
+    """The first stable step of the main stage, from history.csv (the smallest step is judged
+    against it: within 10x at every level)."""
+    import csv
+    rows = list(csv.DictReader(open(os.path.join(out, "history.csv"))))
+    last = max(float(r.get("stage", 0) or 0) for r in rows)
+    main = [float(r["dt"]) for r in rows if float(r.get("stage", 0) or 0) == last and float(r["dt"]) > 0]
+    return main[0] if main else None
+
+
+def extract(s, out):
     pen = s["penetration"]
     holes = pen.get("holes", {})
     mm = lambda v: None if v is None else 1e3 * v
@@ -70,6 +80,14 @@ def extract(s):
         "casing_hole": mm(holes.get("casing", {}).get("entrance_diameter")),
         "cement_hole": mm(holes.get("cement", {}).get("entrance_diameter")),
         "tunnel_entrance": mm(pen.get("tunnel", {}).get("entrance_diameter")),
+        # What the jet has left behind the casing and behind the cement, against the hydrodynamic
+        # erosion T sqrt(rho_layer / rho_jet) (thesis eq. 3.2 inverted; docs/penetration.md).
+        "jet_behind": {layer: {k: holes.get(layer, {}).get("jet_behind", {}).get(k)
+                               for k in ("time", "consumed_length", "remaining_length", "tip_velocity",
+                                         "tip_initial_velocity", "hydrodynamic_consumed_length")}
+                       for layer in ("casing", "cement")},
+        "min_dt": s["statistics"].get("min_dt"),
+        "first_main_dt": first_main_step(out),
         "cells_across_radius": pen.get("cells_across_radius"),
         "particles": s["statistics"]["particles_seeded"],
         "steps": s["statistics"]["steps"],
@@ -107,7 +125,7 @@ def main():
     rows = []
     for h in a.levels:
         s, wall = run_level(a, h)
-        r = extract(s)
+        r = extract(s, os.path.join(a.out, f"h_{h * 1e3:g}mm"))
         r["h"] = h
         rows.append(r)
         print(json.dumps(r), flush=True)
@@ -137,6 +155,20 @@ def main():
                 v = result["estimates"][q].get(key)
                 cells.append("—" if v is None else (f"{100 * v:.1f} %" if key == "finest_relative_gap" else f"{v:.3g}"))
             lines.append(f"| {name} | | | | | " + " | ".join(cells) + " |")
+    # Where the jet goes (the casing's cost explained) and the axis (smallest step vs the first).
+    lines += ["", "| band cell (mm) | jet consumed by the casing (mm; hydrodynamic) | tip speed behind the casing "
+              "(m/s; initial) | consumed by casing + cement (mm; hydrodynamic) | tip speed behind the cement (m/s; "
+              "initial) | smallest step / first main step |", "|---|---|---|---|---|---|"]
+    for r in rows:
+        cells = []
+        for layer in ("casing", "cement"):
+            j = r["jet_behind"][layer]
+            mm = lambda v: "—" if v is None else f"{1e3 * v:.3g}"
+            speed = lambda v: "—" if v is None else f"{v:.0f}"
+            cells += [f"{mm(j['consumed_length'])} ({mm(j['hydrodynamic_consumed_length'])})",
+                      f"{speed(j['tip_velocity'])} ({speed(j['tip_initial_velocity'])})"]
+        ratio = (f"1/{r['first_main_dt'] / r['min_dt']:.1f}" if r["min_dt"] and r["first_main_dt"] else "—")
+        lines.append(f"| {r['h'] * 1e3:g} | " + " | ".join(cells) + f" | {ratio} |")
     open(os.path.join(a.out, "convergence.md"), "w").write("\n".join(lines) + "\n")
     print("\n".join(lines))
     try:
