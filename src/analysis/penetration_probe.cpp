@@ -295,9 +295,11 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   out["holes"] = layer_holes(pts);
 }
 
-std::vector<LateralPoint> PenetrationProbe::lateral_points(const FieldStore& pts, int body, double face) const {
+std::vector<LateralPoint> PenetrationProbe::lateral_points(const FieldStore& pts, int body, double face,
+                                                          bool seeded_axial) const {
   const auto* bid = pts.ints("body");
   const auto* x = pts.view<Vec3>("x");
+  const auto* x0 = seeded_axial && pts.has("x0") ? pts.view<Vec3>("x0") : x;
   const auto* F = pts.view<Mat3>("F");
   const auto* half = pts.view<Vec3>("half_size");
   const auto* vol = pts.real("volume");
@@ -309,19 +311,30 @@ std::vector<LateralPoint> PenetrationProbe::lateral_points(const FieldStore& pts
     // The point's lateral half-extent in the current configuration (its domain is F times a box).
     double reach = 0.0;
     for (int j = 0; j < nd_; ++j) reach += std::abs(F[p](lat, j)) * half[p][j];
-    out.push_back({direction_ * (x[p][axis_] - face), lateral_of(x[p]), vol[p], reach});
+    double volume = vol[p];
+    if (seeded_axial) {
+      // Binned where it was seeded through the layer, the point fills its slice of the seeded
+      // thickness: its current volume over its current axial extent, times its seeded one (a plate
+      // dished, or thinned at the lip of its hole, still fills its slice where it is solid).
+      double along = 0.0;
+      for (int j = 0; j < nd_; ++j) along += std::abs(F[p](axis_, j)) * half[p][j];
+      if (along > 0.0) volume *= half[p][axis_] / along;
+    }
+    out.push_back({direction_ * (x0[p][axis_] - face), lateral_of(x[p]), volume, reach});
   }
   return out;
 }
 
 JsonValue PenetrationProbe::layer_holes(const FieldStore& pts) const {
-  // Each layer in axial bins of the finest cell through its thickness at the place it was seeded:
-  // the wall at its struck face (the entrance hole) and the narrowest wall through it (the hole a
-  // gauge passes). No wall in a bin: the layer has gone from there (not measured).
+  // Each layer in axial bins of the finest cell through its thickness as it was seeded (each point
+  // in the slice it started in, wherever the layer has since moved: the jet's blast dishes a casing
+  // by millimetres, and fixed bins would read the displaced plate as a wide hole): the wall at its
+  // struck face (the entrance hole) and the narrowest wall through it (the hole a gauge passes).
+  // No wall in a slice: the layer has gone from there (not measured).
   JsonValue holes = JsonValue::object();
   for (std::size_t k = 0; k < layers_.size(); ++k) {
     const int bins = std::max(2, static_cast<int>(std::lround(layer_thickness_[k] / axial_cell_)));
-    const std::vector<double> wall = wall_radii(lateral_points(pts, layers_[k], layer_face_[k]), 0.0,
+    const std::vector<double> wall = wall_radii(lateral_points(pts, layers_[k], layer_face_[k], true), 0.0,
                                                 layer_thickness_[k], bins, lateral_geometry_, {lateral_cell_});
     double narrowest = kInfinity;
     for (double w : wall)

@@ -59,9 +59,10 @@ class PenetrationProbe {
   double cavity_depth(const FieldStore& points) const;
 
  private:
-  /// The points of `body` (not failed) as lateral samples for the wall measurement, the axial
-  /// coordinate the depth below `face` along the flight.
-  std::vector<LateralPoint> lateral_points(const FieldStore& points, int body, double face) const;
+  /// Points of `body` (not failed) for the wall measure, with their depth below `face`: where they
+  /// are now, or (seeded_axial) where they were seeded through the layer.
+  std::vector<LateralPoint> lateral_points(const FieldStore& points, int body, double face,
+                                           bool seeded_axial = false) const;
   /// summary.json "holes": the hole through each layer (entrance and smallest diameter).
   JsonValue layer_holes(const FieldStore& points) const;
   /// Records what is left of the jet when its front first passes the back face of each layer.

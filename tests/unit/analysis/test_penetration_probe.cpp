@@ -160,4 +160,30 @@ TEST(PenetrationProbe, JetRemainderBehindALayer) {
   EXPECT_FALSE(out3.at("holes").at("plate").at("jet_behind").at("reached").as_bool());
 }
 
+TEST(PenetrationProbe, HoleOfADisplacedPlateIsMeasuredInThePlate) {
+  // A 2 mm hole (radius) through the plate, and the whole plate then pushed 1.5 mm down the line
+  // of flight, as the jet's blast dishes a casing. The entrance hole is read in the plate's own
+  // seeded slices: 4 mm across (fixed bins would find no plate at the struck face's slice).
+  const Scenario sc = parse_deck(kLayeredDeck, "layers.yaml");
+  auto solver = make_solver(sc);
+  FieldStore& pts = solver->points();
+  PenetrationProbe probe(sc);
+  auto* x = pts.view<Vec3>("x");
+  const auto* bid = pts.ints("body");
+  for (Index p = 0; p < pts.size(); ++p) {
+    if (bid[p] != 1) continue;
+    if (x[p][0] < 2e-3) x[p][0] += 0.02;  // the hole's material thrown far out, beyond the plate
+    x[p][1] -= 1.5e-3;
+  }
+  probe.sample(pts, true, 0.0, solver->reporting_scale());
+  test::TempDir dir;
+  JsonValue out;
+  probe.finish(pts, dir.path.string(), 1e-6, out);
+  const JsonValue& h = out.at("holes").at("plate");
+  // Annuli of the 1 mm lateral cell; the hole's edge lies on one of their edges.
+  EXPECT_NEAR(h.at("entrance_diameter").as_number(), 4e-3, 1e-12);
+  EXPECT_NEAR(h.at("min_diameter").as_number(), 4e-3, 1e-12);
+  EXPECT_TRUE(h.at("perforated").as_bool());
+}
+
 }  // namespace
