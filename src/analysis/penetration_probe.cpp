@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <numbers>
 
 #include <spdlog/spdlog.h>
 
@@ -24,6 +25,13 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+/// Half-extent along direction `a` of a point's current domain (F times the box of half-sizes h).
+double half_extent(const Mat3& F, const Vec3& h, int a, int nd) {
+  double e = 0.0;
+  for (int j = 0; j < nd; ++j) e += std::abs(F(a, j)) * h[j];
+  return e;
+}
 
 double density_of(const Scenario& sc, const std::string& material) {
   for (const auto& m : sc.materials)
@@ -55,7 +63,10 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
   if (sc.grid.graded()) {
     const GridAxes axes = build_grid_axes(sc.grid, nd_);
     lateral_cell_ = axial_cell_ = kInfinity;
-    for (int a = 0; a < nd_; ++a) (a == axis_ ? axial_cell_ : lateral_cell_) = std::min(a == axis_ ? axial_cell_ : lateral_cell_, axes.smallest(a));
+    for (int a = 0; a < nd_; ++a) {
+      double& finest = a == axis_ ? axial_cell_ : lateral_cell_;
+      finest = std::min(finest, axes.smallest(a));
+    }
     cell_ = lateral_cell_;
   }
   lateral_geometry_ = sc.simulation.dimension == Dimension::Axisymmetric ? LateralGeometry::Axisymmetric
@@ -81,7 +92,7 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
                          std::abs(sc.grid.upper[a] - line_point_[a]) < 1e-9 * std::max(1.0, std::abs(line_point_[a]))))
         section_fraction *= 0.5;
   const auto line_of = [&](double radius, double length, const Vec3& velocity) {
-    const double section = lateral_geometry_ == LateralGeometry::PlaneStrain ? 2.0 * radius : M_PI * radius * radius;
+    const double section = lateral_geometry_ == LateralGeometry::PlaneStrain ? 2.0 * radius : std::numbers::pi * radius * radius;
     return JetSegmentLine{direction_ * velocity[axis_], rho_p_ * section * section_fraction, length};
   };
   if (pb.segments.empty()) {  // a rod: one piece at the penetrator's speed
@@ -110,14 +121,16 @@ std::vector<std::string> PenetrationProbe::columns() const {
   return c;
 }
 
-double PenetrationProbe::penetrator_depth(const FieldStore& pts) const {
+double PenetrationProbe::penetrator_front(const FieldStore& pts) const {
   const auto* bid = pts.ints("body");
   const auto* x = pts.view<Vec3>("x");
-  double deepest = 0.0;
+  double front = -kInfinity;
   for (Index p = 0; p < pts.size(); ++p)
-    if (bid[p] == penetrator_) deepest = std::max(deepest, depth_of(x[p]));
-  return deepest;
+    if (bid[p] == penetrator_) front = std::max(front, depth_of(x[p]));
+  return front;
 }
+
+double PenetrationProbe::penetrator_depth(const FieldStore& pts) const { return std::max(0.0, penetrator_front(pts)); }
 
 double PenetrationProbe::cavity_depth(const FieldStore& pts) const {
   const auto* bid = pts.ints("body");
@@ -131,8 +144,7 @@ double PenetrationProbe::cavity_depth(const FieldStore& pts) const {
     // Eroded (failed) material is debris in the channel, not its floor or wall.
     if (failed && failed[p] > 0.0) continue;
     // Extent of the deformed domain along the axis: |F_a,j| h_j summed (the domain is F times a box).
-    double reach = 0.0;
-    for (int j = 0; j < nd_; ++j) reach += std::abs(F[p](axis_, j)) * half[p][j];
+    const double reach = half_extent(F[p], half[p], axis_, nd_);
     const double d = depth_of(x[p]);
     bottom = std::max(bottom, d + reach);
     // Material ejected above the face (d < 0) is not the cavity's floor.
@@ -156,13 +168,14 @@ std::vector<double> PenetrationProbe::sample(const FieldStore& pts, bool fired, 
   for (double e : seg) total += e;
   double depth = 0.0, cavity = 0.0;
   if (fired) {
-    depth = penetrator_depth(pts);
+    const double front = penetrator_front(pts);
+    depth = std::max(0.0, front);
     cavity = cavity_depth(pts);
     if (t_.empty() || t > t_.back()) {
       t_.push_back(t);
       depth_.push_back(depth);
       cavity_.push_back(cavity);
-      record_layer_exits(pts, t, scale);
+      record_layer_exits(pts, front, t, scale);
     }
   }
   std::vector<double> row = {fired ? t : kNaN, depth, cavity, total};
@@ -260,8 +273,7 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   const double* failed = pts.has(kFailedField) ? pts.real(kFailedField) : nullptr;
   for (Index p = 0; p < pts.size(); ++p) {
     if (bid[p] != target_ || (failed && failed[p] > 0.0)) continue;
-    double reach = 0.0;
-    for (int j = 0; j < nd_; ++j) reach += std::abs(F[p](lat, j)) * half[p][j];
+    const double reach = half_extent(F[p], half[p], lat, nd_);
     dd.push_back(depth_of(x[p]));
     rr.push_back(std::max(0.0, lateral_of(x[p]) - reach));
   }
@@ -309,15 +321,13 @@ std::vector<LateralPoint> PenetrationProbe::lateral_points(const FieldStore& pts
   for (Index p = 0; p < pts.size(); ++p) {
     if (bid[p] != body || (failed && failed[p] > 0.0)) continue;
     // The point's lateral half-extent in the current configuration (its domain is F times a box).
-    double reach = 0.0;
-    for (int j = 0; j < nd_; ++j) reach += std::abs(F[p](lat, j)) * half[p][j];
+    const double reach = half_extent(F[p], half[p], lat, nd_);
     double volume = vol[p];
     if (seeded_axial) {
       // Binned where it was seeded through the layer, the point fills its slice of the seeded
       // thickness: its current volume over its current axial extent, times its seeded one (a plate
       // dished, or thinned at the lip of its hole, still fills its slice where it is solid).
-      double along = 0.0;
-      for (int j = 0; j < nd_; ++j) along += std::abs(F[p](axis_, j)) * half[p][j];
+      const double along = half_extent(F[p], half[p], axis_, nd_);
       if (along > 0.0) volume *= half[p][axis_] / along;
     }
     out.push_back({direction_ * (x0[p][axis_] - face), lateral_of(x[p]), volume, reach});
@@ -351,16 +361,7 @@ JsonValue PenetrationProbe::layer_holes(const FieldStore& pts) const {
   return holes;
 }
 
-void PenetrationProbe::record_layer_exits(const FieldStore& pts, double time, double scale) {
-  bool pending = false;
-  for (const LayerExit& e : layer_exit_) pending = pending || !e.reached;
-  if (!pending) return;
-  // The front: the foremost penetrator point (above the target's face its depth is negative).
-  const auto* bid = pts.ints("body");
-  const auto* x = pts.view<Vec3>("x");
-  double front = -kInfinity;
-  for (Index p = 0; p < pts.size(); ++p)
-    if (bid[p] == penetrator_) front = std::max(front, depth_of(x[p]));
+void PenetrationProbe::record_layer_exits(const FieldStore& pts, double front, double time, double scale) {
   for (std::size_t k = 0; k < layers_.size(); ++k) {
     LayerExit& e = layer_exit_[k];
     if (e.reached || front < depth_of_coordinate(layer_face_[k]) + layer_thickness_[k]) continue;

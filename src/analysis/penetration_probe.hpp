@@ -53,6 +53,9 @@ class PenetrationProbe {
 
   /// Depth of the deepest penetrator particle (>= 0), m.
   double penetrator_depth(const FieldStore& points) const;
+  /// Depth of the foremost penetrator point, m (negative while it is above the target's face;
+  /// -inf with no penetrator point).
+  double penetrator_front(const FieldStore& points) const;
   /// Depth of the cavity tip, m: the top of the shallowest intact (not failed) target material
   /// within axis_radius of the line of flight and below the face; the full target depth once
   /// nothing is left there (perforation). The channel profile also skips failed (eroded) debris.
@@ -65,8 +68,9 @@ class PenetrationProbe {
                                            bool seeded_axial = false) const;
   /// summary.json "holes": the hole through each layer (entrance and smallest diameter).
   JsonValue layer_holes(const FieldStore& points) const;
-  /// Records what is left of the jet when its front first passes the back face of each layer.
-  void record_layer_exits(const FieldStore& points, double time, double scale);
+  /// Records what is left of the jet when its front (penetrator_front) first passes the back face
+  /// of each layer.
+  void record_layer_exits(const FieldStore& points, double front, double time, double scale);
   /// summary.json holes.<layer>.jet_behind: that record beside the hydrodynamic erosion.
   JsonValue jet_behind(std::size_t layer) const;
 
