@@ -14,6 +14,7 @@
 #include "core/system_memory.hpp"
 #include "geometry/seeding.hpp"
 #include "geometry/grid_axes.hpp"
+#include "mpm/axis_hoop.hpp"
 #include "mpm/graded_shape_functions.hpp"
 #include "mpm/grid_contact.hpp"
 #include "points/mms_axis_aligned.hpp"
@@ -57,6 +58,32 @@ inline void stencil_of(const GridGeometry& g, const SplineFaces& faces, const Ve
       for (int j = 0; j < 3; ++j) r(i, j) = F(i, j) * half[j];
     if constexpr (G) graded_cpdi_stencil<Dim>(g, x, r, s);
     else cpdi_stencil<Dim>(g, x, r, s);
+  }
+}
+
+/// The hoop operator of an axisymmetric uGIMP particle whose domain crosses the axis
+/// (mpm/axis_hoop.hpp); false (use w_k / r) for every other particle and shape function.
+template <int Dim, ShapeKind K>
+inline bool hoop_near_axis(const GridGeometry& g, const Vec3& x, const Vec3& half, const Stencil<Dim>& st,
+                           double* hoop) {
+  if constexpr (Dim == 2 && K == ShapeKind::Gimp) {
+    // A uniform grid's domains are at most h/2 long: a particle farther out needs no look.
+    if (!g.graded && !(x[0] < 0.5 * g.h)) return false;
+    return axis_hoop_weights(g, x[0], half[0], st, hoop);
+  } else {
+    return false;
+  }
+}
+
+/// The hoop rate of such a particle from the node velocities `field` of its velocity field.
+template <int Dim, ShapeKind K>
+inline bool hoop_rate_near_axis(const GridGeometry& g, const Vec3& x, const Vec3& half, const Stencil<Dim>& st,
+                                const Vec3* field, double& rate) {
+  if constexpr (Dim == 2 && K == ShapeKind::Gimp) {
+    if (!g.graded && !(x[0] < 0.5 * g.h)) return false;
+    return axis_hoop_rate(g, x[0], half[0], st, field, rate);
+  } else {
+    return false;
   }
 }
 
@@ -512,12 +539,15 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
           continue;
         }
         // f_I = -V_p sigma_p grad N_I + N_I f_ext,p (Sulsky et al. 1994, eq. 14); axisymmetric
-        // adds the hoop term -V_p sigma_tt N_I / r_p to the radial force (per-radian volume). The
+        // adds the hoop term -V_p sigma_tt N_I / r_p to the radial force (per-radian volume; its
+        // domain average for a uGIMP domain across the axis, mpm/axis_hoop.hpp). The
         // bulk viscosity's pressure q acts beside the material's stress: sigma - q I.
         Mat3 Vs = vol[p] * stress[p];
         if (bq)
           for (int i = 0; i < 3; ++i) Vs(i, i) -= vol[p] * bq[p];
         const double hoop = axisym ? Vs(2, 2) / x[p][0] : 0.0;
+        double near_axis[Stencil<Dim>::kMax];
+        const bool crosses_axis = axisym && hoop_near_axis<Dim, K>(g, x[p], half[p], st, near_axis);
         // Surface tractions are spread from their own points below.
         const Vec3 fe = has_ext ? (has_trac ? fext[p] - ftrac[p] : fext[p]) : Vec3{};
         for (int k = 0; k < st.count; ++k) {
@@ -530,7 +560,7 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
           Vec3 f;
           for (int i = 0; i < 3; ++i)
             f[i] = w * fe[i] - (Vs(i, 0) * dN[0] + Vs(i, 1) * dN[1] + Vs(i, 2) * dN[2]);
-          f[0] -= hoop * w;
+          f[0] -= crosses_axis ? Vs(2, 2) * near_axis[k] : hoop * w;
           gf[I] += f;
         }
       }
@@ -927,8 +957,12 @@ void MpmSolver::grid_to_particles(double dt) {
       for (int i = 0; i < Dim; ++i)
         for (int j = 0; j < Dim; ++j) l(i, j) += u[i] * dN[j];
     }
-    // Axisymmetric hoop rate v_r / r (thesis seed 000 ch. 5: Uintah's axisymmetric MPM).
-    if (axisym) l(2, 2) = vg[0] / xp[0];
+    // Axisymmetric hoop rate v_r / r (thesis seed 000 ch. 5: Uintah's axisymmetric MPM); for a
+    // uGIMP domain across the axis its domain average (mpm/axis_hoop.hpp).
+    if (axisym) {
+      double rate;
+      l(2, 2) = hoop_rate_near_axis<Dim, K>(g, xp, half[p], st, vn + fo, rate) ? rate : vg[0] / xp[0];
+    }
     const Vec3 v_old = v[p];
     // FLIP/PIC blend: flip (v + dt a) + (1 - flip) v_grid (Brackbill & Ruppel 1986 FLIP); with
     // XPIC(m) the PIC share is S (v* + dt a) instead of S (v + dt a) (xpic_velocity).
@@ -1026,7 +1060,10 @@ void MpmSolver::velocity_gradient_from_grid(double dt, bool move) {
         for (int j = 0; j < Dim; ++j) l(i, j) += u[i] * st.grad[k][j];
       vr += st.w[k] * u[0];
     }
-    if (axisym) l(2, 2) = vr / xp[0];
+    if (axisym) {
+      double rate;
+      l(2, 2) = hoop_rate_near_axis<Dim, K>(g, xp, half[p], st, vg + fo, rate) ? rate : vr / xp[0];
+    }
     finish_point(p, l, move ? displacement_[p] : Vec3{}, dt, bad, out);
   });
   first_bad_ = bad.load();
