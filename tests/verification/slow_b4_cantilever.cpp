@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "verification/verification_support.hpp"
+#include "verification/cantilever_support.hpp"
 
 using namespace ballista;
 using namespace ballista::verification;

@@ -57,7 +57,11 @@ ProbeSpec probe(const std::string& type, int axis = 1) {
 /// bodies b0 .. b3.
 std::unique_ptr<Probe> make_probe(ProbeSpec p, int body) {
   Scenario sc;
-  for (int b = 0; b < 4; ++b) sc.bodies.push_back(BodySpec{.name = "b" + std::to_string(b)});
+  for (int b = 0; b < 4; ++b) {
+    BodySpec body;
+    body.name = "b" + std::to_string(b);
+    sc.bodies.push_back(body);
+  }
   p.params.choices["body"] = body < 0 ? "" : "b" + std::to_string(body);
   sc.probes = {p};
   return std::move(make_probes(sc).front());

@@ -242,7 +242,9 @@ TEST_P(EveryDimensionAndShape, BodyForceGivesTheDiscreteFreeFall) {
     SCOPED_TRACE(std::string(update) + " flip " + std::to_string(flip) + " xpic " + std::to_string(xpic));
     EXPECT_LT(worst_x, 1e-13) << "m";
     // Sanity of the test itself: the scheme is distinguishable from the continuous trajectory.
-    if (!trapezoid) EXPECT_GT(worst_cont, 0.4 * norm(g) * kDt * N * kDt);
+    if (!trapezoid) {
+      EXPECT_GT(worst_cont, 0.4 * norm(g) * kDt * N * kDt);
+    }
     EXPECT_LT(worst_v, 1e-12 * norm(vN));
     EXPECT_LT(worst_F, 1e-11);  // a uniform acceleration does not deform the body
 
@@ -328,7 +330,9 @@ TEST_P(EveryDimensionAndShape, CollisionConservesMomentum) {
     const double residual = (e.total() - e0.total()) / e0.kinetic;
     std::printf("usavg %s %s %s: residual %.3e of KE0\n", dim.c_str(), sf.c_str(), contact.empty() ? "one field" : "friction",
                 residual);
-    if (sf != "linear") EXPECT_LT(std::abs(residual), 5e-3);
+    if (sf != "linear") {
+      EXPECT_LT(std::abs(residual), 5e-3);
+    }
   }
   }
 }

@@ -770,8 +770,9 @@ TEST(ShapeFunctions, BSplineFaceFunctionsAreSteffensCubics) {
         const double d = 1e-6;
         const double fd = from_face < 0 ? 0.0 : (closed(from_face, c + d) - closed(from_face, c - d)) / (2.0 * d);
         // d/dx = (d/dc) / h on the low side, -(d/dc) / h on the high side.
-        if (c > 2e-6 && std::fabs(c - 1.0) > 2e-6)
+        if (c > 2e-6 && std::fabs(c - 1.0) > 2e-6) {
           EXPECT_NEAR(g.h * a.dw[n], side == 0 ? fd : -fd, 1e-8) << "side " << side << " node " << from_face;
+        }
       }
       if (trial == 0) {  // at the face: weight 1 on the face node, 0 elsewhere
         for (int n = 0; n < 4; ++n) {

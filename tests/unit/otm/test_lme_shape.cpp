@@ -208,7 +208,9 @@ TEST(LmeCubeExperiment, LineSearchMakesEverySolveSucceed) {
       EXPECT_EQ(ls, 1.0) << "gamma " << gamma << " inset " << inset;
       EXPECT_EQ(both, 1.0);
       EXPECT_LE(newton, ls);
-      if (gamma >= 10.0) EXPECT_LT(newton, 0.5) << "the seed's failure regions reproduced";
+      if (gamma >= 10.0) {
+        EXPECT_LT(newton, 0.5) << "the seed's failure regions reproduced";
+      }
     }
   }
 }

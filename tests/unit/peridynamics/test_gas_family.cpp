@@ -90,7 +90,9 @@ TEST(GasFamily, CoarseGasLatticeBesideAFineSolid) {
       for (Index k = f.offset[p]; k < f.offset[p + 1]; ++k) V[p] += f.volume_factor[k] * vol0[f.other[k]];
     const pd::GasPassArgs args{xs.data(), vol0.data(), &f, gas.data(), V.data(), g.data(), dim};
     for (Index p = 0; p < n; ++p)
-      if (gas[p]) EXPECT_NEAR(pd::density_measure(args, p), std::pow(lambda, dim), 1e-12) << dim << " point " << p;
+      if (gas[p]) {
+        EXPECT_NEAR(pd::density_measure(args, p), std::pow(lambda, dim), 1e-12) << dim << " point " << p;
+      }
   }
 }
 

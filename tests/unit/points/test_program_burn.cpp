@@ -201,7 +201,9 @@ TEST(ProgramBurn, AWallStopsTheFrontAndAGapLetsItThrough) {
   EXPECT_EQ(ro.unreachable, 0);
   // Beyond the wall the path goes through the gap: longer than the straight line.
   for (size_t p = 0; p < open.x.size(); ++p)
-    if (open.x[p][0] > 31.0 * kH && open.x[p][1] < 30.0 * kH) EXPECT_GT(ro.time[p] * kD, norm(open.x[p] - xd) * 1.05);
+    if (open.x[p][0] > 31.0 * kH && open.x[p][1] < 30.0 * kH) {
+      EXPECT_GT(ro.time[p] * kD, norm(open.x[p] - xd) * 1.05);
+    }
 }
 
 // Inert points on another lattice (offset by half a spacing, e.g. a body with another

@@ -29,6 +29,14 @@ const std::string kBalls =
     "  - {name: still_velocity, type: mean_velocity, body: still, axis: y}\n"
     "  - {name: ball_velocity, type: mean_velocity, body: ball, axis: y}\n";
 
+RunOptions quiet_run_options(const std::string& dir) {
+  RunOptions o;
+  o.out_dir = dir;
+  o.threads = 1;
+  o.progress = false;
+  return o;
+}
+
 }  // namespace
 
 TEST(DeletionReport, DeletedPointsAreCountedPerBodyAndTheProbeOfALostBodyIsWarned) {
@@ -36,7 +44,7 @@ TEST(DeletionReport, DeletedPointsAreCountedPerBodyAndTheProbeOfALostBodyIsWarne
   // Ended while some particles of the ball remain (its front reaches the face at 33 us, its back
   // at 60 us).
   const RunResult r = run_simulation(parse_deck(kBalls, "balls.yaml", {"simulation.end_time=5.0e-5"}),
-                                     RunOptions{dir.path.string(), 1, false});
+                                     quiet_run_options(dir.path.string()));
   ASSERT_TRUE(r.ok) << r.error;
   const YAML::Node s = YAML::LoadFile((dir.path / "summary.json").string());
   const double seeded = s["statistics"]["particles_seeded"].as<double>();

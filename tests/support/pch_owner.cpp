@@ -1,0 +1,1 @@
+// The target that owns the test executables' shared precompiled header (tests/CMakeLists.txt).
