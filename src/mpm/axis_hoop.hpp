@@ -22,29 +22,12 @@
 // weight on the material side (w_k carries the axial factor).
 #include <algorithm>
 
-#include "mpm/graded_axis.hpp"
+#include "mpm/graded_shape_functions.hpp"
 #include "mpm/grid_geometry.hpp"
-#include "mpm/shape_functions.hpp"
 
 namespace ballista {
 
 namespace axis_hoop_detail {
-
-/// Integral over [lo, hi] of the hat that is 0 at xl, 1 at xi and 0 at xr, piece by piece (the
-/// trapezoid rule is exact on each linear piece).
-inline double hat_integral(double xl, double xi, double xr, double lo, double hi) {
-  const double xs[3] = {xl, xi, xr};
-  double sum = 0.0;
-  for (int piece = 0; piece < 2; ++piece) {
-    const double a = std::max(lo, xs[piece]), b = std::min(hi, xs[piece + 1]);
-    if (!(b > a)) continue;
-    const double inv = 1.0 / (xs[piece + 1] - xs[piece]);
-    const double na = piece == 0 ? (a - xs[0]) * inv : (xs[2] - a) * inv;
-    const double nb = piece == 0 ? (b - xs[0]) * inv : (xs[2] - b) * inv;
-    sum += 0.5 * (b - a) * (na + nb);
-  }
-  return sum;
-}
 
 /// Radial node coordinate of block index i.
 inline double radial_node(const GridGeometry& g, int i) {
@@ -70,6 +53,7 @@ inline double effective_half_length(const GridGeometry& g, double r, double lp) 
 /// call it stay as they were compiled.
 [[gnu::noinline]] inline bool axis_hoop_weights(const GridGeometry& g, double r, double lp, const Stencil<2>& st, double* hoop) {
   using namespace axis_hoop_detail;
+  using graded_detail::hat_integral;
   const double l = effective_half_length(g, r, lp);
   if (!(r < l)) return false;
   const double lo = r - l, hi = r + l;

@@ -35,12 +35,13 @@ inline double hat(const GradedAxis& ax, int I, double y) {
   return y <= xi ? (y - xl) / (xi - xl) : (xr - y) / (xr - xi);
 }
 
-/// Integral of node I's hat over [lo, hi], piece by piece (the trapezoid rule is exact on each
-/// linear piece). Not as a difference of antiderivatives: a domain that overlaps a node's support
-/// by a sliver r would lose its weight O(r^2) to cancellation while its gradient O(r) survives,
-/// and a node with a gradient but no mass takes an unbounded acceleration.
-inline double hat_integral(const GradedAxis& ax, int I, double lo, double hi) {
-  const double xs[3] = {ax.at(I - 1), ax.at(I), ax.at(I + 1)};
+/// Integral over [lo, hi] of the hat that is 0 at xl, 1 at xi and 0 at xr, piece by piece (the
+/// trapezoid rule is exact on each linear piece). Not as a difference of antiderivatives: a domain
+/// that overlaps a node's support by a sliver r would lose its weight O(r^2) to cancellation while
+/// its gradient O(r) survives, and a node with a gradient but no mass takes an unbounded
+/// acceleration.
+inline double hat_integral(double xl, double xi, double xr, double lo, double hi) {
+  const double xs[3] = {xl, xi, xr};
   double sum = 0.0;
   for (int piece = 0; piece < 2; ++piece) {
     const double a = std::max(lo, xs[piece]), b = std::min(hi, xs[piece + 1]);
@@ -52,6 +53,11 @@ inline double hat_integral(const GradedAxis& ax, int I, double lo, double hi) {
     sum += 0.5 * (b - a) * (na + nb);
   }
   return sum;
+}
+
+/// Integral of node I's hat over [lo, hi].
+inline double hat_integral(const GradedAxis& ax, int I, double lo, double hi) {
+  return hat_integral(ax.at(I - 1), ax.at(I), ax.at(I + 1), lo, hi);
 }
 
 /// uGIMP on one axis (Bardenhagen & Kober, CMES 5 (2004) 477): S_I = (1/2lp) integral of the hat
