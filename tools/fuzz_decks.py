@@ -838,7 +838,7 @@ UNCAUGHT = ["terminate called", "what():", "Assertion `", "assertion failed", "A
 # summary.json keys that are null when not applicable (no impact, no steady phase, no stages; a
 # hole or tunnel with no material left to make a wall, or not reached yet).
 NULL_OK = {"main_stage_start", "arrival_time", "stop_time", "steady_rate", "rate_over_hydrodynamic",
-           "penetration_time", "min_dt_set_by", "entrance_diameter", "min_diameter", "mean_diameter",
+           "penetration_time", "min_dt_set_by", "entrance_diameter", "entrance_depth", "min_diameter", "mean_diameter",
            # holes.<layer>.jet_behind before the jet's front has passed the layer
            "time", "consumed_length", "remaining_length", "tip_velocity", "tip_segment", "tip_initial_velocity"}
 

@@ -233,6 +233,12 @@ def plot_channel(out_dir, ch, p):
         c = plt.cm.tab10(k + 1)
         ax.plot([top * MM, (top + thick) * MM], [0.5 * d * MM] * 2, "-", color=c, lw=2.2,
                 label=f"{name}: entrance hole {d * MM:.2f} mm dia.")
+    # The rock tunnel's entrance: where its wall begins (below a crushed or blown-off face).
+    tunnel = p.get("tunnel") if isinstance(p.get("tunnel"), dict) else {}
+    d, at = tunnel.get("entrance_diameter"), tunnel.get("entrance_depth")
+    if d is not None and at is not None:
+        ax.plot([at * MM], [0.5 * d * MM], "D", color="k", ms=6,
+                label=f"tunnel entrance {d * MM:.2f} mm dia. at {at * MM:.2f} mm")
     rmax = number(p, "max_channel_radius")
     if rmax is not None:
         ax.axhline(rmax * MM, ls="--", color="tab:red", lw=1.0, label=f"largest tunnel radius {rmax * MM:.2f} mm")

@@ -71,6 +71,20 @@ def first_main_step(out):
     return main[0] if main else None
 
 
+def tunnel_entrance(pen, out):
+    """The rock tunnel's entrance diameter, m: summary.json's, or for a run written before that key
+    had its rule (where the wall begins below a crushed face), the same rule on channel.csv."""
+    t = pen.get("tunnel", {})
+    if "entrance_depth" in t:
+        return t.get("entrance_diameter")
+    import csv
+    for row in csv.DictReader(open(os.path.join(out, "channel.csv"))):
+        r = float(row["radius"])
+        if math.isfinite(r):
+            return 2.0 * r
+    return None
+
+
 def extract(s, out):
     pen = s["penetration"]
     holes = pen.get("holes", {})
@@ -79,7 +93,7 @@ def extract(s, out):
         "depth": mm(pen.get("final_depth")),
         "casing_hole": mm(holes.get("casing", {}).get("entrance_diameter")),
         "cement_hole": mm(holes.get("cement", {}).get("entrance_diameter")),
-        "tunnel_entrance": mm(pen.get("tunnel", {}).get("entrance_diameter")),
+        "tunnel_entrance": mm(tunnel_entrance(pen, out)),
         # What the jet has left behind the casing and behind the cement, against the hydrodynamic
         # erosion T sqrt(rho_layer / rho_jet) (thesis eq. 3.2 inverted; docs/penetration.md).
         "jet_behind": {layer: {k: holes.get(layer, {}).get("jet_behind", {}).get(k)

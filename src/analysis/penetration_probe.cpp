@@ -297,7 +297,13 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
           ++wall_count;
         }
       }
-      tunnel["entrance_diameter"] = std::isfinite(wall.front()) ? JsonValue(2.0 * wall.front()) : JsonValue();
+      // The rock's face around the line of flight may be crushed or blown off, leaving no wall in
+      // the first bins: the entrance is where the wall begins, at the depth reported beside it.
+      const auto first = std::find_if(wall.begin(), wall.end(), [](double w) { return std::isfinite(w); });
+      const bool found = first != wall.end();
+      tunnel["entrance_diameter"] = found ? JsonValue(2.0 * *first) : JsonValue();
+      tunnel["entrance_depth"] =
+          found ? JsonValue(channel_depth * static_cast<double>(first - wall.begin()) / bins) : JsonValue();
     }
   }
   out["max_channel_radius"] = max_radius;

@@ -186,4 +186,39 @@ TEST(PenetrationProbe, HoleOfADisplacedPlateIsMeasuredInThePlate) {
   EXPECT_TRUE(h.at("perforated").as_bool());
 }
 
+TEST(PenetrationProbe, TunnelEntranceIsWhereTheWallBeginsBelowACrushedFace) {
+  // The rock's top 3 mm blown off around the line of flight (thrown far out), except one point in
+  // ten between r = 2 and 6 mm left lying as crushed debris, and below it a tunnel of radius 2 mm
+  // to 8 mm depth. The entrance is read where the wall begins: 4 mm across at 3 mm depth; the
+  // debris (a tenth of the annuli's volume) is not wall.
+  const Scenario sc = parse_deck(kLayeredDeck, "layers.yaml");
+  auto solver = make_solver(sc);
+  FieldStore& pts = solver->points();
+  PenetrationProbe probe(sc);
+  auto* x = pts.view<Vec3>("x");
+  const auto* bid = pts.ints("body");
+  const double face = 0.02;
+  int kept = 0;
+  for (Index p = 0; p < pts.size(); ++p) {
+    if (bid[p] != 0) continue;
+    const double depth = face - x[p][1], r = x[p][0];
+    if (depth < 3e-3) {
+      if (r > 2e-3 && r < 6e-3 && kept++ % 10 == 0) continue;  // debris left lying
+      x[p][0] += 0.02;
+    } else if (depth < 8e-3 && r < 2e-3) {
+      x[p][0] += 0.02;
+    }
+  }
+  probe.sample(pts, true, 0.0, solver->reporting_scale());
+  test::TempDir dir;
+  JsonValue out;
+  probe.finish(pts, dir.path.string(), 1e-6, out);
+  const JsonValue& t = out.at("tunnel");
+  // Bins of the 1 mm axial cell and annuli of the 1 mm lateral cell: the face and the tunnel's
+  // wall lie on their edges.
+  EXPECT_NEAR(t.at("depth").as_number(), 8e-3, 1e-12);
+  EXPECT_NEAR(t.at("entrance_diameter").as_number(), 4e-3, 1e-12);
+  EXPECT_NEAR(t.at("entrance_depth").as_number(), 3e-3, 1e-12);
+}
+
 }  // namespace
