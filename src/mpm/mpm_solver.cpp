@@ -912,6 +912,11 @@ inline void MpmSolver::finish_point(Index p, const Mat3& l, const Vec3& disp, do
     if (!(x[a] >= layout_.box_lower[a] && x[a] <= layout_.box_upper[a])) record_min(out, p);
 }
 
+// GCC 12 cannot see that stencil_of writes the first st.count entries it reads back in the XPIC
+// loop below and warns that the stencil "may be used uninitialized"; the stencils stay
+// uninitialised on purpose (they are filled per point in the hot loop).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 template <int Dim, ShapeKind K, bool G, bool Usavg>
 void MpmSolver::grid_to_particles(double dt) {
   // One pass per point: grid velocity, acceleration and velocity gradient at the point; FLIP/PIC
@@ -1034,6 +1039,8 @@ void MpmSolver::grid_to_particles(double dt) {
   first_bad_ = bad.load();
   first_out_ = out.load();
 }
+
+#pragma GCC diagnostic pop
 
 template <int Dim, ShapeKind K, bool G>
 void MpmSolver::velocity_gradient_from_grid(double dt, bool move) {
