@@ -130,8 +130,6 @@ double PenetrationProbe::penetrator_front(const FieldStore& pts) const {
   return front;
 }
 
-double PenetrationProbe::penetrator_depth(const FieldStore& pts) const { return std::max(0.0, penetrator_front(pts)); }
-
 double PenetrationProbe::cavity_depth(const FieldStore& pts) const {
   const auto* bid = pts.ints("body");
   const auto* x = pts.view<Vec3>("x");

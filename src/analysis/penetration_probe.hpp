@@ -51,8 +51,6 @@ class PenetrationProbe {
   /// Distance from the line of flight, m (the radius x in axisymmetric runs).
   double lateral_of(const Vec3& x) const;
 
-  /// Depth of the deepest penetrator particle (>= 0), m.
-  double penetrator_depth(const FieldStore& points) const;
   /// Depth of the foremost penetrator point, m (negative while it is above the target's face;
   /// -inf with no penetrator point).
   double penetrator_front(const FieldStore& points) const;
