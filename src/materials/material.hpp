@@ -156,6 +156,12 @@ struct MaterialBatch {
   double* tangent = nullptr;
   /// Optional: lowest index of a point whose new stress is not finite (atomic minimum).
   std::atomic<Index>* first_bad = nullptr;
+  /// Distortion limit lambda of the models whose stress does not depend on F's isochoric part
+  /// (hypoelastic-plastic, fluids: all but the hyperelastic ones). A point whose RMS isochoric
+  /// stretch sqrt(tr(C) / (3 J^(2/3))) exceeds it has F replaced by J^(1/3) R_{n+1} (see
+  /// distortion.hpp); 0: never. Counted in `distortion_remaps` if it is set.
+  double distortion_limit = 0.0;
+  std::atomic<Index>* distortion_remaps = nullptr;
 };
 
 class Material {

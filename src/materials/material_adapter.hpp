@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/polar.hpp"
+#include "materials/distortion.hpp"
 #include "materials/failure.hpp"
 #include "materials/material.hpp"
 #include "materials/strain_increment.hpp"
@@ -143,6 +144,13 @@ class MaterialAdapter final : public Material {
       // (dt = 0 leaves nothing to integrate; sym(L) is the limit.)
       const Mat3 D = b.dt > 0.0 ? (1.0 / b.dt) * midpoint_strain_increment(b.dt * L) : sym(L);
       kin.R_new = polar_rotation(kin.F_new, R_old);
+      if constexpr (!kReadsStretch) {
+        if (b.distortion_limit > 0.0 && beyond_distortion_limit(kin.F_new, kin.J_new, b.distortion_limit)) {
+          kin.F_new = remapped_deformation(kin.J_new, kin.R_new);  // distortion.hpp: same J and R
+          b.F_new[p] = kin.F_new;
+          if (b.distortion_remaps) b.distortion_remaps->fetch_add(1, std::memory_order_relaxed);
+        }
+      }
       kin.D_bar = unrotate_sym(kin.R_new, D);
       const Mat3 sigma_old = b.stress[p];
       Mat3 sigma_bar = unrotate_sym(R_old, sigma_old);
@@ -199,6 +207,9 @@ class MaterialAdapter final : public Material {
     if constexpr (requires { Model::kNeedsFOld; }) return Model::kNeedsFOld;
     else return false;
   }();
+  /// Hyperelastic models (those with initial_stress(params, F)) read F's isochoric stretch; the
+  /// others read only J and R of F, so the distortion limit may remap them.
+  static constexpr bool kReadsStretch = requires(const Params& q, const Mat3& F) { Model::initial_stress(q, F); };
   // Hyperelastic models define initial_stress(params, F); hypoelastic ones start stress-free.
   Mat3 initial_stress_impl(const Mat3& F, const Mat3& R) const {
     if constexpr (requires { Model::initial_stress(params_, F); }) {

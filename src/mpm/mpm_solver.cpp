@@ -203,6 +203,7 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   bulk_viscosity_ = {sc.solver_params.at("bulk_viscosity_linear"), sc.solver_params.at("bulk_viscosity_quadratic")};
   if (bulk_viscosity_.active()) pts_.add_real(kBulkViscosityField, 1, "Pa");
   flip_ = sc.solver_params.at("flip");
+  pts_.set_distortion_limit(sc.solver_params.at("distortion_limit"));
   xpic_order_ = static_cast<int>(sc.solver_params.at("xpic_order"));
   sort_every_ = static_cast<int>(sc.solver_params.at("sort_every"));
   anti_locking_ = parse_anti_locking(sc.solver_params.choices.at("anti_locking"));
@@ -1276,10 +1277,14 @@ std::vector<double> MpmSolver::history_values() const {
 }
 
 std::vector<std::pair<std::string, double>> MpmSolver::result_values() const {
-  if (!comm_.distributed()) return {};
+  // Particles whose F was remapped at mpm.distortion_limit (absent: none).
+  const std::int64_t remaps = pts_.distortion_remaps();
+  std::vector<std::pair<std::string, double>> out;
+  if (remaps > 0) out.emplace_back("distortion_remaps", static_cast<double>(remaps));
+  if (!comm_.distributed()) return out;
   const double steps = std::max(halo_steps_, 1.0);
   const double n = static_cast<double>(points_.size());
-  return {{"ranks", static_cast<double>(comm_.size())},
+  out.insert(out.end(), {{"ranks", static_cast<double>(comm_.size())},
           {"fewest_particles_on_a_rank", comm_.min(n)},  // collective: every rank reports
           {"most_particles_on_a_rank", comm_.max(n)},
           {"repartitions", static_cast<double>(repartitions_)},
@@ -1290,7 +1295,8 @@ std::vector<std::pair<std::string, double>> MpmSolver::result_values() const {
           {"halo_messages_per_step_rank0", halo_messages_ / steps},
           // Ranks rank 0 exchanged its block list with (mean over the steps that used the
           // neighbour exchange; the others went to every rank).
-          {"neighbour_ranks_rank0", neighbour_plans_ > 0 ? neighbour_sum_ / neighbour_plans_ : 0.0}};
+          {"neighbour_ranks_rank0", neighbour_plans_ > 0 ? neighbour_sum_ / neighbour_plans_ : 0.0}});
+  return out;
 }
 
 void MpmSolver::save_state(StateArchive& a) const {
@@ -1404,7 +1410,13 @@ std::vector<ParamSpec> mpm_params() {
                          "C_Q of the artificial bulk viscosity (see bulk_viscosity_linear): 0 = off; LS-DYNA 1.5, "
                          "Uintah 2.0",
                          false, 0.0, 0.0, 100.0};
-  return {shape, update, flip, sort, locking, rebalance, xpic, bv_linear, bv_quadratic};
+  ParamSpec distortion{"distortion_limit", "1",
+                       "RMS isochoric stretch sqrt(tr(F^T F) / (3 J^(2/3))) beyond which a particle of a hypoelastic or "
+                       "fluid material has F replaced by J^(1/3) R (J and the stress frame kept; its stretch history, "
+                       "which such models do not read, dropped): material flowing like a fluid otherwise stretches "
+                       "until det F and the polar decomposition are lost to round-off. 0 = never",
+                       false, 1000.0, 0.0, 1e12};
+  return {shape, update, flip, sort, locking, rebalance, xpic, bv_linear, bv_quadratic, distortion};
 }
 
 }  // namespace

@@ -278,14 +278,24 @@ void PointSet::update_stress(double dt, long step, double time, const std::vecto
   const Index n = points_.size();
   const auto& groups = material_groups();
   std::atomic<Index> bad_stress{n};
+  std::atomic<Index> remaps{0};
   for (size_t m = 0; m < materials_.size(); ++m) {
     if (groups[m].empty() || (!only.empty() && !only[m])) continue;
     MaterialBatch b = make_batch(points_, groups[m].data(), static_cast<Index>(groups[m].size()), dt, true);
     b.first_bad = &bad_stress;
     b.time = time;
+    b.distortion_limit = distortion_limit_;
+    b.distortion_remaps = &remaps;
     materials_[m]->update(b);
   }
+  distortion_remaps_ += remaps.load();
   if (bad_stress.load() < n) fail(bad_stress.load(), "non-finite stress after the material update", step, time);
+}
+
+std::int64_t PointSet::distortion_remaps() const {
+  double total = static_cast<double>(distortion_remaps_);
+  comm_.sum(&total, 1);
+  return static_cast<std::int64_t>(total);
 }
 
 void PointSet::remove(const std::vector<char>& keep) {
@@ -419,6 +429,7 @@ void PointSet::save_state(StateArchive& a) const {
     a.put("pending.stage", std::vector<std::int64_t>(pending_stage_.begin(), pending_stage_.end()));
     a.put("points.stage_start", stage_start_);
     a.put("points.removed", removed);
+    a.put_int("points.distortion_remaps", distortion_remaps_);
     return;
   }
   // Several ranks: rank 0's archive is a serial checkpoint of every rank's points (rank order),
@@ -432,7 +443,9 @@ void PointSet::save_state(StateArchive& a) const {
   const std::vector<double> removed_by_rank = gather_values(comm_, removed);
   std::vector<double> totals = removed;
   comm_.sum(totals.data(), static_cast<int>(totals.size()));
+  const std::int64_t remaps = distortion_remaps();
   if (comm_.rank() != 0) return;
+  a.put_int("points.distortion_remaps", remaps);
   a.put_fields("points.", all);
   a.put_fields("pending.", all_pending);
   a.put("pending.activation_time", activation);
@@ -500,6 +513,8 @@ void PointSet::restore_removed(const StateArchive& a, bool own) {
   removed_chemical_ = r[2];
   removed_momentum_ = Vec3{{r[3], r[4], r[5]}};
   inserted_energy_ = r[6];
+  // Only the total is kept (a checkpoint without the key was written before any remap existed).
+  distortion_remaps_ = comm_.rank() == 0 && a.has("points.distortion_remaps") ? a.integer("points.distortion_remaps") : 0;
   groups_dirty_ = true;
 }
 

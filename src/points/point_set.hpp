@@ -80,6 +80,11 @@ class PointSet {
   /// stress stops the run with fail(). With `only` given, just the materials m with only[m] != 0
   /// (peridynamics: its gas; the solids' stress is their bonds').
   void update_stress(double dt, long step, double time, const std::vector<std::uint8_t>& only = {});
+  /// The stress update remaps F of points beyond this RMS isochoric stretch (MaterialBatch::
+  /// distortion_limit, materials/distortion.hpp); 0: never (the default).
+  void set_distortion_limit(double limit) { distortion_limit_ = limit; }
+  /// Remaps so far, summed over the ranks (collective).
+  std::int64_t distortion_remaps() const;
 
   // ---- removal and diagnostics -------------------------------------------------------------
   /// Keeps the points with keep[p] != 0; the others' mass, momentum and kinetic + internal energy
@@ -143,6 +148,8 @@ class PointSet {
   double removed_chemical_ = 0.0;  ///< J, chemical energy released by points since deleted
   Vec3 removed_momentum_;
   double inserted_energy_ = 0.0;  ///< per-point sum of the energy of activated points (this rank)
+  double distortion_limit_ = 0.0;
+  std::int64_t distortion_remaps_ = 0;  ///< this rank's (a restart gives the total to rank 0)
 };
 
 }  // namespace ballista

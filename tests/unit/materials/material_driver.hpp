@@ -4,6 +4,7 @@
 // over a step is L = (F_{n+1} F_n^{-1} - I)/dt (thesis seed 000, eq. 4.10; CATALOGUE §A).
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -99,8 +100,13 @@ class PointDriver {
     b.plastic_work = store_.real("plastic_work");
     b.store = &store_;
     b.dt = dt;
+    b.distortion_limit = distortion_limit_;
+    b.distortion_remaps = &remaps_;
     mat_->update(b);
   }
+  /// MaterialBatch::distortion_limit of the following steps (0: never remap).
+  void set_distortion_limit(double limit) { distortion_limit_ = limit; }
+  Index distortion_remaps() const { return remaps_.load(); }
 
   /// One step of point 0 to F_new over dt.
   void advance(const Mat3& F_new, double dt) {
@@ -116,6 +122,8 @@ class PointDriver {
   FieldStore store_;
   std::vector<Index> all_;
   double dt_ = 1.0;
+  double distortion_limit_ = 0.0;
+  std::atomic<Index> remaps_{0};
 };
 
 /// CATALOGUE A6 objectivity paths: n pairs of points of `d` (which must hold 2n points) follow
