@@ -117,9 +117,12 @@ def richardson(f1, f2, f3, ratio=2.0):
     if None in (f1, f2, f3):
         return None, None
     d12, d23 = f1 - f2, f2 - f3
-    if d23 == 0 or d12 == 0 or (d12 > 0) != (d23 > 0):
+    tiny = 1e-9 * max(abs(f1), abs(f2), abs(f3))  # the hole diameters are read in bins: equal to round-off
+    if abs(d23) <= tiny or abs(d12) <= tiny or (d12 > 0) != (d23 > 0):
         return None, None  # not monotone: no order
     p = math.log(abs(d12) / abs(d23)) / math.log(ratio)
+    if p <= 0:
+        return p, None  # the differences do not shrink: there is no limit to extrapolate to
     return p, f3 + d23 / (ratio ** p - 1.0)
 
 
