@@ -145,9 +145,8 @@ class MaterialAdapter final : public Material {
       const Mat3 D = b.dt > 0.0 ? (1.0 / b.dt) * midpoint_strain_increment(b.dt * L) : sym(L);
       kin.R_new = polar_rotation(kin.F_new, R_old);
       if constexpr (!kReadsStretch) {
-        if (b.distortion_limit > 0.0 && beyond_distortion_limit(kin.F_new, kin.J_new, b.distortion_limit)) {
-          kin.F_new = remapped_deformation(kin.J_new, kin.R_new);  // distortion.hpp: same J and R
-          b.F_new[p] = kin.F_new;
+        if (b.distortion_limit > 0.0 && remap_if_distorted(kin.F_new, kin.J_new, kin.R_new, b.distortion_limit)) {
+          b.F_new[p] = kin.F_new;  // distortion.hpp: same J and R
           if (b.distortion_remaps) b.distortion_remaps->fetch_add(1, std::memory_order_relaxed);
         }
       }

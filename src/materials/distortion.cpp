@@ -1,0 +1,11 @@
+#include "materials/distortion.hpp"
+
+namespace ballista {
+
+bool remap_if_distorted(Mat3& F, double J, const Mat3& R, double limit) {
+  if (!beyond_distortion_limit(F, J, limit)) return false;
+  F = remapped_deformation(J, R);
+  return true;
+}
+
+}  // namespace ballista
