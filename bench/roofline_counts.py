@@ -22,6 +22,7 @@ import collections
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 
@@ -30,7 +31,7 @@ import sys
 KERNELS = [
     ("stable step", r"max_signal_speed|stable_dt|wave_speed"),
     ("stress update", r"MaterialAdapter|polar_rotation|reorthogonalise|j2_return|J2Plasticity|JohnsonCook|update_stress|"
-                      r"midpoint_strain_increment"),
+                      r"midpoint_strain_increment|remap_if_distorted"),
     ("P2G", r"particles_to_grid"),
     ("G2P", r"grid_to_particles|deterministic_sum"),
     # The shape functions of a point, computed in P2G, G2P and the MUSL pass alike when not inlined.
@@ -46,8 +47,28 @@ KERNELS = [
 FLOP_RE = re.compile(r"^v?(add|sub|mul|div|sqrt|fmadd\d*|fmsub\d*|fnmadd\d*|fnmsub\d*)(s|p)d$")
 
 
-def kernel_of(name):
-    for k, pat in KERNELS:
+# The peridynamic step (bench/pd_cube_bench.yaml through `ballista run`): the bond pass (forces and
+# damage of every bond), the velocity-Verlet update of the points, contact and the stable step.
+PD_KERNELS = [
+    ("stable step", r"PdSolver::stable_dt|max_signal_speed|wave_speed"),
+    ("bond pass", r"bond_pass|BondPass|bond_force"),
+    ("contact", r"contact|Contact"),
+    ("gas", r"gas_pass|GasPass"),
+    ("update of the points", r"PdSolver::advance|PdSolver::compute_forces|PdSolver::step|for_each"),
+    ("grid zeroing", r"memset"),
+]
+TARGETS = {
+    # toggles (what callgrind counts), the function called once per step (the whole name: its
+    # lambdas' names contain it too), the kernels
+    "mpm": (["ballista::MpmSolver::step(double)", "ballista::MpmSolver::stable_dt()"],
+            r"^ballista::MpmSolver::step_local\(double\)$", KERNELS),
+    "pd": (["ballista::PdSolver::step(double)", "ballista::PdSolver::stable_dt()"],
+           r"^ballista::PdSolver::advance\(double\)$", PD_KERNELS),
+}
+
+
+def kernel_of(name, kernels=None):
+    for k, pat in kernels or KERNELS:
         if re.search(pat, name):
             return k
     return "other"
@@ -79,7 +100,7 @@ def disassemble(binary):
     return insn, syms
 
 
-def parse_callgrind(path):
+def parse_callgrind(path, step_fn):
     """Self cost per (function, address): Ir and last-level misses; and the call count of step()."""
     names = {"fn": {}}
     events = []
@@ -107,9 +128,9 @@ def parse_callgrind(path):
                 cfn = names["fn"][ident]
             continue
         if line.startswith("calls="):
-            if cfn and re.search(r"MpmSolver::step_local\(double\)", cfn):
+            if cfn and re.search(step_fn, cfn):
                 step_calls += int(line.split("=")[1].split()[0])
-            if cfn and re.search(r"MpmSolver::sort_by_cell\(\)", cfn):
+            if cfn and re.search(r"^ballista::MpmSolver::sort_by_cell\(\)$", cfn):
                 sort_calls += int(line.split("=")[1].split()[0])
             skip_next = True
             continue
@@ -135,19 +156,19 @@ def parse_callgrind(path):
     return cost, per_fn, step_calls, sort_calls, events
 
 
-def perf_shares(binary, args):
-    """Share of samples per kernel from perf record (software cpu-clock)."""
+def perf_shares(args, kernels):
+    """Share of samples per kernel from perf record (software cpu-clock) of a native run."""
     data = args.out + "/perf.data"
-    subprocess.run(["perf", "record", "-e", "cpu-clock", "-F", "2000", "-o", data, "--", binary,
-                    f"--benchmark_filter={args.filter}", "--benchmark_min_time=3"],
-                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+    subprocess.run(["perf", "record", "-e", "cpu-clock", "-F", "2000", "-o", data, "--"] + workload(args, None, True),
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True,
+                   env=dict(os.environ, OMP_NUM_THREADS=str(args.threads)))
     rep = subprocess.run(["perf", "report", "-i", data, "--stdio", "--no-children", "--sort", "symbol",
                           "--percent-limit", "0"], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True).stdout
     shares = collections.Counter()
     for line in rep.splitlines():
         m = re.match(r"^\s+([\d.]+)%\s+\[\.\]\s+(.*)$", line)
         if m:
-            shares[kernel_of(m.group(2))] += float(m.group(1))
+            shares[kernel_of(m.group(2), kernels)] += float(m.group(1))
     # The samples also cover the bench's setup (seeding, deck), which lands in "other"; the step's
     # own "other" is ~0.2 % of its instructions (callgrind), so the kernels' shares are taken
     # relative to their sum.
@@ -164,25 +185,38 @@ def main():
     ap.add_argument("--no-perf", action="store_true")
     ap.add_argument("--bounds", help="bench/machine_bounds_bench --benchmark_format=json output: adds the roofline")
     ap.add_argument("--threads", type=int, default=1, help="threads of the filtered benchmark (for --bounds)")
+    ap.add_argument("--target", choices=sorted(TARGETS), default="mpm",
+                    help="mpm: the block bench (--bench, --filter); pd: `ballista run` of --deck")
+    ap.add_argument("--ballista", default="build/ballista")
+    ap.add_argument("--deck", default="bench/pd_cube_bench.yaml")
+    ap.add_argument("--steps", type=int, default=None, help="pd: steps counted under valgrind")
     ap.add_argument("--sort-every", type=int, default=20, help="the bench deck's mpm.sort_every")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     cg = a.out + "/callgrind.out"
     env = dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="passive")
+    toggles, step_fn, kernels = TARGETS[a.target]
+    binary = a.bench if a.target == "mpm" else a.ballista
+    # The counts are addresses of the binary that ran: a copy of it is kept beside them, so that a
+    # rebuild between recording and reading cannot mismatch them.
+    kept = os.path.join(a.out, "counted_binary")
     if not os.path.exists(cg):
-        run = subprocess.run(["valgrind", "--tool=callgrind", "--dump-instr=yes", "--cache-sim=yes", "--LL=33554432,16,64",
-                              "--toggle-collect=ballista::MpmSolver::step(double)",
-                              "--toggle-collect=ballista::MpmSolver::stable_dt()",
-                              f"--callgrind-out-file={cg}", a.bench, f"--benchmark_filter={a.filter}",
-                              "--benchmark_min_time=0.01", "--benchmark_repetitions=3", "--benchmark_format=json"],
+        shutil.copy2(binary, kept)
+        run = subprocess.run(["valgrind", "--tool=callgrind", "--dump-instr=yes", "--cache-sim=yes", "--LL=33554432,16,64"]
+                             + [f"--toggle-collect={t}" for t in toggles]
+                             + [f"--callgrind-out-file={cg}"] + workload(a, a.steps),
                              stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, env=env, check=True)
-        open(a.out + "/bench.json", "w").write(run.stdout)
-    bench = json.load(open(a.out + "/bench.json"))
-    particles = a.particles or bench["benchmarks"][0]["particles"]  # the same block every repetition
-    insn, syms = disassemble(a.bench)
-    cost, per_fn, steps, sorts, events = parse_callgrind(cg)
+        if a.target == "mpm":
+            open(a.out + "/bench.json", "w").write(run.stdout)
+    if a.target == "mpm":
+        bench = json.load(open(a.out + "/bench.json"))
+        particles = a.particles or bench["benchmarks"][0]["particles"]  # the same block every repetition
+    else:
+        particles = a.particles or json.load(open(a.out + "/run/summary.json"))["statistics"]["particles_seeded"]
+    insn, syms = disassemble(kept if os.path.exists(kept) else binary)
+    cost, per_fn, steps, sorts, events = parse_callgrind(cg, step_fn)
     if steps == 0:
-        raise SystemExit("no call of MpmSolver::step found in " + cg)
+        raise SystemExit(f"no call of {step_fn} found in {cg}")
     # The load base of the executable under valgrind: the most common difference between where a
     # function's lowest executed address lies and where objdump puts its symbol.
     diffs = collections.Counter()
@@ -197,7 +231,7 @@ def main():
     rows = collections.defaultdict(collections.Counter)
     unknown = 0
     for fn, addrs in cost.items():
-        k = kernel_of(fn)
+        k = kernel_of(fn, kernels)
         for addr, ir in addrs.items():
             ins = insn.get(addr - base)
             if ins is None:
@@ -209,11 +243,11 @@ def main():
         # Last-level read misses and write misses of data, 64-byte lines; a line missed on a write
         # is read (write-allocate) and later written back: twice.
         rows[k]["bytes"] += 64 * (miss.get("DLmr", 0) + 2 * miss.get("DLmw", 0))
-    shares = {} if a.no_perf else perf_shares(a.bench, a)
+    shares = {} if a.no_perf else perf_shares(a, kernels)
     total_ir = sum(r["Ir"] for r in rows.values())
     result = {"filter": a.filter, "particles": particles, "steps": steps, "sorts": sorts, "load_base": hex(base),
               "unmatched_instruction_share": unknown / max(total_ir, 1), "kernels": {}}
-    order = [k for k, _ in KERNELS] + ["other"]
+    order = [k for k, _ in kernels] + ["other"]
     print(f"{a.filter}: {particles:.0f} particles x {steps} steps (valgrind); per particle-step:")
     print(f"{'kernel':26s} {'instr':>8s} {'flops':>8s} {'bytes':>8s} {'flop/B':>7s} {'time %':>7s}")
     # Each solver the bench builds sorts at its first step: far more often than the steady state's
@@ -239,8 +273,26 @@ def main():
     json.dump(result, open(a.out + "/roofline_counts.json", "w"), indent=1)
 
 
+def workload(a, steps, native=False):
+    """The command that runs the counted steps: the MPM block bench (three repetitions under
+    valgrind, a timed run natively) or `ballista run` of a deck (peridynamics) for `steps` steps
+    (the deck's own count natively)."""
+    if a.target == "mpm":
+        if native:
+            return [a.bench, f"--benchmark_filter={a.filter}", "--benchmark_min_time=3"]
+        return [a.bench, f"--benchmark_filter={a.filter}", "--benchmark_min_time=0.01", "--benchmark_repetitions=3",
+                "--benchmark_format=json"]
+    cmd = [a.ballista, "run", a.deck, "-o", a.out + ("/native" if native else "/run"), "-q", "--no-plots",
+           "--overwrite", "--threads", str(a.threads if native else 1)]
+    return cmd + (["--set", f"simulation.max_steps={steps}"] if steps else [])
+
+
 def measured_rate(a):
-    """Particle-steps per second of the filtered benchmark on this machine, natively."""
+    """Particle-steps per second of the workload on this machine, natively."""
+    if a.target == "pd":
+        subprocess.run(workload(a, None, True), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+        # The run's own rate: its steps' wall time, without the setup (bond families).
+        return json.load(open(a.out + "/native/summary.json"))["statistics"]["particle_steps_per_second"]
     out = subprocess.run([a.bench, f"--benchmark_filter={a.filter}", "--benchmark_min_time=3",
                           "--benchmark_format=json"], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
                          check=True).stdout
