@@ -24,7 +24,6 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 
 # Kernels of the step, matched on the demangled function name (first match wins). Inlined code
 # belongs to the function it was inlined into.
@@ -101,11 +100,12 @@ def disassemble(binary):
 
 
 def parse_callgrind(path, step_fn):
-    """Self cost per (function, address): Ir and last-level misses; and the call count of step()."""
-    names = {"fn": {}}
+    """Self cost per function and address (Ir), per function (every event), and the calls of the
+    step function and of the sort."""
+    names = {}
     events = []
-    cost = collections.defaultdict(lambda: collections.Counter())  # fn -> addr -> event vector
-    per_fn = collections.defaultdict(collections.Counter)
+    cost = collections.defaultdict(collections.Counter)  # fn -> addr -> Ir
+    per_fn = collections.defaultdict(collections.Counter)  # fn -> event -> count
     fn = None
     last_addr = 0
     skip_next = False
@@ -121,11 +121,11 @@ def parse_callgrind(path, step_fn):
         if m:
             key, ident, name = m.groups()
             if name is not None:
-                names["fn"][ident] = name
+                names[ident] = name
             if key == "fn":
-                fn = names["fn"][ident]
+                fn = names[ident]
             else:
-                cfn = names["fn"][ident]
+                cfn = names[ident]
             continue
         if line.startswith("calls="):
             if cfn and re.search(step_fn, cfn):
@@ -153,7 +153,7 @@ def parse_callgrind(path, step_fn):
         vec = dict(zip(events, values))
         cost[fn][addr] += vec.get("Ir", 0)
         per_fn[fn].update(vec)
-    return cost, per_fn, step_calls, sort_calls, events
+    return cost, per_fn, step_calls, sort_calls
 
 
 def perf_shares(args, kernels):
@@ -214,18 +214,16 @@ def main():
     else:
         particles = a.particles or json.load(open(a.out + "/run/summary.json"))["statistics"]["particles_seeded"]
     insn, syms = disassemble(kept if os.path.exists(kept) else binary)
-    cost, per_fn, steps, sorts, events = parse_callgrind(cg, step_fn)
+    cost, per_fn, steps, sorts = parse_callgrind(cg, step_fn)
     if steps == 0:
         raise SystemExit(f"no call of {step_fn} found in {cg}")
     # The load base of the executable under valgrind: the most common difference between where a
     # function's lowest executed address lies and where objdump puts its symbol.
     diffs = collections.Counter()
     for fn, addrs in cost.items():
-        base_name = fn.split("'")[0]
-        for sym, at in syms.items():
-            if sym == base_name:
-                diffs[min(addrs) - at] += 1
-                break
+        at = syms.get(fn.split("'")[0])  # callgrind marks recursion cycles with 'N
+        if at is not None:
+            diffs[min(addrs) - at] += 1
     base = diffs.most_common(1)[0][0] if diffs else 0
     ps = particles * steps
     rows = collections.defaultdict(collections.Counter)
