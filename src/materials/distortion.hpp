@@ -13,8 +13,6 @@
 // is dropped, as an Eulerian or ALE remap does (it carries stress and history variables, never F:
 // Benson, Comput. Methods Appl. Mech. Eng. 99 (1992) 235, §4). Hyperelastic models (neo-Hookean)
 // read all of F and are never remapped.
-#include <cmath>
-
 #include "core/tensor.hpp"
 
 namespace ballista {
@@ -28,10 +26,8 @@ inline bool beyond_distortion_limit(const Mat3& F, double J, double limit) {
   return trC * trC * trC > 27.0 * l2 * l2 * l2 * J * J;
 }
 
-/// The remapped F: J^(1/3) R (same J, same rotation, no isochoric stretch).
-inline Mat3 remapped_deformation(double J, const Mat3& R) { return std::cbrt(J) * R; }
-
-/// F := J^(1/3) R if F is beyond `limit` (J = det F, R its rotation); true if it was. Out of line
+/// F := J^(1/3) R (same J, same rotation, no isochoric stretch) if F is beyond `limit` (J = det F,
+/// R its rotation); true if it was. Out of line
 /// (distortion.cpp): inlined into the stress update's loop, the check changed the compiler's
 /// choices there and so the round-off of the geomodel's update, which must stay bitwise.
 bool remap_if_distorted(Mat3& F, double J, const Mat3& R, double limit);

@@ -292,11 +292,7 @@ void PointSet::update_stress(double dt, long step, double time, const std::vecto
   if (bad_stress.load() < n) fail(bad_stress.load(), "non-finite stress after the material update", step, time);
 }
 
-std::int64_t PointSet::distortion_remaps() const {
-  double total = static_cast<double>(distortion_remaps_);
-  comm_.sum(&total, 1);
-  return static_cast<std::int64_t>(total);
-}
+std::int64_t PointSet::distortion_remaps() const { return comm_.sum(distortion_remaps_); }
 
 void PointSet::remove(const std::vector<char>& keep) {
   const Index n = points_.size();
@@ -513,7 +509,7 @@ void PointSet::restore_removed(const StateArchive& a, bool own) {
   removed_chemical_ = r[2];
   removed_momentum_ = Vec3{{r[3], r[4], r[5]}};
   inserted_energy_ = r[6];
-  // Only the total is kept (a checkpoint without the key was written before any remap existed).
+  // Only the total matters: rank 0 takes it (a checkpoint without the key has none).
   distortion_remaps_ = comm_.rank() == 0 && a.has("points.distortion_remaps") ? a.integer("points.distortion_remaps") : 0;
   groups_dirty_ = true;
 }

@@ -104,6 +104,16 @@ bodies:
 penetration: {penetrator: rod, target: target, layers: [plate]}
 )";
 
+/// The probe's summary after one sample of the solver's points as they are now (t = 0).
+JsonValue summary_of_one_sample(const Scenario& sc, Solver& solver) {
+  PenetrationProbe probe(sc);
+  probe.sample(solver.points(), true, 0.0, solver.reporting_scale());
+  test::TempDir dir;
+  JsonValue out;
+  probe.finish(solver.points(), dir.path.string(), 1e-6, out);
+  return out;
+}
+
 TEST(PenetrationProbe, JetRemainderBehindALayer) {
   const Scenario sc = parse_deck(kLayeredDeck, "layers.yaml");
   auto solver = make_solver(sc);
@@ -167,7 +177,6 @@ TEST(PenetrationProbe, HoleOfADisplacedPlateIsMeasuredInThePlate) {
   const Scenario sc = parse_deck(kLayeredDeck, "layers.yaml");
   auto solver = make_solver(sc);
   FieldStore& pts = solver->points();
-  PenetrationProbe probe(sc);
   auto* x = pts.view<Vec3>("x");
   const auto* bid = pts.ints("body");
   for (Index p = 0; p < pts.size(); ++p) {
@@ -175,10 +184,7 @@ TEST(PenetrationProbe, HoleOfADisplacedPlateIsMeasuredInThePlate) {
     if (x[p][0] < 2e-3) x[p][0] += 0.02;  // the hole's material thrown far out, beyond the plate
     x[p][1] -= 1.5e-3;
   }
-  probe.sample(pts, true, 0.0, solver->reporting_scale());
-  test::TempDir dir;
-  JsonValue out;
-  probe.finish(pts, dir.path.string(), 1e-6, out);
+  const JsonValue out = summary_of_one_sample(sc, *solver);
   const JsonValue& h = out.at("holes").at("plate");
   // Annuli of the 1 mm lateral cell; the hole's edge lies on one of their edges.
   EXPECT_NEAR(h.at("entrance_diameter").as_number(), 4e-3, 1e-12);
@@ -194,7 +200,6 @@ TEST(PenetrationProbe, TunnelEntranceIsWhereTheWallBeginsBelowACrushedFace) {
   const Scenario sc = parse_deck(kLayeredDeck, "layers.yaml");
   auto solver = make_solver(sc);
   FieldStore& pts = solver->points();
-  PenetrationProbe probe(sc);
   auto* x = pts.view<Vec3>("x");
   const auto* bid = pts.ints("body");
   const double face = 0.02;
@@ -209,10 +214,7 @@ TEST(PenetrationProbe, TunnelEntranceIsWhereTheWallBeginsBelowACrushedFace) {
       x[p][0] += 0.02;
     }
   }
-  probe.sample(pts, true, 0.0, solver->reporting_scale());
-  test::TempDir dir;
-  JsonValue out;
-  probe.finish(pts, dir.path.string(), 1e-6, out);
+  const JsonValue out = summary_of_one_sample(sc, *solver);
   const JsonValue& t = out.at("tunnel");
   // Bins of the 1 mm axial cell and annuli of the 1 mm lateral cell: the face and the tunnel's
   // wall lie on their edges.
