@@ -15,6 +15,11 @@ Writes DIR/convergence.json, DIR/convergence.md (the table for docs/validation.m
 DIR/convergence.png. Long (the finest level takes tens of minutes on 2 cores); not in make test.
 
   /usr/bin/python3 validation/perforation_convergence.py --ballista build/ballista --out out/perfconv
+
+--deck runs another deck through the same levels, e.g. the demo's tip segment alone into the
+confined rock (validation/jet_segment_sandstone.yaml, docs/validation.md):
+
+  /usr/bin/python3 validation/perforation_convergence.py --deck validation/jet_segment_sandstone.yaml --out out/segment
 """
 import argparse
 import json
@@ -31,6 +36,7 @@ QUANTITIES = [
     ("casing_hole", "casing entrance hole diameter", "mm"),
     ("cement_hole", "cement entrance hole diameter", "mm"),
     ("tunnel_entrance", "rock tunnel entrance diameter", "mm"),
+    ("cavity_depth", "cavity depth in the rock", "mm"),
 ]
 
 
@@ -48,7 +54,7 @@ def run_level(a, h):
     summary = os.path.join(out, "summary.json")
     if a.reuse and os.path.exists(summary):
         return json.load(open(summary)), None
-    cmd = [a.ballista, "run", DECK, "-o", out, "-q", "--no-plots", "--threads", str(a.threads), "--overwrite"]
+    cmd = [a.ballista, "run", a.deck, "-o", out, "-q", "--no-plots", "--threads", str(a.threads), "--overwrite"]
     for s in level_sets(h, a.far, a.band, a.path) + a.set:
         cmd += ["--set", s]
     print("running", " ".join(cmd), flush=True)
@@ -91,6 +97,8 @@ def extract(s, out):
     mm = lambda v: None if v is None else 1e3 * v
     return {
         "depth": mm(pen.get("final_depth")),
+        # The channel's bottom in the rock: the depth without a single jet point driven ahead of it.
+        "cavity_depth": mm(pen.get("final_cavity_depth")),
         "casing_hole": mm(holes.get("casing", {}).get("entrance_diameter")),
         "cement_hole": mm(holes.get("cement", {}).get("entrance_diameter")),
         "tunnel_entrance": mm(tunnel_entrance(pen, out)),
@@ -129,6 +137,7 @@ def richardson(f1, f2, f3, ratio=2.0):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--ballista", default=os.path.join(REPO, "build", "ballista"))
+    ap.add_argument("--deck", default=DECK, help="the deck run at every level (default: the demo)")
     ap.add_argument("--out", default=os.path.join(REPO, "out", "perforation_convergence"))
     ap.add_argument("--levels", type=float, nargs="+", default=[1.0e-3, 0.5e-3, 0.25e-3],
                     help="cell sizes in the bands, m, coarse to fine (ratio 2)")
@@ -159,13 +168,13 @@ def main():
             result["estimates"][key] = est
     json.dump(result, open(os.path.join(a.out, "convergence.json"), "w"), indent=2)
     lines = ["| band cell (mm) | cells across the tip radius | particles | steps | wall time (s) | depth (mm) | "
-             "casing hole (mm) | cement hole (mm) | rock tunnel entrance (mm) |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "casing hole (mm) | cement hole (mm) | rock tunnel entrance (mm) | cavity depth (mm) |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     fmt = lambda v: "—" if v is None else f"{v:.3g}"
     for r in rows:
         lines.append(f"| {r['h'] * 1e3:g} | {fmt(r['cells_across_radius'])} | {r['particles']} | {r['steps']} | "
                      f"{r['wall_time']:.0f} | {fmt(r['depth'])} | {fmt(r['casing_hole'])} | {fmt(r['cement_hole'])} | "
-                     f"{fmt(r['tunnel_entrance'])} |")
+                     f"{fmt(r['tunnel_entrance'])} | {fmt(r['cavity_depth'])} |")
     if result["estimates"]:
         for name, key in (("observed order", "observed_order"), ("Richardson estimate", "richardson"),
                           ("finest vs Richardson", "finest_relative_gap")):
@@ -197,7 +206,7 @@ def main():
         fig, axes = plt.subplots(1, len(QUANTITIES), figsize=(4 * len(QUANTITIES), 3.4))
         hs = [r["h"] * 1e3 for r in rows]
         for ax, (key, what, unit) in zip(axes, QUANTITIES):
-            ax.plot(hs, [r[key] for r in rows], "o-", label="Ballista")
+            ax.plot(hs, [math.nan if r[key] is None else r[key] for r in rows], "o-", label="Ballista")
             fr = result["estimates"].get(key, {}).get("richardson")
             if fr:
                 ax.axhline(fr, ls="--", color="gray", label="Richardson estimate")

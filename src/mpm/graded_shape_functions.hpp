@@ -90,16 +90,20 @@ inline void graded_linear_stencil(const GridGeometry& g, const Vec3& x, Stencil<
   shape_detail::tensor_product<Dim, 2>(g, ax, s);
 }
 
+/// The trimmed uGIMP windows on a graded grid (GimpWindows).
+template <int Dim>
+inline void graded_gimp_windows(const GridGeometry& g, const Vec3& x, const Vec3& lp, GimpWindows<Dim>& w) {
+  for (int d = 0; d < Dim; ++d) {
+    graded_detail::gimp_1d((*g.graded)[d], x[d], lp[d], w.ax[d]);
+    w.n.n[d] = shape_detail::trim_gimp_window(w.ax[d]);
+  }
+}
+
 template <int Dim>
 inline void graded_gimp_stencil(const GridGeometry& g, const Vec3& x, const Vec3& lp, Stencil<Dim>& s) {
-  shape_detail::Axis1D<3> ax[Dim];
-  shape_detail::RuntimeCount n;
-  for (int d = 0; d < Dim; ++d) {
-    graded_detail::gimp_1d((*g.graded)[d], x[d], lp[d], ax[d]);
-    n.n[d] = shape_detail::trim_gimp_window(ax[d]);
-  }
-  s.count = 0;
-  shape_detail::tensor_product_n<Dim, 3>(g, ax, n, s);
+  GimpWindows<Dim> w;
+  graded_gimp_windows<Dim>(g, x, lp, w);
+  stencil_from_windows<Dim>(g, w, s);
 }
 
 /// CPDI1 (Sadeghirad, Brannon & Burghardt, IJNME 86 (2011) 1435; cpdi_stencil) with the graded

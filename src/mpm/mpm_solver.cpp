@@ -485,11 +485,24 @@ void MpmSolver::build_slabs() {
 }
 
 template <int Dim, ShapeKind K, bool G>
+inline void MpmSolver::point_stencil(Index p, const Vec3& x, const Vec3& half, Stencil<Dim>& st) {
+  if constexpr (K == ShapeKind::Gimp) {
+    GimpWindows<Dim>& w = gimp_windows_of_points<Dim>()[p];
+    if (!windows_current_) {
+      if constexpr (G) graded_gimp_windows<Dim>(grid_.geom, x, half, w);
+      else gimp_windows<Dim>(grid_.geom, x, half, w);
+    }
+    stencil_from_windows<Dim>(grid_.geom, w, st);
+  } else {
+    stencil_of<Dim, K, G>(grid_.geom, spline_faces_, x, half, F_[p], st);
+  }
+}
+
+template <int Dim, ShapeKind K, bool G>
 void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
   const GridGeometry& g = grid_.geom;
   const auto* x = points_.view<Vec3>("x");
   const auto* v = v_source ? v_source : points_.view<Vec3>("v");
-  const auto* F = points_.view<Mat3>("F");
   const auto* half = points_.view<Vec3>("half_size");
   const auto* mass = points_.real("mass");
   const auto* vol = points_.real("volume");
@@ -531,7 +544,7 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
       Stencil<Dim> st;
       for (Index q = slab_start_[s]; q < slab_start_[s + 1]; ++q) {
         const Index p = slab_points_[q];
-        stencil_of<Dim, K, G>(g, spline_faces_, x[p], half[p], F[p], st);
+        point_stencil<Dim, K, G>(p, x[p], half[p], st);
         const double m = mass[p];
         const Vec3 mv = m * v[p];
         const Index fo = field_offset(p);
@@ -878,7 +891,7 @@ void MpmSolver::xpic_velocity(double dt) {
     // no longer needs), times C(m,k) / C(m,k-1) = (m - k + 1) / k.
     for_each(0, n, [&](Index p) {
       Stencil<Dim> st;
-      stencil_of<Dim, K, G>(g, spline_faces_, x_[p], half[p], F_[p], st);
+      point_stencil<Dim, K, G>(p, x_[p], half[p], st);
       const Index fo = field_offset(p);
       Vec3 u;
       for (int j = 0; j < st.count; ++j) u += st.w[j] * prev[fo + st.node[j]];
@@ -949,7 +962,7 @@ void MpmSolver::grid_to_particles(double dt) {
   deterministic_sum<2>(0, n, [&](Index p, double* o) {
     Stencil<Dim> st;
     const Vec3 xp = x_[p];
-    stencil_of<Dim, K, G>(g, spline_faces_, xp, half[p], F_[p], st);
+    point_stencil<Dim, K, G>(p, xp, half[p], st);
     const Index fo = field_offset(p);
     Vec3 vg, acc;
     Mat3 l;
@@ -1058,7 +1071,7 @@ void MpmSolver::velocity_gradient_from_grid(double dt, bool move) {
   for_each(0, n, [&](Index p) {
     Stencil<Dim> st;
     const Vec3 xp = x_[p];
-    stencil_of<Dim, K, G>(g, spline_faces_, xp, half[p], F_[p], st);
+    point_stencil<Dim, K, G>(p, xp, half[p], st);
     const Index fo = field_offset(p);
     Mat3 l;
     double vr = 0.0;
@@ -1099,7 +1112,11 @@ void MpmSolver::step_impl(double dt) {
   build_slabs();
   loads_.compute(scenario_, points_, time_);
   mark_active_blocks();
+  // The first mapping computes each point's GIMP windows; the step's later passes reuse them.
+  windows_current_ = false;
+  if constexpr (K == ShapeKind::Gimp) gimp_windows_of_points<Dim>().resize(points_.size());
   particles_to_grid<Dim, K, G>(false);
+  windows_current_ = K == ShapeKind::Gimp;
   if (usavg_) {
     first_half_stress_update<Dim, K, G>(dt);
     particles_to_grid<Dim, K, G>(false);  // the forces of the half-updated stress
@@ -1125,6 +1142,7 @@ void MpmSolver::step_impl(double dt) {
     if (!mirror_faces_.empty()) fill_mirror_ghosts(grid_.velocity_new.data());
     velocity_gradient_from_grid<Dim, K, G>(dt, true);
   }
+  windows_current_ = false;  // the points have moved
   // The step's kinematics are done: count it, so that failure messages, outputs and statistics
   // name the step whose state they show.
   time_ += dt;

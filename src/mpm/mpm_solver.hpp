@@ -205,6 +205,20 @@ class MpmSolver final : public Solver {
   }
   int ghost_ = kGhostLayers;    ///< ghost node layers beyond the box on each side
   std::vector<Vec3> displacement_;  ///< MUSL: dt * grid velocity at each point this step, m
+  /// GIMP: each point's windows (GimpWindows), computed by the step's first mapping and read by
+  /// its later passes: every pass of a step maps from the positions the step began with, and
+  /// the half-lengths do not change within it. Valid while `windows_current_`.
+  std::vector<GimpWindows<2>> windows2_;
+  std::vector<GimpWindows<3>> windows3_;
+  bool windows_current_ = false;
+  template <int Dim>
+  std::vector<GimpWindows<Dim>>& gimp_windows_of_points() {
+    if constexpr (Dim == 2) return windows2_;
+    else return windows3_;
+  }
+  /// Point p's stencil for this step (from its kept GIMP windows once they are current).
+  template <int Dim, ShapeKind K, bool G>
+  void point_stencil(Index p, const Vec3& x, const Vec3& half, Stencil<Dim>& st);
   Index first_bad_ = 0, first_out_ = 0;  ///< lowest inverted / escaped point of the step (or n)
   // Field pointers bound at the start of each step (valid until points are reordered).
   Vec3* x_ = nullptr;

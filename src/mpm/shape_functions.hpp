@@ -343,24 +343,44 @@ inline void linear_stencil(const GridGeometry& g, const Vec3& x, Stencil<Dim>& s
   shape_detail::tensor_product<Dim, 2>(g, ax, s);
 }
 
-/// Uniform GIMP (Bardenhagen & Kober 2004), lp = particle half-length per axis, 0 < lp <= h/2
-/// (values are clamped into that range; lp > h/2 needs a wider window and is asserted against in
-/// debug builds). Between 2^Dim and 3^Dim nodes: zero-weight window ends are dropped.
+/// A GIMP stencil before its tensor product: the trimmed window of each axis. The 1-D weights are
+/// most of a GIMP stencil's cost and depend only on the position and the half-lengths, so a step
+/// whose passes all map from the same positions computes them once (MpmSolver::point_stencil).
 template <int Dim>
-inline void gimp_stencil(const GridGeometry& g, const Vec3& x, const Vec3& lp, Stencil<Dim>& s) {
-  const double inv_h = 1.0 / g.h;
+struct GimpWindows {
   shape_detail::Axis1D<3> ax[Dim];
   shape_detail::RuntimeCount n;
+};
+
+/// Uniform GIMP (Bardenhagen & Kober 2004), lp = particle half-length per axis, 0 < lp <= h/2
+/// (values are clamped into that range; lp > h/2 needs a wider window and is asserted against in
+/// debug builds): the windows of gimp_stencil.
+template <int Dim>
+inline void gimp_windows(const GridGeometry& g, const Vec3& x, const Vec3& lp, GimpWindows<Dim>& w) {
+  const double inv_h = 1.0 / g.h;
   for (int d = 0; d < Dim; ++d) {
     assert(lp[d] <= 0.5 * g.h * (1.0 + 1e-12) && "GIMP particle half-length exceeds h/2");
     const double a = std::min(std::max(lp[d] * inv_h, 1e-12), 0.5);
-    shape_detail::gimp_1d(x[d], g.origin[d], g.h, inv_h, a, ax[d]);
-    n.n[d] = shape_detail::trim_gimp_window(ax[d]);
+    shape_detail::gimp_1d(x[d], g.origin[d], g.h, inv_h, a, w.ax[d]);
+    w.n.n[d] = shape_detail::trim_gimp_window(w.ax[d]);
   }
-  // Only nodes with support are listed: 2 per axis while the particle domain lies inside one
-  // cell (the common case at 2 particles per cell), 3 when it straddles a node.
+}
+
+/// The stencil of GIMP windows. Only nodes with support are listed: 2 per axis while the particle
+/// domain lies inside one cell (the common case at 2 particles per cell), 3 when it straddles a
+/// node.
+template <int Dim>
+inline void stencil_from_windows(const GridGeometry& g, const GimpWindows<Dim>& w, Stencil<Dim>& s) {
   s.count = 0;
-  shape_detail::tensor_product_n<Dim, 3>(g, ax, n, s);
+  shape_detail::tensor_product_n<Dim, 3>(g, w.ax, w.n, s);
+}
+
+/// Uniform GIMP: between 2^Dim and 3^Dim nodes (zero-weight window ends are dropped).
+template <int Dim>
+inline void gimp_stencil(const GridGeometry& g, const Vec3& x, const Vec3& lp, Stencil<Dim>& s) {
+  GimpWindows<Dim> w;
+  gimp_windows<Dim>(g, x, lp, w);
+  stencil_from_windows<Dim>(g, w, s);
 }
 
 /// The grid faces at which the cubic B-spline basis is boundary-modified (Steffen et al. 2008,
