@@ -17,6 +17,7 @@
 #include "mpm/axis_hoop.hpp"
 #include "mpm/graded_shape_functions.hpp"
 #include "mpm/grid_contact.hpp"
+#include "mpm/mpm_params.hpp"
 #include "points/mms_axis_aligned.hpp"
 #include "points/point_exchange.hpp"
 #include "points/solver_registry.hpp"
@@ -595,139 +596,6 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
     if (!momentum_only) halo_steps_ += 1.0;
   }
   if (!mirror_faces_.empty()) fold_mirror_faces(momentum_only);
-}
-
-namespace {
-/// Calls f(ghost, image, axis) for every node on (ghost == image) and beyond a mirror face and its
-/// mirror image (both as node indices of field 0), faces in the given order, every node of the
-/// transverse planes (ghost layers included, so that corners between two mirror faces are folded
-/// twice).
-template <class Face, class Fn>
-void for_each_mirror_pair(const GridGeometry& g, int ghost, const std::vector<Face>& faces, Fn&& fn) {
-  for (const Face& mf : faces) {
-    const int a = mf.axis, b1 = (a + 1) % 3, b2 = (a + 2) % 3;
-    for (int k = 0; k <= ghost; ++k) {
-      const int gi = mf.node + mf.side * k, ii = mf.node - mf.side * k;
-      if (gi < 0 || gi >= g.nodes[a] || ii < 0 || ii >= g.nodes[a]) continue;
-      for (int j = 0; j < g.nodes[b1]; ++j)
-        for (int l = 0; l < g.nodes[b2]; ++l) {
-          int G[3], I[3];
-          G[a] = gi; I[a] = ii;
-          G[b1] = I[b1] = j;
-          G[b2] = I[b2] = l;
-          fn(g.node_index(G[0], G[1], G[2]), g.node_index(I[0], I[1], I[2]), a);
-        }
-    }
-  }
-}
-/// The mirror image of v across a plane normal to `axis`.
-inline Vec3 mirrored(Vec3 v, int axis) {
-  v[axis] = -v[axis];
-  return v;
-}
-}  // namespace
-
-void MpmSolver::fold_mirror_faces(bool momentum_only) {
-  // Image particles (the body reflected in the face) would add to inside node I what the real
-  // ones put on its mirror ghost G, reflected: m_I += m_G, p_I += R p_G, f_I += R f_G (the image's
-  // stress R sigma R and gradient R grad N_G give R f_G; the axisymmetric hoop term flips with r).
-  // A face node is its own image: p += R p, f += R f cancel the normal components (and double
-  // the tangential ones with the mass, which changes neither v nor a), so the mapped velocity of
-  // the face nodes has no normal part either, as in the whole body; the acceleration handed to the
-  // particles, (v_new - v)/dt, then has none there. Ghost nodes are left empty;
-  // fill_mirror_ghosts sets them.
-  const GridGeometry& g = grid_.geom;
-  const Index nn = g.node_count();
-  for (int f = 0; f < grid_.fields; ++f) {
-    const Index o = f * nn;
-    for_each_mirror_pair(g, ghost_, mirror_faces_, [&](Index G, Index I, int a) {
-      G += o;
-      I += o;
-      if (G == I) {
-        grid_.velocity[I][a] = 0.0;
-        if (momentum_only) return;
-        grid_.force[I][a] = 0.0;
-        if (grid_.fields > 1) grid_.grad[I][a] = 0.0;
-        return;
-      }
-      grid_.velocity[I] += mirrored(grid_.velocity[G], a);
-      grid_.velocity[G] = Vec3{};
-      if (momentum_only) return;
-      grid_.mass[I] += grid_.mass[G];
-      grid_.mass[G] = 0.0;
-      grid_.force[I] += mirrored(grid_.force[G], a);
-      grid_.force[G] = Vec3{};
-      if (grid_.fields > 1) {
-        grid_.grad[I] += mirrored(grid_.grad[G], a);
-        grid_.grad[G] = Vec3{};
-      }
-    });
-  }
-}
-
-void MpmSolver::fill_mirror_ghosts(Vec3* v) {
-  const GridGeometry& g = grid_.geom;
-  const Index nn = g.node_count();
-  for (int f = 0; f < grid_.fields; ++f) {
-    Vec3* vf = v + f * nn;
-    for_each_mirror_pair(g, ghost_, mirror_faces_, [&](Index G, Index I, int a) {
-      if (G != I) vf[G] = mirrored(vf[I], a);
-    });
-  }
-}
-
-void MpmSolver::apply_velocity_bcs(Vec3* vel_all, std::vector<BoundaryImpulse>* impulses) {
-  // Every field's nodes obey the face conditions. The faces are at rest, so in the continuum their
-  // reactions do no work; on the grid the constraint stops the normal momentum a node carries into
-  // the face (or onto the axis) within the step, an inelastic impulse m c. With `impulses` each
-  // change c is recorded, and book_impulses books its work as the "boundary work" of the energy
-  // audit (issue 13).
-  const GridGeometry& g = grid_.geom;
-  const Index nn = g.node_count();
-  // Sets component a of node I of field f to u_new, recording the change.
-  auto constrain = [&](int f, Index I, int a, double u_new) {
-    Vec3& u = vel_all[f * nn + I];
-    if (impulses && u[a] != u_new) impulses->push_back({f * nn + I, a, u_new - u[a]});
-    u[a] = u_new;
-  };
-  for (int f = 0; f < grid_.fields; ++f) {
-    Vec3* vel = vel_all + f * nn;
-    if (dimension_ == Dimension::Axisymmetric && layout_.box_lower[0] == 0.0) {
-      // The symmetry axis: radial velocity is zero on it (and on the ghost nodes beyond it) whatever
-      // the x_min condition says; without this the hoop rate v_r / r of the particles next to the
-      // axis is unbounded.
-      for (int i = 0; i <= layout_.box_first[0]; ++i)
-        for (int j = 0; j < g.nodes[1]; ++j) constrain(f, g.node_index(i, j, 0), 0, 0.0);
-    }
-    for (int a = 0; a < dim_; ++a) {
-      for (int side = 0; side < 2; ++side) {
-        const FaceBC bc = scenario_.grid.faces[2 * a + side];
-        if (bc == FaceBC::Free) continue;
-        // Nodes on the face and the ghost layers beyond it.
-        const int lo = side == 0 ? 0 : layout_.box_last[a];
-        const int hi = side == 0 ? layout_.box_first[a] : g.nodes[a] - 1;
-        const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
-        for (int i = lo; i <= hi; ++i)
-          for (int j = 0; j < g.nodes[b1]; ++j)
-            for (int k = 0; k < g.nodes[b2]; ++k) {
-              int ijk[3];
-              ijk[a] = i; ijk[b1] = j; ijk[b2] = k;
-              const Index I = g.node_index(ijk[0], ijk[1], ijk[2]);
-              const Vec3& u = vel[I];
-              switch (bc) {
-                case FaceBC::Fixed:
-                  for (int c = 0; c < 3; ++c) constrain(f, I, c, 0.0);
-                  break;
-                case FaceBC::Symmetry: constrain(f, I, a, 0.0); break;
-                case FaceBC::Wall:  // rigid frictionless wall: no velocity into the wall, separation allowed
-                  constrain(f, I, a, side == 0 ? std::max(u[a], 0.0) : std::min(u[a], 0.0));
-                  break;
-                case FaceBC::Free: break;
-              }
-            }
-      }
-    }
-  }
 }
 
 void MpmSolver::apply_contact(Vec3* vel, bool book) {
@@ -1317,63 +1185,6 @@ std::vector<std::pair<std::string, double>> MpmSolver::result_values() const {
   return out;
 }
 
-void MpmSolver::save_state(StateArchive& a) const {
-  pts_.save_state(a);  // several ranks: collective, every rank's particles in rank 0's archive
-  a.put_real("mpm.time", time_);
-  a.put_int("mpm.steps", steps_);
-  a.put("mpm.work", std::vector<double>{external_work_, damping_work_, contact_work_, friction_work_,
-                                        transfer_work_, damping_});
-  a.put_real("mpm.boundary_work", boundary_work_);
-  // Collective (as pts_.save_state): the total heat and the largest speed of every rank.
-  a.put("mpm.bulk_viscosity", std::vector<double>{comm_.sum(viscous_work_), comm_.max(viscous_speed_)});
-  if (grid_.geom.graded) a.put_real("mpm.viscous_rate", viscous_rate_);  // one rank (graded grids)
-  if (comm_.distributed()) {
-    // The decomposition: the region boxes (a restart on as many ranks migrates exactly as the
-    // uninterrupted run) and rank 0's statistics.
-    a.put("mpm.rcb_boxes", partition_.boxes());
-    a.put("mpm.decomposition", std::vector<double>{static_cast<double>(repartitions_), migrated_, halo_bytes_,
-                                                   halo_messages_, halo_steps_, max_imbalance_,
-                                                   imbalance_after_partition_});
-  }
-}
-
-void MpmSolver::load_state(const StateArchive& a) {
-  const bool own = pts_.load_state(a);
-  if (comm_.distributed()) {
-    const std::size_t nbox = static_cast<std::size_t>(6 * comm_.size());
-    if (own && a.has("mpm.rcb_boxes") && a.reals("mpm.rcb_boxes").size() == nbox) {
-      // Written on as many ranks: each rank has its particles back in their order, and the cuts.
-      partition_.restore_boxes(a.reals("mpm.rcb_boxes", nbox));
-      const auto& d = a.reals("mpm.decomposition", 7);
-      repartitions_ = static_cast<long>(d[0]);
-      migrated_ = d[1];
-      halo_bytes_ = d[2];
-      halo_messages_ = d[3];
-      halo_steps_ = d[4];
-      max_imbalance_ = d[5];
-      imbalance_after_partition_ = d[6];
-    } else {
-      // Another rank count (or a serial checkpoint): cut anew and move the particles there.
-      cut_and_migrate();
-      imbalance_after_partition_ = 0.0;
-    }
-  }
-  time_ = a.real("mpm.time");
-  steps_ = static_cast<long>(a.integer("mpm.steps"));
-  const auto& w = a.reals("mpm.work", 6);
-  external_work_ = w[0];
-  damping_work_ = w[1];
-  contact_work_ = w[2];
-  friction_work_ = w[3];
-  transfer_work_ = w[4];
-  damping_ = w[5];
-  boundary_work_ = a.real("mpm.boundary_work");
-  const auto& bv = a.reals("mpm.bulk_viscosity", 2);
-  viscous_work_ = comm_.rank() == 0 ? bv[0] : 0.0;  // the total, held by rank 0 (energies() sums)
-  viscous_speed_ = bv[1];
-  if (grid_.geom.graded) viscous_rate_ = a.real("mpm.viscous_rate");
-}
-
 EnergyTotals MpmSolver::energies() const {
   const double k = reporting_scale();
   EnergyTotals e = pts_.energies(k, external_work_);
@@ -1391,50 +1202,6 @@ namespace {
 std::unique_ptr<Solver> make_mpm(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials,
                                  const Communicator& comm) {
   return std::make_unique<MpmSolver>(sc, std::move(materials), comm);
-}
-
-std::vector<ParamSpec> mpm_params() {
-  ParamSpec shape{"shape_function", "-", "particle-grid shape functions (docs/deck.md)", false, 0};
-  shape.choices = shape_kind_names();
-  shape.default_choice = "linear";
-  ParamSpec update{"update", "-",
-                   "usl, musl (modified USL: robust against cell-crossing at free surfaces) or usavg (half the stress "
-                   "update before the forces, half after: energy-consistent)", false, 0};
-  update.choices = {"usl", "musl", "usavg"};
-  update.default_choice = "musl";
-  ParamSpec flip{"flip", "1", "FLIP fraction of the velocity update (1 FLIP, 0 PIC)", false, 1.0, 0.0, 1.0};
-  ParamSpec sort{"sort_every", "steps", "steps between particle sorts by cell (0 = never)", false, 20, 0, 2147483647.0};
-  sort.integer = true;
-  ParamSpec rebalance{"rebalance_imbalance", "1",
-                      "several MPI ranks: repartition (Zoltan RCB) when the largest rank holds more than (1 + this) "
-                      "times the mean particle count",
-                      false, 0.1, 0.0, 100.0};
-  ParamSpec locking{"anti_locking", "-",
-                    "none, or fbar: cell-averaged volumetric deformation against locking at nu -> 0.5 (Coombs et al., "
-                    "CMAME 333 (2018) 1)",
-                    false, 0};
-  locking.choices = anti_locking_names();
-  locking.default_choice = "none";
-  ParamSpec xpic{"xpic_order", "1",
-                 "order m of XPIC for the PIC share (1 - flip) of the update: 1 = PIC; m > 1 keeps the part of the "
-                 "particle velocities the grid can carry (Hammerquist & Nairn, CMAME 318 (2017) 724)",
-                 false, 1, 1, 8};
-  xpic.integer = true;
-  ParamSpec bv_linear{"bulk_viscosity_linear", "1",
-                      "C_L of the artificial bulk viscosity q = rho l |tr D| (C_L c + C_Q l |tr D|) in compression, l the "
-                      "cell size (Wilkins, J. Comput. Phys. 36 (1980) 281): 0 = off; LS-DYNA 0.06, Uintah 0.2",
-                      false, 0.0, 0.0, 10.0};
-  ParamSpec bv_quadratic{"bulk_viscosity_quadratic", "1",
-                         "C_Q of the artificial bulk viscosity (see bulk_viscosity_linear): 0 = off; LS-DYNA 1.5, "
-                         "Uintah 2.0",
-                         false, 0.0, 0.0, 100.0};
-  ParamSpec distortion{"distortion_limit", "1",
-                       "RMS isochoric stretch sqrt(tr(F^T F) / (3 J^(2/3))) beyond which a particle of a hypoelastic or "
-                       "fluid material has F replaced by J^(1/3) R (J and the stress frame kept; its stretch history, "
-                       "which such models do not read, dropped): material flowing like a fluid otherwise stretches "
-                       "until det F and the polar decomposition are lost to round-off. 0 = never",
-                       false, 1000.0, 0.0, 1e12};
-  return {shape, update, flip, sort, locking, rebalance, xpic, bv_linear, bv_quadratic, distortion};
 }
 
 }  // namespace

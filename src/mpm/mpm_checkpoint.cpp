@@ -1,0 +1,64 @@
+// The MPM solver's state beyond the point fields for a checkpoint: clock, energy terms and, on
+// several ranks, the decomposition.
+#include "mpm/mpm_solver.hpp"
+
+namespace ballista {
+
+void MpmSolver::save_state(StateArchive& a) const {
+  pts_.save_state(a);  // several ranks: collective, every rank's particles in rank 0's archive
+  a.put_real("mpm.time", time_);
+  a.put_int("mpm.steps", steps_);
+  a.put("mpm.work", std::vector<double>{external_work_, damping_work_, contact_work_, friction_work_,
+                                        transfer_work_, damping_});
+  a.put_real("mpm.boundary_work", boundary_work_);
+  // Collective (as pts_.save_state): the total heat and the largest speed of every rank.
+  a.put("mpm.bulk_viscosity", std::vector<double>{comm_.sum(viscous_work_), comm_.max(viscous_speed_)});
+  if (grid_.geom.graded) a.put_real("mpm.viscous_rate", viscous_rate_);  // one rank (graded grids)
+  if (comm_.distributed()) {
+    // The decomposition: the region boxes (a restart on as many ranks migrates exactly as the
+    // uninterrupted run) and rank 0's statistics.
+    a.put("mpm.rcb_boxes", partition_.boxes());
+    a.put("mpm.decomposition", std::vector<double>{static_cast<double>(repartitions_), migrated_, halo_bytes_,
+                                                   halo_messages_, halo_steps_, max_imbalance_,
+                                                   imbalance_after_partition_});
+  }
+}
+
+void MpmSolver::load_state(const StateArchive& a) {
+  const bool own = pts_.load_state(a);
+  if (comm_.distributed()) {
+    const std::size_t nbox = static_cast<std::size_t>(6 * comm_.size());
+    if (own && a.has("mpm.rcb_boxes") && a.reals("mpm.rcb_boxes").size() == nbox) {
+      // Written on as many ranks: each rank has its particles back in their order, and the cuts.
+      partition_.restore_boxes(a.reals("mpm.rcb_boxes", nbox));
+      const auto& d = a.reals("mpm.decomposition", 7);
+      repartitions_ = static_cast<long>(d[0]);
+      migrated_ = d[1];
+      halo_bytes_ = d[2];
+      halo_messages_ = d[3];
+      halo_steps_ = d[4];
+      max_imbalance_ = d[5];
+      imbalance_after_partition_ = d[6];
+    } else {
+      // Another rank count (or a serial checkpoint): cut anew and move the particles there.
+      cut_and_migrate();
+      imbalance_after_partition_ = 0.0;
+    }
+  }
+  time_ = a.real("mpm.time");
+  steps_ = static_cast<long>(a.integer("mpm.steps"));
+  const auto& w = a.reals("mpm.work", 6);
+  external_work_ = w[0];
+  damping_work_ = w[1];
+  contact_work_ = w[2];
+  friction_work_ = w[3];
+  transfer_work_ = w[4];
+  damping_ = w[5];
+  boundary_work_ = a.real("mpm.boundary_work");
+  const auto& bv = a.reals("mpm.bulk_viscosity", 2);
+  viscous_work_ = comm_.rank() == 0 ? bv[0] : 0.0;  // the total, held by rank 0 (energies() sums)
+  viscous_speed_ = bv[1];
+  if (grid_.geom.graded) viscous_rate_ = a.real("mpm.viscous_rate");
+}
+
+}  // namespace ballista

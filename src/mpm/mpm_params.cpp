@@ -1,0 +1,53 @@
+// The deck's mpm.* parameters: names, units, defaults and ranges (docs/deck.md).
+#include "mpm/mpm_params.hpp"
+
+#include "mpm/anti_locking.hpp"
+#include "mpm/shape_functions.hpp"
+
+namespace ballista {
+
+std::vector<ParamSpec> mpm_params() {
+  ParamSpec shape{"shape_function", "-", "particle-grid shape functions (docs/deck.md)", false, 0};
+  shape.choices = shape_kind_names();
+  shape.default_choice = "linear";
+  ParamSpec update{"update", "-",
+                   "usl, musl (modified USL: robust against cell-crossing at free surfaces) or usavg (half the stress "
+                   "update before the forces, half after: energy-consistent)", false, 0};
+  update.choices = {"usl", "musl", "usavg"};
+  update.default_choice = "musl";
+  ParamSpec flip{"flip", "1", "FLIP fraction of the velocity update (1 FLIP, 0 PIC)", false, 1.0, 0.0, 1.0};
+  ParamSpec sort{"sort_every", "steps", "steps between particle sorts by cell (0 = never)", false, 20, 0, 2147483647.0};
+  sort.integer = true;
+  ParamSpec rebalance{"rebalance_imbalance", "1",
+                      "several MPI ranks: repartition (Zoltan RCB) when the largest rank holds more than (1 + this) "
+                      "times the mean particle count",
+                      false, 0.1, 0.0, 100.0};
+  ParamSpec locking{"anti_locking", "-",
+                    "none, or fbar: cell-averaged volumetric deformation against locking at nu -> 0.5 (Coombs et al., "
+                    "CMAME 333 (2018) 1)",
+                    false, 0};
+  locking.choices = anti_locking_names();
+  locking.default_choice = "none";
+  ParamSpec xpic{"xpic_order", "1",
+                 "order m of XPIC for the PIC share (1 - flip) of the update: 1 = PIC; m > 1 keeps the part of the "
+                 "particle velocities the grid can carry (Hammerquist & Nairn, CMAME 318 (2017) 724)",
+                 false, 1, 1, 8};
+  xpic.integer = true;
+  ParamSpec bv_linear{"bulk_viscosity_linear", "1",
+                      "C_L of the artificial bulk viscosity q = rho l |tr D| (C_L c + C_Q l |tr D|) in compression, l the "
+                      "cell size (Wilkins, J. Comput. Phys. 36 (1980) 281): 0 = off; LS-DYNA 0.06, Uintah 0.2",
+                      false, 0.0, 0.0, 10.0};
+  ParamSpec bv_quadratic{"bulk_viscosity_quadratic", "1",
+                         "C_Q of the artificial bulk viscosity (see bulk_viscosity_linear): 0 = off; LS-DYNA 1.5, "
+                         "Uintah 2.0",
+                         false, 0.0, 0.0, 100.0};
+  ParamSpec distortion{"distortion_limit", "1",
+                       "RMS isochoric stretch sqrt(tr(F^T F) / (3 J^(2/3))) beyond which a particle of a hypoelastic or "
+                       "fluid material has F replaced by J^(1/3) R (J and the stress frame kept; its stretch history, "
+                       "which such models do not read, dropped): material flowing like a fluid otherwise stretches "
+                       "until det F and the polar decomposition are lost to round-off. 0 = never",
+                       false, 1000.0, 0.0, 1e12};
+  return {shape, update, flip, sort, locking, rebalance, xpic, bv_linear, bv_quadratic, distortion};
+}
+
+}  // namespace ballista
