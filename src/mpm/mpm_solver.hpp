@@ -203,6 +203,7 @@ class MpmSolver final : public Solver {
   void for_each_active_node(F&& f) const {
     for (int k = 0; k < grid_.fields; ++k) blocks_.for_each_node(k * grid_.geom.node_count(), f);
   }
+  static constexpr double kTinyMass = 1e-200;  ///< nodes lighter than this carry no material
   int ghost_ = kGhostLayers;    ///< ghost node layers beyond the box on each side
   std::vector<Vec3> displacement_;  ///< MUSL: dt * grid velocity at each point this step, m
   /// GIMP: each point's windows (GimpWindows), computed by the step's first mapping and read by

@@ -1,0 +1,185 @@
+// The MPM solver's grid and its construction: the box with its ghost layers (uniform or graded),
+// the memory estimate of the grid arrays, the particles seeded and, on several ranks, shared out.
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "core/system_memory.hpp"
+#include "geometry/grid_axes.hpp"
+#include "geometry/seeding.hpp"
+#include "mpm/mpm_solver.hpp"
+#include "points/point_exchange.hpp"
+
+namespace ballista {
+
+namespace {
+int axis_count(Dimension d) { return d == Dimension::ThreeD ? 3 : 2; }
+}  // namespace
+
+MpmSolver::GridLayout MpmSolver::layout_grid(const Scenario& sc, int ghost) {
+  if (sc.grid.graded()) return layout_graded_grid(sc, ghost);
+  // Grid block: the physical box plus ghost node layers so every stencil stays in the block.
+  GridLayout L;
+  const Dimension dimension = sc.simulation.dimension;
+  const int dim = axis_count(dimension);
+  const double h = sc.grid.cell_size;
+  GridGeometry& g = L.geom;
+  g.h = h;
+  g.dim = dim;
+  for (int a = 0; a < 3; ++a) {
+    if (a < dim) {
+      const int cells = static_cast<int>(std::ceil((sc.grid.upper[a] - sc.grid.lower[a]) / h - 1e-9));
+      L.box_lower[a] = sc.grid.lower[a];
+      L.box_upper[a] = sc.grid.lower[a] + cells * h;
+      g.origin[a] = sc.grid.lower[a] - ghost * h;
+      g.nodes[a] = cells + 1 + 2 * ghost;
+      L.box_first[a] = ghost;
+      L.box_last[a] = ghost + cells;
+    } else {
+      L.box_lower[a] = L.box_upper[a] = g.origin[a] = 0.0;
+      g.nodes[a] = 1;
+      L.box_first[a] = L.box_last[a] = 0;
+    }
+  }
+  return L;
+}
+
+MpmSolver::GridLayout MpmSolver::layout_graded_grid(const Scenario& sc, int ghost) {
+  // The box's graded axes (geometry/grid_axes.hpp), each continued by `ghost` cells of its end
+  // cells' size on either side.
+  GridLayout L;
+  const int dim = axis_count(sc.simulation.dimension);
+  const GridAxes axes = build_grid_axes(sc.grid, dim);
+  GridGeometry& g = L.geom;
+  g.dim = dim;
+  g.h = sc.grid.cell_size;
+  auto graded = std::make_shared<std::array<GradedAxis, 3>>();
+  for (int a = 0; a < 3; ++a) {
+    if (a >= dim) {
+      L.box_lower[a] = L.box_upper[a] = g.origin[a] = 0.0;
+      g.nodes[a] = 1;
+      L.box_first[a] = L.box_last[a] = 0;
+      continue;
+    }
+    const std::vector<double>& box = axes.node[a];
+    const double first = box[1] - box[0], last = box.back() - box[box.size() - 2];
+    std::vector<double> nodes;
+    for (int k = ghost; k > 0; --k) nodes.push_back(box.front() - k * first);
+    nodes.insert(nodes.end(), box.begin(), box.end());
+    for (int k = 1; k <= ghost; ++k) nodes.push_back(box.back() + k * last);
+    (*graded)[a] = GradedAxis(nodes);
+    g.origin[a] = nodes.front();
+    g.nodes[a] = static_cast<int>(nodes.size());
+    g.h = std::min(g.h, axes.smallest(a));
+    L.box_lower[a] = box.front();
+    L.box_upper[a] = box.back();
+    L.box_first[a] = ghost;
+    L.box_last[a] = ghost + axes.cells(a);
+  }
+  g.graded = std::move(graded);
+  return L;
+}
+
+namespace {
+/// Whether the deck asks for XPIC's two extra node arrays (mpm.xpic_order > 1 with a PIC share).
+bool xpic_arrays(const Scenario& sc) {
+  return sc.solver_params.at("xpic_order") > 1 && sc.solver_params.at("flip") < 1.0;
+}
+
+/// The extra node arrays a deck asks for, as a count of Vec3 per node and field: XPIC's prev and
+/// target (mpm.xpic_order > 1 with a PIC share), USAVG's constrained first-half velocity.
+int extra_node_arrays(const Scenario& sc) {
+  return (xpic_arrays(sc) ? 2 : 0) + (sc.solver_params.choices.at("update") == "usavg" ? 1 : 0);
+}
+
+/// Grid storage per node and velocity field, for the memory estimate: mass; velocity, force,
+/// velocity_new, accel; several fields: grad, impulse, friction_impulse; the extra arrays.
+double bytes_per_node(int fields, int extra) {
+  return fields * (sizeof(double) + 4 * sizeof(Vec3) + (fields > 1 ? 3 * sizeof(Vec3) : 0) + extra * sizeof(Vec3));
+}
+
+double grid_bytes(const GridGeometry& g, int fields, int extra) {
+  return static_cast<double>(g.node_count()) * bytes_per_node(fields, extra);
+}
+}  // namespace
+
+MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials, Communicator comm)
+    : scenario_(sc),
+      comm_(comm),
+      layout_(layout_grid(sc, kGhostLayers)),
+      pts_(sc, std::move(materials), SeedLattice{sc.grid, 0}, grid_bytes(layout_.geom, sc.contact.fields, extra_node_arrays(sc)),
+           fmt::format("{:.3g} grid nodes x {:g} B", static_cast<double>(layout_.geom.node_count()),
+                       bytes_per_node(sc.contact.fields, extra_node_arrays(sc))),
+           comm),
+      points_(pts_.store()),
+      partition_(comm, axis_count(sc.simulation.dimension)) {
+  dimension_ = sc.simulation.dimension;
+  dim_ = axis_count(dimension_);
+  shape_ = parse_shape_kind(sc.solver_params.choices.at("shape_function"));
+  musl_ = sc.solver_params.choices.at("update") == "musl";
+  usavg_ = sc.solver_params.choices.at("update") == "usavg";
+  bulk_viscosity_ = {sc.solver_params.at("bulk_viscosity_linear"), sc.solver_params.at("bulk_viscosity_quadratic")};
+  if (bulk_viscosity_.active()) pts_.add_real(kBulkViscosityField, 1, "Pa");
+  flip_ = sc.solver_params.at("flip");
+  pts_.set_distortion_limit(sc.solver_params.at("distortion_limit"));
+  xpic_order_ = static_cast<int>(sc.solver_params.at("xpic_order"));
+  sort_every_ = static_cast<int>(sc.solver_params.at("sort_every"));
+  anti_locking_ = parse_anti_locking(sc.solver_params.choices.at("anti_locking"));
+  rebalance_ = sc.solver_params.at("rebalance_imbalance");
+  damping_ = sc.simulation.damping;
+  grid_.geom = layout_.geom;
+  grid_.fields = sc.contact.fields;
+  slab_axis_ = dim_ - 1;
+  grid_.resize(grid_.geom.node_count() * grid_.fields);
+  blocks_.reset(grid_.geom);
+  if (shape_ == ShapeKind::BSpline3) {
+    // The cubic B-spline reaches one node beyond the face cell. Fixed and wall faces bound the
+    // basis (Steffen, Wallstedt et al., CMES 31 (2008) 107: boundary-modified, interpolatory at
+    // the face, so the face nodes' condition holds for the material at the face). Symmetry faces
+    // and the axis of an axisymmetric grid continue it by the mirror image of the grid field
+    // (image particles: the ghost nodes carry the mirrored inside values), which is the exact
+    // half of the symmetric whole-body problem. Free faces keep the uniform basis on the ghost
+    // layers (as in the interior). docs/deck.md, mpm.shape_function.
+    for (int a = 0; a < dim_; ++a)
+      for (int side = 0; side < 2; ++side) {
+        const FaceBC bc = sc.grid.faces[2 * a + side];
+        const int node = side == 0 ? layout_.box_first[a] : layout_.box_last[a];
+        const bool axis = dimension_ == Dimension::Axisymmetric && a == 0 && side == 0 && layout_.box_lower[0] == 0.0;
+        if (bc == FaceBC::Fixed || bc == FaceBC::Wall) {
+          (side == 0 ? spline_faces_.lo : spline_faces_.hi)[a] = node;
+        } else if (bc == FaceBC::Symmetry || axis) {
+          mirror_faces_.push_back({a, node, side == 0 ? -1 : 1});
+        }
+      }
+  }
+  if (grid_.geom.graded && shape_ == ShapeKind::BSpline3)
+    throw_solver_param_error(sc, "mpm", "shape_function",
+                             "bspline3 does not run on a graded grid (grid.refine) yet: its basis on unequal cells "
+                             "(non-uniform knots) is not implemented; use gimp, linear or cpdi");
+  if (grid_.geom.graded && comm_.distributed())
+    throw DeckError(sc.grid.refine_mark.file, sc.grid.refine_mark.line, sc.grid.refine_mark.column, "grid.refine",
+                    "a graded grid runs on one MPI rank only so far (" + std::to_string(comm_.size()) +
+                        " ranks were started; docs/parallel.md)");
+  if (usavg_ && shape_ == ShapeKind::Cpdi)
+    // CPDI's domains follow F, which the first stress half changes within the step: the second
+    // mapping and the update would use other weights than the first, and momentum would drift.
+    throw_solver_param_error(sc, "mpm", "update",
+                             "usavg does not work with shape_function: cpdi yet (its weights follow F, which the "
+                             "first half of the stress update changes within the step); use gimp or bspline3");
+  if (comm_.distributed() && anti_locking_ == AntiLocking::FBar)
+    // The cell average would see only this rank's particles of a cell shared with another rank.
+    throw_solver_param_error(sc, "mpm", "anti_locking",
+                             "fbar runs on one MPI rank only so far (" + std::to_string(comm_.size()) +
+                                 " ranks were started; docs/parallel.md)");
+  if (comm_.distributed()) {
+    // Every rank seeded every body: keep a share, then the first partition moves each particle to
+    // the rank owning its region.
+    pts_.keep_share(comm_);
+    migrated_ += static_cast<double>(comm_.sum(static_cast<std::int64_t>(cut_and_migrate())));
+  }
+  sort_by_cell();
+}
+
+}  // namespace ballista
