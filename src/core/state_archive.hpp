@@ -7,6 +7,7 @@
 // wrong length is an Error that names the key (a checkpoint of another deck or version).
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <vector>
@@ -32,6 +33,13 @@ class StateArchive {
   const std::vector<double>& reals(const std::string& key, std::size_t n) const;
   const std::vector<std::int64_t>& ints(const std::string& key, std::size_t n) const;
   double real(const std::string& key) const { return reals(key, 1)[0]; }
+  /// A group of scalars saved together under one key, read back into the variables it was made
+  /// of, in the order they were put: the reader names each variable once instead of a position.
+  void get_into(const std::string& key, std::initializer_list<double*> out) const {
+    const std::vector<double>& v = reals(key, out.size());
+    std::size_t i = 0;
+    for (double* o : out) *o = v[i++];
+  }
   std::int64_t integer(const std::string& key) const { return ints(key, 1)[0]; }
   const std::string& text(const std::string& key) const;
 

@@ -31,14 +31,10 @@ void MpmSolver::load_state(const StateArchive& a) {
     if (own && a.has("mpm.rcb_boxes") && a.reals("mpm.rcb_boxes").size() == nbox) {
       // Written on as many ranks: each rank has its particles back in their order, and the cuts.
       partition_.restore_boxes(a.reals("mpm.rcb_boxes", nbox));
-      const auto& d = a.reals("mpm.decomposition", 7);
-      repartitions_ = static_cast<long>(d[0]);
-      migrated_ = d[1];
-      halo_bytes_ = d[2];
-      halo_messages_ = d[3];
-      halo_steps_ = d[4];
-      max_imbalance_ = d[5];
-      imbalance_after_partition_ = d[6];
+      double repartitions = 0.0;
+      a.get_into("mpm.decomposition", {&repartitions, &migrated_, &halo_bytes_, &halo_messages_, &halo_steps_,
+                                       &max_imbalance_, &imbalance_after_partition_});
+      repartitions_ = static_cast<long>(repartitions);
     } else {
       // Another rank count (or a serial checkpoint): cut anew and move the particles there.
       cut_and_migrate();
@@ -47,13 +43,7 @@ void MpmSolver::load_state(const StateArchive& a) {
   }
   time_ = a.real("mpm.time");
   steps_ = static_cast<long>(a.integer("mpm.steps"));
-  const auto& w = a.reals("mpm.work", 6);
-  external_work_ = w[0];
-  damping_work_ = w[1];
-  contact_work_ = w[2];
-  friction_work_ = w[3];
-  transfer_work_ = w[4];
-  damping_ = w[5];
+  a.get_into("mpm.work", {&external_work_, &damping_work_, &contact_work_, &friction_work_, &transfer_work_, &damping_});
   boundary_work_ = a.real("mpm.boundary_work");
   const auto& bv = a.reals("mpm.bulk_viscosity", 2);
   viscous_work_ = comm_.rank() == 0 ? bv[0] : 0.0;  // the total, held by rank 0 (energies() sums)

@@ -51,17 +51,9 @@ void OtmSolver::load_state(const StateArchive& a) {
   pts_.load_state(a);
   time_ = a.real("otm.time");
   steps_ = static_cast<long>(a.integer("otm.steps"));
-  const auto& s = a.reals("otm.scalars", 12);
-  damping_ = s[0];
-  dt_prev_ = s[1];
-  external_work_ = s[2];
-  damping_work_ = s[3];
-  wall_work_ = s[4];
-  wall_force_ = s[5];
-  remap_work_ = s[6];
-  momentum0_ = Vec3{{s[7], s[8], s[9]}};
-  mean_support_ = s[10];
-  max_condition_ = s[11];
+  a.get_into("otm.scalars", {&damping_, &dt_prev_, &external_work_, &damping_work_, &wall_work_, &wall_force_,
+                             &remap_work_, &momentum0_[0], &momentum0_[1], &momentum0_[2], &mean_support_,
+                             &max_condition_});
   const auto& c = a.ints("otm.counters", 7);
   next_id_ = c[0];
   splits_ = static_cast<Index>(c[1]);

@@ -205,10 +205,7 @@ void PdSolver::load_state(const StateArchive& a) {
   x_prev_ = local_.x;
   time_ = a.real("pd.time");
   steps_ = static_cast<long>(a.integer("pd.steps"));
-  const auto& sc = a.reals("pd.scalars", 3);
-  external_work_ = sc[0];
-  damping_ = sc[1];
-  next_fragment_time_ = sc[2];
+  a.get_into("pd.scalars", {&external_work_, &damping_, &next_fragment_time_});
   const auto& by_rank = a.ints("pd.counters_by_rank");
   const bool same_ranks = by_rank.size() == static_cast<std::size_t>(3 * comm_.size());
   const auto& cn = a.ints("pd.counters", 2);

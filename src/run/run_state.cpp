@@ -55,23 +55,9 @@ void RunState::save(StateArchive& a) const {
 }
 
 void RunState::load(const StateArchive& a) {
-  const auto& c = a.reals("run.clock", 16);
-  stage_start = c[0];
-  end = c[1];
-  next_output = c[2];
-  next_checkpoint = c[3];
-  total0 = c[4];
-  energy_scale = c[5];
-  worst_drift = c[6];
-  min_dt = c[7];
-  limiter_dt = c[8];
-  limiter_time = c[9];
-  particle_steps = c[10];
-  dt = c[11];
-  wall_before = c[12];
-  limiter.wave_speed = c[13];
-  limiter.speed = c[14];
-  limiter.J = c[15];
+  a.get_into("run.clock", {&stage_start, &end, &next_output, &next_checkpoint, &total0, &energy_scale, &worst_drift,
+                           &min_dt, &limiter_dt, &limiter_time, &particle_steps, &dt, &wall_before, &limiter.wave_speed,
+                           &limiter.speed, &limiter.J});
   const auto& n = a.ints("run.counters", 3);
   stage = static_cast<int>(n[0]);
   limiter.id = n[1];
