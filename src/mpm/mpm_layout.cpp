@@ -16,6 +16,12 @@ namespace ballista {
 
 namespace {
 int axis_count(Dimension d) { return d == Dimension::ThreeD ? 3 : 2; }
+
+/// The solver's own storage per point, for the memory estimate: GIMP's windows kept for the step.
+double bytes_per_point(const Scenario& sc) {
+  if (sc.solver_params.choices.at("shape_function") != "gimp") return 0.0;
+  return sc.simulation.dimension == Dimension::ThreeD ? sizeof(GimpWindows<3>) : sizeof(GimpWindows<2>);
+}
 }  // namespace
 
 MpmSolver::GridLayout MpmSolver::layout_grid(const Scenario& sc, int ghost) {
@@ -109,7 +115,7 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     : scenario_(sc),
       comm_(comm),
       layout_(layout_grid(sc, kGhostLayers)),
-      pts_(sc, std::move(materials), SeedLattice{sc.grid, 0}, grid_bytes(layout_.geom, sc.contact.fields, extra_node_arrays(sc)),
+      pts_(sc, std::move(materials), SeedLattice{sc.grid, 0, bytes_per_point(sc)}, grid_bytes(layout_.geom, sc.contact.fields, extra_node_arrays(sc)),
            fmt::format("{:.3g} grid nodes x {:g} B", static_cast<double>(layout_.geom.node_count()),
                        bytes_per_node(sc.contact.fields, extra_node_arrays(sc))),
            comm),
