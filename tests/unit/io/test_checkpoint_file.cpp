@@ -69,6 +69,23 @@ TEST(CheckpointFile, MissingAndMisSizedKeysAreNamed) {
   EXPECT_NE(error_of([&] { a.text("run.deck"); }).find("no text 'run.deck'"), std::string::npos);
 }
 
+TEST(CheckpointFile, AGroupOfScalarsReadsBackIntoItsVariablesInOrder) {
+  // The solvers save scalar groups as one array and read them back with get_into: each value
+  // lands in the variable at its place, bit for bit, and a group of another length is refused
+  // with its key (a checkpoint of another version).
+  StateArchive a;
+  const double inf = std::numeric_limits<double>::infinity();
+  a.put("mpm.work", std::vector<double>{1.5, -0.0, inf, 3e-300});
+  double w = 0, x = 1, y = 2, z = 3;
+  a.get_into("mpm.work", {&w, &x, &y, &z});
+  EXPECT_TRUE(same_bits(w, 1.5));
+  EXPECT_TRUE(same_bits(x, -0.0));
+  EXPECT_TRUE(same_bits(y, inf));
+  EXPECT_TRUE(same_bits(z, 3e-300));
+  EXPECT_NE(error_of([&] { a.get_into("mpm.work", {&w, &x, &y}); }).find("'mpm.work' holds 4 values, 3 were expected"),
+            std::string::npos);
+}
+
 TEST(CheckpointFile, NotACheckpointIsRefusedWithItsPath) {
   TempDir dir("ckpt");
   const auto path = (dir.path / "checkpoints" / "checkpoint_000000000001.h5").string();
