@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
 

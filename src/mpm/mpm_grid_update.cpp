@@ -1,8 +1,5 @@
 // The MPM grid between the mappings: contact, the grid update with damping and the face
 // conditions, and the work of the impulses they make.
-#include <algorithm>
-#include <cmath>
-
 #include "core/parallel.hpp"
 #include "mpm/grid_contact.hpp"
 #include "mpm/mpm_solver.hpp"

@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
-#include "core/system_memory.hpp"
 #include "geometry/grid_axes.hpp"
 #include "geometry/seeding.hpp"
 #include "mpm/mpm_solver.hpp"

@@ -6,7 +6,6 @@
 #include <numbers>
 
 #include "core/agreed_failure.hpp"
-#include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "mpm/axis_hoop.hpp"
 #include "mpm/graded_shape_functions.hpp"
@@ -25,19 +24,17 @@ void record_min(std::atomic<Index>& slot, Index p) {
   }
 }
 
-/// The weights of one particle. G: the grid is graded (mpm/graded_shape_functions.hpp; no cubic
-/// B-spline there, the solver refuses it).
+/// The weights of one particle for every shape function but GIMP, whose stencils come from the
+/// windows kept for the step (MpmSolver::point_stencil). G: the grid is graded
+/// (mpm/graded_shape_functions.hpp; no cubic B-spline there, the solver refuses it).
 template <int Dim, ShapeKind K, bool G>
 inline void stencil_of(const GridGeometry& g, const SplineFaces& faces, const Vec3& x, const Vec3& half,
                        const Mat3& F, Stencil<Dim>& s) {
   static_assert(!(G && K == ShapeKind::BSpline3), "no cubic B-spline on a graded grid");
+  static_assert(K != ShapeKind::Gimp, "GIMP stencils come from MpmSolver::point_stencil");
   if constexpr (K == ShapeKind::Linear) {
     if constexpr (G) graded_linear_stencil<Dim>(g, x, s);
     else linear_stencil<Dim>(g, x, s);
-  } else if constexpr (K == ShapeKind::Gimp) {
-    // uGIMP: reference half-size (Bardenhagen & Kober 2004)
-    if constexpr (G) graded_gimp_stencil<Dim>(g, x, half, s);
-    else gimp_stencil<Dim>(g, x, half, s);
   } else if constexpr (K == ShapeKind::BSpline3) {
     bspline3_stencil<Dim>(g, x, s, faces);
   } else {
@@ -191,6 +188,7 @@ void MpmSolver::activate_pending() {
 template <int Dim, ShapeKind K, bool G>
 inline void MpmSolver::point_stencil(Index p, const Vec3& x, const Vec3& half, Stencil<Dim>& st) {
   if constexpr (K == ShapeKind::Gimp) {
+    // uGIMP: reference half-size (Bardenhagen & Kober 2004).
     GimpWindows<Dim>& w = gimp_windows_of_points<Dim>()[p];
     if (!windows_current_) {
       if constexpr (G) graded_gimp_windows<Dim>(grid_.geom, x, half, w);
