@@ -44,14 +44,19 @@ struct RunResult {
 /// Builds the materials of the scenario from the registry.
 std::vector<std::unique_ptr<Material>> make_materials(const Scenario& sc);
 
+struct SolverFactory;
+
+/// Several ranks: refuses a solver that is not registered as distributed, with an error saying so.
+void check_distributed(const Scenario& sc, const SolverFactory& f, const Communicator& comm);
+
 /// Builds the solver named in the scenario (simulation.solver) on `comm` (several ranks only for a
 /// solver registered as distributed; the others are refused with an error saying so).
 std::unique_ptr<Solver> make_solver(const Scenario& sc, const Communicator& comm = {});
 
-/// Runs the scenario to its end time, writing resolved.yaml, particles_*.h5 + particles.xdmf,
-/// history.csv, summary.json and (output.track.ids) tracks/particle_<id>*.csv to options.out_dir. A PhysicsError stops the run after the state
-/// is written to a new output file (earlier outputs stay intact) and is reported in the result
-/// and summary.json (status "failed").
+/// Runs the scenario to its end time (run/run_loop.hpp), writing resolved.yaml, particles_*.h5 +
+/// particles.xdmf, history.csv, summary.json and (output.track.ids) tracks/particle_<id>*.csv to
+/// options.out_dir. A PhysicsError stops the run after the state is written to a new output file
+/// (earlier outputs stay intact) and is reported in the result and summary.json (status "failed").
 RunResult run_simulation(const Scenario& sc, const RunOptions& options);
 
 }  // namespace ballista
