@@ -1,31 +1,17 @@
-#include <algorithm>
-
 #include "materials/material.hpp"
+
+#include "core/registry.hpp"
 
 namespace ballista {
 
 namespace {
-std::vector<MaterialFactory>& registry_storage() {
-  static std::vector<MaterialFactory> r;  // filled during static initialisation only
-  return r;
-}
+using MaterialRegistry = Registry<MaterialFactory, &MaterialFactory::model>;
 }  // namespace
 
-const std::vector<MaterialFactory>& material_registry() {
-  auto& r = registry_storage();
-  std::sort(r.begin(), r.end(), [](const auto& a, const auto& b) { return a.model < b.model; });
-  return r;
-}
+const std::vector<MaterialFactory>& material_registry() { return MaterialRegistry::sorted(); }
 
-const MaterialFactory* find_material(const std::string& model) {
-  for (const auto& f : registry_storage())
-    if (f.model == model) return &f;
-  return nullptr;
-}
+const MaterialFactory* find_material(const std::string& name) { return MaterialRegistry::find(name); }
 
-bool register_material(MaterialFactory factory) {
-  registry_storage().push_back(std::move(factory));
-  return true;
-}
+bool register_material(MaterialFactory factory) { return MaterialRegistry::add(std::move(factory)); }
 
 }  // namespace ballista

@@ -1,34 +1,19 @@
 #include "points/probe_registry.hpp"
 
-#include <algorithm>
-
 #include "core/error.hpp"
+#include "core/registry.hpp"
 
 namespace ballista {
 
 namespace {
-std::vector<ProbeFactory>& registry_storage() {
-  static std::vector<ProbeFactory> r;  // filled during static initialisation only
-  return r;
-}
+using ProbeRegistry = Registry<ProbeFactory, &ProbeFactory::name>;
 }  // namespace
 
-const std::vector<ProbeFactory>& probe_registry() {
-  auto& r = registry_storage();
-  std::sort(r.begin(), r.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
-  return r;
-}
+const std::vector<ProbeFactory>& probe_registry() { return ProbeRegistry::sorted(); }
 
-const ProbeFactory* find_probe(const std::string& name) {
-  for (const auto& f : registry_storage())
-    if (f.name == name) return &f;
-  return nullptr;
-}
+const ProbeFactory* find_probe(const std::string& name) { return ProbeRegistry::find(name); }
 
-bool register_probe(ProbeFactory factory) {
-  registry_storage().push_back(std::move(factory));
-  return true;
-}
+bool register_probe(ProbeFactory factory) { return ProbeRegistry::add(std::move(factory)); }
 
 std::vector<std::unique_ptr<Probe>> make_probes(const Scenario& sc) {
   std::vector<std::unique_ptr<Probe>> out;

@@ -1,31 +1,17 @@
 #include "points/solver_registry.hpp"
 
-#include <algorithm>
+#include "core/registry.hpp"
 
 namespace ballista {
 
 namespace {
-std::vector<SolverFactory>& registry_storage() {
-  static std::vector<SolverFactory> r;  // filled during static initialisation only
-  return r;
-}
+using SolverRegistry = Registry<SolverFactory, &SolverFactory::name>;
 }  // namespace
 
-const std::vector<SolverFactory>& solver_registry() {
-  auto& r = registry_storage();
-  std::sort(r.begin(), r.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
-  return r;
-}
+const std::vector<SolverFactory>& solver_registry() { return SolverRegistry::sorted(); }
 
-const SolverFactory* find_solver(const std::string& name) {
-  for (const auto& f : registry_storage())
-    if (f.name == name) return &f;
-  return nullptr;
-}
+const SolverFactory* find_solver(const std::string& name) { return SolverRegistry::find(name); }
 
-bool register_solver(SolverFactory factory) {
-  registry_storage().push_back(std::move(factory));
-  return true;
-}
+bool register_solver(SolverFactory factory) { return SolverRegistry::add(std::move(factory)); }
 
 }  // namespace ballista
