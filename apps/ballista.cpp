@@ -22,6 +22,7 @@
 #include "io/material_presets.hpp"
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
+#include "points/load_registry.hpp"
 #include "points/probe_registry.hpp"
 #include "points/solver_registry.hpp"
 #include "penetration/models_command.hpp"
@@ -86,6 +87,8 @@ void print_info() {
     std::cout << "  " << f.name << "  " << f.description << "\n";
     for (const auto& p : f.params) std::cout << format_probe_param(p);
   }
+  std::cout << "\nLoads (loads[].type; their keys in docs/deck.md)\n";
+  for (const auto& f : ballista::load_registry()) std::cout << "  " << f.name << "  " << f.description << "\n";
   std::cout << "\nMaterials (materials.<name>.model)\n";
   for (const auto& f : ballista::material_registry()) {
     std::cout << "  " << f.model << "  " << f.description << "\n";

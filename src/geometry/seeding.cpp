@@ -285,6 +285,7 @@ double lattice_point_bound(const BodySpec& body, const GridSpec& grid, Dimension
 
 Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, int body_index,
                             double h, Dimension dim, FieldStore& points) {
+  const std::string& surface = load.params.choices.at("surface");
   const std::string field = "load_area_" + std::to_string(k);
   points.add_real(field, 3, "m^2", false);
   const int nd = dim == Dimension::ThreeD ? 3 : 2;
@@ -305,7 +306,7 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
     if (s.type == "box") {
       static const char* names[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
       for (int f = 0; f < 2 * nd; ++f) {
-        if (load.surface != names[f]) continue;
+        if (surface != names[f]) continue;
         const int a = f / 2;
         depth = (f % 2) ? s.upper[a] - X[a] : X[a] - s.lower[a];
         N[a] = (f % 2) ? 1.0 : -1.0;
@@ -314,7 +315,7 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
       Vec3 d = X - s.center;
       if (nd == 2) d[2] = 0.0;
       const double r = norm(d);
-      if (load.surface == "outer" && r > 0.0) {
+      if (surface == "outer" && r > 0.0) {
         depth = s.radius - r;
         N = (1.0 / r) * d;
         curvature_scale = nd == 3 ? (s.radius * s.radius) / (r * r) : s.radius / r;
@@ -328,18 +329,18 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
       // Curved faces (not in axisymmetric runs, where the r-z section is straight): the band at
       // radius r represents the surface at radius R, whose area is larger by R / r.
       const bool curved = !(dim == Dimension::Axisymmetric);
-      if (load.surface == "outer") {
+      if (surface == "outer") {
         depth = s.radius - r;
         N = (1.0 / r) * d;
         if (curved) curvature_scale = s.radius / r;
       }
-      if (load.surface == "inner") {
+      if (surface == "inner") {
         depth = r - s.inner_radius;
         N = (-1.0 / r) * d;
         if (curved) curvature_scale = s.inner_radius / r;
       }
-      if (a >= 0 && load.surface == "top") { depth = s.center[a] + s.length - X[a]; N[a] = 1.0; }
-      if (a >= 0 && load.surface == "bottom") { depth = X[a] - s.center[a]; N[a] = -1.0; }
+      if (a >= 0 && surface == "top") { depth = s.center[a] + s.length - X[a]; N[a] = 1.0; }
+      if (a >= 0 && surface == "bottom") { depth = X[a] - s.center[a]; N[a] = -1.0; }
     }
     // Band of lattice points carrying the surface: depth in [0, w) with w = dx max_i |N_i|. A
     // lattice column along the dominant normal axis then holds exactly one point of the band, so

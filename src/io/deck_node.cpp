@@ -11,58 +11,6 @@
 
 namespace ballista {
 
-// ---- names and numbers ----------------------------------------------------------------------
-
-size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t sub = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
-    }
-    std::swap(prev, cur);
-  }
-  return prev[b.size()];
-}
-
-std::string closest_name(const std::string& word, const std::vector<std::string>& candidates) {
-  std::string best;
-  size_t best_d = std::numeric_limits<size_t>::max();
-  for (const auto& c : candidates) {
-    const size_t d = edit_distance(word, c);
-    if (d < best_d) {
-      best_d = d;
-      best = c;
-    }
-  }
-  // A plausible typo: at most a third of the word changed (at least one edit allowed).
-  const size_t limit = std::max<size_t>(1, std::max(word.size(), best.size()) / 3);
-  return best_d <= limit && best_d < std::max(word.size(), best.size()) ? best : std::string();
-}
-
-std::string join_names(const std::vector<std::string>& names) {
-  std::string out;
-  for (size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + names[i];
-  return out;
-}
-
-std::string suggest(const std::string& word, const std::vector<std::string>& candidates) {
-  const std::string best = closest_name(word, candidates);
-  if (!best.empty()) return "; did you mean '" + best + "'?";
-  if (candidates.empty()) return {};
-  return "; expected one of: " + join_names(candidates);
-}
-
-std::string format_number(double x) {
-  if (std::isnan(x)) return ".nan";
-  if (std::isinf(x)) return x > 0 ? ".inf" : "-.inf";
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  return std::string(buf, r.ptr);
-}
-
 namespace {
 
 /// One pass over the parser's events (nothing is built, no alias is expanded): at most one
@@ -179,26 +127,6 @@ bool scalar_number(const YAML::Node& v, double& x) {
   if (b != e && *b == '+') ++b;
   const auto r = std::from_chars(b, e, x);
   return b != e && r.ec == std::errc() && r.ptr == e && std::isfinite(x);
-}
-
-bool NumberRange::contains(double x) const {
-  if (min_exclusive ? !(x > min) : !(x >= min)) return false;
-  if (max_exclusive ? !(x < max) : !(x <= max)) return false;
-  return true;
-}
-
-std::string NumberRange::describe() const {
-  const bool lo = std::isfinite(min), hi = std::isfinite(max);
-  std::string s;
-  if (lo && hi)
-    s = "in " + std::string(min_exclusive ? "(" : "[") + format_number(min) + ", " + format_number(max) +
-        (max_exclusive ? ")" : "]");
-  else if (lo)
-    s = std::string(min_exclusive ? "> " : ">= ") + format_number(min);
-  else if (hi)
-    s = std::string(max_exclusive ? "< " : "<= ") + format_number(max);
-  if (!unit.empty() && unit != "1") s += (s.empty() ? "" : " ") + std::string("(") + unit + ")";
-  return s;
 }
 
 // ---- error positions ------------------------------------------------------------------------

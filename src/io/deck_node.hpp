@@ -16,22 +16,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include "core/error.hpp"
+#include "core/names.hpp"
 #include "core/tensor.hpp"
 #include "io/deck_overrides.hpp"
+#include "scenario/number_range.hpp"
 #include "scenario/scenario.hpp"
 
 namespace ballista {
-
-/// Levenshtein distance (insertions, deletions, substitutions each cost 1).
-size_t edit_distance(const std::string& a, const std::string& b);
-/// The candidate closest to `word` if it is close enough to be a plausible typo, else "".
-std::string closest_name(const std::string& word, const std::vector<std::string>& candidates);
-/// "; did you mean 'x'?" for a plausible typo, else "; expected one of: a, b, c" ("" if no candidates).
-std::string suggest(const std::string& word, const std::vector<std::string>& candidates);
-/// "a, b, c".
-std::string join_names(const std::vector<std::string>& names);
-/// Shortest text that reads back as exactly `x` (0.3, 8e-05, 1.17e+11); ".inf"/".nan" in YAML style.
-std::string format_number(double x);
 
 /// Parses the text of a deck: exactly one YAML document (a second one is an error, not silently
 /// ignored), no tags (`!custom`, `!!str`: Ballista gives them no meaning, so they are refused),
@@ -42,30 +33,6 @@ inline constexpr long kMaxDeckNodes = 1'000'000;
 
 /// Reads a plain (unquoted) YAML scalar as a finite number ("1e9", "+2", "-0.5"); false otherwise.
 bool scalar_number(const YAML::Node& v, double& x);
-
-/// Allowed values of a number; unit is shown in messages ("" or "1" = dimensionless).
-struct NumberRange {
-  double min = -std::numeric_limits<double>::infinity();
-  double max = std::numeric_limits<double>::infinity();
-  bool min_exclusive = false;
-  bool max_exclusive = false;
-  std::string unit;
-
-  bool contains(double x) const;
-  /// "> 0 kg/m^3", "in (-1, 0.5)", "" for an unbounded range.
-  std::string describe() const;
-
-  static NumberRange any(std::string unit = "") { return {.unit = std::move(unit)}; }
-  static NumberRange positive(std::string unit = "") {
-    return {.min = 0.0, .min_exclusive = true, .unit = std::move(unit)};
-  }
-  static NumberRange non_negative(std::string unit = "") { return {.min = 0.0, .unit = std::move(unit)}; }
-  /// [lo, hi] with optional exclusive ends.
-  static NumberRange between(double lo, double hi, bool lo_exclusive = false, bool hi_exclusive = false,
-                             std::string unit = "") {
-    return {lo, hi, lo_exclusive, hi_exclusive, std::move(unit)};
-  }
-};
 
 /// What every node of one deck shares.
 struct DeckContext {

@@ -16,6 +16,7 @@
 #include "io/deck_node.hpp"
 #include "io/text_file.hpp"
 #include "io/deck_overrides.hpp"
+#include "io/load_reader.hpp"
 #include "io/material_reader.hpp"
 #include "io/penetrator_reader.hpp"
 #include "points/probe_registry.hpp"
@@ -99,7 +100,7 @@ class Reader {
     materials();
     stages();
     bodies();
-    loads();
+    read_loads(root_, sc_, confinement_stress_);
     cracks();
     contact();
     detonation();
@@ -384,59 +385,6 @@ class Reader {
     }
   }
 
-  LoadCurve curve(DeckNode& l) {
-    LoadCurve c;
-    const YAML::Node v = l.raw("curve");
-    YAML::Node out(YAML::NodeType::Sequence);
-    out.SetStyle(YAML::EmitterStyle::Flow);
-    if (v.IsDefined() && !v.IsNull()) {
-      const std::string what = "a list of [time, scale] pairs with strictly increasing times";
-      if (!v.IsSequence()) l.fail("curve", "expected " + what);
-      for (size_t i = 0; i < v.size(); ++i) {
-        const YAML::Node p = v[i];
-        const std::string path = l.child_path("curve") + "." + std::to_string(i);
-        if (!p.IsSequence() || p.size() != 2)
-          deck_fail(*ctx_, path, p.Mark(), "expected a [time, scale] pair (list of 2 numbers)");
-        double tv[2];
-        for (int k = 0; k < 2; ++k) {
-          const YAML::Node x = p[k];
-          double value = 0.0;
-          if (!scalar_number(x, value))
-            deck_fail(*ctx_, path + "." + std::to_string(k), x.Mark(),
-                      "expected a number, got " + (x.IsScalar() ? "'" + shorten(x.Scalar()) + "'" : std::string("a list or map")));
-          tv[k] = value;
-        }
-        if (!c.t.empty() && !(tv[0] > c.t.back()))
-          deck_fail(*ctx_, path + ".0", p[0].Mark(),
-                    "expected times strictly increasing; " + format_number(tv[0]) + " follows " +
-                        format_number(c.t.back()));
-        c.t.push_back(tv[0]);
-        c.v.push_back(tv[1]);
-        YAML::Node pair(YAML::NodeType::Sequence);
-        pair.SetStyle(YAML::EmitterStyle::Flow);
-        pair.push_back(format_number(tv[0]));
-        pair.push_back(format_number(tv[1]));
-        out.push_back(pair);
-      }
-    }
-    l.set_resolved("curve", out);
-    return c;
-  }
-
-  std::vector<std::string> surfaces(const ShapeSpec& s) const {
-    const bool plane = sc_.simulation.dimension == Dimension::PlaneStrain;
-    if (s.type == "box")
-      return two_d() ? std::vector<std::string>{"x_min", "x_max", "y_min", "y_max"} : kFaces;
-    if (s.type == "sphere") return {"outer"};
-    std::vector<std::string> out{"outer"};
-    if (s.type == "tube") out.push_back("inner");
-    if (!(plane && s.axis == 2)) {
-      out.push_back("top");
-      out.push_back("bottom");
-    }
-    return out;
-  }
-
   /// `cracks`: pre-cracks and notches cut into the bonds before the run (peridynamics).
   void cracks() {
     DeckNode cs = root_.list("cracks", false);
@@ -584,106 +532,6 @@ class Reader {
     if (nf > 1 && sc_.simulation.solver != "mpm")
       c.fail("model", "separate velocity fields are an MPM grid contact; solver '" + sc_.simulation.solver +
                           "' has its own contact (docs/deck.md)");
-  }
-
-  void loads() {
-    DeckNode ls = root_.list("loads", false);
-    for (size_t i = 0; i < ls.size(); ++i) {
-      DeckNode l = ls.element(i);
-      LoadSpec load;
-      load.mark = l.mark();
-      load.type = l.choice("type", {"body_force", "gravity", "pressure", "confinement", "indenter", "mms_axis_aligned",
-                                    "mms_generalized_vortex"});
-      if (load.type == "confinement") {
-        confinement(l, load);
-        continue;
-      }
-      if (load.type == "body_force") {
-        load.body = body_ref(l, false);
-        load.acceleration = l.vector("acceleration", vmin());
-        load.curve = curve(l);
-      } else if (load.type == "gravity") {
-        // b = rho g along `direction` (EMU seed 001: g = 9.814 m/s^2, the default of `g`).
-        load.type = "body_force";
-        load.body = body_ref(l, false);
-        const double g = l.number("g", 9.814, NumberRange::non_negative("m/s^2"));
-        const Vec3 dir = l.vector("direction", vmin());
-        if (!(norm(dir) > 0.0)) l.fail("direction", "expected a non-zero vector (the direction of gravity)");
-        load.acceleration = (g / norm(dir)) * dir;
-        load.curve = curve(l);
-      } else if (load.type == "indenter") {
-        indenter(l, load);
-      } else if (load.type == "pressure") {
-        load.body = body_ref(l, true);
-        const BodySpec* body = find_body(load.body);
-        const auto valid = surfaces(body->shape);
-        load.surface = l.string("surface");
-        if (std::find(valid.begin(), valid.end(), load.surface) == valid.end()) {
-          std::string hint;
-          if (const std::string best = closest_name(load.surface, valid); !best.empty())
-            hint = " (did you mean '" + best + "'?)";
-          l.fail("surface", "expected one of: " + join_names(valid) + " (the surfaces of body '" + load.body +
-                                "', a " + body->shape.type + "), got '" + load.surface + "'" + hint);
-        }
-        load.pressure = l.number("pressure", NumberRange::any("Pa"));
-        load.curve = curve(l);
-      } else {  // mms_axis_aligned, mms_generalized_vortex
-        load.body = body_ref(l, true);
-      }
-      l.finish();
-      sc_.loads.push_back(std::move(load));
-    }
-  }
-
-  /// `indenter`: a rigid sphere or plane moving at a constant velocity (LAMMPS fix indent).
-  void indenter(DeckNode& l, LoadSpec& load) {
-    IndenterSpec& in = load.indenter;
-    load.body = body_ref(l, false);
-    in.name = l.string("name", "indenter" + std::to_string(sc_.loads.size()));
-    in.shape = l.choice("shape", {"sphere", "plane"});
-    if (in.shape == "sphere") {
-      in.center = l.vector("center", vmin());
-      in.radius = l.number("radius", NumberRange::positive("m"));
-    } else {
-      in.center = l.vector("point", vmin());
-      const Vec3 nrm = l.vector("normal", vmin());
-      if (!(norm(nrm) > 0.0)) l.fail("normal", "expected a non-zero vector (out of the indenter, into the space)");
-      in.normal = (1.0 / norm(nrm)) * nrm;
-    }
-    in.velocity = l.vector("velocity", Vec3{}, vmin());
-    in.stiffness = l.number("stiffness", NumberRange::positive("N/m^5"));
-    for (const LoadSpec& other : sc_.loads)
-      if (other.type == "indenter" && other.indenter.name == in.name)
-        l.fail("name", "indenter name '" + in.name + "' is used twice (it names history columns)");
-  }
-
-  /// `confinement` (thesis seed 000 §5.1, Table 5.1): the overburden on a cylinder, pressure
-  /// `radial` on its outer surface and `axial` on its top and bottom (both default to `pressure`),
-  /// expanded into three pressure loads with the same curve.
-  void confinement(DeckNode& l, LoadSpec load) {
-    load.body = body_ref(l, true);
-    const BodySpec* body = find_body(load.body);
-    if (body->shape.type != "cylinder" || !body->segments.empty())
-      l.fail("body", "a confinement acts on a cylinder (outer, top and bottom surfaces); body '" + load.body +
-                         "' is a " + (body->segments.empty() ? body->shape.type : body->penetrator.kind));
-    if (sc_.simulation.dimension == Dimension::PlaneStrain && body->shape.axis == 2)
-      l.fail("body", "a plane-strain disk has no top and bottom; use pressure loads");
-    const double p = l.number("pressure", 0.0, NumberRange::non_negative("Pa"));
-    const double radial = l.number("radial", p, NumberRange::non_negative("Pa"));
-    const double axial = l.number("axial", p, NumberRange::non_negative("Pa"));
-    load.curve = curve(l);
-    l.finish();
-    load.type = "pressure";
-    for (const char* surface : {"outer", "top", "bottom"}) {
-      load.surface = surface;
-      load.pressure = load.surface == "outer" ? radial : axial;
-      sc_.loads.push_back(load);
-    }
-    // The stress it should produce in equilibrium, for stages that wait for it.
-    Vec3 stress;
-    for (int d = 0; d < 3; ++d) stress[d] = d == body->shape.axis ? -axial : -radial;
-    if (sc_.simulation.dimension == Dimension::Axisymmetric) stress = Vec3{{-radial, -axial, -radial}};
-    confinement_stress_[load.body] = stress;
   }
 
   /// One parameter of a probe, read as its kind declares (points/probe_registry.hpp).

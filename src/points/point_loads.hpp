@@ -1,25 +1,21 @@
 #pragma once
-// External loads on points, shared by every solver: body forces (gravity), surface pressure with
-// load curves (Nanson-mapped onto the current surface), rigid indenters (LAMMPS fix indent) and the
-// manufactured body forces of CATALOGUE B1 and B2. Recomputed at the start of each step.
-#include <cstdint>
+// External loads on points, shared by every solver: the deck's loads, each of a registered kind
+// (points/load_registry.hpp, kinds in points/loads/), summed into one force per point at the
+// start of each step.
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/field_store.hpp"
 #include "core/tensor.hpp"
+#include "points/load_registry.hpp"
 #include "scenario/scenario.hpp"
 
 namespace ballista {
 
 class PointLoads {
  public:
-  /// A surface traction and the point where it acts (the point's face on the loaded surface).
-  struct SurfaceForce {
-    Vec3 point;  ///< m
-    Vec3 force;  ///< N
-    Index index = 0;  ///< the point it acts on
-  };
+  using SurfaceForce = ::ballista::SurfaceForce;
 
   /// Forces of every load of `sc` on the points at `time`. Without loads nothing is allocated.
   void compute(const Scenario& sc, const FieldStore& points, double time);
@@ -31,23 +27,16 @@ class PointLoads {
   /// Each surface traction with its point of action.
   const std::vector<SurfaceForce>& surface_forces() const { return surface_forces_; }
 
-  /// History columns of the loads: <name>_fx, _fy, _fz of each indenter (empty without one).
+  /// History columns of the loads (an indenter's <name>_fx, _fy, _fz), in deck order.
   static std::vector<std::string> history_columns(const Scenario& sc);
-  /// Their values at the last compute(): the force of the points on each indenter, N (the
-  /// reaction), summed over this rank's points in a fixed order (zeros before the first compute).
+  /// Their values at the last compute() (zeros before the first).
   std::vector<double> history_values(const Scenario& sc) const;
 
  private:
+  std::vector<std::unique_ptr<Load>> loads_;  ///< built from the deck at the first compute()
   std::vector<Vec3> fext_;
   std::vector<Vec3> ftrac_;
   std::vector<SurfaceForce> surface_forces_;
-  std::vector<Vec3> reactions_;  ///< per indenter, N
-  /// Per load: the points with a loaded surface area (pressure loads), in index order, found
-  /// once per layout of the points (FieldStore::layout_version) instead of a scan every step.
-  std::vector<std::vector<Index>> surface_points_;
-  std::uint64_t surface_layout_ = UINT64_MAX;
-  /// Rebuilds surface_points_ if the points moved or changed in number since it was built.
-  void update_surface_points(const Scenario& sc, const FieldStore& points);
 };
 
 }  // namespace ballista

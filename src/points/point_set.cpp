@@ -18,6 +18,7 @@
 #include "materials/failure.hpp"
 #include "points/cantilever_mode.hpp"
 #include "points/explosive_lighting.hpp"
+#include "points/load_registry.hpp"
 #include "points/mms_axis_aligned.hpp"
 #include "points/mms_generalized_vortex.hpp"
 
@@ -130,18 +131,16 @@ PointSet::PointSet(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     const auto* mass = points_.real("mass");
     for (Index p = 0; p < points_.size(); ++p) seeded_mass_body_[static_cast<std::size_t>(body[p])] += mass[p];
   }
+  // Loads that act on marked points (a pressure's loaded surface) mark them now, on the seeding.
   for (size_t k = 0; k < sc.loads.size(); ++k) {
     const LoadSpec& load = sc.loads[k];
-    if (load.type != "pressure") continue;
+    const LoadFactory* kind = find_load(load.type);
+    if (!kind || !kind->mark) continue;
     const int bi = body_index(sc, load.body);
     BodySpec body = sc.bodies.at(bi);
     if (lattice.override_ppc > 0) body.particles_per_cell = lattice.override_ppc;
-    const Index marked =
-        mark_pressure_surface(load, static_cast<int>(k), body, bi, grid.cell_size, dim, points_);
-    if (marked == 0)
-      throw DeckError(load.mark.file, load.mark.line, load.mark.column, load.mark.key_path + ".surface",
-                      "no particle of body '" + load.body + "' lies on surface '" + load.surface + "'");
-    load_area_fields_.push_back("load_area_" + std::to_string(k));
+    for (std::string& f : kind->mark(load, static_cast<int>(k), {body, bi, grid.cell_size, dim}, points_))
+      load_area_fields_.push_back(std::move(f));
   }
   // Program burn: the lighting times of the explosive points, before any body waits for activation.
   light_explosives(sc, points_, lattice.override_ppc);

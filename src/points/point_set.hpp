@@ -44,7 +44,8 @@ class PointSet {
     pending_.add_real(name, ncomp, unit, output);
   }
   const std::vector<std::unique_ptr<Material>>& materials() const { return materials_; }
-  /// Names of the per-load surface fields ("load_area_<k>") of the pressure loads.
+  /// Fields the loads marked on the points (a pressure's "load_area_<k>"): extensive, so a point
+  /// that splits shares them.
   const std::vector<std::string>& load_area_fields() const { return load_area_fields_; }
 
   /// Several ranks: every rank seeded every body; it keeps its contiguous share (by index) of

@@ -146,27 +146,14 @@ struct BodySpec {
   DeckMark mark;
 };
 
-/// A rigid indenter pressed into the points (LAMMPS `fix indent`): each point overlapping it by
-/// d > 0 is pushed out with the force k V0 d^2 (V0 its reference volume), and the indenter feels
-/// the opposite (the reaction, a history column). The indenter moves at a constant velocity.
-struct IndenterSpec {
-  std::string name;        ///< history columns <name>_fx, _fy, _fz (N, force of the points on it)
-  std::string shape;       ///< sphere | plane
-  Vec3 center;             ///< sphere: centre at t = 0; plane: a point of the plane at t = 0, m
-  double radius = 0.0;     ///< sphere radius, m
-  Vec3 normal;             ///< plane: unit normal pointing out of the indenter (into the free space)
-  Vec3 velocity;           ///< m/s
-  double stiffness = 0.0;  ///< k, N/m^5: force per unit point volume and squared overlap
-};
-
+/// One entry of `loads`: a registered load kind (points/load_registry.hpp) and the values its
+/// reader took from the deck (the kind's file says which, with units).
 struct LoadSpec {
-  std::string type;        ///< body_force | pressure | mms_axis_aligned | mms_generalized_vortex | indenter (gravity is a body_force)
-  std::string body;        ///< body name ("" = all bodies for body_force and indenter)
-  Vec3 acceleration;       ///< body_force, m/s^2
-  IndenterSpec indenter;   ///< indenter
-  std::string surface;     ///< pressure: x_min..z_max for boxes; outer|inner|top|bottom for cylinders/tubes
-  double pressure = 0.0;   ///< Pa (positive pushes into the body)
-  LoadCurve curve;         ///< scale factor of time (default: 1)
+  std::string type;      ///< a registered load kind (gravity is read as a body_force, confinement as pressures)
+  std::string body;      ///< body name ("" = every body, where the kind allows it)
+  ParamValues params;    ///< numbers (SI units); words in params.choices
+  std::map<std::string, Vec3> vectors;  ///< vectors (SI units)
+  LoadCurve curve;       ///< scale factor of time (default: 1)
   DeckMark mark;
 };
 

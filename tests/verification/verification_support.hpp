@@ -218,7 +218,7 @@ inline CylinderError run_thick_cylinder(const Scenario& sc) {
   e.E = 9.0 * K * G / (3.0 * K + G);
   e.nu = (3.0 * K - 2.0 * G) / (2.0 * (3.0 * K + G));
   const double a = sc.bodies.at(0).shape.inner_radius, b = sc.bodies.at(0).shape.radius;
-  const double P = sc.loads.at(0).pressure * sc.loads.at(0).curve.at(solver->time());
+  const double P = sc.loads.at(0).params.at("pressure") * sc.loads.at(0).curve.at(solver->time());
   const FieldStore& pts = solver->points();
   const Vec3* x = pts.view<Vec3>("x");
   const Vec3* X = pts.view<Vec3>("x0");

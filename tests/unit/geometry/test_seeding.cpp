@@ -520,7 +520,7 @@ TEST(PressureSurface, SurfaceTheShapeLacksMarksNothing) {
                      "  - {type: pressure, body: b, surface: outer, pressure: 1}\n"));
   EXPECT_GT(s->marked[0], 0);
   LoadSpec top = s->sc.loads[0];
-  top.surface = "top";
+  top.params.choices["surface"] = "top";
   EXPECT_EQ(mark_pressure_surface(top, 1, s->sc.bodies[0], 0, s->sc.grid.cell_size, Dimension::ThreeD, s->pts), 0);
   EXPECT_EQ(norm(sum_area(s->pts, 1)), 0.0);
 }

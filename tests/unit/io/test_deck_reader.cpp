@@ -154,9 +154,11 @@ void expect_same_scenario(const Scenario& a, const Scenario& b) {
     const LoadSpec &x = a.loads[i], &y = b.loads[i];
     EXPECT_EQ(x.type, y.type);
     EXPECT_EQ(x.body, y.body);
-    expect_same_vec(x.acceleration, y.acceleration);
-    EXPECT_EQ(x.surface, y.surface);
-    EXPECT_EQ(x.pressure, y.pressure);
+    EXPECT_EQ(x.vectors.size(), y.vectors.size());
+    for (const auto& [key, v] : x.vectors) expect_same_vec(v, y.vectors.at(key));
+    EXPECT_EQ(x.params.choices, y.params.choices);
+    using Numbers = std::map<std::string, double>;
+    EXPECT_EQ(static_cast<const Numbers&>(x.params), static_cast<const Numbers&>(y.params));
     EXPECT_EQ(x.curve.t, y.curve.t);
     EXPECT_EQ(x.curve.v, y.curve.v);
   }
@@ -243,10 +245,10 @@ TEST(DeckReader, ValidDeckResolvesWithDefaults) {
   ASSERT_EQ(s.loads.size(), 2u);
   EXPECT_EQ(s.loads[0].type, "body_force");
   EXPECT_EQ(s.loads[0].body, "");
-  EXPECT_EQ(s.loads[0].acceleration[1], -9.81);
+  EXPECT_EQ(s.loads[0].vectors.at("acceleration")[1], -9.81);
   EXPECT_TRUE(s.loads[0].curve.t.empty());
-  EXPECT_EQ(s.loads[1].surface, "top");
-  EXPECT_EQ(s.loads[1].pressure, 1e6);
+  EXPECT_EQ(s.loads[1].params.choice("surface"), "top");
+  EXPECT_EQ(s.loads[1].params.at("pressure"), 1e6);
   ASSERT_EQ(s.loads[1].curve.t.size(), 2u);
   EXPECT_EQ(s.loads[1].curve.t[1], 1e-5);
   EXPECT_EQ(s.loads[1].curve.v[1], 1.0);
@@ -630,7 +632,7 @@ loads:
   EXPECT_EQ(s.bodies[0].shape.axis, 2);
   EXPECT_EQ(s.bodies[0].shape.length, 0.0);
   EXPECT_EQ(s.bodies[0].shape.inner_radius, 0.005);
-  EXPECT_EQ(s.loads[0].surface, "inner");
+  EXPECT_EQ(s.loads[0].params.choice("surface"), "inner");
   const DeckError e = parse_error(deck_with("surface: inner", "surface: top", ps));
   EXPECT_TRUE(contains(e.what(), "expected one of: outer, inner (the surfaces of body 'ring', a tube)")) << e.what();
   const DeckError e2 = parse_error(deck_with("inner_radius: 0.005", "inner_radius: 0.01", ps));

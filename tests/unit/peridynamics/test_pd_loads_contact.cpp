@@ -77,7 +77,7 @@ TEST(PdLoads, GravityIsABodyForceWithTheSeedsDefaultG) {
                  "loads:\n  - {type: gravity, direction: [0, 0, -2]}\n",
       "gravity.yaml");
   ASSERT_EQ(sc.loads.size(), 1u);
-  EXPECT_DOUBLE_EQ(sc.loads[0].acceleration[2], -9.814);
+  EXPECT_DOUBLE_EQ(sc.loads[0].vectors.at("acceleration")[2], -9.814);
   PdSolver s(sc, make_materials(sc));
   for (int k = 0; k < 40; ++k) s.step(s.stable_dt());
   const auto* v = s.points().view<Vec3>("v");

@@ -1,0 +1,29 @@
+#include "points/load_registry.hpp"
+
+#include "core/error.hpp"
+#include "core/registry.hpp"
+
+namespace ballista {
+
+namespace {
+using LoadRegistry = Registry<LoadFactory, &LoadFactory::name>;
+}  // namespace
+
+const std::vector<LoadFactory>& load_registry() { return LoadRegistry::sorted(); }
+
+const LoadFactory* find_load(const std::string& name) { return LoadRegistry::find(name); }
+
+bool register_load(LoadFactory factory) { return LoadRegistry::add(std::move(factory)); }
+
+std::vector<std::unique_ptr<Load>> make_loads(const Scenario& sc) {
+  std::vector<std::unique_ptr<Load>> out;
+  for (size_t k = 0; k < sc.loads.size(); ++k) {
+    const LoadFactory* f = find_load(sc.loads[k].type);
+    if (!f || !f->create)  // the deck reader checked it
+      throw Error("load type '" + sc.loads[k].type + "' cannot be applied (loads." + std::to_string(k) + ")");
+    out.push_back(f->create(sc.loads[k], static_cast<int>(k), sc));
+  }
+  return out;
+}
+
+}  // namespace ballista

@@ -1,0 +1,46 @@
+// The overburden on a cylindrical rock target (thesis seed 000 §5.1, Table 5.1): pressure
+// `radial` on its outer surface and `axial` on its top and bottom (both default to `pressure`),
+// read as three pressure loads with the same curve, and the stress they hold the target at in
+// equilibrium, for stages that wait for it.
+#include "points/load_registry.hpp"
+
+namespace ballista {
+
+namespace {
+
+LoadReading read_confinement(LoadEntry& e, LoadSpec load) {
+  load.body = e.body(true);
+  const Scenario& sc = e.scenario();
+  const BodySpec& body = sc.bodies[static_cast<size_t>(body_index(sc, load.body))];
+  if (body.shape.type != "cylinder" || !body.segments.empty())
+    e.fail("body", "a confinement acts on a cylinder (outer, top and bottom surfaces); body '" + load.body + "' is a " +
+                       (body.segments.empty() ? body.shape.type : body.penetrator.kind));
+  if (sc.simulation.dimension == Dimension::PlaneStrain && body.shape.axis == 2)
+    e.fail("body", "a plane-strain disk has no top and bottom; use pressure loads");
+  const double p = e.number("pressure", 0.0, NumberRange::non_negative("Pa"));
+  const double radial = e.number("radial", p, NumberRange::non_negative("Pa"));
+  const double axial = e.number("axial", p, NumberRange::non_negative("Pa"));
+  load.curve = e.curve();
+  load.type = "pressure";
+  LoadReading out;
+  for (const char* surface : {"outer", "top", "bottom"}) {
+    load.params.choices["surface"] = surface;
+    load.params["pressure"] = std::string(surface) == "outer" ? radial : axial;
+    out.loads.push_back(load);
+  }
+  Vec3 stress;
+  for (int d = 0; d < 3; ++d) stress[d] = d == body.shape.axis ? -axial : -radial;
+  if (sc.simulation.dimension == Dimension::Axisymmetric) stress = Vec3{{-radial, -axial, -radial}};
+  out.equilibrium_stress = stress;
+  return out;
+}
+
+}  // namespace
+
+BALLISTA_REGISTER_LOAD(LoadFactory{
+    .name = "confinement",
+    .description = "overburden on a cylinder: `radial` on its outer surface, `axial` on top and bottom (Pa, both "
+                   "default to `pressure`), as three pressure loads",
+    .read = read_confinement})
+
+}  // namespace ballista
