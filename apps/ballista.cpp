@@ -22,6 +22,7 @@
 #include "io/material_presets.hpp"
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
+#include "points/initial_state_registry.hpp"
 #include "points/load_registry.hpp"
 #include "points/probe_registry.hpp"
 #include "points/solver_registry.hpp"
@@ -89,6 +90,9 @@ void print_info() {
   }
   std::cout << "\nLoads (loads[].type; their keys in docs/deck.md)\n";
   for (const auto& f : ballista::load_registry()) std::cout << "  " << f.name << "  " << f.description << "\n";
+  std::cout << "\nInitial states (bodies[].initial_state; default none)\n";
+  for (const auto& f : ballista::initial_state_registry())
+    std::cout << "  " << f.name << "  " << f.description << "\n";
   std::cout << "\nMaterials (materials.<name>.model)\n";
   for (const auto& f : ballista::material_registry()) {
     std::cout << "  " << f.model << "  " << f.description << "\n";

@@ -19,6 +19,7 @@
 #include "io/load_reader.hpp"
 #include "io/material_reader.hpp"
 #include "io/penetrator_reader.hpp"
+#include "points/initial_state_registry.hpp"
 #include "points/probe_registry.hpp"
 #include "points/solver_registry.hpp"
 #include "scenario/material_model.hpp"
@@ -294,6 +295,19 @@ class Reader {
     return n;
   }
 
+  /// Whether the deck's solver (already read and checked) has a capability of its registration.
+  bool solver_can(bool SolverFactory::*capability) const {
+    const SolverFactory* f = find_solver(sc_.simulation.solver);
+    return f && f->*capability;
+  }
+  /// The solvers with a capability, for a message ("mpm", "mpm or otm").
+  static std::string solvers_that(bool SolverFactory::*capability) {
+    std::string out;
+    for (const SolverFactory& f : solver_registry())
+      if (f.*capability) out += (out.empty() ? "" : " or ") + f.name;
+    return out.empty() ? "no solver" : out;
+  }
+
   /// Reads `key` as the name of a defined body ("" allowed if optional and absent).
   std::string body_ref(DeckNode& n, bool required) {
     const std::string name = required ? n.string("body") : n.string("body", "");
@@ -320,7 +334,7 @@ class Reader {
         b.fail("material", "unknown material '" + body.material + "'" + suggest(body.material, materials));
       body.particles_per_cell = static_cast<int>(b.integer("particles_per_cell", 2, 1, 8));
       body.point_spacing = b.optional_number("point_spacing", NumberRange::positive("m")).value_or(0.0);
-      if (body.point_spacing > 0.0 && sc_.simulation.solver != "peridynamics")
+      if (body.point_spacing > 0.0 && !solver_can(&SolverFactory::point_spacing))
         b.fail("point_spacing", "a body's own lattice spacing is a peridynamics key (solver '" + sc_.simulation.solver +
                                     "' seeds particles_per_cell per grid cell)");
       body.activation_time = b.number("activation_time", 0.0, NumberRange::non_negative("s"));
@@ -359,19 +373,11 @@ class Reader {
       }
       // Penetrators are fired in the main stage; other bodies start with the first stage.
       body.activation_stage = stage_ref(b, "activation_stage", body.penetrator.kind.empty() ? 0 : static_cast<int>(sc_.stages.size()));
-      body.initial_state = b.choice("initial_state", "none",
-                                    {"none", "mms_axis_aligned", "mms_generalized_vortex", "cantilever_mode1"});
-      if (body.initial_state == "cantilever_mode1") {
-        if (body.shape.type != "box")
-          b.fail("initial_state", "cantilever_mode1 needs a box body (the beam along x, clamped at its x_min face); body '" +
-                                      body.name + "' is a " + body.shape.type);
-        if (body.velocity[0] != 0.0 || body.velocity[2] != 0.0 || body.radial_speed != 0.0)
-          b.fail("velocity", "with initial_state cantilever_mode1 the velocity is the tip speed along y: [0, v, 0]");
-      }
-      if (body.initial_state == "mms_generalized_vortex" &&
-          !(body.shape.type == "tube" && body.shape.axis == 2 && body.shape.center[0] == 0.0 && body.shape.center[1] == 0.0))
-        b.fail("initial_state", "mms_generalized_vortex needs a tube about the z axis through the origin (the annulus "
-                                "0.75 <= R <= 1.25 of CATALOGUE B2)");
+      std::vector<std::string> states{"none"};
+      for (const InitialStateFactory& f : initial_state_registry()) states.push_back(f.name);
+      body.initial_state = b.choice("initial_state", "none", states);
+      if (const InitialStateFactory* state = find_initial_state(body.initial_state); state && state->check)
+        if (const std::optional<BodyIssue> issue = state->check(body)) b.fail(issue->key, issue->message);
       b.finish();
       Vec3 lo, hi;
       shape_bounds(body.shape, lo, hi);
@@ -388,8 +394,9 @@ class Reader {
   /// `cracks`: pre-cracks and notches cut into the bonds before the run (peridynamics).
   void cracks() {
     DeckNode cs = root_.list("cracks", false);
-    if (cs.size() > 0 && sc_.simulation.solver != "peridynamics")
-      cs.fail("pre-cracks cut bonds: only the peridynamics solver has them (solver '" + sc_.simulation.solver + "')");
+    if (cs.size() > 0 && !solver_can(&SolverFactory::pre_cracks))
+      cs.fail("pre-cracks cut bonds: solver '" + sc_.simulation.solver + "' has none (" +
+              solvers_that(&SolverFactory::pre_cracks) + " has them)");
     for (size_t i = 0; i < cs.size(); ++i) {
       DeckNode c = cs.element(i);
       CrackSpec crack;
@@ -529,9 +536,9 @@ class Reader {
       cs.field_friction[k] = cs.field_friction[static_cast<size_t>(fb) * nf + fa] = pair.friction;
       set_by[k] = set_by[static_cast<size_t>(fb) * nf + fa] = static_cast<int>(i);
     }
-    if (nf > 1 && sc_.simulation.solver != "mpm")
-      c.fail("model", "separate velocity fields are an MPM grid contact; solver '" + sc_.simulation.solver +
-                          "' has its own contact (docs/deck.md)");
+    if (nf > 1 && !solver_can(&SolverFactory::velocity_fields))
+      c.fail("model", "separate velocity fields are a grid contact of " + solvers_that(&SolverFactory::velocity_fields) +
+                          "; solver '" + sc_.simulation.solver + "' has its own contact (docs/deck.md)");
   }
 
   /// One parameter of a probe, read as its kind declares (points/probe_registry.hpp).

@@ -25,6 +25,7 @@
 
 #include "core/error.hpp"
 #include "core/field_store.hpp"
+#include "core/registry.hpp"
 #include "core/tensor.hpp"
 
 namespace ballista {
@@ -280,10 +281,10 @@ struct MaterialFactory {
   ParamValues (*reduce_geo)(const GeoReduction& g) = nullptr;
 };
 
-/// Registered models, filled at static-initialisation time by one line per model file
-/// (BALLISTA_REGISTER_MATERIAL); read-only afterwards.
-const std::vector<MaterialFactory>& material_registry();
-const MaterialFactory* find_material(const std::string& model);
-bool register_material(MaterialFactory factory);
+/// Registered models by name (core/registry.hpp), filled at static-initialisation time by one
+/// line per model file (BALLISTA_REGISTER_MATERIAL); read-only afterwards.
+using MaterialRegistry = Registry<MaterialFactory, &MaterialFactory::model>;
+inline const std::vector<MaterialFactory>& material_registry() { return MaterialRegistry::sorted(); }
+inline const MaterialFactory* find_material(const std::string& model) { return MaterialRegistry::find(model); }
 
 }  // namespace ballista

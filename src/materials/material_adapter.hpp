@@ -271,7 +271,5 @@ MaterialFactory material_factory(const char* description) {
 
 /// Registers Model under Model::kName; use once per model file at namespace scope.
 #define BALLISTA_REGISTER_MATERIAL(Model, Description) \
-  namespace {                                          \
-  const bool registered_##Model = ::ballista::register_material(::ballista::material_factory<Model>(Description)); \
-  }
+  BALLISTA_REGISTER(::ballista::MaterialRegistry, ::ballista::material_factory<Model>(Description))
 }  // namespace ballista

@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "geometry/grid_axes.hpp"
 #include "geometry/seeding.hpp"
+#include "mpm/mpm_params.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "points/point_exchange.hpp"
 
@@ -18,7 +19,7 @@ int axis_count(Dimension d) { return d == Dimension::ThreeD ? 3 : 2; }
 
 /// The solver's own storage per point, for the memory estimate: GIMP's windows kept for the step.
 double bytes_per_point(const Scenario& sc) {
-  if (sc.solver_params.choices.at("shape_function") != "gimp") return 0.0;
+  if (read_mpm_params(sc.solver_params).shape != ShapeKind::Gimp) return 0.0;
   return sc.simulation.dimension == Dimension::ThreeD ? sizeof(GimpWindows<3>) : sizeof(GimpWindows<2>);
 }
 }  // namespace
@@ -88,16 +89,8 @@ MpmSolver::GridLayout MpmSolver::layout_graded_grid(const Scenario& sc, int ghos
 }
 
 namespace {
-/// Whether the deck asks for XPIC's two extra node arrays (mpm.xpic_order > 1 with a PIC share).
-bool xpic_arrays(const Scenario& sc) {
-  return sc.solver_params.at("xpic_order") > 1 && sc.solver_params.at("flip") < 1.0;
-}
-
-/// The extra node arrays a deck asks for, as a count of Vec3 per node and field: XPIC's prev and
-/// target (mpm.xpic_order > 1 with a PIC share), USAVG's constrained first-half velocity.
-int extra_node_arrays(const Scenario& sc) {
-  return (xpic_arrays(sc) ? 2 : 0) + (sc.solver_params.choices.at("update") == "usavg" ? 1 : 0);
-}
+/// The extra node arrays a deck asks for (MpmParams::extra_node_arrays).
+int extra_node_arrays(const Scenario& sc) { return read_mpm_params(sc.solver_params).extra_node_arrays(); }
 
 /// Grid storage per node and velocity field, for the memory estimate: mass; velocity, force,
 /// velocity_new, accel; several fields: grad, impulse, friction_impulse; the extra arrays.
@@ -122,17 +115,18 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
       partition_(comm, axis_count(sc.simulation.dimension)) {
   dimension_ = sc.simulation.dimension;
   dim_ = axis_count(dimension_);
-  shape_ = parse_shape_kind(sc.solver_params.choices.at("shape_function"));
-  musl_ = sc.solver_params.choices.at("update") == "musl";
-  usavg_ = sc.solver_params.choices.at("update") == "usavg";
-  bulk_viscosity_ = {sc.solver_params.at("bulk_viscosity_linear"), sc.solver_params.at("bulk_viscosity_quadratic")};
+  const MpmParams P = read_mpm_params(sc.solver_params);
+  shape_ = P.shape;
+  musl_ = P.update == MpmParams::Update::Musl;
+  usavg_ = P.update == MpmParams::Update::Usavg;
+  bulk_viscosity_ = P.bulk_viscosity;
   if (bulk_viscosity_.active()) pts_.add_real(kBulkViscosityField, 1, "Pa");
-  flip_ = sc.solver_params.at("flip");
-  pts_.set_distortion_limit(sc.solver_params.at("distortion_limit"));
-  xpic_order_ = static_cast<int>(sc.solver_params.at("xpic_order"));
-  sort_every_ = static_cast<int>(sc.solver_params.at("sort_every"));
-  anti_locking_ = parse_anti_locking(sc.solver_params.choices.at("anti_locking"));
-  rebalance_ = sc.solver_params.at("rebalance_imbalance");
+  flip_ = P.flip;
+  pts_.set_distortion_limit(P.distortion_limit);
+  xpic_order_ = P.xpic_order;
+  sort_every_ = P.sort_every;
+  anti_locking_ = P.anti_locking;
+  rebalance_ = P.rebalance_imbalance;
   damping_ = sc.simulation.damping;
   grid_.geom = layout_.geom;
   grid_.fields = sc.contact.fields;

@@ -1,9 +1,6 @@
 // The deck's mpm.* parameters: names, units, defaults and ranges (docs/deck.md).
 #include "mpm/mpm_params.hpp"
 
-#include "mpm/anti_locking.hpp"
-#include "mpm/shape_functions.hpp"
-
 namespace ballista {
 
 std::vector<ParamSpec> mpm_params() {
@@ -48,6 +45,23 @@ std::vector<ParamSpec> mpm_params() {
                        "until det F and the polar decomposition are lost to round-off. 0 = never",
                        false, 1000.0, 0.0, 1e12};
   return {shape, update, flip, sort, locking, rebalance, xpic, bv_linear, bv_quadratic, distortion};
+}
+
+MpmParams read_mpm_params(const ParamValues& P) {
+  MpmParams m;
+  m.shape = parse_shape_kind(P.choices.at("shape_function"));
+  const std::string& update = P.choices.at("update");
+  m.update = update == "musl" ? MpmParams::Update::Musl
+             : update == "usavg" ? MpmParams::Update::Usavg
+                                 : MpmParams::Update::Usl;
+  m.flip = P.at("flip");
+  m.sort_every = static_cast<int>(P.at("sort_every"));
+  m.anti_locking = parse_anti_locking(P.choices.at("anti_locking"));
+  m.rebalance_imbalance = P.at("rebalance_imbalance");
+  m.xpic_order = static_cast<int>(P.at("xpic_order"));
+  m.bulk_viscosity = {P.at("bulk_viscosity_linear"), P.at("bulk_viscosity_quadratic")};
+  m.distortion_limit = P.at("distortion_limit");
+  return m;
 }
 
 }  // namespace ballista

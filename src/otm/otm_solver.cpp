@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/phase_timer.hpp"
+#include "otm/otm_params.hpp"
 #include "points/cell_bins.hpp"
 #include "points/solver_registry.hpp"
 #include "scenario/material_model.hpp"
@@ -32,11 +33,11 @@ constexpr const char* kNodeGroupField = "node_group";
 /// 44 B per node): the nodes of the lattice within the support radius h sqrt(-ln(tol)/gamma), at
 /// least otm.min_support, for the memory estimate (the radius grows with the points' stretch).
 double support_bytes_per_point(const Scenario& sc) {
-  const ParamValues& P = sc.solver_params;
-  const double rho = std::sqrt(-std::log(P.at("support_tolerance")) / P.at("gamma"));  // in node spacings
+  const OtmParams P = read_otm_params(sc.solver_params);
+  const double rho = std::sqrt(-std::log(P.support_tolerance) / P.gamma);  // in node spacings
   const bool three_d = sc.simulation.dimension == Dimension::ThreeD;
   const double nodes = three_d ? 4.0 / 3.0 * std::numbers::pi * rho * rho * rho : std::numbers::pi * rho * rho;
-  return 2.0 * 44.0 * std::max({nodes, P.at("min_support"), three_d ? 5.0 : 4.0});
+  return 2.0 * 44.0 * std::max({nodes, static_cast<double>(P.min_support), three_d ? 5.0 : 4.0});
 }
 
 }  // namespace
@@ -48,7 +49,7 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
       // support lists.
       pts_(sc, std::move(materials), SeedLattice{sc.grid, 0, support_bytes_per_point(sc)}, 0.0, "", comm),
       points_(pts_.store()) {
-  const ParamValues& P = sc.solver_params;
+  const OtmParams P = read_otm_params(sc.solver_params);
   if (pts_.pending() > 0)
     section_error(sc, "", "bodies with a later activation (activation_time, activation_stage, rods, jets) are not "
                           "supported by the OTM solver yet: their nodes would have to be seeded on arrival");
@@ -57,19 +58,19 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   dim_ = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
   axisym_ = sc.simulation.dimension == Dimension::Axisymmetric;
   damping_ = sc.simulation.damping;
-  penalty_ = P.choices.at("wall_model") == "penalty";
-  penalty_factor_ = P.at("penalty");
+  penalty_ = P.penalty_walls;
+  penalty_factor_ = P.penalty;
   sopt_.h = sc.grid.cell_size;
-  sopt_.gamma = P.at("gamma");
-  sopt_.tolerance = P.at("support_tolerance");
-  sopt_.min_support = static_cast<int>(P.at("min_support"));
+  sopt_.gamma = P.gamma;
+  sopt_.tolerance = P.support_tolerance;
+  sopt_.min_support = P.min_support;
   sopt_.dim = dim_;
-  sopt_.lme.line_search = P.choices.at("line_search") == "on";
-  adapt_.enabled = P.choices.at("adaptivity") == "on";
-  adapt_.split_stretch = P.at("split_stretch");
-  adapt_.node_gap = P.at("node_gap");
-  adapt_.node_crowding = P.at("node_crowding");
-  adapt_.max_condition = P.at("max_condition");
+  sopt_.lme.line_search = P.line_search;
+  adapt_.enabled = P.adaptivity;
+  adapt_.split_stretch = P.split_stretch;
+  adapt_.node_gap = P.node_gap;
+  adapt_.node_crowding = P.node_crowding;
+  adapt_.max_condition = P.max_condition;
 
   const Index n = points_.size();
   if (adapt_.enabled) {
@@ -92,7 +93,7 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   {
     auto* group = points_.ints(kNodeGroupField);
     const auto* body = points_.ints("body");
-    const bool shared = P.choices.at("nodes") == "shared";
+    const bool shared = P.shared_nodes;
     // Products that act on nothing would "succeed" with the other bodies untouched.
     if (first_material_of_model(sc, "explosive") && sc.bodies.size() > 1 && !shared)
       section_error(sc, "nodes", "an explosive with other bodies needs otm.nodes: shared (with a node set per body "
@@ -676,57 +677,15 @@ std::unique_ptr<Solver> make_otm(const Scenario& sc, std::vector<std::unique_ptr
   return std::make_unique<OtmSolver>(sc, std::move(materials));
 }
 
-
-std::vector<ParamSpec> otm_params() {
-  ParamSpec gamma{"gamma", "1",
-                  "LME locality gamma = beta h^2 (h = grid.cell_size, the nodal spacing; seed 003 Fig. 5-5): larger "
-                  "is more local (the finite-element limit), smaller smoother",
-                  false, 1.8, 0.0, 50.0, true};
-  ParamSpec tol{"support_tolerance", "1",
-                "weight cut-off of the support radius h sqrt(-ln(tol)/gamma)", false, 1e-4, 0.0, 0.1, true};
-  ParamSpec minsup{"min_support", "1", "fewest support nodes of a point (0: dimension + 2)", false, 0, 0, 1000};
-  minsup.integer = true;
-  const ParamSpec wall = word_param("wall_model",
-                              "rigid walls (faces marked wall): constraint (no normal displacement into the wall) or "
-                              "penalty (a spring on the crossing; seed 003 ch. 4)",
-                              {"constraint", "penalty"});
-  ParamSpec pen{"penalty", "1",
-                "penalty walls: spring k_a = penalty m_a omega_a^2 (the node's own stiffness bound times this)", false,
-                1.0, 0.0, 100.0, true};
-  const ParamSpec ls = word_param("line_search", "backtracking line search in the LME Newton solve (seed 003 Fig. 5-5)",
-                            {"on", "off"});
-  const ParamSpec adapt = word_param("adaptivity",
-                                     "split stretched points and re-generate the nodes on the lattice when they no "
-                                     "longer resolve the points (seed 003 ch. 5; otm_adaptivity.hpp)",
-                                     {"off", "on"});
-  ParamSpec split{"split_stretch", "1", "adaptivity: split a point whose extent exceeds this times its seeded spacing",
-                  false, 2.0, 1.0, 100.0, true};
-  ParamSpec gap{"node_gap", "1",
-                "adaptivity: re-generate the nodes when a point's nearest node is farther than this times h", false,
-                1.0, 0.0, 100.0, true};
-  ParamSpec crowd{"node_crowding", "1",
-                  "adaptivity: re-generate the nodes when two nodes of a body come closer than this times h", false,
-                  0.25, 0.0, 1.0};
-  ParamSpec cond{"max_condition", "1",
-                 "adaptivity: re-generate the nodes when a point's LME Hessian condition number exceeds this", false,
-                 1e6, 1.0, 1e300};
-  const ParamSpec nodes = word_param("nodes",
-                                     "node sets: per_body (each body its own nodes; bodies do not interact) or shared "
-                                     "(one node set over every body: bodies move together where they touch, no slip "
-                                     "and no separation, as MPM's single_field)",
-                                     {"per_body", "shared"});
-  return {gamma, tol, minsup, wall, pen, ls, adapt, split, gap, crowd, cond, nodes};
-}
-
 }  // namespace
 
 }  // namespace ballista
 
 BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
-    "otm",
-    "optimal transportation meshfree method with local max-entropy shape functions (Li, Habbal & Ortiz 2010; "
-    "seed 003)",
-    {"3d", "plane_strain", "axisymmetric"},
-    "otm",
-    ballista::otm_params(),
-    &ballista::make_otm})
+    .name = "otm",
+    .description = "optimal transportation meshfree method with local max-entropy shape functions (Li, Habbal & "
+                   "Ortiz 2010; seed 003)",
+    .dimensions = {"3d", "plane_strain", "axisymmetric"},
+    .section = "otm",
+    .params = ballista::otm_params(),
+    .create = &ballista::make_otm})

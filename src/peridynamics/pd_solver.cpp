@@ -1131,14 +1131,17 @@ std::vector<ParamSpec> pd_params() {
 }  // namespace ballista
 
 BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
-    "peridynamics",
-    "bond-based peridynamics, PMB bonds with critical stretch (Silling & Askari 2005; EMU, seed 001)",
-    {"3d", "plane_strain", "plane_stress"},
-    "peridynamics",
-    ballista::pd_params(),
-    &ballista::make_pd,
-    true,
-    {ballista::FaceBC::Free},
-    "the box only bounds where points may go: a symmetry plane or fixed face would need mirror or frozen ghost "
-    "points across it, which the bond families do not have yet; model the whole body, or hold points with a "
-    "rigid indenter (loads: indenter)"})
+    .name = "peridynamics",
+    .description = "bond-based peridynamics, PMB bonds with critical stretch (Silling & Askari 2005; EMU, seed 001)",
+    .dimensions = {"3d", "plane_strain", "plane_stress"},
+    .section = "peridynamics",
+    .params = ballista::pd_params(),
+    .create = &ballista::make_pd,
+    .distributed = true,
+    .face_conditions = {ballista::FaceBC::Free},
+    .face_conditions_note =
+        "the box only bounds where points may go: a symmetry plane or fixed face would need mirror or frozen ghost "
+        "points across it, which the bond families do not have yet; model the whole body, or hold points with a "
+        "rigid indenter (loads: indenter)",
+    .point_spacing = true,
+    .pre_cracks = true})

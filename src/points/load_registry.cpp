@@ -1,19 +1,11 @@
 #include "points/load_registry.hpp"
 
 #include "core/error.hpp"
-#include "core/registry.hpp"
+#include "core/registry_impl.hpp"
 
 namespace ballista {
 
-namespace {
-using LoadRegistry = Registry<LoadFactory, &LoadFactory::name>;
-}  // namespace
-
-const std::vector<LoadFactory>& load_registry() { return LoadRegistry::sorted(); }
-
-const LoadFactory* find_load(const std::string& name) { return LoadRegistry::find(name); }
-
-bool register_load(LoadFactory factory) { return LoadRegistry::add(std::move(factory)); }
+template class Registry<LoadFactory, &LoadFactory::name>;
 
 std::vector<std::unique_ptr<Load>> make_loads(const Scenario& sc) {
   std::vector<std::unique_ptr<Load>> out;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/field_store.hpp"
+#include "core/registry.hpp"
 #include "core/tensor.hpp"
 #include "scenario/number_range.hpp"
 #include "scenario/scenario.hpp"
@@ -96,21 +97,15 @@ struct LoadFactory {
   std::unique_ptr<Load> (*create)(const LoadSpec& load, int k, const Scenario& sc) = nullptr;
 };
 
-/// Registered load kinds in name order, filled at static-initialisation time.
-const std::vector<LoadFactory>& load_registry();
-const LoadFactory* find_load(const std::string& name);
-bool register_load(LoadFactory factory);
+/// Registered load kinds by name (core/registry.hpp), filled at static-initialisation time.
+using LoadRegistry = Registry<LoadFactory, &LoadFactory::name>;
+inline const std::vector<LoadFactory>& load_registry() { return LoadRegistry::sorted(); }
+inline const LoadFactory* find_load(const std::string& name) { return LoadRegistry::find(name); }
 
 /// The deck's loads, in deck order.
 std::vector<std::unique_ptr<Load>> make_loads(const Scenario& sc);
 
 }  // namespace ballista
 
-#define BALLISTA_LOAD_CONCAT_(a, b) a##b
-#define BALLISTA_LOAD_CONCAT(a, b) BALLISTA_LOAD_CONCAT_(a, b)
-/// Registers a load kind from its own .cpp: BALLISTA_REGISTER_LOAD(LoadFactory{...}).
-#define BALLISTA_REGISTER_LOAD(...)                                                        \
-  namespace {                                                                              \
-  [[maybe_unused]] const bool BALLISTA_LOAD_CONCAT(ballista_load_registered_, __LINE__) = \
-      ::ballista::register_load(__VA_ARGS__);                                              \
-  }
+/// Registers one from its own .cpp: BALLISTA_REGISTER_LOAD(LoadFactory{...}).
+#define BALLISTA_REGISTER_LOAD(...) BALLISTA_REGISTER(::ballista::LoadRegistry, __VA_ARGS__)

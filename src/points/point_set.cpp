@@ -16,11 +16,9 @@
 #include "geometry/seeding.hpp"
 #include "materials/explosive_eos.hpp"
 #include "materials/failure.hpp"
-#include "points/cantilever_mode.hpp"
 #include "points/explosive_lighting.hpp"
+#include "points/initial_state_registry.hpp"
 #include "points/load_registry.hpp"
-#include "points/mms_axis_aligned.hpp"
-#include "points/mms_generalized_vortex.hpp"
 
 namespace ballista {
 
@@ -81,44 +79,8 @@ PointSet::PointSet(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     }
     activation_stage.resize(points_.size(), body.activation_stage);
     materials_[mi]->initialise_state(points_, n0, points_.size());
-    if (body.initial_state == "mms_axis_aligned") {
-      // Start on the manufactured solution at t = 0 (CATALOGUE B1): velocity, F and stress.
-      const mms::AxisAligned mms;
-      auto* x0 = points_.view<Vec3>("x0");
-      auto* v = points_.view<Vec3>("v");
-      auto* F = points_.view<Mat3>("F");
-      auto* R = points_.view<Mat3>("R");
-      auto* stress = points_.view<Mat3>("stress");
-      auto* vol = points_.real("volume");
-      const auto* vol0 = points_.real("volume0");
-      auto* x = points_.view<Vec3>("x");
-      for (Index p = n0; p < points_.size(); ++p) {
-        // The lattice is the reference configuration X; the body starts displaced by u(X, 0).
-        x[p] = x0[p] + mms.displacement(x0[p], 0.0);
-        v[p] = mms.velocity(x0[p], 0.0);
-        F[p] = mms.F(x0[p], 0.0);
-        R[p] = Mat3::identity();  // F is diagonal and positive: no rotation
-        stress[p] = materials_[mi]->initial_stress(F[p]);
-        vol[p] = vol0[p] * det(F[p]);
-      }
-    } else if (body.initial_state == "mms_generalized_vortex") {
-      // CATALOGUE B2 at t = 0: undeformed (alpha = 0), spinning with v = R alpha_t(R, 0) e_theta.
-      const mms::GeneralizedVortex mms;
-      const auto* x0 = points_.view<Vec3>("x0");
-      auto* v = points_.view<Vec3>("v");
-      for (Index p = n0; p < points_.size(); ++p) v[p] = mms.velocity(x0[p], 0.0);
-    } else if (body.initial_state == "cantilever_mode1") {
-      // CATALOGUE B4: the box is a beam clamped at its x_min face; the body's velocity (y
-      // component, checked by the deck reader) becomes the tip speed of the first bending mode.
-      beam::CantileverMode1 mode;
-      mode.root = body.shape.lower[0];
-      mode.length = body.shape.upper[0] - body.shape.lower[0];
-      mode.mid = 0.5 * (body.shape.lower[1] + body.shape.upper[1]);
-      mode.tip_speed = body.velocity[1];
-      const auto* x0 = points_.view<Vec3>("x0");
-      auto* v = points_.view<Vec3>("v");
-      for (Index p = n0; p < points_.size(); ++p) v[p] = mode.velocity(x0[p]);
-    }
+    if (const InitialStateFactory* state = find_initial_state(body.initial_state))
+      state->apply(body, *materials_[mi], points_, n0, points_.size());
   }
   check_body_overlaps(sc, points_);
   {

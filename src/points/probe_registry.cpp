@@ -1,19 +1,11 @@
 #include "points/probe_registry.hpp"
 
 #include "core/error.hpp"
-#include "core/registry.hpp"
+#include "core/registry_impl.hpp"
 
 namespace ballista {
 
-namespace {
-using ProbeRegistry = Registry<ProbeFactory, &ProbeFactory::name>;
-}  // namespace
-
-const std::vector<ProbeFactory>& probe_registry() { return ProbeRegistry::sorted(); }
-
-const ProbeFactory* find_probe(const std::string& name) { return ProbeRegistry::find(name); }
-
-bool register_probe(ProbeFactory factory) { return ProbeRegistry::add(std::move(factory)); }
+template class Registry<ProbeFactory, &ProbeFactory::name>;
 
 std::vector<std::unique_ptr<Probe>> make_probes(const Scenario& sc) {
   std::vector<std::unique_ptr<Probe>> out;

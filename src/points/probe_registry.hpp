@@ -13,6 +13,7 @@
 
 #include "core/communicator.hpp"
 #include "core/field_store.hpp"
+#include "core/registry.hpp"
 #include "core/solver.hpp"
 #include "scenario/scenario.hpp"
 
@@ -66,10 +67,10 @@ struct ProbeFactory {
   std::unique_ptr<Probe> (*create)(const ProbeSpec& spec, const Scenario& sc) = nullptr;
 };
 
-/// Registered probe kinds in name order, filled at static-initialisation time.
-const std::vector<ProbeFactory>& probe_registry();
-const ProbeFactory* find_probe(const std::string& name);
-bool register_probe(ProbeFactory factory);
+/// Registered probe kinds by name (core/registry.hpp), filled at static-initialisation time.
+using ProbeRegistry = Registry<ProbeFactory, &ProbeFactory::name>;
+inline const std::vector<ProbeFactory>& probe_registry() { return ProbeRegistry::sorted(); }
+inline const ProbeFactory* find_probe(const std::string& name) { return ProbeRegistry::find(name); }
 
 /// The deck's probes, in deck order.
 std::vector<std::unique_ptr<Probe>> make_probes(const Scenario& sc);
@@ -79,11 +80,5 @@ int probe_body(const ProbeSpec& spec, const Scenario& sc);
 
 }  // namespace ballista
 
-#define BALLISTA_PROBE_CONCAT_(a, b) a##b
-#define BALLISTA_PROBE_CONCAT(a, b) BALLISTA_PROBE_CONCAT_(a, b)
-/// Registers a probe kind from its own .cpp: BALLISTA_REGISTER_PROBE(ProbeFactory{...}).
-#define BALLISTA_REGISTER_PROBE(...)                                                         \
-  namespace {                                                                                \
-  [[maybe_unused]] const bool BALLISTA_PROBE_CONCAT(ballista_probe_registered_, __LINE__) = \
-      ::ballista::register_probe(__VA_ARGS__);                                               \
-  }
+/// Registers one from its own .cpp: BALLISTA_REGISTER_PROBE(ProbeFactory{...}).
+#define BALLISTA_REGISTER_PROBE(...) BALLISTA_REGISTER(::ballista::ProbeRegistry, __VA_ARGS__)

@@ -1,17 +1,9 @@
 #include "points/solver_registry.hpp"
 
-#include "core/registry.hpp"
+#include "core/registry_impl.hpp"
 
 namespace ballista {
 
-namespace {
-using SolverRegistry = Registry<SolverFactory, &SolverFactory::name>;
-}  // namespace
-
-const std::vector<SolverFactory>& solver_registry() { return SolverRegistry::sorted(); }
-
-const SolverFactory* find_solver(const std::string& name) { return SolverRegistry::find(name); }
-
-bool register_solver(SolverFactory factory) { return SolverRegistry::add(std::move(factory)); }
+template class Registry<SolverFactory, &SolverFactory::name>;
 
 }  // namespace ballista

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/communicator.hpp"
+#include "core/registry.hpp"
 #include "core/solver.hpp"
 #include "materials/material.hpp"
 #include "scenario/scenario.hpp"
@@ -33,7 +34,20 @@ struct SolverFactory {
   /// Runs on a graded grid (grid.refine, geometry/grid_axes.hpp); otherwise refine zones are a
   /// deck error.
   bool graded_grid = false;
+  /// Seeds a body on its own lattice (bodies[].point_spacing); otherwise particles_per_cell per
+  /// grid cell, and point_spacing is a deck error.
+  bool point_spacing = false;
+  /// Cuts pre-cracks into its bonds (`cracks`); otherwise they are a deck error.
+  bool pre_cracks = false;
+  /// Has separate grid velocity fields with contact between them (contact.model with several
+  /// fields); otherwise a solver brings its own contact.
+  bool velocity_fields = false;
 };
+
+/// Registered solvers by name (core/registry.hpp), filled at static-initialisation time.
+using SolverRegistry = Registry<SolverFactory, &SolverFactory::name>;
+inline const std::vector<SolverFactory>& solver_registry() { return SolverRegistry::sorted(); }
+inline const SolverFactory* find_solver(const std::string& name) { return SolverRegistry::find(name); }
 
 /// An optional word parameter of a solver section whose default is the first choice.
 inline ParamSpec word_param(const char* name, const char* description, std::vector<std::string> choices) {
@@ -43,18 +57,7 @@ inline ParamSpec word_param(const char* name, const char* description, std::vect
   return p;
 }
 
-/// Registered solvers in name order, filled at static-initialisation time.
-const std::vector<SolverFactory>& solver_registry();
-const SolverFactory* find_solver(const std::string& name);
-bool register_solver(SolverFactory factory);
-
 }  // namespace ballista
 
-#define BALLISTA_SOLVER_CONCAT_(a, b) a##b
-#define BALLISTA_SOLVER_CONCAT(a, b) BALLISTA_SOLVER_CONCAT_(a, b)
-/// Registers a solver from its own .cpp: BALLISTA_REGISTER_SOLVER(SolverFactory{...}).
-#define BALLISTA_REGISTER_SOLVER(...)                                                          \
-  namespace {                                                                                  \
-  [[maybe_unused]] const bool BALLISTA_SOLVER_CONCAT(ballista_solver_registered_, __LINE__) = \
-      ::ballista::register_solver(__VA_ARGS__);                                                \
-  }
+/// Registers one from its own .cpp: BALLISTA_REGISTER_SOLVER(SolverFactory{...}).
+#define BALLISTA_REGISTER_SOLVER(...) BALLISTA_REGISTER(::ballista::SolverRegistry, __VA_ARGS__)

@@ -140,7 +140,7 @@ struct BodySpec {
   std::vector<ShapeSpec> cutouts;
   double activation_time = 0.0;  ///< s after the start of the activation stage; inert and invisible before
   int activation_stage = 0;      ///< index of the stage that starts the activation clock (stages.size() = main)
-  std::string initial_state = "none";  ///< none | mms_axis_aligned | mms_generalized_vortex | cantilever_mode1
+  std::string initial_state = "none";  ///< none or a registered initial state (points/initial_state_registry.hpp)
   PenetratorSpec penetrator;     ///< rod / jet description (kind empty for plain bodies)
   std::vector<SegmentSpec> segments;  ///< rods and jets: the pieces seeded (empty for plain bodies)
   DeckMark mark;

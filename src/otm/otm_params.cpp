@@ -1,0 +1,66 @@
+// The deck's otm.* parameters: names, units, defaults and ranges (docs/deck.md; seed 003).
+#include "otm/otm_params.hpp"
+
+#include "points/solver_registry.hpp"
+
+namespace ballista {
+
+std::vector<ParamSpec> otm_params() {
+  ParamSpec gamma{"gamma", "1",
+                  "LME locality gamma = beta h^2 (h = grid.cell_size, the nodal spacing; seed 003 Fig. 5-5): larger "
+                  "is more local (the finite-element limit), smaller smoother",
+                  false, 1.8, 0.0, 50.0, true};
+  ParamSpec tol{"support_tolerance", "1",
+                "weight cut-off of the support radius h sqrt(-ln(tol)/gamma)", false, 1e-4, 0.0, 0.1, true};
+  ParamSpec minsup{"min_support", "1", "fewest support nodes of a point (0: dimension + 2)", false, 0, 0, 1000};
+  minsup.integer = true;
+  const ParamSpec wall = word_param("wall_model",
+                              "rigid walls (faces marked wall): constraint (no normal displacement into the wall) or "
+                              "penalty (a spring on the crossing; seed 003 ch. 4)",
+                              {"constraint", "penalty"});
+  ParamSpec pen{"penalty", "1",
+                "penalty walls: spring k_a = penalty m_a omega_a^2 (the node's own stiffness bound times this)", false,
+                1.0, 0.0, 100.0, true};
+  const ParamSpec ls = word_param("line_search", "backtracking line search in the LME Newton solve (seed 003 Fig. 5-5)",
+                            {"on", "off"});
+  const ParamSpec adapt = word_param("adaptivity",
+                                     "split stretched points and re-generate the nodes on the lattice when they no "
+                                     "longer resolve the points (seed 003 ch. 5; otm_adaptivity.hpp)",
+                                     {"off", "on"});
+  ParamSpec split{"split_stretch", "1", "adaptivity: split a point whose extent exceeds this times its seeded spacing",
+                  false, 2.0, 1.0, 100.0, true};
+  ParamSpec gap{"node_gap", "1",
+                "adaptivity: re-generate the nodes when a point's nearest node is farther than this times h", false,
+                1.0, 0.0, 100.0, true};
+  ParamSpec crowd{"node_crowding", "1",
+                  "adaptivity: re-generate the nodes when two nodes of a body come closer than this times h", false,
+                  0.25, 0.0, 1.0};
+  ParamSpec cond{"max_condition", "1",
+                 "adaptivity: re-generate the nodes when a point's LME Hessian condition number exceeds this", false,
+                 1e6, 1.0, 1e300};
+  const ParamSpec nodes = word_param("nodes",
+                                     "node sets: per_body (each body its own nodes; bodies do not interact) or shared "
+                                     "(one node set over every body: bodies move together where they touch, no slip "
+                                     "and no separation, as MPM's single_field)",
+                                     {"per_body", "shared"});
+  return {gamma, tol, minsup, wall, pen, ls, adapt, split, gap, crowd, cond, nodes};
+}
+
+OtmParams read_otm_params(const ParamValues& P) {
+  OtmParams o;
+  o.gamma = P.at("gamma");
+  o.support_tolerance = P.at("support_tolerance");
+  o.min_support = static_cast<int>(P.at("min_support"));
+  o.penalty_walls = P.choices.at("wall_model") == "penalty";
+  o.penalty = P.at("penalty");
+  o.line_search = P.choices.at("line_search") == "on";
+  o.adaptivity = P.choices.at("adaptivity") == "on";
+  o.split_stretch = P.at("split_stretch");
+  o.node_gap = P.at("node_gap");
+  o.node_crowding = P.at("node_crowding");
+  o.max_condition = P.at("max_condition");
+  o.shared_nodes = P.choices.at("nodes") == "shared";
+  return o;
+}
+
+}  // namespace ballista
