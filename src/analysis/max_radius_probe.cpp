@@ -47,7 +47,7 @@ class MaxRadiusProbe : public Probe {
 };
 
 /// The axis must cross the grid box: off-axis coordinates of the centre inside it (a centre at
-/// 1e308 gave a foot radius of 1e308 or inf, issue 11).
+/// 1e308 would give a foot radius of 1e308 or inf).
 void check_center(const ProbeSpec& spec, const Scenario& sc) {
   const int axis = static_cast<int>(spec.params.at("axis"));
   const Vec3& center = spec.vectors.at("center");

@@ -1,5 +1,5 @@
 // Probe `mean_velocity`: a body's centre-of-mass velocity along an axis, sum m v / sum m (m/s):
-// the velocity of a plate or case driven by explosive (Gurney, issue 15), of a rod, of a fragment
+// the velocity of a plate or case driven by explosive (Gurney), of a rod, of a fragment
 // cloud.
 #include <cmath>
 

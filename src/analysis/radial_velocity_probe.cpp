@@ -1,6 +1,6 @@
 // Probe `radial_velocity`: a body's mass-weighted mean velocity away from an axis,
 // sum m (v . e_r) / sum m (m/s): the expansion velocity of a cylinder case driven by explosive
-// (Gurney's cylinder, the seed's exploding cylinders, issue 15), where the centre-of-mass velocity
+// (Gurney's cylinder, the seed's exploding cylinders), where the centre-of-mass velocity
 // is zero by symmetry.
 #include <cmath>
 

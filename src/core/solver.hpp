@@ -35,7 +35,7 @@ struct EnergyTotals {
   /// they do, so the balance closes without it; it is the energy scale of an explosive run.
   double chemical = 0.0;
   // Work done on the points by the discretisation itself (J; negative when it removes energy),
-  // booked so that the balance closes (issue 13). Zero for solvers that have no such term.
+  // booked so that the balance closes. Zero for solvers that have no such term.
   double damping = 0.0;   ///< grid damping -c m v (stages and simulation.damping)
   double contact = 0.0;   ///< multi-field grid contact (normal and frictional impulses)
   double friction = 0.0;  ///< the frictional part of `contact` (already inside it)
@@ -107,7 +107,7 @@ class Solver {
   /// Tables of this discretisation written at the end of a run (e.g. fragments.csv).
   virtual std::vector<ResultTable> result_tables() const { return {}; }
 
-  // ---- checkpoint and restart (issue 16, docs/restart.md) ------------------------------------
+  // ---- checkpoint and restart (docs/restart.md) ----------------------------------------------
   /// Puts everything the next step depends on into `archive` (points, pending bodies, solver
   /// state, booked energies, time and step), so that load_state on a solver built from the same
   /// deck continues bitwise as this one would.

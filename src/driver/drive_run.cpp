@@ -38,7 +38,7 @@ DriveRunResult run_drive(const DriveDeck& deck, const std::string& out_dir) {
   res.steps = r.steps;
   res.records = r.records.size();
   res.last = r.records.back();
-  // Finite stresses whose invariants overflow (moduli near 1e308) are garbage too (issue 11).
+  // Finite stresses whose invariants overflow (moduli near 1e308) are garbage too.
   for (const DriveRecord& rec : r.records) {
     if (!res.ok) break;
     if (!std::isfinite(von_mises(rec.sigma)) || !std::isfinite(trace(rec.sigma))) {

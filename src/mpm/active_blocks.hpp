@@ -1,5 +1,5 @@
 #pragma once
-// The blocks of the MPM grid that particles can reach this step (issue 17, the sparse grid): the
+// The blocks of the MPM grid that particles can reach this step (the sparse grid): the
 // grid is cut into blocks of kBlock^dim nodes; a block is active if some particle's stencil (its
 // cell widened by the shape function's reach) or a traction point's stencil overlaps it. Only
 // active blocks are zeroed and updated, so empty space in the box costs one flag per block.

@@ -448,7 +448,7 @@ void MpmSolver::grid_to_particles(double dt) {
     // What the PIC share of the blend takes from the kinetic energy of the pure FLIP update
     // (FLIP alone conserves it to the order of the time step; PIC damps the grid's null space).
     // USAVG books the whole transfer instead: the particles' kinetic-energy change here, less the
-    // grid's (grid_kinetic_energy_change), the measure issue 13 asks for.
+    // grid's (grid_kinetic_energy_change), so that the energy balance closes.
     if constexpr (exact_transfer) {
       o[1] += 0.5 * mass[p] * (dot(v[p], v[p]) - dot(v_old, v_old));
     } else if (flip < 1.0) {

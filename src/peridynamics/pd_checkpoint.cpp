@@ -1,4 +1,4 @@
-// Checkpoint and restart of the peridynamic solver (issue 16, docs/restart.md): what a step
+// Checkpoint and restart of the peridynamic solver (docs/restart.md): what a step
 // carries to the next beyond the point fields. Everything the constructor derives from the deck
 // (bond families, constants, blocks, mirrors, the partition) is rebuilt identically. Per-point
 // values and bond rows are written in the points' order of the checkpoint (rank order on several

@@ -1,5 +1,5 @@
 #pragma once
-// Lighting times of the explosive points of a run (issue 15): the deck's `detonation` section fed
+// Lighting times of the explosive points of a run: the deck's `detonation` section fed
 // to the program burn (points/program_burn.hpp) over the seeded points, written into the
 // `lighting_time` state field of the `explosive` material (materials/explosive.cpp).
 #include "core/field_store.hpp"

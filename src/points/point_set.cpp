@@ -32,9 +32,9 @@ PointSet::PointSet(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   declare_point_fields(points_);
   for (const auto& m : materials_) m->declare_fields(points_);
 
-  // Refuse a run that cannot fit before allocating it (issue 11). Per point: every declared field
-  // plus a solver's per-point scratch (~3 Vec3 and 5 indices). The point count is the bodies'
-  // bounding-box lattice, an upper bound.
+  // Refuse a run that cannot fit before allocating it (rather than die in a bare std::bad_alloc).
+  // Per point: every declared field plus a solver's per-point scratch (~3 Vec3 and 5 indices). The
+  // point count is the bodies' bounding-box lattice, an upper bound.
   {
     const double bytes_per_point =
         points_.bytes_per_point() + 3 * sizeof(Vec3) + 5 * sizeof(Index) + lattice.solver_bytes_per_point;
