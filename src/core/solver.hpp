@@ -39,7 +39,9 @@ struct EnergyTotals {
   double damping = 0.0;   ///< grid damping -c m v (stages and simulation.damping)
   double contact = 0.0;   ///< multi-field grid contact (normal and frictional impulses)
   double friction = 0.0;  ///< the frictional part of `contact` (already inside it)
-  double transfer = 0.0;  ///< particle-grid transfer: the PIC share of the FLIP/PIC update (usl, musl), the whole particle-minus-grid kinetic energy change (usavg)
+  /// particle-grid transfer: the PIC share of the FLIP/PIC update (usl, musl), the whole
+  /// particle-minus-grid kinetic energy change (usavg)
+  double transfer = 0.0;
   double boundary = 0.0;  ///< the grid face and axis conditions' impulses on the nodes
   /// J, the heat of the artificial bulk viscosity (MPM, mpm.bulk_viscosity_*): a breakdown of
   /// `internal`, like `plastic`, not a separate term of total().
