@@ -65,7 +65,8 @@ BALLISTA_REGISTER_PROBE(ProbeFactory{
     .name = "max_radius",
     .description = "largest distance from the axis (through `center`, along `axis`) of the deformed domains of "
                    "particles whose centre is within `distance` of the plane at `plane` [m]",
-    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "", .description = "body measured (default: every body)"},
+    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "",
+                .description = "body measured (default: every body)"},
                {.name = "axis", .kind = ProbeParam::Kind::Axis, .unit = "", .description = "axis of symmetry"},
                {.name = "plane", .kind = ProbeParam::Kind::Number, .unit = "m",
                 .description = "position of the plane normal to `axis`", .required = false},

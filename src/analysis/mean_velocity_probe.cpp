@@ -38,7 +38,8 @@ class MeanVelocityProbe : public Probe {
 BALLISTA_REGISTER_PROBE(ProbeFactory{
     .name = "mean_velocity",
     .description = "the body's centre-of-mass velocity along `axis`, sum m v / sum m [m/s]",
-    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "", .description = "body measured (default: every body)"},
+    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "",
+                .description = "body measured (default: every body)"},
                {.name = "axis", .kind = ProbeParam::Kind::Axis, .unit = "", .description = "velocity component"}},
     .create = [](const ProbeSpec& spec, const Scenario& sc) -> std::unique_ptr<Probe> {
       return std::make_unique<MeanVelocityProbe>(probe_body(spec, sc), static_cast<int>(spec.params.at("axis")));

@@ -97,7 +97,8 @@ DriveRunResult run_drive(const DriveDeck& deck, const std::string& out_dir) {
   // Backstop: any other number that is not a number fails the drive, never a success.
   if (const auto bad = non_finite_numbers(summary.root()); res.ok && !bad.empty()) {
     res.ok = false;
-    res.error = "drive: non-finite results: " + bad.front() + (bad.size() > 1 ? fmt::format(" and {} more", bad.size() - 1) : "");
+    res.error = "drive: non-finite results: " + bad.front() +
+                (bad.size() > 1 ? fmt::format(" and {} more", bad.size() - 1) : "");
     summary["status"] = "failed";
     summary["error"] = res.error;
   }

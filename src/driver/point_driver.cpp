@@ -222,7 +222,8 @@ class Driver {
   [[noreturn]] void fail_nonfinite(const Snapshot& before, const Snapshot& after, double t_new,
                                    const std::string& where) const {
     std::ostringstream os;
-    os << "drive: non-finite stress, F or state, or J <= 0, after the material update (" << mat_.name() << ", model " << mat_.model()
+    os << "drive: non-finite stress, F or state, or J <= 0, after the material update (" << mat_.name()
+       << ", model " << mat_.model()
        << ") at step " << step_ + 1 << " (t = " << num(t_new) << " s" << where << ")\n"
        << "  F_n     = " << mat_text(before.F) << ", J = " << num(det(before.F))
        << "\n  F_n+1   = " << mat_text(after.F) << ", J = " << num(det(after.F))

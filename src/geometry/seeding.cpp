@@ -211,7 +211,8 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
                                     "particles_per_cell or point_spacing)",
                                     body.name, hi[a] - lo[a], axes[a], dx));
     throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path,
-                    "body '" + body.name + "' has no particles inside the grid: check its shape, the grid box and cell_size");
+                    "body '" + body.name +
+                        "' has no particles inside the grid: check its shape, the grid box and cell_size");
   }
 
   const Index n0 = points.size();

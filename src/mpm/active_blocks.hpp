@@ -49,7 +49,8 @@ class ActiveBlocks {
     if (dense_) {
       const Index n = g_.node_count();
       const Index chunk = 4096;
-      for_each_chunk((n + chunk - 1) / chunk, [&](Index c) { f(offset + c * chunk, offset + std::min(n, (c + 1) * chunk)); });
+      for_each_chunk((n + chunk - 1) / chunk,
+                     [&](Index c) { f(offset + c * chunk, offset + std::min(n, (c + 1) * chunk)); });
       return;
     }
     for_each(0, rows(), [&](Index r) { f(row_start_[r] + offset, row_start_[r] + offset + row_len_[r]); });

@@ -683,16 +683,28 @@ void MpmSolver::step_local(double dt) {
   const bool three = dim_ == 3;
   if (grid_.geom.graded) {  // no cubic B-spline on a graded grid (refused in the constructor)
     switch (shape_) {
-      case ShapeKind::Linear: three ? step_impl<3, ShapeKind::Linear, true>(dt) : step_impl<2, ShapeKind::Linear, true>(dt); break;
-      case ShapeKind::Gimp: three ? step_impl<3, ShapeKind::Gimp, true>(dt) : step_impl<2, ShapeKind::Gimp, true>(dt); break;
-      case ShapeKind::Cpdi: three ? step_impl<3, ShapeKind::Cpdi, true>(dt) : step_impl<2, ShapeKind::Cpdi, true>(dt); break;
+      case ShapeKind::Linear:
+        three ? step_impl<3, ShapeKind::Linear, true>(dt) : step_impl<2, ShapeKind::Linear, true>(dt);
+        break;
+      case ShapeKind::Gimp:
+        three ? step_impl<3, ShapeKind::Gimp, true>(dt) : step_impl<2, ShapeKind::Gimp, true>(dt);
+        break;
+      case ShapeKind::Cpdi:
+        three ? step_impl<3, ShapeKind::Cpdi, true>(dt) : step_impl<2, ShapeKind::Cpdi, true>(dt);
+        break;
       case ShapeKind::BSpline3: break;
     }
   } else {
     switch (shape_) {
-      case ShapeKind::Linear: three ? step_impl<3, ShapeKind::Linear, false>(dt) : step_impl<2, ShapeKind::Linear, false>(dt); break;
-      case ShapeKind::Gimp: three ? step_impl<3, ShapeKind::Gimp, false>(dt) : step_impl<2, ShapeKind::Gimp, false>(dt); break;
-      case ShapeKind::Cpdi: three ? step_impl<3, ShapeKind::Cpdi, false>(dt) : step_impl<2, ShapeKind::Cpdi, false>(dt); break;
+      case ShapeKind::Linear:
+        three ? step_impl<3, ShapeKind::Linear, false>(dt) : step_impl<2, ShapeKind::Linear, false>(dt);
+        break;
+      case ShapeKind::Gimp:
+        three ? step_impl<3, ShapeKind::Gimp, false>(dt) : step_impl<2, ShapeKind::Gimp, false>(dt);
+        break;
+      case ShapeKind::Cpdi:
+        three ? step_impl<3, ShapeKind::Cpdi, false>(dt) : step_impl<2, ShapeKind::Cpdi, false>(dt);
+        break;
       case ShapeKind::BSpline3:
         three ? step_impl<3, ShapeKind::BSpline3, false>(dt) : step_impl<2, ShapeKind::BSpline3, false>(dt);
         break;
