@@ -64,7 +64,8 @@ std::string format_probe_param(const ballista::ProbeParam& p) {
   }
   if (p.kind == Kind::Number || p.kind == Kind::Vector)
     what += p.required ? "; required" : fmt::format("; default {:g}", p.default_value);
-  if (p.kind == Kind::Number && !std::isinf(p.min)) what += fmt::format("; range {:g} {} x", p.min, p.min_exclusive ? "<" : "<=");
+  if (p.kind == Kind::Number && !std::isinf(p.min))
+    what += fmt::format("; range {:g} {} x", p.min, p.min_exclusive ? "<" : "<=");
   return fmt::format("      {:<30} [{}] {}\n", p.name, p.unit.empty() ? "-" : p.unit, what);
 }
 
@@ -275,7 +276,8 @@ int main(int argc, char** argv) {
         // applies, e.g. a later simulation.end_time.
         const auto [path, deck_text] = ballista::newest_checkpoint(restart_dir);
         restart_from = path;
-        sc = ballista::parse_deck(deck_text, (std::filesystem::path(restart_dir) / "resolved.yaml").string(), overrides);
+        sc = ballista::parse_deck(deck_text, (std::filesystem::path(restart_dir) / "resolved.yaml").string(),
+                                  overrides);
         out_dir = restart_dir;
         std::cerr << "restarting from " << path << "\n";
       } else {
@@ -332,7 +334,8 @@ int main(int argc, char** argv) {
         // what ran is worth seeing. A missing Python is a warning, not a failed run.
         const std::string err = ballista::make_penetration_plots(out_dir);
         if (err.empty())
-          std::cout << "  figures: penetration_depth.png, penetration_rate.png, penetrator_energy.png, channel_profile.png\n";
+          std::cout << "  figures: penetration_depth.png, penetration_rate.png, penetrator_energy.png, "
+                       "channel_profile.png\n";
         else
           std::cerr << "warning: no penetration figures: " << err << " (--no-plots skips them)\n";
       }

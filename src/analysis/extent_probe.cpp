@@ -44,7 +44,8 @@ class ExtentProbe : public Probe {
 BALLISTA_REGISTER_PROBE(ProbeFactory{
     .name = "extent",
     .description = "max - min of the body's deformed particle domains along `axis` [m]",
-    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "", .description = "body measured (default: every body)"},
+    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "",
+                .description = "body measured (default: every body)"},
                {.name = "axis", .kind = ProbeParam::Kind::Axis, .unit = "", .description = "axis measured"}},
     .create = [](const ProbeSpec& spec, const Scenario& sc) -> std::unique_ptr<Probe> {
       return std::make_unique<ExtentProbe>(probe_body(spec, sc), static_cast<int>(spec.params.at("axis")));

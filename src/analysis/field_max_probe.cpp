@@ -12,7 +12,8 @@ namespace {
 
 class FieldMaxProbe : public Probe {
  public:
-  FieldMaxProbe(int body, std::string field, DeckMark mark) : body_(body), field_(std::move(field)), mark_(std::move(mark)) {}
+  FieldMaxProbe(int body, std::string field, DeckMark mark)
+      : body_(body), field_(std::move(field)), mark_(std::move(mark)) {}
 
   /// The field is known only once the materials have declared their state fields.
   void check(const FieldStore& points) const override {
@@ -46,7 +47,8 @@ class FieldMaxProbe : public Probe {
 BALLISTA_REGISTER_PROBE(ProbeFactory{
     .name = "field_max",
     .description = "maximum of a scalar particle field over the body",
-    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "", .description = "body measured (default: every body)"},
+    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "",
+                .description = "body measured (default: every body)"},
                {.name = "field", .kind = ProbeParam::Kind::Word, .unit = "",
                 .description = "a scalar field (e.g. eqps, damage, internal_energy)"}},
     .create = [](const ProbeSpec& spec, const Scenario& sc) -> std::unique_ptr<Probe> {

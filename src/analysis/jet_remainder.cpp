@@ -15,7 +15,8 @@ JetRemainder measure_jet_remainder(const FieldStore& pts, int body, const std::v
   const auto* m = pts.real("mass");
   for (Index p = 0; p < pts.size(); ++p) {
     if (bid[p] != body) continue;
-    const auto k = static_cast<std::size_t>(std::clamp<std::int64_t>(sid ? sid[p] : 0, 0, static_cast<std::int64_t>(n) - 1));
+    const auto k =
+        static_cast<std::size_t>(std::clamp<std::int64_t>(sid ? sid[p] : 0, 0, static_cast<std::int64_t>(n) - 1));
     const double forward = direction * v[p][axis];  // speed along the line of flight
     if (forward >= kIntactSpeedFraction * segments[k].speed) {
       intact_mass[k] += m[p];

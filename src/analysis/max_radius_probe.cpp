@@ -47,7 +47,7 @@ class MaxRadiusProbe : public Probe {
 };
 
 /// The axis must cross the grid box: off-axis coordinates of the centre inside it (a centre at
-/// 1e308 gave a foot radius of 1e308 or inf, issue 11).
+/// 1e308 would give a foot radius of 1e308 or inf).
 void check_center(const ProbeSpec& spec, const Scenario& sc) {
   const int axis = static_cast<int>(spec.params.at("axis"));
   const Vec3& center = spec.vectors.at("center");
@@ -65,7 +65,8 @@ BALLISTA_REGISTER_PROBE(ProbeFactory{
     .name = "max_radius",
     .description = "largest distance from the axis (through `center`, along `axis`) of the deformed domains of "
                    "particles whose centre is within `distance` of the plane at `plane` [m]",
-    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "", .description = "body measured (default: every body)"},
+    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "",
+                .description = "body measured (default: every body)"},
                {.name = "axis", .kind = ProbeParam::Kind::Axis, .unit = "", .description = "axis of symmetry"},
                {.name = "plane", .kind = ProbeParam::Kind::Number, .unit = "m",
                 .description = "position of the plane normal to `axis`", .required = false},

@@ -1,5 +1,5 @@
 // Probe `mean_velocity`: a body's centre-of-mass velocity along an axis, sum m v / sum m (m/s):
-// the velocity of a plate or case driven by explosive (Gurney, issue 15), of a rod, of a fragment
+// the velocity of a plate or case driven by explosive (Gurney), of a rod, of a fragment
 // cloud.
 #include <cmath>
 
@@ -38,7 +38,8 @@ class MeanVelocityProbe : public Probe {
 BALLISTA_REGISTER_PROBE(ProbeFactory{
     .name = "mean_velocity",
     .description = "the body's centre-of-mass velocity along `axis`, sum m v / sum m [m/s]",
-    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "", .description = "body measured (default: every body)"},
+    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "",
+                .description = "body measured (default: every body)"},
                {.name = "axis", .kind = ProbeParam::Kind::Axis, .unit = "", .description = "velocity component"}},
     .create = [](const ProbeSpec& spec, const Scenario& sc) -> std::unique_ptr<Probe> {
       return std::make_unique<MeanVelocityProbe>(probe_body(spec, sc), static_cast<int>(spec.params.at("axis")));

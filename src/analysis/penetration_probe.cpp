@@ -92,7 +92,8 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
                          std::abs(sc.grid.upper[a] - line_point_[a]) < 1e-9 * std::max(1.0, std::abs(line_point_[a]))))
         section_fraction *= 0.5;
   const auto line_of = [&](double radius, double length, const Vec3& velocity) {
-    const double section = lateral_geometry_ == LateralGeometry::PlaneStrain ? 2.0 * radius : std::numbers::pi * radius * radius;
+    const double section =
+        lateral_geometry_ == LateralGeometry::PlaneStrain ? 2.0 * radius : std::numbers::pi * radius * radius;
     return JetSegmentLine{direction_ * velocity[axis_], rho_p_ * section * section_fraction, length};
   };
   if (pb.segments.empty()) {  // a rod: one piece at the penetrator's speed
@@ -100,7 +101,8 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
     v[axis_] = direction_ * ps.speed;
     jet_lines_.push_back(line_of(0.5 * ps.diameter, ps.length, v));
   }
-  for (const SegmentSpec& seg : pb.segments) jet_lines_.push_back(line_of(seg.shape.radius, seg.shape.length, seg.velocity));
+  for (const SegmentSpec& seg : pb.segments)
+    jet_lines_.push_back(line_of(seg.shape.radius, seg.shape.length, seg.velocity));
   // Resolution of the penetrator: the thinnest segment's radius in cells. The hydrodynamic
   // verification (tests/verification/test_mpm_contact.cpp) reaches U_h within 1 % at 4 cells
   // across the radius and falls 7 % short at 2; a thinner penetrator is under-resolved.
@@ -202,7 +204,8 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
     cavity_rate = local_polynomial_derivative(t_, cavity_, w, 2);
   }
   {
-    HistoryWriter csv((fs::path(out_dir) / "penetration.csv").string(), {"time", "depth", "cavity_depth", "rate", "cavity_rate"});
+    HistoryWriter csv((fs::path(out_dir) / "penetration.csv").string(),
+                      {"time", "depth", "cavity_depth", "rate", "cavity_rate"});
     for (size_t i = 0; i < t_.size(); ++i) csv.row({t_[i], depth_[i], cavity_[i], rate[i], cavity_rate[i]});
   }
   const double final_depth = depth_.empty() ? 0.0 : depth_.back();
@@ -220,7 +223,8 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
     }
   out["arrival_time"] = arrival;
   // Stopped: the depth changes by less than stop_tolerance over at least the last tenth of the run.
-  const double stop = t_.size() >= 2 ? penetration_stop_time(t_, depth_, spec_.stop_tolerance, 0.1 * main_duration) : kNaN;
+  const double stop =
+      t_.size() >= 2 ? penetration_stop_time(t_, depth_, spec_.stop_tolerance, 0.1 * main_duration) : kNaN;
   out["stop_time"] = std::isfinite(stop) ? JsonValue(stop) : JsonValue();
   const SteadyFit fit = t_.size() >= 5 ? steady_state_fit(t_, depth_, rate) : SteadyFit{};
   out["steady_rate"] = fit.ok ? JsonValue(fit.slope) : JsonValue();
@@ -286,7 +290,8 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
     if (channel_depth > 0 && !dd.empty()) {
       const ChannelProfile prof = channel_profile(dd, rr, channel_depth, bins);
       const std::vector<double> wall =
-          wall_radii(lateral_points(pts, target_, surface_), 0.0, channel_depth, bins, lateral_geometry_, {lateral_cell_});
+          wall_radii(lateral_points(pts, target_, surface_), 0.0, channel_depth, bins, lateral_geometry_,
+                     {lateral_cell_});
       for (size_t i = 0; i < prof.depth.size(); ++i) {
         csv.row({prof.depth[i], wall[i], prof.radius[i]});
         if (std::isfinite(wall[i])) {
@@ -382,7 +387,8 @@ JsonValue PenetrationProbe::jet_behind(std::size_t k) const {
   // (those whose struck face is not below this one's).
   double hydro = 0.0;
   for (std::size_t j = 0; j < layers_.size(); ++j)
-    if (depth_of_coordinate(layer_face_[j]) <= depth_of_coordinate(layer_face_[k]) && rho_p_ > 0 && layer_density_[j] > 0)
+    if (depth_of_coordinate(layer_face_[j]) <= depth_of_coordinate(layer_face_[k]) && rho_p_ > 0 &&
+        layer_density_[j] > 0)
       hydro += layer_thickness_[j] * std::sqrt(layer_density_[j] / rho_p_);
   JsonValue j = JsonValue::object();
   const LayerExit& e = layer_exit_[k];

@@ -1,6 +1,6 @@
 // Probe `radial_velocity`: a body's mass-weighted mean velocity away from an axis,
 // sum m (v . e_r) / sum m (m/s): the expansion velocity of a cylinder case driven by explosive
-// (Gurney's cylinder, the seed's exploding cylinders, issue 15), where the centre-of-mass velocity
+// (Gurney's cylinder, the seed's exploding cylinders), where the centre-of-mass velocity
 // is zero by symmetry.
 #include <cmath>
 
@@ -50,7 +50,8 @@ BALLISTA_REGISTER_PROBE(ProbeFactory{
     .name = "radial_velocity",
     .description = "the body's mass-weighted mean velocity away from the axis through `center` along `axis` "
                    "(a cylinder's expansion velocity), sum m v.e_r / sum m [m/s]",
-    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "", .description = "body measured (default: every body)"},
+    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "",
+                .description = "body measured (default: every body)"},
                {.name = "axis", .kind = ProbeParam::Kind::Axis, .unit = "", .description = "the cylinder's axis"},
                {.name = "center", .kind = ProbeParam::Kind::Vector, .unit = "m",
                 .description = "a point on the axis (default: the origin)", .required = false}},

@@ -1,5 +1,5 @@
 #pragma once
-// A failure seen by one rank stops every rank with the same diagnostic (issue 16): a solver step
+// A failure seen by one rank stops every rank with the same diagnostic: a solver step
 // catches what its rank threw, then all ranks agree here. Of the ranks with a particle's failure
 // (ParticleError: it names the particle) the one naming the lowest particle id wins, else the
 // lowest rank with any failure;

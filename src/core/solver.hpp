@@ -35,11 +35,13 @@ struct EnergyTotals {
   /// they do, so the balance closes without it; it is the energy scale of an explosive run.
   double chemical = 0.0;
   // Work done on the points by the discretisation itself (J; negative when it removes energy),
-  // booked so that the balance closes (issue 13). Zero for solvers that have no such term.
+  // booked so that the balance closes. Zero for solvers that have no such term.
   double damping = 0.0;   ///< grid damping -c m v (stages and simulation.damping)
   double contact = 0.0;   ///< multi-field grid contact (normal and frictional impulses)
   double friction = 0.0;  ///< the frictional part of `contact` (already inside it)
-  double transfer = 0.0;  ///< particle-grid transfer: the PIC share of the FLIP/PIC update (usl, musl), the whole particle-minus-grid kinetic energy change (usavg)
+  /// particle-grid transfer: the PIC share of the FLIP/PIC update (usl, musl), the whole
+  /// particle-minus-grid kinetic energy change (usavg)
+  double transfer = 0.0;
   double boundary = 0.0;  ///< the grid face and axis conditions' impulses on the nodes
   /// J, the heat of the artificial bulk viscosity (MPM, mpm.bulk_viscosity_*): a breakdown of
   /// `internal`, like `plastic`, not a separate term of total().
@@ -107,7 +109,7 @@ class Solver {
   /// Tables of this discretisation written at the end of a run (e.g. fragments.csv).
   virtual std::vector<ResultTable> result_tables() const { return {}; }
 
-  // ---- checkpoint and restart (issue 16, docs/restart.md) ------------------------------------
+  // ---- checkpoint and restart (docs/restart.md) ----------------------------------------------
   /// Puts everything the next step depends on into `archive` (points, pending bodies, solver
   /// state, booked energies, time and step), so that load_state on a solver built from the same
   /// deck continues bitwise as this one would.

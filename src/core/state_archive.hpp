@@ -1,6 +1,6 @@
 #pragma once
-// The complete state of a run as named arrays, for checkpoint and restart (issue 16,
-// docs/restart.md). Every part of the state (run loop, points, solver, probes, writers) puts its
+// The complete state of a run as named arrays, for checkpoint and restart (docs/restart.md).
+// Every part of the state (run loop, points, solver, probes, writers) puts its
 // values under its own key prefix ("points.", "mpm.", "run.", ...); io/checkpoint_file writes the
 // archive to one HDF5 file and reads it back. Values are exact doubles and integers, so a
 // restarted run continues bitwise as the uninterrupted one. A missing key or an array of the

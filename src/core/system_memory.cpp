@@ -64,7 +64,8 @@ void require_memory(double needed_bytes, const std::string& what, const std::str
                               format_bytes(needed_bytes), what, format_bytes(m.available_bytes),
                               format_bytes(m.total_bytes),
                               m.process_limit_bytes > 0.0
-                                  ? "; the process is limited to " + format_bytes(m.process_limit_bytes) + " (ulimit -v)"
+                                  ? "; the process is limited to " + format_bytes(m.process_limit_bytes) +
+                                        " (ulimit -v)"
                                   : std::string()));
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // What memory the machine has, for refusing a run that cannot fit before it allocates
-// (issue 11: a 210 GB grid died with a bare std::bad_alloc).
+// (rather than die in a bare std::bad_alloc, as a 210 GB grid would).
 #include <cstdint>
 #include <string>
 

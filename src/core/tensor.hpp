@@ -37,8 +37,16 @@ inline Vec3 cross(const Vec3& x, const Vec3& y) {
   return {{x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]}};
 }
 
-inline Mat3 operator+(const Mat3& A, const Mat3& B) { Mat3 C; for (int k = 0; k < 9; ++k) C.a[k] = A.a[k] + B.a[k]; return C; }
-inline Mat3 operator-(const Mat3& A, const Mat3& B) { Mat3 C; for (int k = 0; k < 9; ++k) C.a[k] = A.a[k] - B.a[k]; return C; }
+inline Mat3 operator+(const Mat3& A, const Mat3& B) {
+  Mat3 C;
+  for (int k = 0; k < 9; ++k) C.a[k] = A.a[k] + B.a[k];
+  return C;
+}
+inline Mat3 operator-(const Mat3& A, const Mat3& B) {
+  Mat3 C;
+  for (int k = 0; k < 9; ++k) C.a[k] = A.a[k] - B.a[k];
+  return C;
+}
 inline Mat3 operator*(double s, const Mat3& A) { Mat3 C; for (int k = 0; k < 9; ++k) C.a[k] = s * A.a[k]; return C; }
 inline Mat3& operator+=(Mat3& A, const Mat3& B) { for (int k = 0; k < 9; ++k) A.a[k] += B.a[k]; return A; }
 inline Mat3& operator*=(Mat3& A, double s) { for (int k = 0; k < 9; ++k) A.a[k] *= s; return A; }
@@ -106,7 +114,11 @@ inline Mat3 unrotate_sym(const Mat3& Q, const Mat3& S) {
 }
 
 inline double trace(const Mat3& A) { return A.a[0] + A.a[4] + A.a[8]; }
-inline double ddot(const Mat3& A, const Mat3& B) { double s = 0; for (int k = 0; k < 9; ++k) s += A.a[k] * B.a[k]; return s; }
+inline double ddot(const Mat3& A, const Mat3& B) {
+  double s = 0;
+  for (int k = 0; k < 9; ++k) s += A.a[k] * B.a[k];
+  return s;
+}
 inline double frobenius(const Mat3& A) { return std::sqrt(ddot(A, A)); }
 inline Mat3 sym(const Mat3& A) { return 0.5 * (A + transpose(A)); }
 inline Mat3 skew(const Mat3& A) { return 0.5 * (A - transpose(A)); }

@@ -38,7 +38,7 @@ DriveRunResult run_drive(const DriveDeck& deck, const std::string& out_dir) {
   res.steps = r.steps;
   res.records = r.records.size();
   res.last = r.records.back();
-  // Finite stresses whose invariants overflow (moduli near 1e308) are garbage too (issue 11).
+  // Finite stresses whose invariants overflow (moduli near 1e308) are garbage too.
   for (const DriveRecord& rec : r.records) {
     if (!res.ok) break;
     if (!std::isfinite(von_mises(rec.sigma)) || !std::isfinite(trace(rec.sigma))) {
@@ -97,7 +97,8 @@ DriveRunResult run_drive(const DriveDeck& deck, const std::string& out_dir) {
   // Backstop: any other number that is not a number fails the drive, never a success.
   if (const auto bad = non_finite_numbers(summary.root()); res.ok && !bad.empty()) {
     res.ok = false;
-    res.error = "drive: non-finite results: " + bad.front() + (bad.size() > 1 ? fmt::format(" and {} more", bad.size() - 1) : "");
+    res.error = "drive: non-finite results: " + bad.front() +
+                (bad.size() > 1 ? fmt::format(" and {} more", bad.size() - 1) : "");
     summary["status"] = "failed";
     summary["error"] = res.error;
   }

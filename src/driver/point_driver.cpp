@@ -157,8 +157,8 @@ class Driver {
     b.plastic_work = s.real(kStepWorkField);
     b.time = t_ + dt;  // t_{n+1} (an explosive stays unreacted here: no program burn in a drive)
     mat_.update(b);
-    // Garbage is a failure, never a completed drive (issue 11: a compressive leg underflowed J to 0
-    // and the drive completed): the stress, F, J > 0 and every state variable must hold.
+    // Garbage is a failure, never a completed drive (a compressive leg can underflow J to 0 and
+    // would otherwise complete): the stress, F, J > 0 and every state variable must hold.
     if (!all_finite(b.stress[0]) || !all_finite(F[0]) || !(det(F[0]) > 0.0)) return false;
     for (const auto& n : result_.state_names)
       if (!std::isfinite(s.real(n)[0])) return false;
@@ -222,7 +222,8 @@ class Driver {
   [[noreturn]] void fail_nonfinite(const Snapshot& before, const Snapshot& after, double t_new,
                                    const std::string& where) const {
     std::ostringstream os;
-    os << "drive: non-finite stress, F or state, or J <= 0, after the material update (" << mat_.name() << ", model " << mat_.model()
+    os << "drive: non-finite stress, F or state, or J <= 0, after the material update (" << mat_.name()
+       << ", model " << mat_.model()
        << ") at step " << step_ + 1 << " (t = " << num(t_new) << " s" << where << ")\n"
        << "  F_n     = " << mat_text(before.F) << ", J = " << num(det(before.F))
        << "\n  F_n+1   = " << mat_text(after.F) << ", J = " << num(det(after.F))

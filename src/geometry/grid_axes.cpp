@@ -60,7 +60,8 @@ std::vector<double> fill_gap(double L, double hl, double hr, double H, double q)
     auto blend = [&](double a, std::vector<double>& out) {
       out.resize(m.size());
       double sum = 0.0;
-      for (std::size_t i = 0; i < m.size(); ++i) sum += (out[i] = m[i] > 0.0 ? std::pow(m[i], 1.0 - a) * std::pow(M[i], a) : a * M[i]);
+      for (std::size_t i = 0; i < m.size(); ++i)
+        sum += (out[i] = m[i] > 0.0 ? std::pow(m[i], 1.0 - a) * std::pow(M[i], a) : a * M[i]);
       return sum;
     };
     std::vector<double> cells;
@@ -96,8 +97,9 @@ std::vector<double> graded_axis(const GridSpec& g, int a, std::vector<RefineZone
       zone_error(z, "", fmt::format("the zone {:g} to {:g} m lies outside the grid's {} range {:g} to {:g} m", z.from,
                                     z.to, axis_letter(a), lo, hi));
     if (k > 0 && z.from < zones[k - 1].to)
-      zone_error(z, "from", fmt::format("the zone overlaps another zone along {} ({} from {:g} to {:g} m)", axis_letter(a),
-                                        zones[k - 1].mark.key_path, zones[k - 1].from, zones[k - 1].to));
+      zone_error(z, "from",
+                 fmt::format("the zone overlaps another zone along {} ({} from {:g} to {:g} m)", axis_letter(a),
+                             zones[k - 1].mark.key_path, zones[k - 1].from, zones[k - 1].to));
   }
   std::vector<double> nodes{lo};
   double prev_cell = kInf;  // the cell before the current gap (kInf: the box face)
@@ -110,7 +112,8 @@ std::vector<double> graded_axis(const GridSpec& g, int a, std::vector<RefineZone
         zone_error(*next, "from",
                    fmt::format("zones of {:.4g} and {:.4g} m cells meet at {} = {:g} m: a ratio of {:.3g} between "
                                "neighbouring cells, more than grid.grading = {:g}; leave room between them to grade",
-                               prev_cell, next_cell, axis_letter(a), at, std::max(prev_cell / next_cell, next_cell / prev_cell), q));
+                               prev_cell, next_cell, axis_letter(a), at,
+                               std::max(prev_cell / next_cell, next_cell / prev_cell), q));
       return;
     }
     const std::vector<double> cells = fill_gap(L, prev_cell, next_cell, H, q);

@@ -63,7 +63,7 @@ void count_if_clipped(const Vec3& x, const GridSpec& grid, int nd, const ShapeSp
   for (int f = 0; f < 6; ++f) clipped.face[f] = clipped.face[f] || crossed[f];
 }
 
-/// Seeding outside the grid would silently lose mass (issue 11): a deck error naming the body,
+/// Seeding outside the grid would silently lose mass: a deck error naming the body,
 /// the faces it crosses, its extent against the box and the share of the body that would be lost.
 [[noreturn]] void throw_clipped_body(const BodySpec& body, const GridSpec& grid, int nd, const ClippedLattice& c,
                                      Index kept) {
@@ -180,7 +180,7 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
           }
         }
   }
-  // Clipping: lattice points of the shape outside the box (issue 11). Every one is visited while
+  // Clipping: lattice points of the shape outside the box. Every one is visited while
   // the bounding box has at most kExhaustive lattice points; beyond that a regular sample with
   // stride s per axis is taken and the count scaled by s^nd (a body that large is outside anyway).
   constexpr double kExhaustive = 2.0e7;
@@ -211,7 +211,8 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
                                     "particles_per_cell or point_spacing)",
                                     body.name, hi[a] - lo[a], axes[a], dx));
     throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path,
-                    "body '" + body.name + "' has no particles inside the grid: check its shape, the grid box and cell_size");
+                    "body '" + body.name +
+                        "' has no particles inside the grid: check its shape, the grid box and cell_size");
   }
 
   const Index n0 = points.size();

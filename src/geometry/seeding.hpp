@@ -16,8 +16,9 @@ inline double seed_spacing(const BodySpec& body, double cell_size) {
 }
 
 /// Appends the points of `body` to `points`: particles_per_cell^dim points per grid cell of size
-/// h (or the lattice of the body's point_spacing), at sub-cell centres inside the shape. Mass = rho0 * volume; in axisymmetric runs volumes
-/// and masses are per radian (volume = r * area), in plane strain per metre of thickness.
+/// h (or the lattice of the body's point_spacing), at sub-cell centres inside the shape.
+/// Mass = rho0 * volume; in axisymmetric runs volumes and masses are per radian
+/// (volume = r * area), in plane strain per metre of thickness.
 /// Ids continue from next_id. Returns the number of points added (error if zero).
 Index seed_body(const BodySpec& body, int body_index, int material_index, const Material& material,
                 const GridSpec& grid, Dimension dim, FieldStore& points, std::int64_t& next_id);

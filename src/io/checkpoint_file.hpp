@@ -1,5 +1,5 @@
 #pragma once
-// Checkpoint files (issue 16, docs/restart.md): a StateArchive as one HDF5 file
+// Checkpoint files (docs/restart.md): a StateArchive as one HDF5 file
 // DIR/checkpoints/checkpoint_<step>.h5, written to a temporary name and renamed once complete,
 // so a run killed at any moment (SIGKILL included) leaves only complete checkpoints. Layout:
 // attribute "format" = "ballista-checkpoint-1" on the root, groups /real (float64 arrays),

@@ -288,7 +288,8 @@ YAML::Node DeckNode::require(const std::string& key, const char* what) const {
 DeckNode DeckNode::map(const std::string& key, bool required) {
   YAML::Node v = required ? require(key, "a map") : lookup(key);
   const YAML::Mark anchor = key_mark(key);
-  if (v.IsDefined() && !v.IsNull() && !v.IsMap()) deck_fail(*ctx_, child_path(key), v.Mark(), "expected a map" + got(v));
+  if (v.IsDefined() && !v.IsNull() && !v.IsMap())
+    deck_fail(*ctx_, child_path(key), v.Mark(), "expected a map" + got(v));
   if (v.IsNull()) v = YAML::Node(YAML::NodeType::Undefined);
   mirror_[key] = YAML::Node(YAML::NodeType::Map);
   return DeckNode(ctx_, v, mirror_[key], child_path(key), anchor);
@@ -547,7 +548,8 @@ void DeckNode::finish() const {
       deck_fail(*ctx_, child_path(name), k.Mark(), "duplicate key '" + shorten(name) + "' in " + where);
     seen.push_back(name);
     if (std::find(known_->begin(), known_->end(), name) == known_->end())
-      deck_fail(*ctx_, child_path(name), k.Mark(), "unknown key '" + shorten(name) + "' in " + where + suggest(name, *known_));
+      deck_fail(*ctx_, child_path(name), k.Mark(),
+                "unknown key '" + shorten(name) + "' in " + where + suggest(name, *known_));
   }
 }
 

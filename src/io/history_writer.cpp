@@ -97,7 +97,8 @@ HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> columns,
       return out.empty() ? std::string("none") : out;
     };
     throw Error("cannot continue '" + path_ + "': its header differs from this run's columns (this run adds: " +
-                missing(columns_, theirs) + "; the file has, and this run does not write: " + missing(theirs, columns_) +
+                missing(columns_, theirs) + "; the file has, and this run does not write: " +
+                missing(theirs, columns_) +
                 "). Were probes, stages or loads changed by --set at the restart, or was the checkpoint written by "
                 "another version of Ballista? Restart it with that version, or run the deck anew.");
   }

@@ -417,9 +417,9 @@ void ParticleWriter::append_xdmf(const std::string& grid) {
     return;
   }
   // Later outputs overwrite the footer with the new grid and the footer, in place: the cost of an
-  // output no longer grows with the series (issue 11: 2,299 outputs rewrote an 18.9 MB index with
-  // fsync each time). One write() of a few kB; a kill inside it could leave the index without its
-  // footer, while every particle file stays complete.
+  // output does not grow with the series (rewriting the whole index, 2,299 outputs would each
+  // rewrite up to 18.9 MB with fsync). One write() of a few kB; a kill inside it could leave the
+  // index without its footer, while every particle file stays complete.
   const std::string tail = grid + kFooter;
   const int fd = ::open(xdmf_path().c_str(), O_WRONLY | O_CLOEXEC);
   if (fd < 0) throw Error("cannot open '" + xdmf_path() + "' to append output " + std::to_string(count_));

@@ -23,17 +23,21 @@ struct Row {
 /// Axis of flight, direction (+1/-1) and the point on the axis, with the axisymmetric checks.
 void read_axis(DeckNode& n, Dimension dim, const std::string& point_key, PenetratorSpec& p) {
   const bool two_d = dim != Dimension::ThreeD;
-  const std::vector<std::string> axes = two_d ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"};
+  const std::vector<std::string> axes =
+      two_d ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"};
   const std::string ax = n.choice("axis", "y", axes);
   p.axis = axis_from(ax);
   const double d = n.number("direction", -1.0, NumberRange::any());
-  if (d != 1.0 && d != -1.0) n.fail("direction", "expected 1 (flies towards +" + ax + ") or -1 (towards -" + ax + "), got " + format_number(d));
+  if (d != 1.0 && d != -1.0)
+    n.fail("direction",
+           "expected 1 (flies towards +" + ax + ") or -1 (towards -" + ax + "), got " + format_number(d));
   p.direction = d;
   p.nose = n.vector(point_key, two_d ? 2 : 3);
   if (dim == Dimension::Axisymmetric) {
     if (p.axis != 1) n.fail("axis", "expected axis y in an axisymmetric deck (the symmetry axis), got " + ax);
     if (p.nose[0] != 0.0)
-      n.fail(point_key, "expected x = 0 in an axisymmetric deck (the point must lie on the axis), got " + format_number(p.nose[0]));
+      n.fail(point_key, "expected x = 0 in an axisymmetric deck (the point must lie on the axis), got " +
+                            format_number(p.nose[0]));
   }
   if (dim == Dimension::PlaneStrain && p.axis == 2) n.fail("axis", "expected x or y in a plane-strain deck");
 }
@@ -175,7 +179,8 @@ void read_rod(DeckNode& n, Dimension dim, const GridSpec& grid, BodySpec& body) 
   for (int k = 0; k < count; ++k) {
     const double lead = p.nose[p.axis] - p.direction * k * (seg_length + gap);
     body.segments.push_back(make_segment(p, lead, 0.5 * p.diameter, seg_length, p.speed, body.activation_time));
-    check_inside_grid(n, "nose", body.segments.back(), grid, nd, count == 1 ? "the rod" : "segment " + std::to_string(k));
+    check_inside_grid(n, "nose", body.segments.back(), grid, nd,
+                      count == 1 ? "the rod" : "segment " + std::to_string(k));
   }
   body.shape = body.segments.front().shape;
   body.velocity = body.segments.front().velocity;
@@ -191,7 +196,8 @@ void read_jet(DeckNode& n, Dimension dim, const GridSpec& grid, BodySpec& body) 
     n.fail("standoff", "expected standoff >= insert_distance (" + format_number(insert_distance) + " m), got " +
                            format_number(standoff));
   const bool inline_table = n.has("segments"), file_table = n.has("file");
-  if (inline_table == file_table) n.fail("expected either segments (inline rows) or file (a CSV table), not both or neither");
+  if (inline_table == file_table)
+    n.fail("expected either segments (inline rows) or file (a CSV table), not both or neither");
   std::vector<Row> rows = inline_table ? inline_rows(n) : file_rows(n);
   if (inline_table) n.allow("file");
   else n.allow("segments");

@@ -1,6 +1,6 @@
 #pragma once
-// Reading a deck, table or data file whole, with a size cap (issue 11: `/dev/zero` as a table
-// used 2 GB before failing). Only regular files are read: a device, FIFO or directory is refused.
+// Reading a deck, table or data file whole, with a size cap (without one, `/dev/zero` as a table
+// takes 2 GB before failing). Only regular files are read: a device, FIFO or directory is refused.
 #include <cstddef>
 #include <string>
 

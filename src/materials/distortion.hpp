@@ -28,7 +28,7 @@ inline bool beyond_distortion_limit(const Mat3& F, double J, double limit) {
 
 /// F := J^(1/3) R (same J, same rotation, no isochoric stretch) if F is beyond `limit` (J = det F,
 /// R its rotation); true if it was. Out of line
-/// (distortion.cpp): inlined into the stress update's loop, the check changed the compiler's
+/// (distortion.cpp): inlined into the stress update's loop, the check would change the compiler's
 /// choices there and so the round-off of the geomodel's update, which must stay bitwise.
 bool remap_if_distorted(Mat3& F, double J, const Mat3& R, double limit);
 

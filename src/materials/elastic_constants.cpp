@@ -36,7 +36,8 @@ ElasticConstants elastic_constants_from(const ParamValues& v) {
     if (!given("shear_modulus")) throw ParamError("shear_modulus", "bulk_modulus needs shear_modulus");
     return {v.at("bulk_modulus"), v.at("shear_modulus")};
   }
-  throw ParamError("youngs_modulus", "elastic constants missing: give youngs_modulus and poisson_ratio, or bulk_modulus and shear_modulus");
+  throw ParamError("youngs_modulus", "elastic constants missing: give youngs_modulus and poisson_ratio, or "
+                                     "bulk_modulus and shear_modulus");
 }
 
 }  // namespace ballista

@@ -10,12 +10,13 @@ std::vector<ParamSpec> eos_param_specs() {
   type.default_choice = "linear";
   return {
       type,
-      {"eos.sound_speed", "m/s", "Mie-Grüneisen: bulk sound speed c0 (Us = c0 + s up)", false, nan, 0.0, inf, true, false},
+      {"eos.sound_speed", "m/s", "Mie-Grüneisen: bulk sound speed c0 (Us = c0 + s up)", false, nan,
+       0.0, inf, true, false},
       {"eos.hugoniot_slope", "1", "Mie-Grüneisen: slope s of the Us-up Hugoniot", false, nan, 0.0, inf, false, false},
-      {"eos.gruneisen_gamma", "1", "Mie-Grüneisen: Grüneisen coefficient Gamma0 (Gamma rho = Gamma0 rho0)", false, nan,
-       0.0, inf, false, false},
-      {"eos.min_pressure", "Pa", "tension cutoff: the pressure never drops below it (cavitation, spall); default none", false, nan,
-       -inf, 0.0, false, false},
+      {"eos.gruneisen_gamma", "1", "Mie-Grüneisen: Grüneisen coefficient Gamma0 (Gamma rho = Gamma0 rho0)", false,
+       nan, 0.0, inf, false, false},
+      {"eos.min_pressure", "Pa", "tension cutoff: the pressure never drops below it (cavitation, spall); default none",
+       false, nan, -inf, 0.0, false, false},
   };
 }
 

@@ -176,8 +176,8 @@ struct Explosive {
     // A burning point's pressure is F P(X, E/F), so its own isentropic tangent gives sqrt(F) c(X, E/F);
     // the step takes c(X, E/F), the sound speed of the products at the energy the burn is bringing
     // them to, on purpose: with the tangent's the energy the burn releases within a step outruns
-    // the step near the front (measured 2026-11-27: the PD Gurney cylinder's residual 1.5 % ->
-    // 2.4 % of the chemical energy, over issue 15's 2 %).
+    // the step near the front (measured: the PD Gurney cylinder's residual 1.5 % -> 2.4 % of the
+    // chemical energy, over the 2 % bound of tests/verification/test_pd_gas.cpp).
     if (state[2] > 0.0) return products_sound_speed(p.eos, J, state[3] / state[2]);
     return std::sqrt(p.k_unreacted * J / p.eos.rho0);
   }

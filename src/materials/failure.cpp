@@ -33,7 +33,8 @@ FailureCriterion criterion_from(const std::string& w) {
   if (w == "tepla") return FailureCriterion::Tepla;
   if (w == "drucker_stability") return FailureCriterion::DruckerStability;
   if (w == "max_stress") return FailureCriterion::MaxStress;
-  throw ParamError("failure.criterion", "unknown failure.criterion '" + w + "' (expected one of: " + joined(criteria()) + ")");
+  throw ParamError("failure.criterion",
+                   "unknown failure.criterion '" + w + "' (expected one of: " + joined(criteria()) + ")");
 }
 
 ErosionRule erosion_from(const std::string& w) {
@@ -41,7 +42,8 @@ ErosionRule erosion_from(const std::string& w) {
   if (w == "allow_no_tension") return ErosionRule::AllowNoTension;
   if (w == "allow_no_shear") return ErosionRule::AllowNoShear;
   if (w == "zero_stress") return ErosionRule::ZeroStress;
-  throw ParamError("failure.erosion", "unknown failure.erosion '" + w + "' (expected one of: " + joined(erosion_rules()) + ")");
+  throw ParamError("failure.erosion",
+                   "unknown failure.erosion '" + w + "' (expected one of: " + joined(erosion_rules()) + ")");
 }
 
 /// The number `key`, which `criterion` requires.
@@ -81,17 +83,19 @@ std::vector<ParamSpec> failure_param_specs() {
       jc("failure.d5", "D5 (temperature factor; non-zero needs a model that tracks T)"),
       {"failure.reference_strain_rate", "1/s", "johnson_cook_damage: reference plastic strain rate edot_0", false, 1.0,
        0.0, inf, true, false},
-      {"failure.initial_porosity", "1", "tepla: initial porosity f_0 (f stays f_0 plus nucleation: J2 flow is isochoric)",
-       false, 0.0, 0.0, 1.0, false, true},
-      {"failure.critical_porosity", "1", "tepla: critical porosity f_c (required with tepla)", false, nan, 0.0, 1.0, true,
-       false},
-      {"failure.fracture_strain", "1", "tepla: equivalent plastic strain at fracture eps_p^f (required with tepla)", false,
-       nan, 0.0, inf, true, false},
-      {"failure.nucleation_porosity", "1", "tepla: porosity f_N nucleated by strain (Chu-Needleman; 0 = none)", false, 0.0,
-       0.0, 1.0, false, true},
+      {"failure.initial_porosity", "1",
+       "tepla: initial porosity f_0 (f stays f_0 plus nucleation: J2 flow is isochoric)", false, 0.0, 0.0, 1.0,
+       false, true},
+      {"failure.critical_porosity", "1", "tepla: critical porosity f_c (required with tepla)", false, nan, 0.0, 1.0,
+       true, false},
+      {"failure.fracture_strain", "1", "tepla: equivalent plastic strain at fracture eps_p^f (required with tepla)",
+       false, nan, 0.0, inf, true, false},
+      {"failure.nucleation_porosity", "1", "tepla: porosity f_N nucleated by strain (Chu-Needleman; 0 = none)", false,
+       0.0, 0.0, 1.0, false, true},
       {"failure.nucleation_strain", "1", "tepla: mean plastic strain eps_N of nucleation", false, 0.3, 0.0, inf, false,
        false},
-      {"failure.nucleation_stddev", "1", "tepla: standard deviation s_N of nucleation", false, 0.1, 0.0, inf, true, false},
+      {"failure.nucleation_stddev", "1", "tepla: standard deviation s_N of nucleation", false, 0.1, 0.0, inf, true,
+       false},
       {"failure.max_stress", "Pa", "max_stress: von Mises stress sigma_max at failure (required with it)", false, nan,
        0.0, inf, true, false},
   };
@@ -104,12 +108,14 @@ FailureModel make_failure(const ParamValues& v, ModelCapabilities caps) {
   m.erosion = erosion_from(v.choice("failure.erosion", "none"));
   if (m.criterion == FailureCriterion::None) {
     if (m.erosion != ErosionRule::None)
-      throw ParamError("failure.erosion", "failure.erosion has no effect without a failure.criterion (expected one of: " +
-                                              joined(criteria()) + ")");
+      throw ParamError("failure.erosion",
+                       "failure.erosion has no effect without a failure.criterion (expected one of: " +
+                           joined(criteria()) + ")");
     return m;
   }
   // What the model must track (declared by its kernel, see ModelCapabilities).
-  const bool needs_eqps = m.criterion == FailureCriterion::JohnsonCookDamage || m.criterion == FailureCriterion::Tepla ||
+  const bool needs_eqps = m.criterion == FailureCriterion::JohnsonCookDamage ||
+                          m.criterion == FailureCriterion::Tepla ||
                           m.criterion == FailureCriterion::DruckerStability;
   if (needs_eqps && !caps.plastic_strain)
     throw ParamError("failure.criterion", "failure.criterion " + crit +

@@ -43,7 +43,9 @@ struct LinearElastic {
     return {rho, e.bulk, e.shear, make_eos(v, e.bulk, rho)};
   }
   // Verification hooks (MaterialFactory): steel-like example; A1 reduction is the model itself.
-  static ParamValues example_params() { return {{"density", 7850.0}, {"bulk_modulus", 160e9}, {"shear_modulus", 79e9}}; }
+  static ParamValues example_params() {
+    return {{"density", 7850.0}, {"bulk_modulus", 160e9}, {"shear_modulus", 79e9}};
+  }
   static ParamValues reduce_to_elastic(double rho, double K, double G) {
     return {{"density", rho}, {"bulk_modulus", K}, {"shear_modulus", G}};
   }
@@ -84,6 +86,8 @@ struct LinearElastic {
   }
 };
 
-BALLISTA_REGISTER_MATERIAL(LinearElastic, "hypoelastic isotropic linear elasticity (optionally with a Mie-Grüneisen EOS), unrotated frame")
+BALLISTA_REGISTER_MATERIAL(LinearElastic,
+                           "hypoelastic isotropic linear elasticity (optionally with a Mie-Grüneisen EOS), "
+                           "unrotated frame")
 
 }  // namespace ballista

@@ -1,5 +1,5 @@
 #pragma once
-// The blocks of the MPM grid that particles can reach this step (issue 17, the sparse grid): the
+// The blocks of the MPM grid that particles can reach this step (the sparse grid): the
 // grid is cut into blocks of kBlock^dim nodes; a block is active if some particle's stencil (its
 // cell widened by the shape function's reach) or a traction point's stencil overlaps it. Only
 // active blocks are zeroed and updated, so empty space in the box costs one flag per block.
@@ -49,7 +49,8 @@ class ActiveBlocks {
     if (dense_) {
       const Index n = g_.node_count();
       const Index chunk = 4096;
-      for_each_chunk((n + chunk - 1) / chunk, [&](Index c) { f(offset + c * chunk, offset + std::min(n, (c + 1) * chunk)); });
+      for_each_chunk((n + chunk - 1) / chunk,
+                     [&](Index c) { f(offset + c * chunk, offset + std::min(n, (c + 1) * chunk)); });
       return;
     }
     for_each(0, rows(), [&](Index r) { f(row_start_[r] + offset, row_start_[r] + offset + row_len_[r]); });

@@ -51,7 +51,8 @@ inline double effective_half_length(const GridGeometry& g, double r, double lp) 
 /// of `st` into `hoop` and returns true; otherwise returns false and the caller uses w_k / r.
 /// Out of line: it runs for the few particles next to the axis, and the hot transfer loops that
 /// call it stay as they were compiled.
-[[gnu::noinline]] inline bool axis_hoop_weights(const GridGeometry& g, double r, double lp, const Stencil<2>& st, double* hoop) {
+[[gnu::noinline]] inline bool axis_hoop_weights(const GridGeometry& g, double r, double lp, const Stencil<2>& st,
+                                                double* hoop) {
   using namespace axis_hoop_detail;
   using graded_detail::hat_integral;
   const double l = effective_half_length(g, r, lp);

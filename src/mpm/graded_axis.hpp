@@ -49,7 +49,8 @@ struct GradedAxis {
   int cell_of(double x) const {
     if (x < node.front()) return static_cast<int>(std::floor((x - node.front()) * inv_cell.front()));
     if (x >= node.back()) return cells() + static_cast<int>(std::floor((x - node.back()) * inv_cell.back()));
-    const int b = std::min(static_cast<int>((x - bucket_origin) * inv_bucket), static_cast<int>(bucket_cell.size()) - 1);
+    const int b =
+        std::min(static_cast<int>((x - bucket_origin) * inv_bucket), static_cast<int>(bucket_cell.size()) - 1);
     int c = bucket_cell[b];
     while (c + 1 < cells() && x >= node[c + 1]) ++c;
     return c;

@@ -2,12 +2,12 @@
 // Multi-velocity-field contact on the MPM grid (Bardenhagen, Brackbill & Sulsky, CMAME 187 (2000)
 // 529; Bardenhagen, Guilkey, Roessig, Brackbill, Witzel & Foster, CMES 2 (2001) 509; Uintah's
 // friction contact, thesis seed 000 ch. 2). Applied twice per step, after the momenta are mapped
-// to the grid and after they are updated (Nairn, Hammerquist & Smith, CMAME 362 (2020) 112859). Every field (a body, or bodies joined into one) has its own nodal mass and
-// momentum. At a node where two or more fields have mass, each field's velocity is compared with
-// the centre-of-mass velocity; a field approaching the others along the contact normal loses its
-// normal relative velocity (no interpenetration) and its tangential relative velocity is cut by
-// Coulomb friction mu times the normal correction, or stopped (stick). Fields that separate are
-// left alone.
+// to the grid and after they are updated (Nairn, Hammerquist & Smith, CMAME 362 (2020) 112859).
+// Every field (a body, or bodies joined into one) has its own nodal mass and momentum. At a node
+// where two or more fields have mass, each field's velocity is compared with the centre-of-mass
+// velocity; a field approaching the others along the contact normal loses its normal relative
+// velocity (no interpenetration) and its tangential relative velocity is cut by Coulomb friction mu
+// times the normal correction, or stopped (stick). Fields that separate are left alone.
 #include <cstdint>
 
 #include "core/parallel.hpp"
@@ -39,11 +39,11 @@ struct FieldGrid {
 /// Applies contact to the nodal velocities `vel` (fields x nodes) in place and returns the work of
 /// the contact impulses m c of this pass alone, with the midpoint velocity (v_before + v_after) / 2:
 /// the kinetic-energy change the correction makes. The MPM solver books the step's impulses with
-/// one midpoint from `impulse` instead (MpmSolver::book_impulses). Nodes lighter than tiny_mass carry no material. The contact
-/// normal of field k at a node is the unit vector of (field k's outward vector - the sum of the
-/// other fields'), i.e. out of k towards the others (an "average" of the two bodies' mass-gradient
-/// normals, as in Nairn's multimaterial MPM, which makes the two normals of a pair exactly
-/// opposite so that the pair's momentum is conserved).
+/// one midpoint from `impulse` instead (MpmSolver::book_impulses). Nodes lighter than tiny_mass
+/// carry no material. The contact normal of field k at a node is the unit vector of (field k's
+/// outward vector - the sum of the other fields'), i.e. out of k towards the others (an "average"
+/// of the two bodies' mass-gradient normals, as in Nairn's multimaterial MPM, which makes the two
+/// normals of a pair exactly opposite so that the pair's momentum is conserved).
 /// With `impulse` (fields x nodes) each correction c is also added to impulse[k], and its
 /// tangential (friction) part to friction_impulse[k], so that the caller can book the step's
 /// contact impulses with one midpoint (MpmSolver::book_impulses).

@@ -1,5 +1,5 @@
 #pragma once
-// The MPM grid across ranks (issue 16). Every rank keeps the node layout of the whole grid but
+// The MPM grid across ranks. Every rank keeps the node layout of the whole grid but
 // touches only the blocks its particles reach (mpm/active_blocks.hpp). A block reached by the
 // particles of several ranks is shared: after each particle-to-grid pass the sharers exchange
 // their partial nodal sums of that block and each adds them in rank order, so every sharer holds

@@ -90,7 +90,7 @@ void MpmSolver::apply_velocity_bcs(Vec3* vel_all, std::vector<BoundaryImpulse>* 
   // reactions do no work; on the grid the constraint stops the normal momentum a node carries into
   // the face (or onto the axis) within the step, an inelastic impulse m c. With `impulses` each
   // change c is recorded, and book_impulses books its work as the "boundary work" of the energy
-  // audit (issue 13).
+  // audit.
   const GridGeometry& g = grid_.geom;
   const Index nn = g.node_count();
   // Sets component a of node I of field f to u_new, recording the change.

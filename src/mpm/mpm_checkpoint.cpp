@@ -43,7 +43,8 @@ void MpmSolver::load_state(const StateArchive& a) {
   }
   time_ = a.real("mpm.time");
   steps_ = static_cast<long>(a.integer("mpm.steps"));
-  a.get_into("mpm.work", {&external_work_, &damping_work_, &contact_work_, &friction_work_, &transfer_work_, &damping_});
+  a.get_into("mpm.work",
+             {&external_work_, &damping_work_, &contact_work_, &friction_work_, &transfer_work_, &damping_});
   boundary_work_ = a.real("mpm.boundary_work");
   const auto& bv = a.reals("mpm.bulk_viscosity", 2);
   viscous_work_ = comm_.rank() == 0 ? bv[0] : 0.0;  // the total, held by rank 0 (energies() sums)

@@ -24,7 +24,7 @@ void MpmSolver::book_impulses(const Vec3* v0, const Vec3* v1) {
   // v0 is the node's whole change in the step, v0 the mapped velocity before any correction. So
   // every impulse of the step, contact or constraint, does the work m c . (v0 + v_end) / 2, with
   // one midpoint for all of them; booked so, the impulses and the nodal forces add up to exactly
-  // the grid's kinetic-energy change (issue 13; the energy identities of the MPM update:
+  // the grid's kinetic-energy change (the energy identities of the MPM update:
   // Bardenhagen, JCP 180 (2002) 383). Nodes shared with a lower rank are booked there.
   // USAVG books in two parts (first_half_stress_update): the constraints on the mapped velocity
   // with (v0 + v_n) / 2, exactly their kinetic-energy change, and the rest of the step with

@@ -31,18 +31,19 @@ std::vector<ParamSpec> mpm_params() {
                  false, 1, 1, 8};
   xpic.integer = true;
   ParamSpec bv_linear{"bulk_viscosity_linear", "1",
-                      "C_L of the artificial bulk viscosity q = rho l |tr D| (C_L c + C_Q l |tr D|) in compression, l the "
-                      "cell size (Wilkins, J. Comput. Phys. 36 (1980) 281): 0 = off; LS-DYNA 0.06, Uintah 0.2",
+                      "C_L of the artificial bulk viscosity q = rho l |tr D| (C_L c + C_Q l |tr D|) in "
+                      "compression, l the cell size (Wilkins, J. Comput. Phys. 36 (1980) 281): 0 = off; LS-DYNA "
+                      "0.06, Uintah 0.2",
                       false, 0.0, 0.0, 10.0};
   ParamSpec bv_quadratic{"bulk_viscosity_quadratic", "1",
                          "C_Q of the artificial bulk viscosity (see bulk_viscosity_linear): 0 = off; LS-DYNA 1.5, "
                          "Uintah 2.0",
                          false, 0.0, 0.0, 100.0};
   ParamSpec distortion{"distortion_limit", "1",
-                       "RMS isochoric stretch sqrt(tr(F^T F) / (3 J^(2/3))) beyond which a particle of a hypoelastic or "
-                       "fluid material has F replaced by J^(1/3) R (J and the stress frame kept; its stretch history, "
-                       "which such models do not read, dropped): material flowing like a fluid otherwise stretches "
-                       "until det F and the polar decomposition are lost to round-off. 0 = never",
+                       "RMS isochoric stretch sqrt(tr(F^T F) / (3 J^(2/3))) beyond which a particle of a hypoelastic "
+                       "or fluid material has F replaced by J^(1/3) R (J and the stress frame kept; its stretch "
+                       "history, which such models do not read, dropped): material flowing like a fluid otherwise "
+                       "stretches until det F and the polar decomposition are lost to round-off. 0 = never",
                        false, 1000.0, 0.0, 1e12};
   return {shape, update, flip, sort, locking, rebalance, xpic, bv_linear, bv_quadratic, distortion};
 }

@@ -448,7 +448,7 @@ void MpmSolver::grid_to_particles(double dt) {
     // What the PIC share of the blend takes from the kinetic energy of the pure FLIP update
     // (FLIP alone conserves it to the order of the time step; PIC damps the grid's null space).
     // USAVG books the whole transfer instead: the particles' kinetic-energy change here, less the
-    // grid's (grid_kinetic_energy_change), the measure issue 13 asks for.
+    // grid's (grid_kinetic_energy_change), so that the energy balance closes.
     if constexpr (exact_transfer) {
       o[1] += 0.5 * mass[p] * (dot(v[p], v[p]) - dot(v_old, v_old));
     } else if (flip < 1.0) {
@@ -683,16 +683,28 @@ void MpmSolver::step_local(double dt) {
   const bool three = dim_ == 3;
   if (grid_.geom.graded) {  // no cubic B-spline on a graded grid (refused in the constructor)
     switch (shape_) {
-      case ShapeKind::Linear: three ? step_impl<3, ShapeKind::Linear, true>(dt) : step_impl<2, ShapeKind::Linear, true>(dt); break;
-      case ShapeKind::Gimp: three ? step_impl<3, ShapeKind::Gimp, true>(dt) : step_impl<2, ShapeKind::Gimp, true>(dt); break;
-      case ShapeKind::Cpdi: three ? step_impl<3, ShapeKind::Cpdi, true>(dt) : step_impl<2, ShapeKind::Cpdi, true>(dt); break;
+      case ShapeKind::Linear:
+        three ? step_impl<3, ShapeKind::Linear, true>(dt) : step_impl<2, ShapeKind::Linear, true>(dt);
+        break;
+      case ShapeKind::Gimp:
+        three ? step_impl<3, ShapeKind::Gimp, true>(dt) : step_impl<2, ShapeKind::Gimp, true>(dt);
+        break;
+      case ShapeKind::Cpdi:
+        three ? step_impl<3, ShapeKind::Cpdi, true>(dt) : step_impl<2, ShapeKind::Cpdi, true>(dt);
+        break;
       case ShapeKind::BSpline3: break;
     }
   } else {
     switch (shape_) {
-      case ShapeKind::Linear: three ? step_impl<3, ShapeKind::Linear, false>(dt) : step_impl<2, ShapeKind::Linear, false>(dt); break;
-      case ShapeKind::Gimp: three ? step_impl<3, ShapeKind::Gimp, false>(dt) : step_impl<2, ShapeKind::Gimp, false>(dt); break;
-      case ShapeKind::Cpdi: three ? step_impl<3, ShapeKind::Cpdi, false>(dt) : step_impl<2, ShapeKind::Cpdi, false>(dt); break;
+      case ShapeKind::Linear:
+        three ? step_impl<3, ShapeKind::Linear, false>(dt) : step_impl<2, ShapeKind::Linear, false>(dt);
+        break;
+      case ShapeKind::Gimp:
+        three ? step_impl<3, ShapeKind::Gimp, false>(dt) : step_impl<2, ShapeKind::Gimp, false>(dt);
+        break;
+      case ShapeKind::Cpdi:
+        three ? step_impl<3, ShapeKind::Cpdi, false>(dt) : step_impl<2, ShapeKind::Cpdi, false>(dt);
+        break;
       case ShapeKind::BSpline3:
         three ? step_impl<3, ShapeKind::BSpline3, false>(dt) : step_impl<2, ShapeKind::BSpline3, false>(dt);
         break;

@@ -192,8 +192,8 @@ class MpmSolver final : public Solver {
   // Decomposition statistics (several ranks): repartitions, particles migrated, halo per step.
   long repartitions_ = 0;
   double imbalance_after_partition_ = 0.0;  ///< what the last repartition achieved
-  bool activated_this_step_ = false;
-  double neighbour_sum_ = 0.0, neighbour_plans_ = 0.0;  ///< statistics of the neighbour exchange  ///< several ranks: some rank activated pending particles this step
+  bool activated_this_step_ = false;  ///< several ranks: some rank activated pending particles this step
+  double neighbour_sum_ = 0.0, neighbour_plans_ = 0.0;  ///< statistics of the neighbour exchange
   double migrated_ = 0.0, halo_bytes_ = 0.0, halo_messages_ = 0.0, halo_steps_ = 0.0, max_imbalance_ = 0.0;
   int reach_ = 1;        ///< the shape function's reach this step, nodes (build_slabs)
   /// Marks this step's active blocks (particles and traction points) and clears the released ones.

@@ -53,15 +53,15 @@ Vec3 largest_eigenvector(const Mat3& A, int dim, double hi);
 /// Splits every point whose extent (largest singular value of its extent tensor, in the plane in
 /// 2D) exceeds opt.split_stretch times spacing[body], into two at the centres of the halves of its
 /// cell along that direction. `lower`/`upper` are the held faces of the box (walls, symmetry
-/// planes, fixed faces; -inf / +inf where a face is free). `extensive` names the reference-volume-proportional fields (mass,
-/// volume0, energies, areas), shared 1/2 : 1/2 (axisymmetric: by the half-rings' volumes);
-/// `volume` is recomputed as det(F) volume0; every other field is copied (in axisymmetric runs the
-/// hoop stretch F_zz becomes each child's r / r0). Near a box face the offset loses its component
-/// along the face's normal (a child never crosses a wall, a symmetry plane or the axis); a point
-/// whose offset then shrinks below half is not split. The children
-/// get ids next_id, next_id + 1, ... (advanced); the parent becomes the first child and the second
-/// is appended. Returns the parents in increasing index (the second child of parents[i] is point
-/// n + i, n the count before). Serial and in point order: deterministic.
+/// planes, fixed faces; -inf / +inf where a face is free). `extensive` names the
+/// reference-volume-proportional fields (mass, volume0, energies, areas), shared 1/2 : 1/2
+/// (axisymmetric: by the half-rings' volumes); `volume` is recomputed as det(F) volume0; every
+/// other field is copied (in axisymmetric runs the hoop stretch F_zz becomes each child's r / r0).
+/// Near a box face the offset loses its component along the face's normal (a child never crosses a
+/// wall, a symmetry plane or the axis); a point whose offset then shrinks below half is not split.
+/// The children get ids next_id, next_id + 1, ... (advanced); the parent becomes the first child
+/// and the second is appended. Returns the parents in increasing index (the second child of
+/// parents[i] is point n + i, n the count before). Serial and in point order: deterministic.
 std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>& extensive,
                                 const std::vector<double>& spacing, int dim, bool axisymmetric, const Vec3& lower,
                                 const Vec3& upper, const AdaptivityOptions& opt, std::int64_t& next_id);

@@ -1,4 +1,4 @@
-// Checkpoint and restart of the OTM solver (issue 16, docs/restart.md). The supports are stored,
+// Checkpoint and restart of the OTM solver (docs/restart.md). The supports are stored,
 // not rebuilt: the LME solves are warm-started from the multipliers of the previous build, so a
 // rebuild at restart would converge to the same functions only to within the solver tolerance.
 #include "otm/otm_solver.hpp"

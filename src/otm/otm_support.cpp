@@ -94,7 +94,8 @@ void build_supports(const Vec3* xp, const std::int64_t* pbody, Index np, const V
       const Index p = failed[i];
       std::vector<std::int32_t>& row = rows[i];
       row.assign(out.node.begin() + out.offset[p], out.node.begin() + out.offset[p + 1]);
-      row.insert(row.end(), previous->node.begin() + previous->offset[p], previous->node.begin() + previous->offset[p + 1]);
+      row.insert(row.end(), previous->node.begin() + previous->offset[p],
+                 previous->node.begin() + previous->offset[p + 1]);
       std::sort(row.begin(), row.end());
       row.erase(std::unique(row.begin(), row.end()), row.end());
       const int k = static_cast<int>(row.size());

@@ -62,8 +62,10 @@ std::vector<std::pair<std::string, double>> parse_model_params(const std::vector
       used = 0;
     }
     if (used == 0 || used != text.size())
-      throw Error(fmt::format("--param '{}': value '{}' of '{}' is not a number (SI units, e.g. 1.5e9)", shorten(s), shorten(text), shorten(key)));
-    if (!std::isfinite(v)) throw Error(fmt::format("--param '{}': {} must be a finite number", shorten(s), shorten(key)));
+      throw Error(fmt::format("--param '{}': value '{}' of '{}' is not a number (SI units, e.g. 1.5e9)", shorten(s),
+                              shorten(text), shorten(key)));
+    if (!std::isfinite(v))
+      throw Error(fmt::format("--param '{}': {} must be a finite number", shorten(s), shorten(key)));
     out.emplace_back(key, v);
   }
   return out;

@@ -66,7 +66,7 @@ void family_with_rows(const std::vector<Index>& count, BondFamily& f);
 BondFamily build_bond_family(const Vec3* x0, Index n, double delta, double dx, int dim,
                              const std::int64_t* body = nullptr, const std::uint8_t* gas = nullptr);
 
-/// Several ranks (issue 16): the family of `f` restricted to the points with keep[p] != 0
+/// Several ranks: the family of `f` restricted to the points with keep[p] != 0
 /// (renumbered in their order) and to the bonds with at least one end owned (owned[p] != 0), so a
 /// rank's own points keep their whole rows and its ghost copies only their bonds to own points.
 BondFamily restrict_family(const BondFamily& f, const std::vector<char>& keep, const std::vector<char>& owned);

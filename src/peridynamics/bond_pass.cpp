@@ -87,7 +87,8 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
         else if (se < -sy) dsp = se + sy;
         if (dsp != 0.0) {
           sp[k] += dsp;
-          sp[offset[q] + mirror[k]] = sp[k];  // both ends' copies (read from the lower end; a checkpoint or a ghost row needs either)
+          // Both ends' copies (read from the lower end; a checkpoint or a ghost row needs either).
+          sp[offset[q] + mirror[k]] = sp[k];
           se -= dsp;
           const double w = 0.5 * cpq * sy * std::abs(dsp) * r0 * bk * vv;
           dis[p] += w;

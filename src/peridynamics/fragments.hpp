@@ -27,7 +27,7 @@ struct Fragment {
 std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& store,
                                      double damage_threshold = 2.0, const std::uint8_t* skip = nullptr);
 
-/// Several ranks (collective, issue 16): the fragments of every rank's own points, found on rank 0
+/// Several ranks (collective): the fragments of every rank's own points, found on rank 0
 /// over the points gathered in id order and their intact bonds (each sent once, from its lower-id
 /// end), so they are the serial run's, bit for bit; empty on the other ranks. `own[i]` is the row
 /// in `bonds` of the store's point i, `ids` the ids of the rows' points; points of a material m

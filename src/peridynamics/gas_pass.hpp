@@ -87,7 +87,7 @@ RenewedGasFamily build_renewed_gas_family(const Vec3* x, Index n, const std::uin
 
 /// Storage a renewal reuses from the last one: the family's arrays (hundreds of MB at 10^6 points)
 /// and the search's buffers. Allocated afresh, each renewal would zero newly mapped pages on one
-/// thread (9 % of a 10^6-point run's time, perf, 2026-11-27).
+/// thread (9 % of a 10^6-point run's time, measured with perf).
 struct GasRenewalWorkspace {
   struct Binned {
     Vec3 x;

@@ -1,4 +1,4 @@
-// Checkpoint and restart of the peridynamic solver (issue 16, docs/restart.md): what a step
+// Checkpoint and restart of the peridynamic solver (docs/restart.md): what a step
 // carries to the next beyond the point fields. Everything the constructor derives from the deck
 // (bond families, constants, blocks, mirrors, the partition) is rebuilt identically. Per-point
 // values and bond rows are written in the points' order of the checkpoint (rank order on several
@@ -211,7 +211,8 @@ void PdSolver::load_state(const StateArchive& a) {
   const auto& cn = a.ints("pd.counters", 2);
   const std::size_t at = 3 * static_cast<std::size_t>(comm_.rank());
   vented_count_ = same_ranks ? static_cast<Index>(by_rank[at]) : comm_.rank() == 0 ? static_cast<Index>(cn[0]) : 0;
-  gas_rate_limited_ = same_ranks ? static_cast<Index>(by_rank[at + 1]) : comm_.rank() == 0 ? static_cast<Index>(cn[1]) : 0;
+  gas_rate_limited_ =
+      same_ranks ? static_cast<Index>(by_rank[at + 1]) : comm_.rank() == 0 ? static_cast<Index>(cn[1]) : 0;
   halo_.set_offered_bytes(same_ranks ? by_rank[at + 2] : 0);
   const auto width = static_cast<std::size_t>(a.integer("pd.fragment_row_width"));
   const auto& rows = a.reals("pd.fragment_rows");

@@ -1,4 +1,4 @@
-// The peridynamic solver's detonation products (issue 15; seed 001 "Gases as Peridynamic
+// The peridynamic solver's detonation products (seed 001 "Gases as Peridynamic
 // Materials"): the gas family, the density measure X fed to the shared material library, the
 // stable step of the gas and the venting of gas that leaves the box. The pair force itself is in
 // gas_pass.cpp; pd_solver.cpp calls these.
@@ -140,7 +140,7 @@ double PdSolver::gas_stable_dt() const {
   // The safety factor is applied here and again in stable_dt (0.64 for the gas with the default
   // 0.8), on purpose: with it once, the Gurney cylinder of tests/verification/test_pd_gas.cpp
   // (0.5 mm, M/C = 1) closes its energy balance to 3.0 % of the chemical energy instead of 1.5 %,
-  // over issue 15's 2 % (measured 2026-11-27); the linearised bound does not hold the products'
+  // over the 2 % that test allows; the linearised bound does not hold the products'
   // nonlinear stiffening near the front.
   const Index n = points_.size();
   const auto* mat = points_.ints("material");

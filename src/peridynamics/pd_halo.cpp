@@ -150,7 +150,9 @@ void PdHalo::gather_contact_ghosts(const Communicator& comm, LocalPoints& local,
   auto coord = [&](double v) {
     return std::clamp(static_cast<std::int64_t>(std::floor(v / cell)), -kOff + 1, kOff - 2);
   };
-  auto key = [&](std::int64_t i, std::int64_t j, std::int64_t k) { return ((i + kOff) << 42) | ((j + kOff) << 21) | (k + kOff); };
+  auto key = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return ((i + kOff) << 42) | ((j + kOff) << 21) | (k + kOff);
+  };
   const int reach_z = dim == 3 ? 1 : 0;  // 2D: the points lie in one plane
   std::vector<std::int64_t> mine;
   for (Index l : local.own)

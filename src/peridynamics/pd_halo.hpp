@@ -1,5 +1,5 @@
 #pragma once
-// The points a peridynamic rank computes with (issue 16, docs/parallel.md). Peridynamics is
+// The points a peridynamic rank computes with (docs/parallel.md). Peridynamics is
 // Lagrangian: bonds are made once in the reference configuration and the cost of a point is its
 // bond count, so the points are partitioned once, at the start, by recursive coordinate bisection
 // of their reference positions (points/rcb_partition.hpp) and never migrate (Peridigm's choice).

@@ -29,7 +29,8 @@ class CellBins {
       }
     auto along = [&](int a) { return a < dim && n > 0 ? (hi[a] - lo_[a]) / size_ + 1.0 : 1.0; };
     while (along(0) * along(1) * along(2) > 4.0 * static_cast<double>(n) + 1024.0) size_ *= 2.0;
-    for (int a = 0; a < 3; ++a) nb_[a] = a < dim && n > 0 ? std::max(1, static_cast<int>((hi[a] - lo_[a]) / size_) + 1) : 1;
+    for (int a = 0; a < 3; ++a)
+      nb_[a] = a < dim && n > 0 ? std::max(1, static_cast<int>((hi[a] - lo_[a]) / size_) + 1) : 1;
     const Index nbins = static_cast<Index>(nb_[0]) * nb_[1] * nb_[2];
     // Counting sort (stable: each bin's points in increasing index).
     start_.assign(static_cast<size_t>(nbins) + 1, 0);

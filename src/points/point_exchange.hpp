@@ -1,5 +1,5 @@
 #pragma once
-// Moving points between ranks (issue 16): migration to the rank that owns their position, and the
+// Moving points between ranks: migration to the rank that owns their position, and the
 // gather of every rank's points for output. Whole points move, every field with them (ids are
 // global and travel too), so nothing but their place in the store changes.
 #include <vector>

@@ -31,9 +31,9 @@ PointSet::PointSet(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   declare_point_fields(points_);
   for (const auto& m : materials_) m->declare_fields(points_);
 
-  // Refuse a run that cannot fit before allocating it (issue 11). Per point: every declared field
-  // plus a solver's per-point scratch (~3 Vec3 and 5 indices). The point count is the bodies'
-  // bounding-box lattice, an upper bound.
+  // Refuse a run that cannot fit before allocating it (rather than die in a bare std::bad_alloc).
+  // Per point: every declared field plus a solver's per-point scratch (~3 Vec3 and 5 indices). The
+  // point count is the bodies' bounding-box lattice, an upper bound.
   {
     const double bytes_per_point =
         points_.bytes_per_point() + 3 * sizeof(Vec3) + 5 * sizeof(Index) + lattice.solver_bytes_per_point;
@@ -394,7 +394,8 @@ void PointSet::save_state(StateArchive& a) const {
   const FieldStore all = gather_points(comm_, points_, 0, false);
   const FieldStore all_pending = gather_points(comm_, pending_, 0, false);
   const std::vector<double> activation = gather_values(comm_, pending_activation_);
-  const std::vector<double> stage = gather_values(comm_, std::vector<double>(pending_stage_.begin(), pending_stage_.end()));
+  const std::vector<double> stage =
+      gather_values(comm_, std::vector<double>(pending_stage_.begin(), pending_stage_.end()));
   const std::vector<double> counts = gather_values(
       comm_, {static_cast<double>(points_.size()), static_cast<double>(pending_.size())});
   const std::vector<double> removed_by_rank = gather_values(comm_, removed);
@@ -471,7 +472,8 @@ void PointSet::restore_removed(const StateArchive& a, bool own) {
   removed_momentum_ = Vec3{{r[3], r[4], r[5]}};
   inserted_energy_ = r[6];
   // Only the total matters: rank 0 takes it (a checkpoint without the key has none).
-  distortion_remaps_ = comm_.rank() == 0 && a.has("points.distortion_remaps") ? a.integer("points.distortion_remaps") : 0;
+  distortion_remaps_ =
+      comm_.rank() == 0 && a.has("points.distortion_remaps") ? a.integer("points.distortion_remaps") : 0;
   groups_dirty_ = true;
 }
 

@@ -115,8 +115,9 @@ class PointSet {
   /// and the totals to rank 0 (false: the caller repartitions).
   bool load_state(const StateArchive& archive);
   /// Exactly the active points whose ids are in `ids` (sorted), in id order, from a checkpoint
-  /// written on any rank count (a solver whose partition is fixed by the deck: peridynamics). True if the checkpoint was
-  /// written on as many ranks (each rank's removal bookkeeping back), else the totals go to rank 0.
+  /// written on any rank count (a solver whose partition is fixed by the deck: peridynamics). True
+  /// if the checkpoint was written on as many ranks (each rank's removal bookkeeping back), else
+  /// the totals go to rank 0.
   bool load_state(const StateArchive& archive, const std::vector<std::int64_t>& ids);
 
  private:

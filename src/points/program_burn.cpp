@@ -190,8 +190,8 @@ ProgramBurnResult program_burn(const Vec3* x, const char* explosive, Index n, co
       }
     });
     if (!any)
-      throw Error(fmt::format("detonation point {} at ({:.6g}, {:.6g}, {:.6g}) m has no explosive point within {:.4g} m "
-                              "({} spacings) in its line of sight: place it in or on the charge",
+      throw Error(fmt::format("detonation point {} at ({:.6g}, {:.6g}, {:.6g}) m has no explosive point within "
+                              "{:.4g} m ({} spacings) in its line of sight: place it in or on the charge",
                               d, det.x[0], det.x[1], det.x[2], radius, opt.radius_factor));
   }
   // Lazy Theta* (Nash, Koenig & Tovey, AAAI 2010) in Dijkstra order: a point reached from q

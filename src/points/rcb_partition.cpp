@@ -56,7 +56,8 @@ void zcheck(int rc, const char* what) {
 
 }  // namespace
 
-RcbPartition::RcbPartition(const Communicator& comm, int dim) : impl_(std::make_unique<Impl>()), comm_(comm), dim_(dim) {
+RcbPartition::RcbPartition(const Communicator& comm, int dim)
+    : impl_(std::make_unique<Impl>()), comm_(comm), dim_(dim) {
   impl_->dim = dim;
   if (!comm.distributed()) return;
   float version = 0.0f;

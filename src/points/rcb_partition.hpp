@@ -4,8 +4,8 @@
 // weighted by point count, so every rank holds about the same number of points. The cuts are kept
 // (KEEP_CUTS) as every rank's region box, so the owner of any position is known without
 // communication, and a checkpoint can store them. A repartition depends only on where the points
-// are (no RCB_REUSE), so a restarted run cuts where the uninterrupted one did. Solver-neutral: MPM
-// particles today, peridynamic and OTM points next (issue 16).
+// are (no RCB_REUSE), so a restarted run cuts where the uninterrupted one did. Solver-neutral: it
+// sees points, not particles, so MPM and peridynamics partition with the same code.
 #include <cstdint>
 #include <memory>
 #include <vector>

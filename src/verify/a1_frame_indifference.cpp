@@ -61,7 +61,8 @@ A1Run drive_a1(const Material& m, const A1Problem& pb, int steps) {
 VerifyCase run_a1(const MaterialFactory& f, const A1Problem& pb) {
   const std::string title = "A1 frame indifference: F11 1 -> 0.998 with 360 deg about z (K = 1e4, G = 1.5e4)";
   if (!f.reduce_elastic)
-    return VerifyCase::not_applicable(f.model, "A1", title, "model has no reduce_elastic hook (reduction to isotropic elasticity)");
+    return VerifyCase::not_applicable(f.model, "A1", title,
+                                      "model has no reduce_elastic hook (reduction to isotropic elasticity)");
   const auto t0 = std::chrono::steady_clock::now();
   VerifyCase c;
   c.model = f.model;

@@ -74,12 +74,15 @@ VerifyCase run_a2(const MaterialFactory& f, A2Hardening h, const A2Problem& pb) 
   const std::string title = fmt::format(
       "{} uniaxial strain, J2 with {} hardening (K = 79 GPa, G = 70 GPa, tau_y = 165 MPa{})", id, kind_name(h),
       h == A2Hardening::None ? "" : fmt::format(", H = {:g} GPa", pb.hardening / 1e9));
-  if (!f.reduce_j2) return VerifyCase::not_applicable(f.model, id, title, "model has no reduce_j2 hook (reduction to J2 plasticity)");
+  if (!f.reduce_j2)
+    return VerifyCase::not_applicable(f.model, id, title,
+                                      "model has no reduce_j2 hook (reduction to J2 plasticity)");
   const J2UniaxialParams jp = pb.params(h);
   const ParamValues v = f.reduce_j2(pb.density, pb.bulk, pb.shear, jp.yield, jp.h_iso, jp.h_kin);
   if (v.empty() && v.choices.empty())
-    return VerifyCase::not_applicable(f.model, id, title,
-                                      fmt::format("reduce_j2 returns no parameters for {} hardening: the model lacks it", kind_name(h)));
+    return VerifyCase::not_applicable(
+        f.model, id, title,
+        fmt::format("reduce_j2 returns no parameters for {} hardening: the model lacks it", kind_name(h)));
   const auto t0 = std::chrono::steady_clock::now();
   VerifyCase c;
   c.model = f.model;
@@ -145,8 +148,10 @@ VerifyCase run_a2(const MaterialFactory& f, A2Hardening h, const A2Problem& pb) 
   if (h == A2Hardening::None) {
     // Catalogue figures, given to 4 significant digits: tolerance half the last digit (0.05 MPa).
     const size_t k1 = record_at(res, 1.0), k3 = record_at(res, 3.0);
-    c.check("yield at t = 1: sigma11 = 351.8 MPa (catalogue), |difference| in MPa", std::abs(s11[k1] - 351.8e6) / 1e6, 0.05);
-    c.check("yield at t = 1: sigma22 = 66.0 MPa (catalogue), |difference| in MPa", std::abs(s22[k1] - 66.0e6) / 1e6, 0.05);
+    c.check("yield at t = 1: sigma11 = 351.8 MPa (catalogue), |difference| in MPa",
+            std::abs(s11[k1] - 351.8e6) / 1e6, 0.05);
+    c.check("yield at t = 1: sigma22 = 66.0 MPa (catalogue), |difference| in MPa",
+            std::abs(s22[k1] - 66.0e6) / 1e6, 0.05);
     c.check("t = 3: sigma11 = 674.3 MPa (catalogue), |difference| in MPa", std::abs(s11[k3] - 674.3e6) / 1e6, 0.05);
     // sigma11 - sigma22 = sqrt(3) tau_y on every plastic step (the analytic solution flags them).
     double dev = 0.0;
@@ -173,13 +178,15 @@ VerifyCase run_a2(const MaterialFactory& f, A2Hardening h, const A2Problem& pb) 
     } else if (h == A2Hardening::Isotropic) {
       c.check("isotropic: second yield at a larger radius, (r2 - sigma_y0)/sigma_y0 >= half the analytic growth",
               (ry.radius() - sy) / sy, 0.5 * (r_an - sy) / sy, true);
-      c.check("isotropic: r2 vs analytic radius (|difference| / sigma_y0)", std::abs(ry.radius() - r_an) / sy, trend_tol);
+      c.check("isotropic: r2 vs analytic radius (|difference| / sigma_y0)",
+              std::abs(ry.radius() - r_an) / sy, trend_tol);
       c.check("isotropic: centre stays 0 (|centre| / sigma_y0)", std::abs(ry.centre()) / sy, trend_tol);
     } else {
       c.check("kinematic: radius unchanged, |r2 - sigma_y0| / sigma_y0", std::abs(ry.radius() - sy) / sy, trend_tol);
       c.check("kinematic: second yield earlier, centre (backstress) / sigma_y0 >= half the analytic shift",
               ry.centre() / sy, 0.5 * beta_an / sy, true);
-      c.check("kinematic: backstress vs analytic (|difference| / sigma_y0)", std::abs(ry.centre() - beta_an) / sy, trend_tol);
+      c.check("kinematic: backstress vs analytic (|difference| / sigma_y0)",
+              std::abs(ry.centre() - beta_an) / sy, trend_tol);
     }
     c.scalars.push_back({"reverse_q_max", ry.q_max});
     c.scalars.push_back({"reverse_q_yield", ry.q_yield});

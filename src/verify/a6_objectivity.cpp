@@ -55,8 +55,10 @@ VerifyCase run_a6_objectivity(const MaterialFactory& f, const A6Problem& pb) {
   for (int i = 0; i < pb.paths; ++i) {
     paths.push_back(random_F_path(rng, pb));
     pts.push_back({i, true, false, {}});
-    for (int k = 0; k < pb.constant_rotations; ++k) pts.push_back({i, false, false, random_rotation(rng, pb.duration, false)});
-    for (int k = 0; k < pb.rotating_copies; ++k) pts.push_back({i, false, true, random_rotation(rng, pb.duration, true)});
+    for (int k = 0; k < pb.constant_rotations; ++k)
+      pts.push_back({i, false, false, random_rotation(rng, pb.duration, false)});
+    for (int k = 0; k < pb.rotating_copies; ++k)
+      pts.push_back({i, false, true, random_rotation(rng, pb.duration, true)});
   }
   const Index n = static_cast<Index>(pts.size());
   PointBatch b(*mat, n);

@@ -194,7 +194,8 @@ VerifyCase run_a6_tangent(const MaterialFactory& f, const A6Problem& pb) {
       "up to 4e-8); 1e-6 is far below a continuum-for-algorithmic (0.2) or factor-2 shear error; samples whose "
       "h vs 2h differences disagree by > 3e-7 (near a kink) are skipped";
   c.check("tangent vs central differences (smooth samples)", c.max_rel_error, tol);
-  c.check("samples where the tangent was filled (fraction)", 1.0 - static_cast<double>(unfilled) / samples.size(), 1.0, true);
+  c.check("samples where the tangent was filled (fraction)",
+          1.0 - static_cast<double>(unfilled) / samples.size(), 1.0, true);
   c.check("samples with a completely filled 6x6 (partial ones)", partial, 0.0);
   c.check("smooth samples checked (count, >= 1)", used, 1.0, true);
   c.series = {{"fd", fd_all}, {"model", model_all}, {"sample_error", errs}, {"sample_smoothness", smooth_errs},

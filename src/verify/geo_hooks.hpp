@@ -10,7 +10,8 @@
 namespace ballista {
 
 /// Why A3-A5 do not apply to a model without MaterialFactory::reduce_geo.
-inline constexpr const char* kNoGeoHookReason = "model has no reduce_geo hook (reduction to linear Drucker-Prager + cap)";
+inline constexpr const char* kNoGeoHookReason =
+    "model has no reduce_geo hook (reduction to linear Drucker-Prager + cap)";
 
 /// Index of state field `name` in the driver's records, or -1 if the model has no such field.
 int state_index(const DriveResult& r, const std::string& name);

@@ -55,7 +55,8 @@ std::string case_json(const VerifyCase& c) {
   o += "},\n";
   o += "      \"series\": {";
   for (size_t k = 0; k < c.series.size(); ++k)
-    o += std::string(k ? "," : "") + "\n        " + json_quote(c.series[k].first) + ": " + number_array(c.series[k].second);
+    o += std::string(k ? "," : "") + "\n        " + json_quote(c.series[k].first) + ": " +
+         number_array(c.series[k].second);
   o += c.series.empty() ? "}\n" : "\n      }\n";
   return o + "    }";
 }

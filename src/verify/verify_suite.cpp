@@ -15,7 +15,8 @@
 namespace ballista {
 
 const std::vector<std::string>& verify_test_ids() {
-  static const std::vector<std::string> ids{"A1", "A2", "A2-iso", "A2-kin", "A3", "A4", "A5", "A5-fluid", "A6-objectivity", "A6-tangent"};
+  static const std::vector<std::string> ids{"A1", "A2", "A2-iso", "A2-kin", "A3", "A4", "A5", "A5-fluid",
+                                            "A6-objectivity", "A6-tangent"};
   return ids;
 }
 
