@@ -84,7 +84,8 @@ LoadCurve read_load_curve(DeckNode& l) {
         double value = 0.0;
         if (!scalar_number(x, value))
           deck_fail(l.context(), path + "." + std::to_string(k), x.Mark(),
-                    "expected a number, got " + (x.IsScalar() ? "'" + shorten(x.Scalar()) + "'" : std::string("a list or map")));
+                    "expected a number, got " +
+                        (x.IsScalar() ? "'" + shorten(x.Scalar()) + "'" : std::string("a list or map")));
         tv[k] = value;
       }
       if (!c.t.empty() && !(tv[0] > c.t.back()))

@@ -210,8 +210,9 @@ void OtmSolver::report_failed_solve() {
                         k1 - k0, otm::support_radius(sopt_) * std::clamp(scale_[p], 1.0, otm::kMaxScale),
                         sopt_.min_support > 0 ? sopt_.min_support : dim_ + 2, sopt_.gamma, r.residual, r.iterations,
                         r.used_fallback ? " (with the fallback)" : "", r.condition, nodes,
-                        adapt_.enabled ? "It failed on freshly re-generated lattice nodes too"
-                                       : "The point has probably left the convex hull of its nodes (otm.adaptivity: on)"),
+                        adapt_.enabled
+                            ? "It failed on freshly re-generated lattice nodes too"
+                            : "The point has probably left the convex hull of its nodes (otm.adaptivity: on)"),
             steps_, time_);
 }
 
@@ -601,7 +602,8 @@ void OtmSolver::step(double dt) {
   dt_prev_ = dt;
   time_ += dt;
   ++steps_;
-  if (const Index p = bad.load(); p < n) pts_.fail(p, "inverted or non-finite deformation gradient (J <= 0 or NaN)", steps_, time_);
+  if (const Index p = bad.load(); p < n)
+    pts_.fail(p, "inverted or non-finite deformation gradient (J <= 0 or NaN)", steps_, time_);
   phase.emplace(seconds_.material);
   pts_.update_stress(dt, steps_, time_);
   phase.reset();

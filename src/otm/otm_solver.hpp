@@ -23,8 +23,8 @@
 //
 // Rigid walls (seed 003 ch. 4) at the grid box faces marked `wall`: `constraint` (a node that would
 // cross the wall is stopped on it: zero normal displacement into it) or `penalty` (a spring
-// k_a = penalty m_a omega_a^2 on the crossing distance, omega_a the node's stiffness bound). `fixed` faces stop nodes; `symmetry` faces and
-// the axis hold the normal velocity at zero.
+// k_a = penalty m_a omega_a^2 on the crossing distance, omega_a the node's stiffness bound).
+// `fixed` faces stop nodes; `symmetry` faces and the axis hold the normal velocity at zero.
 #include <memory>
 #include <vector>
 

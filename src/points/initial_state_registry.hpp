@@ -32,7 +32,9 @@ struct InitialStateFactory {
 /// Registered initial states by name (core/registry.hpp), filled at static-initialisation time.
 using InitialStateRegistry = Registry<InitialStateFactory, &InitialStateFactory::name>;
 inline const std::vector<InitialStateFactory>& initial_state_registry() { return InitialStateRegistry::sorted(); }
-inline const InitialStateFactory* find_initial_state(const std::string& name) { return InitialStateRegistry::find(name); }
+inline const InitialStateFactory* find_initial_state(const std::string& name) {
+  return InitialStateRegistry::find(name);
+}
 
 }  // namespace ballista
 

@@ -216,7 +216,8 @@ RunResult RunLoop::run() {
     on_physics_failure(err);
   }
   if (progress_) progress_->finish();
-  write_summary(rs_.wall_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count());
+  const std::chrono::duration<double> this_segment = std::chrono::steady_clock::now() - wall_start_;
+  write_summary(rs_.wall_before + this_segment.count());
   if (physics_failure_ && checkpointing_) checkpoint_last_good_step();
   return result_;
 }

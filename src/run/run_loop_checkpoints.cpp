@@ -57,7 +57,8 @@ void RunLoop::maybe_checkpoint() {
   if (!checkpointing_ || solver_->time() >= rs_.end * (1.0 - 1e-12)) return;
   const char* why = nullptr;
   if (sc_.output.checkpoint_interval > 0 && solver_->time() >= rs_.next_checkpoint * (1.0 - 1e-12)) {
-    while (rs_.next_checkpoint <= solver_->time() * (1.0 + 1e-12)) rs_.next_checkpoint += sc_.output.checkpoint_interval;
+    while (rs_.next_checkpoint <= solver_->time() * (1.0 + 1e-12))
+      rs_.next_checkpoint += sc_.output.checkpoint_interval;
     why = "output.checkpoint_interval";
   }
   const double minutes =

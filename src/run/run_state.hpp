@@ -1,7 +1,7 @@
 #pragma once
 // The run loop's own state (stage, output and checkpoint clocks, energy reference and worst
 // drift, the step limiter, the stage log), kept in one struct so that a checkpoint can save it
-// and a restart continue it (issue 16, docs/restart.md).
+// and a restart continue it (docs/restart.md).
 #include <cstdint>
 #include <limits>
 #include <string>

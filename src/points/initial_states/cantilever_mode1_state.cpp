@@ -13,7 +13,8 @@ std::optional<BodyIssue> check_cantilever(const BodySpec& body) {
     return BodyIssue{"initial_state", "cantilever_mode1 needs a box body (the beam along x, clamped at its x_min "
                                       "face); body '" + body.name + "' is a " + body.shape.type};
   if (body.velocity[0] != 0.0 || body.velocity[2] != 0.0 || body.radial_speed != 0.0)
-    return BodyIssue{"velocity", "with initial_state cantilever_mode1 the velocity is the tip speed along y: [0, v, 0]"};
+    return BodyIssue{"velocity",
+                     "with initial_state cantilever_mode1 the velocity is the tip speed along y: [0, v, 0]"};
   return std::nullopt;
 }
 
