@@ -754,13 +754,13 @@ std::unique_ptr<Solver> make_mpm(const Scenario& sc, std::vector<std::unique_ptr
 }  // namespace ballista
 
 BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
-    "mpm",
-    "explicit material point method (Sulsky et al. 1994; USL / modified USL, FLIP/PIC blend; thesis seed 000)",
-    {"3d", "plane_strain", "axisymmetric"},
-    "mpm",
-    ballista::mpm_params(),
-    &ballista::make_mpm,
-    true,
-    {},
-    "",
-    true})
+    .name = "mpm",
+    .description = "explicit material point method (Sulsky et al. 1994; USL / modified USL, FLIP/PIC blend; thesis "
+                   "seed 000)",
+    .dimensions = {"3d", "plane_strain", "axisymmetric"},
+    .section = "mpm",
+    .params = ballista::mpm_params(),
+    .create = &ballista::make_mpm,
+    .distributed = true,
+    .graded_grid = true,
+    .courant_step = true})

@@ -723,10 +723,11 @@ std::vector<ParamSpec> otm_params() {
 }  // namespace ballista
 
 BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
-    "otm",
-    "optimal transportation meshfree method with local max-entropy shape functions (Li, Habbal & Ortiz 2010; "
-    "seed 003)",
-    {"3d", "plane_strain", "axisymmetric"},
-    "otm",
-    ballista::otm_params(),
-    &ballista::make_otm})
+    .name = "otm",
+    .description = "optimal transportation meshfree method with local max-entropy shape functions (Li, Habbal & "
+                   "Ortiz 2010; seed 003)",
+    .dimensions = {"3d", "plane_strain", "axisymmetric"},
+    .section = "otm",
+    .params = ballista::otm_params(),
+    .create = &ballista::make_otm,
+    .courant_step = true})

@@ -33,6 +33,9 @@ struct SolverFactory {
   /// Runs on a graded grid (grid.refine, geometry/grid_axes.hpp); otherwise refine zones are a
   /// deck error.
   bool graded_grid = false;
+  /// Its stable step is simulation.cfl times a Courant bound; otherwise it does not read
+  /// simulation.cfl (`ballista info` names the solvers that do).
+  bool courant_step = false;
 };
 
 /// An optional word parameter of a solver section whose default is the first choice.
