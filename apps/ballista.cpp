@@ -69,6 +69,21 @@ std::string format_probe_param(const ballista::ProbeParam& p) {
   return fmt::format("      {:<30} [{}] {}\n", p.name, p.unit.empty() ? "-" : p.unit, what);
 }
 
+/// Names joined as in prose ("a", "a and b", "a, b and c"): lists of solvers drawn from the registry.
+std::string join_names(const std::vector<std::string>& names) {
+  std::string s;
+  for (size_t k = 0; k < names.size(); ++k)
+    s += (k == 0 ? "" : k + 1 == names.size() ? " and " : ", ") + names[k];
+  return s;
+}
+
+/// The program's one-line description, naming the registered solvers (a new one needs no edit here).
+std::string app_description() {
+  std::vector<std::string> names;
+  for (const auto& f : ballista::solver_registry()) names.push_back(f.name);
+  return "Ballista: solids under extreme deformation (" + join_names(names) + ")";
+}
+
 void print_info() {
   std::cout << "Ballista " << BALLISTA_VERSION << "\n\nSolvers (simulation.solver; parameters in the section named)\n";
   for (const auto& f : ballista::solver_registry()) {
@@ -79,9 +94,18 @@ void print_info() {
       std::cout << fmt::format("      {:<30} [{}] {}; {}{}\n", f.section + "." + p.name, p.unit, p.description,
                                format_default(p), format_range(p).empty() ? "" : "; range " + format_range(p));
   }
-  std::cout << "  (mpm) simulation.cfl [1] Courant number of the stable step; default 0.3; range 0 < x <= 1\n"
+  // The solvers that read simulation.cfl, and the section keys that choose a shape function, as
+  // the registry has them.
+  std::string cfl_solvers, shape_keys;
+  for (const auto& f : ballista::solver_registry()) {
+    if (f.courant_step) cfl_solvers += (cfl_solvers.empty() ? "" : ", ") + f.name;
+    for (const auto& p : f.params)
+      if (p.name == "shape_function") shape_keys += (shape_keys.empty() ? "" : ", ") + f.section + "." + p.name;
+  }
+  std::cout << "  (" << cfl_solvers
+            << ") simulation.cfl [1] Courant number of the stable step; default 0.3; range 0 < x <= 1\n"
                "  (every solver) simulation.damping [1/s] damping a - c v (dynamic relaxation); default 0\n";
-  std::cout << "\nShape functions (mpm.shape_function)\n";
+  std::cout << "\nShape functions (" << shape_keys << ")\n";
   for (const auto& n : ballista::shape_kind_names())
     std::cout << "  " << n << "  " << ballista::shape_kind_description(ballista::parse_shape_kind(n)) << "\n";
   std::cout << "\nProbes (probes[].type; each probe is a history.csv column and a summary.json value)\n";
@@ -157,7 +181,7 @@ int main(int argc, char** argv) {
     quiet_rank.open("/dev/null");
     restore_cout.saved = std::cout.rdbuf(quiet_rank.rdbuf());
   }
-  CLI::App app{"Ballista: solids under extreme deformation (MPM, peridynamics and OTM)"};
+  CLI::App app{app_description()};
   app.set_version_flag("--version", std::string("ballista ") + BALLISTA_VERSION);
   app.require_subcommand(1);
 

@@ -169,6 +169,191 @@ std::string polyvertex_grid(const std::string& name, const std::string& time, co
 
 const char* const kReserved[] = {"time", "step", "vertex_cells", "domain_points", "domain_cells"};
 
+/// The point fields an output writes: the requested names (a name listed twice once), or every
+/// field marked for output when none are requested.
+std::vector<const FieldInfo*> selected_fields(const FieldStore& points, const std::vector<std::string>& requested) {
+  std::vector<const FieldInfo*> sel;
+  if (requested.empty()) {
+    for (const FieldInfo& f : points.fields())
+      if (f.output) sel.push_back(&f);
+  } else {
+    for (const std::string& name : requested) {
+      if (!points.has(name)) throw Error("output field '" + name + "' does not exist");
+      bool dup = false;  // a field listed twice is written once
+      for (const FieldInfo* f : sel) dup = dup || f->name == name;
+      if (!dup) sel.push_back(&points.info(name));
+    }
+  }
+  return sel;
+}
+
+/// Refuses an output the files cannot hold: geometry "x" that is not real with 3 components,
+/// domains without F and half_size, a field name that is no dataset name or is reserved.
+void check_output_fields(const FieldStore& points, const FieldStore* nodes, bool domains,
+                         const std::vector<const FieldInfo*>& sel) {
+  if (!points.has("x") || points.info("x").type != FieldType::Real || points.info("x").ncomp != 3)
+    throw Error("particle output needs a real field 'x' with 3 components");
+  if (nodes && !(nodes->has("x") && nodes->info("x").type == FieldType::Real && nodes->info("x").ncomp == 3))
+    throw Error("node output needs a real field 'x' with 3 components");
+  if (domains && !(points.has("F") && points.has("half_size")))
+    throw Error("particle domain output needs fields 'F' (Mat3) and 'half_size' (Vec3)");
+  for (const FieldInfo* f : sel) {
+    if (f->name.empty() || f->name.find('/') != std::string::npos)
+      throw Error("field name '" + f->name + "' cannot be an HDF5 dataset name");
+    for (const char* r : kReserved)
+      if (f->name == r) throw Error("field name '" + f->name + "' is reserved in particle output");
+  }
+}
+
+/// This rank's place in the output's rows.
+struct GlobalRows {
+  Index n = 0;      ///< rows of every point dataset
+  Index first = 0;  ///< this rank's first row
+};
+
+/// Several ranks: the global row count and this rank's first row (rank order), gathered from
+/// every rank's count (collective); one rank: its own rows from 0.
+GlobalRows global_rows(const Communicator& comm, Index local) {
+  GlobalRows g{local, 0};
+  if (comm.distributed()) {
+    std::vector<int> counts;
+    const std::vector<std::int64_t> all = comm.all_gather({static_cast<std::int64_t>(local)}, counts);
+    g.n = 0;
+    for (int r = 0; r < comm.size(); ++r) {
+      if (r < comm.rank()) g.first += all[r];
+      g.n += all[r];
+    }
+  }
+  return g;
+}
+
+/// Several ranks: the file opened through MPI-IO on `comm` and every dataset written collectively,
+/// this rank its `local` rows from `first`.
+RowSlice collective_access(hid_t fapl, hid_t dxpl, const Communicator& comm, Index first, Index local) {
+  MPI_Comm c;
+  const std::uintptr_t h = comm.native_handle();
+  std::memcpy(&c, &h, sizeof c);
+  if (H5Pset_fapl_mpio(fapl, c, MPI_INFO_NULL) < 0) throw Error("HDF5: cannot set MPI-IO file access");
+  if (H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE) < 0) throw Error("HDF5: cannot set collective transfers");
+  return RowSlice{static_cast<hsize_t>(first), static_cast<hsize_t>(local), dxpl, comm.rank() == 0};
+}
+
+/// The selected point fields, the geometry "x" (always: it places the points) and the explicit
+/// Polyvertex connectivity, each an n-row dataset.
+void write_point_datasets(hid_t h5, const FieldStore& points, const std::vector<const FieldInfo*>& sel, Index n,
+                          Index first, const RowSlice& rows) {
+  bool x_selected = false;
+  for (const FieldInfo* f : sel) x_selected = x_selected || f->name == "x";
+  std::vector<const FieldInfo*> datasets = sel;
+  if (!x_selected) datasets.push_back(&points.info("x"));
+  for (const FieldInfo* f : datasets) {
+    std::vector<hsize_t> dims{static_cast<hsize_t>(n)};
+    if (f->ncomp != 1) dims.push_back(static_cast<hsize_t>(f->ncomp));
+    if (f->type == FieldType::Real)
+      write_dataset(h5, f->name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, dims, points.real(f->name), f->unit, rows);
+    else
+      write_dataset(h5, f->name, H5T_NATIVE_INT64, H5T_STD_I64LE, dims, points.ints(f->name), f->unit, rows);
+  }
+
+  // Polyvertex connectivity: readers differ on implicit connectivity, so it is explicit.
+  const Index local = points.size();
+  std::vector<std::int64_t> verts(static_cast<size_t>(local));
+  for (Index p = 0; p < local; ++p) verts[p] = first + p;
+  write_dataset(h5, "vertex_cells", H5T_NATIVE_INT64, H5T_STD_I64LE, {static_cast<hsize_t>(n)},
+                verts.data(), "", rows);
+}
+
+/// Corners per particle domain: a hexahedron in 3D, a quadrilateral in 2D.
+int domain_corners(int dim) { return dim == 3 ? 8 : 4; }
+
+/// Each particle's deformed domain x_p + F_p (±half_size) as cell corners (domain_points) and
+/// cells (domain_cells), so that a reader draws the domains, not just the points.
+void write_domain_datasets(hid_t h5, const FieldStore& points, int dim, Index n, Index first, const RowSlice& rows) {
+  const Index local = points.size();
+  const int nc = domain_corners(dim);
+  const Vec3* x = points.view<Vec3>("x");
+  const Mat3* F = points.view<Mat3>("F");
+  const Vec3* h = points.view<Vec3>("half_size");
+  // Corner sign patterns in VTK/XDMF order: bottom face counter-clockwise, then top face.
+  static const int s3[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                               {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+  static const int s2[4][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  const int(*sign)[3] = dim == 3 ? s3 : s2;
+  std::vector<Vec3> corners(static_cast<size_t>(local * nc));
+  std::vector<std::int64_t> cells(static_cast<size_t>(local * nc));
+  for_each(0, local, [&](Index p) {
+    for (int k = 0; k < nc; ++k) {
+      const Vec3 r{{sign[k][0] * h[p][0], sign[k][1] * h[p][1], sign[k][2] * h[p][2]}};
+      corners[p * nc + k] = x[p] + F[p] * r;
+      cells[p * nc + k] = (first + p) * nc + k;
+    }
+  });
+  RowSlice corner_rows = rows;  // nc corner rows per particle
+  corner_rows.first *= static_cast<hsize_t>(nc);
+  corner_rows.rows *= static_cast<hsize_t>(nc);
+  write_dataset(h5, "domain_points", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE,
+                {static_cast<hsize_t>(n * nc), 3}, corners.data(), points.info("x").unit, corner_rows);
+  write_dataset(h5, "domain_cells", H5T_NATIVE_INT64, H5T_STD_I64LE,
+                {static_cast<hsize_t>(n), static_cast<hsize_t>(nc)}, cells.data(), "", rows);
+}
+
+/// The second point cloud (OTM nodes), one rank only: every real field, prefixed node_, with its
+/// own vertices.
+void write_node_datasets(hid_t h5, const FieldStore& nodes) {
+  const Index nn = nodes.size();
+  for (const FieldInfo& f : nodes.fields()) {
+    if (f.type != FieldType::Real) continue;
+    std::vector<hsize_t> dims{static_cast<hsize_t>(nn)};
+    if (f.ncomp != 1) dims.push_back(static_cast<hsize_t>(f.ncomp));
+    write_dataset(h5, "node_" + f.name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, dims, nodes.real(f.name), f.unit);
+  }
+  std::vector<std::int64_t> nv(static_cast<size_t>(nn));
+  for (Index a = 0; a < nn; ++a) nv[a] = a;
+  write_dataset(h5, "node_cells", H5T_NATIVE_INT64, H5T_STD_I64LE, {static_cast<hsize_t>(nn)}, nv.data(), "");
+}
+
+/// The XDMF grid(s) of output `index` in `file`: particles (Polyvertex), with domains the deformed
+/// cells, with nodes a second Polyvertex grid; several grids go into a spatial collection.
+std::string output_grid(double time, int index, const std::string& file, Index n,
+                        const std::vector<const FieldInfo*>& sel, bool domains, int dim, const FieldStore* nodes) {
+  const int nc = domain_corners(dim);
+  const std::string t = num(time);
+  const std::string name = "output_" + std::to_string(index);
+  std::string g;
+  std::string in = "      ";
+  const bool collection = domains || nodes;
+  if (collection) {
+    g += in + "<Grid Name=\"" + name + "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n";
+    g += in + "  <Time Value=\"" + t + "\"/>\n";
+    in += "  ";
+  }
+  g += polyvertex_grid("particles", t, file, "vertex_cells", "x", n,
+                       attributes(file, sel, n, "Node", in + "  "), in);
+  if (domains) {
+    g += in + "<Grid Name=\"domains\" GridType=\"Uniform\">\n";
+    g += in + "  <Time Value=\"" + t + "\"/>\n";
+    g += in + "  <Topology TopologyType=\"" + (dim == 3 ? "Hexahedron" : "Quadrilateral") +
+         "\" NumberOfElements=\"" + std::to_string(n) + "\">\n";
+    g += data_item(file, "domain_cells", n, nc, true, in + "    ");
+    g += in + "  </Topology>\n";
+    g += in + "  <Geometry GeometryType=\"XYZ\">\n";
+    g += data_item(file, "domain_points", n * nc, 3, false, in + "    ");
+    g += in + "  </Geometry>\n";
+    g += attributes(file, sel, n, "Cell", in + "  ");
+    g += in + "</Grid>\n";
+  }
+  if (nodes) {
+    std::vector<const FieldInfo*> node_fields;
+    for (const FieldInfo& f : nodes->fields())
+      if (f.type == FieldType::Real && f.name != "x") node_fields.push_back(&f);
+    const Index nn = nodes->size();
+    g += polyvertex_grid("nodes", t, file, "node_cells", "node_x", nn,
+                         attributes(file, node_fields, nn, "Node", in + "  ", "node_"), in);
+  }
+  if (collection) g += "      </Grid>\n";
+  return g;
+}
+
 }  // namespace
 
 ParticleWriter::ParticleWriter(std::string dir, std::vector<std::string> fields, bool domains, int dim)
@@ -190,52 +375,17 @@ std::string ParticleWriter::h5_path(int index) const {
 
 void ParticleWriter::write(double time, long step, const FieldStore& points, const FieldStore* nodes) {
   // Fields to write: the requested ones (or every output field); "x" is the geometry.
-  std::vector<const FieldInfo*> sel;
-  if (fields_.empty()) {
-    for (const FieldInfo& f : points.fields())
-      if (f.output) sel.push_back(&f);
-  } else {
-    for (const std::string& name : fields_) {
-      if (!points.has(name)) throw Error("output field '" + name + "' does not exist");
-      bool dup = false;  // a field listed twice is written once
-      for (const FieldInfo* f : sel) dup = dup || f->name == name;
-      if (!dup) sel.push_back(&points.info(name));
-    }
-  }
-  if (!points.has("x") || points.info("x").type != FieldType::Real || points.info("x").ncomp != 3)
-    throw Error("particle output needs a real field 'x' with 3 components");
-  if (nodes && !(nodes->has("x") && nodes->info("x").type == FieldType::Real && nodes->info("x").ncomp == 3))
-    throw Error("node output needs a real field 'x' with 3 components");
-  if (domains_ && !(points.has("F") && points.has("half_size")))
-    throw Error("particle domain output needs fields 'F' (Mat3) and 'half_size' (Vec3)");
-  bool x_selected = false;
-  for (const FieldInfo* f : sel) {
-    if (f->name.empty() || f->name.find('/') != std::string::npos)
-      throw Error("field name '" + f->name + "' cannot be an HDF5 dataset name");
-    for (const char* r : kReserved)
-      if (f->name == r) throw Error("field name '" + f->name + "' is reserved in particle output");
-    x_selected = x_selected || f->name == "x";
-  }
+  const std::vector<const FieldInfo*> sel = selected_fields(points, fields_);
+  check_output_fields(points, nodes, domains_, sel);
 
   const Index local = points.size();
   const bool parallel = comm_.distributed();
   const bool root = comm_.rank() == 0;
-  // Several ranks: the global row count and this rank's first row (rank order).
-  Index n = local, first = 0;
-  if (parallel) {
-    std::vector<int> counts;
-    const std::vector<std::int64_t> all = comm_.all_gather({static_cast<std::int64_t>(local)}, counts);
-    n = 0;
-    for (int r = 0; r < comm_.size(); ++r) {
-      if (r < comm_.rank()) first += all[r];
-      n += all[r];
-    }
-  }
+  const auto [n, first] = global_rows(comm_, local);
   if (parallel && nodes) throw Error("node output (OTM) is not written by several ranks");
   const int index = count();
   const std::string path = h5_path(index);
   const std::string file = std::filesystem::path(path).filename().string();  // relative to the xdmf
-  const int nc = dim_ == 3 ? 8 : 4;  // corners per domain
 
   {
     // Rank 0 alone owns the temporary file's fate (an AtomicPath of another rank would unlink it).
@@ -249,116 +399,20 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
 #endif
       H5Id dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "create transfer list");
       RowSlice rows;
-      if (parallel) {
-        MPI_Comm c;
-        const std::uintptr_t h = comm_.native_handle();
-        std::memcpy(&c, &h, sizeof c);
-        if (H5Pset_fapl_mpio(fapl, c, MPI_INFO_NULL) < 0) throw Error("HDF5: cannot set MPI-IO file access");
-        if (H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE) < 0) throw Error("HDF5: cannot set collective transfers");
-        rows = RowSlice{static_cast<hsize_t>(first), static_cast<hsize_t>(local), dxpl, root};
-      }
+      if (parallel) rows = collective_access(fapl, dxpl, comm_, first, local);
       H5Id h5(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose, "create '" + tmp + "'");
       write_dataset(h5, "time", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {}, &time, "s", rows);
       const std::int64_t step64 = step;
       write_dataset(h5, "step", H5T_NATIVE_INT64, H5T_STD_I64LE, {}, &step64, "", rows);
-
-      std::vector<const FieldInfo*> datasets = sel;
-      if (!x_selected) datasets.push_back(&points.info("x"));
-      for (const FieldInfo* f : datasets) {
-        std::vector<hsize_t> dims{static_cast<hsize_t>(n)};
-        if (f->ncomp != 1) dims.push_back(static_cast<hsize_t>(f->ncomp));
-        if (f->type == FieldType::Real)
-          write_dataset(h5, f->name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, dims, points.real(f->name), f->unit, rows);
-        else
-          write_dataset(h5, f->name, H5T_NATIVE_INT64, H5T_STD_I64LE, dims, points.ints(f->name), f->unit, rows);
-      }
-
-      // Polyvertex connectivity: readers differ on implicit connectivity, so it is explicit.
-      std::vector<std::int64_t> verts(static_cast<size_t>(local));
-      for (Index p = 0; p < local; ++p) verts[p] = first + p;
-      write_dataset(h5, "vertex_cells", H5T_NATIVE_INT64, H5T_STD_I64LE, {static_cast<hsize_t>(n)},
-                    verts.data(), "", rows);
-
-      if (domains_) {
-        const Vec3* x = points.view<Vec3>("x");
-        const Mat3* F = points.view<Mat3>("F");
-        const Vec3* h = points.view<Vec3>("half_size");
-        // Corner sign patterns in VTK/XDMF order: bottom face counter-clockwise, then top face.
-        static const int s3[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
-                                     {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
-        static const int s2[4][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
-        const int(*sign)[3] = dim_ == 3 ? s3 : s2;
-        std::vector<Vec3> corners(static_cast<size_t>(local * nc));
-        std::vector<std::int64_t> cells(static_cast<size_t>(local * nc));
-        for_each(0, local, [&](Index p) {
-          for (int k = 0; k < nc; ++k) {
-            const Vec3 r{{sign[k][0] * h[p][0], sign[k][1] * h[p][1], sign[k][2] * h[p][2]}};
-            corners[p * nc + k] = x[p] + F[p] * r;
-            cells[p * nc + k] = (first + p) * nc + k;
-          }
-        });
-        RowSlice corner_rows = rows;  // nc corner rows per particle
-        corner_rows.first *= static_cast<hsize_t>(nc);
-        corner_rows.rows *= static_cast<hsize_t>(nc);
-        write_dataset(h5, "domain_points", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE,
-                      {static_cast<hsize_t>(n * nc), 3}, corners.data(), points.info("x").unit, corner_rows);
-        write_dataset(h5, "domain_cells", H5T_NATIVE_INT64, H5T_STD_I64LE,
-                      {static_cast<hsize_t>(n), static_cast<hsize_t>(nc)}, cells.data(), "", rows);
-      }
-      if (nodes) {
-        // The second point cloud (OTM nodes): every real field, prefixed, with its own vertices.
-        const Index nn = nodes->size();
-        for (const FieldInfo& f : nodes->fields()) {
-          if (f.type != FieldType::Real) continue;
-          std::vector<hsize_t> dims{static_cast<hsize_t>(nn)};
-          if (f.ncomp != 1) dims.push_back(static_cast<hsize_t>(f.ncomp));
-          write_dataset(h5, "node_" + f.name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, dims, nodes->real(f.name), f.unit);
-        }
-        std::vector<std::int64_t> nv(static_cast<size_t>(nn));
-        for (Index a = 0; a < nn; ++a) nv[a] = a;
-        write_dataset(h5, "node_cells", H5T_NATIVE_INT64, H5T_STD_I64LE, {static_cast<hsize_t>(nn)}, nv.data(), "");
-      }
+      write_point_datasets(h5, points, sel, n, first, rows);
+      if (domains_) write_domain_datasets(h5, points, dim_, n, first, rows);
+      if (nodes) write_node_datasets(h5, *nodes);
       h5.close("close '" + tmp + "'");  // collective: every rank's rows are in the file
     }
     if (root) out->commit();
   }
 
-  // XDMF grid(s) of this output: particles (Polyvertex), with domains the deformed cells, with
-  // nodes a second Polyvertex grid.
-  const std::string t = num(time);
-  const std::string name = "output_" + std::to_string(index);
-  std::string g;
-  std::string in = "      ";
-  const bool collection = domains_ || nodes;
-  if (collection) {
-    g += in + "<Grid Name=\"" + name + "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n";
-    g += in + "  <Time Value=\"" + t + "\"/>\n";
-    in += "  ";
-  }
-  g += polyvertex_grid("particles", t, file, "vertex_cells", "x", n,
-                       attributes(file, sel, n, "Node", in + "  "), in);
-  if (domains_) {
-    g += in + "<Grid Name=\"domains\" GridType=\"Uniform\">\n";
-    g += in + "  <Time Value=\"" + t + "\"/>\n";
-    g += in + "  <Topology TopologyType=\"" + (dim_ == 3 ? "Hexahedron" : "Quadrilateral") +
-         "\" NumberOfElements=\"" + std::to_string(n) + "\">\n";
-    g += data_item(file, "domain_cells", n, nc, true, in + "    ");
-    g += in + "  </Topology>\n";
-    g += in + "  <Geometry GeometryType=\"XYZ\">\n";
-    g += data_item(file, "domain_points", n * nc, 3, false, in + "    ");
-    g += in + "  </Geometry>\n";
-    g += attributes(file, sel, n, "Cell", in + "  ");
-    g += in + "</Grid>\n";
-  }
-  if (nodes) {
-    std::vector<const FieldInfo*> node_fields;
-    for (const FieldInfo& f : nodes->fields())
-      if (f.type == FieldType::Real && f.name != "x") node_fields.push_back(&f);
-    const Index nn = nodes->size();
-    g += polyvertex_grid("nodes", t, file, "node_cells", "node_x", nn,
-                         attributes(file, node_fields, nn, "Node", in + "  ", "node_"), in);
-  }
-  if (collection) g += "      </Grid>\n";
+  const std::string g = output_grid(time, index, file, n, sel, domains_, dim_, nodes);
   if (root) append_xdmf(g);
   ++count_;
 }

@@ -775,4 +775,5 @@ BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
     .create = &ballista::make_mpm,
     .distributed = true,
     .graded_grid = true,
-    .velocity_fields = true})
+    .velocity_fields = true,
+    .courant_step = true})

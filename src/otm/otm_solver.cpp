@@ -690,4 +690,5 @@ BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
     .dimensions = {"3d", "plane_strain", "axisymmetric"},
     .section = "otm",
     .params = ballista::otm_params(),
-    .create = &ballista::make_otm})
+    .create = &ballista::make_otm,
+    .courant_step = true})

@@ -43,15 +43,25 @@ std::vector<ModelOutput> steady_outputs(const SteadyPenetration& s) {
   return {num("U", "m/s", s.U), num("P", "m", s.P), word("regime", to_string(s.regime))};
 }
 
-std::vector<ModelEntry> make_models() {
-  std::vector<ModelEntry> m;
-  const ModelParam L = req("L", "m", "jet or rod length");
-  const ModelParam rho_p = req("rho_p", "kg/m^3", "jet or rod density");
-  const ModelParam rho_t = req("rho_t", "kg/m^3", "target density");
-  const ModelParam V = req("V", "m/s", "impact velocity (sweep with --velocities)");
-  const ModelParam R = req("R", "Pa", "target dynamic resistance");
-  const ModelParam Y = req("Y", "Pa", "penetrator dynamic strength");
+/// The parameters most models share.
+struct CommonParams {
+  ModelParam L, rho_p, rho_t, V, R, Y;
+};
 
+/// The shared parameters, spelled once so that every model that takes them lists them alike.
+CommonParams common_params() {
+  return {req("L", "m", "jet or rod length"),
+          req("rho_p", "kg/m^3", "jet or rod density"),
+          req("rho_t", "kg/m^3", "target density"),
+          req("V", "m/s", "impact velocity (sweep with --velocities)"),
+          req("R", "Pa", "target dynamic resistance"),
+          req("Y", "Pa", "penetrator dynamic strength")};
+}
+
+/// Steady jets (eq. 3.1-3.8): Birkhoff's hydrodynamic jet and its corrections for particulation,
+/// target strength as a penalty, and strength on both sides (Eichelberger).
+void add_steady_jet_models(std::vector<ModelEntry>& m, const CommonParams& common) {
+  const auto& [L, rho_p, rho_t, V, R, Y] = common;
   m.push_back({"birkhoff",
                "thesis seed 000 eq. 3.1-3.2, §5.2 (U_h)",
                "hydrodynamic jet: depth L sqrt(rho_p/rho_t), penetration velocity V/(1 + sqrt(rho_t/rho_p))",
@@ -104,6 +114,12 @@ std::vector<ModelEntry> make_models() {
                  return steady_outputs(eichelberger(
                      {a.at("L"), a.at("lambda"), a.at("rho_p"), a.at("rho_t"), a.at("R"), a.at("Y"), a.at("V")}));
                }});
+}
+
+/// Penetrators that are not a steady continuous jet (eq. 3.9-3.13): the eroding rod in time
+/// (Tate), the stretching jet (Gladkikh), the porous jet (Grove).
+void add_penetrator_variant_models(std::vector<ModelEntry>& m, const CommonParams& common) {
+  const auto& [L, rho_p, rho_t, V, R, Y] = common;
   m.push_back({"tate",
                "thesis seed 000 eq. 3.9; Walters & Segletes, Int. J. Impact Eng. 11 (1991) 225",
                "Alekseevskii-Tate eroding rod integrated in time (RK4, step control, events), then rigid if Y > R; "
@@ -154,6 +170,27 @@ std::vector<ModelEntry> make_models() {
                  o.insert(o.begin(), num("phi", "1", g.phi));
                  return o;
                }});
+}
+
+/// Orphal-Anderson's strength difference implied by U = a + b V (eq. 5.3-5.5), appended to `o`:
+/// shared by the model given a and b and the one that fits them.
+void append_orphal_anderson_outputs(double a_, double b_, const ModelArgs& a, std::vector<ModelOutput>& o) {
+  const double rp = a.at("rho_p"), rt = a.at("rho_t");
+  const double curv = orphal_anderson_curvature(b_, rp, rt);
+  o.push_back(num("curvature", "kg/m^3", curv));
+  o.push_back(num("b_hydrodynamic", "1", orphal_anderson_hydrodynamic_slope(rp, rt)));
+  if (curv != 0) {
+    o.push_back(num("V_m", "m/s", orphal_anderson_extremum_velocity(a_, b_, rp, rt)));
+    o.push_back(word("extremum", curv < 0 ? "maximum" : "minimum"));
+  }
+  if (a.has("V")) o.push_back(num("R_minus_Y", "Pa", orphal_anderson_strength_difference(a_, b_, rp, rt, a.at("V"))));
+}
+
+/// Models fitted to or read back from measurements: Harvey's stressed-rock correlation
+/// (eq. 3.14-3.18), Orphal-Anderson's U = a + b V (eq. 5.2-5.5), Pack-Evans inverted for alpha and
+/// lambda (eq. 6.15-6.16).
+void add_empirical_models(std::vector<ModelEntry>& m, const CommonParams& common) {
+  const auto& [L, rho_p, rho_t, V, R, Y] = common;
   m.push_back({"harvey",
                "thesis seed 000 eq. 3.14-3.18 (field units inside, SI here)",
                "stressed-rock correlation P = P_ref exp(alpha0 (10000 psi - F_BI)); eq. 3.16 read as P_c - a P_p",
@@ -167,26 +204,15 @@ std::vector<ModelEntry> make_models() {
                  return std::vector<ModelOutput>{num("a", "1", h.a), num("b", "1", h.b), num("P_eff", "Pa", h.P_eff),
                                                  num("F_BI", "Pa", h.F_BI), num("P", "m", h.depth)};
                }});
-  auto oa_outputs = [](double a_, double b_, const ModelArgs& a, std::vector<ModelOutput>& o) {
-    const double rp = a.at("rho_p"), rt = a.at("rho_t");
-    const double curv = orphal_anderson_curvature(b_, rp, rt);
-    o.push_back(num("curvature", "kg/m^3", curv));
-    o.push_back(num("b_hydrodynamic", "1", orphal_anderson_hydrodynamic_slope(rp, rt)));
-    if (curv != 0) {
-      o.push_back(num("V_m", "m/s", orphal_anderson_extremum_velocity(a_, b_, rp, rt)));
-      o.push_back(word("extremum", curv < 0 ? "maximum" : "minimum"));
-    }
-    if (a.has("V")) o.push_back(num("R_minus_Y", "Pa", orphal_anderson_strength_difference(a_, b_, rp, rt, a.at("V"))));
-  };
   m.push_back({"orphal-anderson",
                "thesis seed 000 eq. 5.3-5.5 (eq. 5.3 with its 2abV term)",
                "strength difference R - Y implied by U = a + b V, its extremum V_m and curvature",
                {req("a", "m/s", "intercept of U = a + b V"), req("b", "1", "slope of U = a + b V"), rho_p, rho_t,
                 maybe("V", "m/s", "rod velocity for R - Y (sweep with --velocities)")},
                false,
-               [oa_outputs](const ModelArgs& a) {
+               [](const ModelArgs& a) {
                  std::vector<ModelOutput> o;
-                 oa_outputs(a.at("a"), a.at("b"), a, o);
+                 append_orphal_anderson_outputs(a.at("a"), a.at("b"), a, o);
                  return o;
                }});
   m.push_back({"orphal-anderson-fit",
@@ -194,10 +220,10 @@ std::vector<ModelEntry> make_models() {
                "least-squares U = a + b V of --velocities V and --rates U, then eq. 5.3-5.5",
                {rho_p, rho_t},
                true,
-               [oa_outputs](const ModelArgs& a) {
+               [](const ModelArgs& a) {
                  const LinearFit f = fit_orphal_anderson(a.velocities, a.rates);
                  std::vector<ModelOutput> o{num("a", "m/s", f.a), num("b", "1", f.b), num("r2", "1", f.r2)};
-                 oa_outputs(f.a, f.b, a, o);
+                 append_orphal_anderson_outputs(f.a, f.b, a, o);
                  return o;
                }});
   m.push_back({"pack-evans-fit",
@@ -216,6 +242,15 @@ std::vector<ModelEntry> make_models() {
                  if (a.has("penalty")) o.push_back(num("lambda", "1", pack_evans_extract_lambda(ob, a.at("penalty"))));
                  return o;
                }});
+}
+
+/// Every model, in the order `ballista models list` shows them.
+std::vector<ModelEntry> make_models() {
+  std::vector<ModelEntry> m;
+  const CommonParams common = common_params();
+  add_steady_jet_models(m, common);
+  add_penetrator_variant_models(m, common);
+  add_empirical_models(m, common);
   return m;
 }
 

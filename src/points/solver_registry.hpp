@@ -42,6 +42,9 @@ struct SolverFactory {
   /// Has separate grid velocity fields with contact between them (contact.model with several
   /// fields); otherwise a solver brings its own contact.
   bool velocity_fields = false;
+  /// Its stable step is simulation.cfl times a Courant bound; otherwise it does not read
+  /// simulation.cfl (`ballista info` names the solvers that do).
+  bool courant_step = false;
 };
 
 /// Registered solvers by name (core/registry.hpp), filled at static-initialisation time.
