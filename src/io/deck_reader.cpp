@@ -51,8 +51,9 @@ int axis_from(const std::string& name) { return name == "x" ? 0 : name == "y" ? 
 
 namespace {
 
-const std::vector<std::string> kSections{"simulation", "grid",   "materials", "stages", "bodies",
-                                         "loads",      "cracks", "contact", "detonation", "probes", "penetration", "output"};
+const std::vector<std::string> kSections{"simulation", "grid",   "materials",   "stages",
+                                         "bodies",     "loads",  "cracks",      "contact",
+                                         "detonation", "probes", "penetration", "output"};
 const std::vector<std::string> kFaces{"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
 const std::vector<std::string> kFaceBCs{"free", "fixed", "symmetry", "wall"};
 constexpr long kLongMax = LONG_MAX;
@@ -133,7 +134,8 @@ class Reader {
     const std::string dim = s.choice("dimension", "3d", {"3d", "plane_strain", "plane_stress", "axisymmetric"});
     const SolverFactory& solver = *find_solver(sim.solver);
     if (std::find(solver.dimensions.begin(), solver.dimensions.end(), dim) == solver.dimensions.end())
-      s.fail("dimension", "solver '" + sim.solver + "' runs in " + join_names(solver.dimensions) + ", not '" + dim + "'");
+      s.fail("dimension", "solver '" + sim.solver + "' runs in " + join_names(solver.dimensions) +
+                              ", not '" + dim + "'");
     sim.plane_stress = dim == "plane_stress";
     sim.dimension = dim == "plane_strain" || dim == "plane_stress" ? Dimension::PlaneStrain
                     : dim == "axisymmetric" ? Dimension::Axisymmetric
@@ -356,7 +358,9 @@ class Reader {
         if (norm(body.velocity) >= kSpeedOfLight)
           b.fail("velocity", "expected a speed below the speed of light (2.998e8 m/s), got " +
                                  format_number(norm(body.velocity)) + " m/s");
-        body.radial_speed = b.number("radial_velocity", 0.0, NumberRange::between(-kSpeedOfLight, kSpeedOfLight, true, true, "m/s"));
+        body.radial_speed =
+            b.number("radial_velocity", 0.0,
+                     NumberRange::between(-kSpeedOfLight, kSpeedOfLight, true, true, "m/s"));
         if (body.radial_speed != 0.0 && body.shape.type != "cylinder" && body.shape.type != "tube")
           b.fail("radial_velocity", "a radial velocity is away from the axis of a cylinder or tube; body '" +
                                         body.name + "' is a " + body.shape.type);
@@ -372,7 +376,9 @@ class Reader {
         b.allow("velocity");
       }
       // Penetrators are fired in the main stage; other bodies start with the first stage.
-      body.activation_stage = stage_ref(b, "activation_stage", body.penetrator.kind.empty() ? 0 : static_cast<int>(sc_.stages.size()));
+      body.activation_stage =
+          stage_ref(b, "activation_stage",
+                    body.penetrator.kind.empty() ? 0 : static_cast<int>(sc_.stages.size()));
       std::vector<std::string> states{"none"};
       for (const InitialStateFactory& f : initial_state_registry()) states.push_back(f.name);
       body.initial_state = b.choice("initial_state", "none", states);
@@ -484,7 +490,9 @@ class Reader {
       pair.body_a = names[0];
       pair.body_b = names[1];
       pair.model = p.choice("model", "friction", models);
-      pair.friction = pair.model == "friction" ? p.number("friction", cs.friction, NumberRange::non_negative("1")) : 0.0;
+      pair.friction = pair.model == "friction"
+                          ? p.number("friction", cs.friction, NumberRange::non_negative("1"))
+                          : 0.0;
       p.finish();
       const int a = body_index(sc_, pair.body_a), b = body_index(sc_, pair.body_b);
       if (listed[a][b] >= 0)
@@ -537,8 +545,9 @@ class Reader {
       set_by[k] = set_by[static_cast<size_t>(fb) * nf + fa] = static_cast<int>(i);
     }
     if (nf > 1 && !solver_can(&SolverFactory::velocity_fields))
-      c.fail("model", "separate velocity fields are a grid contact of " + solvers_that(&SolverFactory::velocity_fields) +
-                          "; solver '" + sc_.simulation.solver + "' has its own contact (docs/deck.md)");
+      c.fail("model", "separate velocity fields are a grid contact of " +
+                          solvers_that(&SolverFactory::velocity_fields) + "; solver '" +
+                          sc_.simulation.solver + "' has its own contact (docs/deck.md)");
   }
 
   /// One parameter of a probe, read as its kind declares (points/probe_registry.hpp).
@@ -616,7 +625,9 @@ class Reader {
       StageSpec st;
       st.mark = n.mark();
       st.name = n.string("name");
-      if (st.name == "main") n.fail("name", "'main' is the name of the final stage (simulation.end_time); choose another");
+      if (st.name == "main")
+        n.fail("name",
+               "'main' is the name of the final stage (simulation.end_time); choose another");
       for (const auto& other : sc_.stages)
         if (other.name == st.name) n.fail("name", "duplicate stage name '" + st.name + "'");
       st.damping = n.number("damping", 0.0, NumberRange::non_negative("1/s"));
@@ -638,7 +649,9 @@ class Reader {
         if (st.min_duration > st.max_duration)
           n.fail("min_duration", "expected min_duration <= max_duration (" + format_number(st.max_duration) + " s)");
         n.allow("duration");
-        if (n.has("duration")) n.fail("duration", "a stage ends either after a duration or by its `until` criterion, not both");
+        if (n.has("duration"))
+          n.fail("duration",
+                 "a stage ends either after a duration or by its `until` criterion, not both");
       } else {
         n.allow("until");
         st.duration = n.number("duration", NumberRange::positive("s"));
@@ -677,7 +690,9 @@ class Reader {
     const BodySpec* pb = find_body(pe.penetrator);
     if (!pb) n.fail("penetrator", "unknown body '" + pe.penetrator + "'" + suggest(pe.penetrator, body_names()));
     if (pb->penetrator.kind.empty())
-      n.fail("penetrator", "body '" + pe.penetrator + "' is not a rod or jet (give it `rod:` or `jet:` instead of `shape:`)");
+      n.fail("penetrator",
+             "body '" + pe.penetrator +
+                 "' is not a rod or jet (give it `rod:` or `jet:` instead of `shape:`)");
     pe.target = n.string("target");
     const BodySpec* tb = find_body(pe.target);
     if (!tb) n.fail("target", "unknown body '" + pe.target + "'" + suggest(pe.target, body_names()));
@@ -706,7 +721,9 @@ class Reader {
     for (const std::string& l : pe.layers) {
       if (!find_body(l)) n.fail("layers", "unknown body '" + l + "'" + suggest(l, body_names()));
       if (l == pe.penetrator || l == pe.target)
-        n.fail("layers", "'" + l + "' is the penetrator or the target; layers are the bodies perforated before the target");
+        n.fail("layers", "'" + l +
+                             "' is the penetrator or the target; layers are the bodies perforated "
+                             "before the target");
     }
     n.finish();
   }
@@ -723,12 +740,13 @@ class Reader {
     out.checkpoint_keep = static_cast<int>(o.integer("checkpoint_keep", 2, 1, 1000));
     if (out.interval > 0.0) {
       // Particle files of the run: the first, one per interval of the main stage, one per
-      // preparation stage and the last (issue 11: 1e-12 s gave one 300 kB file per step).
+      // preparation stage and the last (an interval of 1e-12 s would write one 300 kB file per step).
       const double planned = std::ceil(sc_.simulation.end_time / out.interval) + 2.0 + sc_.stages.size();
       if (planned > static_cast<double>(out.max_outputs))
         o.fail("interval", "an output every " + format_number(out.interval) + " s over end_time " +
                                format_number(sc_.simulation.end_time) + " s writes " +
-                               (std::isfinite(planned) ? "about " + format_number(planned) : std::string("more than 1e308")) +
+                               (std::isfinite(planned) ? "about " + format_number(planned)
+                                                       : std::string("more than 1e308")) +
                                " particle files, more than output.max_outputs = " +
                                std::to_string(out.max_outputs) +
                                "; lengthen the interval, or raise output.max_outputs to insist");

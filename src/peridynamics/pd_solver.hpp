@@ -16,7 +16,7 @@
 // The points layer (seeding, loads, removal, energies, diagnostics) is shared with MPM: this file
 // owns only the bonds, the force and the time integration.
 //
-// Several MPI ranks (issue 16, peridynamics/pd_halo.hpp): the points are partitioned once by RCB of
+// Several MPI ranks (peridynamics/pd_halo.hpp): the points are partitioned once by RCB of
 // their reference positions; the bond pass runs over each rank's own points and ghost copies in
 // the local numbering of pd_halo.hpp. Arrays named per local point are indexed by that numbering,
 // the point fields (the store) by the own points' order; local_.own maps the one to the other (the
@@ -115,7 +115,15 @@ class PdSolver final : public Solver {
   Index cut_bonds(const std::function<bool(Index, Index)>& cut);
   /// The partition (several ranks), the local points with their ghosts and the bond family of the
   /// local points (pd_halo.hpp); one rank: the family of every point.
+  // Construction (pd_solver.cpp, pd_bond_setup.cpp), in the order the constructor calls them.
+  void read_settings(const Scenario& sc);
+  void set_bond_constants(const Scenario& sc, bool correct);
   void build_local_points(bool correct);
+  void init_critical_stretch(const Scenario& sc);
+  void build_bond_tables();
+  void apply_surface_correction(const Scenario& sc, bool correct);
+  void set_bond_stiffness();
+  void cut_pre_cracks(const Scenario& sc);
   /// Own points' positions into the local copies, and the ghosts' from their owners (collective);
   /// the ghosts' previous positions become their step-start positions.
   void sync_local();
@@ -177,7 +185,8 @@ class PdSolver final : public Solver {
   int nmat_ = 0;
   std::vector<double> c_;    ///< micromodulus per material pair, N/m^6
   std::vector<double> s00_;  ///< critical stretch per material pair (inf: no failure)
-  std::vector<double> c_contact_;  ///< micromodulus of the contact springs per material pair (gas-solid: the solid's), N/m^6
+  std::vector<double> c_contact_;  ///< micromodulus of the contact springs per material pair
+                                   ///< (gas-solid: the solid's), N/m^6
   double alpha_ = 0.0;       ///< s0 = s00 - alpha s_min
   double dt_safety_ = 0.8;   ///< fraction of the Silling-Askari stable step
   double damping_ = 0.0;     ///< 1/s: a - c v (dynamic relaxation, stages)

@@ -1,0 +1,169 @@
+// The deck's peridynamics.* parameters: their specs (names, units, defaults, ranges; docs/deck.md)
+// and the checks the specs cannot express (the horizon against the lattice and the bodies, the
+// bonds' materials).
+#include "peridynamics/pd_params.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <limits>
+
+#include "core/error.hpp"
+#include "geometry/shape.hpp"
+#include "peridynamics/bond_family.hpp"
+#include "points/solver_registry.hpp"
+
+namespace ballista {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// A bond takes only a solid's elastic moduli (probe_moduli): a model whose plasticity, EOS or
+/// failure criterion the bonds would drop is refused, not run as another material. Micro-plastic
+/// bonds and bond failure are the peridynamics section's (yield_stress, critical_stretch).
+void check_bond_materials(const Scenario& sc) {
+  for (const MaterialSpec& m : sc.materials) {
+    if (m.model == "explosive") continue;  // a peridynamic gas: its pressure is the model's
+    auto at = [&](const std::string& key) {
+      const auto it = m.param_marks.find(key);
+      return it != m.param_marks.end() ? it->second : m.mark;
+    };
+    auto refuse = [&](const DeckMark& mark, const std::string& key, const std::string& what) {
+      throw DeckError(
+          mark.file, mark.line, mark.column, m.mark.key_path + "." + key,
+          "material '" + m.name + "': " + what +
+              "; peridynamic bonds take only the elastic moduli (bulk and shear) of a material, so "
+              "the rest "
+              "would be dropped: use model linear_elastic, with peridynamics.yield_stress for "
+              "micro-plastic bonds and critical_stretch or fracture_energy for their failure");
+    };
+    if (m.model != "linear_elastic") refuse(at("model"), "model", "model '" + m.model + "' is not elastic");
+    const auto crit = m.params.choices.find("failure.criterion");
+    if (crit != m.params.choices.end() && crit->second != "none")
+      refuse(at("failure.criterion"), "failure.criterion", "failure.criterion '" + crit->second + "' is a point's");
+    const auto eos = m.params.choices.find("eos.type");
+    if (eos != m.params.choices.end() && eos->second != "linear")
+      refuse(at("eos.type"), "eos.type", "eos.type '" + eos->second + "' is not linear");
+  }
+}
+
+}  // namespace
+
+std::vector<ParamSpec> pd_params() {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  ParamSpec m{"m", "1", "horizon over lattice spacing (default 3; give m or horizon)", false, nan, 1.0, 20.0};
+  ParamSpec horizon{"horizon", "m", "horizon delta (instead of m)", false, nan, 0.0, kInf, true};
+  const ParamSpec vc =
+      word_param("volume_correction", "partial-volume correction of neighbours cut by the horizon",
+                 {"partial", "none"});
+  ParamSpec s0{"critical_stretch", "1", "bond critical stretch s00 (or fracture_energy; neither: no failure)", false,
+               nan, 0.0, kInf, true};
+  ParamSpec g0{"fracture_energy", "J/m^2",
+               "fracture energy G0: s00 = sqrt(2 G0/(c m2)) (continuum m2: S&A 2005 eq. 25, sqrt(5 G0/(9 K delta)))",
+               false, nan, 0.0, kInf,
+               true};
+  ParamSpec alpha{"stretch_alpha", "1", "s0 = s00 - alpha s_min (LAMMPS PERI)", false, 0.0, 0.0, kInf};
+  ParamSpec safety{"dt_safety", "1", "fraction of the Silling-Askari stable time step", false, 0.8, 0.0, 1.0, true};
+  ParamSpec scatter{
+      "stretch_scatter",
+      "1",
+      "relative standard deviation of each point's critical stretch (flaws; 0: a perfect lattice)",
+      false,
+      0.0,
+      0.0,
+      0.3};
+  ParamSpec fint{"fragment_interval", "s", "time between fragment snapshots in fragments.csv (0: at the end only)",
+                 false, 0.0, 0.0, kInf};
+  ParamSpec fthr{"fragment_damage_threshold", "1",
+                 "points with more damage are left out of the fragments (dust); default: none left out", false, nan,
+                 0.0, 1.0};
+  // At most 1 km: beyond, the totals (mass, energies per plate) overflow before the run ends.
+  ParamSpec thick{"thickness", "m", "2D runs: the plate thickness (totals are per this thickness; default 1 m)", false,
+                  nan, 0.0, 1.0e3, true};
+  ParamSpec yield{"yield_stress", "Pa",
+                  "micro-plastic bonds: uniaxial yield stress (bond yield stretch s_y = yield_stress / E_PD); "
+                  "absent: micro-elastic bonds",
+                  false, nan, 0.0, kInf, true};
+  const ParamSpec cal = word_param(
+      "calibration",
+      "bond constants from the continuum integrals (S&A 2005) or from the lattice family (exact K and G0 "
+      "for interior points)",
+      {"lattice", "continuum"});
+  const ParamSpec surf = word_param(
+      "surface_correction",
+      "none, or energy: bonds near free surfaces stiffened by the mean of their ends' factors m1/m1_p "
+      "(Madenci & Oterkus 2014; Le & Bobaru 2018)",
+      {"none", "energy"});
+  const ParamSpec contact = word_param(
+      "contact", "short-range contact forces between points not bonded (S&A 2005, LAMMPS PERI)",
+      {"on", "off"});
+  const ParamSpec pairs = word_param(
+      "contact_pairs",
+      "unbonded: contact between points not bonded (S&A 2005); all: intact bonds compressed below "
+      "0.9 |xi| repel too (LAMMPS PERI)",
+      {"unbonded", "all"});
+  const ParamSpec rule = word_param(
+      "break_rule",
+      "work: a breaking bond stops acting and dissipates its trapezoidal work over the step (energy "
+      "conserving); lammps: it acts once more and dissipates U(s) (LAMMPS PERI's order, for comparisons)",
+      {"work", "lammps"});
+  ParamSpec refam{"gas_refamily_steps", "1",
+                   "detonation products: steps between renewals of the gas family in the current configuration "
+                   "(0: the reference family throughout; pd_gas.cpp)",
+                   false, 0.0, 0.0, 1.0e6};
+  ParamSpec skin{"contact_skin", "1", "contact list skin over the lattice spacing (rebuilt after skin/2 of motion)",
+                 false, 0.5, 0.0, 10.0, true};
+  return {m,       horizon, vc,   thick, cal,     surf,  yield, s0,   g0, alpha,
+          scatter, safety,  fint, fthr,  contact, pairs, rule,  skin, refam};
+}
+
+void pd_section_error(const Scenario& sc, const std::string& key, const std::string& message) {
+  throw_solver_param_error(sc, "peridynamics", key, message);
+}
+
+double full_family_size(const Scenario& sc) {
+  const ParamValues& P = sc.solver_params;
+  const double dx = sc.grid.cell_size;
+  const double delta = P.given("horizon") ? P.at("horizon") : (P.given("m") ? P.at("m") : 3.0) * dx;
+  return pd::lattice_family_size(delta / dx, sc.simulation.dimension == Dimension::ThreeD ? 3 : 2);
+}
+
+const Scenario& checked_for_bonds(const Scenario& sc) {
+  check_bond_materials(sc);
+  const ParamValues& P = sc.solver_params;
+  const bool m_given = P.given("m"), h_given = P.given("horizon");
+  if (m_given && h_given)
+    pd_section_error(sc, "horizon",
+                     "give the horizon or m (horizon = m x lattice spacing), not both");
+  const double dx = sc.grid.cell_size;
+  const double delta = h_given ? P.at("horizon") : (m_given ? P.at("m") : 3.0) * dx;
+  const std::string key = h_given ? "horizon" : "m";
+  if (!(delta >= dx))
+    pd_section_error(
+        sc, key,
+        fmt::format(
+            "the horizon {:g} m must be at least the lattice spacing grid.cell_size = {:g} m",
+            delta, dx));
+  const int nd = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
+  for (const BodySpec& b : sc.bodies) {
+    const MaterialSpec* m = nullptr;
+    for (const MaterialSpec& ms : sc.materials)
+      if (ms.name == b.material) m = &ms;
+    if (m && m->model == "explosive") continue;
+    Vec3 lo, hi;
+    shape_bounds(b.shape, nd, lo, hi);
+    double extent = 0.0;
+    for (int k = 0; k < nd; ++k) extent = std::max(extent, hi[k] - lo[k]);
+    const std::string why = fmt::format(
+        "the horizon {:g} m is {} the largest extent of body '{}' ({:g} m): each point's family holds most of the "
+        "body, and its bonds cannot localise damage; use a horizon of a few lattice spacings (peridynamics.m, "
+        "default 3) or a finer lattice",
+        delta, delta > 2.0 * extent ? "more than twice" : "more than half", b.name, extent);
+    if (delta > 2.0 * extent && delta > 10.0 * dx) pd_section_error(sc, key, why);
+    if (2.0 * delta > extent) spdlog::warn("{}", why);
+  }
+  return sc;
+}
+
+}  // namespace ballista
