@@ -81,11 +81,7 @@ VerifyCase run_a2(const MaterialFactory& f, A2Hardening h, const A2Problem& pb) 
     return VerifyCase::not_applicable(f.model, id, title,
                                       fmt::format("reduce_j2 returns no parameters for {} hardening: the model lacks it", kind_name(h)));
   const auto t0 = std::chrono::steady_clock::now();
-  VerifyCase c;
-  c.model = f.model;
-  c.test = id;
-  c.title = title;
-  c.plot = "a2";
+  VerifyCase c = VerifyCase::begin(f.model, id, title, "a2");
   const auto mat = make_hook_material(f, v, "reduce_j2");
 
   DriveProgram prog;
