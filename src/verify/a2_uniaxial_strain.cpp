@@ -21,7 +21,6 @@
 #include "verify/a2_uniaxial_strain.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <limits>
 
 #include <fmt/format.h>
@@ -80,7 +79,6 @@ VerifyCase run_a2(const MaterialFactory& f, A2Hardening h, const A2Problem& pb) 
   if (v.empty() && v.choices.empty())
     return VerifyCase::not_applicable(f.model, id, title,
                                       fmt::format("reduce_j2 returns no parameters for {} hardening: the model lacks it", kind_name(h)));
-  const auto t0 = std::chrono::steady_clock::now();
   VerifyCase c = VerifyCase::begin(f.model, id, title, "a2");
   const auto mat = make_hook_material(f, v, "reduce_j2");
 
@@ -222,7 +220,6 @@ VerifyCase run_a2(const MaterialFactory& f, A2Hardening h, const A2Problem& pb) 
                                         {"steps", static_cast<double>(res.steps)},
                                         {"strain_measure_bound", bound}});
   c.finish();
-  c.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return c;
 }
 
