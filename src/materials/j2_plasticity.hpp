@@ -26,6 +26,7 @@
 
 #include "materials/elastic_constants.hpp"
 #include "materials/hardening.hpp"
+#include "materials/j2_elastic_eos.hpp"
 #include "materials/j2_return.hpp"
 #include "materials/material_adapter.hpp"
 
@@ -43,15 +44,11 @@ struct J2Plasticity {
   // Kernel of the deck model j2_plasticity (registered in j2_plasticity.cpp).
   static constexpr const char* kName = "j2_plasticity";
   static constexpr bool kTracksPlasticStrain = true;  // fills PointResult eqps, delta_eqps, drucker_product
-  struct Params {
-    double density = 0;     ///< rho0, kg/m^3
-    double bulk = 0;        ///< K, Pa
-    double shear = 0;       ///< G, Pa
+  /// density, bulk, shear, eos and energy_slot: J2ElasticEos (shared with johnson_cook).
+  struct Params : J2ElasticEos {
     IsotropicHardening hardening;  ///< sigma_y(eps_p)
     double h_kin = 0;       ///< kinematic (Prager) modulus H_k, Pa
-    Eos eos;                ///< pressure law
     bool kinematic = false; ///< H_k > 0: six backstress fields follow eqps in the state
-    int energy_slot = -1;   ///< index of energy_density in the state, -1 if not stored
     bool fast = false;      ///< default configuration: update_fast
   };
 
@@ -73,11 +70,8 @@ struct J2Plasticity {
   }
 
   static Params make(const ParamValues& v) {
-    const ElasticConstants e = elastic_constants_from(v);
     Params p;
-    p.density = v.at("density");
-    p.bulk = e.bulk;
-    p.shear = e.shear;
+    p.read_elastic(v);
     p.hardening = make_hardening(v);
     p.h_kin = v.number_or("kinematic_modulus", 0.0);
     if (!(p.h_kin >= 0.0)) throw ParamError("kinematic_modulus", "kinematic_modulus must be >= 0");
@@ -193,13 +187,8 @@ struct J2Plasticity {
     res.eqps = eqps;
   }
 
-  /// Dilatational wave speed sqrt((K_s + 4G/3)/rho), rho = rho0/J, K_s the EOS bulk modulus
-  /// (K for the linear EOS). Plastic flow only slows the deviatoric part, so the elastic speed
-  /// bounds it.
-  static double wave_speed(const Params& p, const double* state, double J) {
-    const double Ks = p.energy_slot >= 0 ? eos_bulk_modulus(p.eos, J, state[p.energy_slot]) : p.eos.bulk;
-    return std::sqrt((Ks + 4.0 * p.shear / 3.0) * J / p.density);
-  }
+  /// Dilatational wave speed of the elastic part (J2ElasticEos::wave_speed).
+  static double wave_speed(const Params& p, const double* state, double J) { return p.wave_speed(state, J); }
 };
 
 }  // namespace ballista

@@ -37,6 +37,7 @@
 #include <fmt/format.h>
 
 #include "materials/elastic_constants.hpp"
+#include "materials/j2_elastic_eos.hpp"
 #include "materials/j2_return.hpp"
 #include "materials/material_adapter.hpp"
 
@@ -46,10 +47,8 @@ struct JohnsonCook {
   static constexpr const char* kName = "johnson_cook";
   static constexpr bool kTracksPlasticStrain = true;  // fills PointResult eqps, delta_eqps, drucker_product
   static constexpr bool kTracksTemperature = true;    // fills temperature, homologous_temperature
-  struct Params {
-    double density = 0;     ///< rho0, kg/m^3
-    double bulk = 0;        ///< K, Pa
-    double shear = 0;       ///< G, Pa
+  /// density, bulk, shear, eos and energy_slot: J2ElasticEos (shared with j2_plasticity).
+  struct Params : J2ElasticEos {
     double A = 0;           ///< jc_a, Pa
     double B = 0;           ///< jc_b, Pa
     double n = 1;           ///< jc_n
@@ -61,8 +60,6 @@ struct JohnsonCook {
     double T_init = 294;    ///< initial_temperature, K
     double cp = 0;          ///< specific_heat, J/(kg K)
     double chi = 0.9;       ///< taylor_quinney
-    Eos eos;
-    int energy_slot = -1;   ///< index of energy_density in the state, -1 if not stored
   };
 
   static std::vector<ParamSpec> param_specs() {
@@ -95,11 +92,8 @@ struct JohnsonCook {
   }
 
   static Params make(const ParamValues& v) {
-    const ElasticConstants e = elastic_constants_from(v);
     Params p;
-    p.density = v.at("density");
-    p.bulk = e.bulk;
-    p.shear = e.shear;
+    p.read_elastic(v);
     auto need = [&](const char* key) {
       if (!v.given(key)) throw ParamError(key, std::string(key) + " is required");
       return v.at(key);
@@ -259,12 +253,9 @@ struct JohnsonCook {
     sigma = j2_compose_eos(p.eos, k, eps, p_old, s_old, s, energy, p.energy_slot >= 0, tangent, res);
   }
 
-  /// Dilatational wave speed sqrt((K_s + 4G/3)/rho), rho = rho0/J, K_s the EOS bulk modulus; the
-  /// elastic shear modulus is kept after melting (an upper bound, safe for the time step).
-  static double wave_speed(const Params& p, const double* state, double J) {
-    const double Ks = p.energy_slot >= 0 ? eos_bulk_modulus(p.eos, J, state[p.energy_slot]) : p.eos.bulk;
-    return std::sqrt((Ks + 4.0 * p.shear / 3.0) * J / p.density);
-  }
+  /// Dilatational wave speed of the elastic part (J2ElasticEos::wave_speed); the elastic shear
+  /// modulus is kept after melting (an upper bound, safe for the time step).
+  static double wave_speed(const Params& p, const double* state, double J) { return p.wave_speed(state, J); }
 };
 
 }  // namespace ballista

@@ -8,6 +8,30 @@
 
 namespace ballista::penetration {
 
+namespace {
+
+/// The steady eroding jet of effective density k: U from the interface balance
+/// k (V - U)^2 = rho_t U^2 + 2 sigma with sigma = R - Y (eq. 3.6-3.7), then the depth
+/// P = L sqrt(k/rho_t - 2 sigma/(rho_t (V - U)^2)) (eq. 3.8). Eichelberger (k = lambda rho_p) and
+/// Grove (k = rho_d (1 + phi), whose eq. 3.11-3.13 are eq. 3.6-3.8 with that k) are this one
+/// calculation, so they share it. Throws in the rigid regime (U = V: the depth divides by V - U);
+/// `rigid_note` ends that message with what does not apply for `model`.
+SteadyPenetration steady_eroding_jet(const char* model, const char* rigid_note, double L, double k, double rho_t,
+                                     double R, double Y, double V) {
+  const double sigma = R - Y;  // eq. 3.7
+  const InterfaceSolution s = solve_interface(k, rho_t, sigma, V);
+  if (s.regime == InterfaceRegime::kNoPenetration) return {0.0, 0.0, s.regime};
+  if (s.regime == InterfaceRegime::kRigid)
+    throw Error(fmt::format("{}: rho_t V^2 = {:g} Pa <= 2 (Y - R) = {:g} Pa: the jet does not erode {}", model,
+                            rho_t * V * V, 2 * (Y - R), rigid_note));
+  const double w = V - s.U;
+  // The argument equals (U/(V-U))^2 rho_t/rho_t by the balance, so it is >= 0 here.
+  const double arg = k / rho_t - 2 * sigma / (rho_t * w * w);
+  return {s.U, L * std::sqrt(std::max(arg, 0.0)), s.regime};
+}
+
+}  // namespace
+
 double pack_evans_penalty(const PackEvansInput& in) {
   require_positive("pack-evans", "rho_p", in.rho_p, "kg/m^3");
   require_positive("pack-evans", "V", in.V, "m/s");
@@ -40,18 +64,9 @@ SteadyPenetration eichelberger(const EichelbergerInput& in) {
   require_finite("eichelberger", "R", in.R, "Pa");
   require_finite("eichelberger", "Y", in.Y, "Pa");
   require_non_negative("eichelberger", "V", in.V, "m/s");
-  const double sigma = in.R - in.Y;                                                          // eq. 3.7
-  const InterfaceSolution s = solve_interface(in.lambda * in.rho_p, in.rho_t, sigma, in.V);  // eq. 3.6
-  if (s.regime == InterfaceRegime::kNoPenetration) return {0.0, 0.0, s.regime};
-  if (s.regime == InterfaceRegime::kRigid)
-    throw Error(
-        fmt::format("eichelberger: rho_t V^2 = {:g} Pa <= 2 (Y - R) = {:g} Pa: the jet does not erode "
-                    "(U = V) and eq. 3.8 does not apply",
-                    in.rho_t * in.V * in.V, 2 * (in.Y - in.R)));
-  const double w = in.V - s.U;
-  // eq. 3.8; the argument equals (U/(V-U))^2 rho_t/rho_t by eq. 3.6, so it is >= 0 here.
-  const double arg = in.lambda * in.rho_p / in.rho_t - 2 * sigma / (in.rho_t * w * w);
-  return {s.U, in.L * std::sqrt(std::max(arg, 0.0)), s.regime};
+  // eq. 3.6-3.8: the steady eroding jet with k = lambda rho_p.
+  return steady_eroding_jet("eichelberger", "(U = V) and eq. 3.8 does not apply", in.L, in.lambda * in.rho_p, in.rho_t,
+                            in.R, in.Y, in.V);
 }
 
 double gladkikh_depth(double L, double rho_p, double rho_t, double V_tip, double V_tail) {
@@ -85,18 +100,9 @@ GroveResult grove(const GroveInput& in) {
     throw Error(
         fmt::format("grove: rho_d = {:g} must not exceed rho_s = {:g} [kg/m^3] (porosity >= 0)", in.rho_d, in.rho_s));
   const double phi = 1 - in.rho_d / in.rho_s;  // porosity, below eq. 3.12
-  const double sigma = in.R - in.Y;
-  const double k = in.rho_d * (1 + phi);  // eq. 3.11 = eq. 3.12: k (V-U)^2 = rho_t U^2 + 2 sigma
-  const InterfaceSolution s = solve_interface(k, in.rho_t, sigma, in.V);
-  if (s.regime == InterfaceRegime::kNoPenetration) return {phi, {0.0, 0.0, s.regime}};
-  if (s.regime == InterfaceRegime::kRigid)
-    throw Error(
-        fmt::format("grove: rho_t V^2 = {:g} Pa <= 2 (Y - R) = {:g} Pa: the jet does not erode and "
-                    "eq. 3.13 does not apply",
-                    in.rho_t * in.V * in.V, 2 * (in.Y - in.R)));
-  const double w = in.V - s.U;
-  const double arg = k / in.rho_t - 2 * sigma / (in.rho_t * w * w);  // eq. 3.13
-  return {phi, {s.U, in.L * std::sqrt(std::max(arg, 0.0)), s.regime}};
+  const double k = in.rho_d * (1 + phi);       // eq. 3.11 = eq. 3.12: k (V-U)^2 = rho_t U^2 + 2 sigma
+  // eq. 3.13 is eq. 3.8 with this k: the steady eroding jet.
+  return {phi, steady_eroding_jet("grove", "and eq. 3.13 does not apply", in.L, k, in.rho_t, in.R, in.Y, in.V)};
 }
 
 }  // namespace ballista::penetration

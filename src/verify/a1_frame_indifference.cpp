@@ -12,7 +12,6 @@
 #include "verify/a1_frame_indifference.hpp"
 
 #include <algorithm>
-#include <chrono>
 
 #include <fmt/format.h>
 
@@ -63,12 +62,7 @@ VerifyCase run_a1(const MaterialFactory& f, const A1Problem& pb) {
   if (!f.reduce_elastic)
     return VerifyCase::not_applicable(f.model, "A1", title,
                                       "model has no reduce_elastic hook (reduction to isotropic elasticity)");
-  const auto t0 = std::chrono::steady_clock::now();
-  VerifyCase c;
-  c.model = f.model;
-  c.test = "A1";
-  c.title = title;
-  c.plot = "a1";
+  VerifyCase c = VerifyCase::begin(f.model, "A1", title, "a1");
   const auto mat = make_hook_material(f, f.reduce_elastic(pb.density, pb.bulk, pb.shear), "reduce_elastic");
   if (pb.steps % pb.samples != 0) throw Error("A1: steps must be a multiple of samples");
   const A1Run run = drive_a1(*mat, pb, pb.steps);
@@ -144,7 +138,6 @@ VerifyCase run_a1(const MaterialFactory& f, const A1Problem& pb) {
   c.scalars = {{"steps", pb.steps}, {"bulk", pb.bulk}, {"shear", pb.shear}, {"discretisation_bound", disc_bound},
                {"shear_rel_error", shear_bar}};
   c.finish();
-  c.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return c;
 }
 

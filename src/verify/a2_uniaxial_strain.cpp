@@ -21,7 +21,6 @@
 #include "verify/a2_uniaxial_strain.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <limits>
 
 #include <fmt/format.h>
@@ -262,12 +261,7 @@ VerifyCase run_a2(const MaterialFactory& f, A2Hardening h, const A2Problem& pb) 
     return VerifyCase::not_applicable(
         f.model, id, title,
         fmt::format("reduce_j2 returns no parameters for {} hardening: the model lacks it", kind_name(h)));
-  const auto t0 = std::chrono::steady_clock::now();
-  VerifyCase c;
-  c.model = f.model;
-  c.test = id;
-  c.title = title;
-  c.plot = "a2";
+  VerifyCase c = VerifyCase::begin(f.model, id, title, "a2");
   const auto mat = make_hook_material(f, v, "reduce_j2");
   const DriveResult res = drive_uniaxial_strain(*mat, pb);
 
@@ -291,7 +285,6 @@ VerifyCase run_a2(const MaterialFactory& f, A2Hardening h, const A2Problem& pb) 
                                         {"steps", static_cast<double>(res.steps)},
                                         {"strain_measure_bound", acc.bound}});
   c.finish();
-  c.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return c;
 }
 

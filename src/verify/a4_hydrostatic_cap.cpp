@@ -16,7 +16,6 @@
 #include "verify/a4_hydrostatic_cap.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -34,7 +33,6 @@ VerifyCase run_a4(const MaterialFactory& f, const A4Problem& pb) {
   if (!f.reduce_geo)
     return VerifyCase::not_applicable(f.model, id, title,
                                       kNoGeoHookReason);
-  const auto wall0 = std::chrono::steady_clock::now();
   const GeoSandstone& rock = pb.rock;
   VerifyCase c = VerifyCase::begin(f.model, id, title, "a4");
   const double tol = 1e-6, K3 = 3.0 * rock.bulk;
@@ -97,7 +95,6 @@ VerifyCase run_a4(const MaterialFactory& f, const A4Problem& pb) {
                {"final_porosity", hb.phi.back()},
                {"final_porosity_an", hb.phi_an.back()}});
   c.finish();
-  c.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return c;
 }
 

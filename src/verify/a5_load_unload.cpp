@@ -13,7 +13,6 @@
 #include "verify/a5_load_unload.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -46,7 +45,6 @@ VerifyCase run_a5(const MaterialFactory& f, const A5Problem& pb) {
   if (!f.reduce_geo)
     return VerifyCase::not_applicable(f.model, id, a5_title(),
                                       kNoGeoHookReason);
-  const auto wall0 = std::chrono::steady_clock::now();
   const GeoSandstone& rock = pb.rock;
   VerifyCase c = VerifyCase::begin(f.model, id, a5_title(), "a5");
   const auto mat = make_hook_material(f, f.reduce_geo(rock.reduction(false)), "reduce_geo");
@@ -112,7 +110,6 @@ VerifyCase run_a5(const MaterialFactory& f, const A5Problem& pb) {
                {"final_porosity", h.phi[k_end3]},
                {"final_porosity_an", h.phi_an[k_end3]}});
   c.finish();
-  c.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return c;
 }
 
@@ -125,7 +122,6 @@ VerifyCase run_a5_fluid(const MaterialFactory& f, const A5Problem& pb) {
   if (!f.reduce_geo)
     return VerifyCase::not_applicable(f.model, id, title,
                                       kNoGeoHookReason);
-  const auto wall0 = std::chrono::steady_clock::now();
   const GeoSandstone& rock = pb.rock;
   VerifyCase c = VerifyCase::begin(f.model, id, title, "a5_fluid");
   const std::vector<double> rows{0.0, 1.0}, ev{0.0, pb.rows_ev()[1]};
@@ -175,7 +171,6 @@ VerifyCase run_a5_fluid(const MaterialFactory& f, const A5Problem& pb) {
                {"wet_final_porosity", hw.phi.back()},
                {"wet_final_pore_pressure", pf.empty() ? std::nan("") : pf.back()}};
   c.finish();
-  c.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return c;
 }
 

@@ -17,7 +17,6 @@
 // for round-off amplified by the nonlinear update (yield return, EOS); a non-objective
 // formulation (spatial rate in the unrotated frame, a missing rotation) differs by O(1).
 #include <algorithm>
-#include <chrono>
 
 #include <fmt/format.h>
 
@@ -41,7 +40,6 @@ struct CopySpec {
 VerifyCase run_a6_objectivity(const MaterialFactory& f, const A6Problem& pb) {
   const std::string title = "A6 objectivity: random F paths under random constant and rotating superimposed rotations";
   if (!f.example) return VerifyCase::not_applicable(f.model, "A6-objectivity", title, "model has no example hook");
-  const auto t0 = std::chrono::steady_clock::now();
   VerifyCase c;
   c.model = f.model;
   c.test = "A6-objectivity";
@@ -174,7 +172,6 @@ VerifyCase run_a6_objectivity(const MaterialFactory& f, const A6Problem& pb) {
   c.scalars = {{"paths", pb.paths}, {"copies_per_path", pb.constant_rotations + pb.rotating_copies},
                {"steps", N}, {"amplitude", pb.amplitude}, {"seed", static_cast<double>(pb.seed)}};
   c.finish();
-  c.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return c;
 }
 

@@ -40,7 +40,7 @@ struct VerifyCase {
   std::vector<std::pair<std::string, std::vector<double>>> series;
   /// Named scalars for the plot and the record (e.g. yield stress, tolerance lines).
   std::vector<std::pair<std::string, double>> scalars;
-  double wall_seconds = 0.0;
+  double wall_seconds = 0.0;  ///< run time of the test, set by run_verify_test (0: not applicable)
 
   /// Adds a check (value <= limit, or value >= limit if at_least); returns its pass flag.
   bool check(std::string name, double value, double limit, bool at_least = false);

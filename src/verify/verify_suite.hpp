@@ -26,7 +26,7 @@ struct VerifySuiteOptions {
 std::vector<VerifyCase> run_verify_suite(const std::vector<MaterialFactory>& factories,
                                          const VerifySuiteOptions& options = {});
 
-/// One test of one model (id from verify_test_ids()).
+/// One test of one model (id from verify_test_ids()), with its wall_seconds (0 if not applicable).
 VerifyCase run_verify_test(const MaterialFactory& f, const std::string& test);
 
 }  // namespace ballista
