@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/point_fields.hpp"
 #include "geometry/seeding.hpp"
 #include "points/program_burn.hpp"
 
@@ -50,8 +51,8 @@ Index light_explosives(const Scenario& sc, FieldStore& points, int ppc_override)
     spacing = s;
   }
   const Index n = points.size();
-  const auto* mat = points.ints("material");
-  const auto* x0 = points.view<Vec3>("x0");
+  const auto* mat = points.ints(kMaterialIndex);
+  const auto* x0 = points.view(kReferencePosition);
   std::vector<char> explosive(static_cast<size_t>(n), 0);
   for (Index p = 0; p < n; ++p) explosive[p] = is_explosive_material[static_cast<size_t>(mat[p])];
   std::vector<Detonator> detonators;

@@ -1,6 +1,7 @@
 #include "points/point_loads.hpp"
 
 #include "core/parallel.hpp"
+#include "core/point_fields.hpp"
 #include "points/mms_axis_aligned.hpp"
 #include "points/mms_generalized_vortex.hpp"
 
@@ -19,8 +20,8 @@ void PointLoads::compute(const Scenario& sc, const FieldStore& points, double ti
   ftrac_.clear();
   surface_forces_.clear();
   reactions_.clear();
-  const auto* mass = points.real("mass");
-  const auto* bid = points.ints("body");
+  const auto* mass = points.real(kMass);
+  const auto* bid = points.ints(kBodyIndex);
   for (size_t k = 0; k < sc.loads.size(); ++k) {
     const LoadSpec& load = sc.loads[k];
     const double scale = load.curve.at(time);
@@ -36,9 +37,9 @@ void PointLoads::compute(const Scenario& sc, const FieldStore& points, double ti
       // the centre puts part of the load on the node inside the boundary cell, whose stress then
       // equilibrates only (1 - w) of the traction (a quarter short with two particles per cell,
       // the surface-layer error of thesis seed 000 §5.1's particle point loads).
-      const auto* F = points.view<Mat3>("F");
-      const auto* x = points.view<Vec3>("x");
-      const auto* half = points.view<Vec3>("half_size");
+      const auto* F = points.view(kDeformationGradient);
+      const auto* x = points.view(kPosition);
+      const auto* half = points.view(kHalfSize);
       const auto* area = points.view<Vec3>("load_area_" + std::to_string(k));
       const double pr = scale * load.pressure;
       if (ftrac_.size() != static_cast<size_t>(n)) ftrac_.assign(n, Vec3{});
@@ -58,8 +59,8 @@ void PointLoads::compute(const Scenario& sc, const FieldStore& points, double ti
       // spacing. The indenter moves rigidly: centre c0 + v t.
       const IndenterSpec& in = load.indenter;
       const Vec3 c = in.center + time * in.velocity;
-      const auto* x = points.view<Vec3>("x");
-      const auto* vol0 = points.real("volume0");
+      const auto* x = points.view(kPosition);
+      const auto* vol0 = points.real(kReferenceVolume);
       // The force on point p (zero outside the indenter), evaluated in both passes below rather
       // than stored: no per-step array.
       auto force = [&](Index p) {
@@ -82,13 +83,13 @@ void PointLoads::compute(const Scenario& sc, const FieldStore& points, double ti
       for_each(0, n, [&](Index p) { fext_[p] += force(p); });
     } else if (load.type == "mms_axis_aligned") {
       const mms::AxisAligned mms;
-      const auto* x0 = points.view<Vec3>("x0");
+      const auto* x0 = points.view(kReferencePosition);
       for_each(0, n, [&](Index p) {
         if (body < 0 || bid[p] == body) fext_[p] += mass[p] * mms.body_force(x0[p], time);
       });
     } else if (load.type == "mms_generalized_vortex") {
       const mms::GeneralizedVortex mms;
-      const auto* x0 = points.view<Vec3>("x0");
+      const auto* x0 = points.view(kReferencePosition);
       for_each(0, n, [&](Index p) {
         if (body < 0 || bid[p] == body) fext_[p] += mass[p] * mms.body_force(x0[p], time);
       });
