@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/point_fields.hpp"
 #include "geometry/seeding.hpp"
+#include "materials/explosive_eos.hpp"
 #include "points/program_burn.hpp"
 
 namespace ballista {
@@ -77,8 +78,8 @@ Index light_explosives(const Scenario& sc, FieldStore& points, int ppc_override)
                                      "charge",
                                      r.unreachable, x0[first][0], x0[first][1], x0[first][2]));
   }
-  auto* t = points.real("lighting_time");
-  auto* tau = points.real("burn_time");
+  auto* t = points.real(kLightingTime);
+  auto* tau = points.real(kBurnTime);
   Index lit = 0;
   for (Index p = 0; p < n; ++p)
     if (explosive[p]) {

@@ -300,7 +300,7 @@ void PointSet::remove(const std::vector<char>& keep) {
   const auto* v = points_.view(kVelocity);
   const auto* mass = points_.real(kMass);
   const auto* eint = points_.real(kInternalEnergy);
-  const double* chem = points_.has(kChemicalEnergyField) ? points_.real(kChemicalEnergyField) : nullptr;
+  const double* chem = points_.has(kChemicalEnergy) ? points_.real(kChemicalEnergy) : nullptr;
   const auto* vol0 = points_.real(kReferenceVolume);
   const auto* body = points_.ints(kBodyIndex);
   for (Index p = 0; p < n; ++p) {
@@ -352,9 +352,9 @@ EnergyTotals PointSet::energies(double k, double external_work) const {
   const auto* eint = points_.real(kInternalEnergy);
   const auto* wp = points_.real(kPlasticWork);
   // Failed (eroded) points keep the internal energy they had when their stress was zeroed.
-  const double* failed = points_.has(kFailedField) ? points_.real(kFailedField) : nullptr;
+  const double* failed = points_.has(kFailed) ? points_.real(kFailed) : nullptr;
   // Explosives (materials/explosive.cpp): the chemical energy released, J/m^3 of initial volume.
-  const double* chem = points_.has(kChemicalEnergyField) ? points_.real(kChemicalEnergyField) : nullptr;
+  const double* chem = points_.has(kChemicalEnergy) ? points_.real(kChemicalEnergy) : nullptr;
   const auto* vol0 = points_.real(kReferenceVolume);
   double s[9];
   deterministic_sum<9>(0, points_.size(), [&](Index p, double* o) {
