@@ -126,7 +126,7 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   musl_ = sc.solver_params.choices.at("update") == "musl";
   usavg_ = sc.solver_params.choices.at("update") == "usavg";
   bulk_viscosity_ = {sc.solver_params.at("bulk_viscosity_linear"), sc.solver_params.at("bulk_viscosity_quadratic")};
-  if (bulk_viscosity_.active()) pts_.add_real(kBulkViscosityField, 1, "Pa");
+  if (bulk_viscosity_.active()) pts_.declare(kBulkViscosity, "Pa");
   flip_ = sc.solver_params.at("flip");
   pts_.set_distortion_limit(sc.solver_params.at("distortion_limit"));
   xpic_order_ = static_cast<int>(sc.solver_params.at("xpic_order"));
