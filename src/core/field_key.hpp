@@ -19,8 +19,8 @@ enum class FieldType { Real, Int };
 
 /// The value types a field can hold: doubles (one per component) or 64-bit integers.
 template <class T>
-concept FieldValue = std::is_same_v<T, double> || std::is_same_v<T, Vec3> || std::is_same_v<T, Mat3> ||
-                     std::is_same_v<T, std::int64_t>;
+concept FieldValue = std::is_same_v<T, double> || std::is_same_v<T, Vec3> ||
+    std::is_same_v<T, Mat3> || std::is_same_v<T, std::int64_t>;
 
 template <FieldValue T>
 class FieldKey {
@@ -28,7 +28,8 @@ class FieldKey {
   using value_type = T;
   /// The type of one component (what add_real / add_int store).
   using scalar_type = std::conditional_t<std::is_same_v<T, std::int64_t>, std::int64_t, double>;
-  static constexpr FieldType type = std::is_same_v<T, std::int64_t> ? FieldType::Int : FieldType::Real;
+  static constexpr FieldType type =
+      std::is_same_v<T, std::int64_t> ? FieldType::Int : FieldType::Real;
   /// Components per point: 1 for double and std::int64_t, 3 for Vec3, 9 for Mat3.
   static constexpr int ncomp = static_cast<int>(sizeof(T) / sizeof(scalar_type));
 
@@ -40,6 +41,7 @@ class FieldKey {
   const char* name_;
 };
 
-static_assert(FieldKey<Vec3>::ncomp == 3 && FieldKey<Mat3>::ncomp == 9, "Vec3 and Mat3 must be plain doubles");
+static_assert(FieldKey<Vec3>::ncomp == 3 && FieldKey<Mat3>::ncomp == 9,
+              "Vec3 and Mat3 must be plain doubles");
 
 }  // namespace ballista

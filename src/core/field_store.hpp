@@ -47,6 +47,12 @@ class FieldStore {
   /// Whether a field of the key's name is declared (whatever its shape, like has(name)).
   template <class T>
   bool has(const FieldKey<T>& key) const { return find(key.name()) >= 0; }
+  /// Whether a field of the key's name has the key's type and component count.
+  template <class T>
+  bool has_shape(const FieldKey<T>& key) const {
+    const int k = find(key.name());
+    return k >= 0 && info_[k].type == FieldKey<T>::type && info_[k].ncomp == FieldKey<T>::ncomp;
+  }
   template <class T>
   T* view(const FieldKey<T>& key) {
     return static_cast<T*>(data(key.name(), FieldKey<T>::type, FieldKey<T>::ncomp));

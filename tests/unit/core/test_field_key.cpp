@@ -90,13 +90,20 @@ TEST(FieldKey, ReachesTheSameStorageAsTheName) {
 
 TEST(FieldKey, AFieldOfAnotherShapeIsRefused) {
   FieldStore s;
-  s.add_real("x", 1, "m");       // a scalar under the name of kPosition (a Vec3)
-  s.add_real("body", 1, "1");    // a real field under the name of kBodyIndex (integer)
+  s.add_real("x", 1, "m");        // a scalar under the name of kPosition (a Vec3)
+  s.add_real("body", 1, "1");     // a real field under the name of kBodyIndex (integer)
   EXPECT_TRUE(s.has(kPosition));  // has() asks for the name only, like has(name)
+  EXPECT_FALSE(s.has_shape(kPosition));
+  EXPECT_FALSE(s.has_shape(kBodyIndex));
+  EXPECT_FALSE(s.has_shape(kVelocity));
+  EXPECT_THROW(s.view(kVelocity), Error);  // not declared
+  s.add_real("v", 3, "m/s");
+  EXPECT_TRUE(s.has_shape(kVelocity));
+  s.add_int("id", 1, "1");
+  EXPECT_TRUE(s.has_shape(kId));
   EXPECT_THROW(s.view(kPosition), Error);
   EXPECT_THROW(s.ints(kBodyIndex), Error);
   EXPECT_THROW(s.declare(kPosition, "m"), Error);
-  EXPECT_THROW(s.view(kVelocity), Error);  // not declared
 }
 
 }  // namespace
