@@ -23,6 +23,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "core/point_fields.hpp"
 #include "core/tensor.hpp"
 #include "io/atomic_file.hpp"
 #include "io/hdf5_handle.hpp"
@@ -202,11 +203,11 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
       if (!dup) sel.push_back(&points.info(name));
     }
   }
-  if (!points.has("x") || points.info("x").type != FieldType::Real || points.info("x").ncomp != 3)
+  if (!points.has_shape(kPosition))
     throw Error("particle output needs a real field 'x' with 3 components");
-  if (nodes && !(nodes->has("x") && nodes->info("x").type == FieldType::Real && nodes->info("x").ncomp == 3))
+  if (nodes && !nodes->has_shape(kPosition))
     throw Error("node output needs a real field 'x' with 3 components");
-  if (domains_ && !(points.has("F") && points.has("half_size")))
+  if (domains_ && !(points.has(kDeformationGradient) && points.has(kHalfSize)))
     throw Error("particle domain output needs fields 'F' (Mat3) and 'half_size' (Vec3)");
   bool x_selected = false;
   for (const FieldInfo* f : sel) {
@@ -263,7 +264,7 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
       write_dataset(h5, "step", H5T_NATIVE_INT64, H5T_STD_I64LE, {}, &step64, "", rows);
 
       std::vector<const FieldInfo*> datasets = sel;
-      if (!x_selected) datasets.push_back(&points.info("x"));
+      if (!x_selected) datasets.push_back(&points.info(kPosition));
       for (const FieldInfo* f : datasets) {
         std::vector<hsize_t> dims{static_cast<hsize_t>(n)};
         if (f->ncomp != 1) dims.push_back(static_cast<hsize_t>(f->ncomp));
@@ -280,9 +281,9 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
                     verts.data(), "", rows);
 
       if (domains_) {
-        const Vec3* x = points.view<Vec3>("x");
-        const Mat3* F = points.view<Mat3>("F");
-        const Vec3* h = points.view<Vec3>("half_size");
+        const Vec3* x = points.view(kPosition);
+        const Mat3* F = points.view(kDeformationGradient);
+        const Vec3* h = points.view(kHalfSize);
         // Corner sign patterns in VTK/XDMF order: bottom face counter-clockwise, then top face.
         static const int s3[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
                                      {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
@@ -301,7 +302,7 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
         corner_rows.first *= static_cast<hsize_t>(nc);
         corner_rows.rows *= static_cast<hsize_t>(nc);
         write_dataset(h5, "domain_points", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE,
-                      {static_cast<hsize_t>(n * nc), 3}, corners.data(), points.info("x").unit, corner_rows);
+                      {static_cast<hsize_t>(n * nc), 3}, corners.data(), points.info(kPosition).unit, corner_rows);
         write_dataset(h5, "domain_cells", H5T_NATIVE_INT64, H5T_STD_I64LE,
                       {static_cast<hsize_t>(n), static_cast<hsize_t>(nc)}, cells.data(), "", rows);
       }
