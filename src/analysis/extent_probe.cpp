@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "analysis/domain_corners.hpp"
+#include "core/point_fields.hpp"
 #include "points/probe_registry.hpp"
 
 namespace ballista {
@@ -17,10 +18,10 @@ class ExtentProbe : public Probe {
   double value(const ProbeContext& c) const override {
     const int nd = c.dim == Dimension::ThreeD ? 3 : 2;
     const Index n = c.points.size();
-    const auto* bid = c.points.ints("body");
-    const auto* x = c.points.view<Vec3>("x");
-    const auto* F = c.points.view<Mat3>("F");
-    const auto* half = c.points.view<Vec3>("half_size");
+    const auto* bid = c.points.ints(kBodyIndex);
+    const auto* x = c.points.view(kPosition);
+    const auto* F = c.points.view(kDeformationGradient);
+    const auto* half = c.points.view(kHalfSize);
     double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
     for (Index p = 0; p < n; ++p) {
       if (body_ >= 0 && bid[p] != body_) continue;

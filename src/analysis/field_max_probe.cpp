@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/point_fields.hpp"
 #include "points/probe_registry.hpp"
 
 namespace ballista {
@@ -27,7 +28,7 @@ class FieldMaxProbe : public Probe {
 
   double value(const ProbeContext& c) const override {
     const Index n = c.points.size();
-    const auto* bid = c.points.ints("body");
+    const auto* bid = c.points.ints(kBodyIndex);
     const double* f = c.points.real(field_);
     double m = -std::numeric_limits<double>::infinity();
     for (Index p = 0; p < n; ++p)

@@ -3,16 +3,18 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "core/point_fields.hpp"
+
 namespace ballista {
 
 JetRemainder measure_jet_remainder(const FieldStore& pts, int body, const std::vector<JetSegmentLine>& segments,
                                    int axis, double direction, double scale) {
   const std::size_t n = segments.size();
   std::vector<double> eroded(n, 0.0), intact_mass(n, 0.0), intact_momentum(n, 0.0);
-  const auto* bid = pts.ints("body");
-  const auto* sid = pts.ints("segment");
-  const auto* v = pts.view<Vec3>("v");
-  const auto* m = pts.real("mass");
+  const auto* bid = pts.ints(kBodyIndex);
+  const auto* sid = pts.ints(kSegment);
+  const auto* v = pts.view(kVelocity);
+  const auto* m = pts.real(kMass);
   for (Index p = 0; p < pts.size(); ++p) {
     if (bid[p] != body) continue;
     const auto k =

@@ -7,6 +7,7 @@
 #include "analysis/axis_distance.hpp"
 #include "analysis/domain_corners.hpp"
 #include "core/error.hpp"
+#include "core/point_fields.hpp"
 #include "io/deck_node.hpp"
 #include "io/deck_reader.hpp"
 #include "points/probe_registry.hpp"
@@ -23,10 +24,10 @@ class MaxRadiusProbe : public Probe {
   double value(const ProbeContext& c) const override {
     const int nd = c.dim == Dimension::ThreeD ? 3 : 2;
     const Index n = c.points.size();
-    const auto* bid = c.points.ints("body");
-    const auto* x = c.points.view<Vec3>("x");
-    const auto* F = c.points.view<Mat3>("F");
-    const auto* half = c.points.view<Vec3>("half_size");
+    const auto* bid = c.points.ints(kBodyIndex);
+    const auto* x = c.points.view(kPosition);
+    const auto* F = c.points.view(kDeformationGradient);
+    const auto* half = c.points.view(kHalfSize);
     const double kInf = std::numeric_limits<double>::infinity();
     double rmax = -kInf;
     for (Index p = 0; p < n; ++p) {

@@ -3,6 +3,7 @@
 // cloud.
 #include <cmath>
 
+#include "core/point_fields.hpp"
 #include "points/probe_registry.hpp"
 
 namespace ballista {
@@ -15,9 +16,9 @@ class MeanVelocityProbe : public Probe {
 
   double value(const ProbeContext& c) const override {
     const Index n = c.points.size();
-    const auto* bid = c.points.ints("body");
-    const auto* m = c.points.real("mass");
-    const auto* v = c.points.view<Vec3>("v");
+    const auto* bid = c.points.ints(kBodyIndex);
+    const auto* m = c.points.real(kMass);
+    const auto* v = c.points.view(kVelocity);
     double s[2] = {0.0, 0.0};
     for (Index p = 0; p < n; ++p)
       if (body_ < 0 || bid[p] == body_) {

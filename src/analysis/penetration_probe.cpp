@@ -13,6 +13,7 @@
 #include "analysis/axis_distance.hpp"
 #include "analysis/penetration_series.hpp"
 #include "core/error.hpp"
+#include "core/point_fields.hpp"
 #include "geometry/grid_axes.hpp"
 #include "geometry/shape.hpp"
 #include "io/history_writer.hpp"
@@ -124,8 +125,8 @@ std::vector<std::string> PenetrationProbe::columns() const {
 }
 
 double PenetrationProbe::penetrator_front(const FieldStore& pts) const {
-  const auto* bid = pts.ints("body");
-  const auto* x = pts.view<Vec3>("x");
+  const auto* bid = pts.ints(kBodyIndex);
+  const auto* x = pts.view(kPosition);
   double front = -kInfinity;
   for (Index p = 0; p < pts.size(); ++p)
     if (bid[p] == penetrator_) front = std::max(front, depth_of(x[p]));
@@ -133,11 +134,11 @@ double PenetrationProbe::penetrator_front(const FieldStore& pts) const {
 }
 
 double PenetrationProbe::cavity_depth(const FieldStore& pts) const {
-  const auto* bid = pts.ints("body");
-  const auto* x = pts.view<Vec3>("x");
-  const auto* F = pts.view<Mat3>("F");
-  const auto* half = pts.view<Vec3>("half_size");
-  const double* failed = pts.has(kFailedField) ? pts.real(kFailedField) : nullptr;
+  const auto* bid = pts.ints(kBodyIndex);
+  const auto* x = pts.view(kPosition);
+  const auto* F = pts.view(kDeformationGradient);
+  const auto* half = pts.view(kHalfSize);
+  const double* failed = pts.has(kFailed) ? pts.real(kFailed) : nullptr;
   double tip = std::numeric_limits<double>::infinity(), bottom = 0.0;
   for (Index p = 0; p < pts.size(); ++p) {
     if (bid[p] != target_) continue;
@@ -155,10 +156,10 @@ double PenetrationProbe::cavity_depth(const FieldStore& pts) const {
 
 std::vector<double> PenetrationProbe::sample(const FieldStore& pts, bool fired, double t, double scale) {
   std::vector<double> seg(static_cast<size_t>(segments_), 0.0);
-  const auto* bid = pts.ints("body");
-  const auto* sid = pts.ints("segment");
-  const auto* v = pts.view<Vec3>("v");
-  const auto* m = pts.real("mass");
+  const auto* bid = pts.ints(kBodyIndex);
+  const auto* sid = pts.ints(kSegment);
+  const auto* v = pts.view(kVelocity);
+  const auto* m = pts.real(kMass);
   for (Index p = 0; p < pts.size(); ++p)
     if (bid[p] == penetrator_) {
       const auto k = static_cast<size_t>(std::clamp<std::int64_t>(sid[p], 0, segments_ - 1));
@@ -266,13 +267,13 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   // the target material is dense, so that debris lying in the tunnel is not wall), beside the
   // innermost target material's distance from the line of flight (inner edge of the particle
   // domains) down to the cavity tip.
-  const auto* bid = pts.ints("body");
-  const auto* x = pts.view<Vec3>("x");
-  const auto* F = pts.view<Mat3>("F");
-  const auto* half = pts.view<Vec3>("half_size");
+  const auto* bid = pts.ints(kBodyIndex);
+  const auto* x = pts.view(kPosition);
+  const auto* F = pts.view(kDeformationGradient);
+  const auto* half = pts.view(kHalfSize);
   std::vector<double> dd, rr;
   const int lat = axis_ == 1 ? 0 : 1;  // a lateral direction (exact in 2D; 3D uses the radial extent below)
-  const double* failed = pts.has(kFailedField) ? pts.real(kFailedField) : nullptr;
+  const double* failed = pts.has(kFailed) ? pts.real(kFailed) : nullptr;
   for (Index p = 0; p < pts.size(); ++p) {
     if (bid[p] != target_ || (failed && failed[p] > 0.0)) continue;
     const double reach = half_extent(F[p], half[p], lat, nd_);
@@ -318,13 +319,13 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
 
 std::vector<LateralPoint> PenetrationProbe::lateral_points(const FieldStore& pts, int body, double face,
                                                           bool seeded_axial) const {
-  const auto* bid = pts.ints("body");
-  const auto* x = pts.view<Vec3>("x");
-  const auto* x0 = seeded_axial && pts.has("x0") ? pts.view<Vec3>("x0") : x;
-  const auto* F = pts.view<Mat3>("F");
-  const auto* half = pts.view<Vec3>("half_size");
-  const auto* vol = pts.real("volume");
-  const double* failed = pts.has(kFailedField) ? pts.real(kFailedField) : nullptr;
+  const auto* bid = pts.ints(kBodyIndex);
+  const auto* x = pts.view(kPosition);
+  const auto* x0 = seeded_axial && pts.has(kReferencePosition) ? pts.view(kReferencePosition) : x;
+  const auto* F = pts.view(kDeformationGradient);
+  const auto* half = pts.view(kHalfSize);
+  const auto* vol = pts.real(kVolume);
+  const double* failed = pts.has(kFailed) ? pts.real(kFailed) : nullptr;
   const int lat = axis_ == 1 ? 0 : 1;
   std::vector<LateralPoint> out;
   for (Index p = 0; p < pts.size(); ++p) {

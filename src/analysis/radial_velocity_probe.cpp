@@ -4,6 +4,7 @@
 // is zero by symmetry.
 #include <cmath>
 
+#include "core/point_fields.hpp"
 #include "points/probe_registry.hpp"
 
 namespace ballista {
@@ -17,10 +18,10 @@ class RadialVelocityProbe : public Probe {
   double value(const ProbeContext& c) const override {
     const int nd = c.dim == Dimension::ThreeD ? 3 : 2;
     const Index n = c.points.size();
-    const auto* bid = c.points.ints("body");
-    const auto* m = c.points.real("mass");
-    const auto* x = c.points.view<Vec3>("x");
-    const auto* v = c.points.view<Vec3>("v");
+    const auto* bid = c.points.ints(kBodyIndex);
+    const auto* m = c.points.real(kMass);
+    const auto* x = c.points.view(kPosition);
+    const auto* v = c.points.view(kVelocity);
     double s[2] = {0.0, 0.0};
     for (Index p = 0; p < n; ++p) {
       if (body_ >= 0 && bid[p] != body_) continue;

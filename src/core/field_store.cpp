@@ -8,10 +8,36 @@
 
 namespace ballista {
 
-int FieldStore::find(const std::string& name) const {
+int FieldStore::find(std::string_view name) const {
   for (size_t k = 0; k < info_.size(); ++k)
     if (info_[k].name == name) return static_cast<int>(k);
   return -1;
+}
+
+namespace {
+std::string shape_text(FieldType type, int ncomp) {
+  return std::to_string(ncomp) + (type == FieldType::Real ? " real" : " integer") +
+         (ncomp == 1 ? " component" : " components");
+}
+}  // namespace
+
+std::size_t FieldStore::data_index(std::string_view name, FieldType type, int ncomp) const {
+  const int k = find(name);
+  if (k < 0) throw Error("no field named '" + std::string(name) + "'");
+  const FieldInfo& fi = info_[static_cast<std::size_t>(k)];
+  if (fi.type != type || fi.ncomp != ncomp)
+    throw Error("field '" + fi.name + "' has " + shape_text(fi.type, fi.ncomp) + ", its key " +
+                shape_text(type, ncomp));
+  return static_cast<std::size_t>(k);
+}
+
+void* FieldStore::data(std::string_view name, FieldType type, int ncomp) {
+  const std::size_t k = data_index(name, type, ncomp);
+  if (type == FieldType::Real) return real_[k].data();
+  return int_[k].data();
+}
+const void* FieldStore::data(std::string_view name, FieldType type, int ncomp) const {
+  return const_cast<FieldStore*>(this)->data(name, type, ncomp);
 }
 
 void FieldStore::check_ncomp(const std::string& name, int ncomp) const {

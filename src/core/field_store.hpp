@@ -4,15 +4,17 @@
 // Components of one point are contiguous (x,y,z of a position; 9 entries of F), so a kernel
 // reads a Vec3 or Mat3 with one load; different fields live in different arrays.
 // Pointers from real()/ints()/view() are invalidated by resize, append, permute and compact.
+// Fields with a fixed name are reached through typed keys (core/field_key.hpp; the common point
+// fields are in core/point_fields.hpp); the string overloads serve names that are data.
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "core/field_key.hpp"
 #include "core/parallel.hpp"
 
 namespace ballista {
-
-enum class FieldType { Real, Int };
 
 struct FieldInfo {
   std::string name;    ///< dataset name
@@ -30,6 +32,47 @@ class FieldStore {
   void add_int(const std::string& name, int ncomp, const std::string& unit, bool output = true,
                std::int64_t initial = 0);
   bool has(const std::string& name) const { return find(name) >= 0; }
+
+  // ---- typed keys: the shape comes from the key's type (a mismatch with a field declared by
+  // name under the same name throws, like view<T>(name)) --------------------------------------
+  /// Declares the key's field: real with FieldKey<T>::ncomp components, or integer (idempotent).
+  template <class T>
+  void declare(const FieldKey<T>& key, const std::string& unit, bool output = true,
+               typename FieldKey<T>::scalar_type initial = 0) {
+    if constexpr (FieldKey<T>::type == FieldType::Int)
+      add_int(key.name(), FieldKey<T>::ncomp, unit, output, initial);
+    else
+      add_real(key.name(), FieldKey<T>::ncomp, unit, output, initial);
+  }
+  /// Whether a field of the key's name is declared (whatever its shape, like has(name)).
+  template <class T>
+  bool has(const FieldKey<T>& key) const { return find(key.name()) >= 0; }
+  /// Whether a field of the key's name has the key's type and component count.
+  template <class T>
+  bool has_shape(const FieldKey<T>& key) const {
+    const int k = find(key.name());
+    return k >= 0 && info_[k].type == FieldKey<T>::type && info_[k].ncomp == FieldKey<T>::ncomp;
+  }
+  template <class T>
+  T* view(const FieldKey<T>& key) {
+    return static_cast<T*>(data(key.name(), FieldKey<T>::type, FieldKey<T>::ncomp));
+  }
+  template <class T>
+  const T* view(const FieldKey<T>& key) const {
+    return static_cast<const T*>(data(key.name(), FieldKey<T>::type, FieldKey<T>::ncomp));
+  }
+  double* real(const FieldKey<double>& key) { return view(key); }
+  const double* real(const FieldKey<double>& key) const { return view(key); }
+  std::int64_t* ints(const FieldKey<std::int64_t>& key) { return view(key); }
+  const std::int64_t* ints(const FieldKey<std::int64_t>& key) const { return view(key); }
+  template <class T>
+  const FieldInfo& info(const FieldKey<T>& key) const {
+    return info_[data_index(key.name(), FieldKey<T>::type, FieldKey<T>::ncomp)];
+  }
+  template <class T>
+  void set_output(const FieldKey<T>& key, bool output) {
+    info_[data_index(key.name(), FieldKey<T>::type, FieldKey<T>::ncomp)].output = output;
+  }
 
   Index size() const { return size_; }
   /// Changes whenever points may have changed places or number (resize, permute, compact,
@@ -81,7 +124,11 @@ class FieldStore {
   void append_packed(const char* data, std::size_t bytes);
 
  private:
-  int find(const std::string& name) const;
+  int find(std::string_view name) const;
+  /// Index of the field `name`, which must have this type and component count (else throws).
+  std::size_t data_index(std::string_view name, FieldType type, int ncomp) const;
+  void* data(std::string_view name, FieldType type, int ncomp);
+  const void* data(std::string_view name, FieldType type, int ncomp) const;
   void check_ncomp(const std::string& name, int ncomp) const;
 
   Index size_ = 0;

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/field_store.hpp"
+#include "core/point_fields.hpp"
 #include "core/polar.hpp"
 #include "geometry/seeding.hpp"
 
@@ -19,7 +20,8 @@ const char* voigt_name(int k) {
 
 namespace {
 
-constexpr const char* kStepWorkField = "plastic_work_step";  // batch.plastic_work (per step)
+/// MaterialBatch::plastic_work: the plastic dissipation of the current step (J/m^3).
+constexpr FieldKey<double> kStepWork{"plastic_work_step"};
 /// Absolute floor of the stress-control tolerance per unit stiffness (see Driver::solve_step).
 constexpr double kStressNoise = 1e-14;
 
@@ -91,7 +93,7 @@ class Driver {
     for (const auto& s : mat_.state_fields()) result_.state_names.push_back(s.name);
     // The solvers' point fields and the model's state (thesis §4.2.1: the same update path).
     declare_point_fields(base_);
-    base_.add_real(kStepWorkField, 1, "J/m^3", false);
+    base_.declare(kStepWork, "J/m^3", false);
     mat_.declare_fields(base_);
     base_.resize(1);
   }
@@ -132,12 +134,12 @@ class Driver {
  private:
   // ---- the point ----------------------------------------------------------------------------
   void init(const Mat3& F0, double t0) {
-    base_.view<Mat3>("F")[0] = F0;
-    base_.view<Mat3>("R")[0] = polar_rotation(F0);
-    base_.view<Mat3>("stress")[0] = mat_.initial_stress(F0);
-    base_.real("volume0")[0] = 1.0;  // 1 m^3: energies are then per m^3 of reference volume
-    base_.real("volume")[0] = det(F0);
-    base_.real("mass")[0] = mat_.density();
+    base_.view(kDeformationGradient)[0] = F0;
+    base_.view(kRotation)[0] = polar_rotation(F0);
+    base_.view(kStress)[0] = mat_.initial_stress(F0);
+    base_.real(kReferenceVolume)[0] = 1.0;  // 1 m^3: energies are then per m^3 of reference volume
+    base_.real(kVolume)[0] = det(F0);
+    base_.real(kMass)[0] = mat_.density();
     t_ = t0;
     record(base_, 0, true);
   }
@@ -146,15 +148,15 @@ class Driver {
   /// MpmSolver::update_stress fills it; L from thesis eq. 4.10. Returns false if the new stress or
   /// F is not finite.
   bool advance(FieldStore& s, const Mat3& F_new, double dt) const {
-    Mat3* F = s.view<Mat3>("F");
-    Mat3* L = s.view<Mat3>("L");
+    Mat3* F = s.view(kDeformationGradient);
+    Mat3* L = s.view(kVelocityGradient);
     // L = (F_{n+1} F_n^{-1} - I)/dt (thesis seed 000 eq. 4.10).
     L[0] = (1.0 / dt) * (F_new * inverse(F[0]) - Mat3::identity());
     F[0] = F_new;
-    s.real("volume")[0] = s.real("volume0")[0] * det(F_new);
+    s.real(kVolume)[0] = s.real(kReferenceVolume)[0] * det(F_new);
     static const Index kPoint[1] = {0};
     MaterialBatch b = make_batch(s, kPoint, 1, dt, true);  // as the solvers' (points/point_set.cpp)
-    b.plastic_work = s.real(kStepWorkField);
+    b.plastic_work = s.real(kStepWork);
     b.time = t_ + dt;  // t_{n+1} (an explosive stays unreacted here: no program burn in a drive)
     mat_.update(b);
     // Garbage is a failure, never a completed drive (a compressive leg can underflow J to 0 and
@@ -171,14 +173,14 @@ class Driver {
     DriveRecord r;
     r.t = t_;
     r.step = step_;
-    r.F = s.view<Mat3>("F")[0];
-    r.R = s.view<Mat3>("R")[0];
-    r.sigma = s.view<Mat3>("stress")[0];
+    r.F = s.view(kDeformationGradient)[0];
+    r.R = s.view(kRotation)[0];
+    r.sigma = s.view(kStress)[0];
     r.sigma_bar = unrotate_sym(r.R, r.sigma);  // R^T sigma R
     for (const auto& n : result_.state_names) r.state.push_back(s.real(n)[0]);
-    r.plastic_work = s.real(kStepWorkField)[0];
-    r.internal_energy = s.real("internal_energy")[0];
-    r.plastic_work_total = s.real("plastic_work")[0];
+    r.plastic_work = s.real(kStepWork)[0];
+    r.internal_energy = s.real(kInternalEnergy)[0];
+    r.plastic_work_total = s.real(kPlasticWork)[0];
     r.iterations = iterations;
     result_.records.push_back(std::move(r));
   }
@@ -189,8 +191,8 @@ class Driver {
     std::vector<double> state;
   };
   void snapshot(const FieldStore& s, Snapshot& out) const {
-    out.F = s.view<Mat3>("F")[0];
-    out.stress = s.view<Mat3>("stress")[0];
+    out.F = s.view(kDeformationGradient)[0];
+    out.stress = s.view(kStress)[0];
     out.state.resize(result_.state_names.size());
     for (size_t k = 0; k < out.state.size(); ++k) out.state[k] = s.real(result_.state_names[k])[0];
   }
@@ -332,9 +334,9 @@ class Driver {
   bool evaluate(FieldStore& s, const double* e6, double dt, int m, const int* held, const double* target,
                 double* r) const {
     s = base_;  // same fields: copies values into the existing buffers
-    const Mat3 F_new = exp_sym(increment(e6)) * base_.view<Mat3>("F")[0];
+    const Mat3 F_new = exp_sym(increment(e6)) * base_.view(kDeformationGradient)[0];
     if (!advance(s, F_new, dt)) return false;
-    const Mat3& sig = s.view<Mat3>("stress")[0];
+    const Mat3& sig = s.view(kStress)[0];
     for (int c = 0; c < m; ++c) r[c] = sig(kVoigtI[held[c]], kVoigtJ[held[c]]) - target[c];
     return true;
   }
@@ -352,7 +354,7 @@ class Driver {
       const double dt = g.duration / g.steps;
       int held[6], m = 0;
       double e6[6], start[6] = {};
-      const Mat3 sig0 = base_.view<Mat3>("stress")[0];
+      const Mat3 sig0 = base_.view(kStress)[0];
       for (int k = 0; k < 6; ++k) {
         e6[k] = g.stress_controlled[k] ? 0.0 : g.value[k] / g.steps;
         if (g.stress_controlled[k]) {
@@ -366,7 +368,7 @@ class Driver {
         int iterations = 0;
         if (m == 0) {
           snapshot(base_, prev_);
-          if (!advance(base_, exp_sym(increment(e6)) * base_.view<Mat3>("F")[0], dt))
+          if (!advance(base_, exp_sym(increment(e6)) * base_.view(kDeformationGradient)[0], dt))
             fail_nonfinite(prev_, base_, t_new, ", leg " + std::to_string(l));
         } else {
           // Held components follow target = start + (value - start) n/N (linear in time).
@@ -407,7 +409,7 @@ class Driver {
              std::to_string(prog_.legs[leg].steps);
     };
     auto converged = [&](const double* res) {
-      const double scale = std::max(frobenius(trial_.view<Mat3>("stress")[0]), max_abs(m, target));
+      const double scale = std::max(frobenius(trial_.view(kStress)[0]), max_abs(m, target));
       return max_abs(m, res) <= std::max(tol * scale, kStressNoise * jac_scale_);
     };
     if (!evaluate(trial_, e6, dt, m, held, target, r)) fail_nonfinite(base_, trial_, t_new, where());
@@ -459,8 +461,8 @@ class Driver {
        << ") after " << prog_.max_iterations << " iterations: residuals";
     for (int c = 0; c < m; ++c) os << " sigma" << voigt_name(held[c]) << " - target = " << num(r[c]) << " Pa";
     os << " (tolerance " << num(tol) << " relative to the stress scale; raise drive.stress_tolerance or use "
-       << "more steps)\n  F_n = " << mat_text(base_.view<Mat3>("F")[0])
-       << "\n  stress_n = " << mat_text(base_.view<Mat3>("stress")[0]) << " Pa\n  state_n: ";
+       << "more steps)\n  F_n = " << mat_text(base_.view(kDeformationGradient)[0])
+       << "\n  stress_n = " << mat_text(base_.view(kStress)[0]) << " Pa\n  state_n: ";
     Snapshot now;
     snapshot(base_, now);
     os << state_text(now.state);

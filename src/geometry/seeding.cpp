@@ -6,29 +6,31 @@
 
 #include <fmt/format.h>
 
+#include "core/point_fields.hpp"
 #include "geometry/grid_axes.hpp"
 #include "geometry/shape.hpp"
 
 namespace ballista {
 
 void declare_point_fields(FieldStore& p) {
-  p.add_int("id", 1, "1");
-  p.add_int("body", 1, "1");
-  p.add_int("material", 1, "1");
-  p.add_int("segment", 1, "1");  // piece of a segmented rod or discrete jet (0 for plain bodies)
-  p.add_real("x", 3, "m");
-  p.add_real("x0", 3, "m");
-  p.add_real("v", 3, "m/s");
-  p.add_real("F", 9, "1", true);
-  p.add_real("R", 9, "1", false);
-  p.add_real("L", 9, "1/s", false);
-  p.add_real("stress", 9, "Pa");
-  p.add_real("mass", 1, "kg");
-  p.add_real("volume0", 1, "m^3");
-  p.add_real("volume", 1, "m^3");
-  p.add_real("half_size", 3, "m");
-  p.add_real("internal_energy", 1, "J");
-  p.add_real("plastic_work", 1, "J");
+  // This order is the packing order of migrating points and the checkpoint's layout.
+  p.declare(kId, "1");
+  p.declare(kBodyIndex, "1");
+  p.declare(kMaterialIndex, "1");
+  p.declare(kSegment, "1");
+  p.declare(kPosition, "m");
+  p.declare(kReferencePosition, "m");
+  p.declare(kVelocity, "m/s");
+  p.declare(kDeformationGradient, "1", true);
+  p.declare(kRotation, "1", false);
+  p.declare(kVelocityGradient, "1/s", false);
+  p.declare(kStress, "Pa");
+  p.declare(kMass, "kg");
+  p.declare(kReferenceVolume, "m^3");
+  p.declare(kVolume, "m^3");
+  p.declare(kHalfSize, "m");
+  p.declare(kInternalEnergy, "J");
+  p.declare(kPlasticWork, "J");
 }
 
 namespace {
@@ -218,18 +220,18 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
   const Index n0 = points.size();
   const Index n = static_cast<Index>(pos.size());
   points.resize(n0 + n);
-  auto* id = points.ints("id");
-  auto* bid = points.ints("body");
-  auto* mid = points.ints("material");
-  auto* x = points.view<Vec3>("x");
-  auto* x0 = points.view<Vec3>("x0");
-  auto* v = points.view<Vec3>("v");
-  auto* F = points.view<Mat3>("F");
-  auto* R = points.view<Mat3>("R");
-  auto* mass = points.real("mass");
-  auto* vol0 = points.real("volume0");
-  auto* vol = points.real("volume");
-  auto* half = points.view<Vec3>("half_size");
+  auto* id = points.ints(kId);
+  auto* bid = points.ints(kBodyIndex);
+  auto* mid = points.ints(kMaterialIndex);
+  auto* x = points.view(kPosition);
+  auto* x0 = points.view(kReferencePosition);
+  auto* v = points.view(kVelocity);
+  auto* F = points.view(kDeformationGradient);
+  auto* R = points.view(kRotation);
+  auto* mass = points.real(kMass);
+  auto* vol0 = points.real(kReferenceVolume);
+  auto* vol = points.real(kVolume);
+  auto* half = points.view(kHalfSize);
   const double uniform_cell_volume = nd == 3 ? dx * dx * dx : dx * dx;
   for (Index q = 0; q < n; ++q) {
     const Vec3 d = spacing.empty() ? Vec3{{dx, dx, nd == 3 ? dx : 0.0}} : spacing[q];
@@ -292,10 +294,10 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
   const int nd = dim == Dimension::ThreeD ? 3 : 2;
   const double dx = seed_spacing(body, h);
   const ShapeSpec& s = body.shape;
-  const auto* bid = points.ints("body");
-  const auto* x0 = points.view<Vec3>("x0");
-  const auto* vol0 = points.real("volume0");
-  const auto* half = points.view<Vec3>("half_size");
+  const auto* bid = points.ints(kBodyIndex);
+  const auto* x0 = points.view(kReferencePosition);
+  const auto* vol0 = points.real(kReferenceVolume);
+  const auto* half = points.view(kHalfSize);
   auto* area = points.view<Vec3>(field);
   Index marked = 0;
   for (Index p = 0; p < points.size(); ++p) {

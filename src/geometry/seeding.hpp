@@ -6,7 +6,7 @@
 
 namespace ballista {
 
-/// Declares the fields every solver's points carry (positions, velocity, F, stress, mass, ...).
+/// Declares the fields every solver's points carry, in the order of their keys in core/point_fields.hpp.
 void declare_point_fields(FieldStore& points);
 
 /// The spacing of the lattice `body` is seeded on: its own point_spacing if given (peridynamics),

@@ -23,6 +23,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "core/point_fields.hpp"
 #include "core/tensor.hpp"
 #include "io/atomic_file.hpp"
 #include "io/hdf5_handle.hpp"

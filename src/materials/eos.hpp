@@ -30,8 +30,9 @@
 
 namespace ballista {
 
-/// State field holding E, the internal energy per unit reference volume, J/m^3.
-inline constexpr const char* kEosEnergyField = "energy_density";
+/// State field holding E, the internal energy per unit reference volume (J/m^3).
+inline constexpr FieldKey<double> kEosEnergy{"energy_density"};
+inline constexpr const char* kEosEnergyField = kEosEnergy.name();
 
 struct Eos {
   enum class Kind { Linear, MieGruneisen };

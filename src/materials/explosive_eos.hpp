@@ -23,11 +23,18 @@
 // gas its first pressure is P_S0 = (gamma - 1) Q = P_CJ / 2, the seed's value.
 #include <cmath>
 
+#include "core/field_key.hpp"
+
 namespace ballista {
 
 /// State field of the `explosive` material: the chemical energy released so far, Q F, J per m^3
 /// of initial volume (summed by the points layer into EnergyTotals::chemical).
-inline constexpr const char* kChemicalEnergyField = "chemical_energy";
+inline constexpr FieldKey<double> kChemicalEnergy{"chemical_energy"};
+inline constexpr const char* kChemicalEnergyField = kChemicalEnergy.name();
+/// State fields of the `explosive` material the program burn fills (points/explosive_lighting.hpp):
+/// when the point lights, -1 if never (s), and the time its burn fraction takes to grow to 1 (s).
+inline constexpr FieldKey<double> kLightingTime{"lighting_time"};
+inline constexpr FieldKey<double> kBurnTime{"burn_time"};
 
 struct ProductsEos {
   enum class Kind { Jwl, IdealGas };

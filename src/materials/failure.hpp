@@ -40,9 +40,14 @@
 
 namespace ballista {
 
-/// State fields added by a failure criterion.
-inline constexpr const char* kDamageField = "damage";
-inline constexpr const char* kFailedField = "failed";
+/// State fields added by a failure criterion: the criterion's measure, 0..1 (1), and whether the
+/// point has failed, 0 or 1, never reset (1). (Peridynamics also declares `damage`: the share of
+/// broken bonds.)
+inline constexpr FieldKey<double> kDamage{"damage"};
+inline constexpr FieldKey<double> kFailed{"failed"};
+/// Their names, for the state field specs and the models' by-name state access.
+inline constexpr const char* kDamageField = kDamage.name();
+inline constexpr const char* kFailedField = kFailed.name();
 
 /// What a model's kernel fills in PointResult, declared by the model as
 ///   static constexpr bool kTracksPlasticStrain = true;  // delta_eqps, eqps, drucker_product

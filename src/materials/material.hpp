@@ -25,6 +25,7 @@
 
 #include "core/error.hpp"
 #include "core/field_store.hpp"
+#include "core/point_fields.hpp"
 #include "core/registry.hpp"
 #include "core/tensor.hpp"
 
@@ -217,17 +218,17 @@ inline MaterialBatch make_batch(FieldStore& store, const Index* points, Index co
   b.points = points;
   b.count = count;
   b.F_old = nullptr;
-  b.F_new = store.view<Mat3>("F");
-  b.L = store.view<Mat3>("L");
-  b.R = store.view<Mat3>("R");
-  b.stress = store.view<Mat3>("stress");
+  b.F_new = store.view(kDeformationGradient);
+  b.L = store.view(kVelocityGradient);
+  b.R = store.view(kRotation);
+  b.stress = store.view(kStress);
   b.store = &store;
   b.dt = dt;
   if (energies) {
     // dE = dt <V> <sigma> : D (trapezoidal stress power); plastic dissipation from the model.
-    b.volume0 = store.real("volume0");
-    b.internal_energy = store.real("internal_energy");
-    b.plastic_energy = store.real("plastic_work");
+    b.volume0 = store.real(kReferenceVolume);
+    b.internal_energy = store.real(kInternalEnergy);
+    b.plastic_energy = store.real(kPlasticWork);
   }
   return b;
 }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/point_fields.hpp"
 #include "core/polar.hpp"
 #include "materials/distortion.hpp"
 #include "materials/failure.hpp"
@@ -62,7 +63,7 @@ class MaterialAdapter final : public Material {
 
   double max_signal_speed(const FieldStore& store, const Index* points, Index count) const override {
     const PointWaveSpeed speed(*this, store);
-    const Vec3* v = store.view<Vec3>("v");
+    const Vec3* v = store.view(kVelocity);
     double vmax = 0.0;
 #pragma omp parallel for reduction(max : vmax) schedule(static) if (count > kParallelThreshold)
     for (Index k = 0; k < count; ++k) vmax = std::max(vmax, speed(points[k]) + norm(v[points[k]]));
@@ -89,7 +90,7 @@ class MaterialAdapter final : public Material {
   class PointWaveSpeed {
    public:
     PointWaveSpeed(const MaterialAdapter& m, const FieldStore& store)
-        : params_(m.params_), ns_(static_cast<int>(m.state_.size())), F_(store.view<Mat3>("F")) {
+        : params_(m.params_), ns_(static_cast<int>(m.state_.size())), F_(store.view(kDeformationGradient)) {
       for (int s = 0; s < ns_; ++s) sptr_[s] = store.real(m.state_[s].name);
     }
     double operator()(Index p) const {

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/parallel.hpp"
+#include "core/point_fields.hpp"
 #include "materials/eos.hpp"
 #include "materials/failure.hpp"
 
@@ -23,16 +24,16 @@ BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, d
     eos_energy[m] = materials[m]->has_state(kEosEnergyField) ? 1 : 0;
     stress_free_failed[m] = materials[m]->failed_points_are_stress_free() ? 1 : 0;
   }
-  const double* failed = s.has(kFailedField) ? s.real(kFailedField) : nullptr;
-  double* q = s.real(kBulkViscosityField);
-  double* eint = s.real("internal_energy");
-  double* E = s.has(kEosEnergyField) ? s.real(kEosEnergyField) : nullptr;
-  const auto* mat = s.ints("material");
-  const auto* mass = s.real("mass");
-  const auto* vol = s.real("volume");
-  const auto* vol0 = s.real("volume0");
-  const auto* L = s.view<Mat3>("L");
-  const auto* v = s.view<Vec3>("v");
+  const double* failed = s.has(kFailed) ? s.real(kFailed) : nullptr;
+  double* q = s.real(kBulkViscosity);
+  double* eint = s.real(kInternalEnergy);
+  double* E = s.has(kEosEnergy) ? s.real(kEosEnergy) : nullptr;
+  const auto* mat = s.ints(kMaterialIndex);
+  const auto* mass = s.real(kMass);
+  const auto* vol = s.real(kVolume);
+  const auto* vol0 = s.real(kReferenceVolume);
+  const auto* L = s.view(kVelocityGradient);
+  const auto* v = s.view(kVelocity);
   double out[1];
   deterministic_sum<1>(0, n, [&](Index p, double* o) {
     const double trD = L[p](0, 0) + L[p](1, 1) + L[p](2, 2);

@@ -41,7 +41,8 @@ inline double bulk_viscosity_signal_speed(const BulkViscosity& bv, double c, dou
 }
 
 /// The point field holding q (Pa): the forces use stress - q I (MpmSolver::particles_to_grid).
-inline constexpr const char* kBulkViscosityField = "bulk_viscosity";
+inline constexpr FieldKey<double> kBulkViscosity{"bulk_viscosity"};
+inline constexpr const char* kBulkViscosityField = kBulkViscosity.name();
 
 /// What one pass of apply_bulk_viscosity reports.
 struct BulkViscosityPass {

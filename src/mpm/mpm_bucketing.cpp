@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "core/point_fields.hpp"
 #include "mpm/mpm_solver.hpp"
 
 namespace ballista {
@@ -15,7 +16,7 @@ void MpmSolver::sort_by_cell() {
   const Index n = points_.size();
   if (n == 0) return;
   const GridGeometry& g = grid_.geom;
-  const auto* x = points_.view<Vec3>("x");
+  const auto* x = points_.view(kPosition);
   std::vector<Index>& key = sort_key_;  // member scratch buffers: no allocation per sort
   key.resize(n);
   const Index ncell = g.node_count();
@@ -38,8 +39,8 @@ void MpmSolver::sort_by_cell() {
 int MpmSolver::stencil_reach_now() const {
   if (shape_ != ShapeKind::Cpdi) return stencil_reach(shape_);
   // CPDI: the corners x_p +- r1 +- r2 +- r3 reach as far as the summed |r_j| components.
-  const auto* F = points_.view<Mat3>("F");
-  const auto* half = points_.view<Vec3>("half_size");
+  const auto* F = points_.view(kDeformationGradient);
+  const auto* half = points_.view(kHalfSize);
   const Index n = points_.size();
   double ext = 0.0;
 #pragma omp parallel for reduction(max : ext) schedule(static) if (n > kParallelThreshold)
@@ -104,7 +105,7 @@ void MpmSolver::build_slabs() {
     // A CPDI domain larger than the ghost layers could reach outside the block.
     if (points_.size() == 0 || reach + 1 <= ghost_)
       throw PhysicsError("CPDI particle domain spans more than " + std::to_string(ghost_) + " cells on another rank");
-    const auto* F = points_.view<Mat3>("F");
+    const auto* F = points_.view(kDeformationGradient);
     Index worst = 0;
     double worst_norm = 0.0;
     for (Index p = 0; p < points_.size(); ++p)
@@ -115,7 +116,7 @@ void MpmSolver::build_slabs() {
   const GridGeometry& g = grid_.geom;
   const int nslab = (g.nodes[slab_axis_] + slab_width_ - 1) / slab_width_;
   const Index n = points_.size();
-  const auto* x = points_.view<Vec3>("x");
+  const auto* x = points_.view(kPosition);
   std::vector<int>& slab = slab_of_point_;  // member scratch: no allocation per step
   slab.resize(n);
   for_each(0, n, [&](Index p) {

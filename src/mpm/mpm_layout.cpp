@@ -121,7 +121,7 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   musl_ = P.update == MpmParams::Update::Musl;
   usavg_ = P.update == MpmParams::Update::Usavg;
   bulk_viscosity_ = P.bulk_viscosity;
-  if (bulk_viscosity_.active()) pts_.add_real(kBulkViscosityField, 1, "Pa");
+  if (bulk_viscosity_.active()) pts_.declare(kBulkViscosity, "Pa");
   flip_ = P.flip;
   pts_.set_distortion_limit(P.distortion_limit);
   xpic_order_ = P.xpic_order;

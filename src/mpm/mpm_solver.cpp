@@ -7,6 +7,7 @@
 
 #include "core/agreed_failure.hpp"
 #include "core/parallel.hpp"
+#include "core/point_fields.hpp"
 #include "mpm/axis_hoop.hpp"
 #include "mpm/graded_shape_functions.hpp"
 #include "mpm/mpm_params.hpp"
@@ -85,7 +86,7 @@ inline void surface_point_stencil(const GridGeometry& g, const SplineFaces& face
 }  // namespace
 
 Index MpmSolver::cut_and_migrate() {
-  const std::vector<int> dest = partition_.partition(points_.view<Vec3>("x"), points_.ints("id"), points_.size());
+  const std::vector<int> dest = partition_.partition(points_.view(kPosition), points_.ints(kId), points_.size());
   const Index moved = migrate_points(comm_, points_, dest);
   pts_.mark_reordered();
   return moved;
@@ -95,7 +96,7 @@ void MpmSolver::redistribute() {
   // Particles move less than a cell per step, so few cross a cut; the owner of a position is
   // known from the kept cuts without communication (points/rcb_partition.hpp).
   std::vector<int> dest;
-  partition_.owners(points_.view<Vec3>("x"), points_.size(), dest);
+  partition_.owners(points_.view(kPosition), points_.size(), dest);
   Index moved = migrate_points(comm_, points_, dest);
   const double n = static_cast<double>(points_.size());
   const double total = comm_.sum(n), largest = comm_.max(n);
@@ -143,7 +144,7 @@ void MpmSolver::update_cell_lengths() {
   // The shortest edge of each point's cell: the length a signal crosses in the Courant condition
   // and the viscous length of the bulk viscosity on a graded grid.
   const GridGeometry& g = grid_.geom;
-  const auto* x = points_.view<Vec3>("x");
+  const auto* x = points_.view(kPosition);
   cell_length_.resize(static_cast<std::size_t>(points_.size()));
   for_each(0, points_.size(), [&](Index p) {
     double l = g.cell_size(g.cell_of(x[p][0], 0), 0);
@@ -156,7 +157,7 @@ double MpmSolver::graded_stable_dt() {
   // dt = CFL min_p l_p / (c_p + |v_p|): each point's signal crosses its own cell (l_p its shortest
   // edge) within the step; with the bulk viscosity, the last pass's signal rates.
   update_cell_lengths();
-  const auto* v = points_.view<Vec3>("v");
+  const auto* v = points_.view(kVelocity);
   wave_scratch_.resize(static_cast<std::size_t>(points_.size()));
   const auto& groups = pts_.material_groups();
   for (std::size_t m = 0; m < groups.size(); ++m)
@@ -203,12 +204,12 @@ inline void MpmSolver::point_stencil(Index p, const Vec3& x, const Vec3& half, S
 template <int Dim, ShapeKind K, bool G>
 void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
   const GridGeometry& g = grid_.geom;
-  const auto* x = points_.view<Vec3>("x");
-  const auto* v = v_source ? v_source : points_.view<Vec3>("v");
-  const auto* half = points_.view<Vec3>("half_size");
-  const auto* mass = points_.real("mass");
-  const auto* vol = points_.real("volume");
-  const auto* stress = points_.view<Mat3>("stress");
+  const auto* x = points_.view(kPosition);
+  const auto* v = v_source ? v_source : points_.view(kVelocity);
+  const auto* half = points_.view(kHalfSize);
+  const auto* mass = points_.real(kMass);
+  const auto* vol = points_.real(kVolume);
+  const auto* stress = points_.view(kStress);
   double* gm = grid_.mass.data();
   Vec3* gp = grid_.velocity.data();
   Vec3* gf = grid_.force.data();
@@ -225,7 +226,7 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
       std::fill(gp + b, gp + e, Vec3{});
     });
   const bool axisym = dimension_ == Dimension::Axisymmetric;
-  const double* bq = bulk_viscosity_.active() ? points_.real(kBulkViscosityField) : nullptr;
+  const double* bq = bulk_viscosity_.active() ? points_.real(kBulkViscosity) : nullptr;
   const std::vector<Vec3>& fext = loads_.total();
   const std::vector<Vec3>& ftrac = loads_.traction();
   const bool has_ext = !fext.empty();
@@ -312,7 +313,7 @@ void MpmSolver::xpic_velocity(double dt) {
   const Index nall = g.node_count() * grid_.fields;
   const int m = xpic_order_;
   const Index n = points_.size();
-  const auto* half = points_.view<Vec3>("half_size");
+  const auto* half = points_.view(kHalfSize);
   xpic_.prev.resize(nall);
   xpic_.target.resize(nall);
   xpic_.at_points.resize(n);
@@ -377,8 +378,8 @@ void MpmSolver::grid_to_particles(double dt) {
   // bookkeeping is compiled into its own instance (Usavg), so the USL/MUSL pass stays as lean as
   // it was.
   const GridGeometry& g = grid_.geom;
-  auto* v = points_.view<Vec3>("v");
-  const auto* half = points_.view<Vec3>("half_size");
+  auto* v = points_.view(kVelocity);
+  const auto* half = points_.view(kHalfSize);
   const Vec3* vn = grid_.velocity_new.data();
   const Vec3* ga = grid_.accel.data();
   const bool axisym = dimension_ == Dimension::Axisymmetric;
@@ -395,7 +396,7 @@ void MpmSolver::grid_to_particles(double dt) {
   const Vec3* vx = xpic ? xpic_.target.data() : nullptr;
   const Index n = points_.size();
   if (defer) displacement_.resize(n);
-  const auto* mass = points_.real("mass");
+  const auto* mass = points_.real(kMass);
   std::atomic<Index> bad{n}, out{n};
   double pw[2];
   deterministic_sum<2>(0, n, [&](Index p, double* o) {
@@ -502,7 +503,7 @@ void MpmSolver::velocity_gradient_from_grid(double dt, bool move) {
   // momenta map back to, with the points moved by `displacement_`; for USAVG's first half the
   // constrained mapped velocity, the points left in place (`move` false).
   const GridGeometry& g = grid_.geom;
-  const auto* half = points_.view<Vec3>("half_size");
+  const auto* half = points_.view(kHalfSize);
   const Vec3* vg = grid_.velocity_new.data();
   const bool axisym = dimension_ == Dimension::Axisymmetric;
   const Index n = points_.size();
@@ -535,7 +536,7 @@ void MpmSolver::handle_exits() {
   if (first_out_ >= n) return;
   if (scenario_.simulation.on_particle_exit != "delete")
     fail(first_out_, "left the grid box (set simulation.on_particle_exit: delete to remove such particles)");
-  const auto* x = points_.view<Vec3>("x");
+  const auto* x = points_.view(kPosition);
   std::vector<char> keep(n, 1);
   for (Index p = 0; p < n; ++p)
     for (int a = 0; a < dim_; ++a)
@@ -651,12 +652,12 @@ void MpmSolver::first_half_stress_update(double dt) {
 }
 
 void MpmSolver::bind_fields() {
-  x_ = points_.view<Vec3>("x");
-  F_ = points_.view<Mat3>("F");
-  L_ = points_.view<Mat3>("L");
-  vol_ = points_.real("volume");
-  vol0_ = points_.real("volume0");
-  body_ = points_.ints("body");
+  x_ = points_.view(kPosition);
+  F_ = points_.view(kDeformationGradient);
+  L_ = points_.view(kVelocityGradient);
+  vol_ = points_.real(kVolume);
+  vol0_ = points_.real(kReferenceVolume);
+  body_ = points_.ints(kBodyIndex);
 }
 
 void MpmSolver::step(double dt) {

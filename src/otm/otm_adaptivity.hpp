@@ -45,7 +45,8 @@ struct AdaptivityOptions {
 
 /// Name of the per-point extent tensor (m): the edges of the point's cell, s0 I at seeding,
 /// carried as S <- dF S and halved along the split direction.
-inline constexpr const char* kExtentField = "extent";
+inline constexpr FieldKey<Mat3> kExtent{"extent"};
+inline constexpr const char* kExtentField = kExtent.name();
 
 /// Unit eigenvector of the largest eigenvalue `hi` of the symmetric dim x dim block of A.
 Vec3 largest_eigenvector(const Mat3& A, int dim, double hi);

@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/phase_timer.hpp"
+#include "core/point_fields.hpp"
 #include "otm/otm_params.hpp"
 #include "points/cell_bins.hpp"
 #include "points/solver_registry.hpp"
@@ -22,8 +23,10 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kTinyMass = 1e-300;
-/// Per point: the node set it belongs to (its body, or 0 for all with otm.nodes: shared).
-constexpr const char* kNodeGroupField = "node_group";
+/// Per point: the node set it belongs to (its body, or 0 for all with otm.nodes: shared) (1).
+constexpr FieldKey<std::int64_t> kNodeGroup{"node_group"};
+/// Per output node: the body of its node set, as a real like every node dataset (1).
+constexpr FieldKey<double> kNodeBody{"body"};
 
 [[noreturn]] void section_error(const Scenario& sc, const std::string& key, const std::string& message) {
   throw_solver_param_error(sc, "otm", key, message);  // at the key's line
@@ -76,10 +79,10 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   if (adapt_.enabled) {
     // The extent tensor of each point's cell (s0 I at seeding) and the ids the splits continue.
     for (const BodySpec& b : sc.bodies) spacing_.push_back(sc.grid.cell_size / b.particles_per_cell);
-    points_.add_real(otm::kExtentField, 9, "m", false);
-    auto* S = points_.view<Mat3>(otm::kExtentField);
-    const auto* body = points_.ints("body");
-    const auto* id = points_.ints("id");
+    points_.declare(otm::kExtent, "m", false);
+    auto* S = points_.view(otm::kExtent);
+    const auto* body = points_.ints(kBodyIndex);
+    const auto* id = points_.ints(kId);
     for (Index p = 0; p < n; ++p) {
       const double s0 = spacing_[static_cast<size_t>(body[p])];
       S[p] = Mat3::diag(s0, s0, s0);
@@ -89,10 +92,10 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   }
   // Node groups: each body its own nodes (bodies do not interact), or one node set over every body
   // (otm.nodes: shared; bodies then move together where they touch, as MPM's single_field).
-  points_.add_int(kNodeGroupField, 1, "1", false);
+  points_.declare(kNodeGroup, "1", false);
   {
-    auto* group = points_.ints(kNodeGroupField);
-    const auto* body = points_.ints("body");
+    auto* group = points_.ints(kNodeGroup);
+    const auto* body = points_.ints(kBodyIndex);
     const bool shared = P.shared_nodes;
     // Products that act on nothing would "succeed" with the other bodies untouched.
     if (first_material_of_model(sc, "explosive") && sc.bodies.size() > 1 && !shared)
@@ -100,14 +103,14 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
                                  "the products would push nothing: OTM has no contact between bodies yet)");
     for (Index p = 0; p < n; ++p) group[p] = shared ? 0 : body[p];
   }
-  nodes_ = otm::seed_nodes(points_.view<Vec3>("x"), points_.ints(kNodeGroupField), n, sc.grid.lower, sc.grid.cell_size,
+  nodes_ = otm::seed_nodes(points_.view(kPosition), points_.ints(kNodeGroup), n, sc.grid.lower, sc.grid.cell_size,
                            dim_);
   lambda_.assign(static_cast<size_t>(n), Vec3{});
   refresh_supports();
   // Initial node velocities: the mass-weighted projection of the points' (exact for a body in
   // uniform motion: the shape functions are a partition of unity).
-  const auto* v = points_.view<Vec3>("v");
-  const auto* mass = points_.real("mass");
+  const auto* v = points_.view(kVelocity);
+  const auto* mass = points_.real(kMass);
   std::vector<Vec3> mom(static_cast<size_t>(nodes_.size()));
   std::vector<double> m(static_cast<size_t>(nodes_.size()), 0.0);
   for (Index p = 0; p < n; ++p)
@@ -124,18 +127,18 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
 }
 
 const FieldStore* OtmSolver::output_nodes() {
-  if (!node_out_.has("x")) {
-    node_out_.add_real("x", 3, "m");
-    node_out_.add_real("v", 3, "m/s");
-    node_out_.add_real("mass", 1, "kg");
-    node_out_.add_real("body", 1, "1");
+  if (!node_out_.has(kPosition)) {
+    node_out_.declare(kPosition, "m");
+    node_out_.declare(kVelocity, "m/s");
+    node_out_.declare(kMass, "kg");
+    node_out_.declare(kNodeBody, "1");
   }
   const Index nn = nodes_.size();
   node_out_.resize(nn);
-  auto* x = node_out_.view<Vec3>("x");
-  auto* v = node_out_.view<Vec3>("v");
-  auto* m = node_out_.real("mass");
-  auto* b = node_out_.real("body");
+  auto* x = node_out_.view(kPosition);
+  auto* v = node_out_.view(kVelocity);
+  auto* m = node_out_.real(kMass);
+  auto* b = node_out_.real(kNodeBody);
   for (Index a = 0; a < nn; ++a) {
     x[a] = nodes_.x[a];
     v[a] = nodes_.v[a];
@@ -163,14 +166,14 @@ bool OtmSolver::build_current_supports() {
   // Radius scale of each point: the largest principal stretch (in the plane in 2D) of what has
   // moved its nodes apart: F, or with adaptivity the deformation since the nodes were re-generated.
   scale_.resize(static_cast<size_t>(n));
-  const Mat3* F = adapt_.enabled ? Fr_.data() : points_.view<Mat3>("F");
+  const Mat3* F = adapt_.enabled ? Fr_.data() : points_.view(kDeformationGradient);
   for_each(0, n, [&](Index p) {
     double lo, hi;
     otm::symmetric_extremes(transpose_times(F[p], F[p]), dim_, lo, hi);
     scale_[p] = std::sqrt(std::max(hi, 1.0));
   });
   std::swap(prev_sup_, sup_);
-  otm::build_supports(points_.view<Vec3>("x"), points_.ints(kNodeGroupField), n, nodes_.x.data(), nodes_.body.data(),
+  otm::build_supports(points_.view(kPosition), points_.ints(kNodeGroup), n, nodes_.x.data(), nodes_.body.data(),
                       nodes_.size(), sopt_, scale_.data(), prev_sup_.offset.empty() ? nullptr : &prev_sup_,
                       lambda_.data(), sup_);
   otm::build_influences(sup_, nodes_.size(), inf_);
@@ -221,7 +224,8 @@ void OtmSolver::adapt() {
   const auto t0 = std::chrono::steady_clock::now();
   const double supports0 = seconds_.supports;
   bool regenerate = false;
-  std::vector<std::string> extensive = {"mass", "volume0", "internal_energy", "plastic_work"};
+  std::vector<std::string> extensive = {kMass.name(), kReferenceVolume.name(), kInternalEnergy.name(),
+                                        kPlasticWork.name()};
   for (const std::string& a : pts_.load_area_fields()) extensive.push_back(a);
   // Only held faces (walls, symmetry planes, fixed faces) keep a split parallel to them: a free
   // face is no obstacle, and material may flow past the box there (the 750 m/s bar's disc).
@@ -246,7 +250,7 @@ void OtmSolver::adapt() {
     regenerate = !build_current_supports();
     // The seed's distance metric (Fig. 5-2), seen from the points: a point whose nearest node is
     // farther than node_gap h has lost the nodes that resolve the motion around it.
-    const auto* x = points_.view<Vec3>("x");
+    const auto* x = points_.view(kPosition);
     const double gap2 = std::pow(adapt_.node_gap * sopt_.h, 2);
     for (Index p = 0; p < points_.size() && !regenerate; ++p) {
       double near2 = kInf;
@@ -274,7 +278,7 @@ void OtmSolver::regenerate_nodes() {
   const otm::NodeCloud old = std::move(nodes_);
   double ke0 = 0.0;
   for (Index b = 0; b < old.size(); ++b) ke0 += 0.5 * old.mass[b] * dot(old.v[b], old.v[b]);
-  nodes_ = otm::seed_nodes(points_.view<Vec3>("x"), points_.ints(kNodeGroupField), n, scenario_.grid.lower,
+  nodes_ = otm::seed_nodes(points_.view(kPosition), points_.ints(kNodeGroup), n, scenario_.grid.lower,
                            scenario_.grid.cell_size, dim_);
   const Index nn = nodes_.size();
   // Velocities of the new nodes: the old nodes' LME interpolant evaluated at them,
@@ -304,9 +308,9 @@ void OtmSolver::regenerate_nodes() {
   prev_sup_ = otm::Supports{};
   if (!build_current_supports()) report_failed_solve();
   // Lumped masses on the new nodes (eq. 2.13).
-  const auto* v = points_.view<Vec3>("v");
-  const auto* mass = points_.real("mass");
-  const auto* pbody = points_.ints(kNodeGroupField);
+  const auto* v = points_.view(kVelocity);
+  const auto* mass = points_.real(kMass);
+  const auto* pbody = points_.ints(kNodeGroup);
   const size_t nb = scenario_.bodies.size();  // groups are numbered below the body count
   std::vector<Vec3> p_points(nb);  // sum_p m_p v_p per body: the old nodes' momentum, exactly
   for (Index p = 0; p < n; ++p) {
@@ -319,7 +323,7 @@ void OtmSolver::regenerate_nodes() {
   // A node outside the old nodes' hull (a lattice vertex beyond the old edge of the material)
   // takes the velocity of its nearest point, v_p = sum N_b v_b: an extrapolation, not an average.
   {
-    const auto* xp = points_.view<Vec3>("x");
+    const auto* xp = points_.view(kPosition);
     const CellBins bins(xp, n, std::sqrt(static_cast<double>(dim_)) * scenario_.grid.cell_size, dim_);
     for (Index a = 0; a < nn; ++a) {
       if (interpolated_[a]) continue;
@@ -381,10 +385,10 @@ void OtmSolver::assemble() {
   const std::vector<Index>& start = inf_.start;
   const std::vector<Index>& entry = inf_.entry;
   const std::vector<Index>& owner = inf_.owner;
-  const auto* mass = points_.real("mass");
-  const auto* vol = points_.real("volume");
-  const auto* stress = points_.view<Mat3>("stress");
-  const auto* x = points_.view<Vec3>("x");
+  const auto* mass = points_.real(kMass);
+  const auto* vol = points_.real(kVolume);
+  const auto* stress = points_.view(kStress);
+  const auto* x = points_.view(kPosition);
   const std::vector<Vec3>& fext = loads_.total();
   const bool has_ext = !fext.empty();
   const bool axisym = axisym_;
@@ -464,8 +468,8 @@ double OtmSolver::stable_dt() {
   const double c = comm_.max(pts_.max_signal_speed());
   const double max_dt = scenario_.simulation.max_dt > 0.0 ? scenario_.simulation.max_dt : kInf;
   if (!(c > 0.0) || n == 0) return std::min(max_dt, scenario_.simulation.end_time);
-  const auto* mass = points_.real("mass");
-  const auto* x = points_.view<Vec3>("x");
+  const auto* mass = points_.real(kMass);
+  const auto* x = points_.view(kPosition);
   auto g = [&](Index p, Index kk) {
     double v = norm(sup_.dN[kk]);
     if (axisym_) v += sup_.N[kk] / x[p][0];
@@ -552,15 +556,15 @@ void OtmSolver::step(double dt) {
 
   // Points follow the nodes (Algorithm 1 lines 12-16) with the shape functions of x_p^k.
   phase.emplace(seconds_.points);
-  auto* x = points_.view<Vec3>("x");
-  auto* v = points_.view<Vec3>("v");
-  auto* F = points_.view<Mat3>("F");
-  auto* L = points_.view<Mat3>("L");
-  auto* vol = points_.real("volume");
-  const auto* vol0 = points_.real("volume0");
+  auto* x = points_.view(kPosition);
+  auto* v = points_.view(kVelocity);
+  auto* F = points_.view(kDeformationGradient);
+  auto* L = points_.view(kVelocityGradient);
+  auto* vol = points_.real(kVolume);
+  const auto* vol0 = points_.real(kReferenceVolume);
   const std::vector<Vec3>& fext = loads_.total();
   const bool has_ext = !fext.empty();
-  Mat3* extent = adapt_.enabled ? points_.view<Mat3>(otm::kExtentField) : nullptr;
+  Mat3* extent = adapt_.enabled ? points_.view(otm::kExtent) : nullptr;
   std::atomic<Index> bad{n};
   double ew[1];
   deterministic_sum<1>(0, n, [&](Index p, double* o) {

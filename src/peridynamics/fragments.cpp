@@ -4,6 +4,8 @@
 #include <cstring>
 #include <numeric>
 
+#include "core/point_fields.hpp"
+#include "peridynamics/pd_fields.hpp"
 #include "points/point_exchange.hpp"
 
 namespace ballista::pd {
@@ -23,7 +25,7 @@ Index find_root(std::vector<Index>& parent, Index p) {
 std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& store, double damage_threshold,
                                      const std::uint8_t* skip) {
   const Index n = store.size();
-  const double* damage = damage_threshold <= 1.0 ? store.real("damage") : nullptr;
+  const double* damage = damage_threshold <= 1.0 ? store.real(kBondDamage) : nullptr;
   auto kept = [&](Index p) { return !(skip && skip[p]) && (!damage || damage[p] <= damage_threshold); };
   std::vector<Index> parent(static_cast<size_t>(n));
   std::iota(parent.begin(), parent.end(), Index{0});
@@ -37,9 +39,9 @@ std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& 
       if (b < a) std::swap(a, b);
       parent[b] = a;  // the root is the lowest index: labels do not depend on the visiting order
     }
-  const auto* x = store.view<Vec3>("x");
-  const auto* v = store.view<Vec3>("v");
-  const auto* mass = store.real("mass");
+  const auto* x = store.view(kPosition);
+  const auto* v = store.view(kVelocity);
+  const auto* mass = store.real(kMass);
   std::vector<Index> slot(static_cast<size_t>(n), -1);
   std::vector<Fragment> out;
   for (Index p = 0; p < n; ++p) {
@@ -89,7 +91,7 @@ std::vector<Fragment> find_fragments_gathered(const Communicator& comm, const Bo
   // The union of the intact bonds over the points in id order: union-find labels and sums do not
   // depend on the order the bonds arrive in (fragments.cpp above), so this is the serial answer.
   const Index n = all.size();
-  const auto* id = all.ints("id");
+  const auto* id = all.ints(kId);
   auto index_of = [&](std::int64_t i) { return static_cast<Index>(std::lower_bound(id, id + n, i) - id); };
   std::vector<std::pair<Index, Index>> edges;
   for (const auto& b : got) {
@@ -111,7 +113,7 @@ std::vector<Fragment> find_fragments_gathered(const Communicator& comm, const Bo
   std::vector<Index> fill(f.offset.begin(), f.offset.end() - 1);
   for (const auto& e : edges) f.other[fill[e.first]++] = static_cast<std::int32_t>(e.second);
   std::vector<std::uint8_t> skip(static_cast<std::size_t>(n), 0);
-  const auto* mat = all.ints("material");
+  const auto* mat = all.ints(kMaterialIndex);
   bool any = false;
   for (Index p = 0; p < n; ++p) {
     skip[p] = mat[p] >= 0 && mat[p] < static_cast<std::int64_t>(skip_material.size()) && skip_material[mat[p]];

@@ -21,7 +21,7 @@ struct Fragment {
 };
 
 /// Fragments of the points of `store` (fields x, v, mass) bonded by the intact bonds of `bonds`,
-/// largest mass first (ties: lowest first point). Points whose damage (field "damage") exceeds
+/// largest mass first (ties: lowest first point). Points whose damage (pd::kBondDamage) exceeds
 /// `damage_threshold` are left out (dust, not fragments); the default keeps every point. Points
 /// with skip[p] != 0 (detonation products) are never part of a fragment.
 std::vector<Fragment> find_fragments(const BondFamily& bonds, const FieldStore& store,

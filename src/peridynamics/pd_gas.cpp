@@ -8,6 +8,7 @@
 #include <limits>
 #include <utility>
 
+#include "core/point_fields.hpp"
 #include "peridynamics/pd_solver.hpp"
 
 namespace ballista {
@@ -48,10 +49,10 @@ pd::GasPassArgs PdSolver::gas_pass_args() const {
 
 void PdSolver::update_gas(double dt) {
   const Index n = points_.size();
-  auto* F = points_.view<Mat3>("F");
-  auto* L = points_.view<Mat3>("L");
-  auto* volume = points_.real("volume");
-  const auto* vol0 = points_.real("volume0");
+  auto* F = points_.view(kDeformationGradient);
+  auto* L = points_.view(kVelocityGradient);
+  auto* volume = points_.real(kVolume);
+  const auto* vol0 = points_.real(kReferenceVolume);
   const pd::GasPassArgs a = gas_pass_args();
   const double inv_d = 1.0 / dim_;
   const Index* own = local_.own.data();
@@ -84,7 +85,7 @@ void PdSolver::update_gas(double dt) {
   pts_.update_stress(dt, steps_ + 1, time_ + dt, gas_material_);
   if (gas_refamily_every_ > 0 && (steps_ + 1) % gas_refamily_every_ == 0) refamily_gas();
   // G_i = d P_i X_i^(1+m/d) dV0_i / V_i (gas_pass.hpp); a vented point pushes nothing.
-  const auto* stress = points_.view<Mat3>("stress");
+  const auto* stress = points_.view(kStress);
   const double expo = 1.0 + pd::kGasExponent / dim_;
   for_each(0, n, [&](Index p) {
     if (!gas_[p]) return;
@@ -143,7 +144,7 @@ double PdSolver::gas_stable_dt() const {
   // over the 2 % that test allows; the linearised bound does not hold the products'
   // nonlinear stiffening near the front.
   const Index n = points_.size();
-  const auto* mat = points_.ints("material");
+  const auto* mat = points_.ints(kMaterialIndex);
   const auto& mats = pts_.materials();
   const double coef = dim_ == 3 ? 18.0 : 8.0;
   const Index* own = local_.own.data();
@@ -162,9 +163,9 @@ double PdSolver::gas_stable_dt() const {
 
 void PdSolver::vent_escaped_gas() {
   const Index n = points_.size();
-  auto* x = points_.view<Vec3>("x");
-  auto* v = points_.view<Vec3>("v");
-  auto* eint = points_.real("internal_energy");
+  auto* x = points_.view(kPosition);
+  auto* v = points_.view(kVelocity);
+  auto* eint = points_.real(kInternalEnergy);
   const GridSpec& g = scenario_.grid;
   for (Index p = 0; p < n; ++p) {
     const Index l = local_.own[p];

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/point_fields.hpp"
 #include "geometry/seeding.hpp"
 #include "geometry/shape.hpp"
 
@@ -91,9 +92,9 @@ void check_body_overlaps(const Scenario& sc, const FieldStore& points) {
     o.lower = Vec3{{kInf, kInf, kInf}};
     o.upper = Vec3{{-kInf, -kInf, -kInf}};
   }
-  const auto* x0 = points.view<Vec3>("x0");
-  const auto* body = points.ints("body");
-  const auto* vol0 = points.real("volume0");
+  const auto* x0 = points.view(kReferencePosition);
+  const auto* body = points.ints(kBodyIndex);
+  const auto* vol0 = points.real(kReferenceVolume);
   for (Index p = 0; p < points.size(); ++p) {
     const std::size_t a = static_cast<std::size_t>(body[p]);
     for (std::size_t b = 0; b < nb; ++b) {

@@ -5,7 +5,9 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/point_fields.hpp"
 #include "geometry/seeding.hpp"
+#include "materials/explosive_eos.hpp"
 #include "points/program_burn.hpp"
 
 namespace ballista {
@@ -50,8 +52,8 @@ Index light_explosives(const Scenario& sc, FieldStore& points, int ppc_override)
     spacing = s;
   }
   const Index n = points.size();
-  const auto* mat = points.ints("material");
-  const auto* x0 = points.view<Vec3>("x0");
+  const auto* mat = points.ints(kMaterialIndex);
+  const auto* x0 = points.view(kReferencePosition);
   std::vector<char> explosive(static_cast<size_t>(n), 0);
   for (Index p = 0; p < n; ++p) explosive[p] = is_explosive_material[static_cast<size_t>(mat[p])];
   std::vector<Detonator> detonators;
@@ -76,8 +78,8 @@ Index light_explosives(const Scenario& sc, FieldStore& points, int ppc_override)
                                      "charge",
                                      r.unreachable, x0[first][0], x0[first][1], x0[first][2]));
   }
-  auto* t = points.real("lighting_time");
-  auto* tau = points.real("burn_time");
+  auto* t = points.real(kLightingTime);
+  auto* tau = points.real(kBurnTime);
   Index lit = 0;
   for (Index p = 0; p < n; ++p)
     if (explosive[p]) {

@@ -4,6 +4,8 @@
 #include <cstring>
 #include <numeric>
 
+#include "core/point_fields.hpp"
+
 namespace ballista {
 
 Index migrate_points(const Communicator& comm, FieldStore& store, const std::vector<int>& dest) {
@@ -42,7 +44,7 @@ FieldStore gather_points(const Communicator& comm, const FieldStore& store, int 
   if (comm.rank() != root) return all;
   for (const auto& part : parts) all.append_packed(part.data(), part.size());
   if (!by_id) return all;
-  const std::int64_t* id = all.ints("id");
+  const std::int64_t* id = all.ints(kId);
   std::vector<Index> order(static_cast<std::size_t>(all.size()));
   std::iota(order.begin(), order.end(), Index{0});
   std::sort(order.begin(), order.end(), [&](Index a, Index b) { return id[a] < id[b]; });

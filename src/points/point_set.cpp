@@ -12,6 +12,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "core/point_fields.hpp"
 #include "core/system_memory.hpp"
 #include "geometry/seeding.hpp"
 #include "materials/explosive_eos.hpp"
@@ -72,7 +73,7 @@ PointSet::PointSet(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
         piece.velocity = body.segments[k].velocity;
         const Index s0 = points_.size();
         seed_body(piece, static_cast<int>(b), mi, *materials_[mi], grid, dim, points_, next_id);
-        auto* seg = points_.ints("segment");
+        auto* seg = points_.ints(kSegment);
         for (Index p = s0; p < points_.size(); ++p) seg[p] = static_cast<int>(k);
         activation.resize(points_.size(), body.segments[k].activation_time);
       }
@@ -89,8 +90,8 @@ PointSet::PointSet(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     removed_points_body_.assign(nb, 0.0);
     removed_mass_body_.assign(nb, 0.0);
     removed_energy_body_.assign(nb, 0.0);
-    const auto* body = points_.ints("body");
-    const auto* mass = points_.real("mass");
+    const auto* body = points_.ints(kBodyIndex);
+    const auto* mass = points_.real(kMass);
     for (Index p = 0; p < points_.size(); ++p) seeded_mass_body_[static_cast<std::size_t>(body[p])] += mass[p];
   }
   // Loads that act on marked points (a pressure's loaded surface) mark them now, on the seeding.
@@ -180,9 +181,9 @@ bool PointSet::activate(double time) {
   // Their kinetic and internal energy enters the energy balance as work done from outside (a
   // jet segment inserted at its velocity, thesis seed 000 §5.1), so the drift stays meaningful.
   {
-    const auto* v = pending_.view<Vec3>("v");
-    const auto* m = pending_.real("mass");
-    const auto* e = pending_.real("internal_energy");
+    const auto* v = pending_.view(kVelocity);
+    const auto* m = pending_.real(kMass);
+    const auto* e = pending_.real(kInternalEnergy);
     for (Index p : now) inserted_energy_ += 0.5 * m[p] * dot(v[p], v[p]) + e[p];
   }
   points_.append_from(pending_, now);
@@ -197,7 +198,7 @@ const std::vector<std::vector<Index>>& PointSet::material_groups() {
   if (!groups_dirty_) return material_points_;
   material_points_.resize(materials_.size());
   for (auto& list : material_points_) list.clear();  // keeps capacity: no allocation per sort
-  const auto* mat = points_.ints("material");
+  const auto* mat = points_.ints(kMaterialIndex);
   for (Index p = 0; p < points_.size(); ++p) material_points_[mat[p]].push_back(p);
   groups_dirty_ = false;
   return material_points_;
@@ -214,11 +215,11 @@ double PointSet::max_signal_speed() {
 
 StepLimiter PointSet::step_limiter() const {
   StepLimiter out;
-  const auto* id = points_.ints("id");
-  const auto* bid = points_.ints("body");
-  const auto* mat = points_.ints("material");
-  const auto* v = points_.view<Vec3>("v");
-  const auto* F = points_.view<Mat3>("F");
+  const auto* id = points_.ints(kId);
+  const auto* bid = points_.ints(kBodyIndex);
+  const auto* mat = points_.ints(kMaterialIndex);
+  const auto* v = points_.view(kVelocity);
+  const auto* F = points_.view(kDeformationGradient);
   double best = -1.0;
   for (Index p = 0; p < points_.size(); ++p) {
     const double J = det(F[p]);
@@ -257,12 +258,12 @@ std::int64_t PointSet::distortion_remaps() const { return comm_.sum(distortion_r
 
 void PointSet::remove(const std::vector<char>& keep) {
   const Index n = points_.size();
-  const auto* v = points_.view<Vec3>("v");
-  const auto* mass = points_.real("mass");
-  const auto* eint = points_.real("internal_energy");
-  const double* chem = points_.has(kChemicalEnergyField) ? points_.real(kChemicalEnergyField) : nullptr;
-  const auto* vol0 = points_.real("volume0");
-  const auto* body = points_.ints("body");
+  const auto* v = points_.view(kVelocity);
+  const auto* mass = points_.real(kMass);
+  const auto* eint = points_.real(kInternalEnergy);
+  const double* chem = points_.has(kChemicalEnergy) ? points_.real(kChemicalEnergy) : nullptr;
+  const auto* vol0 = points_.real(kReferenceVolume);
+  const auto* body = points_.ints(kBodyIndex);
   for (Index p = 0; p < n; ++p) {
     if (keep[p]) continue;
     const double energy = 0.5 * mass[p] * dot(v[p], v[p]) + eint[p];
@@ -280,25 +281,25 @@ void PointSet::remove(const std::vector<char>& keep) {
 }
 
 void PointSet::book_vented(Index p) {
-  const Vec3& v = points_.view<Vec3>("v")[p];
-  const double m = points_.real("mass")[p];
+  const Vec3& v = points_.view(kVelocity)[p];
+  const double m = points_.real(kMass)[p];
   removed_momentum_ += m * v;
-  removed_energy_ += 0.5 * m * dot(v, v) + points_.real("internal_energy")[p];
+  removed_energy_ += 0.5 * m * dot(v, v) + points_.real(kInternalEnergy)[p];
 }
 
 void PointSet::fail(Index p, const std::string& what, long step, double time) const {
   std::ostringstream os;
   os.precision(6);
-  const auto* id = points_.ints("id");
-  const auto* bid = points_.ints("body");
-  const Vec3& x = points_.view<Vec3>("x")[p];
-  const Mat3& F = points_.view<Mat3>("F")[p];
-  const Mat3& s = points_.view<Mat3>("stress")[p];
+  const auto* id = points_.ints(kId);
+  const auto* bid = points_.ints(kBodyIndex);
+  const Vec3& x = points_.view(kPosition)[p];
+  const Mat3& F = points_.view(kDeformationGradient)[p];
+  const Mat3& s = points_.view(kStress)[p];
   os << "particle " << id[p] << " of body '" << scenario_.bodies.at(bid[p]).name << "' " << what << " at step "
      << step << " (t = " << time << " s)\n"
      << "  position [" << x[0] << ", " << x[1] << ", " << x[2] << "] m";
   // A solver whose points carry no deformation gradient (peridynamic bonds) has cleared F's output.
-  if (!points_.info("F").output) throw ParticleError(id[p], os.str());
+  if (!points_.info(kDeformationGradient).output) throw ParticleError(id[p], os.str());
   os << "\n  F = [" << F(0, 0) << " " << F(0, 1) << " " << F(0, 2) << "; " << F(1, 0) << " " << F(1, 1) << " "
      << F(1, 2) << "; " << F(2, 0) << " " << F(2, 1) << " " << F(2, 2) << "], J = " << det(F) << "\n  stress = ["
      << s(0, 0) << " " << s(0, 1) << " " << s(0, 2) << "; " << s(1, 0) << " " << s(1, 1) << " " << s(1, 2) << "; "
@@ -307,15 +308,15 @@ void PointSet::fail(Index p, const std::string& what, long step, double time) co
 }
 
 EnergyTotals PointSet::energies(double k, double external_work) const {
-  const auto* v = points_.view<Vec3>("v");
-  const auto* mass = points_.real("mass");
-  const auto* eint = points_.real("internal_energy");
-  const auto* wp = points_.real("plastic_work");
+  const auto* v = points_.view(kVelocity);
+  const auto* mass = points_.real(kMass);
+  const auto* eint = points_.real(kInternalEnergy);
+  const auto* wp = points_.real(kPlasticWork);
   // Failed (eroded) points keep the internal energy they had when their stress was zeroed.
-  const double* failed = points_.has(kFailedField) ? points_.real(kFailedField) : nullptr;
+  const double* failed = points_.has(kFailed) ? points_.real(kFailed) : nullptr;
   // Explosives (materials/explosive.cpp): the chemical energy released, J/m^3 of initial volume.
-  const double* chem = points_.has(kChemicalEnergyField) ? points_.real(kChemicalEnergyField) : nullptr;
-  const auto* vol0 = points_.real("volume0");
+  const double* chem = points_.has(kChemicalEnergy) ? points_.real(kChemicalEnergy) : nullptr;
+  const auto* vol0 = points_.real(kReferenceVolume);
   double s[9];
   deterministic_sum<9>(0, points_.size(), [&](Index p, double* o) {
     const double m = mass[p];
@@ -484,13 +485,13 @@ bool PointSet::load_state(const StateArchive& a, const std::vector<std::int64_t>
   stage_start_ = a.reals("points.stage_start", stage_start_.size());
   // Every rank read every point: keep this rank's, then put them in id order (the checkpoint holds
   // them in the writing ranks' order).
-  const auto* id = points_.ints("id");
+  const auto* id = points_.ints(kId);
   std::vector<char> keep_mask(static_cast<std::size_t>(points_.size()), 0);
   for (Index p = 0; p < points_.size(); ++p) keep_mask[p] = std::binary_search(ids.begin(), ids.end(), id[p]);
   points_.compact(keep_mask);
   std::vector<Index> order(static_cast<std::size_t>(points_.size()));
   std::iota(order.begin(), order.end(), Index{0});
-  id = points_.ints("id");
+  id = points_.ints(kId);
   std::sort(order.begin(), order.end(), [&](Index p, Index q) { return id[p] < id[q]; });
   points_.permute(order);
   if (points_.size() != static_cast<Index>(ids.size()))

@@ -43,6 +43,12 @@ class PointSet {
     points_.add_real(name, ncomp, unit, output);
     pending_.add_real(name, ncomp, unit, output);
   }
+  /// The same through a key: the shape comes from its type.
+  template <class T>
+  void declare(const FieldKey<T>& key, const std::string& unit, bool output = true) {
+    points_.declare(key, unit, output);
+    pending_.declare(key, unit, output);
+  }
   const std::vector<std::unique_ptr<Material>>& materials() const { return materials_; }
   /// Fields the loads marked on the points (a pressure's "load_area_<k>"): extensive, so a point
   /// that splits shares them.

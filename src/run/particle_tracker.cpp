@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "core/error.hpp"
+#include "core/point_fields.hpp"
 #include "driver/drive_history.hpp"
 #include "driver/ftable_csv.hpp"
 #include "materials/material.hpp"
@@ -32,7 +33,7 @@ ParticleTracker::ParticleTracker(const Scenario& sc, const std::string& out_dir,
 
 void ParticleTracker::locate(const FieldStore& points) {
   where_.assign(ids_.size(), -1);
-  const auto* id = points.ints("id");
+  const auto* id = points.ints(kId);
   for (Index p = 0; p < points.size(); ++p)
     for (size_t k = 0; k < ids_.size(); ++k)
       if (id[p] == ids_[k]) where_[k] = p;
@@ -59,13 +60,13 @@ void ParticleTracker::open(std::int64_t id, int material, const long long* resum
 void ParticleTracker::record(const FieldStore& points, double t, long step) {
   if (ids_.empty()) return;
   locate(points);
-  const auto* F = points.view<Mat3>("F");
-  const auto* R = points.view<Mat3>("R");
-  const auto* stress = points.view<Mat3>("stress");
-  const auto* mat = points.ints("material");
-  const auto* vol0 = points.real("volume0");
-  const auto* wp = points.real("plastic_work");
-  const auto* eint = points.real("internal_energy");
+  const auto* F = points.view(kDeformationGradient);
+  const auto* R = points.view(kRotation);
+  const auto* stress = points.view(kStress);
+  const auto* mat = points.ints(kMaterialIndex);
+  const auto* vol0 = points.real(kReferenceVolume);
+  const auto* wp = points.real(kPlasticWork);
+  const auto* eint = points.real(kInternalEnergy);
   for (size_t k = 0; k < ids_.size(); ++k) {
     const Index p = where_[k];
     if (p < 0) continue;
@@ -104,7 +105,7 @@ void ParticleTracker::record(const FieldStore& points, double t, long step) {
 void ParticleTracker::record_failure(const FieldStore& points, double t) {
   if (ids_.empty()) return;
   locate(points);
-  const auto* F = points.view<Mat3>("F");
+  const auto* F = points.view(kDeformationGradient);
   for (size_t k = 0; k < ids_.size(); ++k) {
     auto it = tracks_.find(ids_[k]);
     if (where_[k] < 0 || it == tracks_.end()) continue;

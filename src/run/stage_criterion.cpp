@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "core/point_fields.hpp"
+
 namespace ballista {
 
 double stress_deviation(const Mat3& s, const Vec3& req) {
@@ -20,9 +22,9 @@ double stress_deviation(const Mat3& s, const Vec3& req) {
 
 EquilibriumCheck check_stress_equilibrium(const StageSpec& st, int body, const FieldStore& pts) {
   EquilibriumCheck c;
-  const auto* bid = pts.ints("body");
-  const auto* id = pts.ints("id");
-  const auto* stress = pts.view<Mat3>("stress");
+  const auto* bid = pts.ints(kBodyIndex);
+  const auto* id = pts.ints(kId);
+  const auto* stress = pts.view(kStress);
   Index inside = 0;
   for (Index p = 0; p < pts.size(); ++p) {
     if (bid[p] != body) continue;

@@ -2,21 +2,28 @@
 
 #include <numeric>
 
+#include "core/point_fields.hpp"
+
 namespace ballista {
 
+namespace {
+/// F at the start of the step the batch drives (1).
+constexpr FieldKey<Mat3> kOldDeformationGradient{"F_old"};
+}  // namespace
+
 PointBatch::PointBatch(const Material& m, Index n) : m_(m), n_(n) {
-  store_.add_real("F", 9, "1");
-  store_.add_real("F_old", 9, "1");
-  store_.add_real("L", 9, "1/s");
-  store_.add_real("R", 9, "1");
-  store_.add_real("stress", 9, "Pa");
+  store_.declare(kDeformationGradient, "1");
+  store_.declare(kOldDeformationGradient, "1");
+  store_.declare(kVelocityGradient, "1/s");
+  store_.declare(kRotation, "1");
+  store_.declare(kStress, "Pa");
   m.declare_fields(store_);
   store_.resize(n);
-  F_ = store_.view<Mat3>("F");
-  F_old_ = store_.view<Mat3>("F_old");
-  L_ = store_.view<Mat3>("L");
-  R_ = store_.view<Mat3>("R");
-  stress_ = store_.view<Mat3>("stress");
+  F_ = store_.view(kDeformationGradient);
+  F_old_ = store_.view(kOldDeformationGradient);
+  L_ = store_.view(kVelocityGradient);
+  R_ = store_.view(kRotation);
+  stress_ = store_.view(kStress);
   for (const StateFieldSpec& s : m.state_fields()) {
     state_names_.push_back(s.name);
     state_.push_back(store_.real(s.name));
