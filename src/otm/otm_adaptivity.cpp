@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "core/point_fields.hpp"
 #include "otm/lme_shape.hpp"
 #include "points/cell_bins.hpp"
 
@@ -41,11 +40,14 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
                                 const std::vector<double>& spacing, int dim, bool axisymmetric, const Vec3& lower,
                                 const Vec3& upper, const AdaptivityOptions& opt, std::int64_t& next_id) {
   const Index n = pts.size();
-  const auto* S = pts.view(kExtent);
-  const auto* body = pts.ints(kBodyIndex);
-  const auto* xc = pts.view(kPosition);
-  const auto* Fc = pts.view(kDeformationGradient);
-  const auto* xr = pts.view(kReferencePosition);
+  // Fields by name here, not by typed key (core/field_key.hpp): the keys change how GCC optimises
+  // this file's split arithmetic (FMA contraction with -march=native) and with it the last bits of
+  // the 750 m/s bar (examples/taylor_bar_otm_750.yaml), which stays bitwise.
+  const auto* S = pts.view<Mat3>(kExtentField);
+  const auto* body = pts.ints("body");
+  const auto* xc = pts.view<Vec3>("x");
+  const auto* Fc = pts.view<Mat3>("F");
+  const auto* xr = pts.view<Vec3>("x0");
   std::vector<Index> which;
   std::vector<Vec3> half, half0;  // parent centre to the first child's: current and reference
   for (Index p = 0; p < n; ++p) {
@@ -83,14 +85,14 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
     for (Index i = 0; i < m; ++i) all[i] = i;
     return all;
   }());
-  auto* x = pts.view(kPosition);
-  auto* x0 = pts.view(kReferencePosition);
-  auto* ext = pts.view(kExtent);
-  auto* F = pts.view(kDeformationGradient);
-  auto* vol = pts.real(kVolume);
-  const auto* vol0 = pts.real(kReferenceVolume);
-  auto* id = pts.ints(kId);
-  Vec3* hs = pts.has(kHalfSize) ? pts.view(kHalfSize) : nullptr;
+  auto* x = pts.view<Vec3>("x");
+  auto* x0 = pts.view<Vec3>("x0");
+  auto* ext = pts.view<Mat3>(kExtentField);
+  auto* F = pts.view<Mat3>("F");
+  auto* vol = pts.real("volume");
+  const auto* vol0 = pts.real("volume0");
+  auto* id = pts.ints("id");
+  Vec3* hs = pts.has("half_size") ? pts.view<Vec3>("half_size") : nullptr;
   std::vector<double> share(static_cast<size_t>(2 * m));  // each child's share of the parent
   for (Index i = 0; i < m; ++i) {
     const Index a = which[i], b = n + i;
