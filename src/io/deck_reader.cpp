@@ -16,7 +16,9 @@
 #include "io/deck_node.hpp"
 #include "io/text_file.hpp"
 #include "io/deck_overrides.hpp"
+#include "io/body_ref.hpp"
 #include "io/load_reader.hpp"
+#include "io/probe_reader.hpp"
 #include "io/material_reader.hpp"
 #include "io/penetrator_reader.hpp"
 #include "points/initial_state_registry.hpp"
@@ -106,7 +108,7 @@ class Reader {
     cracks();
     contact();
     detonation();
-    probes();
+    read_probes(root_, sc_);
     check_stage_bodies();
     penetration();
     output();
@@ -121,9 +123,6 @@ class Reader {
   bool two_d() const { return sc_.simulation.dimension != Dimension::ThreeD; }
   int ndim() const { return two_d() ? 2 : 3; }
   int vmin() const { return two_d() ? 2 : 3; }
-  std::vector<std::string> axes() const {
-    return two_d() ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"};
-  }
 
   void simulation() {
     DeckNode s = root_.map("simulation", true);
@@ -311,12 +310,8 @@ class Reader {
   }
 
   /// Reads `key` as the name of a defined body ("" allowed if optional and absent).
-  std::string body_ref(DeckNode& n, bool required) {
-    const std::string name = required ? n.string("body") : n.string("body", "");
-    if (!name.empty() && !find_body(name))
-      n.fail("body", "unknown body '" + name + "'" + suggest(name, body_names()));
-    return name;
-  }
+  std::string body_ref(DeckNode& n, bool required) { return read_body_ref(n, sc_, required); }
+
 
   void bodies() {
     DeckNode bs = root_.list("bodies", true);
@@ -548,61 +543,6 @@ class Reader {
       c.fail("model", "separate velocity fields are a grid contact of " +
                           solvers_that(&SolverFactory::velocity_fields) + "; solver '" +
                           sc_.simulation.solver + "' has its own contact (docs/deck.md)");
-  }
-
-  /// One parameter of a probe, read as its kind declares (points/probe_registry.hpp).
-  void probe_param(DeckNode& p, const ProbeParam& param, ProbeSpec& probe) {
-    const NumberRange range{.min = param.min, .min_exclusive = param.min_exclusive, .unit = param.unit};
-    switch (param.kind) {
-      case ProbeParam::Kind::Body:
-        probe.params.choices[param.name] = body_ref(p, false);
-        break;
-      case ProbeParam::Kind::Axis:
-        probe.params[param.name] = axis_from(p.choice(param.name, axes()));
-        break;
-      case ProbeParam::Kind::Number:
-        probe.params[param.name] = param.required ? p.number(param.name, range)
-                                                  : p.number(param.name, param.default_value, range);
-        break;
-      case ProbeParam::Kind::Vector: {
-        const double d = param.default_value;
-        probe.vectors[param.name] = param.required ? p.vector(param.name, vmin())
-                                                   : p.vector(param.name, Vec3{{d, d, d}}, vmin());
-        break;
-      }
-      case ProbeParam::Kind::Word:
-        probe.params.choices[param.name] =
-            param.choices.empty() ? p.string(param.name) : p.choice(param.name, param.choices);
-        break;
-    }
-  }
-
-  void probes() {
-    DeckNode ps = root_.list("probes", false);
-    for (size_t i = 0; i < ps.size(); ++i) {
-      DeckNode p = ps.element(i);
-      ProbeSpec probe;
-      probe.mark = p.mark();
-      probe.name = p.string("name");
-      for (const auto& other : sc_.probes)
-        if (other.name == probe.name)
-          p.fail("name", "duplicate probe name '" + probe.name + "' (also " + other.mark.key_path +
-                             (other.mark.line > 0 ? " at line " + std::to_string(other.mark.line) : "") + ")");
-      std::vector<std::string> kinds;
-      for (const auto& f : probe_registry()) kinds.push_back(f.name);
-      probe.type = p.choice("type", kinds);
-      const ProbeFactory& kind = *find_probe(probe.type);
-      for (const ProbeParam& param : kind.params) probe_param(p, param, probe);
-      if (kind.check) {
-        try {
-          kind.check(probe, sc_);
-        } catch (const ParamError& e) {
-          p.fail(e.param(), e.what());
-        }
-      }
-      p.finish();
-      sc_.probes.push_back(std::move(probe));
-    }
   }
 
   /// Index of the stage named by `key` (a name under `stages`, or `main`); `fallback` if absent.

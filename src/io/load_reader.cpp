@@ -1,5 +1,6 @@
 #include "io/load_reader.hpp"
 
+#include "io/body_ref.hpp"
 #include "points/load_registry.hpp"
 
 namespace ballista {
@@ -12,15 +13,7 @@ class DeckLoadEntry final : public LoadEntry {
  public:
   DeckLoadEntry(DeckNode& node, const Scenario& sc) : node_(node), sc_(sc) {}
 
-  std::string body(bool required) override {
-    const std::string name = required ? node_.string("body") : node_.string("body", "");
-    if (!name.empty() && body_index(sc_, name) < 0) {
-      std::vector<std::string> names;
-      for (const auto& b : sc_.bodies) names.push_back(b.name);
-      node_.fail("body", "unknown body '" + name + "'" + suggest(name, names));
-    }
-    return name;
-  }
+  std::string body(bool required) override { return read_body_ref(node_, sc_, required); }
   double number(const std::string& key, const NumberRange& range) override { return node_.number(key, range); }
   double number(const std::string& key, double fallback, const NumberRange& range) override {
     return node_.number(key, fallback, range);

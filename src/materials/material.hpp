@@ -1,7 +1,7 @@
 #pragma once
 // Material interface shared by every solver and the single-element driver.
 //
-// A model is written once as a pure per-point kernel (see linear_elastic.hpp for the pattern):
+// A model is written once as a pure per-point kernel (see linear_elastic.cpp for the pattern):
 //   struct Model {
 //     static constexpr const char* kName;           // deck name
 //     struct Params {...};                          // named parameters, SI units
