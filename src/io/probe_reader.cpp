@@ -1,6 +1,7 @@
 #include "io/probe_reader.hpp"
 
 #include "io/body_ref.hpp"
+#include "io/deck_reader.hpp"
 #include "points/probe_registry.hpp"
 
 namespace ballista {
@@ -12,8 +13,6 @@ int components(const Scenario& sc) { return sc.simulation.dimension == Dimension
 std::vector<std::string> axes(const Scenario& sc) {
   return components(sc) == 2 ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"};
 }
-
-int axis_from(const std::string& name) { return name == "x" ? 0 : name == "y" ? 1 : 2; }
 
 /// One parameter of a probe, read as its kind declares (points/probe_registry.hpp).
 void probe_param(DeckNode& p, const Scenario& sc, const ProbeParam& param, ProbeSpec& probe) {

@@ -153,12 +153,13 @@ void RunLoop::start_clocks() {
   interval_ = sc_.output.interval > 0 ? sc_.output.interval : sc_.simulation.end_time;
   checkpointing_ = sc_.output.checkpoint_interval > 0 || opt_.checkpoint_minutes > 0;
   if (!restart_) {
-    rs_.total0 = solver_->energies().total();
+    const EnergyTotals e0 = solver_->energies();
+    rs_.total0 = e0.total();
     // The end time and output times are known once the main stage starts (stage_start + end_time).
     rs_.end = nstages_ > 0 ? RunState::kInf : sc_.simulation.end_time;
     rs_.next_output = nstages_ > 0 ? rs_.end : interval_;
     rs_.next_checkpoint = sc_.output.checkpoint_interval > 0 ? sc_.output.checkpoint_interval : RunState::kInf;
-    rs_.energy_scale = energy_scale_of(solver_->energies());
+    rs_.energy_scale = energy_scale_of(e0);
     return;
   }
   solver_->load_state(*restart_);
