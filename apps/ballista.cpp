@@ -6,8 +6,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <limits>
-#include <optional>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -16,9 +14,6 @@
 #include "core/error.hpp"
 #include "core/threads.hpp"
 #include "driver/drive_run.hpp"
-#include "io/checkpoint_file.hpp"
-#include "io/deck_reader.hpp"
-#include "io/run_folder.hpp"
 #include "io/material_presets.hpp"
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
@@ -27,9 +22,8 @@
 #include "points/probe_registry.hpp"
 #include "points/solver_registry.hpp"
 #include "penetration/models_command.hpp"
-#include "run/penetration_plots.hpp"
-#include "run/simulation.hpp"
 #include "run/sweep_command.hpp"
+#include "run_command.hpp"
 #include "verify/verify_command.hpp"
 
 namespace {
@@ -146,6 +140,56 @@ void print_info() {
   }
 }
 
+/// The options of `ballista drive`, as CLI11 fills them.
+struct DriveCliOptions {
+  std::string deck, out_dir;
+  std::vector<std::string> overrides;
+  double scale = 1.0, noise = 0.0;
+  std::string seed;  // validated as the deck key drive.seed, with its message (one check, one wording)
+  bool quiet = false;
+  // Whether --scale, --noise and --seed were given (they become deck overrides).
+  CLI::Option* scale_opt = nullptr;
+  CLI::Option* noise_opt = nullptr;
+  CLI::Option* seed_opt = nullptr;
+};
+
+/// Adds the `drive` subcommand to `app`, its options filling `o`.
+CLI::App* add_drive_command(CLI::App& app, DriveCliOptions& o) {
+  auto* drive = app.add_subcommand("drive", "drive one material point through an F-table or strain/stress legs");
+  drive->add_option("deck", o.deck, "YAML drive deck (materials + drive)")->required()->check(CLI::ExistingFile);
+  drive->add_option("-o,--output", o.out_dir, "results folder (default out/<deck name>)");
+  drive->add_option("--set", o.overrides, "override a deck value: key.path=value (repeatable)");
+  o.scale_opt =
+      drive->add_option("--scale", o.scale, "scale the table's deformation: F -> I + S (F - I) (drive.scale)");
+  o.noise_opt = drive->add_option("--noise", o.noise,
+                                  "multiplicative noise of amplitude A on the table's increments (drive.noise)");
+  o.seed_opt = drive->add_option("--seed", o.seed, "seed of the noise (drive.seed; 0 <= seed < 2^63)");
+  o.seed_opt->needs(o.noise_opt);
+  drive->add_flag("-q,--quiet", o.quiet, "print nothing on success");
+  return drive;
+}
+
+/// Runs `ballista drive` and returns its exit code (0 done, 3 failed); deck errors are thrown.
+int run_drive_cli(DriveCliOptions o) {
+  // The perturbation flags are deck overrides, so resolved.yaml records them.
+  if (*o.scale_opt) o.overrides.push_back("drive.scale=" + fmt::format("{:.17g}", o.scale));
+  if (*o.noise_opt) o.overrides.push_back("drive.noise=" + fmt::format("{:.17g}", o.noise));
+  if (*o.seed_opt) o.overrides.push_back("drive.seed=" + (o.seed.empty() ? "''" : o.seed));  // '' fails, not 0
+  const ballista::DriveDeck dd = ballista::read_drive_deck(o.deck, o.overrides);
+  if (o.out_dir.empty()) o.out_dir = "out/" + std::filesystem::path(o.deck).stem().string();
+  const ballista::DriveRunResult r = ballista::run_drive(dd, o.out_dir);
+  if (!r.ok) std::cerr << "drive failed: " << r.error << "\n";
+  if (!o.quiet || !r.ok) {
+    const auto& s = r.last.sigma;
+    std::cout << (r.ok ? "completed" : "FAILED") << ": " << r.steps << " steps to t = " << r.last.t << " s, "
+              << r.records << " records in " << fmt::format("{:.2f}", r.wall_seconds) << " s\n"
+              << fmt::format("  final sigma (11 22 33 23 13 12) = {:.6g} {:.6g} {:.6g} {:.6g} {:.6g} {:.6g} Pa\n",
+                             s(0, 0), s(1, 1), s(2, 2), s(1, 2), s(0, 2), s(0, 1))
+              << "results in " << std::filesystem::absolute(o.out_dir).string() << "\n";
+  }
+  return r.ok ? 0 : 3;
+}
+
 /// An error on standard error in one write, so that the lines of several ranks do not interleave
 /// ("error: error: ..."); a rank other than 0 names itself.
 void report_error(const char* kind, const std::string& what, const ballista::Communicator& world) {
@@ -185,59 +229,10 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("ballista ") + BALLISTA_VERSION);
   app.require_subcommand(1);
 
-  auto* run = app.add_subcommand("run", "run a deck");
-  std::string deck, out_dir;
-  int threads = 0;
-  std::vector<std::string> overrides;
-  bool quiet = false;
-  std::string restart_dir;
-  double checkpoint_minutes = 0.0;
-  auto* deck_opt = run->add_option("deck", deck, "YAML deck file (not with --restart)")->check(CLI::ExistingFile);
-  auto* restart_opt = run->add_option(
-      "--restart", restart_dir,
-      "continue the run whose results folder is DIR from its newest checkpoint (the deck is the checkpoint's; "
-      "docs/restart.md)");
-  restart_opt->excludes(deck_opt);
-  run->add_option("--checkpoint-every-minutes", checkpoint_minutes,
-                  "also write a checkpoint after every M minutes of wall time (keeps the newest "
-                  "output.checkpoint_keep)")
-      ->check(CLI::PositiveNumber);
-  run->add_option("-o,--output", out_dir, "results folder (default out/<deck name>)");
-  run->add_option("--threads", threads, "OpenMP threads (default: the deck's, else all cores; at most the cores)")
-      ->check(CLI::Range(1, std::numeric_limits<int>::max()));  // more than the cores is clamped
-  bool overwrite = false;
-  run->add_flag("--overwrite", overwrite,
-                "write into a results folder that is not empty and holds no Ballista run (Ballista then replaces "
-                "only the files it writes itself)");
-  run->add_option("--set", overrides, "override a deck value: key.path=value (repeatable)");
-  run->add_flag("-q,--quiet", quiet, "no progress output");
-  bool no_plots = false;
-  run->add_flag("--no-plots", no_plots,
-                "do not draw the figures (PNG): penetration figures of a deck with a penetration section, "
-                "fragment figures of a run that writes fragments.csv");
-  bool track_failed = false;
-  run->add_flag("--track-failed", track_failed,
-                "if a particle fails, run the deck again from the start with that particle tracked "
-                "(output.track.ids; the run is deterministic for a given thread count), so that its "
-                "F-table tracks/particle_<id>.csv can be replayed with `ballista drive`");
-
-  auto* drive = app.add_subcommand("drive", "drive one material point through an F-table or strain/stress legs");
-  std::string drive_deck, drive_out;
-  std::vector<std::string> drive_overrides;
-  double scale = 1.0, noise = 0.0;
-  std::string seed;  // validated as the deck key drive.seed, with its message (one check, one wording)
-  bool drive_quiet = false;
-  drive->add_option("deck", drive_deck, "YAML drive deck (materials + drive)")->required()->check(CLI::ExistingFile);
-  drive->add_option("-o,--output", drive_out, "results folder (default out/<deck name>)");
-  drive->add_option("--set", drive_overrides, "override a deck value: key.path=value (repeatable)");
-  auto* scale_opt =
-      drive->add_option("--scale", scale, "scale the table's deformation: F -> I + S (F - I) (drive.scale)");
-  auto* noise_opt = drive->add_option("--noise", noise,
-                                      "multiplicative noise of amplitude A on the table's increments (drive.noise)");
-  auto* seed_opt = drive->add_option("--seed", seed, "seed of the noise (drive.seed; 0 <= seed < 2^63)");
-  seed_opt->needs(noise_opt);
-  drive->add_flag("-q,--quiet", drive_quiet, "print nothing on success");
-
+  ballista::RunCliOptions run_opt;
+  auto* run = ballista::add_run_command(app, run_opt);
+  DriveCliOptions drive_opt;
+  auto* drive = add_drive_command(app, drive_opt);
   auto* info = app.add_subcommand("info", "list registered solvers, shape functions and materials");
   ballista::VerifyCliOptions verify_opt;
   auto* verify = ballista::add_verify_command(app, verify_opt);
@@ -255,117 +250,8 @@ int main(int argc, char** argv) {
       print_info();
       return 0;
     }
-    if (*drive) {
-      // The perturbation flags are deck overrides, so resolved.yaml records them.
-      if (*scale_opt) drive_overrides.push_back("drive.scale=" + fmt::format("{:.17g}", scale));
-      if (*noise_opt) drive_overrides.push_back("drive.noise=" + fmt::format("{:.17g}", noise));
-      if (*seed_opt) drive_overrides.push_back("drive.seed=" + (seed.empty() ? "''" : seed));  // '' fails, not 0
-      const ballista::DriveDeck dd = ballista::read_drive_deck(drive_deck, drive_overrides);
-      if (drive_out.empty()) drive_out = "out/" + std::filesystem::path(drive_deck).stem().string();
-      const ballista::DriveRunResult r = ballista::run_drive(dd, drive_out);
-      if (!r.ok) std::cerr << "drive failed: " << r.error << "\n";
-      if (!drive_quiet || !r.ok) {
-        const auto& s = r.last.sigma;
-        std::cout << (r.ok ? "completed" : "FAILED") << ": " << r.steps << " steps to t = " << r.last.t << " s, "
-                  << r.records << " records in " << fmt::format("{:.2f}", r.wall_seconds) << " s\n"
-                  << fmt::format("  final sigma (11 22 33 23 13 12) = {:.6g} {:.6g} {:.6g} {:.6g} {:.6g} {:.6g} Pa\n",
-                                 s(0, 0), s(1, 1), s(2, 2), s(1, 2), s(0, 2), s(0, 1))
-                  << "results in " << std::filesystem::absolute(drive_out).string() << "\n";
-      }
-      return r.ok ? 0 : 3;
-    }
-    if (*run) {
-      if (deck.empty() && restart_dir.empty()) throw ballista::Error("run: give a deck, or --restart DIR");
-      if (!restart_dir.empty() && !out_dir.empty() &&
-          std::filesystem::path(out_dir).lexically_normal() != std::filesystem::path(restart_dir).lexically_normal())
-        throw ballista::Error("run: --restart continues in its own results folder; do not give -o");
-      std::string restart_from;
-      ballista::Scenario sc;
-      // Rank 0 holds the results folder for the whole command: the run, its figures and a re-run
-      // (io/run_folder.hpp); the other ranks learn whether it could.
-      std::optional<ballista::RunFolder> folder;
-      auto take_folder = [&](const std::string& dir, ballista::RunFolder::Mode mode) {
-        std::string refused;
-        if (world.rank() == 0) try {
-            folder.emplace(dir, mode, overwrite);
-          } catch (const std::exception& e) {
-            refused = e.what();
-          }
-        if (world.distributed()) refused = world.broadcast(refused, 0);
-        if (!refused.empty()) throw ballista::CollectiveError(refused);
-      };
-      if (!restart_dir.empty()) {
-        take_folder(restart_dir, ballista::RunFolder::Mode::Continue);
-        // The deck is the one the checkpoint was written with (its resolved text); --set still
-        // applies, e.g. a later simulation.end_time.
-        const auto [path, deck_text] = ballista::newest_checkpoint(restart_dir);
-        restart_from = path;
-        sc = ballista::parse_deck(deck_text, (std::filesystem::path(restart_dir) / "resolved.yaml").string(),
-                                  overrides);
-        out_dir = restart_dir;
-        std::cerr << "restarting from " << path << "\n";
-      } else {
-        sc = ballista::read_deck(deck, overrides);
-        if (out_dir.empty()) out_dir = "out/" + std::filesystem::path(deck).stem().string();
-        take_folder(out_dir, ballista::RunFolder::Mode::NewRun);
-      }
-      ballista::RunOptions opt;
-      opt.folder_held = true;
-      opt.restart_from = restart_from;
-      opt.checkpoint_minutes = checkpoint_minutes;
-      opt.out_dir = out_dir;
-      opt.threads = threads;
-      opt.progress = !quiet;
-      opt.plots = !no_plots;
-      ballista::RunResult r = ballista::run_simulation(sc, opt);
-      const auto& tracked = sc.output.track;
-      if (!r.ok && track_failed && restart_dir.empty() && r.failed_particle >= 0 &&
-          std::find(tracked.begin(), tracked.end(), r.failed_particle) == tracked.end()) {
-        // Re-run from the start with the failing particle tracked: same deck, same thread count,
-        // so the run is bitwise the same up to the failure (docs/deck.md, output.track).
-        std::string ids;
-        for (auto id : tracked) ids += std::to_string(id) + ",";
-        ids += std::to_string(r.failed_particle);
-        const long first_step = r.failed_step;
-        const auto first_particle = r.failed_particle;
-        std::cerr << "re-running with output.track.ids = [" << ids << "] to record the history of particle "
-                  << first_particle << "\n";
-        overrides.push_back("output.track.ids=[" + ids + "]");
-        sc = ballista::read_deck(deck, overrides);
-        if (folder) folder->clear();
-        r = ballista::run_simulation(sc, opt);
-        if (r.ok || r.failed_particle != first_particle || r.failed_step != first_step)
-          std::cerr << "warning: the re-run did not fail the same way (particle " << r.failed_particle << " at step "
-                    << r.failed_step << ", first run: particle " << first_particle << " at step " << first_step
-                    << "): the run is not reproducible (different thread count?)\n";
-        else
-          std::cerr << "history of particle " << first_particle << " up to the failure: "
-                    << (std::filesystem::path(out_dir) / "tracks" /
-                        ("particle_" + std::to_string(first_particle) + ".csv"))
-                           .string()
-                    << " (replay: ballista drive with drive: {table: <that file>, substeps: 1})\n";
-      }
-      if (!r.checkpoint.empty())
-        std::cout << (r.interrupted ? "checkpointed in " : "the last good step is checkpointed in ") << r.checkpoint
-                  << " (ballista run --restart " << out_dir << ")\n";
-      std::cout << (r.ok ? "completed" : r.interrupted ? "INTERRUPTED" : "FAILED") << ": " << r.steps
-                << " steps to t = " << r.time << " s in "
-                << fmt::format("{:.2f}", r.wall_seconds) << " s (" << fmt::format("{:.3g}", r.particle_steps_per_second)
-                << " particle-steps/s)\n";
-      for (const auto& [name, value] : r.probes) std::cout << "  " << name << " = " << value << "\n";
-      if (sc.penetration.enabled && !no_plots && world.rank() == 0) {
-        // Figures of the penetration run (thesis seed 000 Figs. 7.4-7.7), also after a failure:
-        // what ran is worth seeing. A missing Python is a warning, not a failed run.
-        const std::string err = ballista::make_penetration_plots(out_dir);
-        if (err.empty())
-          std::cout << "  figures: penetration_depth.png, penetration_rate.png, penetrator_energy.png, "
-                       "channel_profile.png\n";
-        else
-          std::cerr << "warning: no penetration figures: " << err << " (--no-plots skips them)\n";
-      }
-      std::cout << "results in " << std::filesystem::absolute(out_dir).string() << "\n";
-      return r.ok ? 0 : r.interrupted ? 4 : 3;
-    }
+    if (*drive) return run_drive_cli(drive_opt);
+    if (*run) return ballista::run_deck_cli(run_opt, world);
   } catch (const ballista::DeckError& e) {
     // Every rank reads the same deck: rank 0 reports it.
     if (world.rank() == 0) report_error("deck error: ", e.what(), world);
