@@ -55,11 +55,10 @@ ProbedModuli probe_moduli(const Material& material) {
   return m;
 }
 
-void PdSolver::set_bond_constants(const Scenario& sc, bool correct) {
-  const ParamValues& P = sc.solver_params;
+void PdSolver::set_bond_constants(const Scenario& sc) {
   const auto& mats = pts_.materials();
-  const bool lattice = P.choices.at("calibration") == "lattice";
-  const pd::LatticeMoments moments = pd::lattice_moments(delta_, dx_, correct, dim_);
+  const bool lattice = params_.lattice_calibration;
+  const pd::LatticeMoments moments = pd::lattice_moments(delta_, dx_, params_.partial_volumes, dim_);
   // Continuum moments: 3D m1 = pi delta^4, m2 = pi delta^5/5; 2D (unit thickness) m1 = 2 pi delta^3/3,
   // m2 = delta^4/2 (Ha & Bobaru, Int. J. Fract. 162 (2010) 229: c = 9E/(pi h delta^3) in plane stress).
   const double m1 = lattice ? moments.m1 : (dim_ == 3 ? std::numbers::pi * std::pow(delta_, 4)
@@ -134,10 +133,10 @@ void PdSolver::set_bond_constants(const Scenario& sc, bool correct) {
     // critical stretch releases G = c s0^2 m2/2, so s00 = sqrt(2 G0/(c m2)) (eq. 25 in 3D with the
     // continuum m2).
     c[a] = (dim_ == 3 ? 18.0 * kd[a] : 8.0 * kd[a]) / m1;
-    if (P.given("critical_stretch"))
-      s0[a] = P.at("critical_stretch");
-    else if (P.given("fracture_energy"))
-      s0[a] = std::sqrt(2.0 * P.at("fracture_energy") / (c[a] * m2));
+    if (params_.critical_stretch)
+      s0[a] = *params_.critical_stretch;
+    else if (params_.fracture_energy)
+      s0[a] = std::sqrt(2.0 * *params_.fracture_energy / (c[a] * m2));
     else
       s0[a] = kInf;
   }
@@ -145,11 +144,11 @@ void PdSolver::set_bond_constants(const Scenario& sc, bool correct) {
   // uniaxial stress sigma_y, s_y = sigma_y/E_PD with the modulus of the bond-based model (nu = 1/4 in
   // 3D: E = 3K/2; in 2D E = 4 K2/3 for plane stress, nu = 1/3, and plane strain alike). With several
   // materials the smallest modulus sets it (one yield stretch for every bond).
-  if (P.given("yield_stress")) {
+  if (params_.yield_stress) {
     double e_min = kInf;
     for (int a = 0; a < nmat_; ++a)
       if (!gas_material_[a]) e_min = std::min(e_min, dim_ == 3 ? 1.5 * kd[a] : 4.0 / 3.0 * kd[a]);
-    yield_stretch_ = P.at("yield_stress") / e_min;
+    yield_stretch_ = *params_.yield_stress / e_min;
   }
   c_.resize(static_cast<size_t>(nmat_ * nmat_));
   c_contact_.resize(c_.size());
@@ -169,8 +168,7 @@ void PdSolver::set_bond_constants(const Scenario& sc, bool correct) {
     }
 }
 
-void PdSolver::init_critical_stretch(const Scenario& sc) {
-  const ParamValues& P = sc.solver_params;
+void PdSolver::init_critical_stretch() {
   const Index nl = local_.size(), nb = local_.bond_local;
   s0_.assign(static_cast<size_t>(nl), kInf);
   const auto* mat = local_.material.data();
@@ -185,7 +183,7 @@ void PdSolver::init_critical_stretch(const Scenario& sc) {
   // count, rank count or run), truncated to [1 - 3 sigma, 1 + 3 sigma]. A flawless lattice breaks
   // with its own symmetry (an expanding ring into identical fragments); real materials carry flaws
   // (Grady 2006 ch. 2). The smaller s0 of a bond's two ends still decides.
-  if (const double sigma = P.at("stretch_scatter"); sigma > 0.0) {
+  if (const double sigma = params_.stretch_scatter; sigma > 0.0) {
     const auto* id = local_.id.data();
     auto mix = [](std::uint64_t z) {
       z += 0x9e3779b97f4a7c15ULL;
@@ -205,17 +203,16 @@ void PdSolver::init_critical_stretch(const Scenario& sc) {
   s00_point_ = s0_;
 }
 
-void PdSolver::apply_surface_correction(const Scenario& sc, bool correct) {
-  const ParamValues& P = sc.solver_params;
+void PdSolver::apply_surface_correction() {
   const Index nb = local_.bond_local;
   const auto* vol0 = local_.vol0.data();
-  const pd::LatticeMoments moments = pd::lattice_moments(delta_, dx_, correct, dim_);
+  const pd::LatticeMoments moments = pd::lattice_moments(delta_, dx_, params_.partial_volumes, dim_);
   // Surface correction (surface_correction: energy; Madenci & Oterkus 2014 §4.2, reviewed by Le &
   // Bobaru, Comput. Mech. 61 (2018) 499): a point near a free surface misses part of its family and
   // is softer; under a uniform dilatation its energy density is c eps^2 m1_p / 4 instead of the
   // interior c eps^2 m1 / 4, so its factor is lambda_p = m1 / m1_p, and a bond is stiffened by the
   // mean of its two ends' factors (forces and energies; the critical stretch is left as it is).
-  if (P.choices.at("surface_correction") == "energy") {
+  if (params_.surface_correction) {
     surface_factor_.assign(static_cast<size_t>(nb), 1.0);
     for_each(0, nb, [&](Index p) {
       double m1p = 0.0;

@@ -15,7 +15,7 @@ namespace ballista {
 void PdSolver::save_state(StateArchive& a) const {
   pts_.save_state(a);  // collective: rank 0's archive holds every rank's points
   const auto& own = local_.own;
-  const bool contacts_built = contact_on_ && contact_.builds > 0;
+  const bool contacts_built = params_.contact && contact_.builds > 0;
   // Each own point's value, or bond row, gathered to rank 0 in the store's order.
   auto gathered = [&](std::vector<double> mine) {
     return comm_.distributed() ? gather_values(comm_, mine) : mine;
@@ -128,7 +128,7 @@ void PdSolver::load_state(const StateArchive& a) {
   const auto& stiffness = a.reals("pd.contact_stiffness", m);
   const auto& cs = a.reals("pd.contact.state", 2);
   const long builds = static_cast<long>(cs[1]);
-  const bool contacts_built = contact_on_ && builds > 0;
+  const bool contacts_built = params_.contact && builds > 0;
   const auto& x_build = a.reals("pd.contact.x_build", contacts_built ? 3 * m : 0);
   const auto& gas_x = a.reals("pd.gas.x", has_gas_ ? m : 0);
   const auto& gas_g = a.reals("pd.gas.g", has_gas_ ? m : 0);
