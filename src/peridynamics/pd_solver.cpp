@@ -44,11 +44,9 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
            comm),
       points_(pts_.store()) {
   read_settings(sc);
-
-  // Bond constants per material pair: c = 18 K/(pi delta^4) (Silling & Askari 2005 eq. 22) for each
-  // material, two materials' bond as their two half-bonds in series (harmonic mean); the critical
-  // stretch of a mixed bond is the smaller one.
   nmat_ = static_cast<int>(pts_.materials().size());
+  classify_materials(sc);
+  read_body_scales(sc);
   set_bond_constants(sc);
 
   // Fields of this solver: damage (output) and the acceleration of the last force evaluation.

@@ -30,6 +30,7 @@
 #include "core/communicator.hpp"
 #include "core/solver.hpp"
 #include "materials/material.hpp"
+#include "peridynamics/bond_constants.hpp"
 #include "peridynamics/bond_family.hpp"
 #include "peridynamics/contact_list.hpp"
 #include "peridynamics/fragments.hpp"
@@ -41,14 +42,6 @@
 #include "scenario/scenario.hpp"
 
 namespace ballista {
-
-/// Bulk and shear modulus of a library material at its reference state, probed by driving one
-/// point through its own kernel with tiny volumetric and shear strain increments.
-struct ProbedModuli {
-  double bulk = 0.0;   ///< Pa
-  double shear = 0.0;  ///< Pa
-};
-ProbedModuli probe_moduli(const Material& material);
 
 class PdSolver final : public Solver {
  public:
@@ -118,8 +111,13 @@ class PdSolver final : public Solver {
   /// The lattice, horizon, thickness and damping, and what the solver refuses of the rest of the
   /// deck (an explosive in plane stress, bodies activated later, deleted points).
   void read_settings(const Scenario& sc);
-  /// Which materials are a gas, each body's lattice spacing, and the micromodulus, critical
-  /// stretch and contact stiffness per material pair with the yield stretch of micro-plastic bonds.
+  /// Which materials are a peridynamic gas (explosives), and the point fields that mean nothing
+  /// here left out of the output.
+  void classify_materials(const Scenario& sc);
+  /// Each body's lattice spacing over dx (bodies[].point_spacing: only the products' may differ).
+  void read_body_scales(const Scenario& sc);
+  /// Micromodulus, critical stretch and contact stiffness per material pair, and the yield stretch
+  /// of micro-plastic bonds, from each solid's probed moduli (bond_constants.hpp).
   void set_bond_constants(const Scenario& sc);
   /// The partition (several ranks), the local points with their ghosts and the bond family of the
   /// local points (pd_halo.hpp); one rank: the family of every point.
@@ -130,7 +128,7 @@ class PdSolver final : public Solver {
   /// What the half-bond force pass needs besides the bonds (damage denominators, row splits,
   /// mirrors, blocks of ids).
   void build_bond_tables();
-  /// surface_correction: energy, each point's factor m1/m1_p.
+  /// surface_correction: energy, each point's factor m1/m1_p (bond_constants.hpp).
   void apply_surface_correction();
   /// Each point's bond stiffness of the stable step.
   void set_bond_stiffness();
