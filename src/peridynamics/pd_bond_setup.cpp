@@ -1,8 +1,7 @@
-// The bonds of the peridynamic solver set up once, out of its constructor: the moduli a material
-// gives a bond (probe_moduli), the pair constants c and critical stretches s00 with their
-// calibration (continuum or lattice moments) and the micro-plastic yield stretch, the scatter of
-// the critical stretch, the tables of the half-bond force pass, the surface correction, each
-// point's stable-step stiffness, and the pre-cracks cut into the bonds.
+// The bonds of the peridynamic solver set up once, out of its constructor: which materials are a
+// gas and which bodies take their own lattice, the constants per material pair (the formulas in
+// bond_constants.hpp), the scatter of the critical stretch, the tables of the half-bond force pass,
+// the surface correction, each point's stable-step stiffness, and the pre-cracks cut into the bonds.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,7 +11,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
-#include "geometry/seeding.hpp"
+#include "peridynamics/bond_constants.hpp"
 #include "peridynamics/pd_solver.hpp"
 
 namespace ballista {
@@ -21,54 +20,8 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 }  // namespace
 
-ProbedModuli probe_moduli(const Material& material) {
-  // One point, driven by a volumetric and then (from the start again) a shear velocity gradient
-  // over dt = 1 s: for any model, at the reference state and for an increment of 1e-7 far inside
-  // the elastic range, sigma = K tr(eps) I + 2 G dev(eps) to O(1e-7).
-  constexpr double e = 1e-7;
-  auto drive = [&](const Mat3& L) {
-    FieldStore s;
-    declare_point_fields(s);
-    material.declare_fields(s);
-    s.resize(1);
-    material.initialise_state(s, 0, 1);
-    s.real("mass")[0] = material.density();
-    s.real("volume0")[0] = 1.0;
-    s.real("volume")[0] = 1.0;
-    s.view<Mat3>("R")[0] = Mat3::identity();
-    Mat3& F = s.view<Mat3>("F")[0];
-    F = (Mat3::identity() + L) * Mat3::identity();
-    s.view<Mat3>("L")[0] = L;
-    static const Index kPoint[1] = {0};
-    material.update(make_batch(s, kPoint, 1, 1.0, false));
-    return s.view<Mat3>("stress")[0];
-  };
-  // The adapter's midpoint increment of G = dt L is D dt = sym(G (I + G/2)^-1) (strain_increment.hpp).
-  const double eps_vol = e / (1.0 + 0.5 * e);
-  const Mat3 sv = drive(Mat3::diag(e, e, e));
-  Mat3 shear;
-  shear(0, 1) = shear(1, 0) = e;
-  const Mat3 ss = drive(shear);
-  ProbedModuli m;
-  m.bulk = (sv(0, 0) + sv(1, 1) + sv(2, 2)) / (9.0 * eps_vol);
-  m.shear = ss(0, 1) / (2.0 * e);
-  return m;
-}
-
-void PdSolver::set_bond_constants(const Scenario& sc, bool correct) {
-  const ParamValues& P = sc.solver_params;
+void PdSolver::classify_materials(const Scenario& sc) {
   const auto& mats = pts_.materials();
-  const bool lattice = P.choices.at("calibration") == "lattice";
-  const pd::LatticeMoments moments = pd::lattice_moments(delta_, dx_, correct, dim_);
-  // Continuum moments: 3D m1 = pi delta^4, m2 = pi delta^5/5; 2D (unit thickness) m1 = 2 pi delta^3/3,
-  // m2 = delta^4/2 (Ha & Bobaru, Int. J. Fract. 162 (2010) 229: c = 9E/(pi h delta^3) in plane stress).
-  const double m1 = lattice ? moments.m1 : (dim_ == 3 ? std::numbers::pi * std::pow(delta_, 4)
-                                                      : 2.0 * std::numbers::pi * std::pow(delta_, 3) / 3.0);
-  const double m2 = lattice ? moments.m2 : (dim_ == 3 ? std::numbers::pi * std::pow(delta_, 5) / 5.0
-                                                      : std::pow(delta_, 4) / 2.0);
-  // The dilatational modulus of each material in the model's dimension: K in 3D, the in-plane bulk
-  // modulus K2 in 2D (K + G/3 in plane strain, E/(2(1 - nu)) in plane stress).
-  std::vector<double> kd(nmat_), c(nmat_), s0(nmat_);
   gas_material_.assign(static_cast<size_t>(nmat_), 0);
   for (int a = 0; a < nmat_; ++a) gas_material_[a] = std::string(mats[a]->model()) == "explosive";
   // Bonds carry the solids' forces: their points keep F = I and zero stress, which the output and
@@ -83,10 +36,14 @@ void PdSolver::set_bond_constants(const Scenario& sc, bool correct) {
     throw DeckError(sc.file, 0, 0, "output.domains",
                     "peridynamic points have no deforming domain to draw (their bonds carry no F): set output.domains "
                     "to false");
+}
+
+void PdSolver::read_body_scales(const Scenario& sc) {
   // Bodies on their own, coarser lattice (bodies[].point_spacing): only the products. A solid's
   // bonds are calibrated on the lattice of grid.cell_size (lattice_moments); the gas is a pressure
   // whose measure X is a normalised average over whatever family it has, so a coarser gas lattice
   // scales its horizon with its spacing (build_gas_family) and keeps every relation.
+  const auto& mats = pts_.materials();
   body_scale_.assign(sc.bodies.size(), 1.0);
   for (size_t b = 0; b < sc.bodies.size(); ++b) {
     const BodySpec& body = sc.bodies[b];
@@ -108,6 +65,13 @@ void PdSolver::set_bond_constants(const Scenario& sc, bool correct) {
     body_scale_[b] = std::max(1.0, body.point_spacing / dx_);
     max_scale_ = std::max(max_scale_, body_scale_[b]);
   }
+}
+
+void PdSolver::set_bond_constants(const Scenario& sc) {
+  const auto& mats = pts_.materials();
+  const pd::LatticeMoments m =
+      pd::calibration_moments(params_.lattice_calibration, delta_, dx_, params_.partial_volumes, dim_);
+  std::vector<double> kd(nmat_), c(nmat_), s0(nmat_);
   for (int a = 0; a < nmat_; ++a) {
     if (gas_material_[a]) continue;  // no bonds: its stiffness is its pressure (gas_pass.hpp)
     const ProbedModuli mod = probe_moduli(*mats[a]);
@@ -115,62 +79,21 @@ void PdSolver::set_bond_constants(const Scenario& sc, bool correct) {
       throw DeckError(sc.file, 0, 0, "materials." + mats[a]->name(),
                       fmt::format("peridynamics needs a positive bulk modulus; material '{}' gives {:g} Pa",
                                   mats[a]->name(), mod.bulk));
-    kd[a] = mod.bulk;
-    if (dim_ == 2) {
-      const double E = 9.0 * mod.bulk * mod.shear / (3.0 * mod.bulk + mod.shear);
-      const double nu = (3.0 * mod.bulk - 2.0 * mod.shear) / (2.0 * (3.0 * mod.bulk + mod.shear));
-      kd[a] = sc.simulation.plane_stress ? E / (2.0 * (1.0 - nu)) : mod.bulk + mod.shear / 3.0;
-    }
+    kd[a] = pd::dilatational_modulus(mod, dim_, sc.simulation.plane_stress);
   }
-  m1_ = m1;
+  m1_ = m.m1;
   for (int a = 0; a < nmat_; ++a) {
-    // continuum: c = 18 K/(pi delta^4) (S&A 2005 eq. 22), s00 = sqrt(5 G0/(9 K delta)) (eq. 25), exact
-    // for the integral over the horizon sphere; on the lattice the sums differ (K_PD = 0.90 K and
-    // G = 0.87 G0 at m = 3 with partial volumes), so `lattice` takes the same two relations over the
-    // lattice family of an interior point: c = 18 K/m1, s00 = sqrt(2 G0/(c m2)) (bond_family.hpp).
-    // The energy density of a dilatation eps is W = c eps^2 m1 / 4 for any dimension (S&A 2005 eq. 21
-    // summed over the family); it equals the continuum 9 K eps^2/2 in 3D and 2 K2 eps^2 in 2D (eps in
-    // both in-plane directions). So c = 18 K/m1 (3D) or 8 K2/m1 (2D). A crack opening through its
-    // critical stretch releases G = c s0^2 m2/2, so s00 = sqrt(2 G0/(c m2)) (eq. 25 in 3D with the
-    // continuum m2).
-    c[a] = (dim_ == 3 ? 18.0 * kd[a] : 8.0 * kd[a]) / m1;
-    if (P.given("critical_stretch"))
-      s0[a] = P.at("critical_stretch");
-    else if (P.given("fracture_energy"))
-      s0[a] = std::sqrt(2.0 * P.at("fracture_energy") / (c[a] * m2));
-    else
-      s0[a] = kInf;
+    c[a] = pd::micromodulus(kd[a], m.m1, dim_);  // 0 for a gas (kd 0)
+    s0[a] = pd::critical_stretch(params_.critical_stretch, params_.fracture_energy, c[a], m.m2);
   }
-  // Micro-plastic bonds: first yield of the most stretched bond (the one along the load) under
-  // uniaxial stress sigma_y, s_y = sigma_y/E_PD with the modulus of the bond-based model (nu = 1/4 in
-  // 3D: E = 3K/2; in 2D E = 4 K2/3 for plane stress, nu = 1/3, and plane strain alike). With several
-  // materials the smallest modulus sets it (one yield stretch for every bond).
-  if (P.given("yield_stress")) {
-    double e_min = kInf;
-    for (int a = 0; a < nmat_; ++a)
-      if (!gas_material_[a]) e_min = std::min(e_min, dim_ == 3 ? 1.5 * kd[a] : 4.0 / 3.0 * kd[a]);
-    yield_stretch_ = P.at("yield_stress") / e_min;
-  }
-  c_.resize(static_cast<size_t>(nmat_ * nmat_));
-  c_contact_.resize(c_.size());
-  s00_.resize(c_.size());
-  for (int a = 0; a < nmat_; ++a)
-    for (int b = 0; b < nmat_; ++b) {
-      // A gas takes no bond stiffness, and none in the contact springs either (they scale with c).
-      const bool gas = gas_material_[a] || gas_material_[b];
-      c_[a * nmat_ + b] = gas ? 0.0 : 2.0 * c[a] * c[b] / (c[a] + c[b]);
-      s00_[a * nmat_ + b] = gas ? kInf : std::min(s0[a], s0[b]);
-      // Products meeting a solid they were not bonded to (gas streaming towards the case from
-      // deep inside the charge) are stopped by the solid's contact springs; gas-gas pairs have none.
-      c_contact_[a * nmat_ + b] = gas_material_[a] && gas_material_[b] ? 0.0
-                                  : gas_material_[a]                  ? c[b]
-                                  : gas_material_[b]                  ? c[a]
-                                                                      : c_[a * nmat_ + b];
-    }
+  if (params_.yield_stress) yield_stretch_ = pd::yield_stretch(*params_.yield_stress, kd, gas_material_, dim_);
+  pd::PairConstants pairs = pd::pair_constants(c, s0, gas_material_);
+  c_ = std::move(pairs.c);
+  s00_ = std::move(pairs.s00);
+  c_contact_ = std::move(pairs.c_contact);
 }
 
-void PdSolver::init_critical_stretch(const Scenario& sc) {
-  const ParamValues& P = sc.solver_params;
+void PdSolver::init_critical_stretch() {
   const Index nl = local_.size(), nb = local_.bond_local;
   s0_.assign(static_cast<size_t>(nl), kInf);
   const auto* mat = local_.material.data();
@@ -185,7 +108,7 @@ void PdSolver::init_critical_stretch(const Scenario& sc) {
   // count, rank count or run), truncated to [1 - 3 sigma, 1 + 3 sigma]. A flawless lattice breaks
   // with its own symmetry (an expanding ring into identical fragments); real materials carry flaws
   // (Grady 2006 ch. 2). The smaller s0 of a bond's two ends still decides.
-  if (const double sigma = P.at("stretch_scatter"); sigma > 0.0) {
+  if (const double sigma = params_.stretch_scatter; sigma > 0.0) {
     const auto* id = local_.id.data();
     auto mix = [](std::uint64_t z) {
       z += 0x9e3779b97f4a7c15ULL;
@@ -205,26 +128,12 @@ void PdSolver::init_critical_stretch(const Scenario& sc) {
   s00_point_ = s0_;
 }
 
-void PdSolver::apply_surface_correction(const Scenario& sc, bool correct) {
-  const ParamValues& P = sc.solver_params;
-  const Index nb = local_.bond_local;
-  const auto* vol0 = local_.vol0.data();
-  const pd::LatticeMoments moments = pd::lattice_moments(delta_, dx_, correct, dim_);
-  // Surface correction (surface_correction: energy; Madenci & Oterkus 2014 §4.2, reviewed by Le &
-  // Bobaru, Comput. Mech. 61 (2018) 499): a point near a free surface misses part of its family and
-  // is softer; under a uniform dilatation its energy density is c eps^2 m1_p / 4 instead of the
-  // interior c eps^2 m1 / 4, so its factor is lambda_p = m1 / m1_p, and a bond is stiffened by the
-  // mean of its two ends' factors (forces and energies; the critical stretch is left as it is).
-  if (P.choices.at("surface_correction") == "energy") {
-    surface_factor_.assign(static_cast<size_t>(nb), 1.0);
-    for_each(0, nb, [&](Index p) {
-      double m1p = 0.0;
-      for (Index k = bonds_.offset[p]; k < bonds_.offset[p + 1]; ++k)
-        m1p += bonds_.length0[k] * bonds_.volume_factor[k] * vol0[bonds_.other[k]];
-      if (m1p > 0.0) surface_factor_[p] = moments.m1 / m1p;
-    });
-    halo_.update_bond_values(comm_, local_, surface_factor_);
-  }
+void PdSolver::apply_surface_correction() {
+  if (!params_.surface_correction) return;
+  // The interior m1 on the lattice whatever the calibration: each point's own m1_p is a lattice sum.
+  const pd::LatticeMoments moments = pd::lattice_moments(delta_, dx_, params_.partial_volumes, dim_);
+  surface_factor_ = pd::surface_factors(bonds_, local_.bond_local, local_.vol0.data(), moments.m1);
+  halo_.update_bond_values(comm_, local_, surface_factor_);
 }
 
 void PdSolver::set_bond_stiffness() {

@@ -15,7 +15,7 @@ namespace ballista {
 void PdSolver::save_state(StateArchive& a) const {
   pts_.save_state(a);  // collective: rank 0's archive holds every rank's points
   const auto& own = local_.own;
-  const bool contacts_built = contact_on_ && contact_.builds > 0;
+  const bool contacts_built = params_.contact && contact_.builds > 0;
   // Each own point's value, or bond row, gathered to rank 0 in the store's order.
   auto gathered = [&](std::vector<double> mine) {
     return comm_.distributed() ? gather_values(comm_, mine) : mine;
@@ -126,9 +126,10 @@ void PdSolver::load_state(const StateArchive& a) {
   const auto& dissipated = a.reals("pd.dissipated", m);
   const auto& contact_energy = a.reals("pd.contact_energy", m);
   const auto& stiffness = a.reals("pd.contact_stiffness", m);
-  const auto& cs = a.reals("pd.contact.state", 2);
-  const long builds = static_cast<long>(cs[1]);
-  const bool contacts_built = contact_on_ && builds > 0;
+  double skin = 0.0, build_count = 0.0;
+  a.get_into("pd.contact.state", {&skin, &build_count});
+  const long builds = static_cast<long>(build_count);
+  const bool contacts_built = params_.contact && builds > 0;
   const auto& x_build = a.reals("pd.contact.x_build", contacts_built ? 3 * m : 0);
   const auto& gas_x = a.reals("pd.gas.x", has_gas_ ? m : 0);
   const auto& gas_g = a.reals("pd.gas.g", has_gas_ ? m : 0);
@@ -197,7 +198,7 @@ void PdSolver::load_state(const StateArchive& a) {
     rebuild_contacts();
     contact_.builds = builds;
   }
-  contact_.skin = cs[0];
+  contact_.skin = skin;
   // Whether a point vented since that build (the list is then rebuilt at the next step, as it
   // would have been; checkpoints without this key rebuild at the first step).
   vented_since_build_ = !a.has("pd.contact.vented_since_build") || a.integer("pd.contact.vented_since_build") != 0;

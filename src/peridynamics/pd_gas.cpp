@@ -83,7 +83,7 @@ void PdSolver::update_gas(double dt) {
   gas_rate_limited_ += limited.load();
   // The products' pressure through the library: program burn, JWL / ideal gas, energy -P dV.
   pts_.update_stress(dt, steps_ + 1, time_ + dt, gas_material_);
-  if (gas_refamily_every_ > 0 && (steps_ + 1) % gas_refamily_every_ == 0) refamily_gas();
+  if (params_.gas_refamily_steps > 0 && (steps_ + 1) % params_.gas_refamily_steps == 0) refamily_gas();
   // G_i = d P_i X_i^(1+m/d) dV0_i / V_i (gas_pass.hpp); a vented point pushes nothing.
   const auto* stress = points_.view(kStress);
   const double expo = 1.0 + pd::kGasExponent / dim_;
@@ -158,7 +158,7 @@ double PdSolver::gas_stable_dt() const {
     const double m1 = m1_ * std::pow(gas_scale_[l], dim_ + 1);
     if (c > 0.0) dt = std::min(dt, std::sqrt(2.0 * X * m1 / (coef * c * c * gas_inv_len_[l])));
   }
-  return comm_.min(dt_safety_ * dt);
+  return comm_.min(params_.dt_safety * dt);
 }
 
 void PdSolver::vent_escaped_gas() {

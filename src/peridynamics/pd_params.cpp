@@ -1,11 +1,12 @@
-// The deck's peridynamics.* parameters: their specs (names, units, defaults, ranges; docs/deck.md)
-// and the checks the specs cannot express (the horizon against the lattice and the bodies, the
-// bonds' materials).
+// The deck's peridynamics.* parameters: their specs (names, units, defaults, ranges; docs/deck.md),
+// the section read once into PdParams, and the checks the specs cannot express (the horizon against
+// the lattice and the bodies, keys that exclude each other, the bonds' materials).
 #include "peridynamics/pd_params.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <limits>
 
 #include "core/error.hpp"
@@ -45,6 +46,35 @@ void check_bond_materials(const Scenario& sc) {
     const auto eos = m.params.choices.find("eos.type");
     if (eos != m.params.choices.end() && eos->second != "linear")
       refuse(at("eos.type"), "eos.type", "eos.type '" + eos->second + "' is not linear");
+  }
+}
+
+/// The horizon `delta` (deck key `key`) against the lattice spacing and the solid bodies' extents.
+void check_horizon(const Scenario& sc, double delta, const std::string& key) {
+  const double dx = sc.grid.cell_size;
+  if (!(delta >= dx))
+    pd_section_error(
+        sc, key,
+        fmt::format(
+            "the horizon {:g} m must be at least the lattice spacing grid.cell_size = {:g} m",
+            delta, dx));
+  const int nd = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
+  for (const BodySpec& b : sc.bodies) {
+    const MaterialSpec* m = nullptr;
+    for (const MaterialSpec& ms : sc.materials)
+      if (ms.name == b.material) m = &ms;
+    if (m && m->model == "explosive") continue;
+    Vec3 lo, hi;
+    shape_bounds(b.shape, nd, lo, hi);
+    double extent = 0.0;
+    for (int k = 0; k < nd; ++k) extent = std::max(extent, hi[k] - lo[k]);
+    const std::string why = fmt::format(
+        "the horizon {:g} m is {} the largest extent of body '{}' ({:g} m): each point's family holds most of the "
+        "body, and its bonds cannot localise damage; use a horizon of a few lattice spacings (peridynamics.m, "
+        "default 3) or a finer lattice",
+        delta, delta > 2.0 * extent ? "more than twice" : "more than half", b.name, extent);
+    if (delta > 2.0 * extent && delta > 10.0 * dx) pd_section_error(sc, key, why);
+    if (2.0 * delta > extent) spdlog::warn("{}", why);
   }
 }
 
@@ -122,48 +152,48 @@ void pd_section_error(const Scenario& sc, const std::string& key, const std::str
   throw_solver_param_error(sc, "peridynamics", key, message);
 }
 
-double full_family_size(const Scenario& sc) {
-  const ParamValues& P = sc.solver_params;
-  const double dx = sc.grid.cell_size;
-  const double delta = P.given("horizon") ? P.at("horizon") : (P.given("m") ? P.at("m") : 3.0) * dx;
-  return pd::lattice_family_size(delta / dx, sc.simulation.dimension == Dimension::ThreeD ? 3 : 2);
+double PdParams::full_family_size(const Scenario& sc) const {
+  return pd::lattice_family_size(horizon / sc.grid.cell_size, sc.simulation.dimension == Dimension::ThreeD ? 3 : 2);
 }
 
-const Scenario& checked_for_bonds(const Scenario& sc) {
+PdParams read_pd_params(const Scenario& sc) {
   check_bond_materials(sc);
   const ParamValues& P = sc.solver_params;
+  PdParams p;
   const bool m_given = P.given("m"), h_given = P.given("horizon");
   if (m_given && h_given)
     pd_section_error(sc, "horizon",
                      "give the horizon or m (horizon = m x lattice spacing), not both");
   const double dx = sc.grid.cell_size;
-  const double delta = h_given ? P.at("horizon") : (m_given ? P.at("m") : 3.0) * dx;
-  const std::string key = h_given ? "horizon" : "m";
-  if (!(delta >= dx))
-    pd_section_error(
-        sc, key,
-        fmt::format(
-            "the horizon {:g} m must be at least the lattice spacing grid.cell_size = {:g} m",
-            delta, dx));
-  const int nd = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
-  for (const BodySpec& b : sc.bodies) {
-    const MaterialSpec* m = nullptr;
-    for (const MaterialSpec& ms : sc.materials)
-      if (ms.name == b.material) m = &ms;
-    if (m && m->model == "explosive") continue;
-    Vec3 lo, hi;
-    shape_bounds(b.shape, nd, lo, hi);
-    double extent = 0.0;
-    for (int k = 0; k < nd; ++k) extent = std::max(extent, hi[k] - lo[k]);
-    const std::string why = fmt::format(
-        "the horizon {:g} m is {} the largest extent of body '{}' ({:g} m): each point's family holds most of the "
-        "body, and its bonds cannot localise damage; use a horizon of a few lattice spacings (peridynamics.m, "
-        "default 3) or a finer lattice",
-        delta, delta > 2.0 * extent ? "more than twice" : "more than half", b.name, extent);
-    if (delta > 2.0 * extent && delta > 10.0 * dx) pd_section_error(sc, key, why);
-    if (2.0 * delta > extent) spdlog::warn("{}", why);
+  p.horizon = h_given ? P.at("horizon") : (m_given ? P.at("m") : 3.0) * dx;
+  check_horizon(sc, p.horizon, h_given ? "horizon" : "m");
+  p.partial_volumes = P.choices.at("volume_correction") == "partial";
+  if (P.given("thickness")) {
+    if (sc.simulation.dimension == Dimension::ThreeD)
+      pd_section_error(sc, "thickness", "a thickness belongs to 2D runs (dimension: plane_stress or plane_strain)");
+    p.thickness = P.at("thickness");
   }
-  return sc;
+  p.lattice_calibration = P.choices.at("calibration") == "lattice";
+  p.surface_correction = P.choices.at("surface_correction") == "energy";
+  if (P.given("yield_stress")) p.yield_stress = P.at("yield_stress");
+  if (P.given("critical_stretch") && P.given("fracture_energy"))
+    pd_section_error(sc, "fracture_energy", "give critical_stretch or fracture_energy, not both");
+  if (P.given("critical_stretch")) p.critical_stretch = P.at("critical_stretch");
+  if (P.given("fracture_energy")) p.fracture_energy = P.at("fracture_energy");
+  p.stretch_alpha = P.at("stretch_alpha");
+  p.stretch_scatter = P.at("stretch_scatter");
+  p.dt_safety = P.at("dt_safety");
+  p.fragment_interval = P.at("fragment_interval");
+  if (P.given("fragment_damage_threshold")) p.fragment_damage_threshold = P.at("fragment_damage_threshold");
+  p.contact = P.choices.at("contact") == "on";
+  p.contact_all_pairs = P.choices.at("contact_pairs") == "all";
+  p.lammps_break = P.choices.at("break_rule") == "lammps";
+  p.contact_skin = P.at("contact_skin");
+  if (const double every = P.at("gas_refamily_steps"); every > 0.0) {
+    if (every != std::floor(every)) pd_section_error(sc, "gas_refamily_steps", "expected a whole number of steps");
+    p.gas_refamily_steps = static_cast<int>(every);
+  }
+  return p;
 }
 
 }  // namespace ballista

@@ -32,30 +32,28 @@ constexpr double kSolverBytesPerBond = pd::BondFamily::kBytesPerBond + sizeof(st
 }  // namespace
 
 PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials, Communicator comm)
-    : scenario_(checked_for_bonds(sc)),
+    : scenario_(sc),
+      params_(read_pd_params(sc)),
       comm_(comm),
       // Every body on the lattice of spacing grid.cell_size (one point per cell); each point holds
       // its family's bond ends (m = 3 in 3D: 122 of kSolverBytesPerBond).
-      pts_(sc, std::move(materials), SeedLattice{sc.grid, 1, full_family_size(sc) * kSolverBytesPerBond}, 0.0,
-           fmt::format("families of {:g} bond ends per point, set by peridynamics.m or horizon", full_family_size(sc)),
+      pts_(sc, std::move(materials),
+           SeedLattice{sc.grid, 1, params_.full_family_size(sc) * kSolverBytesPerBond}, 0.0,
+           fmt::format("families of {:g} bond ends per point, set by peridynamics.m or horizon",
+                       params_.full_family_size(sc)),
            comm),
       points_(pts_.store()) {
-  const ParamValues& P = sc.solver_params;
   read_settings(sc);
-
-  // Bond constants per material pair: c = 18 K/(pi delta^4) (Silling & Askari 2005 eq. 22) for each
-  // material, two materials' bond as their two half-bonds in series (harmonic mean); the critical
-  // stretch of a mixed bond is the smaller one.
-  const auto& mats = pts_.materials();
-  nmat_ = static_cast<int>(mats.size());
-  const bool correct = P.choices.at("volume_correction") == "partial";
-  set_bond_constants(sc, correct);
+  nmat_ = static_cast<int>(pts_.materials().size());
+  classify_materials(sc);
+  read_body_scales(sc);
+  set_bond_constants(sc);
 
   // Fields of this solver: damage (output) and the acceleration of the last force evaluation.
   points_.add_real("damage", 1, "1");
   points_.add_real("pd_accel", 3, "m/s^2", false);
   const auto build_start = std::chrono::steady_clock::now();
-  build_local_points(correct);
+  build_local_points();
   const Index n = points_.size();  // own points
   const Index nl = local_.size(), nb = local_.bond_local;
   gas_.assign(static_cast<size_t>(n), 0);
@@ -66,61 +64,43 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   // Every rank takes part in the gas's exchanges and reductions if any rank holds gas.
   has_gas_ = comm_.any(std::find(gas_.begin(), gas_.end(), 1) != gas_.end());
   if (has_gas_) build_gas();
-  if (const double every = P.at("gas_refamily_steps"); every > 0.0) {
-    if (every != std::floor(every)) pd_section_error(sc, "gas_refamily_steps", "expected a whole number of steps");
-    // The renewed family needs every neighbour within the current horizon, which another rank's
-    // points may be: one rank only so far (docs/parallel.md).
-    if (has_gas_ && comm_.distributed())
-      pd_section_error(sc, "gas_refamily_steps",
-                          "renewing the gas family runs on one MPI rank only so far (" + std::to_string(comm_.size()) +
-                           " ranks were started; set it to 0 or run on one rank)");
-    gas_refamily_every_ = static_cast<int>(every);
-  }
-  init_critical_stretch(sc);
+  // The renewed family needs every neighbour within the current horizon, which another rank's
+  // points may be: one rank only so far (docs/parallel.md).
+  if (params_.gas_refamily_steps > 0 && has_gas_ && comm_.distributed())
+    pd_section_error(sc, "gas_refamily_steps",
+                     "renewing the gas family runs on one MPI rank only so far (" + std::to_string(comm_.size()) +
+                         " ranks were started; set it to 0 or run on one rank)");
+  init_critical_stretch();
   if (std::isfinite(yield_stretch_)) sp_.assign(bonds_.other.size(), 0.0);
   dissipated_.assign(static_cast<size_t>(nl), 0.0);
   contact_energy_.assign(static_cast<size_t>(nl), 0.0);
-  contact_.skin = P.at("contact_skin") * dx_;
+  contact_.skin = params_.contact_skin * dx_;
   build_bond_tables();
   bond_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
   stiff_bond_.assign(static_cast<size_t>(nb), 0.0);
   stiff_contact_.assign(static_cast<size_t>(nl), 0.0);
   x_prev_ = local_.x;
-  apply_surface_correction(sc, correct);
+  apply_surface_correction();
   set_bond_stiffness();
   cut_pre_cracks(sc);
   sync_local();
   x_prev_ = local_.x;
-  if (contact_on_) rebuild_contacts();
+  if (params_.contact) rebuild_contacts();
   compute_forces();
 }
 
-/// The solver's settings from the deck (horizon, bond rules, fragments, damping, thickness) and
-/// what it refuses (an explosive in plane stress, bodies activated later, deleted points).
 void PdSolver::read_settings(const Scenario& sc) {
-  const ParamValues& P = sc.solver_params;
   // Explosives are a peridynamic gas (gas_pass.hpp): a pressure from the material library, no
   // bond stiffness. The products' pressure of a plane-stress plate has no meaning.
   if (const MaterialSpec* m = first_material_of_model(sc, "explosive"); m && sc.simulation.plane_stress)
     throw DeckError(m->mark.file, m->mark.line, m->mark.column, m->mark.key_path + ".model",
                     "an explosive (a peridynamic gas) needs dimension 3d or plane_strain, not plane_stress");
   dx_ = sc.grid.cell_size;
-  delta_ = P.given("horizon") ? P.at("horizon") : (P.given("m") ? P.at("m") : 3.0) * dx_;  // checked before seeding
-  if (P.given("critical_stretch") && P.given("fracture_energy"))
-    pd_section_error(sc, "fracture_energy", "give critical_stretch or fracture_energy, not both");
-  alpha_ = P.at("stretch_alpha");
-  fragment_interval_ = P.at("fragment_interval");
-  contact_on_ = P.choices.at("contact") == "on";
-  contact_all_pairs_ = P.choices.at("contact_pairs") == "all";
-  lammps_break_ = P.choices.at("break_rule") == "lammps";
-  fragment_threshold_ = P.given("fragment_damage_threshold") ? P.at("fragment_damage_threshold") : 2.0;
-  next_fragment_time_ = fragment_interval_ > 0.0 ? fragment_interval_ : kInf;
-  dt_safety_ = P.at("dt_safety");
+  delta_ = params_.horizon;
+  next_fragment_time_ = params_.fragment_interval > 0.0 ? params_.fragment_interval : kInf;
   damping_ = sc.simulation.damping;
   dim_ = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
-  thickness_ = dim_ == 2 && P.given("thickness") ? P.at("thickness") : 1.0;
-  if (dim_ == 3 && P.given("thickness"))
-    pd_section_error(sc, "thickness", "a thickness belongs to 2D runs (dimension: plane_stress or plane_strain)");
+  thickness_ = params_.thickness;
   if (pts_.pending() > 0)
     pd_section_error(sc, "", "bodies with a later activation (activation_time, activation_stage, rods, jets) are not "
                           "supported by the peridynamics solver yet: their bonds would have to be built on arrival");
@@ -128,7 +108,7 @@ void PdSolver::read_settings(const Scenario& sc) {
     pd_section_error(sc, "", "simulation.on_particle_exit: delete is not supported by the peridynamics solver yet");
 }
 
-void PdSolver::build_local_points(bool correct) {
+void PdSolver::build_local_points() {
   // Every rank seeded every body (PointSet): the owner of each point by RCB of the reference
   // positions, each rank computing the cuts for its contiguous share, the owners then known to all.
   const Index n_all = points_.size();
@@ -175,13 +155,14 @@ void PdSolver::build_local_points(bool correct) {
     cbody[c] = body[cand[c]];
     cgas[c] = gas_material_[mat[cand[c]]];
   }
-  bonds_ = pd::build_bond_family(cx0.data(), nc, delta_, correct ? dx_ : 0.0, dim_, cbody.data(), cgas.data());
+  const double partial_dx = params_.partial_volumes ? dx_ : 0.0;  // 0: no partial-volume correction
+  bonds_ = pd::build_bond_family(cx0.data(), nc, delta_, partial_dx, dim_, cbody.data(), cgas.data());
   // Detonation products: the gas family (every pair within the horizon with a gas end, gas_pass.hpp).
   const bool any_gas = std::find(gas_material_.begin(), gas_material_.end(), 1) != gas_material_.end();
   if (any_gas) {
     std::vector<double> cscale(static_cast<size_t>(nc), 1.0);
     for (Index c = 0; c < nc; ++c) cscale[c] = cgas[c] ? body_scale_[cbody[c]] : 1.0;
-    gas_bonds_ = pd::build_gas_family(cx0.data(), nc, delta_, correct ? dx_ : 0.0, dim_, cgas.data(),
+    gas_bonds_ = pd::build_gas_family(cx0.data(), nc, delta_, partial_dx, dim_, cgas.data(),
                                       max_scale_ > 1.0 ? cscale.data() : nullptr);
   }
   std::vector<char> keep(static_cast<size_t>(nc), 1);
@@ -371,7 +352,7 @@ double PdSolver::stable_dt() {
     if (sum > 0.0) dt = std::min(dt, std::sqrt(2.0 * mass[p] / vol0[p] / sum));
   }
   if (has_gas_) dt = std::min(dt, gas_stable_dt());
-  dt = comm_.min(dt_safety_ * dt);
+  dt = comm_.min(params_.dt_safety * dt);
   if (!std::isfinite(dt)) dt = scenario_.simulation.end_time;  // no bonds at all: free flight
   if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
   return dt;
@@ -395,15 +376,15 @@ void PdSolver::compute_forces() {
   const std::int32_t* other = bonds_.other.data();
   const std::int32_t* mirror = mirror_.data();
   std::uint8_t* broken = bonds_.broken.data();
-  const double alpha = alpha_;
+  const double alpha = params_.stretch_alpha;
   const bool plastic = !sp_.empty();
   double* sp = sp_.data();
   const double sy = yield_stretch_;
   const Vec3* xprev = x_prev_.data();  // positions at the step's start (= x outside a step)
   // Short-range contact (contact_list.hpp): c_s = 15 c / delta per unit volume squared and unit
   // overlap (Silling & Askari 2005; LAMMPS pair_peri_pmb), reach d = min(0.9 |xi|, 1.35 dx).
-  const bool contact = contact_on_;
-  const bool bonded_contact = contact && contact_all_pairs_;
+  const bool contact = params_.contact;
+  const bool bonded_contact = contact && params_.contact_all_pairs;
   const double cs_over_c = 15.0 / delta_, range = 1.35 * dx_;
   // Per-point sums of this evaluation (each bond adds to both of its ends).
   Acc& A = acc_;
@@ -441,7 +422,7 @@ void PdSolver::compute_forces() {
                         A.e_contact.data(),
                         A.k_contact.data(),
                         surface_factor_.empty() ? nullptr : surface_factor_.data(),
-                        lammps_break_};
+                        params_.lammps_break};
   const Index nblock = static_cast<Index>(block_start_.size()) - 1;
   for (int phase = 0; phase < 2; ++phase) {
     const Index nphase = (nblock - phase + 1) / 2;
@@ -553,14 +534,14 @@ void PdSolver::advance(double dt) {
     }
     halo_.update_bond_values(comm_, local_, gas_g_);  // the ghosts' push G for the pair forces
   }
-  if (contact_on_ && contacts_stale()) rebuild_contacts();
+  if (params_.contact && contacts_stale()) rebuild_contacts();
   compute_forces();
   time_ += dt;
   ++steps_;
   if (time_ >= next_fragment_time_ * (1.0 - 1e-12)) {
     auto rows = fragment_rows(fragments());
     fragment_rows_.insert(fragment_rows_.end(), rows.begin(), rows.end());
-    while (next_fragment_time_ <= time_ * (1.0 + 1e-12)) next_fragment_time_ += fragment_interval_;
+    while (next_fragment_time_ <= time_ * (1.0 + 1e-12)) next_fragment_time_ += params_.fragment_interval;
   }
   loads_.compute(scenario_, points_, time_);
   loads_current_ = true;
@@ -675,9 +656,9 @@ std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
 }
 
 std::vector<pd::Fragment> PdSolver::fragments() const {
-  if (!comm_.distributed()) return pd::find_fragments(bonds_, points_, fragment_threshold_, skip_gas());
-  return pd::find_fragments_gathered(comm_, bonds_, local_.own, local_.id.data(), points_, fragment_threshold_,
-                                     gas_material_);
+  const double threshold = params_.fragment_damage_threshold;
+  if (!comm_.distributed()) return pd::find_fragments(bonds_, points_, threshold, skip_gas());
+  return pd::find_fragments_gathered(comm_, bonds_, local_.own, local_.id.data(), points_, threshold, gas_material_);
 }
 
 std::vector<std::vector<double>> PdSolver::fragment_rows(const std::vector<pd::Fragment>& frags) const {

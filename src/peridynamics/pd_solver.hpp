@@ -30,24 +30,18 @@
 #include "core/communicator.hpp"
 #include "core/solver.hpp"
 #include "materials/material.hpp"
+#include "peridynamics/bond_constants.hpp"
 #include "peridynamics/bond_family.hpp"
 #include "peridynamics/contact_list.hpp"
 #include "peridynamics/fragments.hpp"
 #include "peridynamics/gas_pass.hpp"
 #include "peridynamics/pd_halo.hpp"
+#include "peridynamics/pd_params.hpp"
 #include "points/point_loads.hpp"
 #include "points/point_set.hpp"
 #include "scenario/scenario.hpp"
 
 namespace ballista {
-
-/// Bulk and shear modulus of a library material at its reference state, probed by driving one
-/// point through its own kernel with tiny volumetric and shear strain increments.
-struct ProbedModuli {
-  double bulk = 0.0;   ///< Pa
-  double shear = 0.0;  ///< Pa
-};
-ProbedModuli probe_moduli(const Material& material);
 
 class PdSolver final : public Solver {
  public:
@@ -113,16 +107,32 @@ class PdSolver final : public Solver {
   /// Marks broken every intact bond p-q with cut(p, q) or cut(q, p), at both ends, with nothing
   /// dissipated (pre-cracks); returns how many bonds. Forces are not re-evaluated.
   Index cut_bonds(const std::function<bool(Index, Index)>& cut);
+  // Construction (pd_solver.cpp, pd_bond_setup.cpp), in the order the constructor calls them.
+  /// The lattice, horizon, thickness and damping, and what the solver refuses of the rest of the
+  /// deck (an explosive in plane stress, bodies activated later, deleted points).
+  void read_settings(const Scenario& sc);
+  /// Which materials are a peridynamic gas (explosives), and the point fields that mean nothing
+  /// here left out of the output.
+  void classify_materials(const Scenario& sc);
+  /// Each body's lattice spacing over dx (bodies[].point_spacing: only the products' may differ).
+  void read_body_scales(const Scenario& sc);
+  /// Micromodulus, critical stretch and contact stiffness per material pair, and the yield stretch
+  /// of micro-plastic bonds, from each solid's probed moduli (bond_constants.hpp).
+  void set_bond_constants(const Scenario& sc);
   /// The partition (several ranks), the local points with their ghosts and the bond family of the
   /// local points (pd_halo.hpp); one rank: the family of every point.
-  // Construction (pd_solver.cpp, pd_bond_setup.cpp), in the order the constructor calls them.
-  void read_settings(const Scenario& sc);
-  void set_bond_constants(const Scenario& sc, bool correct);
-  void build_local_points(bool correct);
-  void init_critical_stretch(const Scenario& sc);
+  void build_local_points();
+  /// Each point's critical stretch: the smallest over its family's material pairs, scattered by
+  /// stretch_scatter.
+  void init_critical_stretch();
+  /// What the half-bond force pass needs besides the bonds (damage denominators, row splits,
+  /// mirrors, blocks of ids).
   void build_bond_tables();
-  void apply_surface_correction(const Scenario& sc, bool correct);
+  /// surface_correction: energy, each point's factor m1/m1_p (bond_constants.hpp).
+  void apply_surface_correction();
+  /// Each point's bond stiffness of the stable step.
   void set_bond_stiffness();
+  /// Pre-cracks (deck `cracks`): the bonds whose ends lie on either side of each segment.
   void cut_pre_cracks(const Scenario& sc);
   /// Own points' positions into the local copies, and the ghosts' from their owners (collective);
   /// the ghosts' previous positions become their step-start positions.
@@ -170,6 +180,7 @@ class PdSolver final : public Solver {
   const std::uint8_t* skip_vented() const { return has_gas_ ? vented_.data() : nullptr; }
 
   Scenario scenario_;
+  const PdParams params_;       ///< the peridynamics section, read and checked before seeding
   Communicator comm_;
   PointSet pts_;
   FieldStore& points_;
@@ -187,8 +198,6 @@ class PdSolver final : public Solver {
   std::vector<double> s00_;  ///< critical stretch per material pair (inf: no failure)
   std::vector<double> c_contact_;  ///< micromodulus of the contact springs per material pair
                                    ///< (gas-solid: the solid's), N/m^6
-  double alpha_ = 0.0;       ///< s0 = s00 - alpha s_min
-  double dt_safety_ = 0.8;   ///< fraction of the Silling-Askari stable step
   double damping_ = 0.0;     ///< 1/s: a - c v (dynamic relaxation, stages)
   double yield_stretch_ = std::numeric_limits<double>::infinity();  ///< s_y of micro-plastic bonds
   std::vector<double> sp_;             ///< plastic stretch per bond (each end its own copy; empty: elastic)
@@ -224,13 +233,8 @@ class PdSolver final : public Solver {
   std::vector<Vec3> x_prev_;       ///< positions at the start of the step (energy of breaking bonds)
   std::vector<Vec3> f0_;           ///< scratch: external forces at the step's start
   std::vector<double> dissipated_; ///< J: energy of the broken bonds, half of each to each end
-  bool contact_on_ = true;           ///< short-range contact forces (contact_list.hpp)
-  bool contact_all_pairs_ = false;   ///< also between bonded points (LAMMPS PERI), not only unbonded ones
-  bool lammps_break_ = false;        ///< break_rule: lammps (a breaking bond acts once more)
   pd::ContactList contact_;          ///< never-bonded pairs near each other
   std::vector<double> contact_energy_;  ///< J: each point's half of its contact springs' energy
-  double fragment_interval_ = 0.0;   ///< s between fragment snapshots (0: at the end only)
-  double fragment_threshold_ = 2.0;  ///< points with more damage are left out of fragments
   double next_fragment_time_ = 0.0;
   std::vector<std::vector<double>> fragment_rows_;  ///< snapshots so far (fragments.csv rows)
   /// fragments.csv rows of `frags` (time, fragment, points, mass, centre, velocity, speed, KE).
@@ -251,7 +255,6 @@ class PdSolver final : public Solver {
   std::vector<float> gas_weight_other_;  ///< after refamily_gas: this end's weight in the other end's measure
   pd::RenewedGasFamily gas_spare_;    ///< the family before the current one: storage for the next renewal
   pd::GasRenewalWorkspace gas_workspace_;  ///< the renewal search's buffers, kept between renewals
-  int gas_refamily_every_ = 0;        ///< steps between renewals of the gas family (0: never)
   long gas_renewals_ = 0;             ///< renewals so far (result value)
   /// The inputs of the last renewal of the gas family, per local point (empty before the first).
   struct GasRenewal {
