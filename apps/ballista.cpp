@@ -14,7 +14,7 @@
 #include "core/error.hpp"
 #include "core/threads.hpp"
 #include "driver/drive_run.hpp"
-#include "io/material_presets.hpp"
+#include "deck/material_presets.hpp"
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
 #include "points/initial_state_registry.hpp"

@@ -10,7 +10,7 @@
 
 #include "core/error.hpp"
 #include "io/checkpoint_file.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "io/run_folder.hpp"
 #include "run/penetration_plots.hpp"
 #include "run/simulation.hpp"

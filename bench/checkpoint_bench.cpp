@@ -15,7 +15,7 @@
 #include "core/parallel.hpp"
 #include "core/state_archive.hpp"
 #include "io/checkpoint_file.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "run/simulation.hpp"
 
 namespace {

@@ -13,7 +13,7 @@
 
 #include "core/parallel.hpp"
 #include "material_batch_fixture.hpp"
-#include "io/material_presets.hpp"
+#include "deck/material_presets.hpp"
 #include "materials/material.hpp"
 
 namespace {

@@ -16,7 +16,7 @@
 
 #include "block_impact_deck.hpp"
 #include "core/parallel.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "run/simulation.hpp"
 
 namespace {

@@ -29,10 +29,12 @@ function(ballista_layer name)
   set_property(GLOBAL APPEND PROPERTY BALLISTA_LAYERS ballista_${name})
 endfunction()
 
-# Bottom to top. Why this order (docs/architecture.md): the registries (materials; solvers and
-# probes in points) sit below io, so the deck reader validates against them without naming an
-# implementation; io's writers (CSV, JSON, HDF5) are then usable by every layer above io.
+# Bottom to top. Why this order (docs/architecture.md): io holds the writers (CSV, JSON, HDF5,
+# checkpoints, the results folder) on core alone, so every layer may write; the registries
+# (materials; solvers, probes, loads and initial states in points) sit below deck, so the deck
+# reader validates against them without naming an implementation.
 ballista_layer(core)
+ballista_layer(io DEPENDS core)
 ballista_layer(materials DEPENDS core)
 ballista_layer(scenario DEPENDS materials)
 ballista_layer(geometry DEPENDS scenario)
@@ -40,10 +42,10 @@ ballista_layer(points DEPENDS geometry)
 ballista_layer(mpm DEPENDS points)
 ballista_layer(peridynamics DEPENDS points)
 ballista_layer(otm DEPENDS points)
-ballista_layer(io DEPENDS points)
+ballista_layer(deck DEPENDS points)
 ballista_layer(penetration DEPENDS io)
-ballista_layer(analysis DEPENDS io penetration)
-ballista_layer(driver DEPENDS io)
+ballista_layer(analysis DEPENDS deck penetration)
+ballista_layer(driver DEPENDS deck io)
 ballista_layer(verify DEPENDS driver)
 ballista_layer(run DEPENDS analysis driver)
 

@@ -8,8 +8,8 @@
 #include "analysis/domain_corners.hpp"
 #include "core/error.hpp"
 #include "core/point_fields.hpp"
-#include "io/deck_node.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_node.hpp"
+#include "deck/deck_reader.hpp"
 #include "points/probe_registry.hpp"
 
 namespace ballista {

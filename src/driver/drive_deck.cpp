@@ -13,10 +13,10 @@
 
 #include "driver/ftable_csv.hpp"
 #include "driver/perturb.hpp"
-#include "io/deck_node.hpp"
-#include "io/text_file.hpp"
-#include "io/deck_overrides.hpp"
-#include "io/material_reader.hpp"
+#include "deck/deck_node.hpp"
+#include "deck/text_file.hpp"
+#include "deck/deck_overrides.hpp"
+#include "deck/material_reader.hpp"
 
 namespace ballista {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The deck of `ballista drive` (docs/deck.md, "ballista drive"): one material (the `materials:`
-// section of the run decks, read by io/material_reader) and a `drive:` section holding an
+// section of the run decks, read by deck/material_reader) and a `drive:` section holding an
 // F-table (a CSV file or inline rows) or a list of strain/stress legs.
 #include <cstdint>
 #include <string>

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "io/text_file.hpp"
+#include "deck/text_file.hpp"
 
 namespace ballista {
 

@@ -40,7 +40,7 @@ void check_ftable_rows(const std::vector<FTableRow>& rows, Fail&& fail);
 // ---- implementation of the template ------------------------------------------------------------
 #include <cmath>
 
-#include "io/deck_node.hpp"
+#include "deck/deck_node.hpp"
 
 namespace ballista {
 

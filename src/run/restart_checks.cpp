@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
-#include "io/deck_changes.hpp"
+#include "deck/deck_changes.hpp"
 
 namespace ballista {
 

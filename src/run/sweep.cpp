@@ -14,8 +14,8 @@
 #include <map>
 #include <thread>
 
-#include "io/deck_overrides.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_overrides.hpp"
+#include "deck/deck_reader.hpp"
 
 extern char** environ;
 

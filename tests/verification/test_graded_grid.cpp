@@ -13,7 +13,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "run/simulation.hpp"
 #include "verification/verification_support.hpp"
 

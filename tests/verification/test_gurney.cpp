@@ -21,7 +21,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "materials/explosive_eos.hpp"
 #include "run/simulation.hpp"
 #include "verification/verification_support.hpp"

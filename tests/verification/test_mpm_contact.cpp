@@ -15,7 +15,7 @@
 
 #include <gtest/gtest.h>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "points/solver_registry.hpp"
 #include "verification/verification_support.hpp"
 

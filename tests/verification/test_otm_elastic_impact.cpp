@@ -15,7 +15,7 @@
 #include <memory>
 #include <string>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "otm/otm_solver.hpp"
 #include "run/simulation.hpp"
 

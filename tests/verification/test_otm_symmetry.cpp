@@ -10,7 +10,7 @@
 
 #include <string>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 

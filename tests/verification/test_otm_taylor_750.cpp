@@ -26,7 +26,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "otm/otm_solver.hpp"
 #include "run/simulation.hpp"
 

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <string>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "materials/explosive_eos.hpp"
 #include "peridynamics/gas_pass.hpp"
 #include "peridynamics/pd_solver.hpp"

@@ -19,7 +19,7 @@
 #include <cstdio>
 #include <string>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "run/simulation.hpp"
 #include "verification/verification_support.hpp"
 

@@ -27,7 +27,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "mpm/bulk_viscosity.hpp"
 #include "points/solver_registry.hpp"
 #include "verification/verification_support.hpp"

@@ -14,7 +14,7 @@
 #include "driver/ftable_csv.hpp"
 #include "driver/perturb.hpp"
 #include "driver/point_driver.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "verification/verification_support.hpp"
 
 using namespace ballista;

@@ -20,7 +20,7 @@
 #include <gtest/gtest.h>
 
 #include "core/solver.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "materials/elastic_constants.hpp"
 #include "points/mms_axis_aligned.hpp"
 #include "points/mms_generalized_vortex.hpp"

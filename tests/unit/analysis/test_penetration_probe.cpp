@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "analysis/penetration_probe.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 

@@ -1,4 +1,4 @@
-// `preset:` in a deck material (io/material_reader): the preset's parameters from
+// `preset:` in a deck material (deck/material_reader): the preset's parameters from
 // data/materials.yaml under the deck's own keys.
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 
 #include "core/error.hpp"
 #include "driver/drive_deck.hpp"
-#include "io/material_presets.hpp"
+#include "deck/material_presets.hpp"
 
 using namespace ballista;
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 
 using namespace ballista;
 

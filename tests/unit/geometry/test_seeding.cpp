@@ -17,7 +17,7 @@
 #include "core/field_store.hpp"
 #include "geometry/seeding.hpp"
 #include "geometry/shape.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "materials/material.hpp"
 
 using namespace ballista;

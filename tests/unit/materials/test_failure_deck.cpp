@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "materials/failure.hpp"
 
 using namespace ballista;

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "material_driver.hpp"
 
 using namespace ballista;

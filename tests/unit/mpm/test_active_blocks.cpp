@@ -9,7 +9,7 @@
 #include <set>
 #include <string>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "mpm/active_blocks.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "run/simulation.hpp"

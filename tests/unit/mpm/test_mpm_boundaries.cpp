@@ -18,7 +18,7 @@
 #include <tuple>
 
 #include "core/error.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "run/simulation.hpp"
 

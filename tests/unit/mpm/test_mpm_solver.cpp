@@ -35,7 +35,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "points/mms_axis_aligned.hpp"
 #include "run/simulation.hpp"

@@ -13,7 +13,7 @@
 #include <cmath>
 #include <string>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "otm/lme_shape.hpp"
 #include "otm/otm_adaptivity.hpp"
 #include "otm/otm_solver.hpp"

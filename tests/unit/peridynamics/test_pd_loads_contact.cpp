@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "peridynamics/pd_solver.hpp"
 #include "points/point_loads.hpp"
 #include "run/simulation.hpp"

@@ -14,7 +14,7 @@
 #include <string>
 
 #include "core/parallel.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "peridynamics/bond_family.hpp"
 #include "peridynamics/pd_solver.hpp"
 #include "run/simulation.hpp"

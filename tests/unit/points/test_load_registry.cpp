@@ -8,7 +8,7 @@
 #include <cmath>
 #include <string>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "points/load_registry.hpp"
 #include "points/point_loads.hpp"
 #include "points/point_set.hpp"

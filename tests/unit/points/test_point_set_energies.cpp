@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "materials/failure.hpp"
 #include "points/point_set.hpp"
 #include "run/simulation.hpp"

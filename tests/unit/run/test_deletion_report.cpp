@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 

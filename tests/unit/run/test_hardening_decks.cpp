@@ -9,7 +9,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <string>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 

@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 #include "io/checkpoint_file.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 

@@ -10,7 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/system_memory.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 

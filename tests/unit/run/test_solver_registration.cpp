@@ -10,7 +10,7 @@
 #include <fstream>
 #include <string>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "points/point_set.hpp"
 #include "points/solver_registry.hpp"
 #include "run/simulation.hpp"

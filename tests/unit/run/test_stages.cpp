@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "run/simulation.hpp"
 #include "run/stage_criterion.hpp"
 #include "support/test_files.hpp"

@@ -1,10 +1,10 @@
 #pragma once
 // One entry of a deck's `materials:` map (docs/deck.md, "materials"), shared by the run decks
-// (io/deck_reader) and the drive decks of the single-element driver (driver/drive_deck).
+// (deck/deck_reader) and the drive decks of the single-element driver (driver/drive_deck).
 #include <map>
 #include <string>
 
-#include "io/deck_node.hpp"
+#include "deck/deck_node.hpp"
 #include "scenario/scenario.hpp"
 
 namespace ballista {

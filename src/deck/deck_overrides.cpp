@@ -1,9 +1,9 @@
-#include "io/deck_overrides.hpp"
+#include "deck/deck_overrides.hpp"
 
 #include <charconv>
 
 #include "core/error.hpp"
-#include "io/deck_node.hpp"
+#include "deck/deck_node.hpp"
 
 namespace ballista {
 

@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "io/material_presets.hpp"
+#include "deck/material_presets.hpp"
 #include "materials/explosive_eos.hpp"
 #include "materials/material.hpp"
 #include "support/test_files.hpp"

@@ -1,4 +1,4 @@
-#include "io/deck_node.hpp"
+#include "deck/deck_node.hpp"
 
 #include <algorithm>
 #include <charconv>

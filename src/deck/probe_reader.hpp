@@ -1,7 +1,7 @@
 #pragma once
 // The deck's `probes`: each entry read as its registered kind declares its parameters
 // (points/probe_registry.hpp), so that the deck reader names no probe kind.
-#include "io/deck_node.hpp"
+#include "deck/deck_node.hpp"
 #include "scenario/scenario.hpp"
 
 namespace ballista {

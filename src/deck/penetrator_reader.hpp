@@ -2,7 +2,7 @@
 // Rod and discrete-jet bodies of a deck (`rod:` / `jet:` instead of `shape:`; docs/deck.md):
 // they expand into cylindrical segments, each with its own velocity and activation time
 // (thesis seed 000 §5.1, Fig. 5.2; §6.4 segmented rods).
-#include "io/deck_node.hpp"
+#include "deck/deck_node.hpp"
 #include "scenario/scenario.hpp"
 
 namespace ballista {

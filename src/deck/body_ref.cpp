@@ -1,4 +1,4 @@
-#include "io/body_ref.hpp"
+#include "deck/body_ref.hpp"
 
 #include <vector>
 

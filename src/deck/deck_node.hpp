@@ -18,7 +18,7 @@
 #include "core/error.hpp"
 #include "core/names.hpp"
 #include "core/tensor.hpp"
-#include "io/deck_overrides.hpp"
+#include "deck/deck_overrides.hpp"
 #include "scenario/number_range.hpp"
 #include "scenario/scenario.hpp"
 

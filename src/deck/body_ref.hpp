@@ -3,7 +3,7 @@
 // so far, with the closest name suggested for a typo.
 #include <string>
 
-#include "io/deck_node.hpp"
+#include "deck/deck_node.hpp"
 #include "scenario/scenario.hpp"
 
 namespace ballista {

@@ -1,11 +1,11 @@
-#include "io/material_reader.hpp"
+#include "deck/material_reader.hpp"
 
 #include <climits>
 #include <cmath>
 #include <map>
 #include <set>
 
-#include "io/material_presets.hpp"
+#include "deck/material_presets.hpp"
 
 namespace ballista {
 

@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "io/deck_node.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_node.hpp"
+#include "deck/deck_reader.hpp"
 #include "points/solver_registry.hpp"
 
 using namespace ballista;

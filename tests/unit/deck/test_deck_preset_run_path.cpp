@@ -1,5 +1,5 @@
 // A deck material with `preset:` read the way `ballista run` reads it (read_deck on a file, with a
-// --set override): the presets file is loaded and merged into the deck (io/material_presets.cpp).
+// --set override): the presets file is loaded and merged into the deck (deck/material_presets.cpp).
 // The reference values are read from data/materials.yaml with plain yaml-cpp, not through Ballista.
 // Under AddressSanitizer (make test-sanitize) this is also the regression test of a
 // stack-use-after-scope: the preset parser and the merge once bound `const YAML::Node&` to
@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 
 using namespace ballista;
 

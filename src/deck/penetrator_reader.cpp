@@ -1,4 +1,4 @@
-#include "io/penetrator_reader.hpp"
+#include "deck/penetrator_reader.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -8,8 +8,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "core/error.hpp"
-#include "io/deck_reader.hpp"
-#include "io/text_file.hpp"
+#include "deck/deck_reader.hpp"
+#include "deck/text_file.hpp"
 
 namespace ballista {
 

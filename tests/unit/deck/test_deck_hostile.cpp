@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 #include "driver/drive_deck.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 #include "support/test_files.hpp"
 
 namespace fs = std::filesystem;

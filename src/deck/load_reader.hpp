@@ -4,7 +4,7 @@
 #include <map>
 #include <string>
 
-#include "io/deck_node.hpp"
+#include "deck/deck_node.hpp"
 #include "scenario/scenario.hpp"
 
 namespace ballista {

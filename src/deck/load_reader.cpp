@@ -1,6 +1,6 @@
-#include "io/load_reader.hpp"
+#include "deck/load_reader.hpp"
 
-#include "io/body_ref.hpp"
+#include "deck/body_ref.hpp"
 #include "points/load_registry.hpp"
 
 namespace ballista {

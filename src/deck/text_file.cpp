@@ -1,4 +1,4 @@
-#include "io/text_file.hpp"
+#include "deck/text_file.hpp"
 
 #include <cerrno>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "io/deck_changes.hpp"
+#include "deck/deck_changes.hpp"
 
 #include <yaml-cpp/yaml.h>
 

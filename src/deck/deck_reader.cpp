@@ -1,4 +1,4 @@
-#include "io/deck_reader.hpp"
+#include "deck/deck_reader.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -13,14 +13,14 @@
 #include <yaml-cpp/yaml.h>
 
 #include "geometry/grid_axes.hpp"
-#include "io/deck_node.hpp"
-#include "io/text_file.hpp"
-#include "io/deck_overrides.hpp"
-#include "io/body_ref.hpp"
-#include "io/load_reader.hpp"
-#include "io/probe_reader.hpp"
-#include "io/material_reader.hpp"
-#include "io/penetrator_reader.hpp"
+#include "deck/deck_node.hpp"
+#include "deck/text_file.hpp"
+#include "deck/deck_overrides.hpp"
+#include "deck/body_ref.hpp"
+#include "deck/load_reader.hpp"
+#include "deck/probe_reader.hpp"
+#include "deck/material_reader.hpp"
+#include "deck/penetrator_reader.hpp"
 #include "points/initial_state_registry.hpp"
 #include "points/probe_registry.hpp"
 #include "points/solver_registry.hpp"

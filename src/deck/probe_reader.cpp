@@ -1,7 +1,7 @@
-#include "io/probe_reader.hpp"
+#include "deck/probe_reader.hpp"
 
-#include "io/body_ref.hpp"
-#include "io/deck_reader.hpp"
+#include "deck/body_ref.hpp"
+#include "deck/deck_reader.hpp"
 #include "points/probe_registry.hpp"
 
 namespace ballista {

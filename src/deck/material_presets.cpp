@@ -1,4 +1,4 @@
-#include "io/material_presets.hpp"
+#include "deck/material_presets.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "io/deck_node.hpp"
+#include "deck/deck_node.hpp"
 
 namespace ballista {
 

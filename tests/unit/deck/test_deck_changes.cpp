@@ -1,8 +1,8 @@
-// What a restart may change (io/deck_changes.hpp): the keys two resolved decks differ in, and
+// What a restart may change (deck/deck_changes.hpp): the keys two resolved decks differ in, and
 // the rule that only the run's end, outputs, checkpoints, limits and guards may change.
 #include <gtest/gtest.h>
 
-#include "io/deck_changes.hpp"
+#include "deck/deck_changes.hpp"
 
 using namespace ballista;
 
