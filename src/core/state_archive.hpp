@@ -40,6 +40,13 @@ class StateArchive {
     std::size_t i = 0;
     for (double* o : out) *o = v[i++];
   }
+  /// The same for integer counters (each converted back to its variable's type).
+  template <class... T>
+  void get_integers_into(const std::string& key, T&... out) const {
+    const std::vector<std::int64_t>& v = ints(key, sizeof...(T));
+    std::size_t i = 0;
+    ((out = static_cast<T>(v[i++])), ...);
+  }
   std::int64_t integer(const std::string& key) const { return ints(key, 1)[0]; }
   const std::string& text(const std::string& key) const;
 

@@ -46,9 +46,9 @@ void MpmSolver::load_state(const StateArchive& a) {
   a.get_into("mpm.work",
              {&external_work_, &damping_work_, &contact_work_, &friction_work_, &transfer_work_, &damping_});
   boundary_work_ = a.real("mpm.boundary_work");
-  const auto& bv = a.reals("mpm.bulk_viscosity", 2);
-  viscous_work_ = comm_.rank() == 0 ? bv[0] : 0.0;  // the total, held by rank 0 (energies() sums)
-  viscous_speed_ = bv[1];
+  double viscous_work_total = 0.0;
+  a.get_into("mpm.bulk_viscosity", {&viscous_work_total, &viscous_speed_});
+  viscous_work_ = comm_.rank() == 0 ? viscous_work_total : 0.0;  // held by rank 0 (energies() sums)
   if (grid_.geom.graded) viscous_rate_ = a.real("mpm.viscous_rate");
 }
 

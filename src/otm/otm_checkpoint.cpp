@@ -54,14 +54,8 @@ void OtmSolver::load_state(const StateArchive& a) {
   a.get_into("otm.scalars", {&damping_, &dt_prev_, &external_work_, &damping_work_, &wall_work_, &wall_force_,
                              &remap_work_, &momentum0_[0], &momentum0_[1], &momentum0_[2], &mean_support_,
                              &max_condition_});
-  const auto& c = a.ints("otm.counters", 7);
-  next_id_ = c[0];
-  splits_ = static_cast<Index>(c[1]);
-  regenerations_ = static_cast<Index>(c[2]);
-  max_support_ = static_cast<int>(c[3]);
-  max_iterations_ = static_cast<int>(c[4]);
-  fallbacks_ = static_cast<Index>(c[5]);
-  retries_ = static_cast<Index>(c[6]);
+  a.get_integers_into("otm.counters", next_id_, splits_, regenerations_, max_support_, max_iterations_, fallbacks_,
+                      retries_);
   a.get_records("otm.nodes.x", nodes_.x);
   const std::size_t nn = nodes_.x.size();
   a.get_records("otm.nodes.v", nodes_.v, nn);

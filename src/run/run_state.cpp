@@ -58,10 +58,7 @@ void RunState::load(const StateArchive& a) {
   a.get_into("run.clock", {&stage_start, &end, &next_output, &next_checkpoint, &total0, &energy_scale, &worst_drift,
                            &min_dt, &limiter_dt, &limiter_time, &particle_steps, &dt, &wall_before, &limiter.wave_speed,
                            &limiter.speed, &limiter.J});
-  const auto& n = a.ints("run.counters", 3);
-  stage = static_cast<int>(n[0]);
-  limiter.id = n[1];
-  limiter.body = static_cast<int>(n[2]);
+  a.get_integers_into("run.counters", stage, limiter.id, limiter.body);
   const std::vector<std::string> names = split_lines(a.text("run.stage_log.names"));
   const std::vector<std::string> how = split_lines(a.text("run.stage_log.ended_by"));
   const auto& v = a.reals("run.stage_log.values", 5 * names.size());
