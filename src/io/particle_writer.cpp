@@ -192,11 +192,11 @@ std::vector<const FieldInfo*> selected_fields(const FieldStore& points, const st
 /// domains without F and half_size, a field name that is no dataset name or is reserved.
 void check_output_fields(const FieldStore& points, const FieldStore* nodes, bool domains,
                          const std::vector<const FieldInfo*>& sel) {
-  if (!points.has("x") || points.info("x").type != FieldType::Real || points.info("x").ncomp != 3)
+  if (!points.has_shape(kPosition))
     throw Error("particle output needs a real field 'x' with 3 components");
-  if (nodes && !(nodes->has("x") && nodes->info("x").type == FieldType::Real && nodes->info("x").ncomp == 3))
+  if (nodes && !nodes->has_shape(kPosition))
     throw Error("node output needs a real field 'x' with 3 components");
-  if (domains && !(points.has("F") && points.has("half_size")))
+  if (domains && !(points.has(kDeformationGradient) && points.has(kHalfSize)))
     throw Error("particle domain output needs fields 'F' (Mat3) and 'half_size' (Vec3)");
   for (const FieldInfo* f : sel) {
     if (f->name.empty() || f->name.find('/') != std::string::npos)

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "core/parallel.hpp"
+#include "core/point_fields.hpp"
 #include "geometry/seeding.hpp"
 
 namespace ballista {
@@ -27,9 +28,9 @@ ProbedModuli probe_moduli(const Material& material) {
     material.declare_fields(s);
     s.resize(1);
     material.initialise_state(s, 0, 1);
-    s.real("mass")[0] = material.density();
-    s.real("volume0")[0] = 1.0;
-    s.real("volume")[0] = 1.0;
+    s.real(kMass)[0] = material.density();
+    s.real(kReferenceVolume)[0] = 1.0;
+    s.real(kVolume)[0] = 1.0;
     s.view<Mat3>("R")[0] = Mat3::identity();
     Mat3& F = s.view<Mat3>("F")[0];
     F = (Mat3::identity() + L) * Mat3::identity();

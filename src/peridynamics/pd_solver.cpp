@@ -11,10 +11,12 @@
 
 #include "core/agreed_failure.hpp"
 #include "core/error.hpp"
+#include "core/point_fields.hpp"
 #include "geometry/seeding.hpp"
 #include "geometry/shape.hpp"
 #include "peridynamics/bond_pass.hpp"
 #include "peridynamics/fragments.hpp"
+#include "peridynamics/pd_fields.hpp"
 #include "points/rcb_partition.hpp"
 #include "peridynamics/pd_params.hpp"
 #include "points/solver_registry.hpp"
@@ -181,7 +183,7 @@ void PdSolver::build_local_points() {
     if (any_gas) gas_bonds_ = pd::restrict_family(gas_bonds_, keep, owned);
   }
   const auto* x = points_.view<Vec3>("x");
-  const auto* vol0 = points_.real("volume0");
+  const auto* vol0 = points_.real(kReferenceVolume);
   local_ = pd::LocalPoints{};
   std::vector<int> ghost_owner;
   for (Index c = 0; c < nc; ++c) {
@@ -341,8 +343,8 @@ double PdSolver::stable_dt() {
   // Silling & Askari 2005 eq. 17 with the active contact springs counted like bonds (stiffness c_s V_q
   // each): a contact is as stiff as several bonds, and the step must stay stable while it acts.
   const Index n = points_.size();
-  const auto* vol0 = points_.real("volume0");
-  const auto* mass = points_.real("mass");
+  const auto* vol0 = points_.real(kReferenceVolume);
+  const auto* mass = points_.real(kMass);
   const Index* own = local_.own.data();
   double dt = kInf;
 #pragma omp parallel for schedule(static) reduction(min : dt) if (n > kParallelThreshold)
@@ -363,13 +365,13 @@ void PdSolver::compute_forces() {
   const Index n = points_.size(), nl = local_.size();
   const auto* x = local_.x.data();
   const auto* vol0 = local_.vol0.data();
-  const auto* mass = points_.real("mass");
+  const auto* mass = points_.real(kMass);
   const auto* mat = local_.material.data();
   const Index* own = local_.own.data();
   auto* acc = points_.view<Vec3>("pd_accel");
-  auto* damage = points_.real("damage");
-  auto* eint = points_.real("internal_energy");
-  auto* wdis = points_.real("plastic_work");
+  auto* damage = points_.real(pd::kBondDamage);
+  auto* eint = points_.real(kInternalEnergy);
+  auto* wdis = points_.real(kPlasticWork);
   const double* s0 = s0_.data();
   const double* len0 = bonds_.length0.data();
   const float* beta = bonds_.volume_factor.data();
@@ -492,7 +494,7 @@ void PdSolver::advance(double dt) {
   const Index n = points_.size();
   auto* x = points_.view<Vec3>("x");
   auto* v = points_.view<Vec3>("v");
-  const auto* mass = points_.real("mass");
+  const auto* mass = points_.real(kMass);
   // The loads at (x_n, t_n) are the previous step's end-of-step loads (same positions, same time):
   // computed again only after the positions were changed from outside (refresh) or at the start.
   if (!loads_current_) loads_.compute(scenario_, points_, time_);
@@ -618,7 +620,7 @@ std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
   final_rows_time_ = time_;
   double total = 0.0, dmax = 0.0;
   for (const auto& f : frags) total += f.mass;
-  const auto* damage = points_.real("damage");
+  const auto* damage = points_.real(pd::kBondDamage);
   for (Index p = 0; p < points_.size(); ++p) dmax = std::max(dmax, damage[p]);
   dmax = comm_.max(dmax);
   const double broken = static_cast<double>(broken_bonds());
@@ -697,7 +699,7 @@ std::vector<double> PdSolver::history_values() const {
   std::vector<double> v = loads_.history_values(scenario_);  // indenter reactions: sums over points
   comm_.sum(v.data(), static_cast<int>(v.size()));
   for (double& f : v) f *= thickness_;  // 2D: per unit thickness -> the plate's
-  const auto* damage = points_.real("damage");
+  const auto* damage = points_.real(pd::kBondDamage);
   // The mean damage is of the solids (gas points have no bonds to break).
   const std::uint8_t* gas = skip_gas();
   double e[3];

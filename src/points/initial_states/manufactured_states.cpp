@@ -1,6 +1,7 @@
 // The manufactured solutions' states at t = 0 (CATALOGUE B1 and B2; points/mms_*.hpp give the
 // solutions and their sources), so that a body starts exactly on the solution its body force
 // (points/loads/mms_loads.cpp) keeps it on.
+#include "core/point_fields.hpp"
 #include "points/initial_state_registry.hpp"
 #include "points/mms_axis_aligned.hpp"
 #include "points/mms_generalized_vortex.hpp"
@@ -18,8 +19,8 @@ void apply_axis_aligned(const BodySpec&, const Material& material, FieldStore& p
   auto* F = points.view<Mat3>("F");
   auto* R = points.view<Mat3>("R");
   auto* stress = points.view<Mat3>("stress");
-  auto* vol = points.real("volume");
-  const auto* vol0 = points.real("volume0");
+  auto* vol = points.real(kVolume);
+  const auto* vol0 = points.real(kReferenceVolume);
   auto* x = points.view<Vec3>("x");
   for (Index p = first; p < last; ++p) {
     x[p] = x0[p] + mms.displacement(x0[p], 0.0);

@@ -2,6 +2,7 @@
 // curve; `gravity` is the same with b = g along a direction (EMU seed 001: g = 9.814 m/s^2, the
 // default of `g`).
 #include "core/parallel.hpp"
+#include "core/point_fields.hpp"
 #include "points/load_registry.hpp"
 
 namespace ballista {
@@ -15,7 +16,7 @@ class BodyForce final : public Load {
 
   void add_forces(const FieldStore& points, double time, LoadForces& out) override {
     const Index n = points.size();
-    const auto* mass = points.real("mass");
+    const auto* mass = points.real(kMass);
     const auto* bid = points.ints("body");
     const Vec3 acc = curve_.at(time) * acceleration_;
     for_each(0, n, [&](Index p) {

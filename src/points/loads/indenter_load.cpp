@@ -4,6 +4,7 @@
 // spacing. The indenter moves rigidly at a constant velocity (centre c0 + v t) and feels the
 // opposite force, its reaction: history columns <name>_fx, _fy, _fz (N).
 #include "core/parallel.hpp"
+#include "core/point_fields.hpp"
 #include "points/load_registry.hpp"
 
 namespace ballista {
@@ -26,7 +27,7 @@ class Indenter final : public Load {
     const Index n = points.size();
     const Vec3 c = center_ + time * velocity_;
     const auto* x = points.view<Vec3>("x");
-    const auto* vol0 = points.real("volume0");
+    const auto* vol0 = points.real(kReferenceVolume);
     const auto* bid = points.ints("body");
     // The force on point p (zero outside the indenter), evaluated in both passes below rather
     // than stored: no per-step array.

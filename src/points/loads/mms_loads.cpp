@@ -2,6 +2,7 @@
 // force per unit mass that makes the manufactured displacement an exact solution, evaluated at
 // the point's reference position (points/mms_*.hpp give the solutions and their sources).
 #include "core/parallel.hpp"
+#include "core/point_fields.hpp"
 #include "points/load_registry.hpp"
 #include "points/mms_axis_aligned.hpp"
 #include "points/mms_generalized_vortex.hpp"
@@ -17,7 +18,7 @@ class ManufacturedBodyForce final : public Load {
 
   void add_forces(const FieldStore& points, double time, LoadForces& out) override {
     const Index n = points.size();
-    const auto* mass = points.real("mass");
+    const auto* mass = points.real(kMass);
     const auto* bid = points.ints("body");
     const Solution mms;
     const auto* x0 = points.view<Vec3>("x0");
