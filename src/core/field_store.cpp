@@ -61,32 +61,30 @@ const FieldInfo& FieldStore::info(const std::string& name) const {
 
 void FieldStore::add_real(const std::string& name, int ncomp, const std::string& unit, bool output,
                           double initial) {
-  const int k = find(name);
-  if (k >= 0) {
-    if (info_[k].ncomp != ncomp || info_[k].type != FieldType::Real)
-      throw Error("field '" + name + "' declared twice with different shapes");
-    return;
-  }
-  info_.push_back({name, ncomp, FieldType::Real, unit, output});
-  real_.emplace_back(static_cast<size_t>(size_ * ncomp), initial);
-  int_.emplace_back();
-  real_init_.push_back(initial);
-  int_init_.push_back(0);
+  add_field(name, ncomp, FieldType::Real, unit, output, initial, 0);
 }
 
 void FieldStore::add_int(const std::string& name, int ncomp, const std::string& unit, bool output,
                          std::int64_t initial) {
+  add_field(name, ncomp, FieldType::Int, unit, output, 0.0, initial);
+}
+
+void FieldStore::add_field(const std::string& name, int ncomp, FieldType type, const std::string& unit, bool output,
+                           double real_initial, std::int64_t int_initial) {
   const int k = find(name);
   if (k >= 0) {
-    if (info_[k].ncomp != ncomp || info_[k].type != FieldType::Int)
+    if (info_[k].ncomp != ncomp || info_[k].type != type)
       throw Error("field '" + name + "' declared twice with different shapes");
     return;
   }
-  info_.push_back({name, ncomp, FieldType::Int, unit, output});
-  real_.emplace_back();
-  int_.emplace_back(static_cast<size_t>(size_ * ncomp), initial);
-  real_init_.push_back(0.0);
-  int_init_.push_back(initial);
+  // Both value arrays exist for every field (the other one empty), so a field's index is the same
+  // in each.
+  const bool real = type == FieldType::Real;
+  info_.push_back({name, ncomp, type, unit, output});
+  real_.emplace_back(real ? static_cast<size_t>(size_ * ncomp) : 0, real_initial);
+  int_.emplace_back(real ? 0 : static_cast<size_t>(size_ * ncomp), int_initial);
+  real_init_.push_back(real_initial);
+  int_init_.push_back(int_initial);
 }
 
 void FieldStore::resize(Index n) {

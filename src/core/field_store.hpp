@@ -124,6 +124,8 @@ class FieldStore {
   void append_packed(const char* data, std::size_t bytes);
 
  private:
+  void add_field(const std::string& name, int ncomp, FieldType type, const std::string& unit, bool output,
+                 double real_initial, std::int64_t int_initial);
   int find(std::string_view name) const;
   /// Index of the field `name`, which must have this type and component count (else throws).
   std::size_t data_index(std::string_view name, FieldType type, int ncomp) const;

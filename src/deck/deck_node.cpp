@@ -286,22 +286,20 @@ YAML::Node DeckNode::require(const std::string& key, const char* what) const {
 }
 
 DeckNode DeckNode::map(const std::string& key, bool required) {
-  YAML::Node v = required ? require(key, "a map") : lookup(key);
-  const YAML::Mark anchor = key_mark(key);
-  if (v.IsDefined() && !v.IsNull() && !v.IsMap())
-    deck_fail(*ctx_, child_path(key), v.Mark(), "expected a map" + got(v));
-  if (v.IsNull()) v = YAML::Node(YAML::NodeType::Undefined);
-  mirror_[key] = YAML::Node(YAML::NodeType::Map);
-  return DeckNode(ctx_, v, mirror_[key], child_path(key), anchor);
+  return container(key, required, true);
 }
 
 DeckNode DeckNode::list(const std::string& key, bool required) {
-  YAML::Node v = required ? require(key, "a list") : lookup(key);
+  return container(key, required, false);
+}
+
+DeckNode DeckNode::container(const std::string& key, bool required, bool is_map) {
+  YAML::Node v = required ? require(key, is_map ? "a map" : "a list") : lookup(key);
   const YAML::Mark anchor = key_mark(key);
-  if (v.IsDefined() && !v.IsNull() && !v.IsSequence())
-    deck_fail(*ctx_, child_path(key), v.Mark(), "expected a list" + got(v));
+  if (v.IsDefined() && !v.IsNull() && !(is_map ? v.IsMap() : v.IsSequence()))
+    deck_fail(*ctx_, child_path(key), v.Mark(), (is_map ? "expected a map" : "expected a list") + got(v));
   if (v.IsNull()) v = YAML::Node(YAML::NodeType::Undefined);
-  mirror_[key] = flow_sequence();
+  mirror_[key] = is_map ? YAML::Node(YAML::NodeType::Map) : flow_sequence();
   return DeckNode(ctx_, v, mirror_[key], child_path(key), anchor);
 }
 

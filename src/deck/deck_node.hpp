@@ -114,6 +114,8 @@ class DeckNode {
   static YAML::Node vector_node(const Vec3& v);
 
  private:
+  /// A child map (is_map) or list: map() and list() differ only in the kind they expect.
+  DeckNode container(const std::string& key, bool required, bool is_map);
   DeckNode(std::shared_ptr<const DeckContext> ctx, YAML::Node node, YAML::Node mirror, std::string path,
            YAML::Mark anchor);
   /// The value of key (undefined if absent); records the key as known.

@@ -10,6 +10,8 @@ namespace {
 
 // Function-local statics: failure_param_specs() runs during the static initialisation of the
 // model files (registration), when namespace-scope objects of this file may not exist yet.
+// The names in the order of the enumerators (FailureCriterion, ErosionRule in failure.hpp), so a
+// name's position is its value.
 const std::vector<std::string>& criteria() {
   static const std::vector<std::string> v = {"none", "johnson_cook_damage", "melt", "tepla", "drucker_stability",
                                              "max_stress"};
@@ -19,6 +21,8 @@ const std::vector<std::string>& erosion_rules() {
   static const std::vector<std::string> v = {"none", "allow_no_tension", "allow_no_shear", "zero_stress"};
   return v;
 }
+static_assert(static_cast<int>(FailureCriterion::MaxStress) == 5 && static_cast<int>(ErosionRule::ZeroStress) == 3,
+              "a new enumerator needs its name at its position in the lists above");
 
 std::string joined(const std::vector<std::string>& v) {
   std::string s;
@@ -26,24 +30,20 @@ std::string joined(const std::vector<std::string>& v) {
   return s;
 }
 
+/// The enumerator named `w` in `names` (listed in the enumerators' order), or a ParamError at `key`.
+template <class Enum>
+Enum enum_from(const std::vector<std::string>& names, const std::string& w, const std::string& key) {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == w) return static_cast<Enum>(i);
+  throw ParamError(key, "unknown " + key + " '" + w + "' (expected one of: " + joined(names) + ")");
+}
+
 FailureCriterion criterion_from(const std::string& w) {
-  if (w == "none") return FailureCriterion::None;
-  if (w == "johnson_cook_damage") return FailureCriterion::JohnsonCookDamage;
-  if (w == "melt") return FailureCriterion::Melt;
-  if (w == "tepla") return FailureCriterion::Tepla;
-  if (w == "drucker_stability") return FailureCriterion::DruckerStability;
-  if (w == "max_stress") return FailureCriterion::MaxStress;
-  throw ParamError("failure.criterion",
-                   "unknown failure.criterion '" + w + "' (expected one of: " + joined(criteria()) + ")");
+  return enum_from<FailureCriterion>(criteria(), w, "failure.criterion");
 }
 
 ErosionRule erosion_from(const std::string& w) {
-  if (w == "none") return ErosionRule::None;
-  if (w == "allow_no_tension") return ErosionRule::AllowNoTension;
-  if (w == "allow_no_shear") return ErosionRule::AllowNoShear;
-  if (w == "zero_stress") return ErosionRule::ZeroStress;
-  throw ParamError("failure.erosion",
-                   "unknown failure.erosion '" + w + "' (expected one of: " + joined(erosion_rules()) + ")");
+  return enum_from<ErosionRule>(erosion_rules(), w, "failure.erosion");
 }
 
 /// The number `key`, which `criterion` requires.

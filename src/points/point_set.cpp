@@ -378,25 +378,44 @@ std::vector<double> PointSet::removal_record() const {
   return r;
 }
 
+namespace {
+
+/// What a checkpoint holds of the points, the same on one rank and (gathered) on several.
+struct PointsRecord {
+  const FieldStore& points;
+  const FieldStore& pending;
+  std::vector<double> activation;
+  std::vector<double> stage;  // of each pending point (integers held as doubles when gathered)
+  const std::vector<double>& stage_start;
+  std::vector<double> removed;
+  std::int64_t distortion_remaps;
+
+  void put(StateArchive& a) const {
+    a.put_fields("points.", points);
+    a.put_fields("pending.", pending);
+    a.put("pending.activation_time", activation);
+    a.put("pending.stage", std::vector<std::int64_t>(stage.begin(), stage.end()));
+    a.put("points.stage_start", stage_start);
+    a.put("points.removed", removed);
+    a.put_int("points.distortion_remaps", distortion_remaps);
+  }
+};
+
+}  // namespace
+
 void PointSet::save_state(StateArchive& a) const {
   const std::vector<double> removed = removal_record();
+  const std::vector<double> stage(pending_stage_.begin(), pending_stage_.end());
   if (!comm_.distributed()) {
-    a.put_fields("points.", points_);
-    a.put_fields("pending.", pending_);
-    a.put("pending.activation_time", pending_activation_);
-    a.put("pending.stage", std::vector<std::int64_t>(pending_stage_.begin(), pending_stage_.end()));
-    a.put("points.stage_start", stage_start_);
-    a.put("points.removed", removed);
-    a.put_int("points.distortion_remaps", distortion_remaps_);
+    PointsRecord{points_, pending_, pending_activation_, stage, stage_start_, removed, distortion_remaps_}.put(a);
     return;
   }
   // Several ranks: rank 0's archive is a serial checkpoint of every rank's points (rank order),
   // plus what a restart on as many ranks needs to give each rank its own back.
   const FieldStore all = gather_points(comm_, points_, 0, false);
   const FieldStore all_pending = gather_points(comm_, pending_, 0, false);
-  const std::vector<double> activation = gather_values(comm_, pending_activation_);
-  const std::vector<double> stage =
-      gather_values(comm_, std::vector<double>(pending_stage_.begin(), pending_stage_.end()));
+  std::vector<double> activation = gather_values(comm_, pending_activation_);
+  std::vector<double> all_stage = gather_values(comm_, stage);
   const std::vector<double> counts = gather_values(
       comm_, {static_cast<double>(points_.size()), static_cast<double>(pending_.size())});
   const std::vector<double> removed_by_rank = gather_values(comm_, removed);
@@ -404,13 +423,8 @@ void PointSet::save_state(StateArchive& a) const {
   comm_.sum(totals.data(), static_cast<int>(totals.size()));
   const std::int64_t remaps = distortion_remaps();
   if (comm_.rank() != 0) return;
-  a.put_int("points.distortion_remaps", remaps);
-  a.put_fields("points.", all);
-  a.put_fields("pending.", all_pending);
-  a.put("pending.activation_time", activation);
-  a.put("pending.stage", std::vector<std::int64_t>(stage.begin(), stage.end()));
-  a.put("points.stage_start", stage_start_);
-  a.put("points.removed", totals);
+  PointsRecord{all, all_pending, std::move(activation), std::move(all_stage), stage_start_, std::move(totals), remaps}
+      .put(a);
   a.put("points.rank_counts", std::vector<std::int64_t>(counts.begin(), counts.end()));  // active, pending per rank
   a.put("points.removed_by_rank", removed_by_rank);
 }
