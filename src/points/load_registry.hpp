@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/field_store.hpp"
@@ -96,6 +97,16 @@ struct LoadFactory {
   /// The load `k` of the deck.
   std::unique_ptr<Load> (*create)(const LoadSpec& load, int k, const Scenario& sc) = nullptr;
 };
+
+/// A LoadFactory::create for a load kind L constructed from its spec and the scenario, or from its
+/// spec and its index in the deck's loads (which names its marks).
+template <class L>
+std::unique_ptr<Load> create_load(const LoadSpec& load, int k, const Scenario& sc) {
+  if constexpr (std::is_constructible_v<L, const LoadSpec&, const Scenario&>)
+    return std::make_unique<L>(load, sc);
+  else
+    return std::make_unique<L>(load, k);
+}
 
 /// Registered load kinds by name (core/registry.hpp), filled at static-initialisation time.
 using LoadRegistry = Registry<LoadFactory, &LoadFactory::name>;

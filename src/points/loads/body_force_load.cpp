@@ -54,9 +54,7 @@ BALLISTA_REGISTER_LOAD(LoadFactory{
     .name = "body_force",
     .description = "acceleration field `acceleration` (m/s^2) on a body or every body, f = m b, times the load curve",
     .read = read_body_force,
-    .create = [](const LoadSpec& l, int, const Scenario& sc) -> std::unique_ptr<Load> {
-      return std::make_unique<BodyForce>(l, sc);
-    }})
+    .create = create_load<BodyForce>})
 BALLISTA_REGISTER_LOAD(LoadFactory{
     .name = "gravity",
     .description = "a body_force of `g` (m/s^2, default 9.814) along `direction`",

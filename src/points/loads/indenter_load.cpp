@@ -101,8 +101,6 @@ BALLISTA_REGISTER_LOAD(LoadFactory{
     .description = "rigid sphere or plane moving at `velocity` (m/s), pushing points out with k V0 d^2 (LAMMPS fix "
                    "indent); its reaction is a history column",
     .read = read_indenter,
-    .create = [](const LoadSpec& l, int, const Scenario& sc) -> std::unique_ptr<Load> {
-      return std::make_unique<Indenter>(l, sc);
-    }})
+    .create = create_load<Indenter>})
 
 }  // namespace ballista

@@ -42,15 +42,11 @@ BALLISTA_REGISTER_LOAD(LoadFactory{
     .name = "mms_axis_aligned",
     .description = "manufactured body force of CATALOGUE B1 (axis-aligned displacement) on a body",
     .read = read_manufactured,
-    .create = [](const LoadSpec& l, int, const Scenario& sc) -> std::unique_ptr<Load> {
-      return std::make_unique<ManufacturedBodyForce<mms::AxisAligned>>(l, sc);
-    }})
+    .create = create_load<ManufacturedBodyForce<mms::AxisAligned>>})
 BALLISTA_REGISTER_LOAD(LoadFactory{
     .name = "mms_generalized_vortex",
     .description = "manufactured body force of CATALOGUE B2 (generalized vortex) on a body",
     .read = read_manufactured,
-    .create = [](const LoadSpec& l, int, const Scenario& sc) -> std::unique_ptr<Load> {
-      return std::make_unique<ManufacturedBodyForce<mms::GeneralizedVortex>>(l, sc);
-    }})
+    .create = create_load<ManufacturedBodyForce<mms::GeneralizedVortex>>})
 
 }  // namespace ballista

@@ -113,8 +113,6 @@ BALLISTA_REGISTER_LOAD(LoadFactory{
                    "curve; Nanson-mapped onto the current surface",
     .read = read_pressure,
     .mark = mark_pressure,
-    .create = [](const LoadSpec& l, int k, const Scenario&) -> std::unique_ptr<Load> {
-      return std::make_unique<Pressure>(l, k);
-    }})
+    .create = create_load<Pressure>})
 
 }  // namespace ballista
