@@ -77,6 +77,27 @@ def first_main_step(out):
     return main[0] if main else None
 
 
+def segment_depths(out):
+    """For each jet segment, the depth into the rock when it has slowed to half its speed (its
+    kinetic energy, history.csv segment_kinetic_energy_k, first below a quarter of its peak in the
+    main stage), m; None for a segment still faster at the end. What each segment adds to the
+    depth is how the train's depth is built (docs/validation.md)."""
+    import csv
+    rows = list(csv.DictReader(open(os.path.join(out, "history.csv"))))
+    last = max(float(r.get("stage", 0) or 0) for r in rows)
+    rows = [r for r in rows if float(r.get("stage", 0) or 0) == last]
+    depths = []
+    k = 0
+    while rows and f"segment_kinetic_energy_{k}" in rows[0]:
+        key = f"segment_kinetic_energy_{k}"
+        energy = [float(r[key]) for r in rows]
+        peak_at = max(range(len(energy)), key=energy.__getitem__)
+        hit = next((i for i in range(peak_at, len(energy)) if energy[i] < 0.25 * energy[peak_at]), None)
+        depths.append(None if hit is None else float(rows[hit]["penetration_depth"]))
+        k += 1
+    return depths
+
+
 def tunnel_entrance(pen, out):
     """The rock tunnel's entrance diameter, m: summary.json's, or for a run written before that key
     had its rule (where the wall begins below a crushed face), the same rule on channel.csv."""
@@ -111,6 +132,7 @@ def extract(s, out):
         "min_dt": s["statistics"].get("min_dt"),
         "first_main_dt": first_main_step(out),
         "cells_across_radius": pen.get("cells_across_radius"),
+        "segment_depths": [mm(d) for d in segment_depths(out)],
         "particles": s["statistics"]["particles_seeded"],
         "steps": s["statistics"]["steps"],
         "wall_time": s["statistics"]["wall_time"],
@@ -197,6 +219,12 @@ def main():
                       f"{speed(j['tip_velocity'])} ({speed(j['tip_initial_velocity'])})"]
         ratio = (f"1/{r['first_main_dt'] / r['min_dt']:.1f}" if r["min_dt"] and r["first_main_dt"] else "—")
         lines.append(f"| {r['h'] * 1e3:g} | " + " | ".join(cells) + f" | {ratio} | {r.get('distortion_remaps', 0)} |")
+    # How the depth is built: the depth when each segment has slowed to half its speed.
+    if any(r["segment_depths"] for r in rows):
+        lines += ["", "| band cell (mm) | depth when each segment has slowed to half its speed, tip first (mm) |",
+                  "|---|---|"]
+        for r in rows:
+            lines.append(f"| {r['h'] * 1e3:g} | " + ", ".join(fmt(d) for d in r["segment_depths"]) + " |")
     open(os.path.join(a.out, "convergence.md"), "w").write("\n".join(lines) + "\n")
     print("\n".join(lines))
     try:
