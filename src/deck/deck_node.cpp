@@ -119,6 +119,18 @@ YAML::Node load_deck_document(const std::string& yaml_text, const std::string& f
   }
 }
 
+DeckDocument open_deck_document(const std::string& yaml_text, const std::string& file_name,
+                                const std::vector<std::string>& overrides, const std::string& kind,
+                                const std::string& sections) {
+  DeckDocument d{std::make_shared<DeckContext>(), load_deck_document(yaml_text, file_name)};
+  d.ctx->file = file_name;
+  if (d.root.IsDefined() && !d.root.IsNull() && !d.root.IsMap())
+    throw DeckError(file_name, d.root.Mark().line + 1, d.root.Mark().column + 1, "",
+                    "expected the " + kind + " to be a map of sections (" + sections + ")");
+  d.ctx->overrides = apply_overrides(d.root, overrides, file_name);
+  return d;
+}
+
 bool scalar_number(const YAML::Node& v, double& x) {
   if (!v.IsScalar() || v.Tag() == "!") return false;
   const std::string& s = v.Scalar();
@@ -283,6 +295,13 @@ YAML::Node DeckNode::require(const std::string& key, const char* what) const {
   }
   if (v.IsNull()) deck_fail(*ctx_, child_path(key), v.Mark(), std::string("expected ") + what + ", got an empty value");
   return v;
+}
+
+std::string DeckNode::resolved_text(const std::string& kind) const {
+  std::ostringstream os;
+  os << "# Fully resolved " << kind << " (every default filled) of " << ctx_->file << ", written by ballista.\n";
+  os << YAML::Dump(mirror_) << "\n";
+  return os.str();
 }
 
 DeckNode DeckNode::map(const std::string& key, bool required) {

@@ -40,6 +40,19 @@ struct DeckContext {
   std::vector<DeckOverride> overrides;  ///< applied overrides, to attribute errors to them
 };
 
+/// A deck's top level as a reader starts from it, with the context that names its file.
+struct DeckDocument {
+  std::shared_ptr<DeckContext> ctx;
+  YAML::Node root;
+};
+
+/// Loads a deck (load_deck_document), fails unless its top level is a map of sections (the message
+/// names `kind`, e.g. "deck", and lists `sections`) and applies the overrides: the steps every
+/// kind of deck takes before its reader.
+DeckDocument open_deck_document(const std::string& yaml_text, const std::string& file_name,
+                                const std::vector<std::string>& overrides, const std::string& kind,
+                                const std::string& sections);
+
 class DeckNode {
  public:
   /// The top level of a deck; fails unless `doc` is a map (an empty document counts as an empty map).
@@ -47,6 +60,9 @@ class DeckNode {
 
   /// The resolved tree built so far (the root's mirror is the whole resolved deck).
   YAML::Node resolved() const { return mirror_; }
+  /// The resolved tree as the text a run keeps (Scenario::resolved_yaml), under a header that
+  /// names `kind` ("deck", "drive deck") and the deck's file: every reader writes it alike.
+  std::string resolved_text(const std::string& kind) const;
   /// "bodies.0.shape" ("" at the top level).
   const std::string& path() const { return path_; }
   std::string child_path(const std::string& key) const;
