@@ -304,24 +304,23 @@ std::string DeckNode::resolved_text(const std::string& kind) const {
   return os.str();
 }
 
-DeckNode DeckNode::map(const std::string& key, bool required) {
-  YAML::Node v = required ? require(key, "a map") : lookup(key);
+DeckNode DeckNode::container(const std::string& key, bool required, const char* what, YAML::NodeType::value type,
+                             YAML::Node empty_mirror) {
+  YAML::Node v = required ? require(key, what) : lookup(key);
   const YAML::Mark anchor = key_mark(key);
-  if (v.IsDefined() && !v.IsNull() && !v.IsMap())
-    deck_fail(*ctx_, child_path(key), v.Mark(), "expected a map" + got(v));
+  if (v.IsDefined() && !v.IsNull() && v.Type() != type)
+    deck_fail(*ctx_, child_path(key), v.Mark(), std::string("expected ") + what + got(v));
   if (v.IsNull()) v = YAML::Node(YAML::NodeType::Undefined);
-  mirror_[key] = YAML::Node(YAML::NodeType::Map);
+  mirror_[key] = empty_mirror;
   return DeckNode(ctx_, v, mirror_[key], child_path(key), anchor);
 }
 
+DeckNode DeckNode::map(const std::string& key, bool required) {
+  return container(key, required, "a map", YAML::NodeType::Map, YAML::Node(YAML::NodeType::Map));
+}
+
 DeckNode DeckNode::list(const std::string& key, bool required) {
-  YAML::Node v = required ? require(key, "a list") : lookup(key);
-  const YAML::Mark anchor = key_mark(key);
-  if (v.IsDefined() && !v.IsNull() && !v.IsSequence())
-    deck_fail(*ctx_, child_path(key), v.Mark(), "expected a list" + got(v));
-  if (v.IsNull()) v = YAML::Node(YAML::NodeType::Undefined);
-  mirror_[key] = flow_sequence();
-  return DeckNode(ctx_, v, mirror_[key], child_path(key), anchor);
+  return container(key, required, "a list", YAML::NodeType::Sequence, flow_sequence());
 }
 
 size_t DeckNode::size() const { return present() ? node_.size() : 0; }

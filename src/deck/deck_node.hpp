@@ -138,6 +138,10 @@ class DeckNode {
   YAML::Mark key_mark(const std::string& key) const;
   /// Value node of `key` for a required key; fails if absent or null.
   YAML::Node require(const std::string& key, const char* what) const;
+  /// The child map or list `key` (`what`: "a map", "a list"; `type` its YAML type), its resolved
+  /// counterpart started as `empty_mirror`: the one path map() and list() share.
+  DeckNode container(const std::string& key, bool required, const char* what, YAML::NodeType::value type,
+                     YAML::Node empty_mirror);
   double to_number(const YAML::Node& v, const std::string& key_path, const NumberRange& range) const;
   long to_integer(const YAML::Node& v, const std::string& key, long min, long max) const;
   Vec3 to_vector(const YAML::Node& v, const std::string& key, int min_count) const;
