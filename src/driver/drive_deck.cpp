@@ -122,14 +122,7 @@ class DriveReader {
               "expected a number, got " + (r[k].IsScalar() ? "'" + r[k].Scalar() + "'" : std::string("a list or map")));
         row.push_back(format_number(x[k]));
       }
-      FTableRow fr;
-      fr.t = x[0];
-      for (int k = 0; k < 9; ++k) fr.F.a[k] = x[1 + k];
-      if (r.size() == 14) {
-        fr.angle_deg = x[10];
-        fr.axis = Vec3{{x[11], x[12], x[13]}};
-      }
-      deck_.program.table.push_back(fr);
+      deck_.program.table.push_back(ftable_row(x, r.size()));
       marks.push_back(r.Mark());
       out.push_back(row);
     }
