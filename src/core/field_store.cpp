@@ -59,14 +59,20 @@ const FieldInfo& FieldStore::info(const std::string& name) const {
   return info_[k];
 }
 
+namespace {
+/// True if `name` is already declared with this shape, so that declaring it again changes nothing;
+/// throws if it is declared with another. add_real and add_int share this rule.
+bool declared_alike(const FieldStore& store, const std::string& name, int ncomp, FieldType type) {
+  if (!store.has(name)) return false;
+  const FieldInfo& fi = store.info(name);
+  if (fi.ncomp != ncomp || fi.type != type) throw Error("field '" + name + "' declared twice with different shapes");
+  return true;
+}
+}  // namespace
+
 void FieldStore::add_real(const std::string& name, int ncomp, const std::string& unit, bool output,
                           double initial) {
-  const int k = find(name);
-  if (k >= 0) {
-    if (info_[k].ncomp != ncomp || info_[k].type != FieldType::Real)
-      throw Error("field '" + name + "' declared twice with different shapes");
-    return;
-  }
+  if (declared_alike(*this, name, ncomp, FieldType::Real)) return;
   info_.push_back({name, ncomp, FieldType::Real, unit, output});
   real_.emplace_back(static_cast<size_t>(size_ * ncomp), initial);
   int_.emplace_back();
@@ -76,12 +82,7 @@ void FieldStore::add_real(const std::string& name, int ncomp, const std::string&
 
 void FieldStore::add_int(const std::string& name, int ncomp, const std::string& unit, bool output,
                          std::int64_t initial) {
-  const int k = find(name);
-  if (k >= 0) {
-    if (info_[k].ncomp != ncomp || info_[k].type != FieldType::Int)
-      throw Error("field '" + name + "' declared twice with different shapes");
-    return;
-  }
+  if (declared_alike(*this, name, ncomp, FieldType::Int)) return;
   info_.push_back({name, ncomp, FieldType::Int, unit, output});
   real_.emplace_back();
   int_.emplace_back(static_cast<size_t>(size_ * ncomp), initial);
