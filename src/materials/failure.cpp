@@ -10,6 +10,7 @@ namespace {
 
 // Function-local statics: failure_param_specs() runs during the static initialisation of the
 // model files (registration), when namespace-scope objects of this file may not exist yet.
+// Each list is in its enum's declaration order (enum_from_word reads the index as the value).
 const std::vector<std::string>& criteria() {
   static const std::vector<std::string> v = {"none", "johnson_cook_damage", "melt", "tepla", "drucker_stability",
                                              "max_stress"};
@@ -26,24 +27,13 @@ std::string joined(const std::vector<std::string>& v) {
   return s;
 }
 
-FailureCriterion criterion_from(const std::string& w) {
-  if (w == "none") return FailureCriterion::None;
-  if (w == "johnson_cook_damage") return FailureCriterion::JohnsonCookDamage;
-  if (w == "melt") return FailureCriterion::Melt;
-  if (w == "tepla") return FailureCriterion::Tepla;
-  if (w == "drucker_stability") return FailureCriterion::DruckerStability;
-  if (w == "max_stress") return FailureCriterion::MaxStress;
-  throw ParamError("failure.criterion",
-                   "unknown failure.criterion '" + w + "' (expected one of: " + joined(criteria()) + ")");
-}
-
-ErosionRule erosion_from(const std::string& w) {
-  if (w == "none") return ErosionRule::None;
-  if (w == "allow_no_tension") return ErosionRule::AllowNoTension;
-  if (w == "allow_no_shear") return ErosionRule::AllowNoShear;
-  if (w == "zero_stress") return ErosionRule::ZeroStress;
-  throw ParamError("failure.erosion",
-                   "unknown failure.erosion '" + w + "' (expected one of: " + joined(erosion_rules()) + ")");
+/// The enumerator of the word `w` of parameter `key`, from the enum's words in declaration order,
+/// so that the words are listed once (they are also the parameter's choices).
+template <class Enum>
+Enum enum_from_word(const std::string& w, const std::vector<std::string>& words, const char* key) {
+  for (size_t i = 0; i < words.size(); ++i)
+    if (words[i] == w) return static_cast<Enum>(i);
+  throw ParamError(key, "unknown " + std::string(key) + " '" + w + "' (expected one of: " + joined(words) + ")");
 }
 
 /// The number `key`, which `criterion` requires.
@@ -104,8 +94,8 @@ std::vector<ParamSpec> failure_param_specs() {
 FailureModel make_failure(const ParamValues& v, ModelCapabilities caps) {
   FailureModel m;
   const std::string crit = v.choice("failure.criterion", "none");
-  m.criterion = criterion_from(crit);
-  m.erosion = erosion_from(v.choice("failure.erosion", "none"));
+  m.criterion = enum_from_word<FailureCriterion>(crit, criteria(), "failure.criterion");
+  m.erosion = enum_from_word<ErosionRule>(v.choice("failure.erosion", "none"), erosion_rules(), "failure.erosion");
   if (m.criterion == FailureCriterion::None) {
     if (m.erosion != ErosionRule::None)
       throw ParamError("failure.erosion",
