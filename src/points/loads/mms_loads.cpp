@@ -35,21 +35,22 @@ LoadReading read_manufactured(LoadEntry& e, LoadSpec load) {
   return {{load}, {}};
 }
 
+/// The kind of the manufactured body force of `Solution`: every solution is read and built alike.
+template <class Solution>
+LoadFactory manufactured_load(std::string name, std::string description) {
+  return {.name = std::move(name),
+          .description = std::move(description),
+          .read = read_manufactured,
+          .create = [](const LoadSpec& l, int, const Scenario& sc) -> std::unique_ptr<Load> {
+            return std::make_unique<ManufacturedBodyForce<Solution>>(l, sc);
+          }};
+}
+
 }  // namespace
 
-BALLISTA_REGISTER_LOAD(LoadFactory{
-    .name = "mms_axis_aligned",
-    .description = "manufactured body force of CATALOGUE B1 (axis-aligned displacement) on a body",
-    .read = read_manufactured,
-    .create = [](const LoadSpec& l, int, const Scenario& sc) -> std::unique_ptr<Load> {
-      return std::make_unique<ManufacturedBodyForce<mms::AxisAligned>>(l, sc);
-    }})
-BALLISTA_REGISTER_LOAD(LoadFactory{
-    .name = "mms_generalized_vortex",
-    .description = "manufactured body force of CATALOGUE B2 (generalized vortex) on a body",
-    .read = read_manufactured,
-    .create = [](const LoadSpec& l, int, const Scenario& sc) -> std::unique_ptr<Load> {
-      return std::make_unique<ManufacturedBodyForce<mms::GeneralizedVortex>>(l, sc);
-    }})
+BALLISTA_REGISTER_LOAD(manufactured_load<mms::AxisAligned>(
+    "mms_axis_aligned", "manufactured body force of CATALOGUE B1 (axis-aligned displacement) on a body"))
+BALLISTA_REGISTER_LOAD(manufactured_load<mms::GeneralizedVortex>(
+    "mms_generalized_vortex", "manufactured body force of CATALOGUE B2 (generalized vortex) on a body"))
 
 }  // namespace ballista
