@@ -1,20 +1,18 @@
 // Probe `field_max`: the maximum of a scalar point field over a body (e.g. eqps, damage).
 #include <algorithm>
-#include <cmath>
 #include <limits>
 
+#include "analysis/body_probe.hpp"
 #include "core/error.hpp"
-#include "core/point_fields.hpp"
-#include "points/probe_registry.hpp"
 
 namespace ballista {
 
 namespace {
 
-class FieldMaxProbe : public Probe {
+class FieldMaxProbe : public BodyProbe {
  public:
   FieldMaxProbe(int body, std::string field, DeckMark mark)
-      : body_(body), field_(std::move(field)), mark_(std::move(mark)) {}
+      : BodyProbe(body), field_(std::move(field)), mark_(std::move(mark)) {}
 
   /// The field is known only once the materials have declared their state fields.
   void check(const FieldStore& points) const override {
@@ -27,18 +25,13 @@ class FieldMaxProbe : public Probe {
   }
 
   double value(const ProbeContext& c) const override {
-    const Index n = c.points.size();
-    const auto* bid = c.points.ints(kBodyIndex);
     const double* f = c.points.real(field_);
     double m = -std::numeric_limits<double>::infinity();
-    for (Index p = 0; p < n; ++p)
-      if (body_ < 0 || bid[p] == body_) m = std::max(m, f[p]);
-    m = c.comm.max(m);
-    return m > -std::numeric_limits<double>::infinity() ? m : std::nan("");
+    for_each_point(c.points, [&](Index p) { m = std::max(m, f[p]); });
+    return max_over_ranks(m, c.comm);
   }
 
  private:
-  int body_;  // deck order, -1 = every body
   std::string field_;
   DeckMark mark_;  // the probe's place in the deck, for check()
 };
@@ -48,8 +41,7 @@ class FieldMaxProbe : public Probe {
 BALLISTA_REGISTER_PROBE(ProbeFactory{
     .name = "field_max",
     .description = "maximum of a scalar particle field over the body",
-    .params = {{.name = "body", .kind = ProbeParam::Kind::Body, .unit = "",
-                .description = "body measured (default: every body)"},
+    .params = {body_param(),
                {.name = "field", .kind = ProbeParam::Kind::Word, .unit = "",
                 .description = "a scalar field (e.g. eqps, damage, internal_energy)"}},
     .create = [](const ProbeSpec& spec, const Scenario& sc) -> std::unique_ptr<Probe> {

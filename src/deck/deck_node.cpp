@@ -119,6 +119,18 @@ YAML::Node load_deck_document(const std::string& yaml_text, const std::string& f
   }
 }
 
+DeckDocument open_deck_document(const std::string& yaml_text, const std::string& file_name,
+                                const std::vector<std::string>& overrides, const std::string& kind,
+                                const std::string& sections) {
+  DeckDocument d{std::make_shared<DeckContext>(), load_deck_document(yaml_text, file_name)};
+  d.ctx->file = file_name;
+  if (d.root.IsDefined() && !d.root.IsNull() && !d.root.IsMap())
+    throw DeckError(file_name, d.root.Mark().line + 1, d.root.Mark().column + 1, "",
+                    "expected the " + kind + " to be a map of sections (" + sections + ")");
+  d.ctx->overrides = apply_overrides(d.root, overrides, file_name);
+  return d;
+}
+
 bool scalar_number(const YAML::Node& v, double& x) {
   if (!v.IsScalar() || v.Tag() == "!") return false;
   const std::string& s = v.Scalar();
@@ -285,22 +297,30 @@ YAML::Node DeckNode::require(const std::string& key, const char* what) const {
   return v;
 }
 
+std::string DeckNode::resolved_text(const std::string& kind) const {
+  std::ostringstream os;
+  os << "# Fully resolved " << kind << " (every default filled) of " << ctx_->file << ", written by ballista.\n";
+  os << YAML::Dump(mirror_) << "\n";
+  return os.str();
+}
+
+DeckNode DeckNode::container(const std::string& key, bool required, const char* what, YAML::NodeType::value type,
+                             YAML::Node empty_mirror) {
+  YAML::Node v = required ? require(key, what) : lookup(key);
+  const YAML::Mark anchor = key_mark(key);
+  if (v.IsDefined() && !v.IsNull() && v.Type() != type)
+    deck_fail(*ctx_, child_path(key), v.Mark(), std::string("expected ") + what + got(v));
+  if (v.IsNull()) v = YAML::Node(YAML::NodeType::Undefined);
+  mirror_[key] = empty_mirror;
+  return DeckNode(ctx_, v, mirror_[key], child_path(key), anchor);
+}
+
 DeckNode DeckNode::map(const std::string& key, bool required) {
-  return container(key, required, true);
+  return container(key, required, "a map", YAML::NodeType::Map, YAML::Node(YAML::NodeType::Map));
 }
 
 DeckNode DeckNode::list(const std::string& key, bool required) {
-  return container(key, required, false);
-}
-
-DeckNode DeckNode::container(const std::string& key, bool required, bool is_map) {
-  YAML::Node v = required ? require(key, is_map ? "a map" : "a list") : lookup(key);
-  const YAML::Mark anchor = key_mark(key);
-  if (v.IsDefined() && !v.IsNull() && !(is_map ? v.IsMap() : v.IsSequence()))
-    deck_fail(*ctx_, child_path(key), v.Mark(), (is_map ? "expected a map" : "expected a list") + got(v));
-  if (v.IsNull()) v = YAML::Node(YAML::NodeType::Undefined);
-  mirror_[key] = is_map ? YAML::Node(YAML::NodeType::Map) : flow_sequence();
-  return DeckNode(ctx_, v, mirror_[key], child_path(key), anchor);
+  return container(key, required, "a list", YAML::NodeType::Sequence, flow_sequence());
 }
 
 size_t DeckNode::size() const { return present() ? node_.size() : 0; }

@@ -40,6 +40,19 @@ struct DeckContext {
   std::vector<DeckOverride> overrides;  ///< applied overrides, to attribute errors to them
 };
 
+/// A deck's top level as a reader starts from it, with the context that names its file.
+struct DeckDocument {
+  std::shared_ptr<DeckContext> ctx;
+  YAML::Node root;
+};
+
+/// Loads a deck (load_deck_document), fails unless its top level is a map of sections (the message
+/// names `kind`, e.g. "deck", and lists `sections`) and applies the overrides: the steps every
+/// kind of deck takes before its reader.
+DeckDocument open_deck_document(const std::string& yaml_text, const std::string& file_name,
+                                const std::vector<std::string>& overrides, const std::string& kind,
+                                const std::string& sections);
+
 class DeckNode {
  public:
   /// The top level of a deck; fails unless `doc` is a map (an empty document counts as an empty map).
@@ -47,6 +60,9 @@ class DeckNode {
 
   /// The resolved tree built so far (the root's mirror is the whole resolved deck).
   YAML::Node resolved() const { return mirror_; }
+  /// The resolved tree as the text a run keeps (Scenario::resolved_yaml), under a header that
+  /// names `kind` ("deck", "drive deck") and the deck's file: every reader writes it alike.
+  std::string resolved_text(const std::string& kind) const;
   /// "bodies.0.shape" ("" at the top level).
   const std::string& path() const { return path_; }
   std::string child_path(const std::string& key) const;
@@ -114,8 +130,6 @@ class DeckNode {
   static YAML::Node vector_node(const Vec3& v);
 
  private:
-  /// A child map (is_map) or list: map() and list() differ only in the kind they expect.
-  DeckNode container(const std::string& key, bool required, bool is_map);
   DeckNode(std::shared_ptr<const DeckContext> ctx, YAML::Node node, YAML::Node mirror, std::string path,
            YAML::Mark anchor);
   /// The value of key (undefined if absent); records the key as known.
@@ -124,6 +138,10 @@ class DeckNode {
   YAML::Mark key_mark(const std::string& key) const;
   /// Value node of `key` for a required key; fails if absent or null.
   YAML::Node require(const std::string& key, const char* what) const;
+  /// The child map or list `key` (`what`: "a map", "a list"; `type` its YAML type), its resolved
+  /// counterpart started as `empty_mirror`: the one path map() and list() share.
+  DeckNode container(const std::string& key, bool required, const char* what, YAML::NodeType::value type,
+                     YAML::Node empty_mirror);
   double to_number(const YAML::Node& v, const std::string& key_path, const NumberRange& range) const;
   long to_integer(const YAML::Node& v, const std::string& key, long min, long max) const;
   Vec3 to_vector(const YAML::Node& v, const std::string& key, int min_count) const;

@@ -8,7 +8,6 @@
 #include <fstream>
 #include <map>
 #include <memory>
-#include <sstream>
 
 #include <yaml-cpp/yaml.h>
 
@@ -112,10 +111,7 @@ class Reader {
     check_stage_bodies();
     penetration();
     output();
-    std::ostringstream os;
-    os << "# Fully resolved deck (every default filled) of " << ctx_->file << ", written by ballista.\n";
-    os << YAML::Dump(root_.resolved()) << "\n";
-    sc_.resolved_yaml = os.str();
+    sc_.resolved_yaml = root_.resolved_text("deck");
     return std::move(sc_);
   }
 
@@ -735,14 +731,9 @@ class Reader {
 
 Scenario parse_deck(const std::string& yaml_text, const std::string& file_name,
                     const std::vector<std::string>& overrides) {
-  YAML::Node doc = load_deck_document(yaml_text, file_name);
-  auto ctx = std::make_shared<DeckContext>();
-  ctx->file = file_name;
-  if (doc.IsDefined() && !doc.IsNull() && !doc.IsMap())
-    throw DeckError(file_name, doc.Mark().line + 1, doc.Mark().column + 1, "",
-                    "expected the deck to be a map of sections (simulation, grid, materials, bodies, ...)");
-  ctx->overrides = apply_overrides(doc, overrides, file_name);
-  Reader reader(ctx, doc);
+  DeckDocument d =
+      open_deck_document(yaml_text, file_name, overrides, "deck", "simulation, grid, materials, bodies, ...");
+  Reader reader(d.ctx, d.root);
   return reader.read();
 }
 

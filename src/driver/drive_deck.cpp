@@ -9,7 +9,6 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <sstream>
 
 #include "driver/ftable_csv.hpp"
 #include "driver/perturb.hpp"
@@ -36,10 +35,7 @@ class DriveReader {
     root_.finish();
     materials();
     drive();
-    std::ostringstream os;
-    os << "# Fully resolved drive deck (every default filled) of " << ctx_->file << ", written by ballista.\n";
-    os << YAML::Dump(root_.resolved()) << "\n";
-    deck_.resolved_yaml = os.str();
+    deck_.resolved_yaml = root_.resolved_text("drive deck");
     return std::move(deck_);
   }
 
@@ -126,14 +122,7 @@ class DriveReader {
               "expected a number, got " + (r[k].IsScalar() ? "'" + r[k].Scalar() + "'" : std::string("a list or map")));
         row.push_back(format_number(x[k]));
       }
-      FTableRow fr;
-      fr.t = x[0];
-      for (int k = 0; k < 9; ++k) fr.F.a[k] = x[1 + k];
-      if (r.size() == 14) {
-        fr.angle_deg = x[10];
-        fr.axis = Vec3{{x[11], x[12], x[13]}};
-      }
-      deck_.program.table.push_back(fr);
+      deck_.program.table.push_back(ftable_row(x, r.size()));
       marks.push_back(r.Mark());
       out.push_back(row);
     }
@@ -198,14 +187,8 @@ class DriveReader {
 
 DriveDeck parse_drive_deck(const std::string& yaml_text, const std::string& file_name,
                            const std::vector<std::string>& overrides, const std::string& base_dir) {
-  YAML::Node doc = load_deck_document(yaml_text, file_name);
-  auto ctx = std::make_shared<DeckContext>();
-  ctx->file = file_name;
-  if (doc.IsDefined() && !doc.IsNull() && !doc.IsMap())
-    throw DeckError(file_name, doc.Mark().line + 1, doc.Mark().column + 1, "",
-                    "expected the drive deck to be a map of sections (materials, drive)");
-  ctx->overrides = apply_overrides(doc, overrides, file_name);
-  DriveReader reader(ctx, doc, base_dir);
+  DeckDocument d = open_deck_document(yaml_text, file_name, overrides, "drive deck", "materials, drive");
+  DriveReader reader(d.ctx, d.root, base_dir);
   return reader.read();
 }
 

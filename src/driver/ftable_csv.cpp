@@ -19,6 +19,17 @@ std::vector<std::string> ftable_columns(bool with_rotation) {
   return c;
 }
 
+FTableRow ftable_row(const double* x, size_t count) {
+  FTableRow r;
+  r.t = x[0];
+  for (int k = 0; k < 9; ++k) r.F.a[k] = x[1 + k];
+  if (count == 14) {
+    r.angle_deg = x[10];
+    r.axis = Vec3{{x[11], x[12], x[13]}};
+  }
+  return r;
+}
+
 namespace {
 
 struct Cell {
@@ -96,14 +107,7 @@ FTableFile read_ftable_csv(const std::string& path, const std::string& key_path)
     for (size_t k = 0; k < cells.size(); ++k)
       if (!parse_double(cells[k].text, v[k]))
         throw DeckError(path, lineno, cells[k].column, key_path, "expected a number, got '" + cells[k].text + "'");
-    FTableRow r;
-    r.t = v[0];
-    for (int k = 0; k < 9; ++k) r.F.a[k] = v[1 + k];
-    if (cells.size() == 14) {
-      r.angle_deg = v[10];
-      r.axis = Vec3{{v[11], v[12], v[13]}};
-    }
-    out.rows.push_back(r);
+    out.rows.push_back(ftable_row(v, cells.size()));
     out.lines.push_back(lineno);
   }
   if (in.bad()) throw DeckError(path, 0, 0, key_path, "cannot read the F-table file");

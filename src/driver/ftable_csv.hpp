@@ -24,6 +24,10 @@ struct FTableFile {
 /// Column names of an F-table file (with or without the rotation columns).
 std::vector<std::string> ftable_columns(bool with_rotation);
 
+/// The row that 10 or 14 numbers in the column order above stand for (t, F row-major, then
+/// angle_deg and the axis when there are 14): one layout for a file's rows and a deck's.
+FTableRow ftable_row(const double* x, size_t count);
+
 /// Reads an F-table file. Errors are DeckErrors naming the file, line and column (key path
 /// `key_path`, e.g. "drive.table"); a file that cannot be opened is reported with `key_path`
 /// and the path as given.

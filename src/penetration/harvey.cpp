@@ -5,16 +5,14 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "penetration/interface_balance.hpp"
+#include "penetration/input_checks.hpp"
 
 namespace ballista::penetration {
 
 HarveyResult harvey_depth(const HarveyInput& in) {
-  require_positive("harvey", "P_ref", in.P_ref, "m");
-  require_non_negative("harvey", "alpha0", in.alpha0, "1/Pa");
-  require_non_negative("harvey", "sigma_ucs", in.sigma_ucs, "Pa");
-  require_non_negative("harvey", "P_c", in.P_c, "Pa");
-  require_non_negative("harvey", "P_p", in.P_p, "Pa");
+  require_inputs("harvey", {positive("P_ref", in.P_ref, "m"), non_negative("alpha0", in.alpha0, "1/Pa"),
+                            non_negative("sigma_ucs", in.sigma_ucs, "Pa"), non_negative("P_c", in.P_c, "Pa"),
+                            non_negative("P_p", in.P_p, "Pa")});
   if (!(in.porosity >= 0 && in.porosity <= 1))
     throw Error(fmt::format("harvey: porosity = {:g} must lie in [0, 1] (a fraction; eq. 3.17 takes percent) [1]",
                             in.porosity));

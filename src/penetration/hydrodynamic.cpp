@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "penetration/interface_balance.hpp"
+#include "penetration/input_checks.hpp"
 
 namespace ballista::penetration {
 

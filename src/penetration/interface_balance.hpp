@@ -28,11 +28,4 @@ std::string to_string(InterfaceRegime r);
 /// k [kg/m^3] > 0, rho_t [kg/m^3] > 0, V [m/s] >= 0, sigma [Pa] any sign.
 InterfaceSolution solve_interface(double k, double rho_t, double sigma, double V);
 
-/// Throws ballista::Error "<model>: <name> = <value> must be > 0 [unit]" unless x > 0 (finite).
-void require_positive(const char* model, const char* name, double x, const char* unit);
-/// Throws unless x >= 0 (finite).
-void require_non_negative(const char* model, const char* name, double x, const char* unit);
-/// Throws unless x is finite.
-void require_finite(const char* model, const char* name, double x, const char* unit);
-
 }  // namespace ballista::penetration

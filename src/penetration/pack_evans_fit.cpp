@@ -5,16 +5,14 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "penetration/input_checks.hpp"
 
 namespace ballista::penetration {
 
 namespace {
 void validate_common(const PackEvansObservation& o) {
-  require_non_negative("pack-evans-fit", "P", o.P, "m");
-  require_non_negative("pack-evans-fit", "r", o.r, "m");
-  require_positive("pack-evans-fit", "L", o.L, "m");
-  require_positive("pack-evans-fit", "rho_p", o.rho_p, "kg/m^3");
-  require_positive("pack-evans-fit", "rho_t", o.rho_t, "kg/m^3");
+  require_inputs("pack-evans-fit", {non_negative("P", o.P, "m"), non_negative("r", o.r, "m"), positive("L", o.L, "m"),
+                                    positive("rho_p", o.rho_p, "kg/m^3"), positive("rho_t", o.rho_t, "kg/m^3")});
   if (o.P < o.r)
     throw Error(fmt::format("pack-evans-fit: P = {:g} m must be >= r = {:g} m (eq. 3.5: P - r is the primary depth)",
                             o.P, o.r));

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "penetration/input_checks.hpp"
 
 namespace ballista::penetration {
 
@@ -33,18 +34,14 @@ SteadyPenetration steady_eroding_jet(const char* model, const char* rigid_note, 
 }  // namespace
 
 double pack_evans_penalty(const PackEvansInput& in) {
-  require_positive("pack-evans", "rho_p", in.rho_p, "kg/m^3");
-  require_positive("pack-evans", "V", in.V, "m/s");
-  require_non_negative("pack-evans", "alpha", in.alpha, "1");
-  require_non_negative("pack-evans", "sigma_y", in.sigma_y, "Pa");
+  require_inputs("pack-evans", {positive("rho_p", in.rho_p, "kg/m^3"), positive("V", in.V, "m/s"),
+                                non_negative("alpha", in.alpha, "1"), non_negative("sigma_y", in.sigma_y, "Pa")});
   return in.alpha * in.sigma_y / (in.rho_p * in.V * in.V);  // eq. 3.5, sigma_y / (rho_p V^2) scaled by alpha
 }
 
 double pack_evans_depth(const PackEvansInput& in) {
-  require_non_negative("pack-evans", "L", in.L, "m");
-  require_positive("pack-evans", "lambda", in.lambda, "1");
-  require_positive("pack-evans", "rho_t", in.rho_t, "kg/m^3");
-  require_non_negative("pack-evans", "r", in.r, "m");
+  require_inputs("pack-evans", {non_negative("L", in.L, "m"), positive("lambda", in.lambda, "1"),
+                                positive("rho_t", in.rho_t, "kg/m^3"), non_negative("r", in.r, "m")});
   const double x = pack_evans_penalty(in);
   if (x > 1)
     throw Error(
@@ -57,24 +54,18 @@ double pack_evans_depth(const PackEvansInput& in) {
 }
 
 SteadyPenetration eichelberger(const EichelbergerInput& in) {
-  require_non_negative("eichelberger", "L", in.L, "m");
-  require_positive("eichelberger", "lambda", in.lambda, "1");
-  require_positive("eichelberger", "rho_p", in.rho_p, "kg/m^3");
-  require_positive("eichelberger", "rho_t", in.rho_t, "kg/m^3");
-  require_finite("eichelberger", "R", in.R, "Pa");
-  require_finite("eichelberger", "Y", in.Y, "Pa");
-  require_non_negative("eichelberger", "V", in.V, "m/s");
+  require_inputs("eichelberger", {non_negative("L", in.L, "m"), positive("lambda", in.lambda, "1"),
+                                  positive("rho_p", in.rho_p, "kg/m^3"), positive("rho_t", in.rho_t, "kg/m^3"),
+                                  finite("R", in.R, "Pa"), finite("Y", in.Y, "Pa"), non_negative("V", in.V, "m/s")});
   // eq. 3.6-3.8: the steady eroding jet with k = lambda rho_p.
   return steady_eroding_jet("eichelberger", "(U = V) and eq. 3.8 does not apply", in.L, in.lambda * in.rho_p, in.rho_t,
                             in.R, in.Y, in.V);
 }
 
 double gladkikh_depth(double L, double rho_p, double rho_t, double V_tip, double V_tail) {
-  require_non_negative("gladkikh", "L", L, "m");
-  require_positive("gladkikh", "rho_p", rho_p, "kg/m^3");
-  require_positive("gladkikh", "rho_t", rho_t, "kg/m^3");
-  require_positive("gladkikh", "V_tail", V_tail, "m/s");
-  require_positive("gladkikh", "V_tip", V_tip, "m/s");
+  require_inputs("gladkikh", {non_negative("L", L, "m"), positive("rho_p", rho_p, "kg/m^3"),
+                              positive("rho_t", rho_t, "kg/m^3"), positive("V_tail", V_tail, "m/s"),
+                              positive("V_tip", V_tip, "m/s")});
   const double G = V_tip / V_tail;  // Gamma of eq. 3.10
   if (!(G > 1))
     throw Error(fmt::format("gladkikh: V_tip/V_tail = {:g} must be > 1: eq. 3.10 needs a velocity gradient", G));
@@ -89,13 +80,9 @@ double gladkikh_depth(double L, double rho_p, double rho_t, double V_tip, double
 }
 
 GroveResult grove(const GroveInput& in) {
-  require_non_negative("grove", "L", in.L, "m");
-  require_positive("grove", "rho_d", in.rho_d, "kg/m^3");
-  require_positive("grove", "rho_s", in.rho_s, "kg/m^3");
-  require_positive("grove", "rho_t", in.rho_t, "kg/m^3");
-  require_finite("grove", "R", in.R, "Pa");
-  require_finite("grove", "Y", in.Y, "Pa");
-  require_non_negative("grove", "V", in.V, "m/s");
+  require_inputs("grove", {non_negative("L", in.L, "m"), positive("rho_d", in.rho_d, "kg/m^3"),
+                           positive("rho_s", in.rho_s, "kg/m^3"), positive("rho_t", in.rho_t, "kg/m^3"),
+                           finite("R", in.R, "Pa"), finite("Y", in.Y, "Pa"), non_negative("V", in.V, "m/s")});
   if (in.rho_d > in.rho_s)
     throw Error(
         fmt::format("grove: rho_d = {:g} must not exceed rho_s = {:g} [kg/m^3] (porosity >= 0)", in.rho_d, in.rho_s));

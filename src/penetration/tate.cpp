@@ -7,16 +7,14 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "penetration/input_checks.hpp"
 
 namespace ballista::penetration {
 
 void validate(const TateInput& in) {
-  require_positive("tate", "L", in.L0, "m");
-  require_positive("tate", "rho_p", in.rho_p, "kg/m^3");
-  require_positive("tate", "rho_t", in.rho_t, "kg/m^3");
-  require_non_negative("tate", "R", in.R, "Pa");
-  require_non_negative("tate", "Y", in.Y, "Pa");
-  require_positive("tate", "V", in.V0, "m/s");
+  require_inputs("tate", {positive("L", in.L0, "m"), positive("rho_p", in.rho_p, "kg/m^3"),
+                          positive("rho_t", in.rho_t, "kg/m^3"), non_negative("R", in.R, "Pa"),
+                          non_negative("Y", in.Y, "Pa"), positive("V", in.V0, "m/s")});
   // A rigid rod (Y > R) decelerates as dV/dt = -(R + rho_t V^2/2)/(rho_p L): with R = 0 it never stops.
   if (in.Y > in.R && !(in.R > 0))
     throw Error(

@@ -25,6 +25,8 @@ struct ProbeContext {
   const EnergyTotals& energy;
   Dimension dim;
   const Communicator& comm;
+  /// Spatial dimensions of the points' motion: 3 in 3D, 2 in plane strain and axisymmetry.
+  int nd() const { return dim == Dimension::ThreeD ? 3 : 2; }
 };
 
 class Probe {

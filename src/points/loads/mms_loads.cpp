@@ -2,7 +2,6 @@
 // force per unit mass that makes the manufactured displacement an exact solution, evaluated at
 // the point's reference position (points/mms_*.hpp give the solutions and their sources).
 #include "core/parallel.hpp"
-#include "core/point_fields.hpp"
 #include "points/load_registry.hpp"
 #include "points/mms_axis_aligned.hpp"
 #include "points/mms_generalized_vortex.hpp"
@@ -18,7 +17,7 @@ class ManufacturedBodyForce final : public Load {
 
   void add_forces(const FieldStore& points, double time, LoadForces& out) override {
     const Index n = points.size();
-    const auto* mass = points.real(kMass);
+    const auto* mass = points.real("mass");
     const auto* bid = points.ints("body");
     const Solution mms;
     const auto* x0 = points.view<Vec3>("x0");
@@ -36,17 +35,20 @@ LoadReading read_manufactured(LoadEntry& e, LoadSpec load) {
   return {{load}, {}};
 }
 
+/// The kind of the manufactured body force of `Solution`: every solution is read and built alike.
+template <class Solution>
+LoadFactory manufactured_load(std::string name, std::string description) {
+  return {.name = std::move(name),
+          .description = std::move(description),
+          .read = read_manufactured,
+          .create = create_load<ManufacturedBodyForce<Solution>>};
+}
+
 }  // namespace
 
-BALLISTA_REGISTER_LOAD(LoadFactory{
-    .name = "mms_axis_aligned",
-    .description = "manufactured body force of CATALOGUE B1 (axis-aligned displacement) on a body",
-    .read = read_manufactured,
-    .create = create_load<ManufacturedBodyForce<mms::AxisAligned>>})
-BALLISTA_REGISTER_LOAD(LoadFactory{
-    .name = "mms_generalized_vortex",
-    .description = "manufactured body force of CATALOGUE B2 (generalized vortex) on a body",
-    .read = read_manufactured,
-    .create = create_load<ManufacturedBodyForce<mms::GeneralizedVortex>>})
+BALLISTA_REGISTER_LOAD(manufactured_load<mms::AxisAligned>(
+    "mms_axis_aligned", "manufactured body force of CATALOGUE B1 (axis-aligned displacement) on a body"))
+BALLISTA_REGISTER_LOAD(manufactured_load<mms::GeneralizedVortex>(
+    "mms_generalized_vortex", "manufactured body force of CATALOGUE B2 (generalized vortex) on a body"))
 
 }  // namespace ballista
