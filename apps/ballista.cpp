@@ -14,6 +14,7 @@
 #include "core/error.hpp"
 #include "core/threads.hpp"
 #include "driver/drive_run.hpp"
+#include "core/build_info.hpp"
 #include "deck/material_presets.hpp"
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
@@ -226,7 +227,8 @@ int main(int argc, char** argv) {
     restore_cout.saved = std::cout.rdbuf(quiet_rank.rdbuf());
   }
   CLI::App app{app_description()};
-  app.set_version_flag("--version", std::string("ballista ") + BALLISTA_VERSION);
+  app.set_version_flag("--version", std::string("ballista ") + BALLISTA_VERSION + " (" +
+                                        ballista::build_commit() + ")");
   app.require_subcommand(1);
 
   ballista::RunCliOptions run_opt;

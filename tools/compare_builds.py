@@ -6,7 +6,8 @@ examples/*.yaml (not drive_*) with the reduced-size --set overrides of tests/exa
 once with --base and once with --new, and compares
   - every dataset of every particle file (particles_*.h5), array by array, byte for byte;
   - history.csv and the other CSVs (penetration, channel, fragments), byte for byte;
-  - summary.json, less what differs between any two runs (wall time, rates, timing, paths):
+  - summary.json, less what differs between any two runs (wall time, rates, timing, paths, the
+    build's commit):
     values present in both must be equal; keys only one build writes are listed, not failed.
 Exit status 1 if anything differs. Uses Debian's h5py (/usr/bin/python3).
 
@@ -24,7 +25,7 @@ import h5py
 import numpy as np
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-VOLATILE = {"wall_time", "particle_steps_per_second", "timing", "deck", "restarted_from", "threads"}
+VOLATILE = {"wall_time", "particle_steps_per_second", "timing", "deck", "restarted_from", "threads", "build"}
 
 
 def ci_overrides():

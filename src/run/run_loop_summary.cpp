@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "analysis/penetration_probe.hpp"
+#include "core/build_info.hpp"
 #include "core/energy_terms.hpp"
 #include "core/parallel.hpp"
 #include "io/summary_writer.hpp"
@@ -85,6 +86,11 @@ void RunLoop::write_summary(double wall) {
   if (!sc_.output.track.empty()) summary["tracked_particles"] = sc_.output.track;
   summary["deck"] = restart_ ? restart_->text("run.deck_file") : sc_.file;
   if (restart_) summary["restarted_from"] = opt_.restart_from;
+  // What made these numbers: the version and the commit built (core/build_info.hpp).
+  JsonValue& build = summary["build"];
+  build = JsonValue::object();
+  build["version"] = BALLISTA_VERSION;
+  build["commit"] = build_commit();
   JsonValue& probes = summary["probes"];
   probes = JsonValue::object();
   for (size_t k = 0; k < sc_.probes.size(); ++k) {

@@ -8,6 +8,8 @@
    alone (one image, the user's spin count); the runs of a sweep inherit the policy.
 2. --threads 100000 and simulation.threads above the cores: clamped, with a warning naming both.
 3. --seed outside 0..2^63-1 is rejected with the message of the deck key drive.seed.
+4. Provenance: --version and summary.json `build` name the commit the binary was built from
+   (`git describe` of the source tree, which `make test` has just rebuilt).
 """
 import argparse
 import json
@@ -137,6 +139,26 @@ def check_seed(b, examples, out):
             fail(f"--seed {good}: resolved.yaml does not record seed {good}:\n{text}")
 
 
+def check_provenance(b, out):
+    p = run([b, "--version"], 0, clean_env())
+    m = re.match(r"ballista (\S+) \((\S+)\)$", p.stdout.strip())
+    if not m:
+        fail(f"--version does not read 'ballista VERSION (COMMIT)': {p.stdout!r}")
+    version, commit = m.groups()
+    source = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    g = subprocess.run(["git", "-C", source, "describe", "--always", "--abbrev=12"], capture_output=True, text=True)
+    if g.returncode == 0:
+        # The commit, not the dirty mark: a tree edited after the build is still the same commit.
+        if commit.removesuffix("-dirty") != g.stdout.strip():
+            fail(f"--version names {commit}, the source tree is at {g.stdout.strip()}")
+    elif commit != "unknown":
+        fail(f"outside git the commit should read 'unknown', got {commit}")
+    with open(os.path.join(out, "threads_1", "summary.json")) as f:
+        build = json.load(f).get("build")
+    if build != {"version": version, "commit": commit}:
+        fail(f"summary.json build {build}, --version says {version} ({commit})")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--ballista", required=True)
@@ -148,6 +170,7 @@ def main():
     check_wait_policy(a.ballista, a.examples, a.out)
     check_thread_clamp(a.ballista, a.examples, a.out)
     check_seed(a.ballista, a.examples, a.out)
+    check_provenance(a.ballista, a.out)
     print("ok")
 
 
