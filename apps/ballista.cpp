@@ -10,19 +10,19 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include "core/build_info.hpp"
 #include "core/communicator.hpp"
 #include "core/error.hpp"
 #include "core/threads.hpp"
-#include "driver/drive_run.hpp"
-#include "core/build_info.hpp"
 #include "deck/material_presets.hpp"
+#include "driver/drive_run.hpp"
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
+#include "penetration/models_command.hpp"
 #include "points/initial_state_registry.hpp"
 #include "points/load_registry.hpp"
 #include "points/probe_registry.hpp"
 #include "points/solver_registry.hpp"
-#include "penetration/models_command.hpp"
 #include "run/sweep_command.hpp"
 #include "run_command.hpp"
 #include "verify/verify_command.hpp"

@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
-#include "io/checkpoint_file.hpp"
 #include "deck/deck_reader.hpp"
+#include "io/checkpoint_file.hpp"
 #include "io/run_folder.hpp"
 #include "run/penetration_plots.hpp"
 #include "run/simulation.hpp"

@@ -14,8 +14,8 @@
 #include "block_impact_deck.hpp"
 #include "core/parallel.hpp"
 #include "core/state_archive.hpp"
-#include "io/checkpoint_file.hpp"
 #include "deck/deck_reader.hpp"
+#include "io/checkpoint_file.hpp"
 #include "run/simulation.hpp"
 
 namespace {

@@ -12,8 +12,8 @@
 #include <random>
 
 #include "core/parallel.hpp"
-#include "material_batch_fixture.hpp"
 #include "deck/material_presets.hpp"
+#include "material_batch_fixture.hpp"
 #include "materials/material.hpp"
 
 namespace {

@@ -11,15 +11,15 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "geometry/grid_axes.hpp"
-#include "deck/deck_node.hpp"
-#include "deck/text_file.hpp"
-#include "deck/deck_overrides.hpp"
 #include "deck/body_ref.hpp"
+#include "deck/deck_node.hpp"
+#include "deck/deck_overrides.hpp"
 #include "deck/load_reader.hpp"
-#include "deck/probe_reader.hpp"
 #include "deck/material_reader.hpp"
 #include "deck/penetrator_reader.hpp"
+#include "deck/probe_reader.hpp"
+#include "deck/text_file.hpp"
+#include "geometry/grid_axes.hpp"
 #include "points/initial_state_registry.hpp"
 #include "points/probe_registry.hpp"
 #include "points/solver_registry.hpp"

@@ -10,12 +10,12 @@
 #include <fstream>
 #include <memory>
 
-#include "driver/ftable_csv.hpp"
-#include "driver/perturb.hpp"
 #include "deck/deck_node.hpp"
-#include "deck/text_file.hpp"
 #include "deck/deck_overrides.hpp"
 #include "deck/material_reader.hpp"
+#include "deck/text_file.hpp"
+#include "driver/ftable_csv.hpp"
+#include "driver/perturb.hpp"
 
 namespace ballista {
 

@@ -17,8 +17,8 @@
 #include "peridynamics/bond_pass.hpp"
 #include "peridynamics/fragments.hpp"
 #include "peridynamics/pd_fields.hpp"
-#include "points/rcb_partition.hpp"
 #include "peridynamics/pd_params.hpp"
+#include "points/rcb_partition.hpp"
 #include "points/solver_registry.hpp"
 #include "scenario/material_model.hpp"
 

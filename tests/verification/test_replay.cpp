@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "deck/deck_reader.hpp"
 #include "driver/ftable_csv.hpp"
 #include "driver/perturb.hpp"
 #include "driver/point_driver.hpp"
-#include "deck/deck_reader.hpp"
 #include "verification/verification_support.hpp"
 
 using namespace ballista;

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "driver/drive_deck.hpp"
 #include "deck/deck_reader.hpp"
+#include "driver/drive_deck.hpp"
 #include "support/test_files.hpp"
 
 namespace fs = std::filesystem;

@@ -5,8 +5,8 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "driver/drive_deck.hpp"
 #include "deck/material_presets.hpp"
+#include "driver/drive_deck.hpp"
 
 using namespace ballista;
 

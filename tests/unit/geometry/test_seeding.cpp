@@ -15,9 +15,9 @@
 
 #include "core/error.hpp"
 #include "core/field_store.hpp"
+#include "deck/deck_reader.hpp"
 #include "geometry/seeding.hpp"
 #include "geometry/shape.hpp"
-#include "deck/deck_reader.hpp"
 #include "materials/material.hpp"
 
 using namespace ballista;

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "io/checkpoint_file.hpp"
 #include "deck/deck_reader.hpp"
+#include "io/checkpoint_file.hpp"
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 
