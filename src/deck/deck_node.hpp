@@ -58,8 +58,6 @@ class DeckNode {
   /// The top level of a deck; fails unless `doc` is a map (an empty document counts as an empty map).
   DeckNode(std::shared_ptr<const DeckContext> ctx, YAML::Node doc);
 
-  /// The resolved tree built so far (the root's mirror is the whole resolved deck).
-  YAML::Node resolved() const { return mirror_; }
   /// The resolved tree as the text a run keeps (Scenario::resolved_yaml), under a header that
   /// names `kind` ("deck", "drive deck") and the deck's file: every reader writes it alike.
   std::string resolved_text(const std::string& kind) const;
