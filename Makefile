@@ -3,7 +3,7 @@ BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 PY := /usr/bin/python3
 
-.PHONY: all deps configure build demo test test-sanitize bench clean format
+.PHONY: all deps configure build demo test test-sanitize bench install package clean format
 
 all: build
 
@@ -50,8 +50,22 @@ test-sanitize: deps
 bench: build
 	@./$(BUILD_DIR)/bench/mpm_block_impact_bench
 
+# Installs build/'s binary (tuned to this machine's CPU), the presets, the tools and the examples
+# under PREFIX (default /usr/local; cmake/install.cmake).
+PREFIX ?= /usr/local
+install: build
+	@cmake --install $(BUILD_DIR) --prefix $(PREFIX)
+
+# A Debian package (build-package/ballista_<version>_<arch>.deb) of a binary for any x86-64 CPU
+# (no -march=native), without the tests: `apt install ./build-package/ballista_*.deb`.
+PKG_DIR ?= build-package
+package: deps
+	@cmake -S . -B $(PKG_DIR) -DCMAKE_BUILD_TYPE=Release -DBALLISTA_NATIVE=OFF -DBALLISTA_TESTS=OFF >/dev/null
+	@cmake --build $(PKG_DIR) -j $(JOBS)
+	@cd $(PKG_DIR) && cpack -G DEB
+
 clean:
-	rm -rf $(BUILD_DIR) $(SAN_DIR) out
+	rm -rf $(BUILD_DIR) $(SAN_DIR) $(PKG_DIR) out
 
 format:
 	@find src apps tests bench -name '*.[ch]pp' | xargs clang-format -i

@@ -12,6 +12,7 @@
 
 #include "core/build_info.hpp"
 #include "core/communicator.hpp"
+#include "core/data_dir.hpp"
 #include "core/error.hpp"
 #include "core/threads.hpp"
 #include "deck/material_presets.hpp"
@@ -80,7 +81,10 @@ std::string app_description() {
 }
 
 void print_info() {
-  std::cout << "Ballista " << BALLISTA_VERSION << "\n\nSolvers (simulation.solver; parameters in the section named)\n";
+  std::cout << "Ballista " << BALLISTA_VERSION << " (" << ballista::build_commit() << ")\n"
+            << "Data directory (presets and tools; " << ballista::data_dir_origin()
+            << "): " << ballista::data_dir()
+            << "\n\nSolvers (simulation.solver; parameters in the section named)\n";
   for (const auto& f : ballista::solver_registry()) {
     std::string dims;
     for (const auto& d : f.dimensions) dims += (dims.empty() ? "" : ", ") + d;
@@ -159,9 +163,11 @@ CLI::App* add_drive_command(CLI::App& app, DriveCliOptions& o) {
   auto* drive = app.add_subcommand("drive", "drive one material point through an F-table or strain/stress legs");
   drive->add_option("deck", o.deck, "YAML drive deck (materials + drive)")->required()->check(CLI::ExistingFile);
   drive->add_option("-o,--output", o.out_dir, "results folder (default out/<deck name>)");
-  drive->add_option("--set", o.overrides, "override a deck value: key.path=value (repeatable)");
-  o.scale_opt =
-      drive->add_option("--scale", o.scale, "scale the table's deformation: F -> I + S (F - I) (drive.scale)");
+  drive->add_option(
+      "--set", o.overrides,
+      "override a deck value: key.path=value, or append to a list: key.path+=value (repeatable)");
+  o.scale_opt = drive->add_option(
+      "--scale", o.scale, "scale the table's deformation: F -> I + S (F - I) (drive.scale)");
   o.noise_opt = drive->add_option("--noise", o.noise,
                                   "multiplicative noise of amplitude A on the table's increments (drive.noise)");
   o.seed_opt = drive->add_option("--seed", o.seed, "seed of the noise (drive.seed; 0 <= seed < 2^63)");

@@ -1,6 +1,8 @@
 # Writes OUT (a C++ file defining ballista::build_commit()) from `git describe` of SOURCE_DIR, run
 # at every build by the build_info target; configure_file rewrites OUT only when the text changes,
 # so an unchanged commit recompiles nothing.
+# Run with -P: a script has no project, so the policies of the project's minimum version are set here.
+cmake_policy(VERSION 3.24)
 execute_process(COMMAND git -C "${SOURCE_DIR}" describe --always --dirty --abbrev=12
                 OUTPUT_VARIABLE BALLISTA_COMMIT OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET
                 RESULT_VARIABLE git_result)

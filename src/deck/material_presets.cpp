@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/data_dir.hpp"
 #include "core/error.hpp"
 #include "deck/deck_node.hpp"
 
@@ -224,7 +225,7 @@ const std::vector<std::string>& preset_confidence_levels() {
 
 std::string default_material_presets_path() {
   if (const char* env = std::getenv(kMaterialPresetsEnv); env && *env) return env;
-  return (std::filesystem::path(BALLISTA_SOURCE_DIR) / "data" / "materials.yaml").string();
+  return (std::filesystem::path(data_dir()) / "data" / "materials.yaml").string();
 }
 
 MaterialPresetLibrary MaterialPresetLibrary::parse(const std::string& yaml_text, const std::string& file_name) {
@@ -244,7 +245,8 @@ MaterialPresetLibrary MaterialPresetLibrary::load(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw Error("cannot read the material presets file '" + path + "' (set " + kMaterialPresetsEnv +
-                " to the path of data/materials.yaml)");
+                " to the path of data/materials.yaml, or " + kDataDirEnv +
+                " to the directory holding data/)");
   std::stringstream ss;
   ss << in.rdbuf();
   return parse(ss.str(), path);

@@ -48,8 +48,8 @@ const std::vector<std::string>& preset_confidence_levels();
 /// Environment variable naming a presets file that replaces the default one.
 inline constexpr const char* kMaterialPresetsEnv = "BALLISTA_MATERIALS_FILE";
 
-/// $BALLISTA_MATERIALS_FILE if set and non-empty, else <source tree>/data/materials.yaml
-/// (BALLISTA_SOURCE_DIR, a compile definition of the library).
+/// $BALLISTA_MATERIALS_FILE if set and non-empty, else <data_dir()>/data/materials.yaml
+/// (core/data_dir.hpp: the installed share/ballista, or the source tree of a build).
 std::string default_material_presets_path();
 
 class MaterialPresetLibrary {

@@ -6,11 +6,10 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "core/data_dir.hpp"
+
 #ifndef BALLISTA_PYTHON
 #define BALLISTA_PYTHON "/usr/bin/python3"
-#endif
-#ifndef BALLISTA_SOURCE_DIR
-#define BALLISTA_SOURCE_DIR "."
 #endif
 
 namespace ballista {
@@ -25,7 +24,7 @@ std::string python_interpreter() {
 }
 
 std::string python_tool_path(const std::string& script_name) {
-  return (fs::path(BALLISTA_SOURCE_DIR) / "tools" / script_name).string();
+  return (fs::path(data_dir()) / "tools" / script_name).string();
 }
 
 std::string shell_quote(const std::string& s) {
@@ -63,7 +62,9 @@ std::string run_python_tool(const std::string& script_name, const std::vector<st
         "Python{})",
         what, py, or_hint);
   const std::string noun = what.rfind("the ", 0) == 0 ? what.substr(4) : what;  // "the report" -> "report script"
-  if (!fs::exists(script)) return noun + " script " + script + " not found (BALLISTA_SOURCE_DIR moved?)";
+  if (!fs::exists(script))
+    return noun + " script " + script + " not found (looked in the " + data_dir_origin() +
+           " data directory; set " + kDataDirEnv + " to the directory holding tools/)";
   std::string cmd = shell_quote(py) + " " + shell_quote(script);
   std::string shown = py + " " + script;
   for (const std::string& a : args) {

@@ -11,7 +11,7 @@ namespace ballista {
 /// (another Python, or a test of the error path), else the CMake cache value of the same name.
 std::string python_interpreter();
 
-/// BALLISTA_SOURCE_DIR/tools/<script_name> (the tools are run from the source tree).
+/// <data_dir()>/tools/<script_name> (core/data_dir.hpp: installed, or the source tree of a build).
 std::string python_tool_path(const std::string& script_name);
 
 /// Runs `python tools/<script_name> args...`. Returns an empty string on success, else a message
