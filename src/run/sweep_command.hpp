@@ -17,7 +17,8 @@ inline CLI::App* add_sweep_command(CLI::App& app, SweepCliOptions& o) {
                 "key.path=value1,value2,... (repeatable; commas inside [...] or {...} do not split values)")
       ->required()
       ->allow_extra_args(false);  // one value per --vary, so the deck may follow it
-  s->add_option("--set", o.set, "override a deck value in every run: key.path=value (repeatable)")
+  s->add_option("--set", o.set, "override a deck value in every run: key.path=value, or append to a list: key.path+=value "
+                  "(repeatable)")
       ->allow_extra_args(false);
   s->add_option("-j,--jobs", o.jobs,
                 "runs at a time; with N > 1 each run gets simulation.threads = max(1, cores / N) unless set")

@@ -68,6 +68,8 @@ SweepAxis parse_vary(const std::string& text) {
   SweepAxis axis;
   axis.key = trim(text.substr(0, eq));
   if (axis.key.empty()) vary_error(text, "empty key path");
+  if (axis.key.back() == '+')
+    vary_error(text, "'+=' cannot be varied; append in every run with --set key.path+=value");
   if (axis.key.front() == '.' || axis.key.back() == '.' || axis.key.find("..") != std::string::npos)
     vary_error(text, "empty component in key path '" + axis.key + "'");
   const std::string list = text.substr(eq + 1);
