@@ -12,6 +12,7 @@
 
 #include "core/build_info.hpp"
 #include "core/communicator.hpp"
+#include "core/console_log.hpp"
 #include "core/data_dir.hpp"
 #include "core/error.hpp"
 #include "core/threads.hpp"
@@ -218,6 +219,8 @@ int main(int argc, char** argv) {
     ~MpiFinalize() { ballista::Communicator::finalize(); }
   } mpi_finalize;
   const ballista::Communicator world = ballista::Communicator::world();
+  // Diagnostics on standard error, results on standard output (core/console_log.hpp).
+  ballista::log_to_stderr();
   // Rank 0 reports; the other ranks print only errors of their own (std::cout goes to /dev/null
   // until main returns, then gets its own buffer back).
   std::ofstream quiet_rank;

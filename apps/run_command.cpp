@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "core/console_log.hpp"
 #include "core/error.hpp"
 #include "deck/deck_reader.hpp"
 #include "io/checkpoint_file.hpp"
@@ -57,7 +58,7 @@ RunStart start_run(const RunCliOptions& o, std::optional<RunFolder>& folder, con
     s.restart_from = path;
     s.sc = parse_deck(deck_text, (std::filesystem::path(o.restart_dir) / "resolved.yaml").string(), o.overrides);
     s.out_dir = o.restart_dir;
-    std::cerr << "restarting from " << path << "\n";
+    if (!o.quiet) std::cerr << "restarting from " << path << "\n";
   } else {
     s.sc = read_deck(o.deck, o.overrides);
     if (s.out_dir.empty()) s.out_dir = "out/" + std::filesystem::path(o.deck).stem().string();
@@ -100,10 +101,20 @@ void rerun_tracking_failed(const RunCliOptions& o, const RunOptions& opt, std::o
               << " (replay: ballista drive with drive: {table: <that file>, substeps: 1})\n";
 }
 
-/// The run's summary on standard output (where to restart, steps, probes, where the results are)
-/// and, for a penetration deck, its figures.
-void report_run(const RunResult& r, const Scenario& sc, const std::string& out_dir, bool no_plots,
+/// The run's summary on standard output (where to restart, steps, its headline numbers, probes,
+/// where the results are) and, for a penetration deck, its figures. With -q: nothing but the
+/// figures, and a run that did not complete says so on standard error.
+void report_run(const RunResult& r, const Scenario& sc, const std::string& out_dir, const RunCliOptions& o,
                 const Communicator& world) {
+  if (o.quiet) {
+    if (sc.penetration.enabled && !o.no_plots && world.rank() == 0)
+      if (const std::string err = make_penetration_plots(out_dir); !err.empty())
+        std::cerr << "warning: no penetration figures: " << err << " (--no-plots skips them)\n";
+    if (!r.ok && world.rank() == 0)
+      std::cerr << (r.interrupted ? "INTERRUPTED" : "FAILED") << " at step " << r.steps << ", t = " << r.time
+                << " s" << (r.checkpoint.empty() ? "" : " (ballista run --restart " + out_dir + ")") << "\n";
+    return;
+  }
   if (!r.checkpoint.empty())
     std::cout << (r.interrupted ? "checkpointed in " : "the last good step is checkpointed in ") << r.checkpoint
               << " (ballista run --restart " << out_dir << ")\n";
@@ -111,8 +122,9 @@ void report_run(const RunResult& r, const Scenario& sc, const std::string& out_d
             << " steps to t = " << r.time << " s in "
             << fmt::format("{:.2f}", r.wall_seconds) << " s (" << fmt::format("{:.3g}", r.particle_steps_per_second)
             << " particle-steps/s)\n";
+  for (const auto& line : r.headlines) std::cout << "  " << line << "\n";
   for (const auto& [name, value] : r.probes) std::cout << "  " << name << " = " << value << "\n";
-  if (sc.penetration.enabled && !no_plots && world.rank() == 0) {
+  if (sc.penetration.enabled && !o.no_plots && world.rank() == 0) {
     // Figures of the penetration run (thesis seed 000 Figs. 7.4-7.7), also after a failure:
     // what ran is worth seeing. A missing Python is a warning, not a failed run.
     const std::string err = make_penetration_plots(out_dir);
@@ -145,8 +157,11 @@ CLI::App* add_run_command(CLI::App& app, RunCliOptions& o) {
   run->add_flag("--overwrite", o.overwrite,
                 "write into a results folder that is not empty and holds no Ballista run (Ballista then replaces "
                 "only the files it writes itself)");
-  run->add_option("--set", o.overrides, "override a deck value: key.path=value (repeatable)");
-  run->add_flag("-q,--quiet", o.quiet, "no progress output");
+  run->add_option("--set", o.overrides,
+                  "override a deck value: key.path=value, or append to a list: key.path+=value (a YAML list "
+                  "appends its items); repeatable, applied in order");
+  run->add_flag("-q,--quiet", o.quiet,
+                "print nothing but errors (warnings are still recorded in summary.json \"warnings\")");
   run->add_flag("--no-plots", o.no_plots,
                 "do not draw the figures (PNG): penetration figures of a deck with a penetration section, "
                 "fragment figures of a run that writes fragments.csv");
@@ -160,6 +175,7 @@ CLI::App* add_run_command(CLI::App& app, RunCliOptions& o) {
 int run_deck_cli(const RunCliOptions& o, const Communicator& world) {
   // Rank 0 holds the results folder for the whole command: the run, its figures and a re-run
   // (io/run_folder.hpp); the other ranks learn whether it could.
+  if (o.quiet) quiet_console();  // errors only; warnings still reach summary.json
   std::optional<RunFolder> folder;
   RunStart start = start_run(o, folder, world);
   Scenario& sc = start.sc;
@@ -173,7 +189,7 @@ int run_deck_cli(const RunCliOptions& o, const Communicator& world) {
   opt.plots = !o.no_plots;
   RunResult r = run_simulation(sc, opt);
   rerun_tracking_failed(o, opt, folder, sc, r);
-  report_run(r, sc, start.out_dir, o.no_plots, world);
+  report_run(r, sc, start.out_dir, o, world);
   return r.ok ? 0 : r.interrupted ? 4 : 3;
 }
 

@@ -48,6 +48,14 @@ SystemMemory system_memory() {
   return m;
 }
 
+double resident_bytes() {
+  std::ifstream st("/proc/self/status");
+  std::string l;
+  while (std::getline(st, l))
+    if (l.rfind("VmRSS:", 0) == 0) return std::stod(l.substr(6)) * 1024.0;  // "VmRSS:  12345 kB"
+  return 0.0;
+}
+
 std::string format_bytes(double bytes) {
   if (bytes >= 1e12) return fmt::format("{:.3g} TB", bytes / 1e12);
   if (bytes >= 1e9) return fmt::format("{:.3g} GB", bytes / 1e9);

@@ -16,6 +16,9 @@ struct SystemMemory {
 /// Reads /proc/meminfo (Linux); falls back to sysconf page counts. Zero when unknown.
 SystemMemory system_memory();
 
+/// The memory this process holds now (VmRSS of /proc/self/status), 0 if unknown.
+double resident_bytes();
+
 /// "1.23 GB" style figure (decimal units).
 std::string format_bytes(double bytes);
 

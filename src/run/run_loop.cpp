@@ -11,12 +11,14 @@
 #include "core/energy_terms.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "core/warning_log.hpp"
 #include "io/atomic_file.hpp"
 #include "io/checkpoint_file.hpp"
 #include "points/point_exchange.hpp"
 #include "points/solver_registry.hpp"
 #include "run/interrupt.hpp"
 #include "run/restart_checks.hpp"
+#include "run/run_banner.hpp"
 
 namespace ballista {
 
@@ -36,12 +38,10 @@ std::string describe_limiter(const Scenario& sc, const StepLimiter& l) {
 /// Refuses a run whose estimated step count (simulated time / first stable step) exceeds
 /// simulation.step_limit: a cfl of 1e-12 or a max_dt of 1e-300 would otherwise promise an ETA of
 /// ~1e11 s instead of an error.
-void check_step_estimate(const Scenario& sc, Solver& solver) {
-  double span = sc.simulation.end_time;  // simulated time: the main stage plus the longest stages
-  for (const StageSpec& st : sc.stages) span += st.until.empty() ? st.duration : st.max_duration;
-  const double dt = solver.stable_dt();
+void check_step_estimate(const Scenario& sc, const Solver& solver, double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt)) return;  // the loop's own check reports it with its step
-  const double steps = span / dt;
+  const double steps = estimate_steps(sc, dt).most;  // the main stage plus the longest stages
+  const double span = steps * dt;
   if (steps <= static_cast<double>(sc.simulation.step_limit)) return;
   throw DeckError(sc.file, 0, 0, "simulation.step_limit",
                   fmt::format("the run would take about {:.3g} steps ({:.6g} s of simulated time at a stable step of "
@@ -71,6 +71,9 @@ RunLoop::RunLoop(const Scenario& sc, const RunOptions& opt)
       comm_(Communicator::world()),
       root_(comm_.rank() == 0),
       nstages_(static_cast<int>(sc.stages.size())) {
+  // The warnings from here on are this run's (summary.json "warnings").
+  record_warnings();
+  warning_mark_ = warning_count();
   // Refused before anything is written.
   if (const SolverFactory* f = find_solver(sc.simulation.solver)) check_distributed(sc, *f, comm_);
   // Rank 0 holds the results folder for the run (io/run_folder.hpp): another run into it is
@@ -113,7 +116,11 @@ RunLoop::RunLoop(const Scenario& sc, const RunOptions& opt)
   seeded_ = comm_.sum(static_cast<std::int64_t>(pts.size() + solver_->pending_points()));
   tracker_.emplace(sc, opt.out_dir, seeded_);
   tracked_ids_ = std::set<std::int64_t>(sc.output.track.begin(), sc.output.track.end());
-  if (!restart_) check_step_estimate(sc, *solver_);
+  // The first stable step (none on a restart, which keeps the solver's state as checkpointed).
+  const double dt0 = restart_ ? 0.0 : solver_->stable_dt();
+  if (!restart_) check_step_estimate(sc, *solver_, dt0);
+  const std::string banner = run_banner(sc, *solver_, dt0, comm_.sum(solver_->pending_points()), comm_);
+  if (root_) spdlog::info("{}", banner);
   start_clocks();
   deletions_.emplace(sc, solver_->energies());
   // A restart's own checkpoint is where a failure before its first checkpoint replays from.
@@ -197,7 +204,7 @@ void RunLoop::start_clocks() {
 
 RunResult RunLoop::run() {
   if (!restart_) start_run();
-  if (rs_.stage == nstages_) progress_ = std::make_unique<Progress>(rs_.end, opt_.progress && root_);
+  start_progress();
   try {
     const InterruptScope signals;  // SIGTERM / SIGINT checkpoint and stop, during the steps only
     step_loop();
@@ -253,6 +260,7 @@ void RunLoop::step_loop() {
     record_tracks(false);
     if (rs_.stage < nstages_) {
       after_preparation_step(dt);
+      if (rs_.stage < nstages_) progress_->update(solver_->time(), solver_->steps(), dt);
       if (after_step()) break;
       continue;
     }
@@ -267,6 +275,21 @@ void RunLoop::step_loop() {
     progress_->update(solver_->time(), solver_->steps(), dt);
     if (after_step()) break;
   }
+}
+
+/// The progress of the phase now running: a stage (to its fixed end, or at most to its
+/// max_duration when a criterion ends it) or the main stage.
+void RunLoop::start_progress() {
+  if (progress_) progress_->finish();
+  const bool enabled = opt_.progress && root_;
+  if (rs_.stage == nstages_) {
+    progress_ = std::make_unique<Progress>("", rs_.stage_start, rs_.end, false, enabled);
+    return;
+  }
+  const StageSpec& st = sc_.stages[rs_.stage];
+  const double span = st.until.empty() ? st.duration : st.max_duration;
+  progress_ = std::make_unique<Progress>("stage '" + st.name + "'", rs_.stage_start, rs_.stage_start + span,
+                                         !st.until.empty(), enabled);
 }
 
 /// The next step: the stable step (refused when it collapsed or the step count ran out), landing
@@ -373,10 +396,10 @@ void RunLoop::next_stage(const std::string& how, const EquilibriumCheck* check) 
   } else {
     rs_.end = rs_.stage_start + sc_.simulation.end_time;
     rs_.next_output = std::min(rs_.end, rs_.stage_start + interval_);
-    progress_ = std::make_unique<Progress>(rs_.end, opt_.progress && root_);
     spdlog::info("main stage begins at t = {:.4g} s (damping {} 1/s), runs to {:.4g} s", rs_.stage_start, damping,
                  rs_.end);
   }
+  start_progress();
 }
 
 void RunLoop::write_output() {

@@ -64,6 +64,8 @@ class RunLoop {
   void start_clocks();
   void start_run();
   void step_loop();
+  void start_progress();
+  std::vector<std::string> run_warnings() const;
   double next_dt();
   void after_preparation_step(double dt);
   void check_equilibrium_stage(const StageSpec& st, double elapsed);
@@ -107,6 +109,7 @@ class RunLoop {
   std::unique_ptr<PenetrationProbe> penetration_;
   std::unique_ptr<HistoryWriter> history_;  ///< rank 0's
   std::int64_t seeded_ = 0;                 ///< particle ids run 0 .. seeded - 1 over every body
+  std::size_t warning_mark_ = 0;            ///< warnings logged before this run (core/warning_log.hpp)
   std::optional<ParticleTracker> tracker_;
   std::set<std::int64_t> tracked_ids_;
   RunState rs_;

@@ -34,6 +34,7 @@ void RunLoop::write_checkpoint(const Marks& m, const char* why) {
   saved.particle_steps = comm_.sum(m.rs.particle_steps);  // each rank counts its own: the total
   saved.wall_before =
       rs_.wall_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
+  saved.warnings = run_warnings();
   saved.save(a);
   a.put_int("run.history_bytes", m.history_bytes);
   const ParticleWriter::State ws = writer_->state_at(m.outputs, m.xdmf_body_end);

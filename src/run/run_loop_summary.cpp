@@ -1,6 +1,8 @@
 // summary.json at the end of a run (completed, failed or interrupted): status, probes, stages,
 // the penetration analysis, the solver's results and tables, statistics and the energy audit.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -10,9 +12,11 @@
 #include "core/build_info.hpp"
 #include "core/energy_terms.hpp"
 #include "core/parallel.hpp"
+#include "core/warning_log.hpp"
 #include "io/summary_writer.hpp"
 #include "points/point_exchange.hpp"
 #include "run/fragment_summary.hpp"
+#include "run/headlines.hpp"
 #include "run/run_loop.hpp"
 
 namespace ballista {
@@ -64,6 +68,15 @@ void write_energy(JsonValue& en, const EnergyTotals& e, double total0, double sc
 }
 
 }  // namespace
+
+/// The run's warnings: those restored from the checkpoint it continues, then this process's, each
+/// once (a restart logs again what its set-up logged before, e.g. an under-resolved penetrator).
+std::vector<std::string> RunLoop::run_warnings() const {
+  std::vector<std::string> all = rs_.warnings;
+  for (std::string& w : warnings_since(warning_mark_))
+    if (std::find(all.begin(), all.end(), w) == all.end()) all.push_back(std::move(w));
+  return all;
+}
 
 /// Fills the result's totals and writes summary.json (rank 0). A non-finite number in it fails
 /// the run: it is garbage, never a success.
@@ -142,9 +155,14 @@ void RunLoop::write_summary(double wall) {
                    comm_.sum(static_cast<std::int64_t>(solver_->points().size())), seeded_, deleted_points,
                    particle_steps, solver_->name(), comm_.size());
   if (deleted_points > 0) summary["deleted"] = deletions_->summary(e);
-  if (const auto warnings = deletions_->probe_warnings(e); !warnings.empty()) {
-    for (const auto& w : warnings) spdlog::warn("{}", w);
-    summary["warnings"] = warnings;
+  for (const auto& w : deletions_->probe_warnings(e)) spdlog::warn("{}", w);
+  // Every warning of this run, these included (core/warning_log.hpp).
+  if (const auto warnings = run_warnings(); !warnings.empty()) {
+    JsonValue& list = summary["warnings"];
+    list = JsonValue::array();
+    const std::size_t shown = std::min<std::size_t>(warnings.size(), 50);  // the console log has them all
+    for (std::size_t k = 0; k < shown; ++k) list.push_back(warnings[k]);
+    if (warnings.size() > shown) list.push_back(fmt::format("... and {} more warnings", warnings.size() - shown));
   }
   write_energy(summary["energy"], e, rs_.total0, rs_.energy_scale);
   const std::vector<std::string> bad = non_finite_numbers(summary.root());
@@ -159,7 +177,10 @@ void RunLoop::write_summary(double wall) {
     summary["status"] = "failed";
     summary["error"] = result_.error;
   }
-  if (root_) summary.write((fs::path(opt_.out_dir) / "summary.json").string());
+  if (root_) {
+    result_.headlines = headline_lines(summary.root());
+    summary.write((fs::path(opt_.out_dir) / "summary.json").string());
+  }
 }
 
 }  // namespace ballista

@@ -52,6 +52,9 @@ void RunState::save(StateArchive& a) const {
   a.put("run.stage_log.flags", ints);
   a.put_text("run.stage_log.names", join_lines(stages, true));
   a.put_text("run.stage_log.ended_by", join_lines(stages, false));
+  std::string lines;
+  for (const auto& w : warnings) lines += w + "\n";
+  a.put_text("run.warnings", lines);
 }
 
 void RunState::load(const StateArchive& a) {
@@ -77,6 +80,8 @@ void RunState::load(const StateArchive& a) {
     r.worst_particle = f[2 * k + 1];
     stages.push_back(r);
   }
+  // Checkpoints written before the warnings were kept have none.
+  warnings = a.has("run.warnings") ? split_lines(a.text("run.warnings")) : std::vector<std::string>{};
 }
 
 }  // namespace ballista

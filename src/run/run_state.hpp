@@ -40,6 +40,7 @@ struct RunState {
   double dt = 0.0;             ///< s, the last step taken
   double wall_before = 0.0;    ///< wall seconds of the run's earlier segments (before restarts)
   std::vector<StageRecord> stages;
+  std::vector<std::string> warnings;  ///< the run's warnings up to its checkpoint (one line each)
 
   void save(StateArchive& archive) const;
   void load(const StateArchive& archive);

@@ -37,6 +37,7 @@ struct RunResult {
   double wall_seconds = 0.0;
   double particle_steps_per_second = 0.0;
   std::vector<std::pair<std::string, double>> probes;  ///< final probe values
+  std::vector<std::string> headlines;  ///< depth, holes, fragments (run/headlines.hpp; rank 0)
   std::string checkpoint;       ///< after a failure with checkpoints on, or an interruption: where to restart
   bool interrupted = false;     ///< stopped by SIGTERM/SIGINT after checkpointing (ok is false)
 };

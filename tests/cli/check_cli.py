@@ -6,7 +6,9 @@
    spin count it actually uses when OMP_DISPLAY_ENV=verbose (one report per process image), so the
    check reads the policy in effect from libgomp itself, not from our code. A user's policy is left
    alone (one image, the user's spin count); the runs of a sweep inherit the policy.
-2. --threads 100000 and simulation.threads above the cores: clamped, with a warning naming both.
+2. --threads 100000 and simulation.threads above the cores: clamped, with a warning naming both;
+   under -q nothing is printed and the warning is in summary.json "warnings". Without -q the log
+   (start banner, progress, warnings) is on standard error and the report on standard output.
 3. --seed outside 0..2^63-1 is rejected with the message of the deck key drive.seed.
 4. Provenance: --version and summary.json `build` name the commit the binary was built from
    (`git describe` of the source tree, which `make test` has just rebuilt).
@@ -96,12 +98,15 @@ def check_thread_clamp(b, examples, out):
                              (["--set", "simulation.threads=4096"], "simulation.threads", 4096)):
         o = os.path.join(out, "clamp_" + source.strip("-").replace(".", "_"))
         p = run([b, "run", deck, "-o", o] + small + extra, 0, clean_env())
-        text = p.stdout + p.stderr
         want = f"{source} = {n} is more than the {cores} cores available: using {cores} threads"
-        if want not in text:
-            fail(f"expected the warning '{want}' in:\n{text}")
+        # -q: the warning is not printed, it is recorded with the results.
+        if p.stdout or p.stderr:
+            fail(f"-q printed something other than errors:\n{p.stdout}{p.stderr}")
         with open(os.path.join(o, "summary.json")) as f:
-            threads = json.load(f)["statistics"]["threads"]
+            summary = json.load(f)
+        if want not in summary.get("warnings", []):
+            fail(f"expected the warning '{want}' in summary.json warnings: {summary.get('warnings')}")
+        threads = summary["statistics"]["threads"]
         if threads != cores:
             fail(f"{source} = {n}: the run used {threads} threads, expected {cores}")
     # Within the cores: no warning, the count asked for.
@@ -112,6 +117,24 @@ def check_thread_clamp(b, examples, out):
     with open(os.path.join(o, "summary.json")) as f:
         if json.load(f)["statistics"]["threads"] != 1:
             fail("--threads 1 did not run on 1 thread")
+
+
+def check_console(b, examples, out):
+    """Results on standard output, diagnostics on standard error: a run's log lines (start banner,
+    progress, warnings) go to stderr, its report (headline numbers, probes, where the results are)
+    to stdout; the banner names the solver and counts the particles."""
+    deck = os.path.join(examples, "elastic_disks.yaml")
+    o = os.path.join(out, "console")
+    p = run([b, "run", deck, "-o", o, "--threads", "1", "--set", "grid.cell_size=0.05", "--set",
+             "simulation.end_time=0.05"], 0, clean_env())
+    if "[info]" in p.stdout or "[warning]" in p.stdout:
+        fail(f"log lines on standard output:\n{p.stdout}")
+    if not re.search(r"mpm solver, .*; [\d,]+ particles: ", p.stderr):
+        fail(f"no start banner (solver, particle counts) on standard error:\n{p.stderr[:2000]}")
+    if "memory after set-up" not in p.stderr or "steps: about" not in p.stderr:
+        fail(f"the start banner lacks the memory or the step estimate:\n{p.stderr[:2000]}")
+    if not p.stdout.startswith("completed: ") or "results in " not in p.stdout:
+        fail(f"the run's report is not on standard output:\n{p.stdout}")
 
 
 def check_seed(b, examples, out):
@@ -169,6 +192,7 @@ def main():
     os.makedirs(a.out)
     check_wait_policy(a.ballista, a.examples, a.out)
     check_thread_clamp(a.ballista, a.examples, a.out)
+    check_console(a.ballista, a.examples, a.out)
     check_seed(a.ballista, a.examples, a.out)
     check_provenance(a.ballista, a.out)
     print("ok")

@@ -1,0 +1,62 @@
+#include "run/headlines.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace ballista {
+
+namespace {
+
+/// A finite number at `key` of an object, else NaN (absent, null, or not a number).
+double number_at(const JsonValue& obj, const std::string& key) {
+  if (obj.kind() != JsonValue::Kind::Object || !obj.contains(key)) return NAN;
+  const JsonValue& v = obj.at(key);
+  if (v.kind() != JsonValue::Kind::Number && v.kind() != JsonValue::Kind::Int) return NAN;
+  return v.as_number();
+}
+
+std::string mm(double metres) { return std::isfinite(metres) ? fmt::format("{:.1f} mm", metres * 1e3) : "n/a"; }
+
+void penetration_lines(const JsonValue& p, std::vector<std::string>& out) {
+  const std::string target = p.contains("target") ? p.at("target").as_string() : "the target";
+  out.push_back(fmt::format("depth into '{}' = {} (cavity {})", target, mm(number_at(p, "final_depth")),
+                            mm(number_at(p, "final_cavity_depth"))));
+  if (p.contains("holes") && p.at("holes").kind() == JsonValue::Kind::Object) {
+    const JsonValue& holes = p.at("holes");
+    for (const std::string& plate : holes.keys()) {
+      const JsonValue& h = holes.at(plate);
+      const bool perforated = h.contains("perforated") && h.at("perforated").as_bool();
+      out.push_back(perforated ? fmt::format("hole in '{}': entrance diameter {}, narrowest {}", plate,
+                                             mm(number_at(h, "entrance_diameter")), mm(number_at(h, "min_diameter")))
+                               : fmt::format("'{}' not perforated", plate));
+    }
+  }
+  if (p.contains("tunnel")) {
+    const double d = number_at(p.at("tunnel"), "entrance_diameter");
+    if (std::isfinite(d)) out.push_back(fmt::format("tunnel entrance diameter {}", mm(d)));
+  }
+  const double cells = number_at(p, "cells_across_radius");
+  if (p.contains("resolved") && !p.at("resolved").as_bool() && std::isfinite(cells))
+    out.push_back(fmt::format(
+        "NOT CONVERGED: the penetrator is {:.3g} cells across its radius; depth and rate are not converged "
+        "at this resolution (docs/validation.md)",
+        cells));
+}
+
+}  // namespace
+
+std::vector<std::string> headline_lines(const JsonValue& summary) {
+  std::vector<std::string> out;
+  if (summary.contains("penetration")) penetration_lines(summary.at("penetration"), out);
+  if (summary.contains("fragments")) {
+    const JsonValue& f = summary.at("fragments");
+    const double n = number_at(f, "count");
+    if (std::isfinite(n))
+      out.push_back(fmt::format("fragments: {:.0f}, largest {:.4g} kg, mean {:.4g} kg", n, number_at(f, "largest_mass"),
+                                number_at(f, "mean_mass")));
+  }
+  return out;
+}
+
+}  // namespace ballista
