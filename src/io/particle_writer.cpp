@@ -41,6 +41,17 @@ struct RowSlice {
   bool root = true;  ///< writes the scalar datasets
 };
 
+/// A fixed-length string attribute `name` = `text` on an object (every rank calls it alike).
+void write_text_attribute(hid_t obj, const char* name, const std::string& text, const std::string& of) {
+  H5Id str(H5Tcopy(H5T_C_S1), H5Tclose, "create string type");
+  if (H5Tset_size(str, std::max<std::size_t>(text.size(), 1)) < 0) throw Error("HDF5: cannot size string type");
+  H5Id aspace(H5Screate(H5S_SCALAR), H5Sclose, "create attribute dataspace");
+  H5Id attr(H5Acreate2(obj, name, str, aspace, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+            std::string("create attribute '") + name + "' of " + of);
+  const std::string value = text.empty() ? std::string(1, '\0') : text;
+  if (H5Awrite(attr, str, value.data()) < 0) throw Error(std::string("HDF5: cannot write ") + name + " of " + of);
+}
+
 /// Writes a dataset of the given shape (empty dims = scalar) and an optional "unit" attribute. With
 /// a collective slice, `data` holds this rank's rows of dims[0] (every rank calls it alike).
 void write_dataset(hid_t file, const std::string& name, hid_t mem_type, hid_t file_type,
@@ -82,13 +93,21 @@ void write_dataset(hid_t file, const std::string& name, hid_t mem_type, hid_t fi
     if (H5Dwrite(dset, mem_type, mspace, fspace, slice.dxpl, rows > 0 ? data : &dummy) < 0)
       throw Error("HDF5: cannot write dataset '" + name + "' (collective)");
   }
-  if (unit.empty()) return;
-  H5Id str(H5Tcopy(H5T_C_S1), H5Tclose, "create string type");
-  if (H5Tset_size(str, unit.size()) < 0) throw Error("HDF5: cannot size string type");
-  H5Id aspace(H5Screate(H5S_SCALAR), H5Sclose, "create attribute dataspace");
-  H5Id attr(H5Acreate2(dset, "unit", str, aspace, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-            "create attribute 'unit' of '" + name + "'");
-  if (H5Awrite(attr, str, unit.data()) < 0) throw Error("HDF5: cannot write unit of '" + name + "'");
+  if (!unit.empty()) write_text_attribute(dset, "unit", unit, "'" + name + "'");
+}
+
+/// "[\"a\", \"b\"]": names as a JSON array (json.loads in Python), escaped for JSON.
+std::string json_names(const std::vector<std::string>& names) {
+  std::string out = "[";
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    out += k ? ", \"" : "\"";
+    for (char c : names[k]) {
+      if (c == '"' || c == '\\') out += '\\';
+      out += c;
+    }
+    out += '"';
+  }
+  return out + "]";
 }
 
 /// Escapes text for an XML attribute value or element content.
@@ -405,6 +424,10 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
       write_dataset(h5, "time", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, {}, &time, "s", rows);
       const std::int64_t step64 = step;
       write_dataset(h5, "step", H5T_NATIVE_INT64, H5T_STD_I64LE, {}, &step64, "", rows);
+      // The names behind the `body` and `material` indices, so that a file read alone says them.
+      if (!body_names_.empty()) write_text_attribute(h5, "body_names", json_names(body_names_), "the file");
+      if (!material_names_.empty())
+        write_text_attribute(h5, "material_names", json_names(material_names_), "the file");
       write_point_datasets(h5, points, sel, n, first, rows);
       if (domains_) write_domain_datasets(h5, points, dim_, n, first, rows);
       if (nodes) write_node_datasets(h5, *nodes);

@@ -33,6 +33,12 @@ class ParticleWriter {
   /// rank 0 alone commits it (fsync, rename) and writes the XDMF index. restore() removes and
   /// rewrites files on rank 0 only.
   void set_communicator(const Communicator& comm) { comm_ = comm; }
+  /// The bodies' and materials' names in index order: every particle file stores them as the root
+  /// attributes `body_names` and `material_names` (JSON arrays of strings).
+  void set_names(std::vector<std::string> bodies, std::vector<std::string> materials) {
+    body_names_ = std::move(bodies);
+    material_names_ = std::move(materials);
+  }
 
   /// Checkpoint: the output count and the index's text up to its footer.
   struct State {
@@ -65,6 +71,7 @@ class ParticleWriter {
 
   int count_ = 0;                 // outputs written
   Communicator comm_;             // several ranks: collective writes (set_communicator)
+  std::vector<std::string> body_names_, material_names_;  // set_names
   std::size_t xdmf_body_end_ = 0;  // byte offset of the index's footer (where the next grid goes)
 };
 

@@ -112,6 +112,10 @@ RunLoop::RunLoop(const Scenario& sc, const RunOptions& opt)
   // A particle file of the current state; several ranks write it together (parallel HDF5, each
   // rank its particles in rank order; io/particle_writer.hpp): collective.
   writer_->set_communicator(comm_);
+  std::vector<std::string> body_names, material_names;
+  for (const auto& b : sc.bodies) body_names.push_back(b.name);
+  for (const auto& m : sc.materials) material_names.push_back(m.name);
+  writer_->set_names(std::move(body_names), std::move(material_names));
   open_history();
   seeded_ = comm_.sum(static_cast<std::int64_t>(pts.size() + solver_->pending_points()));
   tracker_.emplace(sc, opt.out_dir, seeded_);

@@ -65,6 +65,19 @@ def check_history(path, probes):
     print(f"history.csv: {len(lines) - 1} rows, {len(header)} columns, all finite")
 
 
+def check_names(h5, f):
+    """Every body and material index in a particle file has its name in the file's attributes."""
+    for index, attr in (("body", "body_names"), ("material", "material_names")):
+        if index not in f:
+            continue
+        if attr not in f.attrs:
+            fail(f"{h5} has '{index}' indices but no '{attr}' attribute")
+        names = json.loads(f.attrs[attr])
+        values = f[index][()]
+        if len(values) and (values.min() < 0 or values.max() >= len(names)):
+            fail(f"{h5}: '{index}' indices {values.min()}..{values.max()} outside the {len(names)} {attr}")
+
+
 def check_xdmf(out, end_time):
     import h5py
 
@@ -105,7 +118,8 @@ def check_xdmf(out, end_time):
         fail(f"output times are not increasing: {times}")
     if not math.isclose(times[-1], end_time, rel_tol=1e-9):
         fail(f"last output at t = {times[-1]}, summary says end time {end_time}")
-    for f in files.values():
+    for h5, f in files.items():
+        check_names(h5, f)
         f.close()
     print(f"particles.xdmf: {len(files)} outputs, {len(items)} datasets, all present")
 
