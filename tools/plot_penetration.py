@@ -95,13 +95,37 @@ def depth_series(hist, pen):
 
 
 
-def save(fig, ax, out_dir, name, title):
-    """Grid, legend (if anything is labelled), title; writes OUT_DIR/name and closes the figure."""
+def subject(p):
+    """"'jet' into 'target' at 7000 m/s": what the run fired, from summary.json."""
+    pen, tgt, v = p.get("penetrator"), p.get("target"), number(p, "impact_velocity")
+    if not pen or not tgt:
+        return ""
+    return f"'{pen}' into '{tgt}'" + ("" if v is None else f" at {v:.0f} m/s")
+
+
+def convergence_note(p):
+    """The run's own statement that its penetrator is under-resolved (summary `resolved`)."""
+    cells = number(p, "cells_across_radius")
+    if p.get("resolved") is False and cells is not None:
+        return (f"NOT CONVERGED: the penetrator is {cells:.2g} cells across its radius "
+                "(depth and rate converge from about 4; docs/validation.md)")
+    return ""
+
+
+def save(fig, ax, out_dir, name, title, p, source):
+    """Grid, legend (if anything is labelled), a title saying what is shown and for which run, and
+    a caption with where the figure's form comes from and, for an under-resolved run, that it is
+    not converged; writes OUT_DIR/name and closes the figure."""
     ax.grid(alpha=0.3)
     if ax.get_legend_handles_labels()[0]:
         ax.legend(fontsize=8, loc="best")
-    ax.set_title(title)
-    fig.tight_layout()
+    what = subject(p)
+    ax.set_title(f"{title}: {what}" if what else title, fontsize=10)
+    caption = [c for c in (convergence_note(p), source) if c]
+    fig.tight_layout(rect=(0, 0.03 * len(caption), 1, 1))
+    for k, c in enumerate(caption):
+        fig.text(0.01, 0.01 + 0.03 * (len(caption) - 1 - k), c, fontsize=7,
+                 color="tab:red" if c.startswith("NOT CONVERGED") else "0.3")
     fig.savefig(os.path.join(out_dir, name), dpi=120)
     plt.close(fig)
 
@@ -145,7 +169,8 @@ def plot_depth(out_dir, series, p):
     ax.set_ylabel("depth below target surface [mm]")
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
-    save(fig, ax, out_dir, "penetration_depth.png", "Penetration depth (thesis Fig. 7.4)")
+    save(fig, ax, out_dir, "penetration_depth.png", "Depth", p,
+         "Depth and cavity depth against time since firing; form of thesis seed 000 Fig. 7.4")
 
 
 def plot_rate(out_dir, pen, p):
@@ -171,7 +196,8 @@ def plot_rate(out_dir, pen, p):
     ax.set_xlabel("time since firing [µs]")
     ax.set_ylabel("penetration rate [m/s]")
     ax.set_xlim(left=0)
-    save(fig, ax, out_dir, "penetration_rate.png", "Penetration rate (thesis Fig. 7.5)")
+    save(fig, ax, out_dir, "penetration_rate.png", "Penetration rate", p,
+         "Rate dP/dt by local polynomial differentiation; form of thesis seed 000 Fig. 7.5")
 
 
 def segment_columns(hist):
@@ -186,7 +212,7 @@ def segment_columns(hist):
     return [h for _, h in sorted(segs)]
 
 
-def plot_energy(out_dir, hist):
+def plot_energy(out_dir, hist, p):
     segs = segment_columns(hist)
     if "penetrator_kinetic_energy" not in hist and not segs:
         note("penetrator_energy.png skipped: no penetrator_kinetic_energy / segment_kinetic_energy_* in history.csv")
@@ -212,7 +238,8 @@ def plot_energy(out_dir, hist):
         ax.plot(t, hist["penetrator_kinetic_energy"], "k-", lw=1.8, label="penetrator total")
     ax.set_xlabel(xlabel)
     ax.set_ylabel("kinetic energy [J]")
-    save(fig, ax, out_dir, "penetrator_energy.png", "Penetrator kinetic energy (thesis Figs. 7.6-7.7)")
+    save(fig, ax, out_dir, "penetrator_energy.png", "Penetrator kinetic energy", p,
+         "Kinetic energy of the penetrator and of each segment; form of thesis seed 000 Figs. 7.6-7.7")
 
 
 def plot_channel(out_dir, ch, p):
@@ -245,7 +272,8 @@ def plot_channel(out_dir, ch, p):
     ax.set_xlabel("depth below the target's face [mm]")
     ax.set_ylabel("radius [mm]")
     ax.set_ylim(bottom=0)
-    save(fig, ax, out_dir, "channel_profile.png", "Hole and tunnel radius along the line of flight")
+    save(fig, ax, out_dir, "channel_profile.png", "Hole and tunnel radius", p,
+         "Radius of the holes through the plates and of the tunnel wall against depth (docs/penetration.md)")
 
 
 def main(argv):
@@ -263,7 +291,7 @@ def main(argv):
     p = read_summary(out_dir)
     plot_depth(out_dir, depth_series(hist, pen), p)
     plot_rate(out_dir, pen, p)
-    plot_energy(out_dir, hist)
+    plot_energy(out_dir, hist, p)
     plot_channel(out_dir, ch, p)
     return 0
 

@@ -12,6 +12,7 @@ against I1 with the crush curve), A5-fluid as Fig. 4.13 (drained vs saturated pr
 curves), A6 as the rotated-vs-unrotated histories and the tangent scatter.
 Run with the interpreter CMake found (BALLISTA_PYTHON, /usr/bin/python3); needs numpy, matplotlib.
 """
+import base64
 import html
 import json
 import multiprocessing
@@ -303,6 +304,13 @@ def png_name(test):
                                      re.sub(r"[^A-Za-z0-9_.-]", "_", test["test"]))
 
 
+def embedded_png(out_dir, name):
+    """The PNG as a data: URI, so that report.html is one self-contained file (it can be mailed or
+    moved without its plots/ folder, which is still written beside it)."""
+    with open(os.path.join(out_dir, name), "rb") as f:
+        return "data:image/png;base64," + base64.b64encode(f.read()).decode("ascii")
+
+
 def fmt(x, spec="{:.3g}"):
     return "–" if x is None else spec.format(x)
 
@@ -332,7 +340,8 @@ def write_html(doc, out_dir, images):
         if checks:
             body += "<table><tr><th>check</th><th>value</th><th>limit</th></tr>{}</table>".format(checks)
         if k in images:
-            body += "<p><img src='{}' alt='{} {}'></p>".format(images[k], html.escape(t["model"]), html.escape(t["test"]))
+            body += "<p><img src='{}' alt='{} {}'></p>".format(embedded_png(out_dir, images[k]),
+                                                               html.escape(t["model"]), html.escape(t["test"]))
         sections.append(body)
     page = """<!DOCTYPE html>
 <html><head><meta charset="utf-8"><title>Ballista single-element verification</title>

@@ -5,11 +5,12 @@ Asserts: exit status 0; OUT/verify.json parses; every test passed or is not appl
 reason (none failed); every model `ballista info` lists has all ten tests (A1, A2, A2-iso, A2-kin,
 A3, A4, A5, A5-fluid, A6-objectivity, A6-tangent) and passed A6-objectivity (CATALOGUE A6 applies to
 every model); A3-A5 are not applicable only with a reason naming the hook (reduce_geo);
-every test with a plot has a PNG; OUT/report.html exists and every image it references exists and
-is a PNG. Then, with BALLISTA_PYTHON pointing at a missing interpreter and at one without
+every test with a plot has a PNG; OUT/report.html exists and embeds one PNG per plotted test (a
+data: URI: the page is self-contained). Then, with BALLISTA_PYTHON pointing at a missing interpreter and at one without
 matplotlib: exit status 4, a message naming the interpreter and matplotlib, verify.json written.
 """
 import argparse
+import base64
 import json
 import os
 import re
@@ -120,13 +121,14 @@ def main():
     plotted = [t for t in tests if t["plot"]]
     if len(images) != len(plotted):
         fail("report.html references {} images for {} tests with plots".format(len(images), len(plotted)))
+    # Self-contained: every image is embedded as a data: URI holding a PNG (plots/ is a copy).
     for src in images:
-        path = os.path.join(a.out, src)
-        if not os.path.isfile(path):
-            fail("report.html references missing " + src)
-        with open(path, "rb") as f:
-            if f.read(8) != b"\x89PNG\r\n\x1a\n":
-                fail(src + " is not a PNG")
+        prefix = "data:image/png;base64,"
+        if not src.startswith(prefix):
+            fail("report.html links an image instead of embedding it: " + src[:80])
+        if base64.b64decode(src[len(prefix):])[:8] != b"\x89PNG\r\n\x1a\n":
+            fail("an image embedded in report.html is not a PNG")
+
     check_missing_python(a)
     n_pass = sum(t["status"] == "pass" for t in tests)
     print("check_verify: OK: {} tests ({} passed, {} not applicable), {} models, {} PNGs, {:.1f} s".format(
