@@ -57,6 +57,7 @@ bool shape_contains(const ShapeSpec& s, const Vec3& x, int dim) {
     const double rin = s.type == "tube" ? s.inner_radius : -1.0;
     return in_length && radial <= s.radius + tr && radial >= rin - tr;
   }
+  if (s.type == "surface") return s.solid && s.solid->contains(x);  // 3D only (the deck reader)
   throw Error("unknown shape type '" + s.type + "'");
 }
 
@@ -80,11 +81,12 @@ double shape_depth(const ShapeSpec& s, const Vec3& x, int dim) {
     if (s.type == "tube") depth = std::min(depth, radial - s.inner_radius);
     return depth;
   }
+  if (s.type == "surface") throw Error("shape_depth: not defined for a surface shape (no distance to it is kept)");
   throw Error("unknown shape type '" + s.type + "'");
 }
 
 void shape_bounds(const ShapeSpec& s, int dim, Vec3& lo, Vec3& hi) {
-  if (s.type == "box") {
+  if (s.type == "box" || s.type == "surface") {  // a surface's lower/upper: its bounding box
     lo = s.lower;
     hi = s.upper;
   } else if (s.type == "sphere") {

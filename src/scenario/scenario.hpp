@@ -4,6 +4,7 @@
 // pressure and moduli in Pa, density in kg/m^3 (docs/deck.md).
 #include <array>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -95,14 +96,26 @@ struct MaterialSpec {
 };
 
 /// Solid shapes. In 2D only x and y are used (axisymmetric: x = r, y = axial z).
+/// A solid given by a closed surface read from a file (geometry/surface_solid.hpp implements
+/// it; the deck reader builds it): point membership and bounds, already in metres.
+class SolidShape {
+ public:
+  virtual ~SolidShape() = default;
+  virtual bool contains(const Vec3& x) const = 0;
+  virtual Vec3 lower() const = 0;
+  virtual Vec3 upper() const = 0;
+};
+
 struct ShapeSpec {
-  std::string type;       ///< box | cylinder | sphere | tube
+  std::string type;       ///< box | cylinder | sphere | tube | surface
   Vec3 lower, upper;      ///< box corners, m
   Vec3 center;            ///< sphere centre / cylinder and tube base centre, m
   int axis = 2;           ///< cylinder/tube axis: 0 x, 1 y, 2 z
   double radius = 0.0;    ///< m (outer radius of a tube; in 2D a cylinder across its axis is a disk)
   double inner_radius = 0.0;  ///< tube inner radius, m
   double length = 0.0;    ///< cylinder/tube length along axis, m
+  std::string file;       ///< surface: the surface file read (absolute path)
+  std::shared_ptr<const SolidShape> solid;  ///< surface: the solid it bounds (lower/upper: its box)
 };
 
 /// One piece of a body with its own shape, velocity and activation (a segment of a segmented

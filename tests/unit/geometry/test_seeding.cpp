@@ -7,9 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <numbers>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -19,6 +22,8 @@
 #include "geometry/seeding.hpp"
 #include "geometry/shape.hpp"
 #include "materials/material.hpp"
+#include "support/surface_files.hpp"
+#include "support/test_files.hpp"
 
 using namespace ballista;
 using std::numbers::pi;
@@ -523,4 +528,84 @@ TEST(PressureSurface, SurfaceTheShapeLacksMarksNothing) {
   top.params.choices["surface"] = "top";
   EXPECT_EQ(mark_pressure_surface(top, 1, s->sc.bodies[0], 0, s->sc.grid.cell_size, Dimension::ThreeD, s->pts), 0);
   EXPECT_EQ(norm(sum_area(s->pts, 1)), 0.0);
+}
+
+// Bodies from surface files (deck/surface_reader.hpp): the file's solid is seeded like the
+// analytic one, its units and offset applied; a surface that does not close is refused.
+namespace {
+
+std::string write_file(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+std::string surface_body(const std::string& file, const std::string& extra = "") {
+  return "  - {name: s, material: m, particles_per_cell: 2,\n     shape: {type: surface, file: '" + file + "'" + extra +
+         "}}\n";
+}
+
+const Vec3 kBoxLo{{0.25, 0.5, 0.125}}, kBoxHi{{1.0, 0.875, 0.625}};
+
+}  // namespace
+
+TEST(SeedingSurface, AnStlBoxInMillimetresSeedsTheBoxsPoints) {
+  test::TempDir dir;
+  const std::string stl = write_file(dir.path / "box.stl", test::stl_text(test::box_triangles(kBoxLo, kBoxHi), 1000.0));
+  const auto from_file = seed(deck("3d", kGrid3, surface_body(stl, ", unit: mm")));
+  const auto analytic = seed(deck("3d", kGrid3,
+                                  "  - {name: b, material: m, particles_per_cell: 2,\n"
+                                  "     shape: {type: box, lower: [0.25, 0.5, 0.125], upper: [1.0, 0.875, 0.625]}}\n"));
+  ASSERT_EQ(from_file->pts.size(), 12 * 6 * 8);
+  ASSERT_EQ(from_file->pts.size(), analytic->pts.size());
+  const auto* a = from_file->pts.view<Vec3>("x");
+  const auto* b = analytic->pts.view<Vec3>("x");
+  for (Index i = 0; i < from_file->pts.size(); ++i)
+    for (int d = 0; d < 3; ++d) ASSERT_EQ(a[i][d], b[i][d]);  // same lattice, same order
+  EXPECT_NEAR(sum_volume(from_file->pts), 0.75 * 0.375 * 0.5, kSumTol);
+}
+
+TEST(SeedingSurface, AnObjIcosphereWithAnOffsetSeedsTheBallsVolume) {
+  test::TempDir dir;
+  // The sphere of radius 0.5 m about the origin, moved by the deck's offset to (1, 1, 1).
+  std::ostringstream obj;
+  obj.precision(17);
+  const auto tris = test::icosphere_triangles({{0, 0, 0}}, 0.5, 3);
+  for (const auto& t : tris)
+    for (const Vec3& p : t) obj << "v " << p[0] << " " << p[1] << " " << p[2] << "\n";
+  for (std::size_t k = 0; k < tris.size(); ++k) obj << "f " << 3 * k + 1 << " " << 3 * k + 2 << " " << 3 * k + 3 << "\n";
+  const std::string file = write_file(dir.path / "ball.obj", obj.str());
+  const auto s = seed(deck("3d", kGrid3, surface_body(file, ", offset: [1, 1, 1]")));
+  // The polyhedron's volume is within 1 % of the ball's (its facets span <= 0.11 rad); the lattice
+  // of spacing h/2 = 1/16 m adds a surface error of order area x spacing / 2 ~ 3 %.
+  const double ball = 4.0 / 3.0 * pi * 0.125;
+  EXPECT_NEAR(sum_volume(s->pts), ball, 0.04 * ball);
+  const auto* x = s->pts.view<Vec3>("x");
+  for (Index i = 0; i < s->pts.size(); ++i) ASSERT_LE(norm(x[i] - Vec3{{1, 1, 1}}), 0.5);
+}
+
+TEST(SeedingSurface, ASurfaceThatDoesNotCloseIsRefusedAtItsFileKey) {
+  test::TempDir dir;
+  auto tris = test::box_triangles(kBoxLo, kBoxHi);
+  tris.resize(10);  // the +x face missing
+  const std::string stl = write_file(dir.path / "open.stl", test::stl_text(tris));
+  try {
+    seed(deck("3d", kGrid3, surface_body(stl)));
+    FAIL() << "an open surface was accepted";
+  } catch (const DeckError& e) {
+    EXPECT_NE(std::string(e.what()).find("bodies.0.shape.file"), std::string::npos) << e.what();
+    // The face's four rim edges border one triangle; its diagonal is gone with it (18 - 1 edges).
+    EXPECT_NE(std::string(e.what()).find("does not close: 4 of its 17 edges"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SeedingSurface, BadSurfaceInputsAreDeckErrors) {
+  test::TempDir dir;
+  const std::string stl = write_file(dir.path / "box.stl", test::stl_text(test::box_triangles(kBoxLo, kBoxHi)));
+  const std::string junk = write_file(dir.path / "junk.stl", "solid nothing\nendsolid nothing\n");
+  const std::string text = write_file(dir.path / "box.txt", "not a surface\n");
+  EXPECT_THROW(seed(deck("plane_strain", kGrid2, surface_body(stl))), DeckError);  // 3D only
+  EXPECT_THROW(seed(deck("3d", kGrid3, surface_body((dir.path / "missing.stl").string()))), DeckError);
+  EXPECT_THROW(seed(deck("3d", kGrid3, surface_body(junk))), DeckError);   // no triangle
+  EXPECT_THROW(seed(deck("3d", kGrid3, surface_body(text))), DeckError);   // not .stl or .obj
+  EXPECT_THROW(seed(deck("3d", kGrid3, surface_body(stl, ", unit: furlong"))), DeckError);
 }
