@@ -11,8 +11,11 @@
 #include "deck/deck_node.hpp"
 #include "deck/deck_reader.hpp"
 #include "points/solver_registry.hpp"
+#include "support/deck_errors.hpp"
 
 using namespace ballista;
+using ballista::test::deck_error;
+using ballista::test::parse_error;
 
 namespace {
 
@@ -71,24 +74,6 @@ std::string deck_with(const std::string& from, const std::string& to, const std:
   EXPECT_NE(pos, std::string::npos) << from;
   if (pos != std::string::npos) d.replace(pos, from.size(), to);
   return d;
-}
-
-/// Runs f, expects a DeckError and returns it.
-DeckError deck_error(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const DeckError& e) {
-    return e;
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected DeckError, got: " << e.what();
-    return DeckError("", 0, 0, "", "wrong exception");
-  }
-  ADD_FAILURE() << "expected DeckError, nothing thrown";
-  return DeckError("", 0, 0, "", "no exception");
-}
-
-DeckError parse_error(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  return deck_error([&] { parse_deck(text, "deck.yaml", overrides); });
 }
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }

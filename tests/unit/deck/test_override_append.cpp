@@ -9,8 +9,10 @@
 #include "core/error.hpp"
 #include "deck/deck_overrides.hpp"
 #include "deck/deck_reader.hpp"
+#include "support/deck_errors.hpp"
 
 using namespace ballista;
+using ballista::test::parse_error;
 
 namespace {
 
@@ -62,18 +64,6 @@ std::vector<std::string> probe_names(const Scenario& s) {
   return names;
 }
 
-DeckError parse_error(const std::string& text, const std::vector<std::string>& overrides) {
-  try {
-    parse_deck(text, "deck.yaml", overrides);
-  } catch (const DeckError& e) {
-    return e;
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected DeckError, got: " << e.what();
-    return DeckError("", 0, 0, "", "wrong exception");
-  }
-  ADD_FAILURE() << "expected DeckError, nothing thrown";
-  return DeckError("", 0, 0, "", "no exception");
-}
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
