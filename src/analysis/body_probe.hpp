@@ -88,9 +88,11 @@ inline double mass_weighted_mean(double sum[2], const Communicator& comm) {
 /// The factory of a kind whose only deck parameters are a body and an axis (its constructor takes
 /// both), written once for every such kind.
 template <class P>
-ProbeFactory body_axis_probe_factory(std::string name, std::string description, std::string axis_meaning) {
+ProbeFactory body_axis_probe_factory(std::string name, std::string description, std::string unit,
+                                     std::string axis_meaning) {
   return {.name = std::move(name),
           .description = std::move(description),
+          .unit = std::move(unit),
           .params = {body_param(), axis_param(std::move(axis_meaning))},
           .create = [](const ProbeSpec& spec, const Scenario& sc) -> std::unique_ptr<Probe> {
             return std::make_unique<P>(probe_body(spec, sc), probe_axis(spec));

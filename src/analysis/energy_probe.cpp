@@ -27,6 +27,7 @@ class EnergyProbe : public Probe {
 BALLISTA_REGISTER_PROBE(ProbeFactory{
     .name = "energy",
     .description = "one of the energy totals [J]",
+    .unit = "J",
     .params = {{.name = "field", .kind = ProbeParam::Kind::Word, .unit = "", .description = "which total",
                 .choices = {"kinetic", "internal", "plastic", "external", "total"}}},
     .create = [](const ProbeSpec& spec, const Scenario&) -> std::unique_ptr<Probe> {

@@ -32,6 +32,6 @@ class ExtentProbe : public BodyAxisProbe {
 }  // namespace
 
 BALLISTA_REGISTER_PROBE(body_axis_probe_factory<ExtentProbe>(
-    "extent", "max - min of the body's deformed particle domains along `axis` [m]", "axis measured"))
+    "extent", "max - min of the body's deformed particle domains along `axis` [m]", "m", "axis measured"))
 
 }  // namespace ballista

@@ -56,6 +56,7 @@ BALLISTA_REGISTER_PROBE(ProbeFactory{
     .name = "max_radius",
     .description = "largest distance from the axis (through `center`, along `axis`) of the deformed domains of "
                    "particles whose centre is within `distance` of the plane at `plane` [m]",
+    .unit = "m",
     .params = {body_param(),
                axis_param("axis of symmetry"),
                {.name = "plane", .kind = ProbeParam::Kind::Number, .unit = "m",

@@ -26,6 +26,7 @@ class MeanVelocityProbe : public BodyAxisProbe {
 }  // namespace
 
 BALLISTA_REGISTER_PROBE(body_axis_probe_factory<MeanVelocityProbe>(
-    "mean_velocity", "the body's centre-of-mass velocity along `axis`, sum m v / sum m [m/s]", "velocity component"))
+    "mean_velocity", "the body's centre-of-mass velocity along `axis`, sum m v / sum m [m/s]", "m/s",
+    "velocity component"))
 
 }  // namespace ballista

@@ -42,6 +42,7 @@ BALLISTA_REGISTER_PROBE(ProbeFactory{
     .name = "radial_velocity",
     .description = "the body's mass-weighted mean velocity away from the axis through `center` along `axis` "
                    "(a cylinder's expansion velocity), sum m v.e_r / sum m [m/s]",
+    .unit = "m/s",
     .params = {body_param(), axis_param("the cylinder's axis"),
                axis_point_param("a point on the axis (default: the origin)")},
     .create = [](const ProbeSpec& spec, const Scenario& sc) -> std::unique_ptr<Probe> {

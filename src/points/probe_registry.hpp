@@ -62,6 +62,7 @@ struct ProbeParam {
 struct ProbeFactory {
   std::string name;                 ///< probes[].type
   std::string description;          ///< one line: what it measures
+  std::string unit;                 ///< SI unit of its value; "" for a field's maximum: the field's unit
   std::vector<ProbeParam> params;   ///< read in this order
   /// Checks against the rest of the deck after the parameters are read; throws ParamError naming
   /// the key, which the deck reader reports at that key's line. May be null.

@@ -6,6 +6,7 @@
 // writes files (docs/parallel.md).
 #include <chrono>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -66,6 +67,7 @@ class RunLoop {
   void step_loop();
   void start_progress();
   std::vector<std::string> run_warnings() const;
+  std::map<std::string, std::string> probe_units() const;
   double next_dt();
   void after_preparation_step(double dt);
   void check_equilibrium_stage(const StageSpec& st, double elapsed);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -13,8 +14,10 @@
 #include "core/energy_terms.hpp"
 #include "core/parallel.hpp"
 #include "core/warning_log.hpp"
+#include "io/summary_units.hpp"
 #include "io/summary_writer.hpp"
 #include "points/point_exchange.hpp"
+#include "points/probe_registry.hpp"
 #include "run/fragment_summary.hpp"
 #include "run/headlines.hpp"
 #include "run/run_loop.hpp"
@@ -68,6 +71,21 @@ void write_energy(JsonValue& en, const EnergyTotals& e, double total0, double sc
 }
 
 }  // namespace
+
+/// The unit of each probe's value: its kind's, or for a field's maximum the field's.
+std::map<std::string, std::string> RunLoop::probe_units() const {
+  std::map<std::string, std::string> units;
+  const FieldStore& pts = solver_->points();
+  for (const ProbeSpec& p : sc_.probes) {
+    const ProbeFactory* f = find_probe(p.type);
+    std::string unit = f ? f->unit : "";
+    if (unit.empty())
+      if (const auto it = p.params.choices.find("field"); it != p.params.choices.end() && pts.has(it->second))
+        unit = pts.info(it->second).unit;
+    if (!unit.empty()) units[p.name] = unit;
+  }
+  return units;
+}
 
 /// The run's warnings: those restored from the checkpoint it continues, then this process's, each
 /// once (a restart logs again what its set-up logged before, e.g. an under-resolved penetrator).
@@ -177,6 +195,7 @@ void RunLoop::write_summary(double wall) {
     summary["status"] = "failed";
     summary["error"] = result_.error;
   }
+  summary["units"] = summary_units(summary.root(), probe_units());
   if (root_) {
     result_.headlines = headline_lines(summary.root());
     summary.write((fs::path(opt_.out_dir) / "summary.json").string());

@@ -147,7 +147,33 @@ def run_ballista(args, command):
         fail(f"summary status is {summary.get('status')!r}: {summary.get('error', '')}")
     if not os.path.isfile(os.path.join(args.out, "resolved.yaml")):
         fail("missing resolved.yaml")
+    if command == "run":
+        check_units(summary)
     return summary
+
+
+def numeric_paths(value, path=""):
+    """Paths of every number in a summary, arrays' elements as `key[]` (as "units" names them)."""
+    if isinstance(value, dict):
+        for k, v in value.items():
+            yield from numeric_paths(v, f"{path}.{k}" if path else k)
+    elif isinstance(value, list):
+        for v in value:
+            yield from numeric_paths(v, path + "[]")
+    elif isinstance(value, (int, float)) and not isinstance(value, bool):
+        yield path
+
+
+def check_units(summary):
+    """Every number of summary.json has its SI unit in summary["units"] (io/summary_units.cpp)."""
+    units = summary.get("units")
+    if not isinstance(units, dict):
+        fail("summary.json has no units object")
+    missing = sorted({p for p in numeric_paths({k: v for k, v in summary.items() if k != "units"})
+                      if p not in units})
+    if missing:
+        fail(f"summary.json numbers without a unit in 'units': {missing[:12]}")
+    print(f"summary.json: {len(units)} numbers, each with its unit")
 
 
 def run_mode(args):
