@@ -673,6 +673,18 @@ def models_case(rng, name):
     return (argv + extra, desc) if rng else argv
 
 
+def referenced_files(text, deck_path):
+    """The files a source deck names by a path relative to its folder (`file: geometry/part.stl`),
+    {relative path: bytes}, so that the case's copy of the deck finds them beside it."""
+    out = {}
+    for rel in re.findall(r"\bfile:\s*['\"]?([^\s,'\"}]+)", text):
+        src = os.path.join(os.path.dirname(deck_path), rel)
+        if not os.path.isabs(rel) and os.path.isfile(src):
+            with open(src, "rb") as f:
+                out[os.path.normpath(rel)] = f.read()
+    return out
+
+
 def make_case(index, seed, sources, case_dir, ballista, baseline=None):
     """Write the case's input files to case_dir; returns a dict with cmd, source, mutation.
     baseline: a source run without any mutation (--baseline: the reduced sizes must run ok)."""
@@ -724,7 +736,9 @@ def make_case(index, seed, sources, case_dir, ballista, baseline=None):
             if not any(t == k or t.startswith(k + ".") or k.startswith(t + ".") for t in targets):
                 sets.insert(0, f"{k}={v}")
         files["deck.yaml"] = deck
+        files.update(referenced_files(text, path))
         for fn, data in files.items():
+            os.makedirs(os.path.dirname(os.path.join(case_dir, fn)), exist_ok=True)
             with open(os.path.join(case_dir, fn), "wb") as f:
                 f.write(data)
         cmd = [ballista, "run", os.path.join(case_dir, "deck.yaml"), "-o", out_dir, "--no-plots", "-q",
