@@ -106,10 +106,15 @@ void rerun_tracking_failed(const RunCliOptions& o, const RunOptions& opt, std::o
 /// figures, and a run that did not complete says so on standard error.
 void report_run(const RunResult& r, const Scenario& sc, const std::string& out_dir, const RunCliOptions& o,
                 const Communicator& world) {
+  // Figures of the penetration run (thesis seed 000 Figs. 7.4-7.7), also after a failure: what
+  // ran is worth seeing. A missing Python is a warning, not a failed run.
+  bool figures = false;
+  if (sc.penetration.enabled && !o.no_plots && world.rank() == 0) {
+    const std::string err = make_penetration_plots(out_dir);
+    figures = err.empty();
+    if (!figures) std::cerr << "warning: no penetration figures: " << err << " (--no-plots skips them)\n";
+  }
   if (o.quiet) {
-    if (sc.penetration.enabled && !o.no_plots && world.rank() == 0)
-      if (const std::string err = make_penetration_plots(out_dir); !err.empty())
-        std::cerr << "warning: no penetration figures: " << err << " (--no-plots skips them)\n";
     if (!r.ok && world.rank() == 0)
       std::cerr << (r.interrupted ? "INTERRUPTED" : "FAILED") << " at step " << r.steps << ", t = " << r.time
                 << " s" << (r.checkpoint.empty() ? "" : " (ballista run --restart " + out_dir + ")") << "\n";
@@ -124,16 +129,9 @@ void report_run(const RunResult& r, const Scenario& sc, const std::string& out_d
             << " particle-steps/s)\n";
   for (const auto& line : r.headlines) std::cout << "  " << line << "\n";
   for (const auto& [name, value] : r.probes) std::cout << "  " << name << " = " << value << "\n";
-  if (sc.penetration.enabled && !o.no_plots && world.rank() == 0) {
-    // Figures of the penetration run (thesis seed 000 Figs. 7.4-7.7), also after a failure:
-    // what ran is worth seeing. A missing Python is a warning, not a failed run.
-    const std::string err = make_penetration_plots(out_dir);
-    if (err.empty())
-      std::cout << "  figures: penetration_depth.png, penetration_rate.png, penetrator_energy.png, "
-                   "channel_profile.png\n";
-    else
-      std::cerr << "warning: no penetration figures: " << err << " (--no-plots skips them)\n";
-  }
+  if (figures)
+    std::cout << "  figures: penetration_depth.png, penetration_rate.png, penetrator_energy.png, "
+                 "channel_profile.png\n";
   std::cout << "results in " << std::filesystem::absolute(out_dir).string() << "\n";
 }
 
