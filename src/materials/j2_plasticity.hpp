@@ -187,6 +187,30 @@ struct J2Plasticity {
     res.eqps = eqps;
   }
 
+  /// update_fast for four points (material_lanes.hpp), bitwise the same lane by lane: the plastic
+  /// correction is computed on every lane and kept where the trial stress is beyond yield.
+  static bool lanes_apply(const Params& p) { return p.fast; }
+  static void update_lanes(const Params& p, const LaneKinematics& k, Mat3L& sigma, Lane* state, Lane& plastic_work) {
+    const double G = p.shear, H = p.hardening.modulus;
+    const double lam = p.bulk - 2.0 * G / 3.0;
+    sigma = sigma + (k.dt * 2.0 * G) * k.D_bar;
+    const Lane iso = k.dt * lam * trace(k.D_bar);
+    sigma.a[0] += iso; sigma.a[4] += iso; sigma.a[8] += iso;
+    const Lane mean = trace(sigma) / 3.0;
+    Mat3L s = sigma;
+    s.a[0] -= mean; s.a[4] -= mean; s.a[8] -= mean;
+    const Lane q_trial = lane_sqrt(1.5 * ddot(s, s));
+    Lane& eqps = state[0];
+    const Lane f = q_trial - (p.hardening.yield0 + H * eqps);
+    const LaneMask plastic = f > 0.0;
+    if (!any(plastic)) return;
+    const Lane de = f / (3.0 * G + H);
+    const Mat3L corrected = sigma + (-3.0 * G * de / q_trial) * s;
+    for (int e = 0; e < 9; ++e) sigma.a[e] = select(plastic, corrected.a[e], sigma.a[e]);
+    plastic_work = select(plastic, (p.hardening.yield0 + H * (eqps + 0.5 * de)) * de, plastic_work);
+    eqps = select(plastic, eqps + de, eqps);
+  }
+
   /// Dilatational wave speed of the elastic part (J2ElasticEos::wave_speed).
   static double wave_speed(const Params& p, const double* state, double J) { return p.wave_speed(state, J); }
 };

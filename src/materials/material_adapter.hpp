@@ -10,6 +10,7 @@
 #include "materials/distortion.hpp"
 #include "materials/failure.hpp"
 #include "materials/material.hpp"
+#include "materials/material_lanes.hpp"
 #include "materials/strain_increment.hpp"
 
 namespace ballista {
@@ -54,9 +55,12 @@ class MaterialAdapter final : public Material {
   }
 
   /// The failure branch is chosen once per batch, so a material without a criterion pays nothing.
+  /// Four points at a time where the model has a lane kernel (material_lanes.hpp: same results).
   void update(const MaterialBatch& b) const override {
     if (failure_.active())
       update_batch<true>(b);
+    else if (in_lanes(b))
+      update_lanes(b);
     else
       update_batch<false>(b);
   }
@@ -105,6 +109,22 @@ class MaterialAdapter final : public Material {
     const Mat3* F_;
     const double* sptr_[kMaxState] = {};
   };
+
+  /// The lane path covers the per-point loop without failure, tangent or F_n, for dt > 0.
+  bool in_lanes(const MaterialBatch& b) const {
+    if constexpr (requires { Model::lanes_apply(params_); })
+      return !kNeedsFOld && !b.tangent && b.dt > 0.0 && Model::lanes_apply(params_);
+    else
+      return false;
+  }
+  void update_lanes(const MaterialBatch& b) const {
+    if constexpr (requires { Model::lanes_apply(params_); }) {
+      double* sptr[kMaxState];
+      const int ns = static_cast<int>(state_.size());
+      for (int s = 0; s < ns; ++s) sptr[s] = b.store->real(state_[s].name);
+      update_in_lanes<Model, kMaxState>(params_, b, sptr, ns);
+    }
+  }
 
   template <bool kFailure>
   void update_batch(const MaterialBatch& b) const {

@@ -10,6 +10,7 @@
 // rotation Q is skew) and equals sym(G) + O(|G|^2) otherwise, so the rate form of thesis eq. 2.6
 // is unchanged to first order. For a stretch dF = diag(lambda) it is 2 (lambda - 1)/(lambda + 1)
 // = ln lambda + O((lambda - 1)^3), against lambda - 1 = ln lambda + O((lambda - 1)^2) for sym(G).
+#include "core/lanes.hpp"
 #include "core/tensor.hpp"
 
 namespace ballista {
@@ -17,6 +18,12 @@ namespace ballista {
 /// sym(G (I + G/2)^-1), G = dF - I (Hughes & Winget 1980). One 3x3 inverse and one product.
 inline Mat3 midpoint_strain_increment(const Mat3& G) {
   const Mat3 B = Mat3::identity() + 0.5 * G;
+  return sym(G * inverse(B));
+}
+
+/// The same for four points (lanes.hpp): bitwise the scalar function lane by lane.
+inline Mat3L midpoint_strain_increment(const Mat3L& G) {
+  const Mat3L B = Mat3L::identity() + 0.5 * G;
   return sym(G * inverse(B));
 }
 

@@ -1,0 +1,117 @@
+#pragma once
+// The stress update of a batch of points four at a time (core/lanes.hpp), for models with a lane
+// kernel: the strain increment, the polar decomposition, the unrotated frame, the model, the
+// rotation back and the energy bookkeeping of MaterialAdapter's per-point loop, each on four
+// points per instruction. It evaluates the per-point loop's expressions; the results agree with
+// that loop's to round-off (tests/unit/materials/test_material_lanes.cpp), and the choice is made
+// per material and per step from the material's parameters and the batch's options, never per
+// point, so a run is bitwise reproducible for any thread count, ranks and restarts.
+//
+// A model offers a lane kernel with
+//   static bool lanes_apply(const Params&);   // this parameter set has one
+//   static void update_lanes(const Params&, const LaneKinematics&, Mat3L& sigma_bar, Lane* state,
+//                            Lane& plastic_work_density);
+// doing for four points what its update() does for one. The per-point loop stays for failure
+// criteria, tangents, models that read F_n, and dt = 0.
+#include <algorithm>
+#include <atomic>
+#include <vector>
+
+#include "core/parallel.hpp"
+#include "core/polar_lanes.hpp"
+#include "materials/distortion.hpp"
+#include "materials/material.hpp"
+#include "materials/strain_increment.hpp"
+
+namespace ballista {
+
+/// What a lane kernel reads of the motion of four points over the step (PointKinematics' D_bar,
+/// J_old, J_new and dt).
+struct LaneKinematics {
+  Mat3L D_bar;  ///< unrotated rate of deformation, 1/s
+  Lane J_old;
+  Lane J_new;
+  double dt = 0.0;
+};
+
+/// The kernel's state fields are `state[s]` (indexed by point), `ns` of them (at most kMaxState).
+template <class Model, int kMaxState>
+void update_in_lanes(const typename Model::Params& prm, const MaterialBatch& b, double* const* state, int ns) {
+  const Index groups = (b.count + kLanes - 1) / kLanes;
+  const double dt = b.dt;
+  for_each_uneven(0, groups, [&](Index g) {
+    const Index k0 = g * kLanes;
+    const int n = static_cast<int>(std::min<Index>(kLanes, b.count - k0));
+    Index idx[kLanes];  // a short last group repeats its last point in the unused lanes
+    for (int l = 0; l < kLanes; ++l) idx[l] = b.points[k0 + std::min(l, n - 1)];
+
+    const Mat3L L = gather(b.L, idx);
+    Mat3L F_new = gather(b.F_new, idx);
+    const Mat3L R_old = gather(b.R, idx);
+    // As MaterialAdapter's loop: F_new = (I + dt L) F_old (thesis seed 000 eq. 4.9), J_old from
+    // det(I + dt L), the midpoint strain increment (Hughes & Winget 1980; strain_increment.hpp).
+    const Mat3L A = Mat3L::identity() + dt * L;
+    const Lane detA = det(A);
+    LaneKinematics kin;
+    kin.dt = dt;
+    kin.J_new = det(F_new);
+    kin.J_old = kin.J_new / detA;
+    const Mat3L D = (1.0 / dt) * midpoint_strain_increment(dt * L);
+    Mat3L R_new = polar_rotation(F_new, R_old);
+    if (b.distortion_limit > 0.0) {
+      // Lanes clearly inside the limit skip the (out-of-line) scalar check, which decides for the
+      // rest: the lanes' test of beyond_distortion_limit at 0.99 of the limit cannot miss a point
+      // the scalar test would remap, whatever the round-off.
+      Lane trC = splat(0.0);
+      for (int e = 0; e < 9; ++e) trC += F_new.a[e] * F_new.a[e];
+      const double l2 = 0.99 * 0.99 * b.distortion_limit * b.distortion_limit;
+      const LaneMask near = trC * trC * trC > 27.0 * l2 * l2 * l2 * kin.J_new * kin.J_new;
+      for (int l = 0; l < n; ++l) {
+        if (!near[l]) continue;
+        Mat3 Fl = F_new.lane(l);
+        if (remap_if_distorted(Fl, kin.J_new[l], R_new.lane(l), b.distortion_limit)) {
+          b.F_new[idx[l]] = Fl;  // distortion.hpp: same J and R, so nothing below changes
+          if (b.distortion_remaps) b.distortion_remaps->fetch_add(1, std::memory_order_relaxed);
+        }
+      }
+    }
+    kin.D_bar = unrotate_sym(R_new, D);
+    const Mat3L sigma_old = gather(b.stress, idx);
+    Mat3L sigma_bar = unrotate_sym(R_old, sigma_old);
+    Lane st[kMaxState];
+    for (int s = 0; s < ns; ++s) st[s] = gather(state[s], idx);
+    Lane plastic_work = splat(0.0);
+    Model::update_lanes(prm, kin, sigma_bar, st, plastic_work);
+    const Mat3L sigma_new = rotate_sym(R_new, sigma_bar);
+
+    Lane internal_energy, plastic_energy;
+    if (b.internal_energy) {
+      const Lane V0 = gather(b.volume0, idx);
+      const Lane V_new = V0 * kin.J_new;
+      const Lane V_old = V0 * kin.J_old;
+      internal_energy = gather(b.internal_energy, idx);
+      plastic_energy = gather(b.plastic_energy, idx);
+      internal_energy += dt * 0.5 * (V_old + V_new) * 0.5 * ddot(sigma_old + sigma_new, D);
+      plastic_energy += plastic_work * V_new;
+    }
+    for (int l = 0; l < n; ++l) {
+      const Index p = idx[l];
+      for (int s = 0; s < ns; ++s) state[s][p] = st[s][l];
+      const Mat3 sl = sigma_new.lane(l);
+      b.stress[p] = sl;
+      b.R[p] = R_new.lane(l);
+      if (b.plastic_work) b.plastic_work[p] = plastic_work[l];
+      if (b.internal_energy) {
+        b.internal_energy[p] = internal_energy[l];
+        b.plastic_energy[p] = plastic_energy[l];
+      }
+      if (b.first_bad && !all_finite(sl)) {
+        Index cur = b.first_bad->load(std::memory_order_relaxed);
+        while (p < cur && !b.first_bad->compare_exchange_weak(cur, p, std::memory_order_relaxed)) {
+        }
+      }
+    }
+  });
+}
+
+}  // namespace ballista

@@ -1,0 +1,150 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <random>
+#include <vector>
+
+#include "core/field_store.hpp"
+#include "materials/j2_plasticity.hpp"
+#include "material_driver.hpp"
+
+using namespace ballista;
+using namespace ballista::test;
+
+// The stress update four points at a time (material_lanes.hpp) against the per-point loop of
+// MaterialAdapter, and its independence of which points share a group of lanes.
+namespace {
+ParamValues j2_values() {
+  ParamValues v = elastic_kg(7800, 160e9, 80e9);
+  v["yield_stress"] = 300e6;
+  v["hardening_modulus"] = 1e9;
+  return v;
+}
+
+/// n points with random motion over one step; a few with a large stretch (distortion remap), a
+/// large spin, or a poor rotation guess.
+struct Points {
+  FieldStore store;
+  std::vector<Index> idx;
+  explicit Points(const Material& m, Index n, std::mt19937& rng) {
+    for (const char* f : {"F", "L", "R", "stress"}) store.add_real(f, 9, "1");
+    for (const char* f : {"plastic_work", "volume0", "internal_energy", "plastic_energy"}) store.add_real(f, 1, "1");
+    m.declare_fields(store);
+    store.resize(n);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const double dt = 1e-7;
+    for (Index p = 0; p < n; ++p) {
+      Mat3 F_old = Mat3::identity(), L, S;
+      for (double& x : F_old.a) x += 0.2 * u(rng);
+      if (p % 97 == 5) F_old = Mat3::diag(40.0, 1.0 / 40.0, 1.0) * F_old;  // beyond the limit below
+      for (double& x : L.a) x = 2e5 * u(rng);
+      if (p % 31 == 7) L = L + Mat3{{0, -3e6, 0, 3e6, 0, 0, 0, 0, 0}};  // 0.3 rad in one step
+      for (double& x : S.a) x = 400e6 * u(rng);
+      store.view<Mat3>("F")[p] = (Mat3::identity() + dt * L) * F_old;
+      store.view<Mat3>("L")[p] = L;
+      store.view<Mat3>("R")[p] = p % 53 == 3 ? rotation_about(Vec3{{0, 0, 1}}, 2.5) : polar_rotation(F_old);
+      store.view<Mat3>("stress")[p] = sym(S);
+      store.real("eqps")[p] = 0.1 * (1.0 + u(rng));
+      store.real("volume0")[p] = 1e-9 * (1.5 + u(rng));
+      store.real("internal_energy")[p] = 1e-3 * u(rng);
+      store.real("plastic_energy")[p] = 1e-3 * (1.0 + u(rng));
+    }
+    // Every other point, so that the lanes gather from scattered indices; an odd count leaves a
+    // short last group of lanes.
+    for (Index p = 0; p < n; p += 2) idx.push_back(p);
+  }
+  void update(const Material& m, std::atomic<Index>& remaps) { update(m, remaps, idx); }
+  void update(const Material& m, std::atomic<Index>& remaps, const std::vector<Index>& order) {
+    MaterialBatch b;
+    b.points = order.data();
+    b.count = static_cast<Index>(order.size());
+    b.F_new = store.view<Mat3>("F");
+    b.L = store.view<Mat3>("L");
+    b.R = store.view<Mat3>("R");
+    b.stress = store.view<Mat3>("stress");
+    b.plastic_work = store.real("plastic_work");
+    b.store = &store;
+    b.dt = 1e-7;
+    b.volume0 = store.real("volume0");
+    b.internal_energy = store.real("internal_energy");
+    b.plastic_energy = store.real("plastic_energy");
+    b.distortion_limit = 20.0;
+    b.distortion_remaps = &remaps;
+    m.update(b);
+  }
+};
+
+double max_abs(const Mat3& m) {
+  double x = 0.0;
+  for (double v : m.a) x = std::max(x, std::abs(v));
+  return x;
+}
+}  // namespace
+
+// The same J2 material once without a failure criterion (the lane path) and once with a
+// criterion that cannot fire (max_stress at 1e30 Pa: the per-point loop, the same kernel). The
+// two paths evaluate the same expressions, but the compiler fuses multiply-adds (FMA) differently
+// in scalar and in vector code, so results agree to round-off, not bitwise: each fused or unfused
+// operation differs by at most half an ulp, and a point's update is a chain of a few hundred
+// operations on well-conditioned quantities (|R| = 1; the radial return scales the trial stress),
+// hence the bounds of 1e-13 relative (about 500 ulps) below.
+TEST(MaterialLanes, J2StepIsThePerPointLoopToRoundOff) {
+  const ParamValues v = j2_values();
+  ASSERT_TRUE(J2Plasticity::lanes_apply(J2Plasticity::make(v)));  // else the test compares a path with itself
+  ParamValues vf = v;
+  vf.choices["failure.criterion"] = "max_stress";
+  vf["failure.max_stress"] = 1e30;
+  const auto lanes = make_material("j2_plasticity", v);
+  const auto per_point = make_material("j2_plasticity", vf);
+  for (const Index n : {Index{4003}, Index{9}}) {
+    std::mt19937 rng_a(3), rng_b(3);
+    Points a(*lanes, n, rng_a), b(*per_point, n, rng_b);
+    std::atomic<Index> remaps_a{0}, remaps_b{0};
+    a.update(*lanes, remaps_a);
+    b.update(*per_point, remaps_b);
+    if (n > 100) {
+      EXPECT_GT(remaps_a.load(), 0);
+    }
+    EXPECT_EQ(remaps_a.load(), remaps_b.load());
+    int yielded = 0;
+    for (Index p = 0; p < n; ++p) {
+      for (const char* f : {"F", "R", "stress"}) {
+        const Mat3& x = a.store.view<Mat3>(f)[p];
+        const Mat3& y = b.store.view<Mat3>(f)[p];
+        EXPECT_LE(max_abs(x - y), 1e-13 * max_abs(y)) << f << " of point " << p;
+      }
+      for (const char* f : {"eqps", "plastic_work", "internal_energy", "plastic_energy"}) {
+        const double x = a.store.real(f)[p], y = b.store.real(f)[p];
+        EXPECT_LE(std::abs(x - y), 1e-13 * std::abs(y)) << f << " of point " << p;
+      }
+      yielded += a.store.real("plastic_work")[p] > 0.0;
+    }
+    if (n > 100) {
+      EXPECT_GT(yielded, 100);  // both branches of the return are exercised
+    }
+  }
+}
+
+// A point's result does not depend on which points share its group of four lanes (nor on the
+// position of its lane): the batch in another order gives bitwise the same points. This is what
+// keeps results independent of the thread count, the ranks and the sorting of the points.
+TEST(MaterialLanes, APointDoesNotDependOnItsLaneNeighbours) {
+  const auto m = make_material("j2_plasticity", j2_values());
+  std::mt19937 rng_a(5), rng_b(5);
+  Points a(*m, 2001, rng_a), b(*m, 2001, rng_b);
+  std::vector<Index> other(b.idx.rbegin(), b.idx.rend());  // reversed: new groups, new lanes
+  std::rotate(other.begin(), other.begin() + 1, other.end());
+  std::atomic<Index> ra{0}, rb{0};
+  a.update(*m, ra);
+  b.update(*m, rb, other);
+  for (Index p = 0; p < 2001; ++p) {
+    for (const char* f : {"F", "R", "stress"})
+      EXPECT_EQ(std::memcmp(&a.store.view<Mat3>(f)[p], &b.store.view<Mat3>(f)[p], sizeof(Mat3)), 0) << f << " " << p;
+    for (const char* f : {"eqps", "plastic_work", "internal_energy", "plastic_energy"})
+      EXPECT_EQ(std::memcmp(&a.store.real(f)[p], &b.store.real(f)[p], sizeof(double)), 0) << f << " " << p;
+  }
+}
