@@ -7,12 +7,14 @@
 // per material and per step from the material's parameters and the batch's options, never per
 // point, so a run is bitwise reproducible for any thread count, ranks and restarts.
 //
-// A model offers a lane kernel with
-//   static bool lanes_apply(const Params&);   // this parameter set has one
+// A model takes this path where its
+//   static bool lanes_apply(const Params&);   // this parameter set runs four points at a time
+// is true; it may add a lane kernel
 //   static void update_lanes(const Params&, const LaneKinematics&, Mat3L& sigma_bar, Lane* state,
 //                            Lane& plastic_work_density);
-// doing for four points what its update() does for one. The per-point loop stays for failure
-// criteria, tangents, models that read F_n, and dt = 0.
+// doing for four points what its update() does for one, else its update() runs lane by lane on
+// the kinematics computed four at a time. The per-point loop stays for failure criteria,
+// tangents, models that read F_n, and dt = 0.
 #include <algorithm>
 #include <atomic>
 #include <vector>
@@ -81,7 +83,30 @@ void update_in_lanes(const typename Model::Params& prm, const MaterialBatch& b, 
     Lane st[kMaxState];
     for (int s = 0; s < ns; ++s) st[s] = gather(state[s], idx);
     Lane plastic_work = splat(0.0);
-    Model::update_lanes(prm, kin, sigma_bar, st, plastic_work);
+    if constexpr (requires { Model::update_lanes(prm, kin, sigma_bar, st, plastic_work); }) {
+      Model::update_lanes(prm, kin, sigma_bar, st, plastic_work);
+    } else {
+      // A model without a lane kernel (Johnson-Cook: its return needs pow and log per iteration)
+      // runs its scalar kernel lane by lane on the kinematics computed four at a time.
+      PointKinematics pk;
+      pk.dt = dt;
+      pk.time = b.time;
+      for (int l = 0; l < kLanes; ++l) {
+        pk.F_new = F_new.lane(l);
+        pk.R_new = R_new.lane(l);
+        pk.D_bar = kin.D_bar.lane(l);
+        pk.J_old = kin.J_old[l];
+        pk.J_new = kin.J_new[l];
+        Mat3 sb = sigma_bar.lane(l);
+        double sl[kMaxState];
+        for (int s = 0; s < ns; ++s) sl[s] = st[s][l];
+        PointResult res;
+        Model::update(prm, pk, sb, sl, res);
+        sigma_bar.set_lane(l, sb);
+        for (int s = 0; s < ns; ++s) st[s][l] = sl[s];
+        plastic_work[l] = res.plastic_work_density;
+      }
+    }
     const Mat3L sigma_new = rotate_sym(R_new, sigma_bar);
 
     Lane internal_energy, plastic_energy;

@@ -38,6 +38,14 @@ inline ParamValues elastic_kg(double rho, double K, double G) {
   return {{"density", rho}, {"bulk_modulus", K}, {"shear_modulus", G}};
 }
 
+/// A J2 steel with linear hardening (the adapter's tests): sigma_y = 300 MPa, H = 1 GPa.
+inline ParamValues j2_steel_values() {
+  ParamValues v = elastic_kg(7800, 160e9, 80e9);
+  v["yield_stress"] = 300e6;
+  v["hardening_modulus"] = 1e9;
+  return v;
+}
+
 inline std::unique_ptr<Material> make_material(const std::string& model, const ParamValues& v) {
   const MaterialFactory* f = find_material(model);
   if (!f) {

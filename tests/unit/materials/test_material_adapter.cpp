@@ -12,12 +12,6 @@ using namespace ballista;
 using namespace ballista::test;
 
 namespace {
-ParamValues j2_values() {
-  ParamValues v = elastic_kg(7800, 160e9, 80e9);
-  v["yield_stress"] = 300e6;
-  v["hardening_modulus"] = 1e9;
-  return v;
-}
 bool same_bits(const Mat3& a, const Mat3& b) { return std::memcmp(a.a, b.a, sizeof a.a) == 0; }
 }  // namespace
 
@@ -39,7 +33,7 @@ TEST(MaterialAdapter, ModelsAreRegistered) {
     EXPECT_TRUE(has_density) << m;
   }
   EXPECT_EQ(find_material("no_such_model"), nullptr);
-  const auto mat = make_material("j2_plasticity", j2_values());
+  const auto mat = make_material("j2_plasticity", j2_steel_values());
   EXPECT_EQ(mat->name(), "test_j2_plasticity");
   EXPECT_STREQ(mat->model(), "j2_plasticity");
   EXPECT_EQ(mat->density(), 7800.0);
@@ -48,7 +42,7 @@ TEST(MaterialAdapter, ModelsAreRegistered) {
 // declare_fields adds the model's state fields (name, unit, initial value), is idempotent and
 // leaves other fields alone.
 TEST(MaterialAdapter, DeclaresStateFields) {
-  const auto mat = make_material("j2_plasticity", j2_values());
+  const auto mat = make_material("j2_plasticity", j2_steel_values());
   const auto specs = mat->state_fields();
   ASSERT_EQ(specs.size(), 1u);
   EXPECT_EQ(specs[0].name, "eqps");
@@ -74,7 +68,7 @@ TEST(MaterialAdapter, DeclaresStateFields) {
 // plastic work of the others are left bit-for-bit unchanged.
 TEST(MaterialAdapter, BatchTouchesOnlyItsPoints) {
   const Index n = 7;
-  PointDriver d("j2_plasticity", j2_values(), n);
+  PointDriver d("j2_plasticity", j2_steel_values(), n);
   const Mat3 sentinel{{1, 2, 3, 4, 5, 6, 7, 8, 9}};
   for (Index p = 0; p < n; ++p) {
     d.stress(p) = sentinel;
@@ -184,7 +178,7 @@ TEST(MaterialAdapter, ThreadCountIndependent) {
   auto run = [&](int threads) {
     const int saved = max_threads();
     set_threads(threads);
-    PointDriver d("j2_plasticity", j2_values(), n);
+    PointDriver d("j2_plasticity", j2_steel_values(), n);
     d.set_dt(1e-6);
     for (Index p = 0; p < n; ++p) d.set_F(p, F[p]);
     d.step(1e-6);
@@ -220,5 +214,5 @@ TEST(MaterialAdapter, InitialStress) {
   for (int i = 0; i < 3; ++i) ref(i, i) += lam * std::log(J) / J;
   EXPECT_LT(rel_diff(nh->initial_stress(F), ref), 1e-13);
   for (double x : make_material("linear_elastic", elastic_kg(1, 3, 2))->initial_stress(F).a) EXPECT_EQ(x, 0.0);
-  for (double x : make_material("j2_plasticity", j2_values())->initial_stress(F).a) EXPECT_EQ(x, 0.0);
+  for (double x : make_material("j2_plasticity", j2_steel_values())->initial_stress(F).a) EXPECT_EQ(x, 0.0);
 }

@@ -6,10 +6,12 @@
 #include <cstring>
 #include <numeric>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "core/field_store.hpp"
 #include "materials/j2_plasticity.hpp"
+#include "materials/johnson_cook.hpp"
 #include "material_driver.hpp"
 
 using namespace ballista;
@@ -18,12 +20,6 @@ using namespace ballista::test;
 // The stress update four points at a time (material_lanes.hpp) against the per-point loop of
 // MaterialAdapter, and its independence of which points share a group of lanes.
 namespace {
-ParamValues j2_values() {
-  ParamValues v = elastic_kg(7800, 160e9, 80e9);
-  v["yield_stress"] = 300e6;
-  v["hardening_modulus"] = 1e9;
-  return v;
-}
 
 /// n points with random motion over one step; a few with a large stretch (distortion remap), a
 /// large spin, or a poor rotation guess.
@@ -83,23 +79,29 @@ double max_abs(const Mat3& m) {
   for (double v : m.a) x = std::max(x, std::abs(v));
   return x;
 }
+double field_scale(const double* f, Index n) {
+  double x = 0.0;
+  for (Index p = 0; p < n; ++p) x = std::max(x, std::abs(f[p]));
+  return x;
+}
 }  // namespace
 
-// The same J2 material once without a failure criterion (the lane path) and once with a
-// criterion that cannot fire (max_stress at 1e30 Pa: the per-point loop, the same kernel). The
-// two paths evaluate the same expressions, but the compiler fuses multiply-adds (FMA) differently
-// in scalar and in vector code, so results agree to round-off, not bitwise: each fused or unfused
-// operation differs by at most half an ulp, and a point's update is a chain of a few hundred
-// operations on well-conditioned quantities (|R| = 1; the radial return scales the trial stress),
-// hence the bounds of 1e-13 relative (about 500 ulps) below.
-TEST(MaterialLanes, J2StepIsThePerPointLoopToRoundOff) {
-  const ParamValues v = j2_values();
-  ASSERT_TRUE(J2Plasticity::lanes_apply(J2Plasticity::make(v)));  // else the test compares a path with itself
+// A material once without a failure criterion (the lane path) and once with a criterion that
+// cannot fire (max_stress at 1e30 Pa: the per-point loop, the same kernel), on the same points.
+// The two paths evaluate the same expressions, but the compiler fuses multiply-adds (FMA)
+// differently in scalar and in vector code, so results agree to round-off, not bitwise: each fused
+// or unfused operation differs by at most half an ulp, and a point's update is a chain of a few
+// hundred operations on well-conditioned quantities (|R| = 1; the radial return scales the trial
+// stress), hence the bounds of 1e-13 relative (about 500 ulps) below: of each tensor's largest
+// entry, and of each scalar field's largest value over the points (an energy is a sum of terms of
+// that size, and one that nearly cancels keeps their round-off). `fields` are the state fields
+// compared besides F, R, the stress, the plastic work and the energies.
+void expect_paths_agree(const std::string& model, const ParamValues& v, const std::vector<const char*>& fields) {
   ParamValues vf = v;
   vf.choices["failure.criterion"] = "max_stress";
   vf["failure.max_stress"] = 1e30;
-  const auto lanes = make_material("j2_plasticity", v);
-  const auto per_point = make_material("j2_plasticity", vf);
+  const auto lanes = make_material(model, v);
+  const auto per_point = make_material(model, vf);
   for (const Index n : {Index{4003}, Index{9}}) {
     std::mt19937 rng_a(3), rng_b(3);
     Points a(*lanes, n, rng_a), b(*per_point, n, rng_b);
@@ -111,15 +113,17 @@ TEST(MaterialLanes, J2StepIsThePerPointLoopToRoundOff) {
     }
     EXPECT_EQ(remaps_a.load(), remaps_b.load());
     int yielded = 0;
+    std::vector<const char*> scalars{"plastic_work", "internal_energy", "plastic_energy"};
+    scalars.insert(scalars.end(), fields.begin(), fields.end());
     for (Index p = 0; p < n; ++p) {
       for (const char* f : {"F", "R", "stress"}) {
         const Mat3& x = a.store.view<Mat3>(f)[p];
         const Mat3& y = b.store.view<Mat3>(f)[p];
-        EXPECT_LE(max_abs(x - y), 1e-13 * max_abs(y)) << f << " of point " << p;
+        EXPECT_LE(max_abs(x - y), 1e-13 * max_abs(y)) << model << ": " << f << " of point " << p;
       }
-      for (const char* f : {"eqps", "plastic_work", "internal_energy", "plastic_energy"}) {
+      for (const char* f : scalars) {
         const double x = a.store.real(f)[p], y = b.store.real(f)[p];
-        EXPECT_LE(std::abs(x - y), 1e-13 * std::abs(y)) << f << " of point " << p;
+        EXPECT_LE(std::abs(x - y), 1e-13 * field_scale(b.store.real(f), n)) << model << ": " << f << " of point " << p;
       }
       yielded += a.store.real("plastic_work")[p] > 0.0;
     }
@@ -129,11 +133,26 @@ TEST(MaterialLanes, J2StepIsThePerPointLoopToRoundOff) {
   }
 }
 
+// J2's lane kernel (J2Plasticity::update_lanes).
+TEST(MaterialLanes, J2StepIsThePerPointLoopToRoundOff) {
+  const ParamValues v = j2_steel_values();
+  ASSERT_TRUE(J2Plasticity::lanes_apply(J2Plasticity::make(v)));  // else the test compares a path with itself
+  expect_paths_agree("j2_plasticity", v, {"eqps"});
+}
+
+// Johnson-Cook's scalar kernel lane by lane on the kinematics of four points (copper with the
+// Mie-Grueneisen EOS: the EOS energy is a state field too).
+TEST(MaterialLanes, JohnsonCookStepIsThePerPointLoopToRoundOff) {
+  const ParamValues v = JohnsonCook::example_params();
+  ASSERT_TRUE(JohnsonCook::lanes_apply(JohnsonCook::make(v)));
+  expect_paths_agree("johnson_cook", v, {"eqps", "temperature", "energy_density"});
+}
+
 // A point's result does not depend on which points share its group of four lanes (nor on the
 // position of its lane): the batch in another order gives bitwise the same points. This is what
 // keeps results independent of the thread count, the ranks and the sorting of the points.
 TEST(MaterialLanes, APointDoesNotDependOnItsLaneNeighbours) {
-  const auto m = make_material("j2_plasticity", j2_values());
+  const auto m = make_material("j2_plasticity", j2_steel_values());
   std::mt19937 rng_a(5), rng_b(5);
   Points a(*m, 2001, rng_a), b(*m, 2001, rng_b);
   std::vector<Index> other(b.idx.rbegin(), b.idx.rend());  // reversed: new groups, new lanes
