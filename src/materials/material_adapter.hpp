@@ -55,12 +55,13 @@ class MaterialAdapter final : public Material {
   }
 
   /// The failure branch is chosen once per batch, so a material without a criterion pays nothing.
-  /// Four points at a time where the model has a lane kernel (material_lanes.hpp: same results).
+  /// Four points at a time where the model allows it (material_lanes.hpp: the same results to
+  /// round-off; the choice is per material, never per point).
   void update(const MaterialBatch& b) const override {
-    if (failure_.active())
-      update_batch<true>(b);
-    else if (in_lanes(b))
+    if (in_lanes(b))
       update_lanes(b);
+    else if (failure_.active())
+      update_batch<true>(b);
     else
       update_batch<false>(b);
   }
@@ -110,7 +111,7 @@ class MaterialAdapter final : public Material {
     const double* sptr_[kMaxState] = {};
   };
 
-  /// The lane path covers the per-point loop without failure, tangent or F_n, for dt > 0.
+  /// The lane path covers the per-point loop without tangent or F_n, for dt > 0.
   bool in_lanes(const MaterialBatch& b) const {
     if constexpr (requires { Model::lanes_apply(params_); })
       return !kNeedsFOld && !b.tangent && b.dt > 0.0 && Model::lanes_apply(params_);
@@ -122,7 +123,10 @@ class MaterialAdapter final : public Material {
       double* sptr[kMaxState];
       const int ns = static_cast<int>(state_.size());
       for (int s = 0; s < ns; ++s) sptr[s] = b.store->real(state_[s].name);
-      update_in_lanes<Model, kMaxState>(params_, b, sptr, ns);
+      if (failure_.active())
+        update_in_lanes<Model, kMaxState, true>(params_, failure_, model_states_, b, sptr, ns);
+      else
+        update_in_lanes<Model, kMaxState, false>(params_, failure_, model_states_, b, sptr, ns);
     }
   }
 

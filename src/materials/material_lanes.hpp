@@ -13,8 +13,8 @@
 //   static void update_lanes(const Params&, const LaneKinematics&, Mat3L& sigma_bar, Lane* state,
 //                            Lane& plastic_work_density);
 // doing for four points what its update() does for one, else its update() runs lane by lane on
-// the kinematics computed four at a time. The per-point loop stays for failure criteria,
-// tangents, models that read F_n, and dt = 0.
+// the kinematics computed four at a time (always with a failure criterion, which reads the
+// kernel's PointResult). The per-point loop stays for tangents, models that read F_n, and dt = 0.
 #include <algorithm>
 #include <atomic>
 #include <vector>
@@ -22,6 +22,7 @@
 #include "core/parallel.hpp"
 #include "core/polar_lanes.hpp"
 #include "materials/distortion.hpp"
+#include "materials/failure.hpp"
 #include "materials/material.hpp"
 #include "materials/strain_increment.hpp"
 
@@ -36,9 +37,13 @@ struct LaneKinematics {
   double dt = 0.0;
 };
 
-/// The kernel's state fields are `state[s]` (indexed by point), `ns` of them (at most kMaxState).
-template <class Model, int kMaxState>
-void update_in_lanes(const typename Model::Params& prm, const MaterialBatch& b, double* const* state, int ns) {
+/// The kernel's state fields are `state[s]` (indexed by point), `ns` of them (at most kMaxState);
+/// with a failure criterion (kFailure) its damage and failed flags are the two after the model's
+/// `nm` (failure.hpp), and the model's scalar kernel runs lane by lane, since the criterion reads
+/// its PointResult.
+template <class Model, int kMaxState, bool kFailure>
+void update_in_lanes(const typename Model::Params& prm, const FailureModel& fm, int nm, const MaterialBatch& b,
+                     double* const* state, int ns) {
   const Index groups = (b.count + kLanes - 1) / kLanes;
   const double dt = b.dt;
   for_each_uneven(0, groups, [&](Index g) {
@@ -72,7 +77,8 @@ void update_in_lanes(const typename Model::Params& prm, const MaterialBatch& b, 
         if (!near[l]) continue;
         Mat3 Fl = F_new.lane(l);
         if (remap_if_distorted(Fl, kin.J_new[l], R_new.lane(l), b.distortion_limit)) {
-          b.F_new[idx[l]] = Fl;  // distortion.hpp: same J and R, so nothing below changes
+          b.F_new[idx[l]] = Fl;  // distortion.hpp: same J and R
+          F_new.set_lane(l, Fl);
           if (b.distortion_remaps) b.distortion_remaps->fetch_add(1, std::memory_order_relaxed);
         }
       }
@@ -83,7 +89,9 @@ void update_in_lanes(const typename Model::Params& prm, const MaterialBatch& b, 
     Lane st[kMaxState];
     for (int s = 0; s < ns; ++s) st[s] = gather(state[s], idx);
     Lane plastic_work = splat(0.0);
-    if constexpr (requires { Model::update_lanes(prm, kin, sigma_bar, st, plastic_work); }) {
+    [[maybe_unused]] const Mat3L sigma_bar_old = sigma_bar;
+    [[maybe_unused]] PointResult res[kLanes];
+    if constexpr (!kFailure && requires { Model::update_lanes(prm, kin, sigma_bar, st, plastic_work); }) {
       Model::update_lanes(prm, kin, sigma_bar, st, plastic_work);
     } else {
       // A model without a lane kernel (Johnson-Cook: its return needs pow and log per iteration)
@@ -100,14 +108,34 @@ void update_in_lanes(const typename Model::Params& prm, const MaterialBatch& b, 
         Mat3 sb = sigma_bar.lane(l);
         double sl[kMaxState];
         for (int s = 0; s < ns; ++s) sl[s] = st[s][l];
-        PointResult res;
-        Model::update(prm, pk, sb, sl, res);
+        Model::update(prm, pk, sb, sl, res[l]);
         sigma_bar.set_lane(l, sb);
         for (int s = 0; s < ns; ++s) st[s][l] = sl[s];
-        plastic_work[l] = res.plastic_work_density;
+        plastic_work[l] = res[l].plastic_work_density;
       }
     }
-    const Mat3L sigma_new = rotate_sym(R_new, sigma_bar);
+    Mat3L sigma_new = rotate_sym(R_new, sigma_bar);
+    if constexpr (kFailure) {
+      // As MaterialAdapter's loop: the criterion on the kernel's stress at t_{n+1}; erosion (thesis
+      // eq. 6.11-6.14) once failed, with F* = F_n (eq. 6.14) for zero_stress.
+      for (int l = 0; l < kLanes; ++l) {
+        double damage = st[nm][l], failed_flag = st[nm + 1][l];
+        const bool failed =
+            failure_update(fm, sigma_bar_old.lane(l), sigma_bar.lane(l), res[l], dt, damage, failed_flag);
+        st[nm][l] = damage;
+        st[nm + 1][l] = failed_flag;
+        if (!failed || fm.erosion == ErosionRule::None) continue;
+        Mat3 sl = sigma_new.lane(l);
+        erode(fm.erosion, sl);
+        sigma_new.set_lane(l, sl);
+        plastic_work[l] = 0.0;  // the stress is no longer the model's, nor is its dissipation
+        if (fm.erosion == ErosionRule::ZeroStress) {
+          if (l < n) b.F_new[idx[l]] = b.F_old ? b.F_old[idx[l]] : inverse(A.lane(l)) * F_new.lane(l);
+          R_new.set_lane(l, R_old.lane(l));
+          kin.J_new[l] = kin.J_old[l];
+        }
+      }
+    }
 
     Lane internal_energy, plastic_energy;
     if (b.internal_energy) {

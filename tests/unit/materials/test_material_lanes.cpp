@@ -54,8 +54,11 @@ struct Points {
     for (Index p = 0; p < n; p += 2) idx.push_back(p);
   }
   void update(const Material& m, std::atomic<Index>& remaps) { update(m, remaps, idx); }
-  void update(const Material& m, std::atomic<Index>& remaps, const std::vector<Index>& order) {
+  /// `tangent`: a buffer for MaterialBatch::tangent, which keeps the batch on the per-point loop.
+  void update(const Material& m, std::atomic<Index>& remaps, const std::vector<Index>& order,
+              double* tangent = nullptr) {
     MaterialBatch b;
+    b.tangent = tangent;
     b.points = order.data();
     b.count = static_cast<Index>(order.size());
     b.F_new = store.view<Mat3>("F");
@@ -86,28 +89,26 @@ double field_scale(const double* f, Index n) {
 }
 }  // namespace
 
-// A material once without a failure criterion (the lane path) and once with a criterion that
-// cannot fire (max_stress at 1e30 Pa: the per-point loop, the same kernel), on the same points.
-// The two paths evaluate the same expressions, but the compiler fuses multiply-adds (FMA)
-// differently in scalar and in vector code, so results agree to round-off, not bitwise: each fused
-// or unfused operation differs by at most half an ulp, and a point's update is a chain of a few
-// hundred operations on well-conditioned quantities (|R| = 1; the radial return scales the trial
-// stress), hence the bounds of 1e-13 relative (about 500 ulps) below: of each tensor's largest
+// A material on the lane path, and the same material on the same points kept on the per-point
+// loop by asking for the tangent (Johnson-Cook fills it beside the same stress; J2 then takes its
+// general return instead of the closed form of the default configuration, the same algebra in
+// another order). The two paths evaluate the same expressions, but the compiler fuses
+// multiply-adds (FMA) differently in scalar and in vector code, so results agree to round-off, not
+// bitwise: each fused or unfused operation differs by at most half an ulp, and a point's update is
+// a chain of a few hundred operations on well-conditioned quantities (|R| = 1; the radial return
+// scales the trial stress), hence the bounds of 1e-13 relative (about 500 ulps) below: of each tensor's largest
 // entry, and of each scalar field's largest value over the points (an energy is a sum of terms of
 // that size, and one that nearly cancels keeps their round-off). `fields` are the state fields
 // compared besides F, R, the stress, the plastic work and the energies.
 void expect_paths_agree(const std::string& model, const ParamValues& v, const std::vector<const char*>& fields) {
-  ParamValues vf = v;
-  vf.choices["failure.criterion"] = "max_stress";
-  vf["failure.max_stress"] = 1e30;
-  const auto lanes = make_material(model, v);
-  const auto per_point = make_material(model, vf);
+  const auto m = make_material(model, v);
   for (const Index n : {Index{4003}, Index{9}}) {
     std::mt19937 rng_a(3), rng_b(3);
-    Points a(*lanes, n, rng_a), b(*per_point, n, rng_b);
+    Points a(*m, n, rng_a), b(*m, n, rng_b);
+    std::vector<double> tangent(36 * static_cast<size_t>(n));
     std::atomic<Index> remaps_a{0}, remaps_b{0};
-    a.update(*lanes, remaps_a);
-    b.update(*per_point, remaps_b);
+    a.update(*m, remaps_a);
+    b.update(*m, remaps_b, b.idx, tangent.data());
     if (n > 100) {
       EXPECT_GT(remaps_a.load(), 0);
     }
@@ -146,6 +147,40 @@ TEST(MaterialLanes, JohnsonCookStepIsThePerPointLoopToRoundOff) {
   const ParamValues v = JohnsonCook::example_params();
   ASSERT_TRUE(JohnsonCook::lanes_apply(JohnsonCook::make(v)));
   expect_paths_agree("johnson_cook", v, {"eqps", "temperature", "energy_density"});
+}
+
+// With a failure criterion that fires (max_stress at 350 MPa, erosion zero_stress: the stress
+// zeroed, F and R set back to F_n and R_n), against the per-point loop of the same material, kept
+// there by asking for the tangent (which Johnson-Cook fills beside its stress without changing
+// it). Bounds as above.
+TEST(MaterialLanes, FailureAndErosionAreThePerPointLoopToRoundOff) {
+  ParamValues v = JohnsonCook::example_params();
+  v.choices["failure.criterion"] = "max_stress";
+  v.choices["failure.erosion"] = "zero_stress";
+  v["failure.max_stress"] = 350e6;
+  const auto m = make_material("johnson_cook", v);
+  const Index n = 4003;
+  std::mt19937 rng_a(9), rng_b(9);
+  Points a(*m, n, rng_a), b(*m, n, rng_b);
+  std::vector<double> tangent(36 * static_cast<size_t>(n));
+  std::atomic<Index> ra{0}, rb{0};
+  a.update(*m, ra);
+  b.update(*m, rb, b.idx, tangent.data());
+  int failed = 0;
+  for (Index p = 0; p < n; ++p) {
+    for (const char* f : {"F", "R", "stress"}) {
+      const Mat3& x = a.store.view<Mat3>(f)[p];
+      const Mat3& y = b.store.view<Mat3>(f)[p];
+      EXPECT_LE(max_abs(x - y), 1e-13 * max_abs(y)) << f << " of point " << p;
+    }
+    for (const char* f : {"plastic_work", "internal_energy", "plastic_energy", "eqps", "temperature", "damage", "failed"}) {
+      const double x = a.store.real(f)[p], y = b.store.real(f)[p];
+      EXPECT_LE(std::abs(x - y), 1e-13 * field_scale(b.store.real(f), n)) << f << " of point " << p;
+    }
+    failed += a.store.real("failed")[p] > 0.0;
+  }
+  EXPECT_GT(failed, 50);     // erosion is exercised ...
+  EXPECT_LT(failed, n / 2);  // ... beside intact points
 }
 
 // A point's result does not depend on which points share its group of four lanes (nor on the
