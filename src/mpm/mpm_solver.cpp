@@ -412,13 +412,15 @@ void MpmSolver::grid_to_particles(double dt) {
       const double w = st.w[k];
       vg += w * u;
       acc += w * ga[I];
+      // MUSL takes L from the second projection (velocity_gradient_from_grid), not from here.
+      if (defer) continue;
       const Vec3& dN = st.grad[k];
       for (int i = 0; i < Dim; ++i)
         for (int j = 0; j < Dim; ++j) l(i, j) += u[i] * dN[j];
     }
     // Axisymmetric hoop rate v_r / r (thesis seed 000 ch. 5: Uintah's axisymmetric MPM); for a
     // uGIMP domain across the axis its domain average (mpm/axis_hoop.hpp).
-    if (axisym) {
+    if (axisym && !defer) {
       double rate;
       l(2, 2) = hoop_rate_near_axis<Dim, K>(g, xp, half[p], st, vn + fo, rate) ? rate : vg[0] / xp[0];
     }
