@@ -565,6 +565,9 @@ struct Geomodel {
     return to_d(x);
   }
 
+  /// The kinematics four points at a time (material_lanes.hpp), this kernel lane by lane.
+  static bool lanes_apply(const Params&) { return true; }
+
   static void update(const Params& p, const PointKinematics& k, Mat3& sigma, double* st, PointResult& res) {
     const Mat3 eps = k.dt * k.D_bar;
     const Mat3 sigma_n = sigma;
