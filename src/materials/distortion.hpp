@@ -13,6 +13,7 @@
 // is dropped, as an Eulerian or ALE remap does (it carries stress and history variables, never F:
 // Benson, Comput. Methods Appl. Mech. Eng. 99 (1992) 235, §4). Hyperelastic models (neo-Hookean)
 // read all of F and are never remapped.
+#include "core/lanes.hpp"
 #include "core/tensor.hpp"
 
 namespace ballista {
@@ -22,6 +23,14 @@ namespace ballista {
 inline bool beyond_distortion_limit(const Mat3& F, double J, double limit) {
   double trC = 0.0;
   for (double f : F.a) trC += f * f;
+  const double l2 = limit * limit;
+  return trC * trC * trC > 27.0 * l2 * l2 * l2 * J * J;
+}
+
+/// The same test for four points (lanes.hpp), all bits set in the lanes beyond `limit`.
+inline LaneMask beyond_distortion_limit(const Mat3L& F, Lane J, double limit) {
+  Lane trC = splat(0.0);
+  for (const Lane& f : F.a) trC += f * f;
   const double l2 = limit * limit;
   return trC * trC * trC > 27.0 * l2 * l2 * l2 * J * J;
 }

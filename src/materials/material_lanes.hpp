@@ -1,6 +1,6 @@
 #pragma once
-// The stress update of a batch of points four at a time (core/lanes.hpp), for models with a lane
-// kernel: the strain increment, the polar decomposition, the unrotated frame, the model, the
+// The stress update of a batch of points four at a time (core/lanes.hpp), for the models that allow
+// it (`lanes_apply` below): the strain increment, the polar decomposition, the unrotated frame, the model, the
 // rotation back and the energy bookkeeping of MaterialAdapter's per-point loop, each on four
 // points per instruction. It evaluates the per-point loop's expressions; the results agree with
 // that loop's to round-off (tests/unit/materials/test_material_lanes.cpp), and the choice is made
@@ -69,10 +69,7 @@ void update_in_lanes(const typename Model::Params& prm, const FailureModel& fm, 
       // Lanes clearly inside the limit skip the (out-of-line) scalar check, which decides for the
       // rest: the lanes' test of beyond_distortion_limit at 0.99 of the limit cannot miss a point
       // the scalar test would remap, whatever the round-off.
-      Lane trC = splat(0.0);
-      for (int e = 0; e < 9; ++e) trC += F_new.a[e] * F_new.a[e];
-      const double l2 = 0.99 * 0.99 * b.distortion_limit * b.distortion_limit;
-      const LaneMask near = trC * trC * trC > 27.0 * l2 * l2 * l2 * kin.J_new * kin.J_new;
+      const LaneMask near = beyond_distortion_limit(F_new, kin.J_new, 0.99 * b.distortion_limit);
       for (int l = 0; l < n; ++l) {
         if (!near[l]) continue;
         Mat3 Fl = F_new.lane(l);
