@@ -466,6 +466,7 @@ class Reader {
     const std::vector<std::string> models{"single_field", "friction"};
     cs.model = c.choice("model", "single_field", models);
     cs.friction = c.number("friction", 0.0, NumberRange::non_negative("1"));
+    cs.min_volume_fraction = c.number("min_volume_fraction", 0.0, NumberRange::between(0.0, 1.0, false, false, "1"));
     DeckNode ps = c.list("pairs", false);
     const int nb = static_cast<int>(sc_.bodies.size());
     std::vector<int> parent(nb);

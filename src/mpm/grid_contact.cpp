@@ -22,6 +22,17 @@ ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, 
       gtot += g.grad[k];
     }
     if (present < 2) return;
+    if (g.volume) {
+      // Gap check: particles of two bodies share a node while a gap of most of a cell lies
+      // between them (a GIMP point reaches nodes up to 1.5 cells away); together they then fill
+      // little of the node's volume. A correction there moves a body by what a node it barely
+      // reaches says: weight w gives a point mass w m_p at the node but a velocity gradient of
+      // order sqrt(w) / h from it. Uintah's friction contact has the same test (its
+      // volume_constraint on the nodal volumes).
+      double filled = 0.0;
+      for (int f = 0; f < nf; ++f) filled += g.volume[f * nn + i];
+      if (filled < g.min_volume_fraction * g.geom->node_volume(i, g.axisymmetric)) return;
+    }
     const Vec3 vcm = (1.0 / mtot) * ptot;
     // Corrections use the velocities before any field at this node was corrected.
     for (int f = 0; f < nf; ++f) {

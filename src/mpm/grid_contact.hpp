@@ -12,6 +12,7 @@
 
 #include "core/parallel.hpp"
 #include "core/tensor.hpp"
+#include "mpm/grid_geometry.hpp"
 
 namespace ballista {
 
@@ -34,6 +35,12 @@ struct FieldGrid {
   /// Several ranks: per node, 0 where a lower rank books the work of this shared node (the node's
   /// velocities are corrected on every rank that holds it). nullptr: every node counts.
   const std::uint8_t* counted = nullptr;
+  /// The gap check (optional): sum_p N_I V_p per field and node, and the fraction of the node's
+  /// volume (GridGeometry::node_volume) the fields must fill together to be in contact there.
+  const double* volume = nullptr;
+  double min_volume_fraction = 0.0;
+  const GridGeometry* geom = nullptr;
+  bool axisymmetric = false;
 };
 
 /// Applies contact to the nodal velocities `vel` (fields x nodes) in place and returns the work of

@@ -3,6 +3,7 @@
 // so that an MPI rank can own one block (with ghost layers) without changing any kernel. A
 // uniform grid has cubic cells of size h; a graded grid (grid.refine) has per-axis node
 // coordinates (mpm/graded_axis.hpp), and h is then its smallest cell.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -37,6 +38,26 @@ struct GridGeometry {
   }
   /// Edge of cell c along `axis`, m.
   double cell_size(int c, int axis) const { return graded ? (*graded)[axis].cell_size(c) : h; }
+  /// The volume a full node stands for (in the units of the particle volumes: per unit thickness in
+  /// 2D, per radian in axisymmetric): per axis half of each neighbouring cell, and in axisymmetric
+  /// the radial part weighted by r (the integral of r dr over the node's half cells, from the axis
+  /// at r = 0). For a region the particles fill, sum_p N_I V_p equals it (partition of unity).
+  double node_volume(Index node, bool axisymmetric) const {
+    const int ijk[3] = {static_cast<int>(node % nodes[0]), static_cast<int>((node / nodes[0]) % nodes[1]),
+                        static_cast<int>(node / (static_cast<Index>(nodes[0]) * nodes[1]))};
+    double v = 1.0;
+    for (int a = 0; a < dim; ++a) {
+      const double below = 0.5 * cell_size(ijk[a] - 1, a), above = 0.5 * cell_size(ijk[a], a);
+      if (a == 0 && axisymmetric) {
+        const double r = node_position(ijk[0], ijk[1], ijk[2])[0];
+        const double lo = std::max(r - below, 0.0), hi = r + above;
+        v *= 0.5 * (hi * hi - lo * lo);
+      } else {
+        v *= below + above;
+      }
+    }
+    return v;
+  }
 };
 
 }  // namespace ballista

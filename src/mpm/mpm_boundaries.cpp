@@ -57,6 +57,7 @@ void MpmSolver::fold_mirror_faces(bool momentum_only) {
         if (momentum_only) return;
         grid_.force[I][a] = 0.0;
         if (grid_.fields > 1) grid_.grad[I][a] = 0.0;
+        if (grid_.with_volume) grid_.volume[I] *= 2.0;  // the image fills the other half of the face node
         return;
       }
       grid_.velocity[I] += mirrored(grid_.velocity[G], a);
@@ -69,6 +70,10 @@ void MpmSolver::fold_mirror_faces(bool momentum_only) {
       if (grid_.fields > 1) {
         grid_.grad[I] += mirrored(grid_.grad[G], a);
         grid_.grad[G] = Vec3{};
+      }
+      if (grid_.with_volume) {
+        grid_.volume[I] += grid_.volume[G];
+        grid_.volume[G] = 0.0;
       }
     });
   }

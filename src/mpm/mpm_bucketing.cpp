@@ -89,6 +89,7 @@ void MpmSolver::mark_active_blocks() {
       grid_.mass[i] = 0.0;
       grid_.velocity[i] = grid_.force[i] = grid_.velocity_new[i] = grid_.accel[i] = Vec3{};
       if (multi) grid_.grad[i] = Vec3{};
+      if (grid_.with_volume) grid_.volume[i] = 0.0;
     });
 }
 

@@ -8,8 +8,14 @@ namespace ballista {
 
 void MpmSolver::apply_contact(Vec3* vel, bool book) {
   if (grid_.fields < 2) return;
-  const FieldGrid fg{grid_.fields, grid_.geom.node_count(), grid_.mass.data(), grid_.grad.data(),
-                     scenario_.contact.field_friction.data(), comm_.distributed() ? exchange_.counted() : nullptr};
+  FieldGrid fg{grid_.fields, grid_.geom.node_count(), grid_.mass.data(), grid_.grad.data(),
+               scenario_.contact.field_friction.data(), comm_.distributed() ? exchange_.counted() : nullptr};
+  if (grid_.with_volume) {
+    fg.volume = grid_.volume.data();
+    fg.min_volume_fraction = scenario_.contact.min_volume_fraction;
+    fg.geom = &grid_.geom;
+    fg.axisymmetric = dimension_ == Dimension::Axisymmetric;
+  }
   // Booked passes add their corrections to grid_.impulse and their frictional parts to
   // grid_.friction_impulse; book_impulses books both with the step's midpoint.
   if (book) apply_grid_contact(fg, vel, kTinyMass, grid_.impulse.data(), grid_.friction_impulse.data());

@@ -131,6 +131,7 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   damping_ = sc.simulation.damping;
   grid_.geom = layout_.geom;
   grid_.fields = sc.contact.fields;
+  grid_.with_volume = grid_.fields > 1 && sc.contact.min_volume_fraction > 0.0;
   slab_axis_ = dim_ - 1;
   grid_.resize(grid_.geom.node_count() * grid_.fields);
   blocks_.reset(grid_.geom);

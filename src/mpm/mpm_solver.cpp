@@ -215,6 +215,7 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
   Vec3* gf = grid_.force.data();
   const bool multi = grid_.fields > 1;
   Vec3* gg = multi ? grid_.grad.data() : nullptr;
+  double* gv = grid_.with_volume ? grid_.volume.data() : nullptr;
   // Only the blocks particles reach are cleared: the others are zero already (active_blocks.hpp).
   for (int k = 0; k < grid_.fields; ++k)
     blocks_.for_each_run(k * g.node_count(), [&](Index b, Index e) {
@@ -222,6 +223,7 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
         std::fill(gm + b, gm + e, 0.0);
         std::fill(gf + b, gf + e, Vec3{});
         if (multi) std::fill(gg + b, gg + e, Vec3{});
+        if (gv) std::fill(gv + b, gv + e, 0.0);
       }
       std::fill(gp + b, gp + e, Vec3{});
     });
@@ -272,6 +274,7 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
           const double w = st.w[k];
           const Vec3& dN = st.grad[k];
           if (multi) gg[I] += m * dN;  // outward vector of the field: the contact normal (grid_contact.hpp)
+          if (gv) gv[I] += w * vol[p];  // how much of the node the field fills (contact's gap check)
           gm[I] += w * m;
           gp[I] += w * mv;
           Vec3 f;
@@ -291,6 +294,7 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
     if (!momentum_only) {
       arrays.push_back({reinterpret_cast<double*>(gf), 3});
       if (multi) arrays.push_back({reinterpret_cast<double*>(gg), 3});
+      if (gv) arrays.push_back({gv, 1});
     }
     exchange_.sum(comm_, arrays, grid_.fields);
     halo_bytes_ += static_cast<double>(exchange_.last_bytes());

@@ -37,8 +37,13 @@ struct GridData {
   std::vector<Vec3> grad;        ///< kg/m: sum_p m_p grad N_I, outward from the field's material (several fields only)
   std::vector<Vec3> impulse;     ///< m/s: the step's contact corrections per node (several fields only)
   std::vector<Vec3> friction_impulse;  ///< m/s: their tangential (Coulomb) parts
+  /// sum_p N_I V_p per field and node, in the particle volumes' unit (contact's gap check only:
+  /// contact.min_volume_fraction > 0 with several fields; empty otherwise)
+  std::vector<double> volume;
+  bool with_volume = false;  ///< whether resize allocates `volume`
   void resize(Index n) {
     if (fields > 1) grad.assign(n, Vec3{});
+    if (with_volume) volume.assign(n, 0.0);
     mass.assign(n, 0.0);
     velocity.assign(n, Vec3{});
     force.assign(n, Vec3{});

@@ -251,6 +251,9 @@ struct ContactPairSpec {
 struct ContactSpec {
   std::string model = "single_field";  ///< between bodies not listed in pairs
   double friction = 0.0;               ///< Coulomb coefficient of friction pairs without their own
+  /// Fields meet at a node only where their particles fill at least this fraction of the node's
+  /// volume (a gap check; 0: wherever two fields have mass)
+  double min_volume_fraction = 0.0;
   std::vector<ContactPairSpec> pairs;
   // Resolved by the deck reader:
   int fields = 1;                      ///< number of velocity fields

@@ -93,6 +93,17 @@ TEST(DeckContact, BadPairsAreDeckErrorsWithTheirKeyPath) {
 
   e = contact_error("contact: {model: frictoin}\n");
   EXPECT_EQ(e.key_path(), "contact.model");
+
+  // The gap check is a fraction of the node's volume.
+  e = contact_error("contact: {model: friction, min_volume_fraction: 1.5}\n");
+  EXPECT_EQ(e.key_path(), "contact.min_volume_fraction");
+  EXPECT_EQ(e.line(), 9);  // the contact line, after the deck's eight
+}
+
+TEST(DeckContact, TheGapCheckIsOffUnlessGiven) {
+  EXPECT_EQ(parse_deck(kBase, "deck.yaml").contact.min_volume_fraction, 0.0);
+  const Scenario sc = parse_deck(kBase + "contact: {model: friction, min_volume_fraction: 0.25}\n", "deck.yaml");
+  EXPECT_EQ(sc.contact.min_volume_fraction, 0.25);
 }
 
 TEST(DeckContact, OtherSolversRefuseSeparateFields) {

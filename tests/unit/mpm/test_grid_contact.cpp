@@ -91,3 +91,66 @@ TEST(GridContact, ANodeOfOneFieldIsUntouched) {
   EXPECT_EQ(vel[0][0], 3.0);
   EXPECT_EQ(w.total, 0.0);
 }
+
+TEST(GridContact, FieldsThatFillLittleOfTheNodeAreNotInContact) {
+  // The gap check (contact.min_volume_fraction): two fields approaching at one node of a 2D grid
+  // with h = 0.5 (node volume h^2 = 0.25 per unit thickness) are corrected only when their
+  // particles fill at least the given fraction of it. 0.1 of the node (a gap of most of a cell
+  // between the bodies): left alone at 0.5; 0.6 of it (bodies touching): corrected as without
+  // the check.
+  GridGeometry geom;
+  geom.dim = 2;
+  geom.h = 0.5;
+  geom.nodes[0] = geom.nodes[1] = 3;
+  const Index node = geom.node_index(1, 1, 0);
+  const Index nn = geom.node_count();
+  const std::vector<Vec3> g0 = {Vec3{{3.0, 0.0, 0.0}}, Vec3{{-1.0, 0.0, 0.0}}};
+  for (const double filled : {0.1, 0.6}) {
+    std::vector<double> mass(2 * nn, 0.0), volume(2 * nn, 0.0);
+    std::vector<Vec3> grad(2 * nn), vel(2 * nn);
+    mass[node] = 2.0;
+    mass[nn + node] = 3.0;
+    grad[node] = g0[0];
+    grad[nn + node] = g0[1];
+    volume[node] = volume[nn + node] = 0.5 * filled * 0.25;
+    vel[node] = Vec3{{5.0, 0.0, 0.0}};
+    vel[nn + node] = Vec3{{-2.0, 0.0, 0.0}};
+    const std::vector<double> friction(4, 0.0);
+    FieldGrid g{2, nn, mass.data(), grad.data(), friction.data()};
+    g.volume = volume.data();
+    g.min_volume_fraction = 0.5;
+    g.geom = &geom;
+    apply_grid_contact(g, vel.data(), kTiny);
+    if (filled < 0.5) {
+      EXPECT_EQ(vel[node][0], 5.0);
+      EXPECT_EQ(vel[nn + node][0], -2.0);
+    } else {
+      const double vcm = (2.0 * 5.0 + 3.0 * -2.0) / 5.0;
+      EXPECT_NEAR(vel[node][0], vcm, 1e-14);
+      EXPECT_NEAR(vel[nn + node][0], vcm, 1e-14);
+    }
+  }
+}
+
+TEST(GridContact, NodeVolumesTileTheGrid) {
+  // The node volumes the gap check compares with sum to the volume of the box the nodes span
+  // (half cells at the faces): h^2 per interior node in plane strain; in axisymmetric the
+  // integral of r dr, sum = R^2 / 2 per radian and unit height over the nodes of one row, and
+  // r_I h for a node off the axis.
+  GridGeometry g;
+  g.dim = 2;
+  g.h = 0.25;
+  g.nodes[0] = 5;
+  g.nodes[1] = 4;
+  EXPECT_DOUBLE_EQ(g.node_volume(g.node_index(2, 1, 0), false), 0.0625);
+  const double R = 4 * g.h;
+  double row = 0.0;
+  for (int i = 0; i < g.nodes[0]; ++i) {
+    // A face node's outer half cell lies outside the box: take the inner half only.
+    const double v = g.node_volume(g.node_index(i, 1, 0), true) / g.h;
+    const double outer = i == g.nodes[0] - 1 ? 0.5 * ((R + 0.5 * g.h) * (R + 0.5 * g.h) - R * R) : 0.0;
+    row += v - outer;
+  }
+  EXPECT_NEAR(row, 0.5 * R * R, 1e-15);
+  EXPECT_DOUBLE_EQ(g.node_volume(g.node_index(2, 1, 0), true), 2 * g.h * g.h * g.h);
+}
