@@ -273,8 +273,10 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
           const Index I = fo + st.node[k];
           const double w = st.w[k];
           const Vec3& dN = st.grad[k];
-          if (multi) gg[I] += m * dN;  // outward vector of the field: the contact normal (grid_contact.hpp)
-          if (gv) gv[I] += w * vol[p];  // how much of the node the field fills (contact's gap check)
+          if (multi) {
+            gg[I] += m * dN;  // outward vector of the field: the contact normal (grid_contact.hpp)
+            if (gv) gv[I] += w * vol[p];  // how much of the node the field fills (contact's gap check)
+          }
           gm[I] += w * m;
           gp[I] += w * mv;
           Vec3 f;
