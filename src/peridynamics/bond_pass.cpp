@@ -2,10 +2,105 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#endif
 
 namespace ballista::pd {
 
 namespace {
+
+// kW bonds of one row at a time (GCC/Clang vector extension: one 512-bit register, or two of 256
+// bits, per quantity). A row's bonds end at kW different points, so the lanes' writes to their
+// other ends never collide. Every function taking or returning these is internal and inlined, so
+// the warning that a 512-bit vector's calling convention differs without AVX-512 does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
+constexpr int kW = 8;  // the broken flags of kW bonds are read as one 64-bit word
+typedef double VecW __attribute__((vector_size(kW * sizeof(double))));
+typedef long MaskW __attribute__((vector_size(kW * sizeof(long))));
+
+inline VecW splat_w(double v) {
+  return VecW{v, v, v, v, v, v, v, v};
+}
+inline VecW load_w(const double* p) {
+  VecW v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+/// Per-point values at the other ends of kW bonds: base[q] and, for 3-vectors, base[3 q + d].
+/// AVX-512 has a gather instruction; elsewhere the loads are element by element.
+struct OtherEnds {
+  const std::int32_t* q;
+#if defined(__AVX512F__)
+  __m512i q1, q3;
+  explicit OtherEnds(const std::int32_t* other) : q(other) {
+    q1 = _mm512_maskz_cvtepi32_epi64(0xff,
+                                     _mm256_loadu_si256(reinterpret_cast<const __m256i*>(other)));
+    q3 = _mm512_add_epi64(q1, _mm512_add_epi64(q1, q1));
+  }
+  VecW of(const double* base) const {
+    return VecW(_mm512_mask_i64gather_pd(_mm512_setzero_pd(), 0xff, q1, base, 8));
+  }
+  VecW of3(const double* base, int d) const {
+    return VecW(_mm512_mask_i64gather_pd(_mm512_setzero_pd(), 0xff, q3, base + d, 8));
+  }
+  void set(double* base, const VecW& v) const {
+    _mm512_i64scatter_pd(base, q1, __m512d(v), 8);
+  }
+  void set3(double* base, int d, const VecW& v) const {
+    _mm512_i64scatter_pd(base + d, q3, __m512d(v), 8);
+  }
+#else
+  explicit OtherEnds(const std::int32_t* other) : q(other) {}
+  VecW of(const double* base) const {
+    VecW v;
+    for (int l = 0; l < kW; ++l) v[l] = base[q[l]];
+    return v;
+  }
+  VecW of3(const double* base, int d) const {
+    VecW v;
+    for (int l = 0; l < kW; ++l) v[l] = base[3 * Index{q[l]} + d];
+    return v;
+  }
+  void set(double* base, const VecW& v) const {
+    for (int l = 0; l < kW; ++l) base[q[l]] = v[l];
+  }
+  void set3(double* base, int d, const VecW& v) const {
+    for (int l = 0; l < kW; ++l) base[3 * Index{q[l]} + d] = v[l];
+  }
+#endif
+};
+inline VecW sqrt_w(const VecW& a) {
+  VecW v = a;
+  for (int l = 0; l < kW; ++l) v[l] = std::sqrt(v[l]);
+  return v;
+}
+inline bool any_w(const MaskW& m) {
+#if defined(__AVX512F__)
+  const __m512i v = __m512i(m);
+  return _mm512_test_epi64_mask(v, v) != 0;
+#else
+  long o = 0;
+  for (int l = 0; l < kW; ++l) o |= m[l];
+  return o != 0;
+#endif
+}
+/// a b + c rounded once, lane by lane (std::fma's result).
+inline VecW fma_w(const VecW& a, const VecW& b, const VecW& c) {
+#if defined(__AVX512F__)
+  return VecW(_mm512_fmadd_pd(__m512d(a), __m512d(b), __m512d(c)));
+#else
+  VecW r;
+  for (int l = 0; l < kW; ++l) r[l] = std::fma(a[l], b[l], c[l]);
+  return r;
+#endif
+}
+/// std::max(a, b) lane by lane.
+inline VecW max_w(const VecW& a, const VecW& b) {
+  return a < b ? b : a;
+}
 
 /// The loop, compiled once per combination of the optional models so that the common case (elastic
 /// bonds, no surface correction) carries no test for them per bond.
@@ -43,7 +138,54 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
     const double* crow = cmat + mat[p] * nmat;
     // Sums of p's own terms in registers; q's are added in memory.
     double fx = 0.0, fy = 0.0, fz = 0.0, ep = 0.0, smp = smax[p];
-    for (Index k = upper[p]; k < offset[p + 1]; ++k) {
+    // kW bonds k .. k + kW - 1 at once, when all are intact, stay intact this step and touch no
+    // contact (the common case): the same expressions as `bond`, lane by lane, with the sums to p
+    // added lane by lane in the bonds' order, so the results are bitwise those of `bond`. Returns
+    // false, having changed nothing, when any of them needs `bond`.
+    auto intact_lanes = [&](Index k) -> bool {
+      std::uint64_t any_broken;  // kW = 8 flags of one byte
+      std::memcpy(&any_broken, broken + k, sizeof any_broken);
+      if (any_broken) return false;
+      const OtherEnds q(other + k);
+      const VecW xq0 = q.of3(x, 0), xq1 = q.of3(x, 1), xq2 = q.of3(x, 2), s0q = q.of(s0);
+      const VecW y0 = xq0 - xp0, y1 = xq1 - xp1, y2 = xq2 - xp2;
+      const VecW r = sqrt_w(y0 * y0 + y1 * y1 + y2 * y2);
+      const VecW r0 = load_w(len0 + k);
+      const VecW s = r * load_w(inv_len0 + k) - 1.0;
+      // s > min(s0_p, s0_q): the bond breaks (bond()); r = 0: no direction.
+      MaskW needs_bond = (s > s0p) | (s > s0q);
+      needs_bond |= ~(r > 0.0);  // r = 0, or not finite
+      if (bonded_contact) needs_bond |= (r < 0.9 * r0) & (r < range);
+      if (any_w(needs_bond)) return false;
+      const VecW vq = q.of(vol0);
+      const VecW vv = vp * vq;
+      VecW bk;
+      for (int l = 0; l < kW; ++l) bk[l] = beta[k + l];
+      VecW cpq = splat_w(crow[0]);  // one material: no lookup
+      if (nmat > 1)
+        for (int l = 0; l < kW; ++l) cpq[l] = crow[mat[q.q[l]]];
+      if constexpr (Surface) cpq *= 0.5 * (lambda[p] + q.of(lambda));
+      const VecW se = s;
+      const VecW u = 0.5 * cpq * se * se * r0 * bk * vv;
+      const VecW G = cpq * se * bk * vv / r;
+      // The other ends' sums, all kW at once (they are different points), each the single-rounding
+      // FMA that bond() makes.
+      q.set3(f, 0, fma_w(-G, y0, q.of3(f, 0)));
+      q.set3(f, 1, fma_w(-G, y1, q.of3(f, 1)));
+      q.set3(f, 2, fma_w(-G, y2, q.of3(f, 2)));
+      q.set(energy, fma_w(splat_w(0.5), u, q.of(energy)));
+      if (alpha > 0.0) q.set(smax, max_w(q.of(smax), -alpha * s));
+      // p's sums in the bonds' order.
+      for (int l = 0; l < kW; ++l) {
+        fx = std::fma(G[l], y0[l], fx), fy = std::fma(G[l], y1[l], fy),
+        fz = std::fma(G[l], y2[l], fz);
+        ep = std::fma(0.5, u[l], ep);
+        if (alpha > 0.0) smp = std::max(smp, -alpha * s[l]);
+      }
+      return true;
+    };
+    // One bond in full: intact, broken, breaking, plastic, in contact.
+    auto bond = [&](Index k) {
       const Index q = other[k];
       const double y0 = x[3 * q] - xp0, y1 = x[3 * q + 1] - xp1, y2 = x[3 * q + 2] - xp2;
       const double r = std::sqrt(y0 * y0 + y1 * y1 + y2 * y2), r0 = len0[k];
@@ -73,18 +215,21 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
         vb[q] += bk * vp;
         // The ends of a broken bond meet again through contact only.
         if (contact && r < std::min(0.9 * r0, range)) repel(std::min(0.9 * r0, range));
-        continue;
+        return;
       }
       const double s = r * inv_len0[k] - 1.0;  // (r - r0)/r0 without a division
-      // Micro-plastic bond (seed 001 "Micro-Elastic and -Plastic Materials"; Silling & Askari 2005):
-      // elastic in s - s_p up to the yield stretch s_y, perfectly plastic beyond, elastic unloading
-      // with s_p kept; plastic work c s_y |ds_p| |xi| beta V_p V_q, half to each end. Failure on s.
+      // Micro-plastic bond (seed 001 "Micro-Elastic and -Plastic Materials"; Silling & Askari
+      // 2005): elastic in s - s_p up to the yield stretch s_y, perfectly plastic beyond, elastic
+      // unloading with s_p kept; plastic work c s_y |ds_p| |xi| beta V_p V_q, half to each end.
+      // Failure on s.
       double se = s;
       if constexpr (Plastic) {
         se = s - sp[k];
         double dsp = 0.0;
-        if (se > sy) dsp = se - sy;
-        else if (se < -sy) dsp = se + sy;
+        if (se > sy)
+          dsp = se - sy;
+        else if (se < -sy)
+          dsp = se + sy;
         if (dsp != 0.0) {
           sp[k] += dsp;
           // Both ends' copies (read from the lower end; a checkpoint or a ghost row needs either).
@@ -118,13 +263,13 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
             smp = std::max(smp, -alpha * s);
             smax[q] = std::max(smax[q], -alpha * s);
           }
-          continue;
+          return;
         }
         // Default: from now on the bond exerts no force. It dissipates what the step took out of
         // the motion: velocity Verlet gave the points only the first half-kick of this bond, so the
-        // energy booked is U(s_n+1) - 1/2 F (r_n+1 - r_n), the trapezoidal work of the bond over the
-        // step; U(s_n+1) alone creates the missing half-kick (+7 % of the energy in a dynamic tear,
-        // docs/validation.md). Half to each end.
+        // energy booked is U(s_n+1) - 1/2 F (r_n+1 - r_n), the trapezoidal work of the bond over
+        // the step; U(s_n+1) alone creates the missing half-kick (+7 % of the energy in a dynamic
+        // tear, docs/validation.md). Half to each end.
         const double dp0 = xprev[3 * q] - xprev[3 * p], dp1 = xprev[3 * q + 1] - xprev[3 * p + 1],
                      dp2 = xprev[3 * q + 2] - xprev[3 * p + 2];
         const double r_prev = std::sqrt(dp0 * dp0 + dp1 * dp1 + dp2 * dp2);
@@ -132,9 +277,10 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
         const double d = 0.5 * (u - 0.5 * F * (r - r_prev));
         dis[p] += d;
         dis[q] += d;
-        continue;
+        return;
       }
-      // f = c s (y/|y|) per unit volume of each end (seed 001 "Microelastic material"), times V_p V_q.
+      // f = c s (y/|y|) per unit volume of each end (seed 001 "Microelastic material"), times V_p
+      // V_q.
       if (r > 0.0) {
         const double G = cpq * se * bk * vv / r;  // the one division per bond
         fx += G * y0, fy += G * y1, fz += G * y2;
@@ -147,7 +293,14 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
         smax[q] = std::max(smax[q], -alpha * s);
       }
       if (bonded_contact && r < std::min(0.9 * r0, range)) repel(std::min(0.9 * r0, range));
-    }
+    };
+    Index k = upper[p];
+    const Index kend = offset[p + 1];
+    if constexpr (!Plastic)
+      for (; k + kW <= kend; k += kW)
+        if (!intact_lanes(k))
+          for (Index j = k; j < k + kW; ++j) bond(j);
+    for (; k < kend; ++k) bond(k);
     f[3 * p] += fx, f[3 * p + 1] += fy, f[3 * p + 2] += fz;
     energy[p] += ep;
     smax[p] = smp;
@@ -158,10 +311,14 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
 
 void bond_pass(const BondPassArgs& a, Index p0, Index p1) {
   const bool plastic = a.plastic_stretch != nullptr, surface = a.surface_factor != nullptr;
-  if (plastic && surface) bond_pass_t<true, true>(a, p0, p1);
-  else if (plastic) bond_pass_t<true, false>(a, p0, p1);
-  else if (surface) bond_pass_t<false, true>(a, p0, p1);
-  else bond_pass_t<false, false>(a, p0, p1);
+  if (plastic && surface)
+    bond_pass_t<true, true>(a, p0, p1);
+  else if (plastic)
+    bond_pass_t<true, false>(a, p0, p1);
+  else if (surface)
+    bond_pass_t<false, true>(a, p0, p1);
+  else
+    bond_pass_t<false, false>(a, p0, p1);
 }
 
 }  // namespace ballista::pd
