@@ -139,9 +139,10 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
     // Sums of p's own terms in registers; q's are added in memory.
     double fx = 0.0, fy = 0.0, fz = 0.0, ep = 0.0, smp = smax[p];
     // kW bonds k .. k + kW - 1 at once, when all are intact, stay intact this step and touch no
-    // contact (the common case): the same expressions as `bond`, lane by lane, with the sums to p
-    // added lane by lane in the bonds' order, so the results are bitwise those of `bond`. Returns
-    // false, having changed nothing, when any of them needs `bond`.
+    // contact (the common case; micro-plastic flow included): the same expressions as `bond`, lane
+    // by lane, with the sums to p added lane by lane in the bonds' order, so the results are
+    // bitwise those of `bond`. Returns false, having changed nothing, when any of them needs
+    // `bond`.
     auto intact_lanes = [&](Index k) -> bool {
       std::uint64_t any_broken;  // kW = 8 flags of one byte
       std::memcpy(&any_broken, broken + k, sizeof any_broken);
@@ -165,7 +166,29 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
       if (nmat > 1)
         for (int l = 0; l < kW; ++l) cpq[l] = crow[mat[q.q[l]]];
       if constexpr (Surface) cpq *= 0.5 * (lambda[p] + q.of(lambda));
-      const VecW se = s;
+      VecW se = s;
+      if constexpr (Plastic) {
+        // Micro-plastic flow as bond() makes it: s_p moves by the excess over +-s_y; the flowing
+        // lanes (often all, in a yielding case) write both copies of s_p and their work in order.
+        const VecW spk = load_w(sp + k);
+        se = s - spk;
+        const VecW dsp = se > sy ? se - sy : (se < -sy ? se + sy : splat_w(0.0));
+        const MaskW flow = dsp != 0.0;
+        if (any_w(flow)) {
+          const VecW spn = spk + dsp;
+          se -= dsp;  // exact where dsp = 0
+          // The work w = wv vv, added with one rounding as bond()'s dis += w compiles (FMA).
+          const VecW wv = 0.5 * cpq * sy * (dsp < 0.0 ? -dsp : dsp) * r0 * bk;
+          for (int l = 0; l < kW; ++l)
+            if (flow[l]) {
+              const Index ql = q.q[l];
+              sp[k + l] = spn[l];
+              sp[offset[ql] + mirror[k + l]] = spn[l];
+              dis[p] = std::fma(wv[l], vv[l], dis[p]);
+              dis[ql] = std::fma(wv[l], vv[l], dis[ql]);
+            }
+        }
+      }
       const VecW u = 0.5 * cpq * se * se * r0 * bk * vv;
       const VecW G = cpq * se * bk * vv / r;
       // The other ends' sums, all kW at once (they are different points), each the single-rounding
@@ -296,10 +319,9 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
     };
     Index k = upper[p];
     const Index kend = offset[p + 1];
-    if constexpr (!Plastic)
-      for (; k + kW <= kend; k += kW)
-        if (!intact_lanes(k))
-          for (Index j = k; j < k + kW; ++j) bond(j);
+    for (; k + kW <= kend; k += kW)
+      if (!intact_lanes(k))
+        for (Index j = k; j < k + kW; ++j) bond(j);
     for (; k < kend; ++k) bond(k);
     f[3 * p] += fx, f[3 * p + 1] += fy, f[3 * p + 2] += fz;
     energy[p] += ep;

@@ -91,14 +91,26 @@ struct Sums {
   explicit Sums(Index n) : f(3 * n), energy(n), dis(n), vb(n), smax(n, -INFINITY), ec(n), kc(n) {}
 };
 
-}  // namespace
-
-TEST(BondPass, MatchesEveryBondSeenFromBothEnds) {
+// Runs the pass over a cloud and checks it against the reference. With `plastic`, every bond
+// starts with a plastic stretch in [-0.01, 0.01] and yields at s_y = 0.005 (micro-plastic bonds,
+// Silling & Askari 2005): s_p moves by the excess of s - s_p over +-s_y, the force and energy take
+// s - s_p, and the plastic work c s_y |ds_p| |xi| beta V_p V_q goes half to each end.
+void check_against_reference(bool plastic) {
   for (double jiggle : {0.0, 0.02, 0.2}) {
     Cloud c = make_cloud(jiggle, 7);
     const Index n = static_cast<Index>(c.vol0.size());
-    const double cmod = 3e21, alpha = 0.25;
+    const double cmod = 3e21, alpha = 0.25, sy = 0.005;
     const std::vector<std::uint8_t> broken_before = c.broken;
+    std::vector<double> sp;
+    if (plastic) {
+      std::mt19937 rng(11);
+      std::uniform_real_distribution<double> u(-0.01, 0.01);
+      sp.assign(c.other.size(), 0.0);
+      for (Index p = 0; p < n; ++p)
+        for (Index k = c.upper[p]; k < c.offset[p + 1]; ++k)
+          sp[k] = sp[c.offset[c.other[k]] + c.mirror[k]] = u(rng);
+    }
+    const std::vector<double> sp_before = sp;
     Sums s(n);
     pd::BondPassArgs a{c.x.data(),
                        c.vol0.data(),
@@ -114,8 +126,8 @@ TEST(BondPass, MatchesEveryBondSeenFromBothEnds) {
                        c.broken.data(),
                        c.offset.data(),
                        c.upper.data(),
-                       nullptr,
-                       0.0,
+                       plastic ? sp.data() : nullptr,
+                       sy,
                        alpha,
                        false,
                        false,
@@ -133,9 +145,10 @@ TEST(BondPass, MatchesEveryBondSeenFromBothEnds) {
     pd::bond_pass(a, 0, n);
 
     // The reference: every row in full, each point summing its own bonds.
-    Index groups = 0, breaking = 0;
+    Index groups = 0, breaking = 0, flowing = 0;
     for (Index p = 0; p < n; ++p) {
-      double f[3] = {0, 0, 0}, tol = 0.0, e = 0.0, etol = 0.0, smx = -INFINITY, vb = 0.0;
+      double f[3] = {0, 0, 0}, tol = 0.0, e = 0.0, etol = 0.0, smx = -INFINITY, vb = 0.0, dis = 0.0,
+             dtol = 0.0;
       for (Index k = c.offset[p]; k < c.offset[p + 1]; ++k) {
         const Index q = c.other[k];
         double y[3], rr = 0.0;
@@ -146,22 +159,46 @@ TEST(BondPass, MatchesEveryBondSeenFromBothEnds) {
         // The stretch as the pass forms it (r/|xi| - 1 with 1/|xi| stored).
         const double r = std::sqrt(rr), str = r * c.inv_length0[k] - 1.0,
                      vv = c.vol0[p] * c.vol0[q];
-        const bool breaks = !broken_before[k] && str > std::min(c.s0[p], c.s0[q]);
-        // Both copies of a bond end up broken exactly when it was broken or breaks now.
-        ASSERT_EQ(c.broken[k], broken_before[k] || breaks) << "bond " << p << "-" << q;
-        if (broken_before[k] || breaks) {
+        const double cb = cmod * c.length0[k] * c.beta[k] * vv;  // c |xi| beta V_p V_q
+        if (broken_before[k]) {
+          ASSERT_EQ(c.broken[k], 1);
           vb += c.beta[k] * c.vol0[q];
-          breaking += breaks;
+          if (plastic) {
+            EXPECT_EQ(sp[k], sp_before[k]);  // a broken bond no longer flows
+          }
           continue;
         }
-        const double g = cmod * str * c.beta[k] * vv / r;
+        double se = str;
+        if (plastic) {
+          se = str - sp_before[k];
+          const double dsp = se > sy ? se - sy : se < -sy ? se + sy : 0.0;
+          se -= dsp;
+          flowing += dsp != 0.0;
+          // Both copies carry the new s_p (to the round-off of the stretch).
+          EXPECT_NEAR(sp[k], sp_before[k] + dsp, 1e-15);
+          EXPECT_EQ(sp[k], sp[c.offset[q] + c.mirror[k]]);
+          dis += 0.5 * cmod * sy * std::abs(dsp) * c.length0[k] * c.beta[k] * vv;
+          dtol += 0.5 * cmod * sy * 1e-15 * c.length0[k] * c.beta[k] * vv;
+        }
+        const bool breaks = str > std::min(c.s0[p], c.s0[q]);
+        // Both copies of a bond end up broken exactly when it was broken or breaks now.
+        ASSERT_EQ(c.broken[k], breaks) << "bond " << p << "-" << q;
+        if (breaks) {
+          // The default break rule with x_prev = x: the bond's energy U = c se^2 |xi| beta V V / 2,
+          // half to each end, is dissipated.
+          vb += c.beta[k] * c.vol0[q];
+          ++breaking;
+          dis += 0.25 * cb * se * se;
+          dtol += 0.25 * cb * (1e-13 * se * se + 2e-15 * std::abs(se) + 1e-30);
+          continue;
+        }
+        const double g = cmod * se * c.beta[k] * vv / r;
         for (int d = 0; d < 3; ++d) {
           f[d] += g * y[d];
-          tol += cmod * (1e-13 * std::abs(str) + 1e-15) * c.beta[k] * vv * std::abs(y[d]) / r;
+          tol += cmod * (1e-13 * std::abs(se) + 1e-15) * c.beta[k] * vv * std::abs(y[d]) / r;
         }
-        e += 0.25 * cmod * str * str * c.length0[k] * c.beta[k] * vv;
-        etol += 0.25 * cmod * (1e-13 * str * str + 2e-15 * std::abs(str) + 1e-30) * c.length0[k] *
-                c.beta[k] * vv;
+        e += 0.25 * cb * se * se;
+        etol += 0.25 * cb * (1e-13 * se * se + 2e-15 * std::abs(se) + 1e-30);
         smx = std::max(smx, -alpha * str);
       }
       // The summation order differs (the reference sums each row in full), and the stretch may
@@ -169,6 +206,7 @@ TEST(BondPass, MatchesEveryBondSeenFromBothEnds) {
       // term's magnitude plus what a change of 1e-15 in its stretch makes.
       for (int d = 0; d < 3; ++d) EXPECT_NEAR(s.f[3 * p + d], f[d], tol) << "point " << p;
       EXPECT_NEAR(s.energy[p], e, etol);
+      EXPECT_NEAR(s.dis[p], dis, dtol + 1e-13 * dis);
       EXPECT_NEAR(s.vb[p], vb, 1e-13 * vb);
       EXPECT_NEAR(s.smax[p], smx, 1e-15);
       for (Index k = c.upper[p]; k + 8 <= c.offset[p + 1]; k += 8) groups += 1;
@@ -178,5 +216,18 @@ TEST(BondPass, MatchesEveryBondSeenFromBothEnds) {
     if (jiggle == 0.2) {
       EXPECT_GT(breaking, 100);
     }
+    if (plastic && jiggle > 0.0) {
+      EXPECT_GT(flowing, 1000);
+    }
   }
+}
+
+}  // namespace
+
+TEST(BondPass, MatchesEveryBondSeenFromBothEnds) {
+  check_against_reference(false);
+}
+
+TEST(BondPass, MicroPlasticBondsMatchEveryBondSeenFromBothEnds) {
+  check_against_reference(true);
 }
