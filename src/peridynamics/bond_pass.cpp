@@ -241,18 +241,15 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
         return;
       }
       const double s = r * inv_len0[k] - 1.0;  // (r - r0)/r0 without a division
-      // Micro-plastic bond (seed 001 "Micro-Elastic and -Plastic Materials"; Silling & Askari
-      // 2005): elastic in s - s_p up to the yield stretch s_y, perfectly plastic beyond, elastic
-      // unloading with s_p kept; plastic work c s_y |ds_p| |xi| beta V_p V_q, half to each end.
-      // Failure on s.
+      // Micro-plastic bond (seed 001 "Micro-Elastic and -Plastic Materials"; Silling & Askari 2005):
+      // elastic in s - s_p up to the yield stretch s_y, perfectly plastic beyond, elastic unloading
+      // with s_p kept; plastic work c s_y |ds_p| |xi| beta V_p V_q, half to each end. Failure on s.
       double se = s;
       if constexpr (Plastic) {
         se = s - sp[k];
         double dsp = 0.0;
-        if (se > sy)
-          dsp = se - sy;
-        else if (se < -sy)
-          dsp = se + sy;
+        if (se > sy) dsp = se - sy;
+        else if (se < -sy) dsp = se + sy;
         if (dsp != 0.0) {
           sp[k] += dsp;
           // Both ends' copies (read from the lower end; a checkpoint or a ghost row needs either).
@@ -290,9 +287,9 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
         }
         // Default: from now on the bond exerts no force. It dissipates what the step took out of
         // the motion: velocity Verlet gave the points only the first half-kick of this bond, so the
-        // energy booked is U(s_n+1) - 1/2 F (r_n+1 - r_n), the trapezoidal work of the bond over
-        // the step; U(s_n+1) alone creates the missing half-kick (+7 % of the energy in a dynamic
-        // tear, docs/validation.md). Half to each end.
+        // energy booked is U(s_n+1) - 1/2 F (r_n+1 - r_n), the trapezoidal work of the bond over the
+        // step; U(s_n+1) alone creates the missing half-kick (+7 % of the energy in a dynamic tear,
+        // docs/validation.md). Half to each end.
         const double dp0 = xprev[3 * q] - xprev[3 * p], dp1 = xprev[3 * q + 1] - xprev[3 * p + 1],
                      dp2 = xprev[3 * q + 2] - xprev[3 * p + 2];
         const double r_prev = std::sqrt(dp0 * dp0 + dp1 * dp1 + dp2 * dp2);
@@ -302,8 +299,7 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
         dis[q] += d;
         return;
       }
-      // f = c s (y/|y|) per unit volume of each end (seed 001 "Microelastic material"), times V_p
-      // V_q.
+      // f = c s (y/|y|) per unit volume of each end (seed 001 "Microelastic material"), times V_p V_q.
       if (r > 0.0) {
         const double G = cpq * se * bk * vv / r;  // the one division per bond
         fx += G * y0, fy += G * y1, fz += G * y2;
@@ -333,14 +329,10 @@ void bond_pass_t(const BondPassArgs& a, Index p0, Index p1) {
 
 void bond_pass(const BondPassArgs& a, Index p0, Index p1) {
   const bool plastic = a.plastic_stretch != nullptr, surface = a.surface_factor != nullptr;
-  if (plastic && surface)
-    bond_pass_t<true, true>(a, p0, p1);
-  else if (plastic)
-    bond_pass_t<true, false>(a, p0, p1);
-  else if (surface)
-    bond_pass_t<false, true>(a, p0, p1);
-  else
-    bond_pass_t<false, false>(a, p0, p1);
+  if (plastic && surface) bond_pass_t<true, true>(a, p0, p1);
+  else if (plastic) bond_pass_t<true, false>(a, p0, p1);
+  else if (surface) bond_pass_t<false, true>(a, p0, p1);
+  else bond_pass_t<false, false>(a, p0, p1);
 }
 
 }  // namespace ballista::pd
