@@ -178,13 +178,15 @@ class Reader {
     gr.upper = g.vector("upper", vmin());
     check_ordered(g, "upper", gr.lower, gr.upper, "upper");
     gr.cell_size = g.number("cell_size", NumberRange::positive("m"));
+    const SolverFactory& solver = *find_solver(sc_.simulation.solver);
+    // A units check: a box in millimetres read as metres has 10^9 times the cells. A gridless
+    // solver allocates none of them (its box only bounds the points), so it may span far more.
     double cells = 1.0;
     for (int d = 0; d < ndim(); ++d) cells *= std::ceil((gr.upper[d] - gr.lower[d]) / gr.cell_size);
-    if (cells > 2.0e9)
+    if (cells > (solver.background_grid ? 2.0e9 : 1.0e12))
       g.fail("cell_size", "the grid would have " + format_number(cells) +
                               " cells; check that lengths are in metres");
     DeckNode b = g.map("boundary", false);
-    const SolverFactory& solver = *find_solver(sc_.simulation.solver);
     for (int f = 0; f < 6; ++f) {
       gr.faces[f] = face_bc_from(b.choice(kFaces[f], "free", kFaceBCs));
       const auto& allowed = solver.face_conditions;

@@ -755,4 +755,5 @@ BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
         "points across it, which the bond families do not have yet; model the whole body, or hold points with a "
         "rigid indenter (loads: indenter)",
     .point_spacing = true,
-    .pre_cracks = true})
+    .pre_cracks = true,
+    .background_grid = false})

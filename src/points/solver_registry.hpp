@@ -45,6 +45,9 @@ struct SolverFactory {
   /// Its stable step is simulation.cfl times a Courant bound; otherwise it does not read
   /// simulation.cfl (`ballista info` names the solvers that do).
   bool courant_step = false;
+  /// Allocates the box's grid cells (grid.cell_size is a mesh); otherwise the cell size is a
+  /// lattice spacing and the box only bounds where points may go, so it may hold far more cells.
+  bool background_grid = true;
 };
 
 /// Registered solvers by name (core/registry.hpp), filled at static-initialisation time.

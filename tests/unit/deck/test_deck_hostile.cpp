@@ -168,3 +168,25 @@ TEST(DeckHostile, DriveDeckGetsTheSameChecks) {
   EXPECT_THROW(parse_drive_deck(drive + "---\n{}\n", "d.yaml", {}, "."), DeckError);
   EXPECT_THROW(read_drive_deck("/dev/zero", {}), DeckError);
 }
+
+// The cell-count check catches a box in millimetres read as metres (10^9 times the cells). MPM
+// allocates the cells, so its limit is 2e9; peridynamics only bounds its points by the box (the
+// exploding cylinder's fragments fly 0.3 m on a 0.43 mm lattice), so it may span 1e12.
+TEST(DeckHostile, CellCountLimitFollowsWhetherTheSolverAllocatesCells) {
+  std::string mpm = kDeck;
+  mpm.replace(mpm.find("upper: [1, 1]"), 13, "upper: [1e4, 1e4]");  // 6.4e9 cells
+  const std::string e = error_of(mpm);
+  EXPECT_NE(e.find("grid.cell_size"), std::string::npos) << e;
+  EXPECT_NE(e.find("check that lengths are in metres"), std::string::npos) << e;
+
+  auto pd_deck = [](const std::string& half_width) {
+    return "simulation: {solver: peridynamics, dimension: 3d, end_time: 1.0e-6}\n"
+           "grid: {lower: [-" + half_width + ", -" + half_width + ", -" + half_width + "], upper: [" +
+           half_width + ", " + half_width + ", " + half_width + "], cell_size: 1.0e-3}\n"
+           "materials:\n  m: {model: linear_elastic, density: 7850, bulk_modulus: 140e9, shear_modulus: 70e9}\n"
+           "bodies:\n  - {name: b, material: m, shape: {type: box, lower: [0, 0, 0], upper: [0.004, 0.004, 0.004]}}\n";
+  };
+  EXPECT_EQ(error_of(pd_deck("0.8")), "");  // 1600^3 = 4.1e9 lattice cells: a wide box, no mesh
+  const std::string huge = error_of(pd_deck("20"));  // 40000^3 = 6.4e13
+  EXPECT_NE(huge.find("check that lengths are in metres"), std::string::npos) << huge;
+}
