@@ -58,7 +58,8 @@ struct GasPassArgs {
   const float* weight_other = nullptr;
 };
 
-/// X_i of gas point i at the current positions (1 in the reference configuration).
+/// X_i of gas point i at the current positions (1 in the reference configuration; 1 for a point
+/// without neighbours, which has nothing to measure: the solver keeps such a point's last X).
 double density_measure(const GasPassArgs& a, Index i);
 
 /// Force on point p (gas or solid) from its gas bonds at the current positions, N.

@@ -66,7 +66,12 @@ void PdSolver::update_gas(double dt) {
       if (gas_[p]) L[p] = Mat3{};
       return;
     }
-    const double x_old = gas_x_[l], x_measured = pd::density_measure(a, l);
+    // A gas point left without neighbours (the renewal finds none: the products have spread past
+    // its reach) measures nothing and pushes nothing: it keeps its X. Read as X = 1, it would be
+    // recompressed to its reference density, its pressure work booked as internal energy that
+    // nothing did.
+    const double x_old = gas_x_[l];
+    const double x_measured = a.family_volume[l] > 0.0 ? pd::density_measure(a, l) : x_old;
     const double x_new = std::clamp(x_measured, x_old / pd::kGasMaxStepRatio, x_old * pd::kGasMaxStepRatio);
     if (x_new != x_measured) limited.fetch_add(1, std::memory_order_relaxed);
     const double s = std::pow(x_new, inv_d), rate = dt > 0.0 ? (std::pow(x_new / x_old, inv_d) - 1.0) / dt : 0.0;

@@ -628,6 +628,13 @@ std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
   if (has_gas_)
     for (Index l : local_.own) gas_bonds += gas_bonds_.offset[l + 1] - gas_bonds_.offset[l];
   gas_bonds = comm_.sum(gas_bonds);
+  std::int64_t lone = 0;  // gas points whose renewed family is empty (they keep their X: pd_gas.cpp)
+  if (has_gas_)
+    for (Index p = 0; p < points_.size(); ++p) {
+      const Index l = local_.own[p];
+      lone += gas_[p] && !vented_[l] && !(gas_volume_[l] > 0.0);
+    }
+  lone = comm_.sum(lone);
   std::vector<std::pair<std::string, double>> out{{"broken_bonds", broken},
           {"fragment_count", static_cast<double>(frags.size())},
           {"largest_fragment_mass", frags.empty() ? 0.0 : thickness_ * frags.front().mass},
@@ -640,7 +647,8 @@ std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
           {"gas_bonds", static_cast<double>(gas_bonds) / 2.0},
           {"vented_gas_points", static_cast<double>(comm_.sum(static_cast<std::int64_t>(vented_count_)))},
           {"gas_rate_limited_steps", static_cast<double>(comm_.sum(static_cast<std::int64_t>(gas_rate_limited_)))},
-          {"gas_family_renewals", static_cast<double>(gas_renewals_)}};
+          {"gas_family_renewals", static_cast<double>(gas_renewals_)},
+          {"lone_gas_points", static_cast<double>(lone)}};
   if (comm_.distributed()) {
     // Several ranks: how the points are shared, and what rank 0 sends its neighbours per step
     // (its own points' ghost copies), one message per neighbouring rank.
