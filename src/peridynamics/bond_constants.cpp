@@ -70,10 +70,13 @@ double dilatational_modulus(const ProbedModuli& moduli, int dim, bool plane_stre
 
 double micromodulus(double kd, double m1, int dim) { return (dim == 3 ? 18.0 * kd : 8.0 * kd) / m1; }
 
-double critical_stretch(std::optional<double> given, std::optional<double> fracture_energy, double c, double m2) {
+double critical_stretch(std::optional<double> given, std::optional<double> fracture_energy, double c, double m2,
+                        double yield_stretch) {
   if (given) return *given;
-  if (fracture_energy) return std::sqrt(2.0 * *fracture_energy / (c * m2));
-  return kInf;
+  if (!fracture_energy) return kInf;
+  const double elastic = std::sqrt(2.0 * *fracture_energy / (c * m2));
+  if (elastic <= yield_stretch) return elastic;  // breaks before it yields
+  return *fracture_energy / (c * m2 * yield_stretch) + 0.5 * yield_stretch;
 }
 
 double yield_stretch(double yield_stress, const std::vector<double>& kd, const std::vector<std::uint8_t>& gas,

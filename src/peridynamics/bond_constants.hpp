@@ -10,6 +10,7 @@
 // critical stretch releases G = c s0^2 m2 / 2 per unit area (the discrete form of eq. 25), with
 // m1 = sum_j |xi_j| beta_j V_j and m2 the sum over the bonds crossing a plane (bond_family.hpp).
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -48,9 +49,17 @@ double dilatational_modulus(const ProbedModuli& moduli, int dim, bool plane_stre
 double micromodulus(double kd, double m1, int dim);
 
 /// Critical stretch s00 of a material's bonds: `given` (peridynamics.critical_stretch), or from
-/// the fracture energy G0 = c s00^2 m2 / 2, s00 = sqrt(2 G0/(c m2)) (with the continuum m2 in 3D
-/// sqrt(5 G0/(9 K delta)), S&A 2005 eq. 25); neither: infinite (bonds never fail).
-double critical_stretch(std::optional<double> given, std::optional<double> fracture_energy, double c, double m2);
+/// the fracture energy, the work per unit area of crack to break every bond across it (S&A 2005
+/// §5: the bond energies w(s00) summed over the bonds a plane cuts, G0 = m2 w(s00)/|xi|):
+/// - elastic bonds, w = c s^2 |xi| / 2: G0 = c s00^2 m2 / 2, s00 = sqrt(2 G0/(c m2)) (with the
+///   continuum m2 in 3D sqrt(5 G0/(9 K delta)), S&A 2005 eq. 25);
+/// - micro-plastic bonds (elastic to the yield stretch s_y, flat beyond: seed 001, "Micro-Elastic
+///   and -Plastic Materials") that yield before they break, w = c |xi| s_y (s - s_y/2):
+///   G0 = c m2 s_y (s00 - s_y/2), s00 = G0/(c m2 s_y) + s_y/2 (continuous with the elastic rule
+///   at s00 = s_y). `yield_stretch` infinite: elastic bonds.
+/// Neither given: infinite (bonds never fail).
+double critical_stretch(std::optional<double> given, std::optional<double> fracture_energy, double c, double m2,
+                        double yield_stretch = std::numeric_limits<double>::infinity());
 
 /// Yield stretch of micro-plastic bonds: first yield of the most stretched bond (the one along the
 /// load) under uniaxial stress sigma_y, s_y = sigma_y/E_PD with the modulus of the bond-based

@@ -82,11 +82,13 @@ void PdSolver::set_bond_constants(const Scenario& sc) {
     kd[a] = pd::dilatational_modulus(mod, dim_, sc.simulation.plane_stress);
   }
   m1_ = m.m1;
+  if (params_.yield_stress) yield_stretch_ = pd::yield_stretch(*params_.yield_stress, kd, gas_material_, dim_);
+  // fracture_work: bond_law takes the micro-plastic bonds' own work to break; elastic, the PMB one.
+  const double sy = params_.bond_law_fracture_work ? yield_stretch_ : std::numeric_limits<double>::infinity();
   for (int a = 0; a < nmat_; ++a) {
     c[a] = pd::micromodulus(kd[a], m.m1, dim_);  // 0 for a gas (kd 0)
-    s0[a] = pd::critical_stretch(params_.critical_stretch, params_.fracture_energy, c[a], m.m2);
+    s0[a] = pd::critical_stretch(params_.critical_stretch, params_.fracture_energy, c[a], m.m2, sy);
   }
-  if (params_.yield_stress) yield_stretch_ = pd::yield_stretch(*params_.yield_stress, kd, gas_material_, dim_);
   pd::PairConstants pairs = pd::pair_constants(c, s0, gas_material_);
   c_ = std::move(pairs.c);
   s00_ = std::move(pairs.s00);
@@ -107,9 +109,11 @@ void PdSolver::init_critical_stretch() {
   // standard normal drawn from the point's id (splitmix64 + Box-Muller: the same for any thread
   // count, rank count or run), truncated to [1 - 3 sigma, 1 + 3 sigma]. A flawless lattice breaks
   // with its own symmetry (an expanding ring into identical fragments); real materials carry flaws
-  // (Grady 2006 ch. 2). The smaller s0 of a bond's two ends still decides.
+  // (Grady 2006 ch. 2). The smaller s0 of a bond's two ends still decides. scatter_seed picks
+  // another draw (it enters the hash; 0 leaves the default draw's bits unchanged).
   if (const double sigma = params_.stretch_scatter; sigma > 0.0) {
     const auto* id = local_.id.data();
+    const std::uint64_t salt = params_.scatter_seed * 0xd1b54a32d192ed03ULL;
     auto mix = [](std::uint64_t z) {
       z += 0x9e3779b97f4a7c15ULL;
       z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
@@ -117,7 +121,7 @@ void PdSolver::init_critical_stretch() {
       return z ^ (z >> 31);
     };
     for (Index p = 0; p < nb; ++p) {
-      const std::uint64_t h1 = mix(static_cast<std::uint64_t>(id[p]) * 2 + 1), h2 = mix(h1);
+      const std::uint64_t h1 = mix((static_cast<std::uint64_t>(id[p]) * 2 + 1) ^ salt), h2 = mix(h1);
       const double u1 = (static_cast<double>(h1 >> 11) + 0.5) / 9007199254740992.0;  // (0, 1)
       const double u2 = static_cast<double>(h2 >> 11) / 9007199254740992.0;
       const double z = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);

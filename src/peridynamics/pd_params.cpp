@@ -93,6 +93,12 @@ std::vector<ParamSpec> pd_params() {
                "fracture energy G0: s00 = sqrt(2 G0/(c m2)) (continuum m2: S&A 2005 eq. 25, sqrt(5 G0/(9 K delta)))",
                false, nan, 0.0, kInf,
                true};
+  const ParamSpec gwork = word_param(
+      "fracture_work",
+      "which work of a bond the fracture energy equals: elastic, c s00^2 m2 / 2 (the PMB bond's, also for "
+      "micro-plastic bonds); bond_law, the work of the bonds' own law to s00 (micro-plastic bonds that yield "
+      "first: G0 = c m2 s_y (s00 - s_y/2), so a yielding bond dissipates G0 and no more)",
+      {"elastic", "bond_law"});
   ParamSpec alpha{"stretch_alpha", "1", "s0 = s00 - alpha s_min (LAMMPS PERI)", false, 0.0, 0.0, kInf};
   ParamSpec safety{"dt_safety", "1", "fraction of the Silling-Askari stable time step", false, 0.8, 0.0, 1.0, true};
   ParamSpec scatter{
@@ -103,6 +109,10 @@ std::vector<ParamSpec> pd_params() {
       0.0,
       0.0,
       0.3};
+  ParamSpec seed{"scatter_seed", "1",
+                 "draw of the critical-stretch scatter: another whole number gives another set of flaws with the same "
+                 "statistics (the run-to-run scatter of fragments); 0: the default draw",
+                 false, nan, 0.0, 4.0e9};
   ParamSpec fint{"fragment_interval", "s", "time between fragment snapshots in fragments.csv (0: at the end only)",
                  false, 0.0, 0.0, kInf};
   ParamSpec fthr{"fragment_damage_threshold", "1",
@@ -144,8 +154,8 @@ std::vector<ParamSpec> pd_params() {
                    false, 0.0, 0.0, 1.0e6};
   ParamSpec skin{"contact_skin", "1", "contact list skin over the lattice spacing (rebuilt after skin/2 of motion)",
                  false, 0.5, 0.0, 10.0, true};
-  return {m,       horizon, vc,   thick, cal,     surf,  yield, s0,   g0, alpha,
-          scatter, safety,  fint, fthr,  contact, pairs, rule,  skin, refam};
+  return {m,       horizon, vc,   thick, cal,     surf,  yield, s0,   g0,   gwork, alpha,
+          scatter, seed,    safety, fint, fthr, contact, pairs, rule, skin,  refam};
 }
 
 void pd_section_error(const Scenario& sc, const std::string& key, const std::string& message) {
@@ -180,8 +190,20 @@ PdParams read_pd_params(const Scenario& sc) {
     pd_section_error(sc, "fracture_energy", "give critical_stretch or fracture_energy, not both");
   if (P.given("critical_stretch")) p.critical_stretch = P.at("critical_stretch");
   if (P.given("fracture_energy")) p.fracture_energy = P.at("fracture_energy");
+  p.bond_law_fracture_work = P.choices.at("fracture_work") == "bond_law";
+  if (p.bond_law_fracture_work && !(p.fracture_energy && p.yield_stress))
+    pd_section_error(sc, "fracture_work",
+                     "bond_law sets the critical stretch of micro-plastic bonds from the fracture energy: give "
+                     "fracture_energy and yield_stress");
   p.stretch_alpha = P.at("stretch_alpha");
   p.stretch_scatter = P.at("stretch_scatter");
+  if (P.given("scatter_seed")) {
+    const double seed = P.at("scatter_seed");
+    if (seed != std::floor(seed)) pd_section_error(sc, "scatter_seed", "expected a whole number");
+    if (p.stretch_scatter == 0.0)
+      pd_section_error(sc, "scatter_seed", "a seed draws the critical-stretch scatter, but stretch_scatter is 0");
+    p.scatter_seed = static_cast<std::uint64_t>(seed);
+  }
   p.dt_safety = P.at("dt_safety");
   p.fragment_interval = P.at("fragment_interval");
   if (P.given("fragment_damage_threshold")) p.fragment_damage_threshold = P.at("fragment_damage_threshold");

@@ -2,6 +2,7 @@
 // The deck's peridynamics.* parameters: their spec list (names, units, defaults, ranges;
 // docs/deck.md), the typed values the solver reads once, and the checks of the section against the
 // rest of the deck that the specs cannot express, made before anything is seeded.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,8 +25,10 @@ struct PdParams {
   std::optional<double> yield_stress;      ///< Pa, micro-plastic bonds (absent: micro-elastic)
   std::optional<double> critical_stretch;  ///< s00 as given (at most one of it and fracture_energy)
   std::optional<double> fracture_energy;   ///< J/m^2, G0 (neither given: bonds never fail)
+  bool bond_law_fracture_work = false;     ///< fracture_work: bond_law (G0 is the bond law's work; else elastic)
   double stretch_alpha = 0.0;              ///< s0 = s00 - alpha s_min
   double stretch_scatter = 0.0;            ///< relative standard deviation of each point's s00
+  std::uint64_t scatter_seed = 0;          ///< which draw of the scatter (0: the default one)
   double dt_safety = 0.8;                  ///< fraction of the Silling-Askari stable step
   double fragment_interval = 0.0;          ///< s between fragment snapshots (0: at the end only)
   double fragment_damage_threshold = 2.0;  ///< points with more damage are left out of fragments

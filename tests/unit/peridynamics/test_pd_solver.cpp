@@ -190,6 +190,17 @@ TEST(PdSolver, BondConstantsFromTheMaterialBulkModulus) {
   EXPECT_NEAR(l->critical_stretch(0, 0), std::sqrt(2 * 8.0 / (l->micromodulus(0, 0) * m2)),
               1e-6 * l->critical_stretch(0, 0));
   EXPECT_NEAR(m1 / (std::numbers::pi * std::pow(delta, 4)), 0.9002, 1e-4);  // K_PD / K of the continuum c
+  // Micro-plastic bonds (s_y = sigma_y / (3K/2)) that yield before they break: the fracture energy
+  // is their elastic-plastic work, s00 = G0/(c m2 s_y) + s_y/2 (bond_constants.hpp).
+  const auto p = solver_for(cube_deck(4, "m: 3, fracture_energy: 8e3, yield_stress: 300e6, fracture_work: bond_law"));
+  const double sy = 300e6 / (1.5 * kK);
+  EXPECT_NEAR(p->critical_stretch(0, 0), 8e3 / (p->micromodulus(0, 0) * m2 * sy) + sy / 2,
+              1e-6 * p->critical_stretch(0, 0));
+  EXPECT_GT(std::sqrt(2 * 8e3 / (p->micromodulus(0, 0) * m2)), sy);  // it does yield first
+  // The default (elastic) keeps the PMB rule for them; bond_law without a yield stress is an error.
+  const auto e = solver_for(cube_deck(4, "m: 3, fracture_energy: 8e3, yield_stress: 300e6"));
+  EXPECT_NEAR(e->critical_stretch(0, 0), std::sqrt(2 * 8e3 / (e->micromodulus(0, 0) * m2)), 1e-6 * e->critical_stretch(0, 0));
+  EXPECT_THROW(solver_for(cube_deck(4, "m: 3, fracture_energy: 8e3, fracture_work: bond_law")), DeckError);
   EXPECT_THROW(solver_for(cube_deck(4, "m: 3, horizon: 0.003")), DeckError);
   EXPECT_THROW(solver_for(cube_deck(4, "critical_stretch: 0.001, fracture_energy: 8")), DeckError);
 }
@@ -489,6 +500,28 @@ TEST(PdSolver, StretchScatterIsNormalAndReproducible) {
   const double mean = sum / n, sd = std::sqrt(sum2 / n - mean * mean);
   EXPECT_NEAR(mean, 1.0, 4 * 0.1 / std::sqrt(double(n)));
   EXPECT_NEAR(sd, 0.1, 0.01);
+}
+
+// scatter_seed: another seed is another draw of the same law (mean and spread as above, its
+// factors uncorrelated with the default draw's: |r| < 4 / sqrt(n) = 0.11), seed 0 is the default
+// draw itself, and a seed without a scatter is a deck error rather than an ignored key.
+TEST(PdSolver, ScatterSeedDrawsOtherFlawsWithTheSameStatistics) {
+  const auto a = solver_for(cube_deck(11, "m: 3, critical_stretch: 1e-3, stretch_scatter: 0.1"));
+  const auto zero = solver_for(cube_deck(11, "m: 3, critical_stretch: 1e-3, stretch_scatter: 0.1, scatter_seed: 0"));
+  const auto b = solver_for(cube_deck(11, "m: 3, critical_stretch: 1e-3, stretch_scatter: 0.1, scatter_seed: 7"));
+  const Index n = a->points().size();
+  double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+  for (Index p = 0; p < n; ++p) {
+    EXPECT_EQ(zero->point_critical_stretch(p), a->point_critical_stretch(p));
+    const double fa = a->point_critical_stretch(p) / 1e-3 - 1.0, fb = b->point_critical_stretch(p) / 1e-3 - 1.0;
+    sa += fa, sb += fb, saa += fa * fa, sbb += fb * fb, sab += fa * fb;
+  }
+  const double mb = sb / n, sdb = std::sqrt(sbb / n - mb * mb);
+  EXPECT_NEAR(mb, 0.0, 4 * 0.1 / std::sqrt(double(n)));
+  EXPECT_NEAR(sdb, 0.1, 0.01);
+  const double r = (sab / n - sa / n * mb) / (std::sqrt(saa / n - sa / n * sa / n) * sdb);
+  EXPECT_LT(std::abs(r), 4.0 / std::sqrt(double(n))) << r;
+  EXPECT_THROW(solver_for(cube_deck(11, "m: 3, critical_stretch: 1e-3, scatter_seed: 3")), DeckError);
 }
 
 // surface_correction: energy (Madenci & Oterkus 2014; Le & Bobaru 2018): under a uniform
