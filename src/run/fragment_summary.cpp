@@ -30,8 +30,8 @@ JsonValue fragment_summary(const ResultTable& table) {
   std::vector<double> masses;
   for (const auto& row : table.rows)
     if (it < 0 || row.at(it) == t_last) masses.push_back(row.at(im));
-  double total = 0.0, largest = 0.0;
-  for (double m : masses) total += m, largest = std::max(largest, m);
+  double total = 0.0, largest = 0.0, square = 0.0;
+  for (double m : masses) total += m, largest = std::max(largest, m), square += m * m;
   JsonValue j = JsonValue::object();
   // A value that does not exist is left out (never null: the fuzz harness and readers treat a null
   // number as garbage), and mott_reason says why the fit is missing.
@@ -39,6 +39,9 @@ JsonValue fragment_summary(const ResultTable& table) {
   j["count"] = static_cast<std::int64_t>(masses.size());
   j["largest_mass"] = largest;
   if (!masses.empty()) j["mean_mass"] = total / static_cast<double>(masses.size());
+  // The mass of the fragment an average unit of mass ends up in: insensitive to the many loose
+  // points of a fine lattice, which set mean_mass (a point's mass is the lattice's).
+  if (total > 0.0) j["mass_weighted_mean_mass"] = square / total;
   j["total_mass"] = total;
   const MottFit f = fit_mott(masses);
   if (f.ok) {

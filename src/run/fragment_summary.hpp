@@ -13,10 +13,11 @@
 
 namespace ballista {
 
-/// {time, count, largest_mass, mean_mass, total_mass, mott_N0, mott_mu, mott_r2} of the table's
-/// last snapshot (s, -, kg, kg, kg, -, kg, -). Without a Mott fit (fewer than 3 fragments) the
-/// mott_* values are null and mott_reason says why; mean_mass is null without fragments and
-/// mott_r2 null when the masses are all equal. Throws Error if the table has no mass column.
+/// {time, count, largest_mass, mean_mass, mass_weighted_mean_mass (sum m^2 / sum m), total_mass,
+/// mott_N0, mott_mu, mott_r2} of the table's last snapshot (s, -, kg, kg, kg, kg, -, kg, -).
+/// Without a Mott fit (fewer than 3 fragments) the mott_* values are left out and mott_reason
+/// says why; the means are left out without fragments and mott_r2 when the masses are all equal.
+/// Throws Error if the table has no mass column.
 JsonValue fragment_summary(const ResultTable& table);
 
 /// The run loop's hook after the result tables are written: if one of `tables` is named

@@ -110,6 +110,7 @@ def check_five(ballista, folder):
     close(fr["largest_mass"], masses.max(), "largest_mass")
     close(fr["total_mass"], masses.sum(), "total_mass")
     close(fr["mean_mass"], masses.mean(), "mean_mass")
+    close(fr["mass_weighted_mean_mass"], np.sum(masses**2) / masses.sum(), "mass_weighted_mean_mass")
     close(fr["time"], 2.0e-6, "snapshot time")
     n0, mu, r2 = numpy_mott(masses)
     close(fr["mott_N0"], n0, "mott_N0")

@@ -34,6 +34,8 @@ TEST(FragmentSummary, LastSnapshotAndMottFit) {
   EXPECT_EQ(j.at("largest_mass").as_number(), 4e-3);
   EXPECT_NEAR(j.at("total_mass").as_number(), 10e-3, 1e-15 * 10e-3);  // a sum: rounding
   EXPECT_NEAR(j.at("mean_mass").as_number(), 2.5e-3, 1e-15 * 2.5e-3);
+  // (16 + 9 + 4 + 1) / 10 g: the fragment the average gram is in.
+  EXPECT_NEAR(j.at("mass_weighted_mean_mass").as_number(), 3e-3, 1e-15 * 3e-3);
   const MottFit f = fit_mott({4e-3, 3e-3, 2e-3, 1e-3});
   ASSERT_TRUE(f.ok);
   EXPECT_EQ(j.at("mott_N0").as_number(), 4.0);
@@ -53,6 +55,7 @@ TEST(FragmentSummary, TooFewFragmentsLeaveTheFitOutWithAReason) {
   const JsonValue none = fragment_summary(table({}));
   EXPECT_EQ(none.at("count").as_int(), 0);
   EXPECT_FALSE(none.contains("mean_mass"));
+  EXPECT_FALSE(none.contains("mass_weighted_mean_mass"));
   EXPECT_TRUE(non_finite_numbers(none).empty());
   // Equal masses: a fit (mu = the mass) but no Mott-plot line: r2 left out rather than NaN.
   const JsonValue equal = fragment_summary(table({{0.0, 1e-3}, {0.0, 1e-3}, {0.0, 1e-3}}));
