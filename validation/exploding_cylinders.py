@@ -28,7 +28,7 @@ than --min-mass, and the mass-weighted mean sum(m^2)/sum(m).
 
 Usage: validation/exploding_cylinders.py --ballista build/ballista --out DIR
            [--configs 4340_HT1,...] [--spacing 0.86e-3] [--seeds 0,1,2,3,4] [--threads 2]
-           [--end-time 100e-6] [--min-mass 0.3e-3] [--set KEY=VALUE ...]
+           [--end-time 100e-6] [--min-mass 0.3e-3] [--set KEY=VALUE ...] [--plot]
 A finished run (its summary.json present) is not run again: the table can be rebuilt, or a study
 continued, by calling the script again with the same OUT.
 """
@@ -114,6 +114,38 @@ def statistics(out, min_mass):
     }
 
 
+def plot(args, table):
+    """OUT/cylinders.png: N(>= m) against m for each cylinder (its first run at the first spacing),
+    EMU's largest and mean fragment marked on its curve's colour."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    seen = set()
+    for (name, spacing), rows in table.items():
+        if name in seen:
+            continue
+        seen.add(name)
+        out = os.path.join(args.out, f"{name}_h{spacing * 1e3:.3g}mm_seed{rows[0]['seed']}")
+        frag = list(csv.DictReader(open(os.path.join(out, "fragments.csv"))))
+        last = max(float(r["time"]) for r in frag)
+        m = np.sort([float(r["mass"]) * 1e3 for r in frag if float(r["time"]) == last])[::-1]
+        line, = ax.loglog(m, np.arange(1, len(m) + 1), drawstyle="steps-post",
+                          label=f"{name.replace('_', ' ')} ({spacing * 1e3:g} mm)")
+        _, largest, mean, _ = CONFIGS[name]
+        ax.plot([largest], [1], "v", color=line.get_color(), ms=9)
+        ax.plot([mean * 1e-3], [len(m)], "o", mfc="none", color=line.get_color(), ms=9)
+    ax.set_xlabel("fragment mass m (g)")
+    ax.set_ylabel("fragments of mass >= m")
+    ax.set_title("The seed's exploding cylinders at 100 us: cumulative fragment masses")
+    ax.text(0.01, 0.01, "markers: EMU's largest (triangle, at N = 1) and mean fragment (circle, at this run's count); "
+            "seed 001", transform=ax.transAxes, fontsize=7)
+    ax.legend(fontsize=8)
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.out, "cylinders.png"), dpi=110)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--ballista", default="build/ballista")
@@ -125,6 +157,7 @@ def main():
     ap.add_argument("--end-time", type=float, default=100e-6)
     ap.add_argument("--min-mass", type=float, default=0.3e-3, help="kg: fragments counted as heavy")
     ap.add_argument("--set", action="append")
+    ap.add_argument("--plot", action="store_true", help="also draw OUT/cylinders.png")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     table = defaultdict(list)
@@ -138,6 +171,8 @@ def main():
                 table[(name, spacing)].append(st)
     json.dump([r for rows in table.values() for r in rows], open(os.path.join(args.out, "cylinders.json"), "w"),
               indent=1)
+    if args.plot:
+        plot(args, table)
     print(f"\n| cylinder | case spacing | seeds | fragments | largest (EMU) | mean, all (EMU) | "
           f"heavier than {args.min_mass * 1e3:g} g: count, mean | mass-weighted mean | middle third (measured) |")
     print("|---|---|---|---|---|---|---|---|---|")
