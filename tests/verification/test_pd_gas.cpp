@@ -206,7 +206,8 @@ TEST(PdGas, GasLeavingTheBoxIsVentedWithItsEnergyBooked) {
 // (its neighbours are beyond delta min(s_p, s_q), s capped at 2.5). Such a point measures nothing
 // and pushes nothing, so it keeps its X: read as X = 1 it was recompressed to its reference
 // density, its -P dV booked as internal energy that nothing did (the exploding cylinder's audit
-// reached 38 % of the chemical energy at 100 us). The bound is the vented test's 2 %.
+// reached 38 % of the chemical energy at 100 us; this disc stopped at 16 us on the non-finite
+// stress of a recompressed point). The bound is the vented test's 2 %.
 TEST(PdGas, LoneGasPointsKeepTheirDensityAndTheAuditCloses) {
   const auto [solver, worst] = run_gas_disc(5.0e-3, 0.3, 30.0e-6, "gas_refamily_steps: 2");
   const double lone = result(*solver, "lone_gas_points");
