@@ -18,31 +18,48 @@ import h5py
 import numpy as np
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("run_dir")
-    ap.add_argument("--length", type=float, default=0.098, help="tube length, m (it starts at axial 0)")
-    a = ap.parse_args()
-    files = sorted(glob.glob(a.run_dir + "/particles_*.h5"))
+THIRDS = (("first", 0, 1 / 3), ("middle", 1 / 3, 2 / 3), ("last", 2 / 3, 1))
+
+
+def case_thirds(run_dir, length=0.098):
+    """The last particle file's case by thirds: (time s, 3D or not, case points, [(name, mass-weighted
+    radial velocity m/s, mean radius m)] for the first, middle and last third). Raises ValueError
+    when the run has no particle file or did not write the field body."""
+    files = sorted(glob.glob(run_dir + "/particles_*.h5"))
     if not files:
-        sys.exit(f"no particle files in {a.run_dir}")
+        raise ValueError(f"no particle files in {run_dir}")
     with h5py.File(files[-1]) as f:
         if "body" not in f:
-            sys.exit("the run did not write the field body: --set 'output.fields=[v,body]'")
+            raise ValueError("the run did not write the field body: --set 'output.fields=[v,body]'")
         x, v, body, t = f["x"][:], f["v"][:], f["body"][:], f["time"][()]
     case = body == 0
     x, v = x[case], v[case]
-    three_d = np.any(x[:, 2] != 0.0)
+    three_d = bool(np.any(x[:, 2] != 0.0))
     if three_d:
         r = np.hypot(x[:, 0], x[:, 1])
         vr = (x[:, 0] * v[:, 0] + x[:, 1] * v[:, 1]) / r
         z, w = x[:, 2], np.ones(len(r))
     else:
         r, vr, z, w = x[:, 0], v[:, 0], x[:, 1], x[:, 0]
-    print(f"t = {t * 1e6:.2f} us, {'3D' if three_d else 'axisymmetric'}, {len(r)} case points")
-    for name, lo, hi in (("first", 0, 1 / 3), ("middle", 1 / 3, 2 / 3), ("last", 2 / 3, 1)):
-        s = (z >= lo * a.length) & (z < hi * a.length)
-        print(f"{name:6s} third: {np.sum(w[s] * vr[s]) / np.sum(w[s]):7.0f} m/s, mean radius {1e3 * r[s].mean():.1f} mm")
+    thirds = []
+    for name, lo, hi in THIRDS:
+        s = (z >= lo * length) & (z < hi * length)
+        thirds.append((name, float(np.sum(w[s] * vr[s]) / np.sum(w[s])), float(r[s].mean())))
+    return t, three_d, len(r), thirds
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("run_dir")
+    ap.add_argument("--length", type=float, default=0.098, help="tube length, m (it starts at axial 0)")
+    a = ap.parse_args()
+    try:
+        t, three_d, n, thirds = case_thirds(a.run_dir, a.length)
+    except ValueError as e:
+        sys.exit(str(e))
+    print(f"t = {t * 1e6:.2f} us, {'3D' if three_d else 'axisymmetric'}, {n} case points")
+    for name, vel, radius in thirds:
+        print(f"{name:6s} third: {vel:7.0f} m/s, mean radius {1e3 * radius:.1f} mm")
 
 
 if __name__ == "__main__":

@@ -40,8 +40,9 @@ import subprocess
 import sys
 from collections import defaultdict
 
-import h5py
 import numpy as np
+
+from case_velocity_thirds import case_thirds
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DECK = os.path.join(HERE, "..", "examples", "exploding_cylinder_pd.yaml")
@@ -77,19 +78,6 @@ def run(args, name, spacing, seed):
     return out
 
 
-def middle_third_velocity(out, length=0.098):
-    """Mass-weighted radial velocity of the case's middle third (by current axial position)."""
-    files = sorted(f for f in os.listdir(out) if f.startswith("particles_") and f.endswith(".h5"))
-    with h5py.File(os.path.join(out, files[-1])) as f:
-        x, v, body = f["x"][:], f["v"][:], f["body"][:]
-    case = body == 0
-    x, v = x[case], v[case]
-    r = np.hypot(x[:, 0], x[:, 1])
-    vr = (x[:, 0] * v[:, 0] + x[:, 1] * v[:, 1]) / r
-    mid = (x[:, 2] >= length / 3) & (x[:, 2] < 2 * length / 3)
-    return float(vr[mid].mean())
-
-
 def statistics(out, min_mass):
     rows = list(csv.DictReader(open(os.path.join(out, "fragments.csv"))))
     last = max(float(r["time"]) for r in rows)
@@ -108,7 +96,7 @@ def statistics(out, min_mass):
         "mass_heavy_fraction": float(big.sum() / m.sum()),
         "mass_weighted_mean_g": float(np.sum(m * m) / np.sum(m) * 1e3),
         "single_points": int(np.sum(n == 1)),
-        "velocity_middle_third": middle_third_velocity(out),
+        "velocity_middle_third": case_thirds(out)[3][1][1],
         "energy_residual": s["energy"]["residual_over_scale"],
         "wall_s": s["statistics"]["wall_time"],
     }
