@@ -32,4 +32,9 @@ void quiet_console() {
   console_sink()->set_level(spdlog::level::err);
 }
 
+void full_console() {
+  log_to_stderr();
+  console_sink()->set_level(spdlog::level::trace);
+}
+
 }  // namespace ballista

@@ -11,4 +11,8 @@ void log_to_stderr();
 /// the run's record (summary.json "warnings").
 void quiet_console();
 
+/// Every level on the console again (undoes quiet_console; for a process that runs several
+/// decks, the Python module).
+void full_console();
+
 }  // namespace ballista

@@ -22,6 +22,16 @@ JsonValue sym6(const Mat3& s) {
 
 }  // namespace
 
+std::string drive_invariants_error(const DriveResult& r) {
+  // Finite stresses whose invariants overflow (moduli near 1e308) are garbage too.
+  for (const DriveRecord& rec : r.records)
+    if (!std::isfinite(von_mises(rec.sigma)) || !std::isfinite(trace(rec.sigma)))
+      return fmt::format("drive: the stress invariants are not finite at step {} (t = {:.6g} s; von Mises {}, "
+                         "trace {}): the material's moduli or the strains are beyond double precision",
+                         rec.step, rec.t, von_mises(rec.sigma), trace(rec.sigma));
+  return {};
+}
+
 DriveRunResult run_drive(const DriveDeck& deck, const std::string& out_dir) {
   namespace fs = std::filesystem;
   fs::create_directories(out_dir);
@@ -38,16 +48,8 @@ DriveRunResult run_drive(const DriveDeck& deck, const std::string& out_dir) {
   res.steps = r.steps;
   res.records = r.records.size();
   res.last = r.records.back();
-  // Finite stresses whose invariants overflow (moduli near 1e308) are garbage too.
-  for (const DriveRecord& rec : r.records) {
-    if (!res.ok) break;
-    if (!std::isfinite(von_mises(rec.sigma)) || !std::isfinite(trace(rec.sigma))) {
-      res.ok = false;
-      res.error = fmt::format("drive: the stress invariants are not finite at step {} (t = {:.6g} s; von Mises {}, "
-                              "trace {}): the material's moduli or the strains are beyond double precision",
-                              rec.step, rec.t, von_mises(rec.sigma), trace(rec.sigma));
-    }
-  }
+  if (res.ok) res.error = drive_invariants_error(r);
+  res.ok = res.error.empty();
   write_drive_history((fs::path(out_dir) / "history.csv").string(), r);
 
   SummaryWriter summary;

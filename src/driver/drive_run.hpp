@@ -22,4 +22,8 @@ struct DriveRunResult {
 /// bad programs throw (Error / DeckError).
 DriveRunResult run_drive(const DriveDeck& deck, const std::string& out_dir);
 
+/// The error of a history whose stresses are finite but whose invariants are not (moduli near
+/// 1e308), naming the first such step; "" if there is none.
+std::string drive_invariants_error(const DriveResult& r);
+
 }  // namespace ballista

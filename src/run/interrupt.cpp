@@ -7,7 +7,7 @@ namespace ballista {
 
 namespace {
 
-std::atomic<int> g_requested{0};  // lock-free: the only thing the handler touches
+std::atomic<int> g_requested{0};  // lock-free: the only thing the handler touches; 1 signal, 2 caller
 
 extern "C" void on_signal(int sig) {
   if (g_requested.exchange(1) != 0) {
@@ -30,6 +30,11 @@ InterruptScope::~InterruptScope() {
 }
 
 bool interrupt_requested() { return g_requested.load() != 0; }
+void request_interrupt() {
+  int none = 0;
+  g_requested.compare_exchange_strong(none, 2);
+}
+bool interrupt_from_caller() { return g_requested.load() == 2; }
 void clear_interrupt() { g_requested.store(0); }
 
 }  // namespace ballista

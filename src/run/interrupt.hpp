@@ -18,8 +18,13 @@ class InterruptScope {
   void (*term_)(int) = nullptr;
   void (*int_)(int) = nullptr;
 };
-/// True once SIGTERM or SIGINT has arrived.
+/// True once SIGTERM or SIGINT has arrived, or the caller asked (request_interrupt).
 bool interrupt_requested();
+/// Stops the run as a signal would (a checkpoint of the step, status "interrupted"): for a caller
+/// that runs Ballista in its own process, e.g. the Python module's progress callback.
+void request_interrupt();
+/// True when the pending request came from request_interrupt, not from a signal.
+bool interrupt_from_caller();
 /// Forgets an earlier request (a new run starts uninterrupted).
 void clear_interrupt();
 

@@ -47,12 +47,16 @@ double Progress::wall_per_step(std::chrono::steady_clock::time_point now, long s
 }
 
 void Progress::update(double time, long step, double dt) {
-  if (!enabled_) return;
+  if (!enabled_ && !observer_) return;
   const auto now = std::chrono::steady_clock::now();
   const double per_step = wall_per_step(now, step);
   const double wall = std::chrono::duration<double>(now - start_).count();
   const double span = end_time_ - start_time_;
   const double frac = span > 0 ? std::clamp((time - start_time_) / span, 0.0, 1.0) : 1.0;
+  if (observer_)
+    observer_(ProgressReport{label_, time, start_time_, end_time_, frac, step, dt,
+                             eta(time, end_time_, dt, per_step), bounded_});
+  if (!enabled_) return;
   const std::string eta_text = (bounded_ ? "at most " : "") + duration_text(eta(time, end_time_, dt, per_step));
   const std::string label = label_.empty() ? "" : label_ + ": ";
   if (tty_) {

@@ -3,9 +3,24 @@
 // Progress per phase of a run (each preparation stage, then the main stage), so that the fraction
 // and the ETA are of the phase running, not of a simulated time that began in an earlier one.
 #include <chrono>
+#include <functional>
 #include <string>
 
 namespace ballista {
+
+/// Where a phase stands after a step, for a caller that follows the run (the Python module's
+/// progress callback). SI units.
+struct ProgressReport {
+  std::string phase;        ///< "" for the main stage, "stage '<name>'" for a preparation stage
+  double time = 0.0;        ///< simulated time, s
+  double start = 0.0;       ///< the phase's start, s
+  double end = 0.0;         ///< the phase's end (its latest end when `bounded`), s
+  double fraction = 0.0;    ///< (time - start) / (end - start), in [0, 1]
+  long step = 0;            ///< solver steps so far
+  double dt = 0.0;          ///< the step just taken, s
+  double eta_seconds = 0.0; ///< wall seconds to the phase's end (Progress::eta); NaN before it is known
+  bool bounded = false;     ///< the phase ends by a criterion: eta_seconds is an upper bound
+};
 
 class Progress {
  public:
@@ -17,6 +32,8 @@ class Progress {
   void update(double time, long step, double dt);
   /// Ends the bar line.
   void finish();
+  /// Also hands every step's report to `observer` (whether or not the bar is shown).
+  void observe(std::function<void(const ProgressReport&)> observer) { observer_ = std::move(observer); }
 
   /// Seconds to the phase's end: the steps left at the current step, (end - time) / dt, times the
   /// recent wall time per step. The current step rather than the phase's mean, because the step
@@ -35,6 +52,7 @@ class Progress {
   long first_step_ = -1, sample_step_ = -1;
   double recent_wall_per_step_ = 0.0;
   int last_decile_ = -1;
+  std::function<void(const ProgressReport&)> observer_;
 };
 
 }  // namespace ballista

@@ -217,9 +217,10 @@ RunResult RunLoop::run() {
       result_.ok = false;
       result_.interrupted = true;
       result_.checkpoint = newest_checkpoint_;
-      result_.error = fmt::format("interrupted by a signal at step {} (t = {:.6g} s); continue with ballista run "
+      result_.error = fmt::format("interrupted by {} at step {} (t = {:.6g} s); continue with ballista run "
                                   "--restart {}",
-                                  solver_->steps(), solver_->time(), opt_.out_dir);
+                                  interrupt_from_caller() ? "the caller" : "a signal", solver_->steps(),
+                                  solver_->time(), opt_.out_dir);
       spdlog::warn("{}", result_.error);
     } else {
       write_output();
@@ -288,12 +289,13 @@ void RunLoop::start_progress() {
   const bool enabled = opt_.progress && root_;
   if (rs_.stage == nstages_) {
     progress_ = std::make_unique<Progress>("", rs_.stage_start, rs_.end, false, enabled);
-    return;
+  } else {
+    const StageSpec& st = sc_.stages[rs_.stage];
+    const double span = st.until.empty() ? st.duration : st.max_duration;
+    progress_ = std::make_unique<Progress>("stage '" + st.name + "'", rs_.stage_start, rs_.stage_start + span,
+                                           !st.until.empty(), enabled);
   }
-  const StageSpec& st = sc_.stages[rs_.stage];
-  const double span = st.until.empty() ? st.duration : st.max_duration;
-  progress_ = std::make_unique<Progress>("stage '" + st.name + "'", rs_.stage_start, rs_.stage_start + span,
-                                         !st.until.empty(), enabled);
+  if (root_ && opt_.on_progress) progress_->observe(opt_.on_progress);
 }
 
 /// The next step: the stable step (refused when it collapsed or the step count ran out), landing

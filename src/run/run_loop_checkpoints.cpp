@@ -86,7 +86,7 @@ bool RunLoop::after_step() {
   const bool asked = comm_.distributed() ? comm_.any(interrupt_requested()) : interrupt_requested();
   if (!asked || solver_->time() >= rs_.end * (1.0 - 1e-12)) return false;
   if (newest_checkpoint_ != checkpoint_path(opt_.out_dir, solver_->steps()))
-    write_checkpoint(marks_now(), "interrupted by a signal");
+    write_checkpoint(marks_now(), interrupt_from_caller() ? "interrupted by the caller" : "interrupted by a signal");
   interrupted_ = true;
   return true;
 }

@@ -1,6 +1,7 @@
 #pragma once
 // The run loop of `ballista run`: deck -> solver -> outputs, histories, probes and summary.
 #include <cstdint>
+#include <functional>
 #include <memory>
 
 #include "core/communicator.hpp"
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "core/solver.hpp"
+#include "run/progress.hpp"
 #include "scenario/scenario.hpp"
 
 namespace ballista {
@@ -24,6 +26,9 @@ struct RunOptions {
   /// The caller holds out_dir as a RunFolder (the CLI, so that its figures and a re-run are
   /// inside the lock) and has cleared it for a new run; otherwise the run takes the folder.
   bool folder_held = false;
+  /// Called on rank 0 after every step with the phase's progress (run/progress.hpp); it may call
+  /// request_interrupt (run/interrupt.hpp) to stop the run with a checkpoint, as a signal would.
+  std::function<void(const ProgressReport&)> on_progress;
 };
 
 /// What a finished (or stopped) run reports.

@@ -80,7 +80,40 @@ def check_installed(prefix, out):
     for fig in FIGURES:
         if not os.path.isfile(os.path.join(run_dir, fig)):
             fail(f"the installed tools did not draw {fig}")
-    print(f"installed ballista under {prefix}: data directory found, {EXAMPLE} ran, figures drawn")
+    check_python_module(prefix, share, out, env, cwd)
+    print(f"installed ballista under {prefix}: data directory found, {EXAMPLE} ran, figures drawn, "
+          "the Python module ran it too")
+
+
+# Run by the installed module: it must be the installed one, point the core at the installed
+# data (a preset), and run the example with its figures.
+MODULE_CHECK = """
+import os, sys
+import ballista
+prefix, share, example, out = sys.argv[1:5]
+assert os.path.realpath(ballista.__file__).startswith(os.path.realpath(prefix)), ballista.__file__
+assert os.path.realpath(os.environ["BALLISTA_DATA_DIR"]) == os.path.realpath(share), os.environ["BALLISTA_DATA_DIR"]
+h = ballista.drive({"materials": {"cu": {"preset": "copper_ofhc_jc"}},
+                    "drive": {"legs": [{"duration": 1e-4, "steps": 10, "strain": {"11": -0.01}}]}})
+assert len(h) == 11
+res = ballista.run(example, out_dir=out, overwrite=True, threads=1, quiet=True, plots=True,
+                   overrides=[%s])
+assert res.status == "completed", res.status
+for fig in %r:
+    assert os.path.isfile(os.path.join(out, fig)), fig
+print("module", ballista.__version__, ballista.commit)
+"""
+
+
+def check_python_module(prefix, share, out, env, cwd):
+    """The installed Python module (lib/python3.X/dist-packages/ballista) on its own."""
+    found = glob.glob(os.path.join(prefix, "lib", "python3*", "dist-packages", "ballista", "__init__.py"))
+    if len(found) != 1:
+        fail(f"the Python module is not installed under {prefix}/lib/python3*/dist-packages: {found}")
+    env = dict(env, PYTHONPATH=os.path.dirname(os.path.dirname(found[0])))
+    script = MODULE_CHECK % (", ".join(repr(s) for s in CI_SIZE), FIGURES)
+    run([sys.executable, "-c", script, prefix, share, os.path.join(share, "examples", EXAMPLE),
+         os.path.join(out, "run_module")], env=env, cwd=cwd)
 
 
 def tree(a):
