@@ -18,6 +18,7 @@
 #include "deck/material_reader.hpp"
 #include "deck/penetrator_reader.hpp"
 #include "deck/probe_reader.hpp"
+#include "deck/mesh_reader.hpp"
 #include "deck/surface_reader.hpp"
 #include "deck/text_file.hpp"
 #include "geometry/grid_axes.hpp"
@@ -71,7 +72,7 @@ FaceBC face_bc_from(const std::string& s) {
 
 /// Axis-aligned bounding box of a shape in the directions used.
 void shape_bounds(const ShapeSpec& s, Vec3& lo, Vec3& hi) {
-  if (s.type == "box" || s.type == "surface") {  // a surface's lower/upper: its bounding box
+  if (s.type == "box" || s.type == "surface" || s.type == "mesh") {  // a solid's lower/upper: its bounding box
     lo = s.lower;
     hi = s.upper;
     return;
@@ -245,11 +246,11 @@ class Reader {
     ShapeSpec sh;
     const bool axi = sc_.simulation.dimension == Dimension::Axisymmetric;
     const bool plane = sc_.simulation.dimension == Dimension::PlaneStrain;
-    sh.type = s.choice("type", {"box", "sphere", "cylinder", "tube", "surface"});
-    if (sh.type == "surface") {
+    sh.type = s.choice("type", {"box", "sphere", "cylinder", "tube", "surface", "mesh"});
+    if (sh.type == "surface" || sh.type == "mesh") {
       if (sc_.simulation.dimension != Dimension::ThreeD)
-        s.fail("type", "a surface shape bounds a 3D body: the deck's simulation.dimension must be 3d");
-      return read_surface_shape(s);
+        s.fail("type", "a " + sh.type + " shape fills a 3D body: the deck's simulation.dimension must be 3d");
+      return sh.type == "surface" ? read_surface_shape(s) : read_mesh_shape(s);
     }
     if (sh.type == "box") {
       sh.lower = s.vector("lower", vmin());

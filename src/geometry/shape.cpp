@@ -57,7 +57,7 @@ bool shape_contains(const ShapeSpec& s, const Vec3& x, int dim) {
     const double rin = s.type == "tube" ? s.inner_radius : -1.0;
     return in_length && radial <= s.radius + tr && radial >= rin - tr;
   }
-  if (s.type == "surface") return s.solid && s.solid->contains(x);  // 3D only (the deck reader)
+  if (s.type == "surface" || s.type == "mesh") return s.solid && s.solid->contains(x);  // 3D only (the deck reader)
   throw Error("unknown shape type '" + s.type + "'");
 }
 
@@ -81,12 +81,27 @@ double shape_depth(const ShapeSpec& s, const Vec3& x, int dim) {
     if (s.type == "tube") depth = std::min(depth, radial - s.inner_radius);
     return depth;
   }
-  if (s.type == "surface") throw Error("shape_depth: not defined for a surface shape (no distance to it is kept)");
+  if (s.type == "surface" || s.type == "mesh")
+    throw Error("shape_depth: not defined for a " + s.type + " shape (no distance to it is kept; shape_contains_by)");
   throw Error("unknown shape type '" + s.type + "'");
 }
 
+bool shape_contains_by(const ShapeSpec& s, const Vec3& x, int dim, double margin) {
+  if (!s.solid) return shape_depth(s, x, dim) > margin;
+  const bool all = margin > 0.0;  // inside by margin: every probe in; within |margin|: any
+  const double h = std::abs(margin);
+  if (s.solid->contains(x) != all) return !all;
+  for (int d = 0; d < 3; ++d)
+    for (const double sign : {-1.0, 1.0}) {
+      Vec3 p = x;
+      p[d] += sign * h;
+      if (s.solid->contains(p) != all) return !all;
+    }
+  return all;
+}
+
 void shape_bounds(const ShapeSpec& s, int dim, Vec3& lo, Vec3& hi) {
-  if (s.type == "box" || s.type == "surface") {  // a surface's lower/upper: its bounding box
+  if (s.type == "box" || s.type == "surface" || s.type == "mesh") {  // a solid's lower/upper: its bounding box
     lo = s.lower;
     hi = s.upper;
   } else if (s.type == "sphere") {

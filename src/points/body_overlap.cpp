@@ -52,13 +52,13 @@ bool inside(const Region& r, const Vec3& x, int nd, double margin) {
     if (x[k] <= r.lower[k] + margin || x[k] >= r.upper[k] - margin) return false;
   bool in = false;
   for (const ShapeSpec& s : r.parts)
-    if (shape_depth(s, x, nd) > margin) {
+    if (shape_contains_by(s, x, nd, margin)) {
       in = true;
       break;
     }
   if (!in) return false;
   for (const ShapeSpec& c : r.cutouts)
-    if (shape_depth(c, x, nd) > -margin) return false;
+    if (shape_contains_by(c, x, nd, -margin)) return false;
   return true;
 }
 

@@ -6,6 +6,7 @@
 // binary numbers and "exact" checks are limited only by the round-off of summation.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -22,6 +23,8 @@
 #include "geometry/seeding.hpp"
 #include "geometry/shape.hpp"
 #include "materials/material.hpp"
+#include "points/body_overlap.hpp"
+#include "support/exodus_files.hpp"
 #include "support/surface_files.hpp"
 #include "support/test_files.hpp"
 
@@ -608,4 +611,162 @@ TEST(SeedingSurface, BadSurfaceInputsAreDeckErrors) {
   EXPECT_THROW(seed(deck("3d", kGrid3, surface_body(junk))), DeckError);   // no triangle
   EXPECT_THROW(seed(deck("3d", kGrid3, surface_body(text))), DeckError);   // not .stl or .obj
   EXPECT_THROW(seed(deck("3d", kGrid3, surface_body(stl, ", unit: furlong"))), DeckError);
+}
+
+// Bodies from Exodus II volume meshes (deck/mesh_reader.hpp): a meshed box seeds the box's
+// points whatever its elements, blocks become bodies that touch without overlapping, a meshed
+// tube holds the tube's volume, and every bad file or key is a deck error at its key.
+namespace {
+
+std::string mesh_body(const std::string& name, const std::string& file, const std::string& extra = "") {
+  return "  - {name: " + name + ", material: m, particles_per_cell: 2,\n     shape: {type: mesh, file: '" + file + "'" +
+         extra + "}}\n";
+}
+
+const std::string kAnalyticBox = "  - {name: b, material: m, particles_per_cell: 2,\n"
+                                 "     shape: {type: box, lower: [0.25, 0.5, 0.125], upper: [1.0, 0.875, 0.625]}}\n";
+
+void expect_same_points(const FieldStore& a, const FieldStore& b) {
+  ASSERT_EQ(a.size(), b.size());
+  const auto* xa = a.view<Vec3>("x");
+  const auto* xb = b.view<Vec3>("x");
+  for (Index i = 0; i < a.size(); ++i)
+    for (int d = 0; d < 3; ++d) ASSERT_EQ(xa[i][d], xb[i][d]) << i;  // same lattice, same order
+}
+
+}  // namespace
+
+TEST(SeedingMesh, AHexMeshedBoxInMillimetresSeedsTheBoxsPoints) {
+  test::TempDir dir;
+  std::vector<Vec3> nodes;
+  std::vector<int> hexes;
+  test::box_hexes(1000.0 * kBoxLo, 1000.0 * kBoxHi, 3, 2, 2, nodes, hexes);
+  const std::string exo = (dir.path / "box.exo").string();
+  test::write_exodus(exo, nodes, {{"box", "HEX8", 8, hexes}});
+  const auto from_file = seed(deck("3d", kGrid3, mesh_body("s", exo, ", unit: mm")));
+  const auto analytic = seed(deck("3d", kGrid3, kAnalyticBox));
+  ASSERT_EQ(from_file->pts.size(), 12 * 6 * 8);
+  expect_same_points(from_file->pts, analytic->pts);
+  EXPECT_NEAR(sum_volume(from_file->pts), 0.75 * 0.375 * 0.5, kSumTol);
+}
+
+TEST(SeedingMesh, ATetMeshedBoxWithAnOffsetSeedsTheBoxsPoints) {
+  test::TempDir dir;
+  // One hexahedron's nodes, cut into five tetrahedra (not the reader's six), placed by `offset`.
+  std::vector<Vec3> nodes;
+  std::vector<int> hex;
+  test::box_hexes(kBoxLo - Vec3{{1, 1, 1}}, kBoxHi - Vec3{{1, 1, 1}}, 1, 1, 1, nodes, hex);
+  std::array<int, 8> h{};
+  for (int k = 0; k < 8; ++k) h[static_cast<std::size_t>(k)] = hex[static_cast<std::size_t>(k)];
+  const std::string exo = (dir.path / "tets.e").string();
+  test::write_exodus(exo, nodes, {{"tets", "TETRA", 4, test::five_tets(h)}});
+  const auto from_file = seed(deck("3d", kGrid3, mesh_body("s", exo, ", offset: [1, 1, 1]")));
+  expect_same_points(from_file->pts, seed(deck("3d", kGrid3, kAnalyticBox))->pts);
+}
+
+TEST(SeedingMesh, TwoBlocksOfOneFileAreTwoBodiesThatTouchWithoutOverlapping) {
+  test::TempDir dir;
+  // A 1 x 0.5 x 0.5 m bar in two blocks that share the face x = 0.5: "steel" below it, "cement"
+  // above. Each body takes its block; together they seed the whole bar once.
+  std::vector<Vec3> nodes;
+  std::vector<int> left, right;
+  test::box_hexes({{0, 0, 0}}, {{0.5, 0.5, 0.5}}, 2, 2, 2, nodes, left);
+  test::box_hexes({{0.5, 0, 0}}, {{1.0, 0.5, 0.5}}, 2, 2, 2, nodes, right);
+  const std::string exo = (dir.path / "bar.exo").string();
+  test::write_exodus(exo, nodes, {{"steel", "HEX", 8, left}, {"cement", "HEX8", 8, right}});
+  const auto two = seed(deck("3d", kGrid3, mesh_body("a", exo, ", block: steel") + mesh_body("b", exo, ", block: cement")));
+  EXPECT_NO_THROW(check_body_overlaps(two->sc, two->pts));
+  const auto whole = seed(deck("3d", kGrid3, mesh_body("s", exo)));
+  EXPECT_EQ(two->pts.size(), whole->pts.size());
+  EXPECT_EQ(two->body_count[0], two->body_count[1]);  // the lattice splits at x = 0.5, a cell face
+  EXPECT_NEAR(sum_volume(two->pts, 0), 0.125, kSumTol);
+  // A box body reaching into the steel block is an overlap: mesh shapes take part in the check.
+  const auto clash = seed(deck("3d", kGrid3, mesh_body("a", exo, ", block: steel") +
+                                                 "  - {name: c, material: m, particles_per_cell: 2,\n"
+                                                 "     shape: {type: box, lower: [0.25, 0, 0], upper: [0.75, 0.5, 0.5]}}\n"));
+  try {
+    check_body_overlaps(clash->sc, clash->pts);
+    FAIL() << "overlapping mesh and box bodies were accepted";
+  } catch (const DeckError& e) {
+    EXPECT_NE(std::string(e.what()).find("overlap"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SeedingMesh, AMeshedTubeHoldsTheTubesVolume) {
+  test::TempDir dir;
+  // A tube of radii 0.3 and 0.5 m, 0.5 m long, as 96 x 4 x 4 hexahedra (the polygon's 96 sides
+  // hold 0.9993 of the annulus' area). The lattice of spacing 1/16 m adds a surface error of order
+  // area x spacing / 2 / volume ~ 3 %: as for the analytic tube (SeedingVolume above).
+  const int nt = 96, nr = 4, nz = 4;
+  const double r0 = 0.3, r1 = 0.5, len = 0.5;
+  std::vector<Vec3> nodes;
+  auto id = [&](int t, int r, int z) { return 1 + (t % nt) + nt * (r + (nr + 1) * z); };
+  for (int z = 0; z <= nz; ++z)
+    for (int r = 0; r <= nr; ++r)
+      for (int t = 0; t < nt; ++t) {
+        const double rad = r0 + (r1 - r0) * r / nr, a = 2 * pi * t / nt;
+        nodes.push_back({{1 + rad * std::cos(a), 1 + rad * std::sin(a), 0.5 + len * z / nz}});
+      }
+  std::vector<int> hexes;
+  for (int z = 0; z < nz; ++z)
+    for (int r = 0; r < nr; ++r)
+      for (int t = 0; t < nt; ++t)  // counter-clockwise in t, outward in r: node order r, t, z is right-handed
+        hexes.insert(hexes.end(), {id(t, r, z), id(t, r + 1, z), id(t + 1, r + 1, z), id(t + 1, r, z),
+                                   id(t, r, z + 1), id(t, r + 1, z + 1), id(t + 1, r + 1, z + 1), id(t + 1, r, z + 1)});
+  const std::string exo = (dir.path / "tube.exo").string();
+  test::write_exodus(exo, nodes, {{"tube", "HEX8", 8, hexes}});
+  const auto s = seed(deck("3d", kGrid3, mesh_body("t", exo)));
+  const double tube = pi * (r1 * r1 - r0 * r0) * len;
+  EXPECT_NEAR(sum_volume(s->pts), tube, 0.04 * tube);
+  const auto* x = s->pts.view<Vec3>("x");
+  for (Index i = 0; i < s->pts.size(); ++i) {
+    const double r = std::hypot(x[i][0] - 1, x[i][1] - 1);
+    ASSERT_GE(r, r0 * std::cos(pi / nt) - 1e-12);
+    ASSERT_LE(r, r1 + 1e-12);
+  }
+}
+
+TEST(SeedingMesh, BadMeshInputsAreDeckErrorsAtTheirKeys) {
+  test::TempDir dir;
+  std::vector<Vec3> nodes;
+  std::vector<int> hexes;
+  test::box_hexes(kBoxLo, kBoxHi, 1, 1, 1, nodes, hexes);
+  const std::string good = (dir.path / "box.exo").string();
+  test::write_exodus(good, nodes, {{"box", "HEX8", 8, hexes}});
+  auto error = [&](const std::string& dim, const std::string& grid, const std::string& body) {
+    try {
+      seed(deck(dim, grid, body));
+    } catch (const DeckError& e) {
+      return e.key_path() + ": " + e.what();
+    }
+    return std::string("accepted");
+  };
+  auto has = [](const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; };
+  std::string e = error("3d", kGrid3, mesh_body("s", good, ", block: casing"));
+  EXPECT_TRUE(has(e, "bodies.0.shape.block") && has(e, "no element block 'casing'; its blocks: box")) << e;
+  e = error("plane_strain", kGrid2, mesh_body("s", good));
+  EXPECT_TRUE(has(e, "bodies.0.shape.type") && has(e, "3d")) << e;
+  e = error("3d", kGrid3, mesh_body("s", (dir.path / "missing.exo").string()));
+  EXPECT_TRUE(has(e, "bodies.0.shape.file") && has(e, "cannot open")) << e;
+  const std::string text = (dir.path / "text.exo").string();
+  std::ofstream(text) << "not a mesh\n";
+  e = error("3d", kGrid3, mesh_body("s", text));
+  EXPECT_TRUE(has(e, "bodies.0.shape.file") && has(e, "Exodus")) << e;
+  // Quadratic or other elements: named, with what to export instead.
+  const std::string wedge = (dir.path / "wedge.exo").string();
+  test::write_exodus(wedge, nodes, {{"w", "WEDGE", 6, {1, 2, 3, 5, 6, 7}}});
+  e = error("3d", kGrid3, mesh_body("s", wedge));
+  EXPECT_TRUE(has(e, "WEDGE") && has(e, "tetrahedra")) << e;
+  // An inverted hexahedron (its two faces swapped): an invalid mesh, not a body.
+  std::vector<int> inverted(hexes.begin() + 4, hexes.end());
+  inverted.insert(inverted.end(), hexes.begin(), hexes.begin() + 4);
+  const std::string bad = (dir.path / "inverted.exo").string();
+  test::write_exodus(bad, nodes, {{"box", "HEX8", 8, inverted}});
+  e = error("3d", kGrid3, mesh_body("s", bad));
+  EXPECT_TRUE(has(e, "inverted or flat")) << e;
+  const std::string flat = (dir.path / "flat.exo").string();
+  test::write_exodus(flat, nodes, {{"box", "QUAD4", 4, {1, 2, 4, 3}}}, 2);
+  e = error("3d", kGrid3, mesh_body("s", flat));
+  EXPECT_TRUE(has(e, "2D mesh")) << e;
+  EXPECT_EQ(error("3d", kGrid3, mesh_body("s", good, ", unit: furlong")).find("accepted"), std::string::npos);
 }

@@ -1,6 +1,7 @@
-// A body read from a surface file runs as its analytic twin: the Taylor bar of
-// examples/taylor_bar_mpm_3d.yaml, as a cylinder and as examples/taylor_bar_mpm_3d_surface.yaml's
-// STL (the same bar, 128 facets around, in mm), seeds the same particles and deforms alike.
+// A body read from a surface file or a volume mesh runs as its analytic twin: the Taylor bar of
+// examples/taylor_bar_mpm_3d.yaml, as a cylinder, as examples/taylor_bar_mpm_3d_surface.yaml's STL
+// (the same bar, 128 facets around, in mm) and as examples/taylor_bar_mpm_3d_mesh.yaml's Exodus
+// mesh (128 sectors, tetrahedra and hexahedra, in mm), seeds the same particles and deforms alike.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -45,4 +46,16 @@ TEST(SurfaceBody, TheStlTaylorBarRunsAsTheAnalyticCylinder) {
   EXPECT_EQ(surface.steps, cylinder.steps);
   for (const char* p : {"final_length", "foot_radius", "max_eqps"})
     EXPECT_NEAR(probe(surface, p), probe(cylinder, p), 1e-3 * std::abs(probe(cylinder, p))) << p;
+}
+
+TEST(SurfaceBody, TheExodusTaylorBarRunsAsTheAnalyticCylinder) {
+  test::TempDir dir;
+  const RunResult cylinder = run_deck("taylor_bar_mpm_3d.yaml", dir.path / "cylinder");
+  const RunResult mesh = run_deck("taylor_bar_mpm_3d_mesh.yaml", dir.path / "mesh");
+  ASSERT_TRUE(cylinder.ok) << cylinder.error;
+  ASSERT_TRUE(mesh.ok) << mesh.error;
+  // The mesh's 128-gon is the STL's: the same reasoning and tolerance as above.
+  EXPECT_EQ(mesh.steps, cylinder.steps);
+  for (const char* p : {"final_length", "foot_radius", "max_eqps"})
+    EXPECT_NEAR(probe(mesh, p), probe(cylinder, p), 1e-3 * std::abs(probe(cylinder, p))) << p;
 }
