@@ -33,6 +33,10 @@ void declare_point_fields(FieldStore& p) {
   p.declare(kPlasticWork, "J");
 }
 
+std::vector<std::string> extensive_point_fields() {
+  return {kMass.name(), kReferenceVolume.name(), kVolume.name(), kInternalEnergy.name(), kPlasticWork.name()};
+}
+
 namespace {
 
 /// Lattice points of a body that fall outside the grid box without a symmetry plane to excuse them.

@@ -9,6 +9,11 @@ namespace ballista {
 /// Declares the fields every solver's points carry, in the order of their keys in core/point_fields.hpp.
 void declare_point_fields(FieldStore& points);
 
+/// The point fields whose values are per radian of revolution in axisymmetric runs and per metre
+/// of thickness in 2D runs (mass, volumes, energies: seed_body scales them so), for the unit
+/// attributes of the particle files.
+std::vector<std::string> extensive_point_fields();
+
 /// The spacing of the lattice `body` is seeded on: its own point_spacing if given (peridynamics),
 /// else the grid cell size over particles_per_cell, m.
 inline double seed_spacing(const BodySpec& body, double cell_size) {

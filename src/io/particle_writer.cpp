@@ -11,6 +11,7 @@
 #include <hdf5.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
 #include <cstdio>
@@ -258,10 +259,21 @@ RowSlice collective_access(hid_t fapl, hid_t dxpl, const Communicator& comm, Ind
   return RowSlice{static_cast<hsize_t>(first), static_cast<hsize_t>(local), dxpl, comm.rank() == 0};
 }
 
+/// A field's "unit" attribute: its unit, with the suffix of an extensive field of a 2D or
+/// axisymmetric run ("kg/rad", "J/m"; ParticleWriter::set_extensive).
+struct UnitOf {
+  const std::vector<std::string>& extensive;
+  const std::string& suffix;
+  std::string operator()(const FieldInfo& f) const {
+    const bool per = !suffix.empty() && std::find(extensive.begin(), extensive.end(), f.name) != extensive.end();
+    return per ? f.unit + suffix : f.unit;
+  }
+};
+
 /// The selected point fields, the geometry "x" (always: it places the points) and the explicit
 /// Polyvertex connectivity, each an n-row dataset.
 void write_point_datasets(hid_t h5, const FieldStore& points, const std::vector<const FieldInfo*>& sel, Index n,
-                          Index first, const RowSlice& rows) {
+                          Index first, const RowSlice& rows, const UnitOf& unit_of) {
   bool x_selected = false;
   for (const FieldInfo* f : sel) x_selected = x_selected || f->name == "x";
   std::vector<const FieldInfo*> datasets = sel;
@@ -270,9 +282,9 @@ void write_point_datasets(hid_t h5, const FieldStore& points, const std::vector<
     std::vector<hsize_t> dims{static_cast<hsize_t>(n)};
     if (f->ncomp != 1) dims.push_back(static_cast<hsize_t>(f->ncomp));
     if (f->type == FieldType::Real)
-      write_dataset(h5, f->name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, dims, points.real(f->name), f->unit, rows);
+      write_dataset(h5, f->name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, dims, points.real(f->name), unit_of(*f), rows);
     else
-      write_dataset(h5, f->name, H5T_NATIVE_INT64, H5T_STD_I64LE, dims, points.ints(f->name), f->unit, rows);
+      write_dataset(h5, f->name, H5T_NATIVE_INT64, H5T_STD_I64LE, dims, points.ints(f->name), unit_of(*f), rows);
   }
 
   // Polyvertex connectivity: readers differ on implicit connectivity, so it is explicit.
@@ -319,13 +331,13 @@ void write_domain_datasets(hid_t h5, const FieldStore& points, int dim, Index n,
 
 /// The second point cloud (OTM nodes), one rank only: every real field, prefixed node_, with its
 /// own vertices.
-void write_node_datasets(hid_t h5, const FieldStore& nodes) {
+void write_node_datasets(hid_t h5, const FieldStore& nodes, const UnitOf& unit_of) {
   const Index nn = nodes.size();
   for (const FieldInfo& f : nodes.fields()) {
     if (f.type != FieldType::Real) continue;
     std::vector<hsize_t> dims{static_cast<hsize_t>(nn)};
     if (f.ncomp != 1) dims.push_back(static_cast<hsize_t>(f.ncomp));
-    write_dataset(h5, "node_" + f.name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, dims, nodes.real(f.name), f.unit);
+    write_dataset(h5, "node_" + f.name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, dims, nodes.real(f.name), unit_of(f));
   }
   std::vector<std::int64_t> nv(static_cast<size_t>(nn));
   for (Index a = 0; a < nn; ++a) nv[a] = a;
@@ -428,9 +440,10 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
       if (!body_names_.empty()) write_text_attribute(h5, "body_names", json_names(body_names_), "the file");
       if (!material_names_.empty())
         write_text_attribute(h5, "material_names", json_names(material_names_), "the file");
-      write_point_datasets(h5, points, sel, n, first, rows);
+      const UnitOf unit_of{extensive_, extensive_suffix_};
+      write_point_datasets(h5, points, sel, n, first, rows, unit_of);
       if (domains_) write_domain_datasets(h5, points, dim_, n, first, rows);
-      if (nodes) write_node_datasets(h5, *nodes);
+      if (nodes) write_node_datasets(h5, *nodes, unit_of);
       h5.close("close '" + tmp + "'");  // collective: every rank's rows are in the file
     }
     if (root) out->commit();

@@ -40,6 +40,14 @@ class ParticleWriter {
     material_names_ = std::move(materials);
   }
 
+  /// Fields whose values are per radian of revolution (axisymmetric) or per metre of thickness
+  /// (2D): their "unit" attribute gets `suffix` ("/rad", "/m"), so that the file says what the
+  /// numbers are (node fields of the same names too).
+  void set_extensive(std::vector<std::string> fields, std::string suffix) {
+    extensive_ = std::move(fields);
+    extensive_suffix_ = std::move(suffix);
+  }
+
   /// Checkpoint: the output count and the index's text up to its footer.
   struct State {
     int count = 0;
@@ -72,6 +80,8 @@ class ParticleWriter {
   int count_ = 0;                 // outputs written
   Communicator comm_;             // several ranks: collective writes (set_communicator)
   std::vector<std::string> body_names_, material_names_;  // set_names
+  std::vector<std::string> extensive_;                    // set_extensive
+  std::string extensive_suffix_;
   std::size_t xdmf_body_end_ = 0;  // byte offset of the index's footer (where the next grid goes)
 };
 

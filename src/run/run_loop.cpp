@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/warning_log.hpp"
+#include "geometry/seeding.hpp"
 #include "io/atomic_file.hpp"
 #include "io/checkpoint_file.hpp"
 #include "points/point_exchange.hpp"
@@ -116,6 +117,9 @@ RunLoop::RunLoop(const Scenario& sc, const RunOptions& opt)
   for (const auto& b : sc.bodies) body_names.push_back(b.name);
   for (const auto& m : sc.materials) material_names.push_back(m.name);
   writer_->set_names(std::move(body_names), std::move(material_names));
+  if (sc.simulation.dimension != Dimension::ThreeD)
+    writer_->set_extensive(extensive_point_fields(),
+                           sc.simulation.dimension == Dimension::Axisymmetric ? "/rad" : "/m");
   open_history();
   seeded_ = comm_.sum(static_cast<std::int64_t>(pts.size() + solver_->pending_points()));
   tracker_.emplace(sc, opt.out_dir, seeded_);

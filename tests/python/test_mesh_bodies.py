@@ -4,6 +4,7 @@ that puts `coordx` after the first netCDF variable, seeds the same points as the
 (libexodusii 6.02 reads zeros for a first-variable `coordx`; deck/mesh_reader.cpp reads it itself)."""
 import importlib.util
 
+import h5py
 import numpy as np
 
 from conftest import SOURCE, example
@@ -21,6 +22,8 @@ def seeded_points(ballista, mesh_file, out):
                        overrides={"grid.cell_size": 1.0e-3, "simulation.end_time": 1e-9,
                                   "bodies.0.shape.file": str(mesh_file)})
     assert res.ok, res.run_result["error"]
+    with h5py.File(res.output_files()[0]) as h:  # 3D: a point's mass is its own, in kg
+        assert h["mass"].attrs["unit"].decode() == "kg"
     return res.particles(0, fields=["x"])["x"]
 
 

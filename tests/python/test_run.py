@@ -144,6 +144,10 @@ def test_results_by_body_and_material_name(ballista, cli_taylor):
         res.history["eqps"]
     with pytest.raises(FileNotFoundError, match="fragments.csv"):
         res.fragments
+    # The axisymmetric bar's extensive fields are per radian of revolution, and their unit says so.
+    with h5py.File(res.output_files()[-1]) as h:
+        units = {k: h[k].attrs["unit"].decode() for k in ("mass", "volume", "internal_energy", "x", "stress")}
+    assert units == {"mass": "kg/rad", "volume": "m^3/rad", "internal_energy": "J/rad", "x": "m", "stress": "Pa"}
 
 
 def test_a_bad_deck_raises_naming_the_key(ballista, tmp_path):
@@ -159,7 +163,7 @@ def test_a_bad_deck_raises_naming_the_key(ballista, tmp_path):
 def test_fragments_come_back_as_a_table_that_adds_up_to_the_summary(ballista, tmp_path):
     # The expanding ring (peridynamics) at 1 mm: a fraction of a second, a few fragments.
     res = ballista.run(example("pd_expanding_ring.yaml"), out_dir=tmp_path / "ring", threads=1, quiet=True,
-                       overrides={"grid.cell_size": 1e-3})
+                       overrides={"grid.cell_size": 1e-3, "output.fields": []})  # every field
     assert res.ok
     s = res.summary["fragments"]
     f = res.fragments
@@ -170,6 +174,9 @@ def test_fragments_come_back_as_a_table_that_adds_up_to_the_summary(ballista, tm
     assert f["mass"][last].sum() == pytest.approx(s["total_mass"], rel=1e-12)
     assert f["mass"][last].max() == pytest.approx(s["largest_mass"], rel=1e-12)
     assert any(line.startswith("fragments:") for line in res.headlines)
+    # Plane stress: a point's mass is per metre of thickness, and its unit says so.
+    with h5py.File(res.output_files()[-1]) as h:
+        assert h["mass"].attrs["unit"].decode() == "kg/m" and h["x"].attrs["unit"].decode() == "m"
 
 
 def test_a_second_run_from_another_thread_is_refused(ballista, tmp_path):
