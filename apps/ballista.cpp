@@ -18,6 +18,7 @@
 #include "core/threads.hpp"
 #include "deck/material_presets.hpp"
 #include "driver/drive_run.hpp"
+#include "io/atomic_file.hpp"
 #include "materials/material.hpp"
 #include "mpm/shape_functions.hpp"
 #include "penetration/models_command.hpp"
@@ -25,6 +26,7 @@
 #include "points/load_registry.hpp"
 #include "points/probe_registry.hpp"
 #include "points/solver_registry.hpp"
+#include "run/deck_schema.hpp"
 #include "run/sweep_command.hpp"
 #include "run_command.hpp"
 #include "verify/verify_command.hpp"
@@ -245,6 +247,14 @@ int main(int argc, char** argv) {
   DriveCliOptions drive_opt;
   auto* drive = add_drive_command(app, drive_opt);
   auto* info = app.add_subcommand("info", "list registered solvers, shape functions and materials");
+  std::string schema_out;
+  std::vector<std::string> schema_decks;
+  auto* schema = app.add_subcommand(
+      "schema", "print the JSON Schema of run decks (for an editor's YAML language server; docs/deck.md), made "
+                "from the deck readers by reading the shipped examples (or the decks given) and from the registries");
+  schema->add_option("decks", schema_decks, "run decks to read (default: the shipped examples)")
+      ->check(CLI::ExistingFile);
+  schema->add_option("-o,--output", schema_out, "write the schema to this file instead of standard output");
   ballista::VerifyCliOptions verify_opt;
   auto* verify = ballista::add_verify_command(app, verify_opt);
   ballista::penetration::ModelsCliOptions models_opt;
@@ -259,6 +269,15 @@ int main(int argc, char** argv) {
     if (*sweep) return ballista::run_sweep_cli(sweep_opt, argv[0]);
     if (*info) {
       print_info();
+      return 0;
+    }
+    if (*schema) {
+      const std::string text =
+          ballista::deck_schema(schema_decks.empty() ? ballista::example_run_decks() : schema_decks);
+      if (schema_out.empty())
+        std::cout << text;
+      else
+        ballista::write_file_atomic(schema_out, text);
       return 0;
     }
     if (*drive) return run_drive_cli(drive_opt);

@@ -19,6 +19,7 @@
 #include "core/names.hpp"
 #include "core/tensor.hpp"
 #include "deck/deck_overrides.hpp"
+#include "deck/schema_recorder.hpp"
 #include "scenario/number_range.hpp"
 #include "scenario/scenario.hpp"
 
@@ -109,6 +110,9 @@ class DeckNode {
   std::string string(const std::string& key, const std::string& fallback);
   std::string choice(const std::string& key, const std::vector<std::string>& options);
   std::string choice(const std::string& key, const std::string& fallback, const std::vector<std::string>& options);
+  /// As choice(), for a name the deck itself defines (a stage): the schema records a name, not
+  /// this deck's list.
+  std::string defined_name(const std::string& key, const std::string& fallback, const std::vector<std::string>& names);
   /// A list of min_count..3 numbers (missing trailing components are 0).
   Vec3 vector(const std::string& key, int min_count = 3);
   Vec3 vector(const std::string& key, const Vec3& fallback, int min_count = 3);
@@ -119,7 +123,10 @@ class DeckNode {
   void set_resolved(const std::string& key, const YAML::Node& value);
 
   /// Marks `key` as valid here without reading it (so it is not reported as unknown).
-  void allow(const std::string& key) { known_->push_back(key); }
+  void allow(const std::string& key) {
+    known_->push_back(key);
+    note(key, SchemaKey{});
+  }
   /// Rejects duplicate keys and keys never asked for (naming the closest valid one).
   void finish() const;
 
@@ -132,6 +139,10 @@ class DeckNode {
            YAML::Mark anchor);
   /// The value of key (undefined if absent); records the key as known.
   YAML::Node lookup(const std::string& key) const;
+  /// Reports `key` as read to the active schema recorder, if there is one (deck/schema_recorder.hpp).
+  void note(const std::string& key, SchemaKey k) const {
+    if (SchemaRecorder* r = active_schema_recorder()) r->key(child_path(key), std::move(k));
+  }
   /// Position of `key` itself in this map (anchor_ if absent).
   YAML::Mark key_mark(const std::string& key) const;
   /// Value node of `key` for a required key; fails if absent or null.

@@ -557,7 +557,7 @@ class Reader {
     for (const auto& st : sc_.stages) names.push_back(st.name);
     names.push_back("main");
     const std::string dflt = names.at(static_cast<size_t>(fallback));
-    const std::string name = n.choice(key, dflt, names);
+    const std::string name = n.defined_name(key, dflt, names);
     return static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin());
   }
 

@@ -58,6 +58,10 @@ def check_installed(prefix, out):
     version = run([exe, "--version"], env=env)
     if not version.startswith("ballista "):
         fail(f"--version printed {version!r}")
+    # The deck schema is made by reading the installed examples (run/deck_schema.hpp).
+    schema = json.loads(run([exe, "schema"], env=env))
+    if "materials" not in schema.get("properties", {}):
+        fail("`ballista schema` from the installed examples lists no materials section")
     info = run([exe, "info"], env=env)
     expected = f"Data directory (presets and tools; installed): {os.path.realpath(share)}"
     if expected not in info:
