@@ -25,16 +25,20 @@ def facets():
         yield a0, b1, b0
 
 
-def main(path):
-    tris = list(facets())
+def write_stl(path, tris, title):
+    """Binary STL: an 80-byte title, the count, and per triangle a zero normal, three corners."""
     with open(path, "wb") as f:
-        f.write(b"Ballista Taylor bar, mm".ljust(80, b" "))
+        f.write(title.encode().ljust(80, b" "))
         f.write(struct.pack("<I", len(tris)))
         for t in tris:
             f.write(struct.pack("<3f", 0.0, 0.0, 0.0))  # readers recompute normals from the winding
             for p in t:
                 f.write(struct.pack("<3f", *p))
             f.write(struct.pack("<H", 0))
+
+
+def main(path):
+    write_stl(path, list(facets()), "Ballista Taylor bar, mm")
 
 
 if __name__ == "__main__":

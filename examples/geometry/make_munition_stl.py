@@ -13,8 +13,9 @@ A shape no primitive of the deck makes (a cup with a chamfer), as a CAD tool wou
 """
 import math
 import os
-import struct
 import sys
+
+from make_cylinder_stl import write_stl  # the same folder: the binary STL writer
 
 SIDES = 128
 # Closed profiles (r, z) in mm, each traversed once; edges on the axis (r = 0) sweep nothing.
@@ -42,18 +43,7 @@ def revolve(profile):
     return tris
 
 
-def write(path, tris, title):
-    with open(path, "wb") as f:
-        f.write(title.encode().ljust(80, b" "))
-        f.write(struct.pack("<I", len(tris)))
-        for t in tris:
-            f.write(struct.pack("<3f", 0.0, 0.0, 0.0))  # readers recompute normals from the winding
-            for p in t:
-                f.write(struct.pack("<3f", *p))
-            f.write(struct.pack("<H", 0))
-
-
 if __name__ == "__main__":
     folder = sys.argv[1] if len(sys.argv) > 1 else "."
-    write(os.path.join(folder, "munition_case.stl"), revolve(CASE), "Ballista munition case, mm")
-    write(os.path.join(folder, "munition_fill.stl"), revolve(FILL), "Ballista munition fill, mm")
+    write_stl(os.path.join(folder, "munition_case.stl"), revolve(CASE), "Ballista munition case, mm")
+    write_stl(os.path.join(folder, "munition_fill.stl"), revolve(FILL), "Ballista munition fill, mm")

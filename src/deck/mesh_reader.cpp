@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "deck/shape_file.hpp"
 #include "geometry/mesh_solid.hpp"
 
 namespace ballista {
@@ -20,14 +21,6 @@ namespace ballista {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// Metres per unit of the file's coordinates.
-double unit_scale(const std::string& unit) {
-  if (unit == "mm") return 1e-3;
-  if (unit == "cm") return 1e-2;
-  if (unit == "in") return 0.0254;
-  return 1.0;
-}
 
 std::string upper_case(std::string s) {
   for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
@@ -66,18 +59,12 @@ struct Block {
 ShapeSpec read_mesh_shape(DeckNode& s) {
   ShapeSpec sh;
   sh.type = "mesh";
-  const std::string name = s.string("file");
-  fs::path path(name);
-  if (path.is_relative()) path = fs::path(s.file()).parent_path() / path;
-  path = fs::absolute(path).lexically_normal();
+  const fs::path path = shape_file(s, "mesh");
   std::error_code ec;
-  if (!fs::exists(path, ec)) s.fail("file", "cannot open the mesh file '" + path.string() + "'");
   if (!fs::is_regular_file(path, ec)) s.fail("file", "the mesh file '" + path.string() + "' is not a regular file");
   const bool has_block = s.has("block");
   const std::string wanted = has_block ? s.string("block") : std::string();
-  const std::string unit = s.choice("unit", "m", {"m", "cm", "mm", "in"});
-  const Vec3 offset = s.vector("offset", Vec3{}, 3);
-  s.set_resolved("file", YAML::Node(path.string()));
+  const ShapePlacement place = shape_placement(s);
   sh.file = path.string();
 
   const ExodusFile exo(path.string());
@@ -121,11 +108,10 @@ ShapeSpec read_mesh_shape(DeckNode& s) {
     blocks = {*it};
   }
 
-  const double scale = unit_scale(unit);
   TetMesh mesh;
   mesh.vertices.resize(static_cast<std::size_t>(nodes));
   for (std::size_t n = 0; n < mesh.vertices.size(); ++n)
-    mesh.vertices[n] = scale * Vec3{{x[n], y[n], z[n]}} + offset;
+    mesh.vertices[n] = place.scale * Vec3{{x[n], y[n], z[n]}} + place.offset;
   for (Block& blk : blocks) {
     char type[MAX_STR_LENGTH + 1] = {};
     int attributes = 0;
@@ -170,13 +156,10 @@ ShapeSpec read_mesh_shape(DeckNode& s) {
   }
   if (mesh.tets.empty()) s.fail(has_block ? "block" : "file", file + ": the selected blocks hold no elements");
   auto solid = std::make_shared<MeshSolid>(std::move(mesh));
-  spdlog::info("mesh shape: {} ({}), {:.6g} m^3", path.filename().string(),
-               has_block ? "block '" + wanted + "'" : fmt::format("{} block{}", blocks.size(), blocks.size() == 1 ? "" : "s"), solid->volume());
-  sh.lower = solid->lower();
-  sh.upper = solid->upper();
-  sh.solid = std::move(solid);
-  s.finish();
-  return sh;
+  const std::string which =
+      has_block ? "block '" + wanted + "'" : fmt::format("{} block{}", blocks.size(), blocks.size() == 1 ? "" : "s");
+  spdlog::info("mesh shape: {} ({}), {:.6g} m^3", path.filename().string(), which, solid->volume());
+  return with_solid(s, std::move(sh), std::move(solid));
 }
 
 }  // namespace ballista

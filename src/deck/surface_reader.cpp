@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "deck/shape_file.hpp"
 #include "deck/text_file.hpp"
 #include "geometry/surface_solid.hpp"
 
@@ -20,14 +21,6 @@ namespace ballista {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// Metres per unit of the file's coordinates.
-double unit_scale(const std::string& unit) {
-  if (unit == "mm") return 1e-3;
-  if (unit == "cm") return 1e-2;
-  if (unit == "in") return 0.0254;
-  return 1.0;
-}
 
 /// Every triangle of the scene's meshes, placed by the node transforms, in the file's units.
 void collect(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent, std::vector<Vec3>& corners) {
@@ -79,19 +72,12 @@ TriangleSurface weld(const std::vector<Vec3>& corners) {
 ShapeSpec read_surface_shape(DeckNode& s) {
   ShapeSpec sh;
   sh.type = "surface";
-  const std::string name = s.string("file");
-  fs::path path(name);
-  if (path.is_relative()) path = fs::path(s.file()).parent_path() / path;
-  path = fs::absolute(path).lexically_normal();
-  std::error_code ec;
-  if (!fs::exists(path, ec)) s.fail("file", "cannot open the surface file '" + path.string() + "'");
+  const fs::path path = shape_file(s, "surface");
   const std::string ext = path.extension().string();
   if (ext != ".stl" && ext != ".STL" && ext != ".obj" && ext != ".OBJ")
     s.fail("file", "expected a surface file ending in .stl or .obj, got '" + path.filename().string() + "'");
   const std::string bytes = read_input_file(path.string(), s.child_path("file"), "the surface file");
-  const std::string unit = s.choice("unit", "m", {"m", "cm", "mm", "in"});
-  const Vec3 offset = s.vector("offset", Vec3{}, 3);
-  s.set_resolved("file", YAML::Node(path.string()));
+  const ShapePlacement place = shape_placement(s);
   sh.file = path.string();
 
   Assimp::Importer importer;
@@ -102,8 +88,7 @@ ShapeSpec read_surface_shape(DeckNode& s) {
   std::vector<Vec3> corners;
   collect(scene, scene->mRootNode, aiMatrix4x4(), corners);
   if (corners.empty()) s.fail("file", "the surface file '" + path.string() + "' holds no triangle");
-  const double scale = unit_scale(unit);
-  for (Vec3& p : corners) p = scale * p + offset;
+  for (Vec3& p : corners) p = place.scale * p + place.offset;
   TriangleSurface surface = weld(corners);
   if (surface.triangles.empty())
     s.fail("file", "the surface file '" + path.string() + "' holds only triangles of zero area");
@@ -121,12 +106,7 @@ ShapeSpec read_surface_shape(DeckNode& s) {
     spdlog::warn("the surface in '{}' has {} open edges of {} (one at ({:.6g}, {:.6g}, {:.6g}) m): a small hole; "
                  "the points near it are placed by a majority of three rays",
                  path.string(), c.open_edges, c.edges, at[0], at[1], at[2]);
-  auto solid = std::make_shared<SurfaceSolid>(std::move(surface));
-  sh.lower = solid->lower();
-  sh.upper = solid->upper();
-  sh.solid = std::move(solid);
-  s.finish();
-  return sh;
+  return with_solid(s, std::move(sh), std::make_shared<SurfaceSolid>(std::move(surface)));
 }
 
 }  // namespace ballista
