@@ -684,6 +684,8 @@ class Reader {
     out.max_outputs = o.integer("max_outputs", 1000, 1, kLongMax);
     out.checkpoint_interval = o.number("checkpoint_interval", 0.0, NumberRange::non_negative("s"));
     out.checkpoint_keep = static_cast<int>(o.integer("checkpoint_keep", 2, 1, 1000));
+    // Optional: absent, the resolved deck is what it was without the key.
+    out.fragment_min_mass = o.optional_number("fragment_min_mass", NumberRange::positive("kg")).value_or(0.0);
     if (out.interval > 0.0) {
       // Particle files of the run: the first, one per interval of the main stage, one per
       // preparation stage and the last (an interval of 1e-12 s would write one 300 kB file per step).

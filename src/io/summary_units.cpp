@@ -49,6 +49,10 @@ const std::vector<std::pair<std::string, std::string>>& unit_table() {
       {"penetration.*", "m"},  // depths, lengths, radii, the surface's coordinate
       // Fragments (the Mott fit N(>m) = N0 exp(-sqrt(m / mu))).
       {"fragments.time", "s"},
+      {"fragments.above_min_mass.count", "1"},
+      {"fragments.above_min_mass.mott_N0", "1"},
+      {"fragments.above_min_mass.mott_r2", "1"},
+      {"fragments.above_min_mass.*", "kg"},
       {"fragments.count", "1"},
       {"fragments.mott_N0", "1"},
       {"fragments.mott_r2", "1"},

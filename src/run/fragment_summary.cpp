@@ -19,23 +19,12 @@ int column(const ResultTable& t, const std::string& name) {
   return it == t.columns.end() ? -1 : static_cast<int>(it - t.columns.begin());
 }
 
-}  // namespace
-
-JsonValue fragment_summary(const ResultTable& table) {
-  const int im = column(table, "mass"), it = column(table, "time");
-  if (im < 0) throw Error("table '" + table.name + "' has no column 'mass'");
-  // The last snapshot: the rows at the time of the last row (rows are grouped by ascending time);
-  // without a time column every row.
-  const double t_last = it >= 0 && !table.rows.empty() ? table.rows.back().at(it) : 0.0;
-  std::vector<double> masses;
-  for (const auto& row : table.rows)
-    if (it < 0 || row.at(it) == t_last) masses.push_back(row.at(im));
+/// count, largest, means, total and the Mott fit of `masses` into `j`.
+void mass_statistics(const std::vector<double>& masses, JsonValue& j) {
   double total = 0.0, largest = 0.0, square = 0.0;
   for (double m : masses) total += m, largest = std::max(largest, m), square += m * m;
-  JsonValue j = JsonValue::object();
   // A value that does not exist is left out (never null: the fuzz harness and readers treat a null
   // number as garbage), and mott_reason says why the fit is missing.
-  if (it >= 0 && !table.rows.empty()) j["time"] = t_last;
   j["count"] = static_cast<std::int64_t>(masses.size());
   j["largest_mass"] = largest;
   if (!masses.empty()) j["mean_mass"] = total / static_cast<double>(masses.size());
@@ -51,15 +40,39 @@ JsonValue fragment_summary(const ResultTable& table) {
   } else {
     j["mott_reason"] = f.reason;
   }
+}
+
+}  // namespace
+
+JsonValue fragment_summary(const ResultTable& table, double min_mass) {
+  const int im = column(table, "mass"), it = column(table, "time");
+  if (im < 0) throw Error("table '" + table.name + "' has no column 'mass'");
+  // The last snapshot: the rows at the time of the last row (rows are grouped by ascending time);
+  // without a time column every row.
+  const double t_last = it >= 0 && !table.rows.empty() ? table.rows.back().at(it) : 0.0;
+  std::vector<double> masses;
+  for (const auto& row : table.rows)
+    if (it < 0 || row.at(it) == t_last) masses.push_back(row.at(im));
+  JsonValue j = JsonValue::object();
+  if (it >= 0 && !table.rows.empty()) j["time"] = t_last;
+  mass_statistics(masses, j);
+  if (min_mass > 0.0) {
+    std::vector<double> heavy;
+    for (double m : masses)
+      if (m >= min_mass) heavy.push_back(m);
+    JsonValue& a = j["above_min_mass"];
+    a["min_mass"] = min_mass;
+    mass_statistics(heavy, a);
+  }
   return j;
 }
 
 void report_fragments(const std::vector<ResultTable>& tables, const std::string& out_dir, bool plots,
-                      JsonValue& summary) {
+                      JsonValue& summary, double min_mass) {
   const auto t = std::find_if(tables.begin(), tables.end(), [](const ResultTable& r) { return r.name == "fragments"; });
   if (t == tables.end()) return;
   try {
-    summary["fragments"] = fragment_summary(*t);
+    summary["fragments"] = fragment_summary(*t, min_mass);
   } catch (const std::exception& e) {
     spdlog::warn("no fragment statistics in summary.json: {}", e.what());
   }

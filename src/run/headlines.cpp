@@ -55,6 +55,12 @@ std::vector<std::string> headline_lines(const JsonValue& summary) {
     if (std::isfinite(n))
       out.push_back(fmt::format("fragments: {:.0f}, largest {:.4g} kg, mean {:.4g} kg", n, number_at(f, "largest_mass"),
                                 number_at(f, "mean_mass")));
+    if (f.contains("above_min_mass")) {
+      const JsonValue& a = f.at("above_min_mass");
+      out.push_back(fmt::format("fragments of at least {:.4g} kg: {:.0f}, mean {:.4g} kg, Mott mu {:.4g} kg",
+                                number_at(a, "min_mass"), number_at(a, "count"), number_at(a, "mean_mass"),
+                                number_at(a, "mott_mu")));
+    }
   }
   return out;
 }

@@ -163,7 +163,8 @@ void RunLoop::write_summary(double wall) {
     }
     // No figure when interrupted: mpirun SIGKILLs the ranks odls_base_sigkill_timeout (1 s by
     // default) after it passed SIGTERM on, too soon for matplotlib; the restarted run draws it.
-    report_fragments(tables, opt_.out_dir, opt_.plots && !result_.interrupted, summary.root());
+    report_fragments(tables, opt_.out_dir, opt_.plots && !result_.interrupted, summary.root(),
+                     sc_.output.fragment_min_mass);
   } catch (const std::exception& w) {
     spdlog::error("the solver's results could not be written: {}", w.what());
   }

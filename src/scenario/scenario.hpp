@@ -197,6 +197,9 @@ struct OutputSpec {
   long max_outputs = 1000;           ///< more planned particle files than this is a deck error
   double checkpoint_interval = 0.0;  ///< s of simulated time between checkpoints; 0 = none (docs/restart.md)
   int checkpoint_keep = 2;           ///< newest checkpoints kept in DIR/checkpoints
+  /// kg: summary.json's fragment statistics also over the fragments at least this heavy (0: not;
+  /// run/fragment_summary.hpp), so that the single points of a fine lattice do not set them.
+  double fragment_min_mass = 0.0;
   std::vector<std::int64_t> track;   ///< output.track.ids: particle ids whose full history is recorded
   DeckMark track_mark;               ///< where output.track.ids is (ids are checked against the seeding)
 };

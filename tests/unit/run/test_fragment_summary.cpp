@@ -25,6 +25,33 @@ ResultTable table(const std::vector<std::pair<double, double>>& time_mass) {
 
 }  // namespace
 
+TEST(FragmentSummary, StatisticsAboveAMinimumMassLeaveOutTheDust) {
+  // Last snapshot: three fragments of 9, 4 and 1 g and 100 loose points of 5 mg. Above 0.1 g only
+  // the three count: their mean 14/3 g and the Mott fit of exactly those masses; the statistics of
+  // all 103 are unchanged beside them. (1, 4, 9 g: sqrt(mu) = (1 + 2 + 3)/3 sqrt(g), mu = 4 g.)
+  std::vector<std::pair<double, double>> rows = {{1e-6, 20e-3}, {2e-6, 9e-3}, {2e-6, 4e-3}, {2e-6, 1e-3}};
+  for (int k = 0; k < 100; ++k) rows.push_back({2e-6, 5e-6});
+  const ResultTable t = table(rows);
+  const JsonValue all = fragment_summary(t);
+  const JsonValue j = fragment_summary(t, 0.1e-3);
+  EXPECT_FALSE(all.contains("above_min_mass"));  // without a minimum, the summary as before
+  EXPECT_EQ(j.at("count").as_int(), 103);
+  EXPECT_EQ(j.at("mott_mu").as_number(), all.at("mott_mu").as_number());
+  const JsonValue& a = j.at("above_min_mass");
+  EXPECT_EQ(a.at("min_mass").as_number(), 0.1e-3);
+  EXPECT_EQ(a.at("count").as_int(), 3);
+  EXPECT_EQ(a.at("largest_mass").as_number(), 9e-3);
+  EXPECT_NEAR(a.at("mean_mass").as_number(), 14e-3 / 3.0, 1e-15);
+  EXPECT_NEAR(a.at("mott_mu").as_number(), 4e-3, 1e-15);  // to round-off (MottFit.ThreeFragmentsByHand)
+  EXPECT_EQ(a.at("mott_N0").as_number(), 3.0);
+  // All 103: the dust sets the Mott scale near a point's mass.
+  EXPECT_LT(all.at("mott_mu").as_number(), 0.1e-3);
+  // A minimum above every fragment: none counted, no fit, a reason.
+  const JsonValue none = fragment_summary(t, 1.0).at("above_min_mass");
+  EXPECT_EQ(none.at("count").as_int(), 0);
+  EXPECT_TRUE(none.contains("mott_reason"));
+}
+
 TEST(FragmentSummary, LastSnapshotAndMottFit) {
   // Snapshot 1 us: one body; 2 us: four fragments of 4, 3, 2, 1 g (sorted by mass, as written).
   const ResultTable t = table({{1e-6, 10e-3}, {2e-6, 4e-3}, {2e-6, 3e-3}, {2e-6, 2e-3}, {2e-6, 1e-3}});
