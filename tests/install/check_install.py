@@ -24,6 +24,7 @@ import sys
 EXAMPLE = "rod_sandstone_mpm.yaml"  # a preset (sandstone), the penetration figures (tools/)
 CI_SIZE = ["grid.cell_size=2.0e-3", "simulation.end_time=10.0e-6"]  # tests/examples' reduced size
 FIGURES = ["penetration_depth.png", "channel_profile.png"]
+WITH_PYTHON = True  # --no-python clears it
 
 
 def fail(msg):
@@ -84,9 +85,10 @@ def check_installed(prefix, out):
     for fig in FIGURES:
         if not os.path.isfile(os.path.join(run_dir, fig)):
             fail(f"the installed tools did not draw {fig}")
-    check_python_module(prefix, share, out, env, cwd)
-    print(f"installed ballista under {prefix}: data directory found, {EXAMPLE} ran, figures drawn, "
-          "the Python module ran it too")
+    if WITH_PYTHON:
+        check_python_module(prefix, share, out, env, cwd)
+    print(f"installed ballista under {prefix}: data directory found, {EXAMPLE} ran, figures drawn"
+          + (", the Python module ran it too" if WITH_PYTHON else ""))
 
 
 # Run by the installed module: it must be the installed one, point the core at the installed
@@ -158,7 +160,11 @@ def main():
     ap.add_argument("mode", choices=["tree", "package"])
     ap.add_argument("--build", required=True, help="the CMake build tree")
     ap.add_argument("--out", required=True)
+    ap.add_argument("--no-python", action="store_true",
+                    help="the tree has no Python module (a sanitized build: python/CMakeLists.txt)")
     a = ap.parse_args()
+    global WITH_PYTHON
+    WITH_PYTHON = not a.no_python
     a.out = os.path.abspath(a.out)
     os.makedirs(a.out, exist_ok=True)
     (tree if a.mode == "tree" else package)(a)
