@@ -203,3 +203,13 @@ def test_a_second_run_from_another_thread_is_refused(ballista, tmp_path):
                        progress=from_thread)
     assert res.status == "interrupted"
     assert isinstance(errors[0], ballista.Error) and "already going" in str(errors[0])
+
+
+def test_a_run_that_fails_returns_its_results_and_says_why(ballista, tmp_path):
+    # The energy guard set far below the run's residual: the run stops at a step with a physics
+    # error, as `ballista run` does (exit 3), and leaves its folder with status "failed".
+    res = ballista.run(TAYLOR, out_dir=tmp_path / "f", threads=1, quiet=True,
+                       overrides=dict(COARSE, **{"simulation.energy_drift_limit": 1e-12}))
+    assert res.status == "failed" and not res.ok
+    assert "energy drift" in res.run_result["error"] and res.run_result["failed_step"] > 0
+    assert res.summary["status"] == "failed" and "energy drift" in res.summary["error"]
