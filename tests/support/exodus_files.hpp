@@ -19,11 +19,12 @@ struct ExodusBlock {
   std::vector<int> connectivity;   ///< 1-based node numbers
 };
 
-/// Writes an Exodus II file of `dim` dimensions (z ignored for 2) with the given nodes and blocks.
+/// Writes an Exodus II file of `dim` dimensions (z ignored for 2) with the given nodes and blocks;
+/// netcdf4: in the HDF5-based netCDF-4 format (what newer meshers write) instead of netCDF classic.
 inline void write_exodus(const std::string& path, const std::vector<Vec3>& nodes, const std::vector<ExodusBlock>& blocks,
-                         int dim = 3) {
+                         int dim = 3, bool netcdf4 = false) {
   int cpu_word = sizeof(double), io_word = sizeof(double);
-  const int id = ex_create(path.c_str(), EX_CLOBBER, &cpu_word, &io_word);
+  const int id = ex_create(path.c_str(), EX_CLOBBER | (netcdf4 ? EX_NETCDF4 : 0), &cpu_word, &io_word);
   if (id < 0) throw std::runtime_error("ex_create failed for " + path);
   int elements = 0;
   for (const auto& b : blocks) elements += static_cast<int>(b.connectivity.size()) / b.nodes_per_element;

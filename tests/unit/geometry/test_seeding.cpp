@@ -648,6 +648,11 @@ TEST(SeedingMesh, AHexMeshedBoxInMillimetresSeedsTheBoxsPoints) {
   ASSERT_EQ(from_file->pts.size(), 12 * 6 * 8);
   expect_same_points(from_file->pts, analytic->pts);
   EXPECT_NEAR(sum_volume(from_file->pts), 0.75 * 0.375 * 0.5, kSumTol);
+  // The same mesh in the HDF5-based netCDF-4 format, which newer meshers write: read through the
+  // same library (netCDF's HDF5 beside the run's own HDF5 in one process).
+  const std::string exo4 = (dir.path / "box4.exo").string();
+  test::write_exodus(exo4, nodes, {{"box", "HEX8", 8, hexes}}, 3, true);
+  expect_same_points(seed(deck("3d", kGrid3, mesh_body("s", exo4, ", unit: mm")))->pts, analytic->pts);
 }
 
 TEST(SeedingMesh, ATetMeshedBoxWithAnOffsetSeedsTheBoxsPoints) {
