@@ -1,5 +1,7 @@
 """ballista.drive: one material point through an F-table or strain/stress legs (the deck of
 `ballista drive`, docs/deck.md), in memory, fast enough to sit inside an optimiser's loop."""
+import os
+
 import numpy as np
 
 from . import _ballista
@@ -56,7 +58,6 @@ def drive(deck, *, overrides=None, base_dir=None):
     (non-finite stress, stress control not converging) raises PhysicsError whose `history`
     attribute holds the records up to the last good step."""
     text, file_name = deck_source(deck, base_dir)
-    import os
     folder = os.path.dirname(os.path.abspath(file_name))
     raw = _ballista.drive_deck(text, file_name, override_strings(overrides), folder)
     history = DriveHistory(raw)

@@ -9,11 +9,9 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "core/error.hpp"
 #include "driver/drive_deck.hpp"
 #include "driver/drive_history.hpp"
 #include "driver/drive_run.hpp"
-#include "materials/material.hpp"
 
 namespace py = pybind11;
 
@@ -24,15 +22,11 @@ namespace {
 py::dict drive_deck(const std::string& text, const std::string& file_name, const std::vector<std::string>& overrides,
                     const std::string& base_dir) {
   const DriveDeck deck = parse_drive_deck(text, file_name, overrides, base_dir);
-  const MaterialFactory* f = find_material(deck.material.model);
-  if (!f) throw Error("unknown material model '" + deck.material.model + "'");
-  const auto material = f->create(deck.material.name, deck.material.params);
   std::string error;
   DriveResult r;
   {
     py::gil_scoped_release release;
-    r = drive_point(*material, deck.program, error);
-    if (error.empty()) error = drive_invariants_error(r);
+    r = drive_deck_point(deck, error);
   }
   const std::vector<std::string> columns = drive_history_columns(r.state_names);
   py::array_t<double> values({r.records.size(), columns.size()});

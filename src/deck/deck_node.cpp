@@ -324,7 +324,7 @@ DeckNode DeckNode::container(const std::string& key, bool required, const char* 
   if (v.IsDefined() && !v.IsNull() && v.Type() != type)
     deck_fail(*ctx_, child_path(key), v.Mark(), std::string("expected ") + what + got(v));
   if (v.IsNull()) v = YAML::Node(YAML::NodeType::Undefined);
-  note(key, key_of(type == YAML::NodeType::Map ? SchemaKey::Kind::Object : SchemaKey::Kind::List, required));
+  note(key, [&] { return key_of(type == YAML::NodeType::Map ? SchemaKey::Kind::Object : SchemaKey::Kind::List, required); });
   mirror_[key] = empty_mirror;
   return DeckNode(ctx_, v, mirror_[key], child_path(key), anchor);
 }
@@ -451,7 +451,7 @@ double DeckNode::number(const std::string& key, const NumberRange& range) {
   std::string what = "a number";
   if (const std::string r = range.describe(); !r.empty()) what += " " + r;
   const double x = to_number(require(key, what.c_str()), key, range);
-  note(key, key_of(SchemaKey::Kind::Number, true, "", range));
+  note(key, [&] { return key_of(SchemaKey::Kind::Number, true, "", range); });
   mirror_[key] = number_node(x);
   return x;
 }
@@ -459,14 +459,14 @@ double DeckNode::number(const std::string& key, const NumberRange& range) {
 double DeckNode::number(const std::string& key, double fallback, const NumberRange& range) {
   const YAML::Node v = lookup(key);
   const double x = v.IsDefined() && !v.IsNull() ? to_number(v, key, range) : fallback;
-  note(key, key_of(SchemaKey::Kind::Number, false, format_number(fallback), range));
+  note(key, [&] { return key_of(SchemaKey::Kind::Number, false, format_number(fallback), range); });
   mirror_[key] = number_node(x);
   return x;
 }
 
 std::optional<double> DeckNode::optional_number(const std::string& key, const NumberRange& range) {
   const YAML::Node v = lookup(key);
-  note(key, key_of(SchemaKey::Kind::Number, false, "", range));
+  note(key, [&] { return key_of(SchemaKey::Kind::Number, false, "", range); });
   if (!v.IsDefined() || v.IsNull()) return std::nullopt;
   const double x = to_number(v, key, range);
   mirror_[key] = number_node(x);
@@ -475,7 +475,7 @@ std::optional<double> DeckNode::optional_number(const std::string& key, const Nu
 
 long DeckNode::integer(const std::string& key, long min, long max) {
   const long x = to_integer(require(key, "an integer"), key, min, max);
-  note(key, key_of(SchemaKey::Kind::Integer, true, "", NumberRange::between(min, max)));
+  note(key, [&] { return key_of(SchemaKey::Kind::Integer, true, "", NumberRange::between(min, max)); });
   mirror_[key] = std::to_string(x);
   return x;
 }
@@ -483,14 +483,16 @@ long DeckNode::integer(const std::string& key, long min, long max) {
 long DeckNode::integer(const std::string& key, long fallback, long min, long max) {
   const YAML::Node v = lookup(key);
   const long x = v.IsDefined() && !v.IsNull() ? to_integer(v, key, min, max) : fallback;
-  note(key, key_of(SchemaKey::Kind::Integer, false, std::to_string(fallback), NumberRange::between(min, max)));
+  note(key, [&] {
+    return key_of(SchemaKey::Kind::Integer, false, std::to_string(fallback), NumberRange::between(min, max));
+  });
   mirror_[key] = std::to_string(x);
   return x;
 }
 
 bool DeckNode::boolean(const std::string& key, bool fallback) {
   const YAML::Node v = lookup(key);
-  note(key, key_of(SchemaKey::Kind::Boolean, false, fallback ? "true" : "false"));
+  note(key, [&] { return key_of(SchemaKey::Kind::Boolean, false, fallback ? "true" : "false"); });
   bool x = fallback;
   if (v.IsDefined() && !v.IsNull()) {
     const std::string s = v.IsScalar() && !quoted(v) ? v.Scalar() : std::string();
@@ -508,14 +510,14 @@ bool DeckNode::boolean(const std::string& key, bool fallback) {
 std::string DeckNode::string(const std::string& key) {
   const YAML::Node v = require(key, "a name");
   if (!v.IsScalar() || v.Scalar().empty()) deck_fail(*ctx_, child_path(key), v.Mark(), "expected a name" + got(v));
-  note(key, key_of(SchemaKey::Kind::String, true));
+  note(key, [&] { return key_of(SchemaKey::Kind::String, true); });
   mirror_[key] = v.Scalar();
   return v.Scalar();
 }
 
 std::string DeckNode::string(const std::string& key, const std::string& fallback) {
   const YAML::Node v = lookup(key);
-  note(key, key_of(SchemaKey::Kind::String, false, fallback));
+  note(key, [&] { return key_of(SchemaKey::Kind::String, false, fallback); });
   std::string x = fallback;
   if (v.IsDefined() && !v.IsNull()) {
     if (!v.IsScalar()) deck_fail(*ctx_, child_path(key), v.Mark(), "expected a name" + got(v));
@@ -528,7 +530,7 @@ std::string DeckNode::string(const std::string& key, const std::string& fallback
 std::string DeckNode::choice(const std::string& key, const std::vector<std::string>& options) {
   const std::string what = "one of: " + join_names(options);
   const std::string x = to_choice(require(key, what.c_str()), key, options);
-  note(key, key_of(SchemaKey::Kind::Choice, true, "", NumberRange{}, options));
+  note(key, [&] { return key_of(SchemaKey::Kind::Choice, true, "", NumberRange{}, options); });
   mirror_[key] = x;
   return x;
 }
@@ -537,7 +539,7 @@ std::string DeckNode::choice(const std::string& key, const std::string& fallback
                              const std::vector<std::string>& options) {
   const YAML::Node v = lookup(key);
   const std::string x = v.IsDefined() && !v.IsNull() ? to_choice(v, key, options) : fallback;
-  note(key, key_of(SchemaKey::Kind::Choice, false, fallback, NumberRange{}, options));
+  note(key, [&] { return key_of(SchemaKey::Kind::Choice, false, fallback, NumberRange{}, options); });
   mirror_[key] = x;
   return x;
 }
@@ -546,7 +548,7 @@ std::string DeckNode::defined_name(const std::string& key, const std::string& fa
                                    const std::vector<std::string>& names) {
   const YAML::Node v = lookup(key);
   const std::string x = v.IsDefined() && !v.IsNull() ? to_choice(v, key, names) : fallback;
-  note(key, key_of(SchemaKey::Kind::String, false, fallback));
+  note(key, [&] { return key_of(SchemaKey::Kind::String, false, fallback); });
   mirror_[key] = x;
   return x;
 }
@@ -554,7 +556,7 @@ std::string DeckNode::defined_name(const std::string& key, const std::string& fa
 Vec3 DeckNode::vector(const std::string& key, int min_count) {
   const std::string what = min_count >= 3 ? "a list of 3 numbers" : "a list of 2 or 3 numbers";
   const Vec3 x = to_vector(require(key, what.c_str()), key, min_count);
-  note(key, key_of(SchemaKey::Kind::Vector, true, "", NumberRange{}, {}, min_count));
+  note(key, [&] { return key_of(SchemaKey::Kind::Vector, true, "", NumberRange{}, {}, min_count); });
   mirror_[key] = vector_node(x);
   return x;
 }
@@ -562,14 +564,14 @@ Vec3 DeckNode::vector(const std::string& key, int min_count) {
 Vec3 DeckNode::vector(const std::string& key, const Vec3& fallback, int min_count) {
   const YAML::Node v = lookup(key);
   const Vec3 x = v.IsDefined() && !v.IsNull() ? to_vector(v, key, min_count) : fallback;
-  note(key, key_of(SchemaKey::Kind::Vector, false, "", NumberRange{}, {}, min_count));
+  note(key, [&] { return key_of(SchemaKey::Kind::Vector, false, "", NumberRange{}, {}, min_count); });
   mirror_[key] = vector_node(x);
   return x;
 }
 
 std::vector<std::string> DeckNode::strings(const std::string& key, const std::vector<std::string>& fallback) {
   const YAML::Node v = lookup(key);
-  note(key, key_of(SchemaKey::Kind::Strings, false));
+  note(key, [&] { return key_of(SchemaKey::Kind::Strings, false); });
   std::vector<std::string> x = fallback;
   if (v.IsDefined() && !v.IsNull()) {
     if (!v.IsSequence()) deck_fail(*ctx_, child_path(key), v.Mark(), "expected a list of names" + got(v));
@@ -588,7 +590,7 @@ std::vector<std::string> DeckNode::strings(const std::string& key, const std::ve
 }
 
 YAML::Node DeckNode::raw(const std::string& key) {
-  note(key, SchemaKey{});
+  note(key, [] { return SchemaKey{}; });
   return lookup(key);
 }
 

@@ -125,7 +125,7 @@ class DeckNode {
   /// Marks `key` as valid here without reading it (so it is not reported as unknown).
   void allow(const std::string& key) {
     known_->push_back(key);
-    note(key, SchemaKey{});
+    note(key, [] { return SchemaKey{}; });
   }
   /// Rejects duplicate keys and keys never asked for (naming the closest valid one).
   void finish() const;
@@ -139,9 +139,11 @@ class DeckNode {
            YAML::Mark anchor);
   /// The value of key (undefined if absent); records the key as known.
   YAML::Node lookup(const std::string& key) const;
-  /// Reports `key` as read to the active schema recorder, if there is one (deck/schema_recorder.hpp).
-  void note(const std::string& key, SchemaKey k) const {
-    if (SchemaRecorder* r = active_schema_recorder()) r->key(child_path(key), std::move(k));
+  /// Reports `key` as read to the active schema recorder, if there is one (deck/schema_recorder.hpp);
+  /// `describe()` makes its SchemaKey, only then (a deck read for a run records nothing).
+  template <class Describe>
+  void note(const std::string& key, Describe describe) const {
+    if (SchemaRecorder* r = active_schema_recorder()) r->key(child_path(key), describe());
   }
   /// Position of `key` itself in this map (anchor_ if absent).
   YAML::Mark key_mark(const std::string& key) const;

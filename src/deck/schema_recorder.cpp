@@ -16,11 +16,6 @@ bool all_digits(const std::string& s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
 }
 
-bool same(const SchemaKey& a, const SchemaKey& b) {
-  return a.kind == b.kind && a.choices == b.choices && a.range.min == b.range.min && a.range.max == b.range.max &&
-         a.range.unit == b.range.unit;
-}
-
 }  // namespace
 
 std::string SchemaRecorder::pattern(const std::string& path) const {
@@ -42,13 +37,7 @@ std::string SchemaRecorder::pattern(const std::string& path) const {
 }
 
 void SchemaRecorder::key(const std::string& key_path, SchemaKey k) {
-  auto& seen = keys_[pattern(key_path)];
-  for (SchemaKey& s : seen)
-    if (same(s, k)) {
-      s.min_items = std::min(s.min_items, k.min_items);  // a vector of 2 in 2D decks, 3 in 3D
-      return;
-    }
-  seen.push_back(std::move(k));
+  add_schema_key(keys_[pattern(key_path)], k);
 }
 
 void SchemaRecorder::names(const std::string& path) {
@@ -62,6 +51,15 @@ void SchemaRecorder::names(const std::string& path) {
   for (const SchemaKey& s : seen)
     if (s.kind == SchemaKey::Kind::Names) return;
   seen.push_back(k);
+}
+
+void add_schema_key(std::vector<SchemaKey>& kinds, const SchemaKey& k) {
+  for (SchemaKey& s : kinds)
+    if (s.kind == k.kind && s.choices == k.choices && s.range.min == k.range.min && s.range.max == k.range.max) {
+      s.min_items = std::min(s.min_items, k.min_items);  // a vector of 2 in 2D decks, 3 in 3D
+      return;
+    }
+  kinds.push_back(k);
 }
 
 SchemaRecorder* active_schema_recorder() { return active(); }

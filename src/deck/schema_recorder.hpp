@@ -24,6 +24,11 @@ struct SchemaKey {
   bool required = false;
 };
 
+/// Adds `k` to the kinds one key was read with, unless one of the same kind, choices and range is
+/// there already (then the fewer vector components of the two count; the first one's unit and
+/// default stay: one key read twice, or by a reader and a registry).
+void add_schema_key(std::vector<SchemaKey>& kinds, const SchemaKey& k);
+
 /// Keys by pattern: list elements as "[]" and user-named entries as "*" (bodies[].shape.radius,
 /// materials.*.density).
 class SchemaRecorder {

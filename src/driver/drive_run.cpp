@@ -32,24 +32,28 @@ std::string drive_invariants_error(const DriveResult& r) {
   return {};
 }
 
+DriveResult drive_deck_point(const DriveDeck& deck, std::string& error) {
+  const MaterialFactory* f = find_material(deck.material.model);
+  if (!f) throw Error("unknown material model '" + deck.material.model + "'");
+  const auto material = f->create(deck.material.name, deck.material.params);
+  DriveResult r = drive_point(*material, deck.program, error);
+  if (error.empty()) error = drive_invariants_error(r);
+  return r;
+}
+
 DriveRunResult run_drive(const DriveDeck& deck, const std::string& out_dir) {
   namespace fs = std::filesystem;
   fs::create_directories(out_dir);
   write_file_atomic((fs::path(out_dir) / "resolved.yaml").string(), deck.resolved_yaml);
-  const MaterialFactory* f = find_material(deck.material.model);
-  if (!f) throw Error("unknown material model '" + deck.material.model + "'");
-  const auto material = f->create(deck.material.name, deck.material.params);
 
   DriveRunResult res;
   const auto wall0 = std::chrono::steady_clock::now();
-  const DriveResult r = drive_point(*material, deck.program, res.error);
+  const DriveResult r = drive_deck_point(deck, res.error);
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   res.ok = res.error.empty();
   res.steps = r.steps;
   res.records = r.records.size();
   res.last = r.records.back();
-  if (res.ok) res.error = drive_invariants_error(r);
-  res.ok = res.error.empty();
   write_drive_history((fs::path(out_dir) / "history.csv").string(), r);
 
   SummaryWriter summary;

@@ -26,4 +26,9 @@ DriveRunResult run_drive(const DriveDeck& deck, const std::string& out_dir);
 /// 1e308), naming the first such step; "" if there is none.
 std::string drive_invariants_error(const DriveResult& r);
 
+/// The deck's material driven through its program in memory (what run_drive writes, and what the
+/// Python module returns): drive_point, then drive_invariants_error. The error that stopped it goes
+/// to `error` ("" when it completed), the records up to it stay in the result.
+DriveResult drive_deck_point(const DriveDeck& deck, std::string& error);
+
 }  // namespace ballista

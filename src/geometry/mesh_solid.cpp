@@ -34,9 +34,6 @@ MeshSolid::MeshSolid(TetMesh mesh) : m_(std::move(mesh)) {
         lower_[d] = std::min(lower_[d], m_.vertices[t[c]][d]);
         upper_[d] = std::max(upper_[d], m_.vertices[t[c]][d]);
       }
-  // Like the analytic shapes (geometry/shape.cpp): a lattice point on a face is inside whatever
-  // its round-off, so a mesh of a box seeds the box's points.
-  tol_ = 1e-12;
   const std::size_t nt = m_.tets.size();
   inverse_.resize(nt);
   for (std::size_t k = 0; k < nt; ++k) {
@@ -109,10 +106,10 @@ bool MeshSolid::contains(const Vec3& x) const {
     bool in = true;
     for (int c = 0; c < 3 && in; ++c) {
       const double l = m(c, 0) * r[0] + m(c, 1) * r[1] + m(c, 2) * r[2];
-      in = l >= -tol_;
+      in = l >= -kTol;
       sum += l;
     }
-    if (in && sum <= 1.0 + tol_) return true;
+    if (in && sum <= 1.0 + kTol) return true;
   }
   return false;
 }

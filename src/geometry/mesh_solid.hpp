@@ -39,7 +39,9 @@ class MeshSolid final : public SolidShape {
   TetMesh m_;
   Vec3 lower_, upper_;
   double volume_ = 0.0;
-  double tol_ = 0.0;  ///< barycentric tolerance: a point on a shared or outer face is inside
+  /// Barycentric tolerance: like the analytic shapes (geometry/shape.cpp), a lattice point on a
+  /// face is inside whatever its round-off, so a mesh of a box seeds the box's points.
+  static constexpr double kTol = 1e-12;
   int n_[3] = {1, 1, 1};
   double d_[3] = {1, 1, 1};
   std::vector<std::int32_t> start_;  ///< CSR offsets per bin of a uniform 3D grid over the box

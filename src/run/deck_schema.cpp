@@ -35,14 +35,7 @@ struct SchemaNode {
     }
     return children[segment];
   }
-  void add(const SchemaKey& k) {
-    for (SchemaKey& s : kinds)
-      if (s.kind == k.kind && s.choices == k.choices && s.range.min == k.range.min && s.range.max == k.range.max) {
-        s.min_items = std::min(s.min_items, k.min_items);
-        return;
-      }
-    kinds.push_back(k);
-  }
+  void add(const SchemaKey& k) { add_schema_key(kinds, k); }
 };
 
 /// "bodies[].shape.radius" -> bodies, [], shape, radius; "materials.*.eos.type" -> materials, *, eos, type.
