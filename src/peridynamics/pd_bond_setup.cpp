@@ -68,6 +68,7 @@ void PdSolver::read_body_scales(const Scenario& sc) {
 }
 
 void PdSolver::set_bond_constants(const Scenario& sc) {
+  if (params_.lps) return set_lps_constants(sc);
   const auto& mats = pts_.materials();
   const pd::LatticeMoments m =
       pd::calibration_moments(params_.lattice_calibration, delta_, dx_, params_.partial_volumes, dim_);

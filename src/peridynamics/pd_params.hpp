@@ -18,6 +18,7 @@ std::vector<ParamSpec> pd_params();
 /// The peridynamics.* section as the solver uses it.
 struct PdParams {
   double horizon = 0.0;                    ///< m: delta, given or m (default 3) lattice spacings
+  bool lps = false;                        ///< formulation: lps (state-based, lps_pass.hpp; else bond-based)
   bool partial_volumes = true;             ///< volume_correction: partial (else none)
   double thickness = 1.0;                  ///< m, 2D: totals are per this thickness (3D: 1)
   bool lattice_calibration = true;         ///< calibration: lattice (else continuum)

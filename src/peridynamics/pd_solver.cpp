@@ -78,6 +78,7 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
   contact_energy_.assign(static_cast<size_t>(nl), 0.0);
   contact_.skin = params_.contact_skin * dx_;
   build_bond_tables();
+  if (params_.lps) build_lps_weighted_volumes();
   bond_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
   stiff_bond_.assign(static_cast<size_t>(nb), 0.0);
   stiff_contact_.assign(static_cast<size_t>(nl), 0.0);
@@ -394,44 +395,48 @@ void PdSolver::compute_forces() {
   for_each(0, nl, [&](Index p) { A.clear(p); });
 
   if (nl == 0) return;
-  pd::BondPassArgs args{x[0].v,
-                        vol0,
-                        mat,
-                        c_.data(),
-                        nmat_,
-                        s0,
-                        len0,
-                        inv_len0_.data(),
-                        beta,
-                        other,
-                        mirror,
-                        broken,
-                        bonds_.offset.data(),
-                        upper_.data(),
-                        plastic ? sp : nullptr,
-                        sy,
-                        alpha,
-                        contact,
-                        bonded_contact,
-                        cs_over_c,
-                        range,
-                        xprev[0].v,
-                        A.f[0].v,
-                        A.energy.data(),
-                        A.dis.data(),
-                        A.vol_broken.data(),
-                        A.smx.data(),
-                        A.e_contact.data(),
-                        A.k_contact.data(),
-                        surface_factor_.empty() ? nullptr : surface_factor_.data(),
-                        params_.lammps_break};
-  const Index nblock = static_cast<Index>(block_start_.size()) - 1;
-  for (int phase = 0; phase < 2; ++phase) {
-    const Index nphase = (nblock - phase + 1) / 2;
+  if (params_.lps) {
+    lps_pass();
+  } else {
+    pd::BondPassArgs args{x[0].v,
+                          vol0,
+                          mat,
+                          c_.data(),
+                          nmat_,
+                          s0,
+                          len0,
+                          inv_len0_.data(),
+                          beta,
+                          other,
+                          mirror,
+                          broken,
+                          bonds_.offset.data(),
+                          upper_.data(),
+                          plastic ? sp : nullptr,
+                          sy,
+                          alpha,
+                          contact,
+                          bonded_contact,
+                          cs_over_c,
+                          range,
+                          xprev[0].v,
+                          A.f[0].v,
+                          A.energy.data(),
+                          A.dis.data(),
+                          A.vol_broken.data(),
+                          A.smx.data(),
+                          A.e_contact.data(),
+                          A.k_contact.data(),
+                          surface_factor_.empty() ? nullptr : surface_factor_.data(),
+                          params_.lammps_break};
+    const Index nblock = static_cast<Index>(block_start_.size()) - 1;
+    for (int phase = 0; phase < 2; ++phase) {
+      const Index nphase = (nblock - phase + 1) / 2;
 #pragma omp parallel for schedule(dynamic, 1) if (nphase > 1 && n > kParallelThreshold)
-    for (Index j = 0; j < nphase; ++j) {
-      const Index b = 2 * j + phase;
-      pd::bond_pass(args, block_start_[b], block_start_[b + 1]);
+      for (Index j = 0; j < nphase; ++j) {
+        const Index b = 2 * j + phase;
+        pd::bond_pass(args, block_start_[b], block_start_[b + 1]);
+      }
     }
   }
 
@@ -688,6 +693,13 @@ std::string PdSolver::derived_constants() const {
   s += fmt::format("#   lattice_spacing: {:.10g}   # m (grid.cell_size)\n#   horizon: {:.10g}   # m\n", dx_, delta_);
   if (!sp_.empty()) s += fmt::format("#   yield_stretch: {:.10g}   # micro-plastic bonds\n", yield_stretch_);
   const auto& mats = pts_.materials();
+  if (params_.lps) {
+    // The micromodulus below is the equivalent PMB bond's (stable step, contact springs: lps_constants.hpp).
+    for (int a = 0; a < nmat_; ++a)
+      if (!gas_material_[a])
+        s += fmt::format("#   lps {}: {{bulk_modulus: {:.10g}, shear_modulus: {:.10g}}}   # Pa\n", mats[a]->name(),
+                         lps_bulk_[a], lps_shear_[a]);
+  }
   for (int a = 0; a < nmat_; ++a)
     for (int b = a; b < nmat_; ++b)
       s += fmt::format("#   bond {}-{}: {{micromodulus: {:.10g}, critical_stretch: {:.10g}}}   # N/m^6, 1\n",

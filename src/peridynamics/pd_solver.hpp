@@ -12,6 +12,8 @@
 // previous step's smallest stretch of point i), s00 given or from the fracture energy G0:
 // s00 = sqrt(5 G0/(9 K delta)) (Silling & Askari 2005 eq. 25). Damage of a point is the
 // volume-weighted fraction of its broken bonds (seed 001, "Damage").
+// With formulation: lps the bonds carry the state-based linear peridynamic solid instead (any
+// Poisson's ratio; lps_pass.hpp), with the same families, failure rule, damage and contact.
 //
 // The points layer (seeding, loads, removal, energies, diagnostics) is shared with MPM: this file
 // owns only the bonds, the force and the time integration.
@@ -150,6 +152,15 @@ class PdSolver final : public Solver {
   /// Bond forces (per unit mass, into field pd_accel), stretches, failures, s0 for the next step,
   /// damage and the per-point bond energies.
   void compute_forces();
+  // ---- the linear peridynamic solid (formulation: lps; lps_pass.hpp, pd_lps.cpp) --------------
+  /// K and mu of each solid, the micromodulus of its equivalent PMB bond (stable step, contact
+  /// springs) and the critical stretch per material pair.
+  void set_lps_constants(const Scenario& sc);
+  /// The weighted volume of every local point (ghosts' from their owners).
+  void build_lps_weighted_volumes();
+  /// The state-based forces, energies, failures and dissipation into acc_ (collective: the
+  /// ghosts' force-state coefficients come from their owners).
+  void lps_pass();
   /// One step of this rank (step() agrees on failures across ranks).
   void advance(double dt);
 
@@ -222,6 +233,11 @@ class PdSolver final : public Solver {
     }
   };
   Acc acc_;
+  std::vector<double> lps_bulk_, lps_shear_;  ///< per material: K and mu of the LPS solid, Pa
+  std::vector<double> lps_m_;                 ///< per local point: weighted volume, m^5
+  /// Per local point (lps_pass.hpp): theta, B and whether a bond breaks, with this evaluation's
+  /// failures and before them.
+  std::vector<double> lps_theta_, lps_theta_old_, lps_coef_, lps_coef_old_, lps_breaks_;
   double bond_build_seconds_ = 0.0;  ///< wall time of the bond families and their solver arrays, s
   std::vector<double> vol_all_;        ///< sum_j beta V_j of each point's family (damage denominator), m^3
   std::vector<double> stiff_bond_;     ///< sum_j V_j c/|xi| of each point's bonds (reference), N/m^4

@@ -35,7 +35,9 @@ inline std::string num(double v) {
 
 /// A box [lo, hi] of the material on the lattice of spacing dx (points at the cell centres of a
 /// grid whose lower corner is -10 mm, a multiple of every dx used), grid box 10 mm beyond the body.
-inline std::string box_deck(double dx, const double lo[3], const double hi[3], const std::string& pd) {
+/// `nu`: the material's Poisson's ratio (a bond-based solid takes only its bulk modulus).
+inline std::string box_deck(double dx, const double lo[3], const double hi[3], const std::string& pd,
+                            double nu = kNu) {
   const double pad = 0.01;
   // The references below are sums with the continuum constants c = 18 K/(pi delta^4) and eq. 25's
   // s00: those constants unless the caller chooses the calibration.
@@ -45,7 +47,7 @@ inline std::string box_deck(double dx, const double lo[3], const double hi[3], c
          "grid: {lower: [" + num(-pad) + ", " + num(-pad) + ", " + num(-pad) + "], upper: [" + num(hi[0] + pad) +
          ", " + num(hi[1] + pad) + ", " + num(hi[2] + pad) + "], cell_size: " + num(dx) + "}\n" +
          "materials:\n  glass: {model: linear_elastic, density: " + num(kRho) + ", youngs_modulus: " + num(kE) +
-         ", poisson_ratio: " + num(kNu) + "}\n" +
+         ", poisson_ratio: " + num(nu) + "}\n" +
          "bodies:\n  - {name: b, material: glass, shape: {type: box, lower: [" + num(lo[0]) + ", " + num(lo[1]) + ", " +
          num(lo[2]) + "], upper: [" + num(hi[0]) + ", " + num(hi[1]) + ", " + num(hi[2]) + "]}}\n";
 }
@@ -150,9 +152,10 @@ inline double arrival_time(const std::vector<double>& t, const std::vector<doubl
   return num / den;
 }
 
-inline WaveResult measure_wave(double dx, const BarGeometry& g = {}) {
+/// `pd`: further peridynamics keys (e.g. "formulation: lps"), `nu` the material's Poisson's ratio.
+inline WaveResult measure_wave(double dx, const BarGeometry& g = {}, const std::string& pd = "", double nu = kNu) {
   const double lo[3] = {0, 0, 0}, hi[3] = {g.length, g.w, g.w};
-  auto s = make_solver(box_deck(dx, lo, hi, "m: " + num(kM)));
+  auto s = make_solver(box_deck(dx, lo, hi, "m: " + num(kM) + (pd.empty() ? "" : ", " + pd), nu));
   FieldStore& pts = s->points();
   const Index n = pts.size();
   const auto* x0 = pts.view<Vec3>("x0");
@@ -242,10 +245,11 @@ struct FractureResult {
 ///    ligament evolve freely (velocity Verlet); the ligament tears.
 inline FractureResult measure_fracture(double dx, double a, double b, double g0, bool quasi_static,
                                        double v_over_s0c = 0.0, double t_max = 0.0,
-                                       const std::string& calibration = "continuum") {
+                                       const std::string& calibration = "continuum", const std::string& pd = "") {
   const double lo[3] = {0, 0, 0}, hi[3] = {a, a, a};
   auto s = make_solver(box_deck(dx, lo, hi,
-                                "m: " + num(kM) + ", fracture_energy: " + num(g0) + ", calibration: " + calibration));
+                                "m: " + num(kM) + ", fracture_energy: " + num(g0) + ", calibration: " + calibration +
+                                    (pd.empty() ? "" : ", " + pd)));
   FieldStore& pts = s->points();
   const Index n = pts.size();
   const auto* x0 = pts.view<Vec3>("x0");

@@ -1,0 +1,103 @@
+// Verification of the linear peridynamic solid (formulation: lps; src/peridynamics/lps_pass.hpp) at
+// a Poisson's ratio a bond-based solid cannot have (nu = 0.3): the longitudinal wave speed of a thin
+// bar, and the energy released per unit area of new crack in a slow separation. Write-up:
+// docs/validation.md ("Peridynamics: the state-based solid"). The lattice references are sums over
+// the family of an interior point (pd_support.hpp's lattice and the sums below), not the solver.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "peridynamics/bond_family.hpp"
+#include "verification/pd_support.hpp"
+#include "verification/verification_support.hpp"
+
+using namespace ballista;
+using namespace ballista::verification;
+
+namespace {
+
+constexpr double kNuLps = 0.3;
+
+/// The LPS lattice at m = 3 (partial volumes) is a cubic solid: bulk modulus K exactly,
+/// (C11 - C12)/2 = Q' mu with Q' = (15/4) sum |xi|^2 (n_x^2 - n_y^2)^2 beta V / m
+/// (tests/unit/peridynamics/test_lps.cpp), so a bar along [100] has
+/// E_100 = (C11 - C12)(C11 + 2 C12)/(C11 + C12) = 9 K Q' mu / (3 K + Q' mu).
+double lattice_qprime() {
+  double m = 0.0, t = 0.0;
+  for (int i = -4; i <= 4; ++i)
+    for (int j = -4; j <= 4; ++j)
+      for (int k = -4; k <= 4; ++k) {
+        const double r2 = i * i + j * j + k * k, r = std::sqrt(r2);
+        if (r2 == 0.0 || r > 3.0 * (1 + 1e-9)) continue;
+        const double b = pd::partial_volume_factor(r, 3.0, 1.0);
+        m += r2 * b;
+        t += r2 * std::pow((i * i - j * j) / r2, 2) * b;
+      }
+  return 3.75 * t / m;
+}
+
+}  // namespace
+
+// The thin bar of the bond-based test (4 x 4 x 96 mm, Gaussian pulse, energy-centroid arrivals), in
+// a material of E = 72 GPa and nu = 0.3. Reference: the thin-bar speed of the LPS lattice,
+// sqrt(E_100 / rho) times the Rayleigh-Love factor at nu = 0.3 (E_100 = 0.890 E at m = 3). A
+// bond-based solid of this material would take only its bulk modulus, E = 3K/2 = 90 GPa in the
+// continuum (a bar 12 % too fast).
+// Measured: +19.1 % and +9.2 % against c_m at dx = 1 and 0.5 mm, observed order 1.06, extrapolated
+// -0.75 %. The error is again the bar's surface layer, first order in dx at fixed m, but of the
+// other sign than the bond-based bar's: a point near a face has a smaller weighted volume m_p, and
+// the deviatoric stiffness 15 mu / m_p of its bonds grows as m_p falls. The bounds are the
+// bond-based test's: the order within 0.7-1.5, the extrapolated speed within 2 % of c_m (the
+// unresolved second-order dispersion term) and within 10 % of c0 (the lattice's floor,
+// sqrt(E_100/E) - 1 = -5.7 %, plus margin).
+TEST(PdLpsVerification, ThinBarWaveSpeedAtPoissonRatioPointThree) {
+  const double K = pdv::kE / (3 * (1 - 2 * kNuLps)), mu = pdv::kE / (2 * (1 + kNuLps));
+  const double qp = lattice_qprime();
+  const double e100 = 9 * K * qp * mu / (3 * K + qp * mu);
+  const pdv::BarGeometry g;
+  const double c0 = std::sqrt(pdv::kE / pdv::kRho);
+  const double cm = std::sqrt(e100 / pdv::kRho) * pdv::love_factor(g, kNuLps);
+  std::printf("nu = 0.3: c0 = %.1f m/s; LPS lattice bar speed c_m = %.1f m/s (E_100 / E = %.4f, Q' = %.4f)\n", c0,
+              cm, e100 / pdv::kE, qp);
+  std::printf("| dx (mm) | points | steps | speed (m/s) | error vs c_m | error vs c0 |\n");
+  std::vector<pdv::WaveResult> r;
+  for (double dx : {1e-3, 0.5e-3}) {
+    r.push_back(pdv::measure_wave(dx, g, "formulation: lps", kNuLps));
+    const auto& w = r.back();
+    std::printf("| %.3f | %ld | %ld | %.1f | %+.2f %% | %+.2f %% |\n", w.dx * 1e3, w.points, w.steps, w.speed,
+                100 * (w.speed / cm - 1), 100 * (w.speed / c0 - 1));
+  }
+  const double e0 = std::abs(r[0].speed / cm - 1), e1 = std::abs(r[1].speed / cm - 1);
+  const double p = observed_order(e0, e1);
+  const double c_ext = 2.0 * r[1].speed - r[0].speed;
+  report("pd_lps_wave_speed_dx1mm", r[0].speed);
+  report("pd_lps_wave_speed_dx0.5mm", r[1].speed);
+  report("pd_lps_wave_order_vs_lattice", p);
+  std::printf("observed order %.2f; extrapolated speed %.1f m/s = c_m %+.2f %% = c0 %+.2f %%\n", p, c_ext,
+              100 * (c_ext / cm - 1), 100 * (c_ext / c0 - 1));
+  EXPECT_LT(e1, e0);
+  EXPECT_GT(p, 0.7);
+  EXPECT_LT(p, 1.5);
+  EXPECT_NEAR(c_ext / cm, 1.0, 0.02);
+  EXPECT_LT(std::abs(c_ext / c0 - 1), 0.10);
+}
+
+// Slow separation of the pre-cracked 24 mm cube (pd_support.hpp: the halves opened as rigid bodies
+// through every critical opening of the lattice), LPS with the lattice calibration, G0 = 8 J/m^2:
+// the dissipated energy per unit area of the ligament against G0. The critical stretch
+// (lps_constants.hpp) takes each crossing bond's deviatoric energy at zero dilatation; it leaves out
+// the dilatation of the points beside the opening crack and the coupling of the bonds through it.
+// Measured 0.985 G0. Bound 5 %: three times that, and tight enough to reject the bond-based
+// constants' error on this lattice (13 %, test_pd_wave_and_fracture.cpp).
+TEST(PdLpsVerification, SlowSeparationReleasesTheFractureEnergy) {
+  const double g0 = 8.0;
+  const pdv::FractureResult r =
+      pdv::measure_fracture(1e-3, 24e-3, 12e-3, g0, true, 0.0, 0.0, "lattice", "formulation: lps");
+  std::printf("LPS slow separation: %ld of %ld crossing bonds broken, %ld off the plane; G_measured / G0 = %.4f\n",
+              r.broken_crossing, r.crossing, r.broken_off, r.g_measured / g0);
+  report("pd_lps_release_slow_G_over_G0", r.g_measured / g0);
+  EXPECT_EQ(r.broken_crossing, r.crossing);
+  EXPECT_EQ(r.broken_off, 0);  // rigid halves: no other bond is stretched
+  EXPECT_NEAR(r.g_measured / g0, 1.0, 0.05);
+}
