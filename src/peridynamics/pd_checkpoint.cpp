@@ -26,18 +26,20 @@ void PdSolver::save_state(StateArchive& a) const {
     for (Index l : own) out.push_back(v[l]);
     return gathered(std::move(out));
   };
-  std::vector<double> row_length, broken, plastic, x_build;
+  std::vector<double> row_length, broken, plastic, deviatoric, x_build;
   for (Index l : own) {
     row_length.push_back(static_cast<double>(bonds_.offset[l + 1] - bonds_.offset[l]));
     for (Index k = bonds_.offset[l]; k < bonds_.offset[l + 1]; ++k) {
       broken.push_back(bonds_.broken[k]);
       if (!sp_.empty()) plastic.push_back(sp_[k]);
+      if (!lps_td_.empty()) deviatoric.push_back(lps_td_[k]);
     }
     if (contacts_built) x_build.insert(x_build.end(), contact_.x_build[l].v, contact_.x_build[l].v + 3);
   }
   row_length = gathered(std::move(row_length));
   broken = gathered(std::move(broken));
   plastic = gathered(std::move(plastic));
+  deviatoric = gathered(std::move(deviatoric));
   x_build = gathered(std::move(x_build));
   const std::vector<double> s0 = per_point(s0_), dissipated = per_point(dissipated_),
                             contact_energy = per_point(contact_energy_), stiffness = per_point(stiff_contact_);
@@ -80,6 +82,9 @@ void PdSolver::save_state(StateArchive& a) const {
   a.put("pd.row_length", std::vector<std::int64_t>(row_length.begin(), row_length.end()));
   a.put("pd.bond_broken", std::vector<std::int64_t>(broken.begin(), broken.end()));
   a.put("pd.plastic_stretch", plastic);
+  // The state-based plasticity's deviatoric force state of the last evaluation (its plastic work
+  // of the next step, lps_pass.hpp).
+  if (!lps_td_.empty()) a.put("pd.lps_deviatoric_force", deviatoric);
   a.put("pd.critical_stretch", s0);
   a.put("pd.dissipated", dissipated);
   a.put("pd.contact_energy", contact_energy);
@@ -122,6 +127,8 @@ void PdSolver::load_state(const StateArchive& a) {
   for (std::size_t j = 0; j < m; ++j) row_start[j + 1] = row_start[j] + static_cast<std::size_t>(length[j]);
   const auto& broken = a.ints("pd.bond_broken", row_start[m]);
   const auto& plastic = a.reals("pd.plastic_stretch", sp_.empty() ? 0 : row_start[m]);
+  static const std::vector<double> kNoDeviatoric;
+  const auto& deviatoric = lps_td_.empty() ? kNoDeviatoric : a.reals("pd.lps_deviatoric_force", row_start[m]);
   const auto& s0 = a.reals("pd.critical_stretch", m);
   const auto& dissipated = a.reals("pd.dissipated", m);
   const auto& contact_energy = a.reals("pd.contact_energy", m);
@@ -159,6 +166,7 @@ void PdSolver::load_state(const StateArchive& a) {
     for (Index k = 0; k < len; ++k) {
       bonds_.broken[k0 + k] = static_cast<std::uint8_t>(broken[row_start[j] + k]);
       if (!sp_.empty()) sp_[k0 + k] = plastic[row_start[j] + k];
+      if (!lps_td_.empty()) lps_td_[k0 + k] = deviatoric[row_start[j] + k];
     }
     s0_[l] = s0[j];
     dissipated_[l] = dissipated[j];
@@ -182,7 +190,8 @@ void PdSolver::load_state(const StateArchive& a) {
     build_renewed_gas_family();
     gas_renewals_ = static_cast<long>(a.integer("pd.gas.renewals"));
   }
-  // A ghost's copy of a bond is its own end's (broken flags and plastic stretches are kept equal).
+  // A ghost's copy of a bond is its own end's (broken flags and micro-plastic stretches are kept
+  // equal; the state-based plasticity, whose ends differ, runs on one rank).
   for (Index l : local_.own)
     for (Index k = bonds_.offset[l]; k < bonds_.offset[l + 1]; ++k) {
       const Index q = bonds_.other[k];

@@ -67,6 +67,11 @@ void PdSolver::build_lps_weighted_volumes() {
   lps_m_.assign(static_cast<size_t>(local_.size()), 0.0);
   pd::lps_weighted_volume(a, 0, local_.bond_local, lps_m_.data());
   halo_.update_bond_values(comm_, local_, lps_m_);  // a ghost's row is partial: its m is its owner's
+  pd::LpsPassArgs b = a;
+  b.m = lps_m_.data();
+  b.shear = lps_shear_.data();
+  lps_alpha_.assign(static_cast<size_t>(local_.size()), 0.0);
+  pd::lps_deviatoric_stiffness(b, 0, local_.size(), lps_alpha_.data());
 }
 
 void PdSolver::lps_pass() {
@@ -76,11 +81,15 @@ void PdSolver::lps_pass() {
   lps_breaks_.assign(static_cast<size_t>(nl), 0.0);
   lps_coef_.assign(static_cast<size_t>(nl), 0.0);
   lps_coef_old_.assign(static_cast<size_t>(nl), 0.0);
+  lps_s_.assign(static_cast<size_t>(nl), 0.0);
+  lps_s_old_.assign(static_cast<size_t>(nl), 0.0);
   lps_m_.resize(static_cast<size_t>(nl), 0.0);  // contact ghosts (appended after the bond points) have no bonds
+  lps_alpha_.resize(static_cast<size_t>(nl), 0.0);
   pd::LpsPassArgs a = lps_args(local_, bonds_, x_prev_, inv_len0_, mirror_);
   a.bulk = lps_bulk_.data();
   a.shear = lps_shear_.data();
   a.m = lps_m_.data();
+  a.alpha_point = lps_alpha_.data();
   a.s0 = s0_.data();
   a.alpha = params_.stretch_alpha;
   a.broken = bonds_.broken.data();
@@ -89,10 +98,18 @@ void PdSolver::lps_pass() {
   a.nmat = nmat_;
   a.cs_over_c = 15.0 / delta_;
   a.range = 1.35 * dx_;
+  a.plastic = sp_.empty() ? nullptr : sp_.data();
+  if (a.plastic) lps_length_.resize(bonds_.other.size());
+  a.length = a.plastic ? lps_length_.data() : nullptr;
+  if (!sp_.empty()) lps_td_.resize(bonds_.other.size(), 0.0);  // the reference state: t^d = 0
+  a.td_prev = lps_td_.empty() ? nullptr : lps_td_.data();
+  a.yield_sq = params_.yield_stress ? *params_.yield_stress * *params_.yield_stress : 0.0;
   a.theta = lps_theta_.data();
   a.theta_old = lps_theta_old_.data();
   a.coef = lps_coef_.data();
   a.coef_old = lps_coef_old_.data();
+  a.s_elastic = lps_s_.data();
+  a.s_elastic_old = lps_s_old_.data();
   a.breaks = lps_breaks_.data();
   Acc& A = acc_;
   a.f = A.f[0].v;
@@ -104,10 +121,12 @@ void PdSolver::lps_pass() {
   a.k_contact = A.k_contact.data();
   const Index* own = local_.own.data();
   for_each(0, n, [&](Index i) { pd::lps_dilatation(a, own[i]); });
+  if (a.plastic) for_each(0, n, [&](Index i) { pd::lps_return(a, own[i]); });
   halo_.update_bond_values(comm_, local_, lps_coef_);  // a ghost's B needs its whole row: its owner's
   bool any_break = false;
   for (Index i = 0; i < n && !any_break; ++i) any_break = lps_breaks_[own[i]] != 0.0;
   any_break = comm_.any(any_break);
+  a.any_break = any_break;
   if (any_break) {
     halo_.update_bond_values(comm_, local_, lps_coef_old_);
     halo_.update_bond_values(comm_, local_, lps_breaks_);

@@ -79,12 +79,13 @@ void check_horizon(const Scenario& sc, double delta, const std::string& key) {
 }
 
 /// What the state-based solid (lps_pass.hpp) does not take: its 2D forms (Le, Silling & Bobaru 2014)
-/// are not built, and the keys below are defined for bonds alone.
+/// are not built, and the keys below are defined for bonds alone (its yield_stress is Mitchell's
+/// plasticity, lps_pass.hpp).
 void check_lps(const Scenario& sc, const PdParams& p) {
   const std::string why = " is defined for bond-based bonds only; formulation: lps is the state-based solid";
   if (sc.simulation.dimension != Dimension::ThreeD)
     pd_section_error(sc, "formulation", "formulation: lps runs in 3D only so far (dimension: 3d)");
-  if (p.yield_stress) pd_section_error(sc, "yield_stress", "yield_stress (micro-plastic bonds)" + why);
+  if (p.bond_law_fracture_work) pd_section_error(sc, "fracture_work", "fracture_work: bond_law" + why);
   if (p.surface_correction) pd_section_error(sc, "surface_correction", "surface_correction" + why);
   if (p.lammps_break) pd_section_error(sc, "break_rule", "break_rule: lammps" + why);
   if (p.contact_all_pairs) pd_section_error(sc, "contact_pairs", "contact_pairs: all" + why);
@@ -141,7 +142,8 @@ std::vector<ParamSpec> pd_params() {
                   nan, 0.0, 1.0e3, true};
   ParamSpec yield{"yield_stress", "Pa",
                   "micro-plastic bonds: uniaxial yield stress (bond yield stretch s_y = yield_stress / E_PD); "
-                  "absent: micro-elastic bonds",
+                  "with formulation lps, the von Mises yield stress of the state-based plasticity (Mitchell 2011); "
+                  "absent: elastic",
                   false, nan, 0.0, kInf, true};
   const ParamSpec cal = word_param(
       "calibration",

@@ -31,6 +31,13 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// position and inverse length (the micro-plastic stretch adds 8 B when present).
 constexpr double kSolverBytesPerBond = pd::BondFamily::kBytesPerBond + sizeof(std::int32_t) + sizeof(double);
 
+/// Storage per bond end with the deck's options: a plastic stretch or extension per end, and for
+/// the state-based plasticity the bond's length and deviatoric force state of the last evaluation.
+double solver_bytes_per_bond(const PdParams& p) {
+  const double plastic = p.yield_stress ? sizeof(double) : 0.0;
+  return kSolverBytesPerBond + plastic + (p.lps ? 2.0 * plastic : 0.0);
+}
+
 }  // namespace
 
 PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials, Communicator comm)
@@ -38,9 +45,9 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
       params_(read_pd_params(sc)),
       comm_(comm),
       // Every body on the lattice of spacing grid.cell_size (one point per cell); each point holds
-      // its family's bond ends (m = 3 in 3D: 122 of kSolverBytesPerBond).
+      // its family's bond ends (m = 3 in 3D: 122 of solver_bytes_per_bond).
       pts_(sc, std::move(materials),
-           SeedLattice{sc.grid, 1, params_.full_family_size(sc) * kSolverBytesPerBond}, 0.0,
+           SeedLattice{sc.grid, 1, params_.full_family_size(sc) * solver_bytes_per_bond(params_)}, 0.0,
            fmt::format("families of {:g} bond ends per point, set by peridynamics.m or horizon",
                        params_.full_family_size(sc)),
            comm),
@@ -73,7 +80,13 @@ PdSolver::PdSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
                      "renewing the gas family runs on one MPI rank only so far (" + std::to_string(comm_.size()) +
                          " ranks were started; set it to 0 or run on one rank)");
   init_critical_stretch();
-  if (std::isfinite(yield_stretch_)) sp_.assign(bonds_.other.size(), 0.0);
+  // Per bond end: the micro-plastic bond's stretch, or the LPS plastic extension of that end.
+  if (std::isfinite(yield_stretch_) || (params_.lps && params_.yield_stress)) sp_.assign(bonds_.other.size(), 0.0);
+  if (params_.lps && params_.yield_stress && comm_.distributed())
+    pd_section_error(sc, "yield_stress",
+                     "the state-based plasticity runs on one MPI rank so far (a bond's force needs the plastic "
+                     "extension at its other end, which another rank's return computes; " +
+                         std::to_string(comm_.size()) + " ranks were started)");
   dissipated_.assign(static_cast<size_t>(nl), 0.0);
   contact_energy_.assign(static_cast<size_t>(nl), 0.0);
   contact_.skin = params_.contact_skin * dx_;
@@ -648,7 +661,7 @@ std::vector<std::pair<std::string, double>> PdSolver::result_values() const {
           // Cost figures (docs/performance.md): the bond families with their solver arrays, the
           // contact list rebuilds, and the storage per bond end.
           {"contact_list_builds", static_cast<double>(contact_.builds)},
-          {"bytes_per_bond_end", kSolverBytesPerBond + (sp_.empty() ? 0.0 : sizeof(double))},
+          {"bytes_per_bond_end", solver_bytes_per_bond(params_)},
           {"gas_bonds", static_cast<double>(gas_bonds) / 2.0},
           {"vented_gas_points", static_cast<double>(comm_.sum(static_cast<std::int64_t>(vented_count_)))},
           {"gas_rate_limited_steps", static_cast<double>(comm_.sum(static_cast<std::int64_t>(gas_rate_limited_)))},
@@ -691,7 +704,8 @@ std::vector<std::vector<double>> PdSolver::fragment_rows(const std::vector<pd::F
 std::string PdSolver::derived_constants() const {
   std::string s = "# Derived by the peridynamics solver (not read back):\n";
   s += fmt::format("#   lattice_spacing: {:.10g}   # m (grid.cell_size)\n#   horizon: {:.10g}   # m\n", dx_, delta_);
-  if (!sp_.empty()) s += fmt::format("#   yield_stretch: {:.10g}   # micro-plastic bonds\n", yield_stretch_);
+  if (!sp_.empty() && !params_.lps)
+    s += fmt::format("#   yield_stretch: {:.10g}   # micro-plastic bonds\n", yield_stretch_);
   const auto& mats = pts_.materials();
   if (params_.lps) {
     // The micromodulus below is the equivalent PMB bond's (stable step, contact springs: lps_constants.hpp).

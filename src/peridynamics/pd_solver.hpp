@@ -211,7 +211,8 @@ class PdSolver final : public Solver {
                                    ///< (gas-solid: the solid's), N/m^6
   double damping_ = 0.0;     ///< 1/s: a - c v (dynamic relaxation, stages)
   double yield_stretch_ = std::numeric_limits<double>::infinity();  ///< s_y of micro-plastic bonds
-  std::vector<double> sp_;             ///< plastic stretch per bond (each end its own copy; empty: elastic)
+  std::vector<double> sp_;             ///< per bond end: the micro-plastic stretch (both ends equal) or the
+                                       ///< LPS plastic extension of that end, m (empty: elastic)
   std::vector<double> surface_factor_; ///< per point m1/m1_p (surface_correction: energy; empty: off)
   std::vector<Index> upper_;           ///< first bond of each row whose other end has a higher index
   std::vector<std::int32_t> mirror_;   ///< each bond's position in its other end's row
@@ -235,9 +236,12 @@ class PdSolver final : public Solver {
   Acc acc_;
   std::vector<double> lps_bulk_, lps_shear_;  ///< per material: K and mu of the LPS solid, Pa
   std::vector<double> lps_m_;                 ///< per local point: weighted volume, m^5
-  /// Per local point (lps_pass.hpp): theta, B and whether a bond breaks, with this evaluation's
-  /// failures and before them.
-  std::vector<double> lps_theta_, lps_theta_old_, lps_coef_, lps_coef_old_, lps_breaks_;
+  std::vector<double> lps_alpha_;             ///< per local point: 15 mu / m, Pa/m^5
+  /// Per local point (lps_pass.hpp): theta, B, the elastic part of S and whether a bond breaks,
+  /// with this evaluation's failures and before them.
+  std::vector<double> lps_theta_, lps_theta_old_, lps_coef_, lps_coef_old_, lps_s_, lps_s_old_, lps_breaks_;
+  std::vector<double> lps_length_;  ///< per bond end, with plasticity: |y| of the last evaluation, m
+  std::vector<double> lps_td_;      ///< per bond end, with plasticity: t^d after the last evaluation
   double bond_build_seconds_ = 0.0;  ///< wall time of the bond families and their solver arrays, s
   std::vector<double> vol_all_;        ///< sum_j beta V_j of each point's family (damage denominator), m^3
   std::vector<double> stiff_bond_;     ///< sum_j V_j c/|xi| of each point's bonds (reference), N/m^4
