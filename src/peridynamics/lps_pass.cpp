@@ -1,4 +1,4 @@
-// The three passes of the linear peridynamic solid (model, sources, the plasticity and the
+// The passes of the linear peridynamic solid (model, sources, the plasticity and the
 // dissipation at a break in lps_pass.hpp).
 #include "peridynamics/lps_pass.hpp"
 
