@@ -47,7 +47,9 @@ test-sanitize: deps
 	    echo "test-sanitize: sanitizer reports in $(SAN_LOG):"; cat $(SAN_LOG)/*; exit 1; fi; \
 	  exit $$status
 
+# The benchmark executables (bench/*.cpp) are built here, not by `build`: no test runs them.
 bench: build
+	@cmake --build $(BUILD_DIR) --target benches -j $(JOBS)
 	@./$(BUILD_DIR)/bench/mpm_block_impact_bench
 
 # Installs build/'s binary (tuned to this machine's CPU), the presets, the tools and the examples

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "peridynamics/bond_family.hpp"
+#include "support/lps_lattice.hpp"
 #include "verification/pd_support.hpp"
 #include "verification/verification_support.hpp"
 
@@ -19,31 +19,15 @@ namespace {
 
 constexpr double kNuLps = 0.3;
 
-/// The LPS lattice at m = 3 (partial volumes) is a cubic solid: bulk modulus K exactly,
-/// (C11 - C12)/2 = Q' mu with Q' = (15/4) sum |xi|^2 (n_x^2 - n_y^2)^2 beta V / m
-/// (tests/unit/peridynamics/test_lps.cpp), so a bar along [100] has
-/// E_100 = (C11 - C12)(C11 + 2 C12)/(C11 + C12) = 9 K Q' mu / (3 K + Q' mu).
-double lattice_qprime() {
-  double m = 0.0, t = 0.0;
-  for (int i = -4; i <= 4; ++i)
-    for (int j = -4; j <= 4; ++j)
-      for (int k = -4; k <= 4; ++k) {
-        const double r2 = i * i + j * j + k * k, r = std::sqrt(r2);
-        if (r2 == 0.0 || r > 3.0 * (1 + 1e-9)) continue;
-        const double b = pd::partial_volume_factor(r, 3.0, 1.0);
-        m += r2 * b;
-        t += r2 * std::pow((i * i - j * j) / r2, 2) * b;
-      }
-  return 3.75 * t / m;
-}
-
 }  // namespace
 
 // The thin bar of the bond-based test (4 x 4 x 96 mm, Gaussian pulse, energy-centroid arrivals), in
 // a material of E = 72 GPa and nu = 0.3. Reference: the thin-bar speed of the LPS lattice,
-// sqrt(E_100 / rho) times the Rayleigh-Love factor at nu = 0.3 (E_100 = 0.890 E at m = 3). A
-// bond-based solid of this material would take only its bulk modulus, E = 3K/2 = 90 GPa in the
-// continuum (a bar 12 % too fast).
+// sqrt(E_100 / rho) times the Rayleigh-Love factor at nu = 0.3. The LPS lattice at m = 3 (partial
+// volumes) is a cubic solid with the bulk modulus K exactly and (C11 - C12)/2 = Q' mu
+// (support/lps_lattice.hpp), so along [100] E_100 = (C11 - C12)(C11 + 2 C12)/(C11 + C12) =
+// 9 K Q' mu / (3 K + Q' mu) = 0.890 E. A bond-based solid of this material would take only its
+// bulk modulus, E = 3K/2 = 90 GPa in the continuum (a bar 12 % too fast).
 // Measured: +19.1 % and +9.2 % against c_m at dx = 1 and 0.5 mm, observed order 1.06, extrapolated
 // -0.75 %. The error is again the bar's surface layer, first order in dx at fixed m, but of the
 // other sign than the bond-based bar's: a point near a face has a smaller weighted volume m_p, and
@@ -53,7 +37,7 @@ double lattice_qprime() {
 // sqrt(E_100/E) - 1 = -5.7 %, plus margin).
 TEST(PdLpsVerification, ThinBarWaveSpeedAtPoissonRatioPointThree) {
   const double K = pdv::kE / (3 * (1 - 2 * kNuLps)), mu = pdv::kE / (2 * (1 + kNuLps));
-  const double qp = lattice_qprime();
+  const double qp = test::lps_lattice_sums().qprime;
   const double e100 = 9 * K * qp * mu / (3 * K + qp * mu);
   const pdv::BarGeometry g;
   const double c0 = std::sqrt(pdv::kE / pdv::kRho);

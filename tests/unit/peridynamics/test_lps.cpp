@@ -18,6 +18,7 @@
 #include "peridynamics/lps_constants.hpp"
 #include "peridynamics/pd_solver.hpp"
 #include "run/simulation.hpp"
+#include "support/lps_lattice.hpp"
 
 using namespace ballista;
 
@@ -60,25 +61,6 @@ double energy_density(const FieldStore& pts, Index p) {
   return pts.real("internal_energy")[p] / pts.real("volume0")[p];
 }
 
-/// Lattice sums of an interior point at m = 3 with the solver's partial volumes, by enumeration:
-/// m = sum |xi|^2 beta V and the shear sum sum |xi|^2 n_x^2 n_y^2 beta V (units dx^5).
-struct Sums {
-  double m = 0.0, shear = 0.0;
-};
-Sums lattice_sums() {
-  Sums s;
-  for (int i = -4; i <= 4; ++i)
-    for (int j = -4; j <= 4; ++j)
-      for (int k = -4; k <= 4; ++k) {
-        const double r2 = i * i + j * j + k * k, r = std::sqrt(r2);
-        if (r2 == 0.0 || r > 3.0 * (1 + 1e-9)) continue;
-        const double b = pd::partial_volume_factor(r, 3.0, 1.0);
-        s.m += r2 * b;
-        s.shear += r2 * (i * i / r2) * (j * j / r2) * b;
-      }
-  return s;
-}
-
 }  // namespace
 
 // The continuum moments (m = int |xi|^2 dV = 4 pi delta^5/5 and m3 = int_{xi_z > 0} xi_z |xi|^2 dV =
@@ -94,7 +76,7 @@ TEST(LpsConstants, MomentsCriticalStretchAndTheEquivalentBond) {
   EXPECT_EQ(pd::lps_critical_stretch(1e-3, std::nullopt, kMu, c), 1e-3);
   EXPECT_TRUE(std::isinf(pd::lps_critical_stretch(std::nullopt, std::nullopt, kMu, c)));
   const pd::LpsMoments l = pd::lps_moments(true, d, kDx, true);
-  EXPECT_NEAR(l.m, lattice_sums().m * std::pow(kDx, 5), 1e-6 * l.m);  // partial volumes are floats there
+  EXPECT_NEAR(l.m, test::lps_lattice_sums().m * std::pow(kDx, 5), 1e-6 * l.m);  // partial volumes are floats there
   std::printf("lattice m / continuum m at m = 3: %.4f; m3: %.4f\n", l.m / c.m, l.m3 / c.m3);
   // The PMB bond with the same P-wave modulus: K itself at nu = 1/4 (mu = 3K/5).
   EXPECT_NEAR(pd::lps_equivalent_bulk(1.0, 0.6), 1.0, 1e-15);
@@ -124,7 +106,7 @@ TEST(Lps, UniformDilatationStoresTheBulkEnergyAtEveryPoint) {
   // equilibrium: its 122 bond forces, each ~ 2 (3 K theta / m) delta V^2, cancel to round-off.
   const Index c = point_at(pts, Vec3{{6.5e-3, 6.5e-3, 6.5e-3}});
   ASSERT_GE(c, 0);
-  const double V = kDx * kDx * kDx, m = lattice_sums().m * std::pow(kDx, 5);
+  const double V = kDx * kDx * kDx, m = test::lps_lattice_sums().m * std::pow(kDx, 5);
   const double bond_force = 2.0 * 3.0 * kK * (3.0 * eps) / m * 3.0 * kDx * V * V;
   EXPECT_LT(norm(pts.view<Vec3>("pd_accel")[c]) * kRho * V, 1e-12 * 122 * bond_force);
 }
@@ -141,16 +123,8 @@ TEST(Lps, UniformDilatationStoresTheBulkEnergyAtEveryPoint) {
 // The solver against the sums to 1e-5 (the O(gamma) terms at gamma = 2e-6).
 TEST(Lps, UniformShearStoresTheShearEnergyOfTheLattice) {
   const double gamma = 2e-6;
-  Sums sums = lattice_sums();
-  double tp = 0.0;  // sum |xi|^2 (n_x^2 - n_y^2)^2 beta (units dx^5)
-  for (int i = -4; i <= 4; ++i)
-    for (int j = -4; j <= 4; ++j)
-      for (int k = -4; k <= 4; ++k) {
-        const double r2 = i * i + j * j + k * k, r = std::sqrt(r2);
-        if (r2 == 0.0 || r > 3.0 * (1 + 1e-9)) continue;
-        tp += r2 * std::pow((i * i - j * j) / r2, 2) * pd::partial_volume_factor(r, 3.0, 1.0);
-      }
-  const double q44 = 15.0 * sums.shear / sums.m, qp = 3.75 * tp / sums.m;
+  const test::LpsLatticeSums sums = test::lps_lattice_sums();
+  const double q44 = sums.q44, qp = sums.qprime;
   std::printf("lattice shear quadratures at m = 3: Q44 = %.6f, Q' = %.6f, Voigt average %.15f\n", q44, qp,
               (3 * q44 + 2 * qp) / 5);
   EXPECT_NEAR((3 * q44 + 2 * qp) / 5, 1.0, 1e-12);
@@ -182,8 +156,7 @@ TEST(Lps, UniformShearStoresTheShearEnergyOfTheLattice) {
 // gamma small (3 gamma_y = 2e-5), so the geometric non-linearity (O(gamma)) stays below 1e-4.
 TEST(Lps, PlasticShearFlowsAtTheYieldStressOfTheLattice) {
   const double sy = 1e6, k = sy / std::sqrt(3.0);
-  const Sums sums = lattice_sums();
-  const double q44 = 15.0 * sums.shear / sums.m;
+  const double q44 = test::lps_lattice_sums().q44;
   const double gamma_y = k / (kMu * std::sqrt(q44)), tau_y = k * std::sqrt(q44);
   const auto s = solver_for(cube_deck(10, "m: 3, yield_stress: 1e6"));
   FieldStore& pts = s->points();
