@@ -36,21 +36,10 @@ double lattice_family_size(double m, int dim) {
 
 LatticeMoments lattice_moments(double delta, double dx, bool partial, int dim) {
   LatticeMoments m;
-  const int M = static_cast<int>(std::ceil(delta / dx)) + 1;
-  const int kr = dim == 3 ? M : 0;
-  const double V = dim == 3 ? dx * dx * dx : dx * dx;
-  const double reach2 = delta * delta * (1.0 + 2e-9);  // the tie rule of build_bond_family
-  for (int i = -M; i <= M; ++i)
-    for (int j = -M; j <= M; ++j)
-      for (int k = -kr; k <= kr; ++k) {
-        const double x = i * dx, y = j * dx, z = k * dx;
-        const double r2 = x * x + y * y + z * z;
-        if (r2 == 0.0 || r2 > reach2) continue;
-        const double r = std::sqrt(r2);
-        const double b = partial_volume_factor(r, delta, partial ? dx : 0.0);
-        m.m1 += r * b * V;
-        if (x > 0.0) m.m2 += r * x * b * V;
-      }
+  for_each_lattice_bond(delta, dx, partial, dim, [&](double x, double r, double b, double V) {
+    m.m1 += r * b * V;
+    if (x > 0.0) m.m2 += r * x * b * V;
+  });
   return m;
 }
 

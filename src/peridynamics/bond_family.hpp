@@ -5,6 +5,7 @@
 // tested, never O(N^2)). Stored in compressed rows, each bond in the rows of both of its ends, so
 // that the force loop writes only its own point (no atomics, results independent of the thread
 // count); a bond is broken for both ends because the breaking criterion is symmetric.
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -32,6 +33,28 @@ struct LatticeMoments {
   double m2 = 0.0;  ///< m^5 (3D)
 };
 LatticeMoments lattice_moments(double delta, double dx, bool partial, int dim);
+
+/// Calls f(x, r, b, V) for every bond of an interior point's family on the lattice of spacing dx
+/// (cubic in 3D, square in 2D), with build_bond_family's tie rule at the horizon and its partial
+/// volumes: x the bond's component along the first lattice axis, r its length, b its partial-volume
+/// factor, V the lattice cell's volume. The sums over it are the interior family's moments
+/// (lattice_moments; the state-based solid's, lps_constants.hpp).
+template <class F>
+void for_each_lattice_bond(double delta, double dx, bool partial, int dim, F&& f) {
+  const int M = static_cast<int>(std::ceil(delta / dx)) + 1;
+  const int kr = dim == 3 ? M : 0;
+  const double V = dim == 3 ? dx * dx * dx : dx * dx;
+  const double reach2 = delta * delta * (1.0 + 2e-9);  // the tie rule of build_bond_family
+  for (int i = -M; i <= M; ++i)
+    for (int j = -M; j <= M; ++j)
+      for (int k = -kr; k <= kr; ++k) {
+        const double x = i * dx, y = j * dx, z = k * dx;
+        const double r2 = x * x + y * y + z * z;
+        if (r2 == 0.0 || r2 > reach2) continue;
+        const double r = std::sqrt(r2);
+        f(x, r, partial_volume_factor(r, delta, partial ? dx : 0.0), V);
+      }
+}
 
 /// Bond ends of an interior point's family on the cubic (dim 3) or square (dim 2) lattice with
 /// horizon m spacings: the lattice offsets 0 < |xi| <= m, ties at the horizon included as

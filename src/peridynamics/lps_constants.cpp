@@ -16,20 +16,10 @@ LpsMoments lps_moments(bool lattice, double delta, double dx, bool partial) {
     m.m3 = std::numbers::pi * std::pow(delta, 6) / 6.0;
     return m;
   }
-  // The lattice family of build_bond_family (its tie rule and partial volumes), as lattice_moments.
-  const int M = static_cast<int>(std::ceil(delta / dx)) + 1;
-  const double V = dx * dx * dx;
-  const double reach2 = delta * delta * (1.0 + 2e-9);
-  for (int i = -M; i <= M; ++i)
-    for (int j = -M; j <= M; ++j)
-      for (int k = -M; k <= M; ++k) {
-        const double x = i * dx, y = j * dx, z = k * dx;
-        const double r2 = x * x + y * y + z * z;
-        if (r2 == 0.0 || r2 > reach2) continue;
-        const double b = partial_volume_factor(std::sqrt(r2), delta, partial ? dx : 0.0);
-        m.m += r2 * b * V;
-        if (x > 0.0) m.m3 += x * r2 * b * V;
-      }
+  for_each_lattice_bond(delta, dx, partial, 3, [&](double x, double r, double b, double V) {
+    m.m += r * r * b * V;
+    if (x > 0.0) m.m3 += x * r * r * b * V;
+  });
   return m;
 }
 

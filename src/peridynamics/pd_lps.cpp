@@ -1,7 +1,8 @@
 // The solver's side of the linear peridynamic solid (formulation: lps; the model and its passes in
 // lps_pass.hpp, its constants in lps_constants.hpp): the constants per material, the weighted
-// volumes, and one evaluation of the forces with the ghosts' dilatations from their owners.
+// volumes, and one evaluation of the forces with the ghosts' force coefficients from their owners.
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
