@@ -79,7 +79,6 @@ void lps_dilatation(const LpsPassArgs& a, Index p) {
 
 void lps_return(const LpsPassArgs& a, Index p) {
   const double mp = a.m[p];
-  a.dissipated[p] = 0.0;
   if (!(mp > 0.0)) return;
   const double alpha = a.alpha_point[p];
   const Index k0 = a.offset[p], k1 = a.offset[p + 1];

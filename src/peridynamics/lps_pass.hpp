@@ -100,7 +100,7 @@ struct LpsPassArgs {
   bool any_break;               ///< some bond of some rank breaks in this evaluation (set after pass 1)
   double* f;                    ///< force, 3 per point, N
   double* energy;               ///< stored energy W_i V_i, J
-  double* dissipated;           ///< this evaluation's dissipation (plastic flow, breaks), J
+  double* dissipated;           ///< this evaluation's dissipation (plastic flow, breaks), J; zero on entry
   double* vol_broken;           ///< sum of beta V over broken bonds, m^3
   double* smax;                 ///< max of -alpha s over intact bonds
   double* e_contact;            ///< contact-spring energy (each end its half), J

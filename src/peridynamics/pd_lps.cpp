@@ -77,15 +77,13 @@ void PdSolver::build_lps_weighted_volumes() {
 
 void PdSolver::lps_pass() {
   const Index n = points_.size(), nl = local_.size();
-  lps_theta_.assign(static_cast<size_t>(nl), 0.0);
-  lps_theta_old_.assign(static_cast<size_t>(nl), 0.0);
-  lps_breaks_.assign(static_cast<size_t>(nl), 0.0);
-  lps_coef_.assign(static_cast<size_t>(nl), 0.0);
-  lps_coef_old_.assign(static_cast<size_t>(nl), 0.0);
-  lps_s_.assign(static_cast<size_t>(nl), 0.0);
-  lps_s_old_.assign(static_cast<size_t>(nl), 0.0);
-  lps_m_.resize(static_cast<size_t>(nl), 0.0);  // contact ghosts (appended after the bond points) have no bonds
-  lps_alpha_.resize(static_cast<size_t>(nl), 0.0);
+  // Sized, not cleared: pass 1 writes every own point's values, and a ghost's are read only after
+  // its owner's have come (coef every evaluation; coef_old and breaks when a bond broke somewhere).
+  // Contact ghosts, appended after the bond points, have no bonds and are never read.
+  const auto nls = static_cast<size_t>(nl);
+  for (std::vector<double>* v : {&lps_theta_, &lps_theta_old_, &lps_breaks_, &lps_coef_, &lps_coef_old_, &lps_s_,
+                                 &lps_s_old_, &lps_m_, &lps_alpha_})
+    v->resize(nls, 0.0);
   pd::LpsPassArgs a = lps_args(local_, bonds_, x_prev_, inv_len0_, mirror_);
   a.bulk = lps_bulk_.data();
   a.shear = lps_shear_.data();

@@ -44,22 +44,8 @@ TEST(PdLpsVerification, ThinBarWaveSpeedAtPoissonRatioPointThree) {
   const double cm = std::sqrt(e100 / pdv::kRho) * pdv::love_factor(g, kNuLps);
   std::printf("nu = 0.3: c0 = %.1f m/s; LPS lattice bar speed c_m = %.1f m/s (E_100 / E = %.4f, Q' = %.4f)\n", c0,
               cm, e100 / pdv::kE, qp);
-  std::printf("| dx (mm) | points | steps | speed (m/s) | error vs c_m | error vs c0 |\n");
-  std::vector<pdv::WaveResult> r;
-  for (double dx : {1e-3, 0.5e-3}) {
-    r.push_back(pdv::measure_wave(dx, g, "formulation: lps", kNuLps));
-    const auto& w = r.back();
-    std::printf("| %.3f | %ld | %ld | %.1f | %+.2f %% | %+.2f %% |\n", w.dx * 1e3, w.points, w.steps, w.speed,
-                100 * (w.speed / cm - 1), 100 * (w.speed / c0 - 1));
-  }
-  const double e0 = std::abs(r[0].speed / cm - 1), e1 = std::abs(r[1].speed / cm - 1);
-  const double p = observed_order(e0, e1);
-  const double c_ext = 2.0 * r[1].speed - r[0].speed;
-  report("pd_lps_wave_speed_dx1mm", r[0].speed);
-  report("pd_lps_wave_speed_dx0.5mm", r[1].speed);
-  report("pd_lps_wave_order_vs_lattice", p);
-  std::printf("observed order %.2f; extrapolated speed %.1f m/s = c_m %+.2f %% = c0 %+.2f %%\n", p, c_ext,
-              100 * (c_ext / cm - 1), 100 * (c_ext / c0 - 1));
+  const pdv::WaveStudy st = pdv::wave_study(g, cm, c0, "pd_lps_wave", "formulation: lps", kNuLps);
+  const double e0 = st.error_coarse, e1 = st.error_fine, p = st.order, c_ext = st.extrapolated;
   EXPECT_LT(e1, e0);
   EXPECT_GT(p, 0.7);
   EXPECT_LT(p, 1.5);
