@@ -15,8 +15,7 @@ once it has written a checkpoint after the start, restarted on W ranks, and must
 to the uninterrupted run.
 --term W: the same with SIGTERM sent to mpirun (a batch system's notice): the ranks agree to stop,
 checkpoint the step they are in, exit with status 4 ("interrupted"; mpirun itself returns 1), and
-the restart must again
-end bitwise equal to the uninterrupted run.
+the restart must again end bitwise equal to the uninterrupted run.
 """
 import argparse, glob, json, os, shutil, signal, subprocess, sys, time
 
@@ -93,6 +92,71 @@ def kill_session(sid):
         except ProcessLookupError:
             pass
 
+def rank_pids(sid, name):
+    """The ranks of the job in session sid: its processes running the program called name."""
+    def comm(pid):
+        try:
+            return open(f"/proc/{pid}/comm").read().strip()
+        except OSError:
+            return ""
+    return [pid for pid in session_members(sid) if pid != sid and comm(pid) == name[:15]]
+
+
+def proc_status(pid):
+    """/proc/pid/status as a dict (empty once the process is gone)."""
+    try:
+        return dict(line.split(":", 1) for line in open(f"/proc/{pid}/status") if ":" in line)
+    except OSError:
+        return {}
+
+
+def stopped(pid):
+    status = proc_status(pid)
+    return not status or status["State"].strip().startswith("T")
+
+
+def sigterm_pending(pid):
+    """Whether SIGTERM waits at pid (or the process is gone)."""
+    status = proc_status(pid)
+    if not status:
+        return True
+    pending = int(status["SigPnd"], 16) | int(status["ShdPnd"], 16)
+    return bool(pending & (1 << (signal.SIGTERM - 1)))
+
+
+def freeze(pids):
+    """SIGSTOP to pids, returning once each one is stopped."""
+    for pid in pids:
+        try:
+            os.kill(pid, signal.SIGSTOP)
+        except ProcessLookupError:
+            pass
+    deadline = time.time() + 10
+    while time.time() < deadline and not all(stopped(pid) for pid in pids):
+        time.sleep(0.001)
+
+
+def term_frozen(p, name):
+    """SIGTERM to mpirun, as a batch system's notice, with the ranks frozen until it reaches them.
+    Open MPI 4.1's mpirun sends the ranks SIGCONT at once, SIGTERM odls_base_sigkill_timeout
+    seconds later and SIGKILL as long again after that: a rank left running would finish a short
+    deck in the meantime on a fast machine, and the test would depend on the machine's speed.
+    Frozen (SIGSTOP again after mpirun's SIGCONT), the ranks take no step until they hold the
+    SIGTERM; then they go on, agree and checkpoint as they would have at any step."""
+    ranks = rank_pids(p.pid, name)
+    freeze(ranks)
+    p.send_signal(signal.SIGTERM)
+    deadline = time.time() + 60
+    while time.time() < deadline and not all(sigterm_pending(pid) for pid in ranks):
+        freeze([pid for pid in ranks if not stopped(pid)])
+        time.sleep(0.001)
+    for pid in ranks:
+        try:
+            os.kill(pid, signal.SIGCONT)
+        except ProcessLookupError:
+            pass
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("ballista")
@@ -103,12 +167,8 @@ def main():
     ap.add_argument("--term", type=int, default=0)
     # Open MPI 4.1's mpirun, signalled, sends the ranks SIGTERM odls_base_sigkill_timeout seconds
     # later and SIGKILL as long again after that (default 1 s, measured): one second can be too
-    # short on a loaded machine for the ranks to agree, checkpoint and write summary.json; the
-    # deck must then still be running that long after its second checkpoint (docs/restart.md).
-    # The SIGTERM run must still be going a delay (and, on a loaded machine, the checkpoint polling)
-    # after its second checkpoint: --term-set lengthens it (and its own uninterrupted reference).
-    ap.add_argument("--term-set", action="append", default=[],
-                    help="key=value for the SIGTERM run and its reference only (e.g. a later end_time)")
+    # short on a loaded machine for the ranks to agree, checkpoint and write summary.json
+    # (docs/restart.md). The ranks are held stopped until the SIGTERM reaches them (term_frozen).
     ap.add_argument("--term-delay", type=int, default=0,
                     help="odls_base_sigkill_timeout for the SIGTERM run, s (0: Open MPI's default, 1 s)")
     ap.add_argument("--set", action="append", default=[])
@@ -122,14 +182,11 @@ def main():
     common = ["-q", "--no-plots", "--threads", "1"]
     refs = {}
 
-    term_sets = sum((["--set", s] for s in a.term_set), [])
-
-    def reference(w, extra=()):
-        key = (w, tuple(extra))
-        if key not in refs:
-            refs[key] = os.path.join(a.workdir, f"uninterrupted_{w}" + ("_term" if extra else ""))
-            run(launcher(w, a.ballista) + ["run", a.deck, "-o", refs[key]] + common + sets + list(extra))
-        return refs[key]
+    def reference(w):
+        if w not in refs:
+            refs[w] = os.path.join(a.workdir, f"uninterrupted_{w}")
+            run(launcher(w, a.ballista) + ["run", a.deck, "-o", refs[w]] + common + sets)
+        return refs[w]
 
     failures = []
     for pair in [p for p in a.pairs.split(",") if p]:
@@ -157,13 +214,12 @@ def main():
     for sig, w in ((signal.SIGKILL, a.kill), (signal.SIGTERM, a.term)):
         if not w:
             continue
-        extra = term_sets if sig == signal.SIGTERM else []
-        ref = reference(w, extra)
+        ref = reference(w)
         out = os.path.join(a.workdir, f"{sig.name}_{w}")
         env = dict(ENV)
         if sig == signal.SIGTERM and a.term_delay > 0:
             env["OMPI_MCA_odls_base_sigkill_timeout"] = str(a.term_delay)
-        p = subprocess.Popen(launcher(w, a.ballista) + ["run", a.deck, "-o", out] + common + sets + extra,
+        p = subprocess.Popen(launcher(w, a.ballista) + ["run", a.deck, "-o", out] + common + sets,
                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env, start_new_session=True)
         deadline = time.time() + 120
         while time.time() < deadline and p.poll() is None:
@@ -177,7 +233,7 @@ def main():
             if sig == signal.SIGKILL:
                 kill_session(p.pid)
             else:
-                p.send_signal(signal.SIGTERM)
+                term_frozen(p, os.path.basename(a.ballista))
         code = p.wait()
         if sig == signal.SIGKILL:
             # A rank still alive holds the results folder (io/run_folder.hpp): the restart waits
