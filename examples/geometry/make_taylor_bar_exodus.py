@@ -7,19 +7,19 @@ own lattice).
 
   /usr/bin/python3 examples/geometry/make_taylor_bar_exodus.py examples/geometry/taylor_bar.exo
 
-Exodus II is a netCDF file with named dimensions and variables (Schoof & Yarberry, "EXODUS II: A
-Finite Element Data Model", SAND92-2137, 1994, ch. 3 and its netCDF mapping); scipy's netCDF
-classic writer writes it, so no Exodus library is needed here. The 128-gon inscribed in the
+The file is written by exodus_writer.py (scipy's netCDF writer). The 128-gon inscribed in the
 circle has 0.9996 of its area, as the STL of taylor_bar_mpm_3d_surface.yaml.
 """
 import math
+import os
 import sys
 
 import numpy as np
-from scipy.io import netcdf_file
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from exodus_writer import write_exodus  # noqa: E402
 
 RADIUS, LENGTH, SIDES = 3.2, 32.4, 128  # mm
-LEN_STRING, LEN_LINE = 33, 81           # Exodus II: MAX_STR_LENGTH + 1, MAX_LINE_LENGTH + 1
 
 
 def mesh():
@@ -56,54 +56,15 @@ def volume(p, t):
     return np.einsum("ij,ij->i", b - a, np.cross(c - a, d - a)) / 6
 
 
-def chars(words, width):
-    out = np.zeros((len(words), width), dtype="S1")
-    for i, w in enumerate(words):
-        for j, ch in enumerate(w.encode()):
-            out[i, j] = bytes([ch])
-    return out
-
-
 def write(path, node_map=True):
-    """Writes the mesh to `path`; node_map=False leaves out the node number map (the reader's
-    workaround below is then what reads x: tests/python/test_mesh_bodies.py)."""
+    """Writes the mesh to `path`; node_map=False leaves out the node number map (Ballista's
+    reader then reads x by its workaround, exodus_writer.py: tests/python/test_mesh_bodies.py)."""
     p, tets, hexes = mesh()
     assert (volume(p, tets) > 0).all(), "a core tetrahedron is inverted"
     for split in ((0, 1, 2, 6), (0, 2, 3, 6), (0, 3, 7, 6), (0, 7, 4, 6), (0, 4, 5, 6), (0, 5, 1, 6)):
         assert (volume(p, hexes[:, split]) > 0).all(), "a skin hexahedron is inverted"
-    f = netcdf_file(path, "w", version=2)
-    f.api_version = np.float32(4.98)
-    f.version = np.float32(4.98)
-    f.floating_point_word_size = np.int32(8)
-    f.file_size = np.int32(1)
-    f.title = b"Taylor bar, radius 3.2 mm, length 32.4 mm (Ballista examples/geometry)"
-    dims = {"len_string": LEN_STRING, "len_line": LEN_LINE, "four": 4, "num_dim": 3, "num_nodes": len(p),
-            "num_elem": len(tets) + len(hexes), "num_el_blk": 2, "num_el_in_blk1": len(tets),
-            "num_nod_per_el1": 4, "num_el_in_blk2": len(hexes), "num_nod_per_el2": 8}
-    f.createDimension("time_step", None)  # scipy: the unlimited dimension first
-    for name, size in dims.items():
-        f.createDimension(name, size)
-    f.createVariable("time_whole", "d", ("time_step",))
-    status = f.createVariable("eb_status", "i", ("num_el_blk",))
-    status[:] = [1, 1]
-    ids = f.createVariable("eb_prop1", "i", ("num_el_blk",))
-    ids[:] = [1, 2]
-    ids.name = b"ID"
-    f.createVariable("eb_names", "c", ("num_el_blk", "len_string"))[:] = chars(["core", "skin"], LEN_STRING)
-    f.createVariable("coor_names", "c", ("num_dim", "len_string"))[:] = chars(["x", "y", "z"], LEN_STRING)
-    # libexodusii 6.02 reads no x coordinates from a coordx that is the file's first variable
-    # (netCDF id 0), and scipy writes the variables longest first, in creation order among equals:
-    # the node number map (optional in Exodus II, the identity here) goes first.
-    # (Ballista's reader works around it; other programs built on that library may not.)
-    if node_map:
-        f.createVariable("node_num_map", "i", ("num_nodes",))[:] = np.arange(1, len(p) + 1, dtype=np.int32)
-    for k, axis in enumerate("xyz"):
-        f.createVariable("coord" + axis, "d", ("num_nodes",))[:] = p[:, k]
-    for blk, (conn, kind) in enumerate(((tets, b"TETRA"), (hexes, b"HEX8")), start=1):
-        v = f.createVariable(f"connect{blk}", "i", (f"num_el_in_blk{blk}", f"num_nod_per_el{blk}"))
-        v[:] = conn
-        v.elem_type = kind
-    f.close()
+    write_exodus(path, "Taylor bar, radius 3.2 mm, length 32.4 mm (Ballista examples/geometry)", p,
+                 [("core", tets, "TETRA"), ("skin", hexes, "HEX8")], node_map=node_map)
     print(f"{path}: {len(p)} nodes, {len(tets)} tetrahedra, {len(hexes)} hexahedra, "
           f"{volume(p, tets).sum() + sum(volume(p, hexes[:, s]).sum() for s in ((0, 1, 2, 6), (0, 2, 3, 6), (0, 3, 7, 6), (0, 7, 4, 6), (0, 4, 5, 6), (0, 5, 1, 6))):.4f} mm^3")
 

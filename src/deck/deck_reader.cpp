@@ -334,7 +334,18 @@ class Reader {
       body.material = b.string("material");
       if (std::find(materials.begin(), materials.end(), body.material) == materials.end())
         b.fail("material", "unknown material '" + body.material + "'" + suggest(body.material, materials));
-      body.particles_per_cell = static_cast<int>(b.integer("particles_per_cell", 2, 1, 8));
+      body.seeding = b.choice("seeding", "lattice", {"lattice", "elements"});
+      if (body.seeding == "elements") {
+        if (!solver_can(&SolverFactory::element_seeding))
+          b.fail("seeding", "points at a mesh's elements are for solvers whose nodes are the mesh's vertices (" +
+                                solvers_that(&SolverFactory::element_seeding) + "); solver '" +
+                                sc_.simulation.solver + "' seeds a lattice inside the mesh (seeding: lattice)");
+        if (b.has("particles_per_cell"))
+          b.fail("particles_per_cell", "a body seeded at its mesh's elements has one point per tetrahedron; "
+                                       "particles_per_cell applies to seeding: lattice");
+      }
+      // Not read for element seeding, so that resolved.yaml (which a restart reads) does not list it.
+      if (body.seeding == "lattice") body.particles_per_cell = static_cast<int>(b.integer("particles_per_cell", 2, 1, 8));
       body.point_spacing = b.optional_number("point_spacing", NumberRange::positive("m")).value_or(0.0);
       if (body.point_spacing > 0.0 && !solver_can(&SolverFactory::point_spacing))
         b.fail("point_spacing", "a body's own lattice spacing is a peridynamics key (solver '" + sc_.simulation.solver +
@@ -349,6 +360,9 @@ class Reader {
         DeckNode s = b.map("shape", true);
         body.shape = shape(s);
         DeckNode cuts = b.list("cutouts", false);
+        if (body.seeding == "elements" && cuts.size() > 0)
+          b.fail("cutouts", "a body seeded at its mesh's elements takes no cutouts (an element cut in part "
+                            "would keep its whole volume): leave the material out of the mesh");
         for (size_t i = 0; i < cuts.size(); ++i) {
           DeckNode c = cuts.element(i);
           body.cutouts.push_back(shape(c));
@@ -375,6 +389,10 @@ class Reader {
         b.allow("shape");
         b.allow("velocity");
       }
+      if (body.seeding == "elements" && body.shape.type != "mesh")
+        b.fail("seeding", "seeding: elements places the points at a mesh's elements; body '" + body.name + "' is " +
+                              (body.penetrator.kind.empty() ? "a " + body.shape.type : "a " + body.penetrator.kind) +
+                              " (give shape: {type: mesh, file: ...})");
       // Penetrators are fired in the main stage; other bodies start with the first stage.
       body.activation_stage =
           stage_ref(b, "activation_stage",

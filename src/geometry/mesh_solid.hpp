@@ -34,6 +34,8 @@ class MeshSolid final : public SolidShape {
   Vec3 upper() const override { return upper_; }
   /// Total volume of the tetrahedra, m^3.
   double volume() const { return volume_; }
+  /// The tetrahedra and their vertices (bodies seeded at the elements; OTM's nodes on them).
+  const TetMesh& mesh() const { return m_; }
 
  private:
   TetMesh m_;

@@ -7,7 +7,9 @@
 #include <fmt/format.h>
 
 #include "core/point_fields.hpp"
+#include "geometry/element_seeding.hpp"
 #include "geometry/grid_axes.hpp"
+#include "geometry/mesh_solid.hpp"
 #include "geometry/shape.hpp"
 
 namespace ballista {
@@ -128,6 +130,7 @@ GraduatedSites graded_sites(const GridSpec& grid, int nd, int n, const Vec3& lo,
 
 Index seed_body(const BodySpec& body, int body_index, int material_index, const Material& material,
                 const GridSpec& grid, Dimension dim, FieldStore& points, std::int64_t& next_id) {
+  if (body.seeding == "elements") return seed_elements(body, body_index, material_index, material, grid, points, next_id);
   const int nd = dim == Dimension::ThreeD ? 3 : 2;
   const double h = grid.cell_size;
   const double dx = seed_spacing(body, h);
@@ -267,6 +270,7 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
 }
 
 double lattice_point_bound(const BodySpec& body, const GridSpec& grid, Dimension dim) {
+  if (body.seeding == "elements") return static_cast<double>(element_mesh(body).mesh().tets.size());
   const int nd = dim == Dimension::ThreeD ? 3 : 2;
   const double dx = seed_spacing(body, grid.cell_size);
   auto bound = [&](const ShapeSpec& shape) {

@@ -21,7 +21,8 @@ inline double seed_spacing(const BodySpec& body, double cell_size) {
 }
 
 /// Appends the points of `body` to `points`: particles_per_cell^dim points per grid cell of size
-/// h (or the lattice of the body's point_spacing), at sub-cell centres inside the shape.
+/// h (or the lattice of the body's point_spacing), at sub-cell centres inside the shape; or, with
+/// seeding `elements`, one per tetrahedron of its mesh (geometry/element_seeding.hpp).
 /// Mass = rho0 * volume; in axisymmetric runs volumes and masses are per radian
 /// (volume = r * area), in plane strain per metre of thickness.
 /// Ids continue from next_id. Returns the number of points added (error if zero).
@@ -29,7 +30,7 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
                 const GridSpec& grid, Dimension dim, FieldStore& points, std::int64_t& next_id);
 
 /// Upper bound of the points seed_body would create for `body` (its segments for rods and jets):
-/// the lattice points of its bounding box inside the grid box. Cheap; used to estimate memory
+/// the lattice points of its bounding box inside the grid box (its tetrahedra when seeded at them). Cheap; used to estimate memory
 /// before anything is allocated.
 double lattice_point_bound(const BodySpec& body, const GridSpec& grid, Dimension dim);
 

@@ -12,7 +12,7 @@
 #include "core/parallel.hpp"
 #include "core/phase_timer.hpp"
 #include "core/point_fields.hpp"
-#include "otm/otm_params.hpp"
+#include "geometry/element_seeding.hpp"
 #include "points/cell_bins.hpp"
 #include "points/solver_registry.hpp"
 #include "scenario/material_model.hpp"
@@ -103,8 +103,7 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
                                  "the products would push nothing: OTM has no contact between bodies yet)");
     for (Index p = 0; p < n; ++p) group[p] = shared ? 0 : body[p];
   }
-  nodes_ = otm::seed_nodes(points_.view(kPosition), points_.ints(kNodeGroup), n, sc.grid.lower, sc.grid.cell_size,
-                           dim_);
+  nodes_ = initial_nodes(sc, P);
   lambda_.assign(static_cast<size_t>(n), Vec3{});
   refresh_supports();
   // Initial node velocities: the mass-weighted projection of the points' (exact for a body in
@@ -124,6 +123,58 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     nodes_.v[a] = m[a] > kTinyMass ? (1.0 / m[a]) * mom[a] : Vec3{};
     momentum0_ += m[a] * nodes_.v[a];
   }
+}
+
+otm::NodeCloud OtmSolver::initial_nodes(const Scenario& sc, const OtmParams& P) {
+  const Index n = points_.size();
+  const auto* x = points_.view(kPosition);
+  const auto* group = points_.ints(kNodeGroup);
+  std::vector<int> at_elements;  // the bodies seeded at their mesh's elements
+  for (std::size_t b = 0; b < sc.bodies.size(); ++b)
+    if (sc.bodies[b].seeding == "elements") at_elements.push_back(static_cast<int>(b));
+  if (at_elements.empty()) return otm::seed_nodes(x, group, n, sc.grid.lower, sc.grid.cell_size, dim_);
+  // Bodies seeded at a mesh's elements take its vertices as their nodes (seed 003 §2): every point,
+  // at its tetrahedron's centroid, lies inside the hull of that tetrahedron's four nodes.
+  if (P.adaptivity)
+    section_error(sc, "adaptivity", "adaptivity re-generates the nodes on the lattice of grid.cell_size; it is not "
+                                    "supported with a body seeded at its mesh's elements yet");
+  if (P.shared_nodes)
+    section_error(sc, "nodes", "a body seeded at its mesh's elements has the mesh's vertices as its own nodes; "
+                               "otm.nodes: shared is not supported with it");
+  for (int b : at_elements) {
+    // The LME locality is gamma = beta h^2 with h = grid.cell_size: a mesh of another spacing s
+    // would act with gamma (s/h)^2. s: the edge of the cube its tetrahedra fill six at a time.
+    const BodySpec& body = sc.bodies[static_cast<std::size_t>(b)];
+    const double s = mesh_spacing(body), h = sc.grid.cell_size;
+    if (!(s <= 1.5 * h && s >= h / 1.5))
+      throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path + ".seeding",
+                      fmt::format("body '{}': its mesh's spacing {:.4g} m (the median of (6 V)^(1/3) over its "
+                                  "tetrahedra) is not within a factor 1.5 of grid.cell_size {:.4g} m, the nodal "
+                                  "spacing the LME shape functions assume (otm.gamma = beta h^2): set grid.cell_size "
+                                  "to the mesh's spacing",
+                                  body.name, s, h));
+  }
+  // The lattice-seeded bodies' nodes as without the meshes, then each mesh body's vertices.
+  std::vector<Index> on_lattice;
+  for (Index p = 0; p < n; ++p)
+    if (sc.bodies[static_cast<std::size_t>(group[p])].seeding != "elements") on_lattice.push_back(p);
+  std::vector<Vec3> xl(on_lattice.size());
+  std::vector<std::int64_t> gl(on_lattice.size());
+  for (std::size_t i = 0; i < on_lattice.size(); ++i) {
+    xl[i] = x[on_lattice[i]];
+    gl[i] = group[on_lattice[i]];
+  }
+  otm::NodeCloud nodes =
+      otm::seed_nodes(xl.data(), gl.data(), static_cast<Index>(xl.size()), sc.grid.lower, sc.grid.cell_size, dim_);
+  for (int b : at_elements)
+    for (const Vec3& v : element_vertices(sc.bodies[static_cast<std::size_t>(b)])) {
+      nodes.x.push_back(v);
+      nodes.body.push_back(b);
+    }
+  nodes.v.assign(nodes.x.size(), Vec3{});
+  nodes.f.assign(nodes.x.size(), Vec3{});
+  nodes.mass.assign(nodes.x.size(), 0.0);
+  return nodes;
 }
 
 const FieldStore* OtmSolver::output_nodes() {
@@ -695,4 +746,5 @@ BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
     .section = "otm",
     .params = ballista::otm_params(),
     .create = &ballista::make_otm,
+    .element_seeding = true,
     .courant_step = true})

@@ -33,6 +33,7 @@
 #include "materials/material.hpp"
 #include "otm/otm_adaptivity.hpp"
 #include "otm/otm_nodes.hpp"
+#include "otm/otm_params.hpp"
 #include "otm/otm_support.hpp"
 #include "points/point_loads.hpp"
 #include "points/point_set.hpp"
@@ -81,6 +82,10 @@ class OtmSolver final : public Solver {
   const otm::Supports& supports() const { return sup_; }
 
  private:
+  /// The nodes at the start: the vertices of the lattice cells holding each lattice-seeded body's
+  /// points (otm_nodes.hpp), and the vertices of each element-seeded body's mesh; refuses what
+  /// such a body does not support yet (adaptivity, shared nodes, a mesh of another spacing).
+  otm::NodeCloud initial_nodes(const Scenario& sc, const OtmParams& P);
   /// Supports and shape functions at the current positions; stops the run on a failed solve.
   void refresh_supports();
   /// Builds the supports; false if a point's LME solve failed (sup_.failed names it).

@@ -37,6 +37,9 @@ struct SolverFactory {
   /// Seeds a body on its own lattice (bodies[].point_spacing); otherwise particles_per_cell per
   /// grid cell, and point_spacing is a deck error.
   bool point_spacing = false;
+  /// Seeds a mesh body at its elements (bodies[].seeding: elements) and builds its discretisation
+  /// on the mesh's vertices; otherwise that seeding is a deck error.
+  bool element_seeding = false;
   /// Cuts pre-cracks into its bonds (`cracks`); otherwise they are a deck error.
   bool pre_cracks = false;
   /// Has separate grid velocity fields with contact between them (contact.model with several

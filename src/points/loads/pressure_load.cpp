@@ -81,6 +81,10 @@ LoadReading read_pressure(LoadEntry& e, LoadSpec load) {
   load.body = e.body(true);
   const Scenario& sc = e.scenario();
   const BodySpec& body = sc.bodies[static_cast<size_t>(body_index(sc, load.body))];
+  // The surface's points are those within one lattice spacing of it (mark_pressure_surface).
+  if (body.seeding == "elements")
+    e.fail("body", "a pressure on body '" + load.body + "', seeded at its mesh's elements, is not supported: the "
+                   "loaded points are found on a lattice (seed the body with seeding: lattice)");
   const auto valid = surfaces(body.shape, sc.simulation.dimension);
   const std::string surface = e.string("surface");
   if (std::find(valid.begin(), valid.end(), surface) == valid.end()) {
