@@ -6,8 +6,8 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
-#include "core/point_fields.hpp"
 #include "geometry/mesh_solid.hpp"
+#include "geometry/seeding.hpp"
 
 namespace ballista {
 
@@ -61,43 +61,19 @@ Index seed_elements(const BodySpec& body, int body_index, int material_index, co
   }
   if (centroids_out > 0) outside(body, grid, "element centroids", centroids_out, example);
 
-  const Index n0 = points.size();
-  points.resize(n0 + n);
-  auto* id = points.ints(kId);
-  auto* bid = points.ints(kBodyIndex);
-  auto* mid = points.ints(kMaterialIndex);
-  auto* x = points.view(kPosition);
-  auto* x0 = points.view(kReferencePosition);
-  auto* v = points.view(kVelocity);
-  auto* F = points.view(kDeformationGradient);
-  auto* R = points.view(kRotation);
-  auto* mass = points.real(kMass);
-  auto* vol0 = points.real(kReferenceVolume);
-  auto* vol = points.real(kVolume);
-  auto* half = points.view(kHalfSize);
+  SeededPoints seeded(points, n);
   for (Index q = 0; q < n; ++q) {
     const auto& t = m.tets[static_cast<std::size_t>(q)];
-    const Vec3 &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]], &d = m.vertices[t[3]];
-    const double V = tet_volume(a, b, c, d);  // positive: the mesh reader refuses any other
-    const Index p = n0 + q;
-    id[p] = next_id++;
-    bid[p] = body_index;
-    mid[p] = material_index;
-    x[p] = centroid[static_cast<std::size_t>(q)];
-    x0[p] = x[p];
-    v[p] = body.velocity;
-    F[p] = Mat3::identity();
-    R[p] = Mat3::identity();
-    vol0[p] = V;
-    vol[p] = V;
-    mass[p] = material.density() * V;
-    // The domain the probes and the writer draw (x + F (+-half)): the cube of the element's volume.
-    // An element with a face on the body's surface has its centroid a quarter of its height from
-    // it, and the cube's half-edge, 0.5 (V)^(1/3), is about that: the outermost domains reach the
-    // mesh's surface within a few per cent of an element (0.025 h beyond a face of a cube of edge h
-    // cut into six; a box about the centroid that holds the element would overshoot by up to h/2).
+    const double V = tet_volume(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]);
+    // (positive: the mesh reader refuses any other element.) The domain the probes and the writer
+    // draw (x + F (+-half)): the cube of the element's volume. An element with a face on the
+    // body's surface has its centroid a quarter of its height from it, about the cube's half-edge
+    // 0.5 V^(1/3): the outermost domains reach the mesh's surface within a few per cent of an
+    // element (0.025 h beyond a face of a cube of edge h cut into six; a box about the centroid
+    // that holds the element would overshoot by up to h/2).
     const double l = 0.5 * std::cbrt(V);
-    half[p] = Vec3{{l, l, l}};
+    seeded.set(q, next_id, body_index, material_index, material.density(), centroid[static_cast<std::size_t>(q)],
+               body.velocity, V, Vec3{{l, l, l}});
   }
   return n;
 }

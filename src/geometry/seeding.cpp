@@ -224,49 +224,60 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
                         "' has no particles inside the grid: check its shape, the grid box and cell_size");
   }
 
-  const Index n0 = points.size();
   const Index n = static_cast<Index>(pos.size());
-  points.resize(n0 + n);
-  auto* id = points.ints(kId);
-  auto* bid = points.ints(kBodyIndex);
-  auto* mid = points.ints(kMaterialIndex);
-  auto* x = points.view(kPosition);
-  auto* x0 = points.view(kReferencePosition);
-  auto* v = points.view(kVelocity);
-  auto* F = points.view(kDeformationGradient);
-  auto* R = points.view(kRotation);
-  auto* mass = points.real(kMass);
-  auto* vol0 = points.real(kReferenceVolume);
-  auto* vol = points.real(kVolume);
-  auto* half = points.view(kHalfSize);
+  SeededPoints seeded(points, n);
   const double uniform_cell_volume = nd == 3 ? dx * dx * dx : dx * dx;
   for (Index q = 0; q < n; ++q) {
     const Vec3 d = spacing.empty() ? Vec3{{dx, dx, nd == 3 ? dx : 0.0}} : spacing[q];
     const double cell_volume = spacing.empty() ? uniform_cell_volume : (nd == 3 ? d[0] * d[1] * d[2] : d[0] * d[1]);
-    const Index p = n0 + q;
-    id[p] = next_id++;
-    bid[p] = body_index;
-    mid[p] = material_index;
-    x[p] = pos[q];
-    x0[p] = pos[q];
-    v[p] = body.velocity;
+    Vec3 v = body.velocity;
     if (body.radial_speed != 0.0) {  // radially away from the axis of the body's cylinder or tube
       const int ax = body.shape.axis;
-      Vec3 d = pos[q] - body.shape.center;
-      d[ax] = 0.0;
-      const double r = norm(d);
-      if (r > 0.0) v[p] += (body.radial_speed / r) * d;
+      Vec3 r = pos[q] - body.shape.center;
+      r[ax] = 0.0;
+      const double len = norm(r);
+      if (len > 0.0) v += (body.radial_speed / len) * r;
     }
-    if (nd == 2) v[p][2] = 0.0;
-    F[p] = Mat3::identity();
-    R[p] = Mat3::identity();
+    if (nd == 2) v[2] = 0.0;
     // Axisymmetric: volume per radian = r * area (thesis seed 000 ch. 5 uses Uintah's convention).
-    vol0[p] = dim == Dimension::Axisymmetric ? pos[q][0] * cell_volume : cell_volume;
-    vol[p] = vol0[p];
-    mass[p] = material.density() * vol0[p];
-    half[p] = Vec3{{0.5 * d[0], 0.5 * d[1], nd == 3 ? 0.5 * d[2] : 0.0}};
+    const double volume = dim == Dimension::Axisymmetric ? pos[q][0] * cell_volume : cell_volume;
+    seeded.set(q, next_id, body_index, material_index, material.density(), pos[q], v, volume,
+               Vec3{{0.5 * d[0], 0.5 * d[1], nd == 3 ? 0.5 * d[2] : 0.0}});
   }
   return n;
+}
+
+SeededPoints::SeededPoints(FieldStore& points, Index n) : first_(points.size()) {
+  points.resize(first_ + n);
+  id_ = points.ints(kId);
+  body_ = points.ints(kBodyIndex);
+  material_ = points.ints(kMaterialIndex);
+  x_ = points.view(kPosition);
+  x0_ = points.view(kReferencePosition);
+  v_ = points.view(kVelocity);
+  F_ = points.view(kDeformationGradient);
+  R_ = points.view(kRotation);
+  mass_ = points.real(kMass);
+  vol0_ = points.real(kReferenceVolume);
+  vol_ = points.real(kVolume);
+  half_ = points.view(kHalfSize);
+}
+
+void SeededPoints::set(Index q, std::int64_t& next_id, int body_index, int material_index, double rho0, const Vec3& at,
+                       const Vec3& v, double volume, const Vec3& half_size) {
+  const Index p = first_ + q;
+  id_[p] = next_id++;
+  body_[p] = body_index;
+  material_[p] = material_index;
+  x_[p] = at;
+  x0_[p] = at;
+  v_[p] = v;
+  F_[p] = Mat3::identity();
+  R_[p] = Mat3::identity();
+  vol0_[p] = volume;
+  vol_[p] = volume;
+  mass_[p] = rho0 * volume;
+  half_[p] = half_size;
 }
 
 double lattice_point_bound(const BodySpec& body, const GridSpec& grid, Dimension dim) {

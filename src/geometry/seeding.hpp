@@ -14,6 +14,25 @@ void declare_point_fields(FieldStore& points);
 /// attributes of the particle files.
 std::vector<std::string> extensive_point_fields();
 
+/// The common fields of newly seeded points, written as every seeder writes them.
+class SeededPoints {
+ public:
+  /// Appends n points to `points` (resized; ids continue from next_id as set() is called).
+  SeededPoints(FieldStore& points, Index n);
+  Index first() const { return first_; }
+  /// Point first() + q: the next id, body and material, x = x0 = at, velocity v, F = R = I, the
+  /// reference and current volume `volume`, mass rho0 volume, the half size of its domain.
+  void set(Index q, std::int64_t& next_id, int body_index, int material_index, double rho0, const Vec3& at,
+           const Vec3& v, double volume, const Vec3& half_size);
+
+ private:
+  Index first_;
+  std::int64_t *id_, *body_, *material_;
+  Vec3 *x_, *x0_, *v_, *half_;
+  Mat3 *F_, *R_;
+  double *mass_, *vol0_, *vol_;
+};
+
 /// The spacing of the lattice `body` is seeded on: its own point_spacing if given (peridynamics),
 /// else the grid cell size over particles_per_cell, m.
 inline double seed_spacing(const BodySpec& body, double cell_size) {
