@@ -43,7 +43,11 @@ std::vector<ParamSpec> otm_params() {
                                      "(one node set over every body: bodies move together where they touch, no slip "
                                      "and no separation, as MPM's single_field)",
                                      {"per_body", "shared"});
-  return {gamma, tol, minsup, wall, pen, ls, adapt, split, gap, crowd, cond, nodes};
+  const ParamSpec locking = word_param("anti_locking",
+                                       "volumetric locking treatment: none, or fbar (each point's volume change over "
+                                       "the step replaced by its average over the supports of its nodes; otm_fbar.hpp)",
+                                       {"none", "fbar"});
+  return {gamma, tol, minsup, wall, pen, ls, adapt, split, gap, crowd, cond, nodes, locking};
 }
 
 OtmParams read_otm_params(const ParamValues& P) {
@@ -60,6 +64,7 @@ OtmParams read_otm_params(const ParamValues& P) {
   o.node_crowding = P.at("node_crowding");
   o.max_condition = P.at("max_condition");
   o.shared_nodes = P.choices.at("nodes") == "shared";
+  o.fbar = P.choices.at("anti_locking") == "fbar";
   return o;
 }
 

@@ -24,6 +24,7 @@ struct OtmParams {
   double node_crowding = 0.25;       ///< adaptivity: re-generate when two nodes come closer (x h)
   double max_condition = 1e6;        ///< adaptivity: re-generate beyond this LME Hessian condition number
   bool shared_nodes = false;         ///< nodes: shared (one node set over every body), else per_body
+  bool fbar = false;                 ///< anti_locking: fbar (otm_fbar.hpp)
 };
 
 /// Reads the section (Scenario::solver_params of an otm deck: every key present, the deck reader

@@ -74,6 +74,7 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   adapt_.node_gap = P.node_gap;
   adapt_.node_crowding = P.node_crowding;
   adapt_.max_condition = P.max_condition;
+  fbar_on_ = P.fbar;
 
   const Index n = points_.size();
   if (adapt_.enabled) {
@@ -654,6 +655,9 @@ void OtmSolver::step(double dt) {
     }
   }, ew);
   external_work_ += comm_.sum(ew[0]);
+  if (fbar_on_ && bad.load() == n)
+    fbar_.apply(sup_, nn, dim_ == 2 && !axisym_, dt,
+                {n, L, F, vol, vol0, extent, adapt_.enabled ? Fr_.data() : nullptr});
   dt_prev_ = dt;
   time_ += dt;
   ++steps_;

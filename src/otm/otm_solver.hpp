@@ -32,6 +32,7 @@
 #include "core/solver.hpp"
 #include "materials/material.hpp"
 #include "otm/otm_adaptivity.hpp"
+#include "otm/otm_fbar.hpp"
 #include "otm/otm_nodes.hpp"
 #include "otm/otm_params.hpp"
 #include "otm/otm_support.hpp"
@@ -118,6 +119,8 @@ class OtmSolver final : public Solver {
   otm::AdaptivityOptions adapt_;
   std::vector<Mat3> Fr_;       ///< adaptivity: each point's deformation since the nodes were last re-generated
   std::vector<double> spacing_;  ///< m, seeded point spacing per body (cell_size / particles_per_cell)
+  bool fbar_on_ = false;  ///< otm.anti_locking: fbar
+  otm::NodalFBar fbar_;
   std::int64_t next_id_ = 0;     ///< id of the next point made by a split
   std::vector<char> interpolated_;  ///< last re-generation: node velocity interpolated (1) or projected (0)
   Index splits_ = 0, regenerations_ = 0;
