@@ -19,8 +19,7 @@ class SeededPoints {
  public:
   /// Appends n points to `points` (resized; ids continue from next_id as set() is called).
   SeededPoints(FieldStore& points, Index n);
-  Index first() const { return first_; }
-  /// Point first() + q: the next id, body and material, x = x0 = at, velocity v, F = R = I, the
+  /// The q-th new point: the next id, body and material, x = x0 = at, velocity v, F = R = I, the
   /// reference and current volume `volume`, mass rho0 volume, the half size of its domain.
   void set(Index q, std::int64_t& next_id, int body_index, int material_index, double rho0, const Vec3& at,
            const Vec3& v, double volume, const Vec3& half_size);
@@ -49,8 +48,8 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
                 const GridSpec& grid, Dimension dim, FieldStore& points, std::int64_t& next_id);
 
 /// Upper bound of the points seed_body would create for `body` (its segments for rods and jets):
-/// the lattice points of its bounding box inside the grid box (its tetrahedra when seeded at them). Cheap; used to estimate memory
-/// before anything is allocated.
+/// the lattice points of its bounding box inside the grid box (its tetrahedra when seeded at
+/// them). Cheap; used to estimate memory before anything is allocated.
 double lattice_point_bound(const BodySpec& body, const GridSpec& grid, Dimension dim);
 
 /// Marks the points of `body` lying within one point spacing of the named surface for pressure

@@ -92,6 +92,7 @@ def kill_session(sid):
         except ProcessLookupError:
             pass
 
+
 def rank_pids(sid, name):
     """The ranks of the job in session sid: its processes running the program called name."""
     def comm(pid):
@@ -111,6 +112,7 @@ def proc_status(pid):
 
 
 def stopped(pid):
+    """Whether pid is stopped (or gone)."""
     status = proc_status(pid)
     return not status or status["State"].strip().startswith("T")
 
