@@ -9,7 +9,10 @@ the yield points) next to Fig. 4.6 (meridional profile sigma_11 - sigma_22 again
 yield surface dashed), A3 as Fig. 4.9 (stresses against t with the published points, meridional
 path with the Drucker-Prager line), A4/A5 as Fig. 4.10c-4.12 (I1 against volumetric strain, porosity
 against I1 with the crush curve), A5-fluid as Fig. 4.13 (drained vs saturated pressure-volume
-curves), A6 as the rotated-vs-unrotated histories and the tangent scatter.
+curves), A6 as the rotated-vs-unrotated histories and the tangent scatter, A7 as Fig. 4.7 (the
+deviator's path in the deviatoric plane with the yield circle, and the principal stresses against t),
+A8 as Fig. 4.10a, b (the meridional path against the fixed and the moving surface, and I1 against
+the axial strain).
 Run with the interpreter CMake found (BALLISTA_PYTHON, /usr/bin/python3); needs numpy, matplotlib.
 """
 import base64
@@ -277,13 +280,92 @@ def plot_a6_tangent(test, fig):
     ax2.grid(alpha=0.3, which="both")
 
 
+def plot_a7(test, fig):
+    """Thesis Fig. 4.7: the deviator in the plane of diagonal deviators (fixed eigenvectors) with the
+    yield circle, and the principal stresses against t; computed against exact."""
+    ax1 = fig.add_subplot(1, 2, 1)
+    r = scalar(test, "radius") * MPA
+    phi = np.linspace(0.0, 2.0 * np.pi, 200)
+    ax1.plot(r * np.cos(phi), r * np.sin(phi), color="tab:gray", ls="--", lw=1, label="yield circle")
+    ax1.plot(series(test, "s1") * MPA, series(test, "s2") * MPA, color="tab:blue", lw=1.5, label="computed")
+    ax1.plot(series(test, "s1_an") * MPA, series(test, "s2_an") * MPA, color="k", lw=0.8, ls="--",
+             label="exact (Krieg & Krieg 1977)")
+    ax1.set_aspect("equal")
+    ax1.set_xlabel(r"$s \cdot E_1$ (MPa), $E_1 = $ diag(2, -1, -1)$/\sqrt{6}$")
+    ax1.set_ylabel(r"$s \cdot E_2$ (MPa), $E_2 = $ diag(0, 1, -1)$/\sqrt{2}$")
+    ax1.set_title("{} {}: deviatoric plane".format(test["model"], test["test"]), fontsize=10)
+    ax1.legend(fontsize=7, loc="lower left")
+    ax1.grid(alpha=0.3)
+    stamp(ax1, test)
+    ax2 = fig.add_subplot(1, 2, 2)
+    t = series(test, "t")
+    for key, colour in [("s11", "tab:blue"), ("s22", "tab:red"), ("s33", "tab:green")]:
+        ax2.plot(t, series(test, key) * MPA, color=colour, lw=1.5, label=r"$\sigma_{%s}$" % key[1:])
+        ax2.plot(t, series(test, key + "_an") * MPA, color="k", lw=0.8, ls="--")
+    ax2.plot([], [], color="k", lw=0.8, ls="--", label="exact")
+    ax2.set_xlabel("t (legs 0-1, 1-2, 2-3)")
+    ax2.set_ylabel("principal stress (MPa)")
+    ax2.set_title("constant eigenvectors, transient eigenvalues (Fig. 4.7)", fontsize=10)
+    ax2.legend(fontsize=7)
+    ax2.grid(alpha=0.3)
+
+
+def plot_a8(test, fig):
+    """Thesis Fig. 4.10a, b: the meridional path of uniaxial strain against the cone and the cap,
+    fixed and moving, and I1 against the axial strain; computed against the reference."""
+    ax1 = fig.add_subplot(1, 2, 1)
+    peak, fs, cr = scalar(test, "peak_i1"), scalar(test, "fslope"), scalar(test, "cap_ratio")
+
+    def surface(X):
+        kappa = (X + cr * fs * peak) / (1.0 + cr * fs)
+        i1 = np.linspace(X, peak, 400)
+        u = np.clip((kappa - i1) / (kappa - X), 0.0, 1.0)
+        return i1, fs * (peak - i1) * np.sqrt(np.where(i1 < kappa, 1.0 - u * u, 1.0))
+
+    for prefix, colour, label in [("fixed_", "tab:blue", "(a) fixed cap"), ("", "tab:red", "(b) moving cap")]:
+        ax1.plot(series(test, prefix + "i1") * MPA, series(test, prefix + "sqrt_j2") * MPA, color=colour, lw=1.5,
+                 label=label + ", computed")
+        ax1.plot(series(test, prefix + "i1_ref") * MPA, series(test, prefix + "sqrt_j2_ref") * MPA, color="k",
+                 lw=0.8, ls="--")
+        cap = series(test, prefix + "cap")
+        if len(cap):
+            i1, q = surface(cap[-1])
+            ax1.plot(i1 * MPA, q * MPA, color=colour, lw=0.8, ls=":", label=label + ": final surface")
+    i1, q = surface(scalar(test, "p0"))
+    ax1.plot(i1 * MPA, q * MPA, color="tab:gray", lw=1, ls="--", label="initial surface")
+    ax1.plot([], [], color="k", lw=0.8, ls="--", label="reference (consistency ODE)")
+    ax1.axvline(scalar(test, "stationary_i1") * MPA, color="tab:blue", lw=0.6, ls="-.",
+                label=r"$d\sqrt{J_2}/dI_1 = 1/(2\sqrt{3})$ on the fixed cap")
+    ax1.set_xlabel("$I_1$ (MPa)")
+    ax1.set_ylabel(r"$\sqrt{J_2}$ (MPa)")
+    ax1.set_xlim(1.1 * min(series(test, "i1").min(), series(test, "cap").min()) * MPA, 1.2 * peak * MPA)
+    ax1.set_ylim(0.0, None)
+    ax1.set_title("{} {}: meridional profile (Fig. 4.10a, b)".format(test["model"], test["test"]), fontsize=10)
+    ax1.legend(fontsize=6, loc="upper right")
+    ax1.grid(alpha=0.3)
+    stamp(ax1, test)
+    ax2 = fig.add_subplot(1, 2, 2)
+    for prefix, colour, label in [("fixed_", "tab:blue", "fixed cap"), ("", "tab:red", "moving cap")]:
+        e = series(test, prefix + "e")
+        ax2.plot(e, series(test, prefix + "i1") * MPA, color=colour, lw=1.5, label="$I_1$, " + label)
+        ax2.plot(e, series(test, prefix + "i1_ref") * MPA, color="k", lw=0.8, ls="--")
+        ax2.plot(e, series(test, prefix + "cap") * MPA, color=colour, lw=1, ls=":", label="cap $X$, " + label)
+    ax2.plot([], [], color="k", lw=0.8, ls="--", label="reference")
+    ax2.set_xlabel(r"compressive axial strain $-\ln F_{11}$")
+    ax2.set_ylabel("MPa")
+    ax2.set_title("uniaxial strain", fontsize=10)
+    ax2.legend(fontsize=7)
+    ax2.grid(alpha=0.3)
+
+
 # Plot kind -> (function, figure size in inches, left/right margins). Fixed margins instead of
 # tight_layout, which took half the report's time.
 PLOTS = {"a1": (plot_a1, (7, 4.5), (0.11, 0.97)), "a2": (plot_a2, (12, 4.8), (0.07, 0.98)),
          "a3": (plot_a3, (12, 4.8), (0.07, 0.98)), "a4": (plot_a4, (12, 4.8), (0.07, 0.98)),
          "a5": (plot_a5, (12, 4.8), (0.07, 0.98)), "a5_fluid": (plot_a5_fluid, (12, 4.8), (0.07, 0.98)),
          "a6_objectivity": (plot_a6_objectivity, (12, 4.5), (0.07, 0.98)),
-         "a6_tangent": (plot_a6_tangent, (11, 4.5), (0.07, 0.98))}
+         "a6_tangent": (plot_a6_tangent, (11, 4.5), (0.07, 0.98)),
+         "a7": (plot_a7, (12, 5.2), (0.07, 0.98)), "a8": (plot_a8, (12, 4.8), (0.07, 0.98))}
 
 
 def render(job):

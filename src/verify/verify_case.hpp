@@ -22,7 +22,7 @@ struct VerifyCheck {
 
 struct VerifyCase {
   std::string model;        ///< registered model name
-  std::string test;         ///< test id: A1, A2, A2-iso, A2-kin, A3, A4, A5, A5-fluid, A6-objectivity, A6-tangent
+  std::string test;         ///< test id: A1, A2, A2-iso, A2-kin, A3, A4, A5, A5-fluid, A6-objectivity, A6-tangent, A7, A8
   std::string title;        ///< one line: what the test is
   VerifyStatus status = VerifyStatus::NotApplicable;
   std::string reason;       ///< why not applicable, or what failed
@@ -34,7 +34,7 @@ struct VerifyCase {
   std::string tolerance_justification;
   std::vector<VerifyCheck> checks;  ///< all assertions, the headline one first
   /// Plot kind for tools/verify_report.py ("a1", "a2", "a3", "a4", "a5", "a5_fluid", "a6_objectivity",
-  /// "a6_tangent"); empty for a test without a plot (not applicable).
+  /// "a6_tangent", "a7", "a8"); empty for a test without a plot (not applicable).
   std::string plot;
   /// Named data series for the plot (equal lengths within a plot group; see the report tool).
   std::vector<std::pair<std::string, std::vector<double>>> series;

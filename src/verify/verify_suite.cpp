@@ -12,12 +12,14 @@
 #include "verify/a4_hydrostatic_cap.hpp"
 #include "verify/a5_load_unload.hpp"
 #include "verify/a6_objectivity.hpp"
+#include "verify/a7_misaligned_rate.hpp"
+#include "verify/a8_uniaxial_strain_cap.hpp"
 
 namespace ballista {
 
 const std::vector<std::string>& verify_test_ids() {
   static const std::vector<std::string> ids{"A1", "A2", "A2-iso", "A2-kin", "A3", "A4", "A5", "A5-fluid",
-                                            "A6-objectivity", "A6-tangent"};
+                                            "A6-objectivity", "A6-tangent", "A7", "A8"};
   return ids;
 }
 
@@ -34,6 +36,8 @@ VerifyCase dispatch(const MaterialFactory& f, const std::string& test) {
   if (test == "A5-fluid") return run_a5_fluid(f);
   if (test == "A6-objectivity") return run_a6_objectivity(f);
   if (test == "A6-tangent") return run_a6_tangent(f);
+  if (test == "A7") return run_a7(f);
+  if (test == "A8") return run_a8(f);
   throw Error("unknown verification test '" + test + "'");
 }
 

@@ -2,9 +2,10 @@
 """Runs `ballista verify -o OUT` and checks what it produced (ctest verify.single_element_suite).
 
 Asserts: exit status 0; OUT/verify.json parses; every test passed or is not applicable with a
-reason (none failed); every model `ballista info` lists has all ten tests (A1, A2, A2-iso, A2-kin,
-A3, A4, A5, A5-fluid, A6-objectivity, A6-tangent) and passed A6-objectivity (CATALOGUE A6 applies to
-every model); A3-A5 are not applicable only with a reason naming the hook (reduce_geo);
+reason (none failed); every model `ballista info` lists has all twelve tests (A1, A2, A2-iso, A2-kin,
+A3, A4, A5, A5-fluid, A6-objectivity, A6-tangent, A7, A8) and passed A6-objectivity (CATALOGUE A6
+applies to every model); A3-A5 and A8 are not applicable only with a reason naming the hook
+(reduce_geo);
 every test with a plot has a PNG; OUT/report.html exists and embeds one PNG per plotted test (a
 data: URI: the page is self-contained). Then, with BALLISTA_PYTHON pointing at a missing interpreter and at one without
 matplotlib: exit status 4, a message naming the interpreter and matplotlib, verify.json written.
@@ -19,9 +20,10 @@ import subprocess
 import sys
 import time
 
-TESTS = ["A1", "A2", "A2-iso", "A2-kin", "A3", "A4", "A5", "A5-fluid", "A6-objectivity", "A6-tangent"]
+TESTS = ["A1", "A2", "A2-iso", "A2-kin", "A3", "A4", "A5", "A5-fluid", "A6-objectivity", "A6-tangent", "A7",
+         "A8"]
 # Tests that need MaterialFactory::reduce_geo: not applicable exactly when the model lacks it.
-GEO_TESTS = ["A3", "A4", "A5", "A5-fluid"]
+GEO_TESTS = ["A3", "A4", "A5", "A5-fluid", "A8"]
 
 
 def fail(msg):
