@@ -22,6 +22,8 @@
 #include "deck/surface_reader.hpp"
 #include "deck/text_file.hpp"
 #include "geometry/grid_axes.hpp"
+#include "geometry/revolution.hpp"
+#include "geometry/shape.hpp"
 #include "points/initial_state_registry.hpp"
 #include "points/probe_registry.hpp"
 #include "points/solver_registry.hpp"
@@ -69,24 +71,6 @@ FaceBC face_bc_from(const std::string& s) {
   return FaceBC::Free;
 }
 
-
-/// Axis-aligned bounding box of a shape in the directions used.
-void shape_bounds(const ShapeSpec& s, Vec3& lo, Vec3& hi) {
-  if (s.type == "box" || s.type == "surface" || s.type == "mesh") {  // a solid's lower/upper: its bounding box
-    lo = s.lower;
-    hi = s.upper;
-    return;
-  }
-  const double r = s.radius;
-  for (int d = 0; d < 3; ++d) {
-    lo[d] = s.center[d] - r;
-    hi[d] = s.center[d] + r;
-  }
-  if (s.type == "cylinder" || s.type == "tube") {
-    lo[s.axis] = s.center[s.axis];
-    hi[s.axis] = s.center[s.axis] + s.length;
-  }
-}
 
 class Reader {
  public:
@@ -246,7 +230,7 @@ class Reader {
     ShapeSpec sh;
     const bool axi = sc_.simulation.dimension == Dimension::Axisymmetric;
     const bool plane = sc_.simulation.dimension == Dimension::PlaneStrain;
-    sh.type = s.choice("type", {"box", "sphere", "cylinder", "tube", "surface", "mesh"});
+    sh.type = s.choice("type", {"box", "sphere", "cylinder", "tube", "cone", "liner", "revolution", "surface", "mesh"});
     if (sh.type == "surface" || sh.type == "mesh") {
       if (sc_.simulation.dimension != Dimension::ThreeD)
         s.fail("type", "a " + sh.type + " shape fills a 3D body: the deck's simulation.dimension must be 3d");
@@ -264,6 +248,8 @@ class Reader {
       if (axi && sh.center[0] != 0.0)
         s.fail("center", "expected x = 0 in an axisymmetric deck (the centre must lie on the axis), got " +
                              format_number(sh.center[0]));
+    } else if (sh.type == "cone" || sh.type == "liner" || sh.type == "revolution") {
+      revolution_shape(s, sh);
     } else {  // cylinder, tube
       sh.center = s.vector("center", vmin());
       const std::string ax = s.choice("axis", {"x", "y", "z"});
@@ -287,6 +273,59 @@ class Reader {
     }
     s.finish();
     return sh;
+  }
+
+  /// A solid of revolution (geometry/revolution.hpp): `center` on the axis, `axis`, and the section
+  /// as a frustum (cone), a conical shell (liner) or a polygon (revolution outline).
+  void revolution_shape(DeckNode& s, ShapeSpec& sh) {
+    const bool axi = sc_.simulation.dimension == Dimension::Axisymmetric;
+    const bool plane = sc_.simulation.dimension == Dimension::PlaneStrain;
+    sh.center = s.vector("center", vmin());
+    const std::string ax = s.choice("axis", {"x", "y", "z"});
+    sh.axis = axis_from(ax);
+    if (axi && sh.axis != 1)
+      s.fail("axis", "expected axis y in an axisymmetric deck (the symmetry axis), got " + ax);
+    if (plane && sh.axis == 2)
+      s.fail("axis", "expected axis x or y in a plane-strain deck (the shape's axial section lies in the x-y plane), "
+                     "got z");
+    if (axi && sh.center[0] != 0.0)
+      s.fail("center", "expected x = 0 in an axisymmetric deck (the axis of the shape is the symmetry axis), got " +
+                           format_number(sh.center[0]));
+    if (sh.type == "cone") {
+      sh.radius = s.number("radius", NumberRange::non_negative("m"));
+      sh.top_radius = s.number("top_radius", 0.0, NumberRange::non_negative("m"));
+      sh.length = s.number("length", NumberRange::positive("m"));
+      if (!(sh.radius > 0.0 || sh.top_radius > 0.0))
+        s.fail("radius", "expected radius or top_radius > 0 (both 0 is a line, not a cone)");
+      for (const auto& v : cone_outline(sh.radius, sh.top_radius, sh.length)) sh.outline.push_back(v);
+    } else if (sh.type == "liner") {
+      sh.angle = s.number("angle", NumberRange::between(0.0, 180.0, true, true, "degrees"));
+      sh.thickness = s.number("thickness", NumberRange::positive("m"));
+      const double diameter = s.number("diameter", NumberRange::positive("m"));
+      sh.radius = 0.5 * diameter;
+      const double limit = sh.radius * std::cos(0.5 * sh.angle * M_PI / 180.0);
+      if (!(sh.thickness < limit))
+        s.fail("thickness", "expected a wall thinner than (diameter / 2) cos(angle / 2) = " + format_number(limit) +
+                                " m, where the inner cone would close before the mouth; got " +
+                                format_number(sh.thickness));
+      for (const auto& v : liner_outline(sh.angle, sh.thickness, diameter)) sh.outline.push_back(v);
+    } else {
+      const YAML::Node v = s.raw("outline");
+      const std::string what = "a list of at least 3 vertices [r, a] (m): radius from the axis and distance along it "
+                               "from center";
+      if (!v.IsSequence() || v.size() < 3) s.fail("outline", "expected " + what);
+      for (size_t i = 0; i < v.size(); ++i) {
+        const std::string path = s.child_path("outline") + "." + std::to_string(i);
+        const YAML::Node r = v[i];
+        if (!r.IsSequence() || r.size() != 2) deck_fail(s.context(), path, r.Mark(), "expected " + what);
+        double x[2];
+        for (int k = 0; k < 2; ++k)
+          if (!scalar_number(r[k], x[k])) deck_fail(s.context(), path + "." + std::to_string(k), r[k].Mark(), "expected a number");
+        sh.outline.push_back({x[0], x[1]});
+      }
+    }
+    if (const auto problem = outline_problem(sh.outline))
+      s.fail(sh.type == "revolution" ? "outline" : "type", "the " + sh.type + "'s section: " + *problem);
   }
 
   const BodySpec* find_body(const std::string& name) const {
@@ -404,7 +443,7 @@ class Reader {
         if (const std::optional<BodyIssue> issue = state->check(body)) b.fail(issue->key, issue->message);
       b.finish();
       Vec3 lo, hi;
-      shape_bounds(body.shape, lo, hi);
+      shape_bounds(body.shape, ndim(), lo, hi);
       for (int d = 0; d < ndim(); ++d)
         if (hi[d] < sc_.grid.lower[d] || lo[d] > sc_.grid.upper[d])
           b.fail("shape", "body '" + body.name + "' lies entirely outside the grid (in " + axis_name(d) +
@@ -663,7 +702,7 @@ class Reader {
     if (tb == pb) n.fail("target", "the target must differ from the penetrator");
     // Default surface: the target's face towards the incoming penetrator.
     Vec3 lo, hi;
-    shape_bounds(tb->shape, lo, hi);
+    shape_bounds(tb->shape, ndim(), lo, hi);
     const PenetratorSpec& ps = pb->penetrator;
     const double face = ps.direction < 0 ? hi[ps.axis] : lo[ps.axis];
     pe.surface = n.number("surface", face, NumberRange::any("m"));

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "geometry/revolution.hpp"
 
 namespace ballista {
 
@@ -28,6 +29,14 @@ void axial_radial(const ShapeSpec& s, const Vec3& x, int dim, double& axial, dou
   for (int k = 0; k < 3; ++k)
     if (k != a) r2 += d[k] * d[k];
   radial = std::sqrt(r2);
+}
+bool is_revolution(const ShapeSpec& s) { return s.type == "cone" || s.type == "liner" || s.type == "revolution"; }
+
+/// A solid of revolution's size for the closedness tolerance: its largest radius or length.
+double outline_size(const ShapeSpec& s) {
+  double r, a0, a1;
+  outline_extent(s.outline, r, a0, a1);
+  return std::max(r, a1 - a0);
 }
 }  // namespace
 
@@ -57,6 +66,11 @@ bool shape_contains(const ShapeSpec& s, const Vec3& x, int dim) {
     const double rin = s.type == "tube" ? s.inner_radius : -1.0;
     return in_length && radial <= s.radius + tr && radial >= rin - tr;
   }
+  if (is_revolution(s)) {
+    double axial, radial;
+    axial_radial(s, x, dim, axial, radial);
+    return outline_depth(s.outline, radial, axial) >= -kTol * outline_size(s);
+  }
   if (s.type == "surface" || s.type == "mesh") return s.solid && s.solid->contains(x);  // 3D only (the deck reader)
   throw Error("unknown shape type '" + s.type + "'");
 }
@@ -80,6 +94,11 @@ double shape_depth(const ShapeSpec& s, const Vec3& x, int dim) {
     if (!(dim == 2 && s.axis == 2)) depth = std::min({depth, axial, s.length - axial});
     if (s.type == "tube") depth = std::min(depth, radial - s.inner_radius);
     return depth;
+  }
+  if (is_revolution(s)) {
+    double axial, radial;
+    axial_radial(s, x, dim, axial, radial);
+    return outline_depth(s.outline, radial, axial);
   }
   if (s.type == "surface" || s.type == "mesh")
     throw Error("shape_depth: not defined for a " + s.type + " shape (no distance to it is kept; shape_contains_by)");
@@ -106,6 +125,13 @@ void shape_bounds(const ShapeSpec& s, int dim, Vec3& lo, Vec3& hi) {
     hi = s.upper;
   } else if (s.type == "sphere") {
     for (int k = 0; k < 3; ++k) { lo[k] = s.center[k] - s.radius; hi[k] = s.center[k] + s.radius; }
+  } else if (is_revolution(s)) {
+    double r, a0, a1;
+    outline_extent(s.outline, r, a0, a1);
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = k == s.axis ? s.center[k] + a0 : s.center[k] - r;
+      hi[k] = k == s.axis ? s.center[k] + a1 : s.center[k] + r;
+    }
   } else {  // cylinder, tube
     for (int k = 0; k < 3; ++k) {
       if (k == s.axis) {

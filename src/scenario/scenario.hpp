@@ -107,13 +107,20 @@ class SolidShape {
 };
 
 struct ShapeSpec {
-  std::string type;       ///< box | cylinder | sphere | tube | surface
+  std::string type;       ///< box | cylinder | sphere | tube | cone | liner | revolution | surface | mesh
   Vec3 lower, upper;      ///< box corners, m
   Vec3 center;            ///< sphere centre / cylinder and tube base centre, m
   int axis = 2;           ///< cylinder/tube axis: 0 x, 1 y, 2 z
   double radius = 0.0;    ///< m (outer radius of a tube; in 2D a cylinder across its axis is a disk)
   double inner_radius = 0.0;  ///< tube inner radius, m
   double length = 0.0;    ///< cylinder/tube length along axis, m
+  /// cone, liner, revolution: the section in the half plane (r, a) of the distance from the axis
+  /// and along it from `center` (m; geometry/revolution.hpp). The cone and the liner are made
+  /// from their own keys, kept below for the record.
+  std::vector<std::array<double, 2>> outline;
+  double top_radius = 0.0;  ///< cone: radius at center + length along the axis, m
+  double angle = 0.0;       ///< liner: full apex angle, degrees
+  double thickness = 0.0;   ///< liner: wall thickness normal to the wall, m
   std::string file;       ///< surface: the surface file read (absolute path)
   std::shared_ptr<const SolidShape> solid;  ///< surface: the solid it bounds (lower/upper: its box)
 };

@@ -217,7 +217,7 @@ TEST(Shape, BoundsContainEveryInsidePoint) {
 
 TEST(Shape, UnknownTypeIsAnError) {
   ShapeSpec s;
-  s.type = "cone";
+  s.type = "pyramid";
   EXPECT_THROW(shape_contains(s, Vec3{}, 3), Error);
 }
 
