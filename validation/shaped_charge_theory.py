@@ -1,0 +1,272 @@
+#!/usr/bin/python3
+"""A shaped charge's jet against the collapse theory, station by station along the liner.
+
+Runs an axisymmetric charge deck (default examples/shaped_charge_jet_formation.yaml: an explosive
+`cylinder` with a `cone` cutout, a `liner` body, one detonation point on the axis) with frequent
+particle output, then reads the liner's particles by the station of the liner they started from
+(their distance s from the apex along the outer surface, from x0) and compares:
+
+1. Collapse velocity V0 of each station (the largest speed of its centre of mass before it reaches
+   a quarter of its initial radius) with Gurney's open-faced sandwich at the local explosive
+   thickness normal to the liner, V = sqrt(2E) [((1 + 2 M/C)^3 + 1) / (6 (1 + M/C)) + M/C]^-1/2
+   (R.W. Gurney, BRL Report 405, 1943; P.W. Cooper, Explosives Engineering, 1996, ch. 27).
+2. The steady collapse (Birkhoff, MacDougall, Pugh & Taylor, J. Appl. Phys. 19 (1948) 563; Pugh,
+   Eichelberger & Rostoker, J. Appl. Phys. 23 (1952) 532, without PER's unsteady term) from the
+   measured V0: Taylor's deflection sin(delta) = V0 / (2 U), U the speed at which the detonation
+   sweeps the liner's outer surface (program burn from the point: U = D |P - P_det| / (s + y_a cos
+   alpha)); the collapse angle beta = alpha + 2 delta; the jet velocity Vj = V0 cos(alpha + delta -
+   beta/2) / sin(beta/2), the slug's Vs = V0 sin(alpha + delta - beta/2) / cos(beta/2) and the jet's
+   share of the station's mass sin^2(beta/2). Simulated: the station's particles faster than the
+   collision point, (Vj + Vs)/2, at the end: their mass share and mean velocity.
+3. The virtual origin: at the last two frames the jet's axial velocity against its position is a
+   straight line v = (y - y0)/(t - t0) (every element left one point); the fit's r^2 and (y0, t0).
+
+Usage: validation/shaped_charge_theory.py --ballista build/ballista --out DIR [--set KEY=VALUE ...] [--check]
+       validation/shaped_charge_theory.py --analyse DIR          (an existing run)
+Writes DIR/theory.json and DIR/shaped_charge_theory.png; prints a table per station. --check exits 1
+unless (a) over the liner's outer half (where an element travels far enough to approach its terminal
+velocity) the collapse velocity is within 15 % of Gurney's (the sandwich formula's own accuracy,
+about 10 %, plus the products' sideways expansion off an unconfined charge, which a 1D sandwich
+ignores), and (b) the jet's velocity is linear in its position (r^2 >= 0.98) from one virtual
+origin (the two last frames' origin times within 0.5 us).
+"""
+import argparse
+import glob
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+import yaml
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DEFAULT_DECK = os.path.join(REPO, "examples", "shaped_charge_jet_formation.yaml")
+# Composition B's Gurney constant (Cooper 1996; data/materials.yaml comp_b notes).
+GURNEY = {"comp_b": 2700.0, "tnt": 2440.0}
+
+
+def gurney_open_sandwich(sqrt2e, m_over_c):
+    return sqrt2e / math.sqrt(((1 + 2 * m_over_c) ** 3 + 1) / (6 * (1 + m_over_c)) + m_over_c)
+
+
+def charge_geometry(resolved):
+    """Liner, charge and detonator of an axisymmetric charge deck (resolved.yaml)."""
+    deck = yaml.safe_load(open(resolved))
+    bodies = {b["name"]: b for b in deck["bodies"]}
+    liner = next(b for b in deck["bodies"] if b["shape"]["type"] == "liner")
+    charge = next(b for b in deck["bodies"] if deck["materials"][b["material"]]["model"] == "explosive")
+    ls, cs = liner["shape"], charge["shape"]
+    if cs["type"] != "cylinder":
+        raise SystemExit("the explosive must be a cylinder (with the liner's cone cut out)")
+    mats = deck["materials"]
+    lm, em = mats[liner["material"]], mats[charge["material"]]
+    det = deck["detonation"]["points"][0]["position"]
+    preset = None
+    for name in GURNEY:
+        if abs(em["density"] - {"comp_b": 1717.0, "tnt": 1630.0}[name]) < 1e-6:
+            preset = name
+    return {
+        "apex": float(ls["center"][1]), "alpha": math.radians(0.5 * float(ls["angle"])),
+        "thickness": float(ls["thickness"]), "mouth_radius": 0.5 * float(ls["diameter"]),
+        "charge_radius": float(cs["radius"]), "charge_back": float(cs["center"][1]),
+        "rho_liner": float(lm["density"]), "rho_explosive": float(em["density"]),
+        "detonation_speed": float(em["detonation_speed"]), "detonator": [float(det[0]), float(det[1])],
+        "sqrt2e": GURNEY.get(preset), "liner_body": list(bodies).index(liner["name"]),
+        "explosive": preset,
+    }
+
+
+def frames(run):
+    out = []
+    for fn in sorted(glob.glob(os.path.join(run, "particles_*.h5"))):
+        with h5py.File(fn) as f:
+            out.append({k: f[k][()] for k in ("time", "x", "x0", "v", "mass", "body")})
+    return out
+
+
+def analyse(run, n_stations=8):
+    g = charge_geometry(os.path.join(run, "resolved.yaml"))
+    fr = frames(run)
+    a, ya, t_l = g["alpha"], g["apex"], g["thickness"]
+    slant = g["mouth_radius"] / math.sin(a)
+    first = fr[0]
+    lb = first["body"] == g["liner_body"]
+    ids = np.nonzero(lb)[0]
+    x0 = first["x0"][lb]
+    # Station of a particle: its outer-surface foot, s = distance from the apex along the generator.
+    s_of = (x0[:, 0] * math.sin(a) + (x0[:, 1] - ya) * math.cos(a))
+    edges = np.linspace(0.1 * slant, 0.9 * slant, n_stations + 1)
+    # Particles keep their order between frames only while none is deleted; match by x0 instead.
+    def liner_of(f):
+        sel = f["body"] == g["liner_body"]
+        return f["x0"][sel], f["x"][sel], f["v"][sel], f["mass"][sel]
+    key0 = {tuple(np.round(p, 12)): i for i, p in enumerate(x0)}
+    series = []
+    for f in fr:
+        X0, X, V, M = liner_of(f)
+        idx = np.array([key0.get(tuple(np.round(p, 12)), -1) for p in X0])
+        series.append((f["time"], idx, X, V, M))
+    D, det = g["detonation_speed"], g["detonator"]
+    members_of = [set(np.nonzero((s_of >= edges[k]) & (s_of < edges[k + 1]))[0].tolist()) for k in range(n_stations)]
+
+    def centre(k, frame):
+        t, idx, X, V, M = frame
+        sel = np.array([i in members_of[k] for i in idx])
+        if not sel.any():
+            return None
+        m = M[sel]
+        return (float(np.sum(m * X[sel, 0]) / m.sum()), float(np.sum(m * X[sel, 1]) / m.sum()),
+                np.sum(m[:, None] * V[sel, :2], axis=0) / m.sum())
+
+    rows = []
+    for k in range(n_stations):
+        sm = 0.5 * (edges[k] + edges[k + 1])
+        members = members_of[k]
+        # Collapse velocity: largest centre-of-mass speed while the station is above a quarter of its radius.
+        r_init, v0 = None, 0.0
+        for frame in series:
+            c = centre(k, frame)
+            if c is None:
+                continue
+            rc, _, vc = c
+            if r_init is None:
+                r_init = rc
+            if rc < 0.25 * r_init:
+                break
+            v0 = max(v0, float(np.hypot(vc[0], vc[1])))
+        # Gurney at the local explosive thickness normal to the outer surface (to the charge's side or back).
+        p = (sm * math.sin(a), ya + sm * math.cos(a))
+        t_side = (g["charge_radius"] - p[0]) / math.cos(a)
+        t_back = (p[1] - g["charge_back"]) / math.sin(a)
+        t_e = min(t_side, t_back)
+        m_over_c = g["rho_liner"] * t_l / (g["rho_explosive"] * t_e)
+        v_gurney = gurney_open_sandwich(g["sqrt2e"], m_over_c) if g["sqrt2e"] else float("nan")
+        # Sweep speed of the detonation along the outer surface, Taylor's deflection, steady BMPT.
+        dist = math.hypot(p[0] - det[0], p[1] - det[1])
+        U = D * dist / ((p[0] - det[0]) * math.sin(a) + (p[1] - det[1]) * math.cos(a))
+        delta = math.asin(min(1.0, v0 / (2 * U)))
+        beta = a + 2 * delta
+        vj = v0 * math.cos(a + delta - beta / 2) / math.sin(beta / 2)
+        vs = v0 * math.sin(a + delta - beta / 2) / math.cos(beta / 2)
+        share = math.sin(beta / 2) ** 2
+        t, idx, X, V, M = series[-1]
+        sel = np.array([i in members for i in idx])
+        m, vy = M[sel], V[sel, 1]
+        jet = vy > 0.5 * (vj + vs)
+        m_station = sum(first["mass"][ids[i]] for i in members)
+        rows.append({
+            "s_mm": sm * 1e3, "explosive_mm": t_e * 1e3, "m_over_c": m_over_c, "v0": v0, "v0_gurney": v_gurney,
+            "sweep_speed": U, "delta_deg": math.degrees(delta), "beta_deg": math.degrees(beta),
+            "vj_theory": vj, "vs_theory": vs, "jet_share_theory": share,
+            "vj_sim": float(np.sum(m[jet] * vy[jet]) / m[jet].sum()) if jet.any() else float("nan"),
+            "jet_share_sim": float(m[jet].sum() / m_station), "points": len(members),
+        })
+    # Virtual origin: v against y over the jet (faster than 2 km/s and ahead of the slug) at the last two frames.
+    origin = []
+    for (t, idx, X, V, M) in series[-2:]:
+        fast = V[:, 1] > 2000.0
+        y, vy = X[fast, 1], V[fast, 1]
+        c = np.polyfit(y, vy, 1)
+        r2 = 1 - np.sum((vy - np.polyval(c, y)) ** 2) / np.sum((vy - vy.mean()) ** 2)
+        origin.append({"time": float(t), "slope": float(c[0]), "intercept": float(c[1]), "r2": float(r2),
+                       "tip_velocity": float(vy.max()), "jet_points": int(fast.sum())})
+    vo = {}
+    if len(origin) == 2 and origin[0]["slope"] > 0 and origin[1]["slope"] > 0:
+        (t1, k1), (t2, k2) = (origin[0]["time"], origin[0]["slope"]), (origin[1]["time"], origin[1]["slope"])
+        # slope = 1/(t - t0) at each time.
+        t0 = 0.5 * ((t1 - 1 / k1) + (t2 - 1 / k2))
+        vo = {"t0_us": t0 * 1e6, "y0_mm": -origin[1]["intercept"] / k2 * 1e3,
+              "t0_spread_us": abs((t1 - 1 / k1) - (t2 - 1 / k2)) * 1e6}
+    return {"geometry": g, "stations": rows, "origin_fits": origin, "virtual_origin": vo}
+
+
+def plot(res, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    st = res["stations"]
+    s = [r["s_mm"] for r in st]
+    fig, ax = plt.subplots(1, 2, figsize=(12, 4.5))
+    ax[0].plot(s, [r["v0"] for r in st], "o-", label="collapse velocity $V_0$, MPM")
+    ax[0].plot(s, [r["v0_gurney"] for r in st], "s--", label="Gurney, open-faced sandwich at the local C/M")
+    ax[0].plot(s, [r["vj_sim"] for r in st], "o-", label="jet velocity from the station, MPM")
+    ax[0].plot(s, [r["vj_theory"] for r in st], "s--", label="BMPT jet velocity from $V_0$")
+    ax[0].set_xlabel("station: distance from the apex along the liner (mm)")
+    ax[0].set_ylabel("m/s")
+    ax[0].legend(fontsize=7)
+    ax[0].grid(alpha=0.3)
+    ax[1].plot(s, [r["jet_share_sim"] for r in st], "o-", label="jet share of the station's mass, MPM")
+    ax[1].plot(s, [r["jet_share_theory"] for r in st], "s--", label=r"$\sin^2(\beta/2)$ (BMPT)")
+    ax[1].set_xlabel("station (mm)")
+    ax[1].set_ylabel("mass fraction")
+    ax[1].legend(fontsize=7)
+    ax[1].grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--ballista")
+    ap.add_argument("--deck", default=DEFAULT_DECK)
+    ap.add_argument("--out")
+    ap.add_argument("--set", action="append", default=[])
+    ap.add_argument("--interval", default="0.25e-6", help="particle output interval, s (the collapse lasts ~1 us)")
+    ap.add_argument("--analyse", help="analyse an existing run folder instead")
+    ap.add_argument("--stations", type=int, default=8)
+    ap.add_argument("--check", action="store_true", help="exit 1 unless the bounds above hold")
+    a = ap.parse_args()
+    run = a.analyse
+    if not run:
+        if not (a.ballista and a.out):
+            sys.exit("give --ballista and --out, or --analyse RUN")
+        run = a.out
+        if os.path.isdir(run) and os.listdir(run):
+            # Only a previous run is replaced, never a folder of something else.
+            if not os.path.exists(os.path.join(run, "resolved.yaml")):
+                sys.exit(f"{run} is not empty and holds no Ballista run: give another --out")
+            shutil.rmtree(run)
+        cmd = [a.ballista, "run", a.deck, "-o", run, "-q", "--no-plots",
+               "--set", "output.interval=" + a.interval]
+        for s in a.set:
+            cmd += ["--set", s]
+        subprocess.run(cmd, check=True)
+    res = analyse(run, a.stations)
+    json.dump(res, open(os.path.join(run, "theory.json"), "w"), indent=1)
+    print(f"{'s mm':>6} {'C/M':>5} {'V0':>6} {'Gurney':>6} {'ratio':>6} {'beta':>5} {'Vj th':>6}"
+          f" {'Vj sim':>6} {'ratio':>6} {'share th':>8} {'sim':>6}")
+    for r in res["stations"]:
+        print(f"{r['s_mm']:6.1f} {1 / r['m_over_c']:5.2f} {r['v0']:6.0f} {r['v0_gurney']:6.0f}"
+              f" {r['v0'] / r['v0_gurney']:6.3f} {r['beta_deg']:5.1f} {r['vj_theory']:6.0f} {r['vj_sim']:6.0f}"
+              f" {r['vj_sim'] / r['vj_theory']:6.3f} {r['jet_share_theory']:8.3f} {r['jet_share_sim']:6.3f}")
+    for o in res["origin_fits"]:
+        print(f"t = {o['time'] * 1e6:.2f} us: v = {o['slope']:.4g} y + {o['intercept']:.4g}, r^2 = {o['r2']:.4f}, "
+              f"tip {o['tip_velocity']:.0f} m/s, {o['jet_points']} jet points")
+    if res["virtual_origin"]:
+        vo = res["virtual_origin"]
+        print(f"virtual origin: t0 = {vo['t0_us']:.2f} us (spread {vo['t0_spread_us']:.2f}), y0 = {vo['y0_mm']:.1f} mm")
+    plot(res, os.path.join(run, "shaped_charge_theory.png"))
+    if a.check:
+        failed = []
+        half = 0.5 * res["geometry"]["mouth_radius"] / math.sin(res["geometry"]["alpha"]) * 1e3
+        for r in res["stations"]:
+            if r["s_mm"] > half and not abs(r["v0"] / r["v0_gurney"] - 1.0) <= 0.15:
+                failed.append(f"station {r['s_mm']:.1f} mm: collapse velocity {r['v0']:.0f} m/s is "
+                              f"{r['v0'] / r['v0_gurney']:.3f} of Gurney's {r['v0_gurney']:.0f} m/s (bound 15 %)")
+        last = res["origin_fits"][-1]
+        if not last["r2"] >= 0.98:
+            failed.append(f"jet velocity against position: r^2 = {last['r2']:.4f} < 0.98")
+        vo = res["virtual_origin"]
+        if not vo or not vo["t0_spread_us"] <= 0.5:
+            failed.append(f"no single virtual origin: {vo}")
+        for f in failed:
+            print("FAIL: " + f)
+        sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()
