@@ -243,3 +243,14 @@ TEST(Probes, RadialVelocityAboutAnAxis) {
   p.vectors["center"] = {{4.0, 0.0, 0.0}};
   EXPECT_TRUE(std::isnan(eval(p, 1, s)));
 }
+
+TEST(Probes, MaxAndMinVelocityAlongAnAxis) {
+  FieldStore s = make({{0, {}, {}}, {0, {}, {}}, {0, {}, {}}, {1, {}, {}}});
+  const Vec3 v[4] = {{{9.0, 2.0, 0.0}}, {{0.0, 5.5, 0.0}}, {{0.0, -3.0, 0.0}}, {{0.0, 8.0, 0.0}}};
+  for (int i = 0; i < 4; ++i) s.view<Vec3>("v")[i] = v[i];
+  EXPECT_EQ(eval(probe("max_velocity", 1), 0, s), 5.5);  // the tip; body 1 and the x component not counted
+  EXPECT_EQ(eval(probe("min_velocity", 1), 0, s), -3.0);
+  EXPECT_EQ(eval(probe("max_velocity", 1), -1, s), 8.0);  // every body
+  EXPECT_EQ(eval(probe("max_velocity", 0), 0, s), 9.0);
+  EXPECT_TRUE(std::isnan(eval(probe("max_velocity", 1), 2, s)));  // no point: NaN
+}
