@@ -12,6 +12,7 @@ install(FILES ${PROJECT_SOURCE_DIR}/data/materials.yaml DESTINATION ${BALLISTA_S
 # developer tools (build comparison, fuzzers).
 install(PROGRAMS
         ${PROJECT_SOURCE_DIR}/tools/plot_fragment_sweep.py
+        ${PROJECT_SOURCE_DIR}/tools/jet_table.py
         ${PROJECT_SOURCE_DIR}/tools/plot_fragments.py
         ${PROJECT_SOURCE_DIR}/tools/plot_penetration.py
         ${PROJECT_SOURCE_DIR}/tools/plot_sweep_penetration.py
