@@ -23,7 +23,9 @@ particle output, then reads the liner's particles by the station of the liner th
 
 Usage: validation/shaped_charge_theory.py --ballista build/ballista --out DIR [--set KEY=VALUE ...] [--check]
        validation/shaped_charge_theory.py --analyse DIR          (an existing run)
-Writes DIR/theory.json and DIR/shaped_charge_theory.png; prints a table per station. --check exits 1
+Writes DIR/theory.json, DIR/shaped_charge_theory.png (the stations against the theory, v against y
+with the virtual-origin fit, cumulative jet mass against velocity) and DIR/shaped_charge_jet.png (the
+liner at four times); prints a table per station. --check exits 1
 unless (a) over the liner's outer half (where an element travels far enough to approach its terminal
 velocity) the collapse velocity is within 15 % of Gurney's (the sandwich formula's own accuracy,
 about 10 %, plus the products' sideways expansion off an unconfined charge, which a 1D sandwich
@@ -181,16 +183,28 @@ def analyse(run, n_stations=8):
         t0 = 0.5 * ((t1 - 1 / k1) + (t2 - 1 / k2))
         vo = {"t0_us": t0 * 1e6, "y0_mm": -origin[1]["intercept"] / k2 * 1e3,
               "t0_spread_us": abs((t1 - 1 / k1) - (t2 - 1 / k2)) * 1e6}
-    return {"geometry": g, "stations": rows, "origin_fits": origin, "virtual_origin": vo}
+    # The jet at the last frame (v > 2 km/s) for the figures: position, velocity, mass (whole ring).
+    t, idx, X, V, M = series[-1]
+    fast = V[:, 1] > 2000.0
+    jet = {"time": float(t), "y": X[fast, 1].tolist(), "v": V[fast, 1].tolist(),
+           "mass": (2 * math.pi * M[fast]).tolist(), "liner_mass": float(2 * math.pi * first["mass"][lb].sum())}
+    # The liner at a few times for the snapshot figure.
+    snaps = []
+    for frac in (0.2, 0.4, 0.6, 1.0):
+        tt, idx, X, V, M = series[min(len(series) - 1, int(round(frac * (len(series) - 1))))]
+        snaps.append({"time": float(tt), "r": X[:, 0].tolist(), "y": X[:, 1].tolist(), "v": V[:, 1].tolist()})
+    return {"geometry": g, "stations": rows, "origin_fits": origin, "virtual_origin": vo, "jet": jet,
+            "snapshots": snaps}
 
 
-def plot(res, path):
+def plot(res, path, snap_path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     st = res["stations"]
     s = [r["s_mm"] for r in st]
-    fig, ax = plt.subplots(1, 2, figsize=(12, 4.5))
+    fig, ax = plt.subplots(2, 2, figsize=(12, 9))
+    ax = ax.ravel()
     ax[0].plot(s, [r["v0"] for r in st], "o-", label="collapse velocity $V_0$, MPM")
     ax[0].plot(s, [r["v0_gurney"] for r in st], "s--", label="Gurney, open-faced sandwich at the local C/M")
     ax[0].plot(s, [r["vj_sim"] for r in st], "o-", label="jet velocity from the station, MPM")
@@ -205,8 +219,42 @@ def plot(res, path):
     ax[1].set_ylabel("mass fraction")
     ax[1].legend(fontsize=7)
     ax[1].grid(alpha=0.3)
+    jet = res["jet"]
+    y, v, m = np.array(jet["y"]), np.array(jet["v"]), np.array(jet["mass"])
+    o = res["origin_fits"][-1]
+    ax[2].plot(y * 1e3, v, ".", ms=3, label=f"jet points at {jet['time'] * 1e6:.1f} us")
+    yy = np.linspace(y.min(), y.max(), 2)
+    ax[2].plot(yy * 1e3, o["slope"] * yy + o["intercept"], "k--",
+               label=f"virtual origin fit, r$^2$ = {o['r2']:.3f}")
+    ax[2].set_xlabel("axial position (mm)")
+    ax[2].set_ylabel("axial velocity (m/s)")
+    ax[2].legend(fontsize=7)
+    ax[2].grid(alpha=0.3)
+    order = np.argsort(-v)
+    ax[3].plot(v[order], np.cumsum(m[order]) * 1e3, "-", label="MPM: jet mass faster than v")
+    th = sorted(((r["vj_theory"], r["jet_share_theory"] * r["s_mm"]) for r in st), reverse=True)
+    # The stations' masses are proportional to their distance from the apex (equal slant widths).
+    scale = jet["liner_mass"] * 0.8 / sum(r["s_mm"] for r in st)
+    ax[3].plot([t[0] for t in th], np.cumsum([t[1] * scale for t in th]) * 1e3, "s--",
+               label="BMPT, stations sorted by their jet velocity")
+    ax[3].set_xlabel("velocity (m/s)")
+    ax[3].set_ylabel("cumulative jet mass (g)")
+    ax[3].legend(fontsize=7)
+    ax[3].grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=90)
+    fig.savefig(path, dpi=80)
+    plt.close(fig)
+    fig, axs = plt.subplots(1, len(res["snapshots"]), figsize=(12, 5), sharey=True)
+    for a_, sn in zip(axs, res["snapshots"]):
+        sc = a_.scatter(np.array(sn["r"]) * 1e3, np.array(sn["y"]) * 1e3, c=sn["v"], s=1, cmap="viridis",
+                        vmin=0, vmax=max(v.max(), 1.0))
+        a_.set_title(f"{sn['time'] * 1e6:.1f} us", fontsize=9)
+        a_.set_xlabel("r (mm)")
+        a_.set_aspect("equal")
+    axs[0].set_ylabel("y (mm)")
+    fig.colorbar(sc, ax=axs, label="axial velocity (m/s)")
+    fig.savefig(snap_path, dpi=80)
+    plt.close(fig)
 
 
 def main():
@@ -249,7 +297,7 @@ def main():
     if res["virtual_origin"]:
         vo = res["virtual_origin"]
         print(f"virtual origin: t0 = {vo['t0_us']:.2f} us (spread {vo['t0_spread_us']:.2f}), y0 = {vo['y0_mm']:.1f} mm")
-    plot(res, os.path.join(run, "shaped_charge_theory.png"))
+    plot(res, os.path.join(run, "shaped_charge_theory.png"), os.path.join(run, "shaped_charge_jet.png"))
     if a.check:
         failed = []
         half = 0.5 * res["geometry"]["mouth_radius"] / math.sin(res["geometry"]["alpha"]) * 1e3
