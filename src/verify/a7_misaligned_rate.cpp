@@ -92,13 +92,6 @@ A7Run compare(const DriveResult& r, const J2DeviatoricLegs& exact, const std::ve
   return out;
 }
 
-std::vector<double> thin(const std::vector<double>& v, int every) {
-  std::vector<double> o;
-  for (size_t k = 0; k < v.size(); ++k)
-    if (k % static_cast<size_t>(every) == 0 || k + 1 == v.size()) o.push_back(v[k]);
-  return o;
-}
-
 }  // namespace
 
 std::vector<std::array<double, 3>> A7Problem::legs() const {
@@ -164,10 +157,11 @@ VerifyCase run_a7(const MaterialFactory& f, const A7Problem& pb) {
           std::abs(run.end_angle_leg2 - run.end_angle_leg2_an), tol * 180.0 / kPi);
 
   const int e = pb.plot_every;
-  c.series = {{"t", thin(run.t, e)},         {"s1", thin(run.s1, e)},         {"s2", thin(run.s2, e)},
-              {"s1_an", thin(run.s1_an, e)}, {"s2_an", thin(run.s2_an, e)},   {"s11", thin(run.s11, e)},
-              {"s22", thin(run.s22, e)},     {"s33", thin(run.s33, e)},       {"s11_an", thin(run.s11_an, e)},
-              {"s22_an", thin(run.s22_an, e)}, {"s33_an", thin(run.s33_an, e)}};
+  const std::pair<const char*, const std::vector<double>*> plotted[] = {
+      {"t", &run.t},         {"s1", &run.s1},   {"s2", &run.s2},   {"s1_an", &run.s1_an},
+      {"s2_an", &run.s2_an}, {"s11", &run.s11}, {"s22", &run.s22}, {"s33", &run.s33},
+      {"s11_an", &run.s11_an}, {"s22_an", &run.s22_an}, {"s33_an", &run.s33_an}};
+  for (const auto& [name, series] : plotted) c.series.push_back({name, every_nth(*series, e)});
   c.scalars = {{"radius", R},
                {"error_bound", bound},
                {"steps_per_leg", static_cast<double>(pb.steps)},

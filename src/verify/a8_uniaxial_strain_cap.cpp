@@ -97,13 +97,6 @@ A8Run compare(const DriveResult& r, const UniaxialStrainCap& ref, const CapSurfa
   return out;
 }
 
-std::vector<double> thin(const std::vector<double>& v, int every) {
-  std::vector<double> o;
-  for (size_t k = 0; k < v.size(); ++k)
-    if (k % static_cast<size_t>(every) == 0 || k + 1 == v.size()) o.push_back(v[k]);
-  return o;
-}
-
 /// Errors at N, N/2 and N/4 steps and the observed order from the two finest.
 struct A8Part {
   A8Run run;
@@ -178,13 +171,13 @@ VerifyCase run_a8(const MaterialFactory& f, const A8Problem& pb) {
   const int e = pb.plot_every;
   for (const auto& [prefix, part] : {std::pair<std::string, const A8Part*>{"fixed_", &a}, {"", &b}}) {
     const A8Run& r = part->run;
-    c.series.push_back({prefix + "e", thin(r.e, e)});
-    c.series.push_back({prefix + "i1", thin(r.i1, e)});
-    c.series.push_back({prefix + "sqrt_j2", thin(r.q, e)});
-    c.series.push_back({prefix + "i1_ref", thin(r.i1_ref, e)});
-    c.series.push_back({prefix + "sqrt_j2_ref", thin(r.q_ref, e)});
-    c.series.push_back({prefix + "cap", thin(r.cap, e)});
-    c.series.push_back({prefix + "cap_ref", thin(r.cap_ref, e)});
+    c.series.push_back({prefix + "e", every_nth(r.e, e)});
+    c.series.push_back({prefix + "i1", every_nth(r.i1, e)});
+    c.series.push_back({prefix + "sqrt_j2", every_nth(r.q, e)});
+    c.series.push_back({prefix + "i1_ref", every_nth(r.i1_ref, e)});
+    c.series.push_back({prefix + "sqrt_j2_ref", every_nth(r.q_ref, e)});
+    c.series.push_back({prefix + "cap", every_nth(r.cap, e)});
+    c.series.push_back({prefix + "cap_ref", every_nth(r.cap_ref, e)});
   }
   c.scalars = {{"peak_i1", pb.rock.peak_i1},
                {"fslope", pb.rock.fslope},

@@ -16,6 +16,13 @@ const char* to_string(VerifyStatus s) {
   return "?";
 }
 
+std::vector<double> every_nth(const std::vector<double>& v, int n) {
+  std::vector<double> o;
+  for (size_t k = 0; k < v.size(); ++k)
+    if (k % static_cast<size_t>(n) == 0 || k + 1 == v.size()) o.push_back(v[k]);
+  return o;
+}
+
 bool VerifyCase::check(std::string name, double value, double limit, bool at_least) {
   // NaN fails either way (a non-finite result must never pass).
   const bool ok = at_least ? value >= limit : value <= limit;

@@ -9,6 +9,9 @@
 namespace ballista {
 
 enum class VerifyStatus { Pass, Fail, NotApplicable };
+
+/// Every n-th entry of a per-step series and its last one: what a plot keeps of a long run.
+std::vector<double> every_nth(const std::vector<double>& v, int n);
 const char* to_string(VerifyStatus s);
 
 /// One assertion inside a test: `value` compared with `limit` (value <= limit unless `at_least`).
