@@ -67,7 +67,7 @@ def test_the_registries_are_in_the_schema(schema):
     (("grid", "cell_size"), "big"),              # a string for a number
     (("grid", "cell_size"), -1.0e-3),            # below its range (> 0)
     (("simulation", "solver"), "fem"),           # not a registered solver
-    (("bodies", 0, "shape", "type"), "cone"),    # not a shape
+    (("bodies", 0, "shape", "type"), "pyramid"),  # not a shape
     (("materials", "copper", "poisson_ratio"), 0.7),  # outside (-1, 0.5)
 ])
 def test_the_schema_flags_what_an_editor_should(schema, path, value):
