@@ -61,8 +61,10 @@ class Pressure final : public Load {
   }
 };
 
-/// The surfaces a pressure may load on a body of this shape in this kind of run.
+/// The surfaces a pressure may load on a body of this shape in this kind of run; none for the shapes
+/// whose faces are not named (solids of revolution, surface and mesh solids).
 std::vector<std::string> surfaces(const ShapeSpec& s, Dimension dim) {
+  if (s.type != "box" && s.type != "sphere" && s.type != "cylinder" && s.type != "tube") return {};
   const bool two_d = dim != Dimension::ThreeD;
   if (s.type == "box")
     return two_d ? std::vector<std::string>{"x_min", "x_max", "y_min", "y_max"}
@@ -86,6 +88,9 @@ LoadReading read_pressure(LoadEntry& e, LoadSpec load) {
     e.fail("body", "a pressure on body '" + load.body + "', seeded at its mesh's elements, is not supported: the "
                    "loaded points are found on a lattice (seed the body with seeding: lattice)");
   const auto valid = surfaces(body.shape, sc.simulation.dimension);
+  if (valid.empty())
+    e.fail("body", "a pressure needs a body whose faces are named (a box, sphere, cylinder or tube); body '" +
+                       load.body + "' is a " + body.shape.type);
   const std::string surface = e.string("surface");
   if (std::find(valid.begin(), valid.end(), surface) == valid.end()) {
     std::string hint;

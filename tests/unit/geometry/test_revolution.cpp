@@ -213,4 +213,9 @@ TEST(Revolution, DeckKeysAndErrors) {
                                         "{type: revolution, center: [0, 0.01], axis: y, outline: [[0, 0], [0.01], [0, "
                                         "0.01]]}"));
   EXPECT_NE(row.find("bodies.1.shape.outline.1"), std::string::npos) << row;
+  // A pressure needs named faces: a liner has none (its "outer" would be read as a cylinder's).
+  const std::string pressure = error_of(charge_deck(2) + "loads:\n  - {type: pressure, body: liner, surface: outer, "
+                                                         "pressure: 1.0e6}\n");
+  EXPECT_NE(pressure.find("loads.0.body"), std::string::npos) << pressure;
+  EXPECT_NE(pressure.find("body 'liner' is a liner"), std::string::npos) << pressure;
 }
