@@ -297,7 +297,7 @@ class Reader {
       sh.length = s.number("length", NumberRange::positive("m"));
       if (!(sh.radius > 0.0 || sh.top_radius > 0.0))
         s.fail("radius", "expected radius or top_radius > 0 (both 0 is a line, not a cone)");
-      for (const auto& v : cone_outline(sh.radius, sh.top_radius, sh.length)) sh.outline.push_back(v);
+      sh.outline = cone_outline(sh.radius, sh.top_radius, sh.length);
     } else if (sh.type == "liner") {
       sh.angle = s.number("angle", NumberRange::between(0.0, 180.0, true, true, "degrees"));
       sh.thickness = s.number("thickness", NumberRange::positive("m"));
@@ -308,7 +308,7 @@ class Reader {
         s.fail("thickness", "expected a wall thinner than (diameter / 2) cos(angle / 2) = " + format_number(limit) +
                                 " m, where the inner cone would close before the mouth; got " +
                                 format_number(sh.thickness));
-      for (const auto& v : liner_outline(sh.angle, sh.thickness, diameter)) sh.outline.push_back(v);
+      sh.outline = liner_outline(sh.angle, sh.thickness, diameter);
     } else {
       const YAML::Node v = s.raw("outline");
       const std::string what = "a list of at least 3 vertices [r, a] (m): radius from the axis and distance along it "

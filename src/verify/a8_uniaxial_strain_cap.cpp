@@ -64,14 +64,19 @@ A8Run compare(const DriveResult& r, const UniaxialStrainCap& ref, const CapSurfa
   const int ic = state_index(r, "cap_i1"), ie = state_index(r, "plastic_volumetric_strain");
   if (ic < 0) out.missing += "cap_i1 ";
   if (ie < 0) out.missing += "plastic_volumetric_strain ";
-  for (const DriveRecord& rec : r.records) out.scale = std::max(out.scale, frobenius(reference_stress(ref, -std::log(rec.F(0, 0)))));
+  // The reference at each record's strain, and its largest norm: the scale of every measure below.
+  std::vector<Mat3> reference;
   for (const DriveRecord& rec : r.records) {
+    reference.push_back(reference_stress(ref, -std::log(rec.F(0, 0))));
+    out.scale = std::max(out.scale, frobenius(reference.back()));
+  }
+  for (std::size_t k = 0; k < r.records.size(); ++k) {
+    const DriveRecord& rec = r.records[k];
     const double e = -std::log(rec.F(0, 0));
     const Mat3& s = rec.sigma;
     const double i1 = trace(s);
-    const Mat3 dev = s - Mat3::diag(i1 / 3.0, i1 / 3.0, i1 / 3.0);
-    const double q = std::sqrt(0.5 * frobenius(dev) * frobenius(dev));
-    out.max_error = std::max(out.max_error, frobenius(s - reference_stress(ref, e)) / out.scale);
+    const double q = frobenius(s - Mat3::diag(i1 / 3.0, i1 / 3.0, i1 / 3.0)) / std::sqrt(2.0);  // sqrt(J2)
+    out.max_error = std::max(out.max_error, frobenius(s - reference[k]) / out.scale);
     out.lateral = std::max(out.lateral, (std::abs(s(1, 1) - s(2, 2)) + std::abs(s(0, 1)) + std::abs(s(0, 2)) +
                                          std::abs(s(1, 2))) / out.scale);
     double X = ref.cap(e);

@@ -60,8 +60,7 @@ Dev2 J2DeviatoricLegs::deviator(size_t leg, double tau) const {
   // On the circle from tau_y: the angle from de relaxes as tan(psi/2) ~ exp(-2G|de| tau / R).
   const double mag = std::sqrt(dot(de, de));
   const Dev2 d{de[0] / mag, de[1] / mag}, n{-d[1], d[0]};
-  const Dev2 sy{s0[0] + G2 * de[0] * ty, s0[1] + G2 * de[1] * ty};
-  const double psi0 = std::atan2(dot(n, sy), dot(d, sy));
+  const double psi0 = yield_angle(leg);
   const double psi = 2.0 * std::atan(std::tan(0.5 * psi0) * std::exp(-G2 * mag * (tau - ty) / R));
   return {R * (std::cos(psi) * d[0] + std::sin(psi) * n[0]), R * (std::cos(psi) * d[1] + std::sin(psi) * n[1])};
 }

@@ -32,7 +32,7 @@ ShapeSpec revolution_spec(const std::string& type, const Outline& o, Vec3 center
   s.type = type;
   s.center = center;
   s.axis = axis;
-  for (const auto& v : o) s.outline.push_back(v);
+  s.outline = o;
   return s;
 }
 
