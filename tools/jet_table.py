@@ -33,7 +33,6 @@ import argparse
 import glob
 import math
 import os
-import sys
 
 import h5py
 import numpy as np
@@ -46,8 +45,10 @@ def particle_file(run, time):
         raise SystemExit(f"no particle files in {run}")
     if time is None:
         return files[-1]
-    best = min(files, key=lambda f: abs(h5py.File(f)["time"][()] - time))
-    return best
+    def distance(fn):
+        with h5py.File(fn) as f:
+            return abs(f["time"][()] - time)
+    return min(files, key=distance)
 
 
 def jet_table(run, time=None, segments=10, min_speed=2000.0, plane=None, body=None):

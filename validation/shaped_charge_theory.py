@@ -4,7 +4,7 @@
 Runs an axisymmetric charge deck (default examples/shaped_charge_jet_formation.yaml: an explosive
 `cylinder` with a `cone` cutout, a `liner` body, one detonation point on the axis) with frequent
 particle output, then reads the liner's particles by the station of the liner they started from
-(their distance s from the apex along the outer surface, from x0) and compares:
+(their distance s from the apex along the outer surface at t = 0, followed by id) and compares:
 
 1. Collapse velocity V0 of each station (the largest speed of its centre of mass before it reaches
    a quarter of its initial radius) with Gurney's open-faced sandwich at the local explosive
@@ -86,7 +86,7 @@ def frames(run):
     out = []
     for fn in sorted(glob.glob(os.path.join(run, "particles_*.h5"))):
         with h5py.File(fn) as f:
-            out.append({k: f[k][()] for k in ("time", "x", "x0", "v", "mass", "body")})
+            out.append({k: f[k][()] for k in ("time", "x", "v", "mass", "body", "id")})
     return out
 
 
@@ -97,44 +97,44 @@ def analyse(run, n_stations=8):
     slant = g["mouth_radius"] / math.sin(a)
     first = fr[0]
     lb = first["body"] == g["liner_body"]
-    ids = np.nonzero(lb)[0]
-    x0 = first["x0"][lb]
-    # Station of a particle: its outer-surface foot, s = distance from the apex along the generator.
-    s_of = (x0[:, 0] * math.sin(a) + (x0[:, 1] - ya) * math.cos(a))
+    # Station of each liner point: its outer-surface foot at t = 0, s = distance from the apex along
+    # the generator, binned in n_stations equal pieces of 10 % to 90 % of the slant (-1: outside them).
+    x0 = first["x"][lb]
+    s_of = x0[:, 0] * math.sin(a) + (x0[:, 1] - ya) * math.cos(a)
     edges = np.linspace(0.1 * slant, 0.9 * slant, n_stations + 1)
-    # Particles keep their order between frames only while none is deleted; match by x0 instead.
-    def liner_of(f):
-        sel = f["body"] == g["liner_body"]
-        return f["x0"][sel], f["x"][sel], f["v"][sel], f["mass"][sel]
-    key0 = {tuple(np.round(p, 12)): i for i, p in enumerate(x0)}
+    station0 = np.digitize(s_of, edges) - 1
+    station0[station0 >= n_stations] = -1
+    mass_of_station = np.bincount(station0[station0 >= 0], weights=first["mass"][lb][station0 >= 0],
+                                  minlength=n_stations)
+    # Points are followed by id (deletions reorder the files).
+    order = np.argsort(first["id"][lb])
+    sorted_ids, sorted_station = first["id"][lb][order], station0[order]
     series = []
     for f in fr:
-        X0, X, V, M = liner_of(f)
-        idx = np.array([key0.get(tuple(np.round(p, 12)), -1) for p in X0])
-        series.append((f["time"], idx, X, V, M))
+        sel = f["body"] == g["liner_body"]
+        st = sorted_station[np.searchsorted(sorted_ids, f["id"][sel])]
+        series.append((f["time"], st, f["x"][sel], f["v"][sel], f["mass"][sel]))
     D, det = g["detonation_speed"], g["detonator"]
-    members_of = [set(np.nonzero((s_of >= edges[k]) & (s_of < edges[k + 1]))[0].tolist()) for k in range(n_stations)]
 
     def centre(k, frame):
-        t, idx, X, V, M = frame
-        sel = np.array([i in members_of[k] for i in idx])
+        """Centre-of-mass radius and in-plane velocity of station k in a frame, or None."""
+        t, st, X, V, M = frame
+        sel = st == k
         if not sel.any():
             return None
         m = M[sel]
-        return (float(np.sum(m * X[sel, 0]) / m.sum()), float(np.sum(m * X[sel, 1]) / m.sum()),
-                np.sum(m[:, None] * V[sel, :2], axis=0) / m.sum())
+        return float(np.sum(m * X[sel, 0]) / m.sum()), np.sum(m[:, None] * V[sel, :2], axis=0) / m.sum()
 
     rows = []
     for k in range(n_stations):
         sm = 0.5 * (edges[k] + edges[k + 1])
-        members = members_of[k]
         # Collapse velocity: largest centre-of-mass speed while the station is above a quarter of its radius.
         r_init, v0 = None, 0.0
         for frame in series:
             c = centre(k, frame)
             if c is None:
                 continue
-            rc, _, vc = c
+            rc, vc = c
             if r_init is None:
                 r_init = rc
             if rc < 0.25 * r_init:
@@ -155,21 +155,21 @@ def analyse(run, n_stations=8):
         vj = v0 * math.cos(a + delta - beta / 2) / math.sin(beta / 2)
         vs = v0 * math.sin(a + delta - beta / 2) / math.cos(beta / 2)
         share = math.sin(beta / 2) ** 2
-        t, idx, X, V, M = series[-1]
-        sel = np.array([i in members for i in idx])
+        t, st, X, V, M = series[-1]
+        sel = st == k
         m, vy = M[sel], V[sel, 1]
         jet = vy > 0.5 * (vj + vs)
-        m_station = sum(first["mass"][ids[i]] for i in members)
+        m_station = mass_of_station[k]
         rows.append({
             "s_mm": sm * 1e3, "explosive_mm": t_e * 1e3, "m_over_c": m_over_c, "v0": v0, "v0_gurney": v_gurney,
             "sweep_speed": U, "delta_deg": math.degrees(delta), "beta_deg": math.degrees(beta),
             "vj_theory": vj, "vs_theory": vs, "jet_share_theory": share,
             "vj_sim": float(np.sum(m[jet] * vy[jet]) / m[jet].sum()) if jet.any() else float("nan"),
-            "jet_share_sim": float(m[jet].sum() / m_station), "points": len(members),
+            "jet_share_sim": float(m[jet].sum() / m_station), "points": int(np.count_nonzero(station0 == k)),
         })
     # Virtual origin: v against y over the jet (faster than 2 km/s and ahead of the slug) at the last two frames.
     origin = []
-    for (t, idx, X, V, M) in series[-2:]:
+    for (t, _, X, V, M) in series[-2:]:
         fast = V[:, 1] > 2000.0
         y, vy = X[fast, 1], V[fast, 1]
         c = np.polyfit(y, vy, 1)
@@ -184,14 +184,14 @@ def analyse(run, n_stations=8):
         vo = {"t0_us": t0 * 1e6, "y0_mm": -origin[1]["intercept"] / k2 * 1e3,
               "t0_spread_us": abs((t1 - 1 / k1) - (t2 - 1 / k2)) * 1e6}
     # The jet at the last frame (v > 2 km/s) for the figures: position, velocity, mass (whole ring).
-    t, idx, X, V, M = series[-1]
+    t, _, X, V, M = series[-1]
     fast = V[:, 1] > 2000.0
     jet = {"time": float(t), "y": X[fast, 1].tolist(), "v": V[fast, 1].tolist(),
            "mass": (2 * math.pi * M[fast]).tolist(), "liner_mass": float(2 * math.pi * first["mass"][lb].sum())}
     # The liner at a few times for the snapshot figure.
     snaps = []
     for frac in (0.2, 0.4, 0.6, 1.0):
-        tt, idx, X, V, M = series[min(len(series) - 1, int(round(frac * (len(series) - 1))))]
+        tt, _, X, V, M = series[min(len(series) - 1, int(round(frac * (len(series) - 1))))]
         snaps.append({"time": float(tt), "r": X[:, 0].tolist(), "y": X[:, 1].tolist(), "v": V[:, 1].tolist()})
     return {"geometry": g, "stations": rows, "origin_fits": origin, "virtual_origin": vo, "jet": jet,
             "snapshots": snaps}
