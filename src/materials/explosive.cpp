@@ -137,8 +137,8 @@ struct Explosive {
   /// lighting_time (s, -1: never), burn_time (s), burn_fraction, the products' energy per initial
   /// volume (the first two are filled by the program burn, points/explosive_lighting.hpp).
   static std::vector<StateFieldSpec> state_fields() {
-    return {{kLightingTime.name(), "s", -1.0},
-            {kBurnTime.name(), "s", 0.0},
+    return {{kLightingTime.name(), "s", -1.0, false},  // -1 for never: not an average of two points'
+            {kBurnTime.name(), "s", 0.0, false},
             {"burn_fraction", "1", 0.0},
             {"products_energy", "J/m^3", 0.0},
             {kChemicalEnergyField, "J/m^3", 0.0}};

@@ -166,7 +166,7 @@ FailureModel make_failure(const ParamValues& v, ModelCapabilities caps) {
 
 std::vector<StateFieldSpec> failure_state_fields(const FailureModel& m) {
   if (!m.active()) return {};
-  return {{kDamageField, "1", 0.0}, {kFailedField, "1", 0.0}};
+  return {{kDamageField, "1", 0.0}, {kFailedField, "1", 0.0, false}};
 }
 
 }  // namespace ballista

@@ -234,11 +234,11 @@ struct Geomodel {
 
   // ---- State ----
   static std::vector<StateFieldSpec> state_fields() {
-    return {{"eqps", "1", 0.0},         {"plastic_volumetric_strain", "1", 0.0}, {"substeps", "1", 0.0},
+    return {{"eqps", "1", 0.0},         {"plastic_volumetric_strain", "1", 0.0}, {"substeps", "1", 0.0, false},
             {"porosity", "1", 0.0},     {"cap_i1", "Pa", 0.0},                   {"pore_pressure", "Pa", 0.0}};
   }
   static std::vector<StateFieldSpec> state_fields(const Params& p) {
-    std::vector<StateFieldSpec> f{{"eqps", "1", 0.0}, {"plastic_volumetric_strain", "1", 0.0}, {"substeps", "1", 0.0}};
+    std::vector<StateFieldSpec> f{{"eqps", "1", 0.0}, {"plastic_volumetric_strain", "1", 0.0}, {"substeps", "1", 0.0, false}};
     if (p.crush.active()) {
       f.push_back({"porosity", "1", p.crush.initial_porosity()});
       f.push_back({"cap_i1", "Pa", p.crush.p0});

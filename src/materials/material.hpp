@@ -102,6 +102,9 @@ struct StateFieldSpec {
   std::string name;
   std::string unit;
   double initial = 0.0;
+  /// False for a field of discrete values (a failure flag, a counter), which may not be averaged
+  /// between points (OTM's split interpolates the continuous ones).
+  bool continuous = true;
 };
 
 /// What a kernel is given for one point over one step [t_n, t_{n+1}].

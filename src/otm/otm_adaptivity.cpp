@@ -38,7 +38,8 @@ Vec3 largest_eigenvector(const Mat3& A, int dim, double hi) {
 
 std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>& extensive,
                                 const std::vector<double>& spacing, int dim, bool axisymmetric, const Vec3& lower,
-                                const Vec3& upper, const AdaptivityOptions& opt, std::int64_t& next_id) {
+                                const Vec3& upper, const AdaptivityOptions& opt, const SplitStateSpec& state,
+                                const std::string& failed, std::int64_t& next_id) {
   const Index n = pts.size();
   // Fields by name here, not by typed key (core/field_key.hpp): the keys change how GCC optimises
   // this file's split arithmetic (FMA contraction with -march=native) and with it the last bits of
@@ -50,6 +51,7 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
   const auto* xr = pts.view<Vec3>("x0");
   std::vector<Index> which;
   std::vector<Vec3> half, half0;  // parent centre to the first child's: current and reference
+  std::vector<double> first_share, reach;  // the first child's share; the state's neighbourhood
   for (Index p = 0; p < n; ++p) {
     const double s0 = spacing.at(static_cast<size_t>(body[p]));
     const Mat3 SSt = S[p] * transpose(S[p]);
@@ -74,8 +76,18 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
     which.push_back(p);
     half.push_back(d);
     half0.push_back(d0);
+    // Shares of the reference volume: 1/2 each, or in axisymmetric runs the two half-rings,
+    // (r0 +- d0_r) / (2 r0) (Pappus: a half-cell's volume per radian is its area times its
+    // centroid's radius), which sum to 1 exactly.
+    first_share.push_back(axisymmetric ? 0.5 * (xr[p][0] + d0[0]) / xr[p][0] : 0.5);
+    // The state's gradient from the points around the parent out to 1.5 times its extent: the
+    // neighbours on both sides along the split direction, whose cells have stretched too.
+    reach.push_back(1.5 * std::sqrt(hi));
   }
   if (which.empty()) return which;
+  // Before anything moves: the children's state from the parent's neighbourhood (split_state.hpp).
+  const std::vector<SplitIncrement> increments =
+      split_increments(pts, which, half, reach, first_share, state, dim, failed);
   FieldStore kids = pts.empty_like();
   kids.append_from(pts, which);
   // Second children are appended; the parents become the first children.
@@ -98,16 +110,14 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
     const Index a = which[i], b = n + i;
     const Vec3 d = half[i], d0 = half0[i];
     const Vec3 u = (1.0 / norm(d)) * d;
-    // Shares of the reference volume: 1/2 each, or in axisymmetric runs the two half-rings,
-    // (r0 +- d0_r) / (2 r0) (Pappus: a half-cell's volume per radian is its area times its
-    // centroid's radius), which sum to 1 exactly.
-    const double wa = axisymmetric ? 0.5 * (x0[a][0] + d0[0]) / x0[a][0] : 0.5;
+    const double wa = first_share[i];
     share[2 * i] = wa;
     share[2 * i + 1] = 1.0 - wa;
     x[b] = x[a] - d;
     x[a] = x[a] + d;
     x0[b] = x0[a] - d0;
     x0[a] = x0[a] + d0;
+    apply_split_increment(pts, increments[i], a, b, wa, state);
     // The hoop stretch is each child's own r / r0 (the in-plane F is the parent's).
     if (axisymmetric) {
       F[a](2, 2) = x[a][0] / x0[a][0];

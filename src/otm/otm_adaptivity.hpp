@@ -11,11 +11,10 @@
 //  * points (the seed's "identical metric for the points"): a point whose extent along some
 //    direction has grown beyond split_stretch times its seeded spacing splits in two along that
 //    direction (the direction-aware version of the distance metric). The children sit at the
-//    centres of the two halves of the parent's cell and copy its state (the piecewise-constant
-//    interpolation over the parent's own cell: no interpolation across different material states,
-//    so stress, plastic strain and the history variables stay on their manifolds, which the seed
-//    achieves with Lie-group interpolation); mass, volume and energies are halved, so every
-//    extensive quantity is conserved exactly.
+//    centres of the two halves of the parent's cell, whose map is the parent's F (kept); their
+//    material state is the parent's moved along the limited linear reconstruction of the
+//    neighbourhood (split_state.hpp), or with otm.split_state: copy the parent's own; mass,
+//    volume and energies are halved, so every extensive quantity is conserved exactly.
 //  * nodes: when a point's nearest node is farther than node_gap h, two nodes of a body are closer
 //    than node_crowding h, a point split, or an LME solve failed, the nodes are re-generated at the
 //    vertices of the lattice cells that hold the points (exactly the initial seeding, otm_nodes.hpp):
@@ -32,6 +31,7 @@
 #include "core/field_store.hpp"
 #include "core/tensor.hpp"
 #include "otm/otm_nodes.hpp"
+#include "otm/split_state.hpp"
 
 namespace ballista::otm {
 
@@ -56,7 +56,8 @@ Vec3 largest_eigenvector(const Mat3& A, int dim, double hi);
 /// cell along that direction. `lower`/`upper` are the held faces of the box (walls, symmetry
 /// planes, fixed faces; -inf / +inf where a face is free). `extensive` names the
 /// reference-volume-proportional fields (mass, volume0, energies, areas), shared 1/2 : 1/2
-/// (axisymmetric: by the half-rings' volumes); `volume` is recomputed as det(F) volume0; every
+/// (axisymmetric: by the half-rings' volumes); `state.fields` are interpolated (split_state.hpp;
+/// points whose `failed` field is set keep theirs); `volume` is recomputed as det(F) volume0; every
 /// other field is copied (in axisymmetric runs the hoop stretch F_zz becomes each child's r / r0).
 /// Near a box face the offset loses its component along the face's normal (a child never crosses a
 /// wall, a symmetry plane or the axis); a point whose offset then shrinks below half is not split.
@@ -65,7 +66,8 @@ Vec3 largest_eigenvector(const Mat3& A, int dim, double hi);
 /// parents[i] is point n + i, n the count before). Serial and in point order: deterministic.
 std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>& extensive,
                                 const std::vector<double>& spacing, int dim, bool axisymmetric, const Vec3& lower,
-                                const Vec3& upper, const AdaptivityOptions& opt, std::int64_t& next_id);
+                                const Vec3& upper, const AdaptivityOptions& opt, const SplitStateSpec& state,
+                                const std::string& failed, std::int64_t& next_id);
 
 /// True if two nodes of one body that carry mass are closer than `distance` (z ignored in 2D).
 bool nodes_crowded(const NodeCloud& nodes, double distance, int dim);

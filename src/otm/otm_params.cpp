@@ -29,6 +29,12 @@ std::vector<ParamSpec> otm_params() {
                                      {"off", "on"});
   ParamSpec split{"split_stretch", "1", "adaptivity: split a point whose extent exceeds this times its seeded spacing",
                   false, 2.0, 1.0, 100.0, true};
+  const ParamSpec split_state = word_param(
+      "split_state",
+      "adaptivity: the state of a split point's two children: interpolate (the parent's moved along the limited "
+      "linear reconstruction of its neighbourhood, F by its polar factors; seed 003 ch. 5, split_state.hpp) or copy "
+      "(both take the parent's)",
+      {"interpolate", "copy"});
   ParamSpec gap{"node_gap", "1",
                 "adaptivity: re-generate the nodes when a point's nearest node is farther than this times h", false,
                 1.0, 0.0, 100.0, true};
@@ -47,7 +53,7 @@ std::vector<ParamSpec> otm_params() {
                                        "volumetric locking treatment: none, or fbar (each point's volume change over "
                                        "the step replaced by its average over the supports of its nodes; otm_fbar.hpp)",
                                        {"none", "fbar"});
-  return {gamma, tol, minsup, wall, pen, ls, adapt, split, gap, crowd, cond, nodes, locking};
+  return {gamma, tol, minsup, wall, pen, ls, adapt, split, split_state, gap, crowd, cond, nodes, locking};
 }
 
 OtmParams read_otm_params(const ParamValues& P) {
@@ -60,6 +66,7 @@ OtmParams read_otm_params(const ParamValues& P) {
   o.line_search = P.choices.at("line_search") == "on";
   o.adaptivity = P.choices.at("adaptivity") == "on";
   o.split_stretch = P.at("split_stretch");
+  o.interpolate_split_state = P.choices.at("split_state") == "interpolate";
   o.node_gap = P.at("node_gap");
   o.node_crowding = P.at("node_crowding");
   o.max_condition = P.at("max_condition");

@@ -20,6 +20,7 @@ struct OtmParams {
   bool line_search = true;           ///< backtracking line search in the LME Newton solve
   bool adaptivity = false;           ///< split points and re-generate nodes
   double split_stretch = 2.0;        ///< adaptivity: split beyond this times the seeded spacing
+  bool interpolate_split_state = true;  ///< adaptivity: split_state interpolate (else copy)
   double node_gap = 1.0;             ///< adaptivity: re-generate when the nearest node is farther (x h)
   double node_crowding = 0.25;       ///< adaptivity: re-generate when two nodes come closer (x h)
   double max_condition = 1e6;        ///< adaptivity: re-generate beyond this LME Hessian condition number

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -13,6 +14,7 @@
 #include "core/phase_timer.hpp"
 #include "core/point_fields.hpp"
 #include "geometry/element_seeding.hpp"
+#include "materials/failure.hpp"
 #include "points/cell_bins.hpp"
 #include "points/solver_registry.hpp"
 #include "scenario/material_model.hpp"
@@ -74,6 +76,14 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   adapt_.node_gap = P.node_gap;
   adapt_.node_crowding = P.node_crowding;
   adapt_.max_condition = P.max_condition;
+  // What a split interpolates: the stress and every model's continuous internal variables.
+  split_state_.interpolate = P.interpolate_split_state;
+  split_state_.fields = {kStress.name()};
+  for (const auto& m : pts_.materials())
+    for (const StateFieldSpec& f : m->state_fields())
+      if (f.continuous && std::find(split_state_.fields.begin(), split_state_.fields.end(), f.name) ==
+                              split_state_.fields.end())
+        split_state_.fields.push_back(f.name);
   fbar_on_ = P.fbar;
 
   const Index n = points_.size();
@@ -287,7 +297,8 @@ void OtmSolver::adapt() {
     if (scenario_.grid.faces[2 * ax + 1] == FaceBC::Free) held_upper[ax] = kInf;
   }
   const std::vector<Index> parents =
-      otm::split_points(points_, extensive, spacing_, dim_, axisym_, held_lower, held_upper, adapt_, next_id_);
+      otm::split_points(points_, extensive, spacing_, dim_, axisym_, held_lower, held_upper, adapt_,
+                        split_state_, kFailedField, next_id_);
   if (!parents.empty()) {
     // The second children take their parents' solver state; a child outside the hull of its
     // nodes fails its LME solve below, which re-generates the nodes.

@@ -117,6 +117,7 @@ class OtmSolver final : public Solver {
   std::vector<double> scale_;     ///< support radius scale per point (largest principal stretch)
   std::vector<Vec3> lambda_;   ///< LME multiplier per point (warm start)
   otm::AdaptivityOptions adapt_;
+  otm::SplitStateSpec split_state_;  ///< adaptivity: what a split point's children interpolate
   std::vector<Mat3> Fr_;       ///< adaptivity: each point's deformation since the nodes were last re-generated
   std::vector<double> spacing_;  ///< m, seeded point spacing per body (cell_size / particles_per_cell)
   bool fbar_on_ = false;  ///< otm.anti_locking: fbar

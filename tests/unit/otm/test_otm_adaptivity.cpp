@@ -22,6 +22,10 @@
 namespace ballista {
 namespace {
 
+// These tests are of the split's geometry and bookkeeping: the children copy the state
+// (test_split_state.cpp interpolates it).
+const otm::SplitStateSpec kCopy{false, {}};
+
 TEST(OtmAdaptivity, LargestEigenvectorIsPrincipal) {
   // A = Q diag(5, 2, 0.5) Q^T with Q a rotation about (1, 2, 3); 2D: the upper 2x2 block.
   const Vec3 axis = (1.0 / std::sqrt(14.0)) * Vec3{{1.0, 2.0, 3.0}};
@@ -108,7 +112,7 @@ TEST(OtmAdaptivity, SplitConservesExtensiveQuantitiesAndCopiesState) {
   opt.split_stretch = 2.0;
   std::int64_t next_id = 2;
   const Vec3 lower{{0.0, 0.0, 0.0}}, upper{{1.0, 1.0, 1.0}};
-  const std::vector<Index> parents = otm::split_points(f, ext, {s0}, 3, false, lower, upper, opt, next_id);
+  const std::vector<Index> parents = otm::split_points(f, ext, {s0}, 3, false, lower, upper, opt, kCopy, "", next_id);
   ASSERT_EQ(parents.size(), 1u);
   EXPECT_EQ(parents[0], 0);
   ASSERT_EQ(f.size(), 3);
@@ -133,7 +137,7 @@ TEST(OtmAdaptivity, SplitConservesExtensiveQuantitiesAndCopiesState) {
   EXPECT_NEAR(hs[0][0], 0.25 * s0, 1e-18);
   EXPECT_NEAR(hs[2][1], 0.5 * s0, 1e-18);
   // A second pass splits nothing (1.5 s0 < 2 s0).
-  EXPECT_TRUE(otm::split_points(f, ext, {s0}, 3, false, lower, upper, opt, next_id).empty());
+  EXPECT_TRUE(otm::split_points(f, ext, {s0}, 3, false, lower, upper, opt, kCopy, "", next_id).empty());
 }
 
 TEST(OtmAdaptivity, PointsNearAFaceAreNotSplit) {
@@ -146,9 +150,9 @@ TEST(OtmAdaptivity, PointsNearAFaceAreNotSplit) {
   std::int64_t next_id = 2;
   const Vec3 upper{{1.0, 1.0, 1.0}};
   FieldStore f = two_points(s0);
-  EXPECT_TRUE(otm::split_points(f, ext, {s0}, 3, false, Vec3{{0.01 - 1.4 * s0, 0.0, 0.0}}, upper, opt, next_id).empty());
+  EXPECT_TRUE(otm::split_points(f, ext, {s0}, 3, false, Vec3{{0.01 - 1.4 * s0, 0.0, 0.0}}, upper, opt, kCopy, "", next_id).empty());
   FieldStore g = two_points(s0);
-  EXPECT_EQ(otm::split_points(g, ext, {s0}, 3, false, Vec3{{0.01 - 1.6 * s0, 0.0, 0.0}}, upper, opt, next_id).size(), 1u);
+  EXPECT_EQ(otm::split_points(g, ext, {s0}, 3, false, Vec3{{0.01 - 1.6 * s0, 0.0, 0.0}}, upper, opt, kCopy, "", next_id).size(), 1u);
 }
 
 TEST(OtmAdaptivity, AxisymmetricSplitSharesByTheHalfRings) {
@@ -168,7 +172,7 @@ TEST(OtmAdaptivity, AxisymmetricSplitSharesByTheHalfRings) {
   const std::vector<std::string> ext = {"mass", "volume0", "internal_energy", "plastic_work"};
   otm::AdaptivityOptions opt;
   std::int64_t next_id = 2;
-  ASSERT_EQ(otm::split_points(f, ext, {s0}, 2, true, Vec3{}, Vec3{{1.0, 1.0, 0.0}}, opt, next_id).size(), 1u);
+  ASSERT_EQ(otm::split_points(f, ext, {s0}, 2, true, Vec3{}, Vec3{{1.0, 1.0, 0.0}}, opt, kCopy, "", next_id).size(), 1u);
   x = f.view<Vec3>("x");
   x0 = f.view<Vec3>("x0");
   F = f.view<Mat3>("F");
