@@ -3,7 +3,7 @@ BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 PY := /usr/bin/python3
 
-.PHONY: all deps configure build demo test test-sanitize bench install package clean format
+.PHONY: all deps configure build demo test test-sanitize validate bench install package clean format
 
 all: build
 
@@ -21,6 +21,11 @@ demo: build
 
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE slow
+
+# The V&V report at the documented sizes (tens of minutes): out/validate/report.html. `make test`
+# runs its quick level (ctest validate.quick).
+validate: build
+	@$(BUILD_DIR)/ballista validate --level full -o out/validate
 
 # The default suite (same -LE slow selection) under AddressSanitizer + UBSan (CMake option
 # BALLISTA_SANITIZE) in its own tree, build-sanitize/; the Python checkers run the sanitized

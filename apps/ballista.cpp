@@ -28,6 +28,7 @@
 #include "points/solver_registry.hpp"
 #include "run/deck_schema.hpp"
 #include "run/sweep_command.hpp"
+#include "run/validate_command.hpp"
 #include "run_command.hpp"
 #include "verify/verify_command.hpp"
 
@@ -261,12 +262,15 @@ int main(int argc, char** argv) {
   auto* models = ballista::add_models_command(app, models_opt);
   ballista::SweepCliOptions sweep_opt;
   auto* sweep = ballista::add_sweep_command(app, sweep_opt);
+  ballista::ValidateCliOptions validate_opt;
+  auto* validate = ballista::add_validate_command(app, validate_opt);
 
   CLI11_PARSE(app, argc, argv);
   try {
     if (*verify) return ballista::run_verify_cli(verify_opt);
     if (*models) return ballista::penetration::run_models_cli(models_opt);
     if (*sweep) return ballista::run_sweep_cli(sweep_opt, argv[0]);
+    if (*validate) return ballista::run_validate_cli(validate_opt, argv[0]);
     if (*info) {
       print_info();
       return 0;

@@ -7,7 +7,8 @@ include(GNUInstallDirs)
 set(BALLISTA_SHARE_DIR ${CMAKE_INSTALL_DATADIR}/ballista)
 
 install(TARGETS ballista RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(FILES ${PROJECT_SOURCE_DIR}/data/materials.yaml DESTINATION ${BALLISTA_SHARE_DIR}/data)
+install(FILES ${PROJECT_SOURCE_DIR}/data/materials.yaml ${PROJECT_SOURCE_DIR}/data/validation_catalogue.yaml
+        DESTINATION ${BALLISTA_SHARE_DIR}/data)
 # The tools the commands run (figures, the verify report) and the output reader; not the
 # developer tools (build comparison, fuzzers).
 install(PROGRAMS
@@ -17,6 +18,7 @@ install(PROGRAMS
         ${PROJECT_SOURCE_DIR}/tools/plot_penetration.py
         ${PROJECT_SOURCE_DIR}/tools/plot_sweep_penetration.py
         ${PROJECT_SOURCE_DIR}/tools/read_output.py
+        ${PROJECT_SOURCE_DIR}/tools/validate.py
         ${PROJECT_SOURCE_DIR}/tools/verify_report.py
         DESTINATION ${BALLISTA_SHARE_DIR}/tools)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/ DESTINATION ${BALLISTA_SHARE_DIR}/examples)

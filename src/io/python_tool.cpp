@@ -46,6 +46,18 @@ int run_command(const std::string& cmd) {
 
 std::string run_python_tool(const std::string& script_name, const std::vector<std::string>& args,
                             const std::string& what, const std::string& skip_hint) {
+  int status = 0;
+  std::string err = run_python_tool_status(script_name, args, status, what, skip_hint);
+  if (err.empty() && status != 0) {
+    std::string shown = python_interpreter() + " " + python_tool_path(script_name);
+    for (const std::string& a : args) shown += " " + a;
+    err = fmt::format("{} failed with status {}", shown, status);
+  }
+  return err;
+}
+
+std::string run_python_tool_status(const std::string& script_name, const std::vector<std::string>& args,
+                                   int& status, const std::string& what, const std::string& skip_hint) {
   const std::string py = python_interpreter(), script = python_tool_path(script_name);
   const std::string hint = skip_hint.empty() ? "" : ", " + skip_hint;
   const std::string or_hint = skip_hint.empty() ? "" : "; " + skip_hint;
@@ -66,13 +78,8 @@ std::string run_python_tool(const std::string& script_name, const std::vector<st
     return noun + " script " + script + " not found (looked in the " + data_dir_origin() +
            " data directory; set " + kDataDirEnv + " to the directory holding tools/)";
   std::string cmd = shell_quote(py) + " " + shell_quote(script);
-  std::string shown = py + " " + script;
-  for (const std::string& a : args) {
-    cmd += " " + shell_quote(a);
-    shown += " " + a;
-  }
-  const int rc = run_command(cmd);
-  if (rc != 0) return fmt::format("{} failed with status {}", shown, rc);
+  for (const std::string& a : args) cmd += " " + shell_quote(a);
+  status = run_command(cmd);
   return {};
 }
 

@@ -21,6 +21,13 @@ std::string python_tool_path(const std::string& script_name);
 std::string run_python_tool(const std::string& script_name, const std::vector<std::string>& args,
                             const std::string& what = "the plot", const std::string& skip_hint = "");
 
+/// As run_python_tool, for a tool whose exit status is its answer (a report whose checks
+/// failed): the status goes to `status` (-1: killed), and only a tool that could not be started
+/// (interpreter, numpy/matplotlib, the script missing) gives a message.
+std::string run_python_tool_status(const std::string& script_name, const std::vector<std::string>& args,
+                                   int& status, const std::string& what = "the plot",
+                                   const std::string& skip_hint = "");
+
 /// A single-quoted shell word.
 std::string shell_quote(const std::string& s);
 

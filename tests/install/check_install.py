@@ -70,6 +70,12 @@ def check_installed(prefix, out):
              + "\n".join(info.splitlines()[:3]))
     if os.path.realpath(os.path.join(share, "data", "materials.yaml")) not in info:
         fail("`ballista info` does not read the presets from the installed data directory")
+    # The V&V report from the installed catalogue, tool and examples (one quick problem, 0.1 s).
+    if WITH_PYTHON:
+        vv = os.path.join(out, "validate")
+        run([exe, "validate", "--only", "gurney_sandwich", "-o", vv, "--threads", "1"], env=env)
+        if not os.path.isfile(os.path.join(vv, "report.html")):
+            fail("`ballista validate` from the installed tree wrote no report.html")
     run_dir = os.path.join(out, "run")
     cmd = [exe, "run", os.path.join(share, "examples", EXAMPLE), "-o", run_dir, "--overwrite",
            "--threads", "1"]
