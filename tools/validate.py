@@ -22,6 +22,7 @@ import os
 import subprocess
 import sys
 import time
+import xml.etree.ElementTree as ET
 
 import yaml
 
@@ -43,8 +44,8 @@ def load_catalogue(path):
         if p["id"] in ids:
             raise SystemExit(f"validate: {where}: duplicate id '{p['id']}'")
         ids.add(p["id"])
-        if p["kind"] not in ("run", "verify", "script"):
-            raise SystemExit(f"validate: {where}.kind: expected run, verify or script, got '{p['kind']}'")
+        if p["kind"] not in ("run", "verify", "script", "gtest"):
+            raise SystemExit(f"validate: {where}.kind: expected run, verify, script or gtest, got '{p['kind']}'")
         for level in p["levels"]:
             if level not in LEVELS:
                 raise SystemExit(f"validate: {where}.levels: unknown level '{level}' (quick, full)")
@@ -166,6 +167,15 @@ def run_problem(p, args, level):
     elif p["kind"] == "verify":
         cmd = [args.ballista, "verify", "-o", os.path.join(out, "verify"), "--quiet"] + list(spec.get("args", []))
         result_file = os.path.join(out, "verify", "verify.json")
+    elif p["kind"] == "gtest":
+        exe = os.path.join(os.path.dirname(os.path.abspath(args.ballista)), p["executable"])
+        if not os.path.exists(exe):
+            record.update(status="not run", message=f"{p['executable']} is in the build tree only (cmake --build "
+                          f"build --target {os.path.basename(p['executable'])})")
+            return record
+        xml_path = os.path.join(out, "gtest.xml")
+        cmd = [exe, f"--gtest_filter={spec.get('filter', p.get('filter', '*'))}", f"--gtest_output=xml:{xml_path}"]
+        result_file = None
     else:
         script = os.path.join(args.root, p["script"])
         if not os.path.exists(script):
@@ -184,9 +194,13 @@ def run_problem(p, args, level):
         if p["kind"] == "verify":
             s = tree.get("summary", {})
             tree = {"passed": s.get("pass"), "failed": s.get("fail"), "not_applicable": s.get("not_applicable")}
-    # A verify run exits 1 when a test fails: the checks say so; any other non-zero exit is a
-    # run that did not finish.
-    finished = rc == 0 or (p["kind"] == "verify" and rc == 1 and tree)
+    if p["kind"] == "gtest" and os.path.exists(xml_path):
+        record["tests"] = gtest_results(xml_path)
+        tree = {"passed": sum(t["status"] == "pass" for t in record["tests"]),
+                "failed": sum(t["status"] == "fail" for t in record["tests"])}
+    # A verify run or a test executable exits 1 when a test fails: the checks say so; any other
+    # non-zero exit is a run that did not finish.
+    finished = rc == 0 or (p["kind"] in ("verify", "gtest") and rc == 1 and tree)
     for c in p["checks"]:
         value, status, bounds = judge(c, dotted(tree, c["path"]), level)
         record["checks"].append({"label": c["label"], "path": c["path"], "unit": c.get("unit", ""),
@@ -202,13 +216,28 @@ def run_problem(p, args, level):
             png = history_figure(os.path.join(out, "run"), p, record["checks"])
         except Exception as err:  # a figure that cannot be drawn does not lose the numbers
             record["message"] = f"figure not drawn: {err}"
-
     elif p.get("figure") and os.path.exists(os.path.join(out, "run", p["figure"])):
         with open(os.path.join(out, "run", p["figure"]), "rb") as f:
             png = f.read()
     if png:
         record["figure_png_base64"] = base64.b64encode(png).decode("ascii")
     return record
+
+
+def gtest_results(path):
+    """Each test case of a gtest XML report: name, status, time and the numbers it recorded
+    (tests/verification/verification_support.hpp, report())."""
+    tests = []
+    for case in ET.parse(path).getroot().iter("testcase"):
+        if case.get("result") == "skipped" or case.get("status") == "notrun":
+            continue
+        props = {p.get("name"): p.get("value") for p in case.iter("property")}
+        failure = case.find("failure")
+        tests.append({"name": f"{case.get('classname')}.{case.get('name')}",
+                      "status": "fail" if failure is not None else "pass",
+                      "seconds": float(case.get("time", "0")), "properties": props,
+                      "failure": (failure.get("message") or "")[:2000] if failure is not None else ""})
+    return tests
 
 
 def fmt_value(v):
@@ -267,6 +296,16 @@ def write_report(path, records, info):
                          f"<td>{e(fmt_bounds(c['bounds']))}</td><td class='{ccls}'>{e(c['status'])}</td>"
                          f"<td>{e(c['why'])}</td></tr>")
         parts.append("</table>")
+        if r.get("tests"):
+            parts.append("<table><tr><th>test (its own assertions, tolerances justified in its source)</th>"
+                         "<th>status</th><th>s</th><th>numbers it recorded</th></tr>")
+            for t in r["tests"]:
+                tcls = "pass" if t["status"] == "pass" else "fail"
+                props = "; ".join(f"{k} = {v}" for k, v in t["properties"].items())
+                extra = f"<pre>{e(t['failure'])}</pre>" if t["failure"] else ""
+                parts.append(f"<tr><td>{e(t['name'])}</td><td class='{tcls}'>{e(t['status'])}</td>"
+                             f"<td>{t['seconds']:.1f}</td><td>{e(props)}{extra}</td></tr>")
+            parts.append("</table>")
         if r.get("message"):
             parts.append(f"<pre>{e(r['message'])}</pre>")
         if r.get("figure_png_base64"):
@@ -286,7 +325,7 @@ def main():
     ap.add_argument("--ballista", required=True)
     ap.add_argument("--catalogue", required=True)
     ap.add_argument("--root", required=True)
-    ap.add_argument("-o", "--output", required=True)
+    ap.add_argument("-o", "--output", default="out/validate")
     ap.add_argument("--level", choices=LEVELS, default="quick")
     ap.add_argument("--only", action="append", default=[])
     ap.add_argument("--list", action="store_true")
