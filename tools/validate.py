@@ -53,7 +53,12 @@ def load_catalogue(path):
 
 
 def dotted(tree, path):
-    """tree['a']['b'] for path 'a.b'; None if absent."""
+    """tree['a']['b'] for path 'a.b', or the quotient of two such paths for 'a.b / c.d'; None if
+    absent."""
+    if " / " in path:
+        num, den = (dotted(tree, part.strip()) for part in path.split(" / ", 1))
+        ok = isinstance(num, (int, float)) and isinstance(den, (int, float)) and den != 0
+        return num / den if ok else None
     node = tree
     for part in path.split("."):
         if not isinstance(node, dict) or part not in node:
@@ -210,6 +215,12 @@ def run_problem(p, args, level):
         record["message"] = f"exit status {rc}; the end of its log:\n" + tail(log)
         return record
     record["status"] = "pass" if all(c["status"] == "pass" for c in record["checks"]) else "fail"
+    # A documented difference from the reference (its cause in docs/validation.md) is reported as
+    # such and does not fail the report; if it ever passes, the report says so.
+    if p.get("known_gap"):
+        record["known_gap"] = p["known_gap"]
+        if record["status"] == "fail":
+            record["status"] = "known gap"
     png = None
     if p["kind"] == "run":
         try:
@@ -262,30 +273,34 @@ def write_report(path, records, info):
     n_pass = sum(r["status"] == "pass" for r in records)
     n_fail = sum(r["status"] == "fail" for r in records)
     n_skip = sum(r["status"] == "not run" for r in records)
+    n_gap = sum(r["status"] == "known gap" for r in records)
     parts = [
         "<!DOCTYPE html><html><head><meta charset='utf-8'><title>Ballista V&amp;V report</title>",
         "<style>body{font-family:sans-serif;max-width:1100px;margin:auto;padding:1em}"
         "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}"
-        ".pass{color:#070}.fail{color:#b00;font-weight:bold}.skip{color:#777}pre{background:#f4f4f4;padding:6px;"
+        ".pass{color:#070}.fail{color:#b00;font-weight:bold}.gap{color:#b60;font-weight:bold}.skip{color:#777}pre{background:#f4f4f4;padding:6px;"
         "white-space:pre-wrap}</style></head><body>",
         "<h1>Ballista verification and validation report</h1>",
         f"<p>{e(info['version'])}; level <b>{e(info['level'])}</b>; {e(info['date'])}; "
         f"{info['wall_seconds']:.1f} s in all. Catalogue: {e(info['catalogue'])}.</p>",
-        f"<p><b>{n_pass} passed, {n_fail} failed, {n_skip} not run</b> of {len(records)} problems. "
+        f"<p><b>{n_pass} passed, {n_fail} failed, {n_gap} known gaps, {n_skip} not run</b> of {len(records)} problems. "
         "The bounds and the references are those of docs/validation.md; a quick-level run is at CI size, "
         "so its numbers are not converged (docs/validation.md gives each problem's resolution study).</p>",
         "<table><tr><th>problem</th><th>status</th><th>wall (s)</th></tr>",
     ]
     for r in records:
-        cls = {"pass": "pass", "fail": "fail"}.get(r["status"], "skip")
+        cls = {"pass": "pass", "fail": "fail", "known gap": "gap"}.get(r["status"], "skip")
         wall = "" if r["wall_seconds"] is None else f"{r['wall_seconds']:.1f}"
         parts.append(f"<tr><td><a href='#{e(r['id'])}'>{e(r['title'])}</a></td>"
                      f"<td class='{cls}'>{e(r['status'])}</td><td>{wall}</td></tr>")
     parts.append("</table>")
     for r in records:
-        cls = {"pass": "pass", "fail": "fail"}.get(r["status"], "skip")
+        cls = {"pass": "pass", "fail": "fail", "known gap": "gap"}.get(r["status"], "skip")
         parts.append(f"<h2 id='{e(r['id'])}'>{e(r['title'])} — <span class='{cls}'>{e(r['status'])}</span></h2>")
         parts.append(f"<p>docs/validation.md: {e(r['section'])}. Reference: {e(r['reference'])}.</p>")
+        if r.get("known_gap"):
+            verdict = "still open" if r["status"] == "known gap" else "this run now meets the bounds"
+            parts.append(f"<p class='gap'>Known gap ({verdict}): {e(r['known_gap'])}</p>")
         if r["command"]:
             parts.append(f"<p>Command ({r['wall_seconds']:.1f} s):</p><pre>{e(r['command'])}</pre>")
         parts.append("<table><tr><th>quantity</th><th>Ballista</th><th>unit</th><th>bound</th><th>status</th>"
@@ -348,7 +363,7 @@ def main():
     for p in chosen:
         r = run_problem(p, args, args.level)
         records.append(r)
-        mark = {"pass": "pass", "fail": "FAIL"}.get(r["status"], r["status"])
+        mark = {"pass": "pass", "fail": "FAIL", "known gap": "gap"}.get(r["status"], r["status"])
         summary = "; ".join(f"{c['label']} {fmt_value(c['value'])} {c['unit']} {fmt_bounds(c['bounds'])}"
                             for c in r["checks"])
         wall = "" if r["wall_seconds"] is None else f" ({r['wall_seconds']:.1f} s)"
@@ -362,8 +377,10 @@ def main():
     report = os.path.join(args.output, "report.html")
     write_report(report, records, info)
     n_fail = sum(r["status"] == "fail" for r in records)
-    print(f"validate: {len(records) - n_fail} of {len(records)} problems passed at level {args.level}; "
-          f"report {os.path.abspath(report)}")
+    n_gap = sum(r["status"] == "known gap" for r in records)
+    n_pass = sum(r["status"] == "pass" for r in records)
+    print(f"validate: {n_pass} of {len(records)} problems passed at level {args.level}, {n_fail} failed, "
+          f"{n_gap} known gaps; report {os.path.abspath(report)}")
     return 1 if n_fail else 0
 
 

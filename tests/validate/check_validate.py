@@ -5,7 +5,8 @@
    catalogue runs at that level with every check passed, and report.html names each problem, its
    reference and bounds, and embeds a figure for each run problem.
 2. The tool must be able to fail: the Gurney sandwich with a bound below its plate velocity exits 1
-   and reports the check as failed; a deck that does not exist is a failed run with its log's end.
+   and reports the check as failed; a deck that does not exist is a failed run with its log's end;
+   the same bound marked as a known gap is reported as one and exits 0.
 """
 import argparse
 import html
@@ -81,7 +82,18 @@ def main():
         fail(f"the impossible bound passed: {got['gurney_sandwich']}")
     if got["missing_deck"]["status"] != "fail" or "exit status" not in got["missing_deck"]["message"]:
         fail(f"the missing deck did not fail as a run: {got['missing_deck']}")
-    print("validate: quick level passed; an impossible bound and a missing deck fail as they should")
+    # The same impossible bound as a documented known gap: reported, and the report does not fail.
+    gap = dict(sandwich, id="gap", known_gap="a documented difference")
+    with open(bad, "w", encoding="utf-8") as f:
+        yaml.safe_dump({"problems": [gap]}, f)
+    out = os.path.join(a.out, "gap")
+    rc = subprocess.run([sys.executable, tool, "--ballista", a.ballista, "--catalogue", bad, "--root", a.source,
+                         "-o", out, "--level", "quick", "--threads", "1"]).returncode
+    with open(os.path.join(out, "validate.json"), encoding="utf-8") as f:
+        status = json.load(f)["problems"][0]["status"]
+    if rc != 0 or status != "known gap":
+        fail(f"a known gap must be reported as such with exit 0: exit {rc}, status {status}")
+    print("validate: quick level passed; an impossible bound and a missing deck fail, a known gap is reported")
 
 
 if __name__ == "__main__":
