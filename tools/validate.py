@@ -5,7 +5,7 @@ self-contained DIR/report.html (figures embedded), the document a reviewer reads
 reference, Ballista's numbers, the bounds, pass or fail, the wall time, and the commit built.
 
 Usage: validate.py --ballista BIN --catalogue FILE --root DIR -o OUT [--level quick|full]
-                   [--only ID ...] [--list] [--threads N]
+                   [--only ID ...] [--skip ID ...] [--list] [--threads N]
   --root   where the catalogue's decks and scripts are (the data directory: the source tree or
            <prefix>/share/ballista)
 Exit status: 0 every problem run passed, 1 a check failed or a run failed, 2 bad usage.
@@ -343,15 +343,18 @@ def main():
     ap.add_argument("-o", "--output", default="out/validate")
     ap.add_argument("--level", choices=LEVELS, default="quick")
     ap.add_argument("--only", action="append", default=[])
+    ap.add_argument("--skip", action="append", default=[])
     ap.add_argument("--list", action="store_true")
     ap.add_argument("--threads", type=int, default=0)
     args = ap.parse_args()
     problems = load_catalogue(args.catalogue)
     known = {p["id"] for p in problems}
-    for name in args.only:
-        if name not in known:
-            ap.error(f"--only {name}: no such problem (known: {', '.join(sorted(known))})")
-    chosen = [p for p in problems if (not args.only or p["id"] in args.only) and args.level in p["levels"]]
+    for flag, names in (("--only", args.only), ("--skip", args.skip)):
+        for name in names:
+            if name not in known:
+                ap.error(f"{flag} {name}: no such problem (known: {', '.join(sorted(known))})")
+    chosen = [p for p in problems if (not args.only or p["id"] in args.only) and p["id"] not in args.skip
+              and args.level in p["levels"]]
     if args.list:
         for p in problems:
             print(f"{p['id']:<20} {'/'.join(l for l in LEVELS if l in p['levels']):<11} {p['title']}")

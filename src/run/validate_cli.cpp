@@ -28,6 +28,10 @@ int run_validate_cli(const ValidateCliOptions& o, const char* argv0) {
     args.push_back("--only");
     args.push_back(id);
   }
+  for (const std::string& id : o.skip) {
+    args.push_back("--skip");
+    args.push_back(id);
+  }
   if (o.list) args.push_back("--list");
   if (o.threads > 0) {
     args.push_back("--threads");

@@ -11,6 +11,7 @@ struct ValidateCliOptions {
   std::string out_dir = "out/validate";
   std::string level = "quick";    ///< quick (CI sizes) or full (the documented sizes)
   std::vector<std::string> only;  ///< --only ID (repeatable)
+  std::vector<std::string> skip;  ///< --skip ID (repeatable)
   bool list = false;              ///< --list: the problems and their levels
   int threads = 0;                ///< --threads per run (0: each run's default)
 };

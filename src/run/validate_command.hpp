@@ -17,6 +17,7 @@ inline CLI::App* add_validate_command(CLI::App& app, ValidateCliOptions& o) {
   v->add_option("--level", o.level, "quick (CI sizes, seconds) or full (the documented sizes, tens of minutes)")
       ->check(CLI::IsMember({"quick", "full"}));
   v->add_option("--only", o.only, "only this problem (repeatable; --list names them)");
+  v->add_option("--skip", o.skip, "not this problem (repeatable)");
   v->add_flag("--list", o.list, "list the problems and the levels they run at");
   v->add_option("--threads", o.threads, "OpenMP threads per run (default: each run's own)")
       ->check(CLI::PositiveNumber);
