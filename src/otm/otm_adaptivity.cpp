@@ -51,7 +51,6 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
   const auto* xr = pts.view<Vec3>("x0");
   std::vector<Index> which;
   std::vector<Vec3> half, half0;  // parent centre to the first child's: current and reference
-  std::vector<double> first_share, reach;  // the first child's share; the state's neighbourhood
   for (Index p = 0; p < n; ++p) {
     const double s0 = spacing.at(static_cast<size_t>(body[p]));
     const Mat3 SSt = S[p] * transpose(S[p]);
@@ -76,18 +75,13 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
     which.push_back(p);
     half.push_back(d);
     half0.push_back(d0);
-    // Shares of the reference volume: 1/2 each, or in axisymmetric runs the two half-rings,
-    // (r0 +- d0_r) / (2 r0) (Pappus: a half-cell's volume per radian is its area times its
-    // centroid's radius), which sum to 1 exactly.
-    first_share.push_back(axisymmetric ? 0.5 * (xr[p][0] + d0[0]) / xr[p][0] : 0.5);
-    // The state's gradient from the points around the parent out to 1.5 times its extent: the
-    // neighbours on both sides along the split direction, whose cells have stretched too.
-    reach.push_back(1.5 * std::sqrt(hi));
   }
   if (which.empty()) return which;
   // Before anything moves: the children's state from the parent's neighbourhood (split_state.hpp).
+  // Computed and applied outside the split arithmetic below, whose last bits (GCC's FMA contraction
+  // of this function) the 750 m/s bar with the copied state keeps.
   const std::vector<SplitIncrement> increments =
-      split_increments(pts, which, half, reach, first_share, state, dim, failed);
+      split_increments(pts, which, half, half0, axisymmetric, state, dim, failed);
   FieldStore kids = pts.empty_like();
   kids.append_from(pts, which);
   // Second children are appended; the parents become the first children.
@@ -110,14 +104,16 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
     const Index a = which[i], b = n + i;
     const Vec3 d = half[i], d0 = half0[i];
     const Vec3 u = (1.0 / norm(d)) * d;
-    const double wa = first_share[i];
+    // Shares of the reference volume: 1/2 each, or in axisymmetric runs the two half-rings,
+    // (r0 +- d0_r) / (2 r0) (Pappus: a half-cell's volume per radian is its area times its
+    // centroid's radius), which sum to 1 exactly.
+    const double wa = axisymmetric ? 0.5 * (x0[a][0] + d0[0]) / x0[a][0] : 0.5;
     share[2 * i] = wa;
     share[2 * i + 1] = 1.0 - wa;
     x[b] = x[a] - d;
     x[a] = x[a] + d;
     x0[b] = x0[a] - d0;
     x0[a] = x0[a] + d0;
-    apply_split_increment(pts, increments[i], a, b, wa, state);
     // The hoop stretch is each child's own r / r0 (the in-plane F is the parent's).
     if (axisymmetric) {
       F[a](2, 2) = x[a][0] / x0[a][0];
@@ -148,6 +144,7 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
     ext[b] = ext[a];
     id[b] = next_id++;
   }
+  for (Index i = 0; i < m; ++i) apply_split_increment(pts, increments[i], which[i], n + i, share[2 * i], state);
   for (const std::string& name : extensive) {
     if (!pts.has(name)) continue;
     const int nc = pts.info(name).ncomp;

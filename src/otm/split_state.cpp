@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "core/point_fields.hpp"
+#include "otm/lme_shape.hpp"
+#include "otm/otm_adaptivity.hpp"
 #include "points/cell_bins.hpp"
 
 namespace ballista::otm {
@@ -24,9 +26,9 @@ double limit(double value, double delta, double lo, double hi, double fa, double
 }  // namespace
 
 std::vector<SplitIncrement> split_increments(const FieldStore& pts, const std::vector<Index>& parents,
-                                             const std::vector<Vec3>& offsets, const std::vector<double>& radius,
-                                             const std::vector<double>& share_first, const SplitStateSpec& spec,
-                                             int dim, const std::string& failed) {
+                                             const std::vector<Vec3>& offsets, const std::vector<Vec3>& ref_offsets,
+                                             bool axisymmetric, const SplitStateSpec& spec, int dim,
+                                             const std::string& failed) {
   std::vector<SplitIncrement> out(parents.size());
   struct Column {
     const double* v;
@@ -43,6 +45,18 @@ std::vector<SplitIncrement> split_increments(const FieldStore& pts, const std::v
 
   const Index n = pts.size();
   const Vec3* x = pts.view(kPosition);
+  const Vec3* x0 = pts.view(kReferencePosition);
+  const Mat3* extent = pts.view<Mat3>(kExtentField);
+  std::vector<double> radius(parents.size()), share_first(parents.size());
+  for (size_t i = 0; i < parents.size(); ++i) {
+    const Index p = parents[i];
+    double lo, hi;
+    symmetric_extremes(extent[p] * transpose(extent[p]), dim, lo, hi);
+    radius[i] = 1.5 * std::sqrt(std::max(hi, 0.0));
+    // The limiter's factors: the shares of otm_adaptivity.cpp (its own, passed to
+    // apply_split_increment, are the ones the conservation rests on).
+    share_first[i] = axisymmetric ? 0.5 * (x0[p][0] + ref_offsets[i][0]) / x0[p][0] : 0.5;
+  }
   const auto* body = pts.ints(kBodyIndex);
   const auto* material = pts.ints(kMaterialIndex);
   const double* dead = !failed.empty() && pts.has(failed) ? pts.real(failed) : nullptr;

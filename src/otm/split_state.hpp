@@ -41,12 +41,15 @@ struct SplitStateSpec {
 using SplitIncrement = std::vector<double>;
 
 /// The increments of every parent (before the split moves anything): parents[i] splits into
-/// x + offsets[i] (share share_first[i]) and x - offsets[i] (the rest). Neighbours within `radius[i]`
-/// of the same body and material (and not failed, if `failed` names a field) count.
+/// x + offsets[i] and x - offsets[i] (reference offsets ref_offsets[i]; the first child's share
+/// 1/2, or in axisymmetric runs its half-ring's). Neighbours of the same body and material (and not
+/// failed, if `failed` names a field) within 1.5 times the parent's extent (its cell's longest
+/// edge, the extent tensor of otm_adaptivity.hpp) count: those on both sides along the split
+/// direction, whose cells have stretched too.
 std::vector<SplitIncrement> split_increments(const FieldStore& pts, const std::vector<Index>& parents,
-                                             const std::vector<Vec3>& offsets, const std::vector<double>& radius,
-                                             const std::vector<double>& share_first, const SplitStateSpec& spec,
-                                             int dim, const std::string& failed);
+                                             const std::vector<Vec3>& offsets, const std::vector<Vec3>& ref_offsets,
+                                             bool axisymmetric, const SplitStateSpec& spec, int dim,
+                                             const std::string& failed);
 
 /// Applies one parent's increments to its two children a (share wa, at +d) and b (at -d), which
 /// both hold the parent's state.
