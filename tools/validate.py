@@ -199,6 +199,25 @@ def run_problem(p, args, level):
         if p["kind"] == "verify":
             s = tree.get("summary", {})
             tree = {"passed": s.get("pass"), "failed": s.get("fail"), "not_applicable": s.get("not_applicable")}
+    post = p.get("post")
+    if post and p["kind"] == "run" and rc == 0:
+        # A script of validation/ that reads the run's folder and writes its numbers as JSON
+        # (checks read them under "post."); from the source tree only.
+        script = os.path.join(args.root, post["script"])
+        if not os.path.exists(script):
+            record.update(status="not run", message=f"{post['script']} is in the source tree only")
+            return record
+        run_dir = os.path.join(out, "run")
+        post_json = os.path.join(out, "post.json")
+        subst = {"run": run_dir, "result": post_json}
+        prc, _ = run_command([sys.executable, script] + [a.format(**subst) for a in post.get("args", [])],
+                             os.path.join(out, "post_log.txt"), env)
+        if prc == 0 and os.path.exists(post_json):
+            with open(post_json, encoding="utf-8") as f:
+                tree["post"] = json.load(f)
+        else:
+            rc = prc
+            log = os.path.join(out, "post_log.txt")
     if p["kind"] == "gtest" and os.path.exists(xml_path):
         record["tests"] = gtest_results(xml_path)
         tree = {"passed": sum(t["status"] == "pass" for t in record["tests"]),

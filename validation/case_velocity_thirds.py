@@ -8,10 +8,11 @@ position. The run must write the fields v and body (--set 'output.fields=[v,body
 weigh alike (one lattice), axisymmetric particles by their radius (mass per radian). Used for
 docs/validation.md "Why the case was slow".
 
-Usage: validation/case_velocity_thirds.py RUN_DIR [--length 0.098]
+Usage: validation/case_velocity_thirds.py RUN_DIR [--length 0.098] [--json FILE]
 """
 import argparse
 import glob
+import json
 import sys
 
 import h5py
@@ -52,11 +53,16 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("run_dir")
     ap.add_argument("--length", type=float, default=0.098, help="tube length, m (it starts at axial 0)")
+    ap.add_argument("--json", help="also write the numbers to this file (`ballista validate` reads it)")
     a = ap.parse_args()
     try:
         t, three_d, n, thirds = case_thirds(a.run_dir, a.length)
     except ValueError as e:
         sys.exit(str(e))
+    if a.json:
+        with open(a.json, "w", encoding="utf-8") as f:
+            json.dump({"time": float(t), "case_points": int(n), "three_d": three_d,
+                       "thirds": {name: {"velocity": vel, "mean_radius": radius} for name, vel, radius in thirds}}, f)
     print(f"t = {t * 1e6:.2f} us, {'3D' if three_d else 'axisymmetric'}, {n} case points")
     for name, vel, radius in thirds:
         print(f"{name:6s} third: {vel:7.0f} m/s, mean radius {1e3 * radius:.1f} mm")
