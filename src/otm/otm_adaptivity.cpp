@@ -144,7 +144,7 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
     ext[b] = ext[a];
     id[b] = next_id++;
   }
-  for (Index i = 0; i < m; ++i) apply_split_increment(pts, increments[i], which[i], n + i, share[2 * i], state);
+  apply_split_increments(pts, increments, which, n, share, state);
   for (const std::string& name : extensive) {
     if (!pts.has(name)) continue;
     const int nc = pts.info(name).ncomp;

@@ -54,7 +54,7 @@ std::vector<SplitIncrement> split_increments(const FieldStore& pts, const std::v
     symmetric_extremes(extent[p] * transpose(extent[p]), dim, lo, hi);
     radius[i] = 1.5 * std::sqrt(std::max(hi, 0.0));
     // The limiter's factors: the shares of otm_adaptivity.cpp (its own, passed to
-    // apply_split_increment, are the ones the conservation rests on).
+    // apply_split_increments, are the ones the conservation rests on).
     share_first[i] = axisymmetric ? 0.5 * (x0[p][0] + ref_offsets[i][0]) / x0[p][0] : 0.5;
   }
   const auto* body = pts.ints(kBodyIndex);
@@ -63,24 +63,26 @@ std::vector<SplitIncrement> split_increments(const FieldStore& pts, const std::v
   const CellBins bins(x, n, *std::max_element(radius.begin(), radius.end()), dim);
 
   std::vector<Index> nb;
+  std::vector<Vec3> dxs;  // each neighbour's offset from the parent (in plane in 2D)
   std::vector<double> coef;
   for (size_t i = 0; i < parents.size(); ++i) {
     const Index p = parents[i];
     if (dead && dead[p] != 0.0) continue;
     const double r2 = radius[i] * radius[i];
     nb.clear();
+    dxs.clear();
     bins.visit(x[p], [&](Index q) {
       if (q == p || body[q] != body[p] || material[q] != material[p] || (dead && dead[q] != 0.0)) return;
       Vec3 dx = x[q] - x[p];
       if (dim == 2) dx[2] = 0.0;
-      if (dot(dx, dx) <= r2) nb.push_back(q);
+      if (dot(dx, dx) > r2) return;
+      nb.push_back(q);
+      dxs.push_back(dx);
     });
     // Weighted least squares: G = M^-1 sum w dx df with M = sum w dx dx^T, so that G . d =
     // sum c_q df_q with c_q = w_q dx_q . (M^-1 d): one solve per parent.
     Mat3 M = dim == 2 ? Mat3::diag(0.0, 0.0, 1.0) : Mat3{};
-    for (const Index q : nb) {
-      Vec3 dx = x[q] - x[p];
-      if (dim == 2) dx[2] = 0.0;
+    for (const Vec3& dx : dxs) {
       const double w = 1.0 / dot(dx, dx);
       for (int r = 0; r < dim; ++r)
         for (int c = 0; c < dim; ++c) M(r, c) += w * dx[r] * dx[c];
@@ -91,11 +93,7 @@ std::vector<SplitIncrement> split_increments(const FieldStore& pts, const std::v
     if (static_cast<int>(nb.size()) < dim + 1 || !(det(M) > 1e-6 * std::pow(tr, dim))) continue;
     const Vec3 b = inverse(M) * offsets[i];
     coef.clear();
-    for (const Index q : nb) {
-      Vec3 dx = x[q] - x[p];
-      if (dim == 2) dx[2] = 0.0;
-      coef.push_back(dot(dx, b) / dot(dx, dx));
-    }
+    for (const Vec3& dx : dxs) coef.push_back(dot(dx, b) / dot(dx, dx));
     const double fa = 2.0 * (1.0 - share_first[i]), fb = -2.0 * share_first[i];
     SplitIncrement& inc = out[i];
     inc.assign(ncomp, 0.0);
@@ -122,20 +120,26 @@ std::vector<SplitIncrement> split_increments(const FieldStore& pts, const std::v
   return out;
 }
 
-void apply_split_increment(FieldStore& pts, const SplitIncrement& inc, Index a, Index b, double wa,
-                           const SplitStateSpec& spec) {
-  if (inc.empty()) return;
-  const double fa = 2.0 * (1.0 - wa), fb = -2.0 * wa;
-  size_t j = 0;
+void apply_split_increments(FieldStore& pts, const std::vector<SplitIncrement>& increments,
+                            const std::vector<Index>& parents, Index first_new, const std::vector<double>& shares,
+                            const SplitStateSpec& spec) {
+  size_t j0 = 0;  // the field's first component in each increment
   for (const std::string& name : spec.fields) {
     if (!pts.has(name)) continue;
     const int nc = pts.info(name).ncomp;
     double* f = pts.real(name);
-    for (int c = 0; c < nc; ++c, ++j) {
-      const double fp = f[a * nc + c];
-      f[a * nc + c] = fp + fa * inc[j];
-      f[b * nc + c] = fp + fb * inc[j];
+    for (size_t i = 0; i < parents.size(); ++i) {
+      const SplitIncrement& inc = increments[i];
+      if (inc.empty()) continue;
+      const Index a = parents[i], b = first_new + static_cast<Index>(i);
+      const double wa = shares[2 * i], fa = 2.0 * (1.0 - wa), fb = -2.0 * wa;
+      for (int c = 0; c < nc; ++c) {
+        const double fp = f[a * nc + c];
+        f[a * nc + c] = fp + fa * inc[j0 + c];
+        f[b * nc + c] = fp + fb * inc[j0 + c];
+      }
     }
+    j0 += static_cast<size_t>(nc);
   }
 }
 

@@ -51,9 +51,10 @@ std::vector<SplitIncrement> split_increments(const FieldStore& pts, const std::v
                                              bool axisymmetric, const SplitStateSpec& spec, int dim,
                                              const std::string& failed);
 
-/// Applies one parent's increments to its two children a (share wa, at +d) and b (at -d), which
-/// both hold the parent's state.
-void apply_split_increment(FieldStore& pts, const SplitIncrement& inc, Index a, Index b, double wa,
-                           const SplitStateSpec& spec);
+/// Applies the increments to the children, which both hold their parent's state: parents[i]
+/// itself (at +d, share shares[2 i]) and point first_new + i (at -d).
+void apply_split_increments(FieldStore& pts, const std::vector<SplitIncrement>& increments,
+                            const std::vector<Index>& parents, Index first_new, const std::vector<double>& shares,
+                            const SplitStateSpec& spec);
 
 }  // namespace ballista::otm

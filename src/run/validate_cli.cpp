@@ -2,7 +2,6 @@
 
 #include <filesystem>
 #include <iostream>
-#include <system_error>
 
 #include "core/data_dir.hpp"
 #include "io/python_tool.hpp"
@@ -12,9 +11,8 @@ namespace ballista {
 namespace fs = std::filesystem;
 
 int run_validate_cli(const ValidateCliOptions& o, const char* argv0) {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);  // the running binary, whatever the PATH
-  const std::string exe = ec ? fs::absolute(argv0).string() : self.string();
+  const std::string self = executable_path();  // the running binary, whatever the PATH
+  const std::string exe = self.empty() ? fs::absolute(argv0).string() : self;
   const fs::path root = data_dir();
   const fs::path catalogue = root / "data" / "validation_catalogue.yaml";
   if (!fs::exists(catalogue)) {
