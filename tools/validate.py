@@ -68,7 +68,7 @@ def dotted(tree, path):
 
 
 def judge(check, raw, level):
-    """(display value, status) of one check; bounds may be overridden per level."""
+    """(display value, status, bounds) of one check; the level's entry overrides its bounds."""
     bounds = dict(check)
     bounds.update(check.get(level, {}) or {})
     if raw is None or not isinstance(raw, (int, float)):
@@ -100,7 +100,8 @@ def tail(path, lines=15):
 
 
 def history_figure(run_dir, problem, results):
-    """PNG (bytes) of the checked probes against time from history.csv, the bounds shaded."""
+    """PNG (bytes) of the checked probes against time from history.csv, with the bound and the
+    reference's range drawn at the end time, where they hold."""
     names = problem.get("history") or []
     path = os.path.join(run_dir, "history.csv")
     if not names or not os.path.exists(path):
