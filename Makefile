@@ -2,6 +2,10 @@
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 PY := /usr/bin/python3
+# Ninja schedules every object file as soon as its own inputs exist; Make's generator waits for a
+# target's dependencies to link first, which idles a core at each layer of the library (the build
+# took ~9 % longer on two cores). A tree configured earlier keeps its generator.
+GENERATOR = $(if $(wildcard $(1)/CMakeCache.txt),,-G Ninja)
 
 .PHONY: all deps configure build demo test test-sanitize validate bench install package clean format
 
@@ -11,7 +15,7 @@ deps:
 	@./scripts/install-deps
 
 configure: deps
-	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake -S . -B $(BUILD_DIR) $(call GENERATOR,$(BUILD_DIR)) -DCMAKE_BUILD_TYPE=Release >/dev/null
 
 build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
@@ -44,7 +48,7 @@ SAN_LOG = $(abspath $(SAN_DIR))/sanitizer-logs
 SAN_ENV = ASAN_OPTIONS=detect_leaks=1:log_path=$(SAN_LOG)/asan UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
 test-sanitize: deps
-	@cmake -S . -B $(SAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBALLISTA_SANITIZE=ON >/dev/null
+	@cmake -S . -B $(SAN_DIR) $(call GENERATOR,$(SAN_DIR)) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBALLISTA_SANITIZE=ON >/dev/null
 	@cmake --build $(SAN_DIR) -j $(JOBS)
 	@rm -rf $(SAN_LOG) && mkdir -p $(SAN_LOG)
 	@cd $(SAN_DIR) && $(SAN_ENV) ctest --output-on-failure -j $(JOBS) -LE slow; status=$$?; \
@@ -67,7 +71,7 @@ install: build
 # (no -march=native), without the tests: `apt install ./build-package/ballista_*.deb`.
 PKG_DIR ?= build-package
 package: deps
-	@cmake -S . -B $(PKG_DIR) -DCMAKE_BUILD_TYPE=Release -DBALLISTA_NATIVE=OFF -DBALLISTA_TESTS=OFF >/dev/null
+	@cmake -S . -B $(PKG_DIR) $(call GENERATOR,$(PKG_DIR)) -DCMAKE_BUILD_TYPE=Release -DBALLISTA_NATIVE=OFF -DBALLISTA_TESTS=OFF >/dev/null
 	@cmake --build $(PKG_DIR) -j $(JOBS)
 	@cd $(PKG_DIR) && cpack -G DEB
 

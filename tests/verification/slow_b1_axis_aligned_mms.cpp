@@ -9,6 +9,8 @@
 
 #include "verification/verification_support.hpp"
 
+namespace slow_b1_axis_aligned_mms {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -65,3 +67,5 @@ TEST(B1AxisAlignedMmsSlow, Bspline3FourResolutions) {
   EXPECT_GE(observed_order(err[1].l2, err[2].l2), 1.8);
   EXPECT_GE(observed_order(err[2].l2, err[3].l2), 1.8);
 }
+
+}  // namespace slow_b1_axis_aligned_mms

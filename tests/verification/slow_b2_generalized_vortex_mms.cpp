@@ -10,6 +10,8 @@
 
 #include "verification/verification_support.hpp"
 
+namespace slow_b2_generalized_vortex_mms {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -37,3 +39,5 @@ TEST(B2GeneralizedVortexMmsSlow, ThreeResolutionsEveryShapeFunction) {
     EXPECT_GE(observed_order(err[1].l2, err[2].l2), sf == "linear" ? 1.5 : 1.8) << sf;
   }
 }
+
+}  // namespace slow_b2_generalized_vortex_mms

@@ -17,6 +17,8 @@
 
 #include "verification/verification_support.hpp"
 
+namespace slow_b3_thick_cylinder_sweep {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -211,3 +213,5 @@ TEST(B3ThickCylinderSlow, Bspline3ThreeResolutions) {
     EXPECT_LT(f[1].rel_l2, f[0].rel_l2) << al;
   }
 }
+
+}  // namespace slow_b3_thick_cylinder_sweep

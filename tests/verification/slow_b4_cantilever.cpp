@@ -11,6 +11,8 @@
 
 #include "verification/cantilever_support.hpp"
 
+namespace slow_b4_cantilever {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -79,3 +81,5 @@ TEST(B4CantileverSlow, Cpdi) { period_table("cpdi"); }
 TEST(B4CantileverSlow, Bspline3) { period_table("bspline3"); }
 // The same GIMP study with the F-bar anti-locking option (docs/validation.md, B4).
 TEST(B4CantileverSlow, GimpFBar) { period_table("gimp", {"mpm.anti_locking=fbar"}, "_fbar"); }
+
+}  // namespace slow_b4_cantilever

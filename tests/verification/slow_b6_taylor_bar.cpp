@@ -6,6 +6,8 @@
 
 #include "verification/verification_support.hpp"
 
+namespace slow_b6_taylor_bar {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -34,3 +36,5 @@ TEST(B6TaylorBarSlow, ThreeDimensionalQuarterBarFullResolution) {
   EXPECT_LT(f.worst_balance, 0.05);
   EXPECT_LT(f.ke_end, 0.01 * f.ke0);
 }
+
+}  // namespace slow_b6_taylor_bar

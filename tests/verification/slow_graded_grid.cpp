@@ -16,6 +16,8 @@
 
 #include "verification/verification_support.hpp"
 
+namespace slow_graded_grid {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -38,3 +40,5 @@ TEST(GradedGridSlow, B1ConvergesWithARefinedBandAtThreeLevels) {
   EXPECT_GE(o2, 1.4);
   for (std::size_t k = 0; k < H.size(); ++k) EXPECT_LT(graded[k].l2, uniform[k].l2) << H[k];
 }
+
+}  // namespace slow_graded_grid

@@ -10,6 +10,8 @@
 
 #include "verification/otm_cylinder_support.hpp"
 
+namespace slow_otm_b3_locking {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -26,3 +28,5 @@ TEST(OtmB3Locking, NearlyIncompressibleConvergesWithAndWithoutFBar) {
     EXPECT_LT(f.rel_l2, 0.02);  // measured 0.59 % and 1.55 %
   }
 }
+
+}  // namespace slow_otm_b3_locking

@@ -8,7 +8,7 @@
 
 #include "verification/sliding_detonation_support.hpp"
 
-namespace ballista {
+namespace ballista::slow_pd_sliding_detonation {
 namespace {
 
 TEST(PdSlidingDetonationSlow, ProductsOnACoarserLatticePushTheCaseLikeTheContinuum) {
@@ -31,4 +31,4 @@ TEST(PdSlidingDetonationSlow, ProductsOnACoarserLatticePushTheCaseLikeTheContinu
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::slow_pd_sliding_detonation

@@ -11,6 +11,8 @@
 #include "verification/pd_support.hpp"
 #include "verification/verification_support.hpp"
 
+namespace slow_pd_wave_speed {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -57,3 +59,5 @@ TEST(PdVerificationSlow, ThinBarWaveSpeedThreeLevels) {
   EXPECT_LT(prev, 0.06);  // w = 5.33 delta: about half of the 8.4 % at 2.67 delta, with margin
   EXPECT_NEAR(c_ext / cm, 1.0, 0.02);
 }
+
+}  // namespace slow_pd_wave_speed

@@ -12,6 +12,8 @@
 
 #include "verification/verification_support.hpp"
 
+namespace test_b1_axis_aligned_mms {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -76,3 +78,5 @@ TEST(B1AxisAlignedMms, Bspline3AtSymmetryFacesConvergesAtSecondOrder) {
   EXPECT_GE(o2, 1.8);
   EXPECT_LT(e[2].l2, 4.0e-3);
 }
+
+}  // namespace test_b1_axis_aligned_mms

@@ -14,6 +14,8 @@
 
 #include "verification/verification_support.hpp"
 
+namespace test_b2_generalized_vortex_mms {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -49,3 +51,5 @@ TEST(B2GeneralizedVortexMms, LinearConvergesAtSecondOrder) { check_order("linear
 TEST(B2GeneralizedVortexMms, GimpConvergesAtSecondOrder) { check_order("gimp", 1.7, 4.0e-3); }
 TEST(B2GeneralizedVortexMms, CpdiConvergesAtSecondOrder) { check_order("cpdi", 1.7, 4.9e-3); }
 TEST(B2GeneralizedVortexMms, Bspline3ConvergesAtSecondOrder) { check_order("bspline3", 1.7, 7.0e-3); }
+
+}  // namespace test_b2_generalized_vortex_mms

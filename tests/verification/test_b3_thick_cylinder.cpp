@@ -15,6 +15,8 @@
 
 #include "verification/verification_support.hpp"
 
+namespace test_b3_thick_cylinder {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -137,3 +139,5 @@ TEST(B3ThickCylinder, Bspline3AtTheSymmetryPlanes) {
   EXPECT_LT(e[1].rel_l2, e[0].rel_l2);
   EXPECT_LT(std::abs(e[1].mean_rel_planes), 0.01);
 }
+
+}  // namespace test_b3_thick_cylinder

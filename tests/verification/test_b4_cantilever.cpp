@@ -14,6 +14,8 @@
 
 #include "verification/cantilever_support.hpp"
 
+namespace test_b4_cantilever {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -92,3 +94,5 @@ TEST(B4Cantilever, Bspline3ClampHolds) {
   EXPECT_LT(r.energy_drift, 0.035);
   EXPECT_LE(r.energy_end, 0.0);
 }
+
+}  // namespace test_b4_cantilever

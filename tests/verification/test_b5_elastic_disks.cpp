@@ -12,6 +12,8 @@
 
 #include "verification/verification_support.hpp"
 
+namespace test_b5_elastic_disks {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -69,3 +71,5 @@ TEST(B5ElasticDisks, EnergyMomentumAndMassAreConserved) {
   // 4e-13 relative). Measured exactly 0.
   EXPECT_LE(m_dev, 4e-13 * m.front());
 }
+
+}  // namespace test_b5_elastic_disks

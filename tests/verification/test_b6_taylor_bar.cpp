@@ -12,6 +12,8 @@
 
 #include "verification/verification_support.hpp"
 
+namespace test_b6_taylor_bar {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -87,3 +89,5 @@ TEST(B6TaylorBar, ThreeDimensionalQuarterBarWithinPublishedBands) {
   EXPECT_LT(f.worst_balance, 0.04);
   EXPECT_LT(f.ke_end, 0.01 * f.ke0);
 }
+
+}  // namespace test_b6_taylor_bar

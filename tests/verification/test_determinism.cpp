@@ -15,6 +15,8 @@
 #include "core/parallel.hpp"
 #include "verification/verification_support.hpp"
 
+namespace test_determinism {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -128,3 +130,5 @@ TEST(Determinism, TaylorBar3dQuarterJ2) {
   const Scenario sc = load_example("taylor_bar_mpm_3d.yaml", {"grid.cell_size=0.6e-3", "simulation.end_time=10e-6"});
   expect_bitwise_equal(sc, "3D quarter Taylor bar");
 }
+
+}  // namespace test_determinism

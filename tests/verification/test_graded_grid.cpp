@@ -17,6 +17,8 @@
 #include "run/simulation.hpp"
 #include "verification/verification_support.hpp"
 
+namespace test_graded_grid {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -132,3 +134,5 @@ TEST(GradedGrid, APulseCrossingACoarseningLeavesLessThanOnePercentBehind) {
   EXPECT_LT(graded - uniform, 0.01);
   EXPECT_LT(uniform, 0.01);  // not vacuous: the pulses did leave the band
 }
+
+}  // namespace test_graded_grid

@@ -26,7 +26,7 @@
 #include "run/simulation.hpp"
 #include "verification/verification_support.hpp"
 
-namespace ballista {
+namespace ballista::test_gurney {
 namespace {
 
 constexpr double kCharge = 10.0e-3;  // m, explosive thickness
@@ -199,9 +199,9 @@ detonation: {points: [{position: [0, 0.5e-3], time: 0}]}
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_gurney
 
-namespace ballista {
+namespace ballista::test_gurney {
 namespace {
 
 // An ideal-gas charge released from rest (issue 15 item 5: "expands with the energy of its
@@ -249,4 +249,4 @@ detonation: {points: [{position: [0, 0.5e-3], time: 0}], burn_cells: 0}
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_gurney

@@ -20,10 +20,10 @@
 #include "points/solver_registry.hpp"
 #include "verification/verification_support.hpp"
 
+namespace test_mpm_contact {
+
 using namespace ballista;
 using namespace ballista::verification;
-
-namespace {
 
 struct BodyState {
   double mass = 0.0;
@@ -95,8 +95,6 @@ contact: {model: friction, friction: 0}
 penetration: {penetrator: rod, target: target}
 output: {interval: 0, history_every: 5}
 )";
-
-}  // namespace
 
 TEST(MpmContact, SlidingBlockDeceleratesAtMuG) {
   // Coulomb sliding: the floor's normal force is the block's weight, so dv/dt = -mu g while it
@@ -279,3 +277,5 @@ TEST(MpmContact, StrengthlessRodPenetratesAtTheHydrodynamicRateWithTheGapCheck) 
   EXPECT_NEAR(rate, 1.0, 0.03);
   EXPECT_LT(worst, 0.02);
 }
+
+}  // namespace test_mpm_contact

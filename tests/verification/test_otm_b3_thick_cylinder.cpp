@@ -10,6 +10,8 @@
 
 #include "verification/otm_cylinder_support.hpp"
 
+namespace test_otm_b3_thick_cylinder {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -23,3 +25,5 @@ TEST(OtmB3ThickCylinder, RadialDisplacementMatchesLameWithAndWithoutFBar) {
     EXPECT_LT(e.rel_l2, 0.04);
   }
 }
+
+}  // namespace test_otm_b3_thick_cylinder

@@ -19,7 +19,7 @@
 #include "otm/otm_solver.hpp"
 #include "run/simulation.hpp"
 
-namespace ballista {
+namespace ballista::test_otm_elastic_impact {
 namespace {
 
 constexpr double kRho = 7850.0, kE = 200.0e9, kL = 0.05, kV = 10.0;
@@ -77,4 +77,4 @@ TEST(OtmElasticImpact, EnergyClosesAndTheBarRebounds) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_otm_elastic_impact

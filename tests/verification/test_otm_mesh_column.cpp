@@ -23,7 +23,7 @@
 #include "support/exodus_files.hpp"
 #include "support/test_files.hpp"
 
-namespace ballista {
+namespace ballista::test_otm_mesh_column {
 namespace {
 
 constexpr double kRho = 7850.0, kE = 200.0e9, kNu = 0.3, kL = 0.05, kV = 10.0, kEnd = 2.5e-5;
@@ -75,4 +75,4 @@ bodies:
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_otm_mesh_column

@@ -14,7 +14,7 @@
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 
-namespace ballista {
+namespace ballista::test_otm_symmetry {
 namespace {
 
 std::string deck(bool half) {
@@ -52,4 +52,4 @@ TEST(OtmSymmetry, AHalfModelGivesTheFullModelsHalf) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_otm_symmetry

@@ -30,7 +30,7 @@
 #include "otm/otm_solver.hpp"
 #include "run/simulation.hpp"
 
-namespace ballista {
+namespace ballista::test_otm_taylor_750 {
 namespace {
 
 std::string deck(const std::string& adaptivity, const std::string& x_max = "10.0e-3") {
@@ -131,4 +131,4 @@ TEST(OtmTaylor750, AdaptiveRunIsBitwiseIndependentOfTheThreadCount) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_otm_taylor_750

@@ -16,7 +16,7 @@
 #include "run/simulation.hpp"
 #include "verification/verification_support.hpp"
 
-namespace ballista {
+namespace ballista::test_pd_gas {
 namespace {
 
 constexpr double kRhoC = 1630.0, kRhoM = 7850.0;
@@ -218,4 +218,4 @@ TEST(PdGas, LoneGasPointsKeepTheirDensityAndTheAuditCloses) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_pd_gas

@@ -12,6 +12,8 @@
 #include "verification/pd_support.hpp"
 #include "verification/verification_support.hpp"
 
+namespace test_pd_lps {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -71,3 +73,5 @@ TEST(PdLpsVerification, SlowSeparationReleasesTheFractureEnergy) {
   EXPECT_EQ(r.broken_off, 0);  // rigid halves: no other bond is stretched
   EXPECT_NEAR(r.g_measured / g0, 1.0, 0.05);
 }
+
+}  // namespace test_pd_lps

@@ -19,7 +19,7 @@
 
 #include "verification/sliding_detonation_support.hpp"
 
-namespace ballista {
+namespace ballista::test_pd_sliding_detonation {
 namespace {
 
 TEST(PdSlidingDetonation, RenewedGasFamilyPushesTheCaseLikeTheContinuum) {
@@ -42,4 +42,4 @@ TEST(PdSlidingDetonation, RenewedGasFamilyPushesTheCaseLikeTheContinuum) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_pd_sliding_detonation

@@ -20,6 +20,8 @@
 #include "verification/pd_support.hpp"
 #include "verification/verification_support.hpp"
 
+namespace test_pd_wave_and_fracture {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -162,3 +164,5 @@ TEST(PdVerification, BondFamilyOfALatticeHasEveryBondAtTheHorizon) {
   }
   EXPECT_EQ(missing, 0);
 }
+
+}  // namespace test_pd_wave_and_fracture

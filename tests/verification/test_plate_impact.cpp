@@ -32,6 +32,8 @@
 #include "points/solver_registry.hpp"
 #include "verification/verification_support.hpp"
 
+namespace test_plate_impact {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -207,3 +209,5 @@ TEST(PlateImpact, BulkViscosityPressureAndSignalSpeedFollowTheirFormulas) {
   EXPECT_EQ(bulk_viscosity_signal_speed(bv, 4000.0, 1e-3, 1e6), 4000.0);
   EXPECT_FALSE(BulkViscosity{}.active());
 }
+
+}  // namespace test_plate_impact

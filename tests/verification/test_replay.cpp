@@ -17,6 +17,8 @@
 #include "driver/point_driver.hpp"
 #include "verification/verification_support.hpp"
 
+namespace test_replay {
+
 using namespace ballista;
 using namespace ballista::verification;
 
@@ -225,3 +227,5 @@ TEST(Replay, FailingParticleIsTrackedByARerun) {
   EXPECT_LE(worst, 1e-9 * scale + 1e-13 * 100.0);
   report("replay_failing_particle_stress_error_abs_Pa", worst);
 }
+
+}  // namespace test_replay

@@ -10,6 +10,8 @@
 
 #include "analysis/hole_profile.hpp"
 
+namespace test_hole_profile {
+
 using namespace ballista;
 
 namespace {
@@ -64,3 +66,5 @@ TEST(HoleProfile, DenseMaterialOnTheAxisClosesTheHoleAndNothingIsNoWall) {
   EXPECT_EQ(w[0], 0.0);
   EXPECT_TRUE(std::isnan(w[1]));
 }
+
+}  // namespace test_hole_profile

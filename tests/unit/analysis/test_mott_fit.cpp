@@ -13,6 +13,8 @@
 
 #include "analysis/mott_fit.hpp"
 
+namespace test_mott_fit {
+
 using namespace ballista;
 
 namespace {
@@ -147,3 +149,5 @@ TEST(MottFit, RefusesTooFewFragmentsAndBadMasses) {
     EXPECT_NE(f.reason.find("masses > 0"), std::string::npos) << f.reason;
   }
 }
+
+}  // namespace test_mott_fit

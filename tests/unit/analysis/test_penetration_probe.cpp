@@ -10,6 +10,8 @@
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 
+namespace test_penetration_probe {
+
 using namespace ballista;
 
 namespace {
@@ -224,3 +226,5 @@ TEST(PenetrationProbe, TunnelEntranceIsWhereTheWallBeginsBelowACrushedFace) {
 }
 
 }  // namespace
+
+}  // namespace test_penetration_probe

@@ -12,6 +12,8 @@
 
 #include "analysis/penetration_series.hpp"
 
+namespace test_penetration_series {
+
 using namespace ballista;
 
 namespace {
@@ -428,3 +430,5 @@ TEST(ChannelProfile, EdgesAndBadInput) {
   EXPECT_THROW(channel_profile({0.1}, {0.1}, 1.0, 0), std::invalid_argument);
   EXPECT_THROW(channel_profile({0.1}, {-0.1}, 1.0, 2), std::invalid_argument);
 }
+
+}  // namespace test_penetration_series

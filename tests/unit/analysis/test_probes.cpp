@@ -10,6 +10,8 @@
 #include "core/error.hpp"
 #include "points/probe_registry.hpp"
 
+namespace test_probes {
+
 using namespace ballista;
 
 namespace {
@@ -254,3 +256,5 @@ TEST(Probes, MaxAndMinVelocityAlongAnAxis) {
   EXPECT_EQ(eval(probe("max_velocity", 0), 0, s), 9.0);
   EXPECT_TRUE(std::isnan(eval(probe("max_velocity", 1), 2, s)));  // no point: NaN
 }
+
+}  // namespace test_probes

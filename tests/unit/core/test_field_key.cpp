@@ -13,6 +13,8 @@
 #include "core/point_fields.hpp"
 #include "core/tensor.hpp"
 
+namespace test_field_key {
+
 using namespace ballista;
 
 namespace {
@@ -107,3 +109,5 @@ TEST(FieldKey, AFieldOfAnotherShapeIsRefused) {
 }
 
 }  // namespace
+
+}  // namespace test_field_key

@@ -13,6 +13,8 @@
 #include "core/field_store.hpp"
 #include "core/tensor.hpp"
 
+namespace test_field_store {
+
 using namespace ballista;
 
 namespace {
@@ -258,3 +260,5 @@ TEST(FieldStore, PackedPointsAppendToAStoreWithTheSameFields) {
   // Bytes that are not whole points are refused.
   EXPECT_THROW(b.append_packed(bytes.data(), bytes.size() - 8), Error);
 }
+
+}  // namespace test_field_store

@@ -10,6 +10,8 @@
 #include "core/polar_lanes.hpp"
 #include "materials/strain_increment.hpp"
 
+namespace test_lanes {
+
 using namespace ballista;
 
 // Each lane function evaluates its scalar namesake's expression (lanes.hpp). The compiler may fuse
@@ -107,3 +109,5 @@ TEST(Lanes, PolarRotationIsTheScalarsLaneByLane) {
     }
   }
 }
+
+}  // namespace test_lanes

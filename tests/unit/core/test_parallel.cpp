@@ -9,6 +9,8 @@
 
 #include "core/parallel.hpp"
 
+namespace test_parallel {
+
 using namespace ballista;
 
 namespace {
@@ -108,3 +110,5 @@ TEST(Parallel, SetThreadsChangesMaxThreads) {
   EXPECT_EQ(max_threads(), 1);
 }
 #endif
+
+}  // namespace test_parallel

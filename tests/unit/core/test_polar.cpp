@@ -4,6 +4,8 @@
 
 #include "core/polar.hpp"
 
+namespace test_polar {
+
 using namespace ballista;
 
 // F = R U with a known rotation and a symmetric positive-definite stretch must return that R
@@ -28,3 +30,5 @@ TEST(Polar, RecoversKnownRotation) {
     EXPECT_LT(frobenius(polar_rotation(F, guess) - R), 1e-12);
   }
 }
+
+}  // namespace test_polar

@@ -8,7 +8,7 @@
 
 #include "core/illinois.hpp"
 
-namespace ballista {
+namespace ballista::test_root_finding {
 namespace {
 
 struct Counted {
@@ -64,4 +64,4 @@ TEST(RootFinding, SecantIsNoSlowerOnSmoothFunctions) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_root_finding

@@ -7,6 +7,8 @@
 #include "core/polar.hpp"
 #include "core/tensor.hpp"
 
+namespace test_tensor {
+
 using namespace ballista;
 
 namespace {
@@ -168,3 +170,5 @@ TEST(Tensor, PolarRandomF) {
     EXPECT_GT(det(U), 0.0);
   }
 }
+
+}  // namespace test_tensor

@@ -4,6 +4,8 @@
 #include "core/parallel.hpp"
 #include "core/threads.hpp"
 
+namespace test_threads {
+
 using namespace ballista;
 
 TEST(Threads, ClampThreadCountLimitsRequestsToTheCores) {
@@ -35,3 +37,5 @@ TEST(Threads, RequestThreadsAppliesTheClampedCount) {
   set_threads(saved);
 }
 #endif
+
+}  // namespace test_threads

@@ -4,6 +4,8 @@
 
 #include "deck/deck_changes.hpp"
 
+namespace test_deck_changes {
+
 using namespace ballista;
 
 TEST(DeckChanges, NamesEveryLeafThatDiffersWithItsValues) {
@@ -45,3 +47,5 @@ TEST(DeckChanges, ARestartMayChangeTheEndOutputsLimitsAndGuardsOnly) {
                          "grid.cell_size", "bodies.0.velocity.1", "mpm.update", "probes", "outputs.interval"})
     EXPECT_FALSE(restart_may_change(no)) << no;
 }
+
+}  // namespace test_deck_changes

@@ -8,6 +8,8 @@
 #include "core/error.hpp"
 #include "deck/deck_reader.hpp"
 
+namespace test_deck_contact {
+
 using namespace ballista;
 
 namespace {
@@ -118,3 +120,5 @@ TEST(DeckContact, OtherSolversRefuseSeparateFields) {
     EXPECT_TRUE(contains(e.what(), "separate velocity fields are a grid contact of mpm")) << e.what();
   }
 }
+
+}  // namespace test_deck_contact

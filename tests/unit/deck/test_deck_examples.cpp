@@ -10,6 +10,8 @@
 #include "core/error.hpp"
 #include "deck/deck_reader.hpp"
 
+namespace test_deck_examples {
+
 using namespace ballista;
 
 namespace {
@@ -73,3 +75,5 @@ TEST(DeckExamples, ExampleDecksParseAndResolveToThemselves) {
   }
   EXPECT_GT(count, 0);
 }
+
+}  // namespace test_deck_examples

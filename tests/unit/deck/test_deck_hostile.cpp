@@ -12,6 +12,8 @@
 #include "driver/drive_deck.hpp"
 #include "support/test_files.hpp"
 
+namespace test_deck_hostile {
+
 namespace fs = std::filesystem;
 using namespace ballista;
 
@@ -190,3 +192,5 @@ TEST(DeckHostile, CellCountLimitFollowsWhetherTheSolverAllocatesCells) {
   const std::string huge = error_of(pd_deck("20"));  // 40000^3 = 6.4e13
   EXPECT_NE(huge.find("check that lengths are in metres"), std::string::npos) << huge;
 }
+
+}  // namespace test_deck_hostile

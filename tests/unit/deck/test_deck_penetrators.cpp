@@ -8,6 +8,8 @@
 #include "core/error.hpp"
 #include "deck/deck_reader.hpp"
 
+namespace test_deck_penetrators {
+
 using namespace ballista;
 
 namespace {
@@ -170,3 +172,5 @@ TEST(DeckPenetrators, StageErrorsAreNamed) {
 }
 
 }  // namespace
+
+}  // namespace test_deck_penetrators

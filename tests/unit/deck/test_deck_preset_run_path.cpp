@@ -13,6 +13,8 @@
 
 #include "deck/deck_reader.hpp"
 
+namespace test_deck_preset_run_path {
+
 using namespace ballista;
 
 namespace {
@@ -57,3 +59,5 @@ TEST(DeckPresetRunPath, ExampleDeckWithPresetAndOverrideResolvesToThePresetValue
   EXPECT_EQ(cu.params.choices.at("failure.erosion"), "zero_stress");
   EXPECT_EQ(cu.params.at("failure.d3"), preset["parameters"]["failure"]["d3"].as<double>());
 }
+
+}  // namespace test_deck_preset_run_path

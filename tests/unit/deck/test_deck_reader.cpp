@@ -13,6 +13,8 @@
 #include "points/solver_registry.hpp"
 #include "support/deck_errors.hpp"
 
+namespace test_deck_reader {
+
 using namespace ballista;
 using ballista::test::deck_error;
 using ballista::test::parse_error;
@@ -734,3 +736,5 @@ TEST(DeckNames, EditDistanceAndSuggestions) {
   EXPECT_EQ(NumberRange::positive("Pa").describe(), "> 0 (Pa)");
   EXPECT_EQ(NumberRange::non_negative("1").describe(), ">= 0");
 }
+
+}  // namespace test_deck_reader

@@ -19,6 +19,8 @@
 #include "support/test_files.hpp"
 #include "unit/materials/material_driver.hpp"
 
+namespace test_material_presets {
+
 using namespace ballista;
 
 namespace {
@@ -876,3 +878,5 @@ TEST(MaterialPresetMerge, MergedTaylorCopperConstructsWithTheDeckOverride) {
   EXPECT_NE(j2->create("b6", v), nullptr);
   EXPECT_EQ(num(library().get("copper_taylor_b6_j2"), "yield_stress"), 400.0e6);  // the library is untouched
 }
+
+}  // namespace test_material_presets

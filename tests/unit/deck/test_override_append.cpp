@@ -11,6 +11,8 @@
 #include "deck/deck_reader.hpp"
 #include "support/deck_errors.hpp"
 
+namespace test_override_append {
+
 using namespace ballista;
 using ballista::test::parse_error;
 
@@ -252,3 +254,5 @@ TEST(DeckOverrideAppend, ValidationErrorsNameTheAppendingOverride) {
   EXPECT_EQ(e4.line(), 0);
   EXPECT_TRUE(contains(e4.what(), "(value from override '" + set + "')")) << e4.what();
 }
+
+}  // namespace test_override_append

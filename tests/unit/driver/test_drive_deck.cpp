@@ -14,6 +14,8 @@
 #include "driver/perturb.hpp"
 #include "support/test_files.hpp"
 
+namespace test_drive_deck {
+
 using namespace ballista;
 using ballista::test::slurp;
 using ballista::test::TempDir;
@@ -268,3 +270,5 @@ TEST(DriveRun, FailureIsReportedWithHistory) {
   EXPECT_FALSE(std::isfinite(r.last.sigma(0, 0)));
   EXPECT_HAS(slurp(dir.path / "summary.json"), "\"status\": \"failed\"");
 }
+
+}  // namespace test_drive_deck

@@ -8,6 +8,8 @@
 #include "deck/material_presets.hpp"
 #include "driver/drive_deck.hpp"
 
+namespace test_drive_deck_preset {
+
 using namespace ballista;
 
 namespace {
@@ -51,3 +53,5 @@ TEST(DeckPreset, ModelMismatchIsAnError) {
 }
 
 }  // namespace
+
+}  // namespace test_drive_deck_preset

@@ -15,6 +15,8 @@
 #include "geometry/seeding.hpp"
 #include "materials/material.hpp"
 
+namespace test_point_driver {
+
 using namespace ballista;
 
 namespace {
@@ -508,3 +510,5 @@ TEST(PointDriver, HistoryColumns) {
   EXPECT_NEAR(at("sqrt_J2"), 2e8, 1e-6);
   EXPECT_EQ(at("eqps"), 0.25);
 }
+
+}  // namespace test_point_driver

@@ -6,6 +6,8 @@
 #include "core/error.hpp"
 #include "deck/deck_reader.hpp"
 
+namespace test_track_deck {
+
 using namespace ballista;
 
 namespace {
@@ -50,3 +52,5 @@ TEST(TrackDeck, BadIds) {
   EXPECT_NE(error_of("output: {track: {ids: 4}}\n").find("expected a list of particle ids"), std::string::npos);
   EXPECT_NE(error_of("output: {track: {id: [4]}}\n").find("did you mean 'ids'?"), std::string::npos);
 }
+
+}  // namespace test_track_deck

@@ -10,6 +10,8 @@
 #include "core/error.hpp"
 #include "geometry/grid_axes.hpp"
 
+namespace test_grid_axes {
+
 using namespace ballista;
 
 namespace {
@@ -120,3 +122,5 @@ TEST(GridAxes, GradingsThatWouldViolateTheirLimitsAreDeckErrors) {
   const GridAxes a = build_grid_axes(g, 2);
   expect_graded(a.node[0], 0.0, 0.04, 2.0, 0.1e-3, 1.0e-3);
 }
+
+}  // namespace test_grid_axes

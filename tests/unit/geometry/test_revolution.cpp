@@ -15,6 +15,8 @@
 #include "materials/material.hpp"
 #include "support/test_files.hpp"
 
+namespace test_revolution {
+
 using namespace ballista;
 using std::numbers::pi;
 
@@ -219,3 +221,5 @@ TEST(Revolution, DeckKeysAndErrors) {
   EXPECT_NE(pressure.find("loads.0.body"), std::string::npos) << pressure;
   EXPECT_NE(pressure.find("body 'liner' is a liner"), std::string::npos) << pressure;
 }
+
+}  // namespace test_revolution

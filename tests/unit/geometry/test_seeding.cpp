@@ -28,6 +28,8 @@
 #include "support/surface_files.hpp"
 #include "support/test_files.hpp"
 
+namespace test_seeding {
+
 using namespace ballista;
 using std::numbers::pi;
 
@@ -775,3 +777,5 @@ TEST(SeedingMesh, BadMeshInputsAreDeckErrorsAtTheirKeys) {
   EXPECT_TRUE(has(e, "2D mesh")) << e;
   EXPECT_EQ(error("3d", kGrid3, mesh_body("s", good, ", unit: furlong")).find("accepted"), std::string::npos);
 }
+
+}  // namespace test_seeding

@@ -10,6 +10,8 @@
 #include "core/error.hpp"
 #include "geometry/shape.hpp"
 
+namespace test_shape {
+
 using namespace ballista;
 
 namespace {
@@ -264,3 +266,5 @@ TEST(Shape, DepthIsTheDistanceToTheNearestFaceInsideAndNegativeOutside) {
   EXPECT_DOUBLE_EQ(shape_depth(axi, {{2.5, 3.0, 0.0}}, 2), 0.5);
   EXPECT_DOUBLE_EQ(shape_depth(axi, {{1.0, 1.25, 0.0}}, 2), 0.25);
 }
+
+}  // namespace test_shape

@@ -10,6 +10,8 @@
 #include "geometry/surface_solid.hpp"
 #include "support/surface_files.hpp"
 
+namespace test_surface_solid {
+
 using namespace ballista;
 
 namespace {
@@ -114,3 +116,5 @@ TEST(SurfaceSolid, AClosedSurfaceHasNoOpenEdge) {
   EXPECT_EQ(c.non_manifold_edges, 0);
   EXPECT_EQ(c.edges, 320 * 3 / 2);  // every edge shared by two of the 320 facets
 }
+
+}  // namespace test_surface_solid

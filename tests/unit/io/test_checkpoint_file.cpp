@@ -14,6 +14,8 @@
 #include "io/checkpoint_file.hpp"
 #include "support/test_files.hpp"
 
+namespace test_checkpoint_file {
+
 using namespace ballista;
 using ballista::test::TempDir;
 
@@ -197,3 +199,5 @@ TEST(CheckpointFile, ADamagedNewestCheckpointGivesWayToThePreviousOne) {
   EXPECT_NE(err.find("no checkpoint of"), std::string::npos) << err;
   EXPECT_NE(err.find("damaged"), std::string::npos) << err;
 }
+
+}  // namespace test_checkpoint_file

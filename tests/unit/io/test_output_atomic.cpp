@@ -10,6 +10,8 @@
 #include "io/atomic_file.hpp"
 #include "support/test_files.hpp"
 
+namespace test_output_atomic {
+
 namespace fs = std::filesystem;
 using ballista::test::count_tmp;
 using ballista::test::slurp;
@@ -65,3 +67,5 @@ TEST(OutputAtomic, CommitOfMissingTemporaryThrows) {
   ballista::test::TempDir d{"ballista_output"};
   EXPECT_THROW(commit_atomic((d.path / "x.tmp").string(), (d.path / "x").string()), Error);
 }
+
+}  // namespace test_output_atomic

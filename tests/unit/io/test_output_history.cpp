@@ -14,6 +14,8 @@
 #include "io/history_writer.hpp"
 #include "support/test_files.hpp"
 
+namespace test_output_history {
+
 namespace fs = std::filesystem;
 using namespace ballista;
 
@@ -113,3 +115,5 @@ TEST(OutputHistory, ResumeWithOtherColumnsNamesTheDifference) {
   ASSERT_EQ(lines.size(), 3u);
   EXPECT_EQ(lines[2], "2,5,6");
 }
+
+}  // namespace test_output_history

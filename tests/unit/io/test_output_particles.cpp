@@ -23,6 +23,8 @@
 #include "io/particle_writer.hpp"
 #include "support/test_files.hpp"
 
+namespace test_output_particles {
+
 namespace fs = std::filesystem;
 using ballista::test::count_tmp;
 using ballista::test::slurp;
@@ -501,3 +503,5 @@ TEST(OutputParticles, NodesAreASecondGridOfTheSameOutput) {
     EXPECT_EQ(rc, 0);
   }
 }
+
+}  // namespace test_output_particles

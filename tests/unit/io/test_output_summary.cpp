@@ -16,6 +16,8 @@
 #include "io/summary_writer.hpp"
 #include "support/test_files.hpp"
 
+namespace test_output_summary {
+
 namespace fs = std::filesystem;
 using ballista::test::slurp;
 using namespace ballista;
@@ -113,3 +115,5 @@ TEST(OutputSummary, WritesAtomicallyAndPythonParsesIt) {
   EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << cmd;
 #endif
 }
+
+}  // namespace test_output_summary

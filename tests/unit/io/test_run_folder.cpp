@@ -13,6 +13,8 @@
 #include "io/run_folder.hpp"
 #include "support/test_files.hpp"
 
+namespace test_run_folder {
+
 namespace fs = std::filesystem;
 using namespace ballista;
 using ballista::test::slurp;
@@ -131,3 +133,5 @@ TEST(RunFolder, AManifestNamingFilesOutsideTheFolderIsNotFollowed) {
   EXPECT_EQ(run.removed(), 0);
   EXPECT_EQ(slurp(d.path / "precious.txt"), "keep");
 }
+
+}  // namespace test_run_folder

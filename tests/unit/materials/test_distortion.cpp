@@ -7,6 +7,8 @@
 #include "material_driver.hpp"
 #include "materials/distortion.hpp"
 
+namespace test_distortion {
+
 using namespace ballista;
 using namespace ballista::test;
 
@@ -126,3 +128,5 @@ TEST(Distortion, HyperelasticModelsAreNeverRemapped) {
   EXPECT_EQ(d.F()(0, 0), 10.0);
   EXPECT_EQ(d.F()(1, 1), 0.1);
 }
+
+}  // namespace test_distortion

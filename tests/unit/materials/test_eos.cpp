@@ -11,6 +11,8 @@
 #include "material_driver.hpp"
 #include "materials/eos.hpp"
 
+namespace test_eos {
+
 using namespace ballista;
 using namespace ballista::test;
 
@@ -199,3 +201,5 @@ TEST(Eos, WaveSpeedIsTheIsentropicSoundSpeed) {
   st.real(kEosEnergyField)[0] = 0.0;
   EXPECT_NEAR(water->wave_speed(st, 0, 1.0), m.c0, 1e-12 * m.c0);  // bulk sound speed at rest
 }
+
+}  // namespace test_eos

@@ -12,6 +12,8 @@
 #include "materials/strain_increment.hpp"
 #include "materials/failure.hpp"
 
+namespace test_erosion {
+
 using namespace ballista;
 using namespace ballista::test;
 
@@ -278,3 +280,5 @@ TEST(Erosion, ThreadCountIndependent) {
   const auto a = run(1), b = run(2);
   for (size_t k = 0; k < a.size(); ++k) ASSERT_TRUE(same_bits(a[k], b[k])) << k;
 }
+
+}  // namespace test_erosion

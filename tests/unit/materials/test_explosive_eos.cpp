@@ -11,7 +11,7 @@
 #include "materials/explosive_eos.hpp"
 #include "materials/material.hpp"
 
-namespace ballista {
+namespace ballista::test_explosive_eos {
 namespace {
 
 // A JWL set of TNT's magnitude (the identities below hold for any parameters; the published sets
@@ -193,4 +193,4 @@ TEST(ExplosiveMaterial, RefusesInconsistentParameters) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_explosive_eos

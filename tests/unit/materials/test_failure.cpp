@@ -10,6 +10,8 @@
 #include "materials/failure.hpp"
 #include "test_failure_models.hpp"
 
+namespace test_failure {
+
 using namespace ballista;
 using namespace ballista::test;
 
@@ -383,3 +385,5 @@ TEST(Failure, JohnsonCookFailureStrainClosedForm) {
   EXPECT_NEAR(jc_failure_strain(m, 0.0, 10.0 * std::exp(1.0), 0.5), 0.63, 1e-15);
   EXPECT_NEAR(jc_failure_strain(m, 1.0, 1.0, 0.0), 0.1 + 0.2 * std::exp(3.0), 1e-14);  // rate < edot0
 }
+
+}  // namespace test_failure

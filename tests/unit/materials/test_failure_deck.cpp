@@ -9,6 +9,8 @@
 #include "deck/deck_reader.hpp"
 #include "materials/failure.hpp"
 
+namespace test_failure_deck {
+
 using namespace ballista;
 
 namespace {
@@ -148,3 +150,5 @@ TEST(FailureDeck, UnknownKeyInTheFailureMap) {
   EXPECT_EQ(e.key_path(), "materials.m.failure.max_stres");
   EXPECT_TRUE(contains(e.what(), "max_stress")) << e.what();
 }
+
+}  // namespace test_failure_deck

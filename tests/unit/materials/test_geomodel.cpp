@@ -10,7 +10,7 @@
 #include "material_driver.hpp"
 #include "materials/geomodel.hpp"
 
-namespace ballista {
+namespace ballista::test_geomodel {
 namespace {
 
 using test::PointDriver;
@@ -523,4 +523,4 @@ TEST(GeomodelParams, InconsistentParametersAreRejected) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_geomodel

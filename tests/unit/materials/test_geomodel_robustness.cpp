@@ -16,7 +16,7 @@
 #include "material_driver.hpp"
 #include "materials/geomodel.hpp"
 
-namespace ballista {
+namespace ballista::test_geomodel_robustness {
 namespace {
 
 struct RobustnessStats {
@@ -130,4 +130,4 @@ TEST(GeomodelRobustness, RateDependentStaysFinite) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_geomodel_robustness

@@ -9,6 +9,8 @@
 
 #include "materials/hardening.hpp"
 
+namespace test_hardening {
+
 using namespace ballista;
 
 namespace {
@@ -138,3 +140,5 @@ TEST(Hardening, MakeFromParameters) {
   EXPECT_EQ(specs[1].unit, "Pa");
   EXPECT_EQ(specs[2].unit, "1");
 }
+
+}  // namespace test_hardening

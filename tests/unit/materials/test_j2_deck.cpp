@@ -9,6 +9,8 @@
 #include "deck/deck_reader.hpp"
 #include "material_driver.hpp"
 
+namespace test_j2_deck {
+
 using namespace ballista;
 
 namespace {
@@ -138,3 +140,5 @@ TEST(J2Deck, BadCombinationsAreReportedAtTheKey) {
   e = deck_error(deck(jc));
   EXPECT_NE(e.key_path().find("taylor_quinney"), std::string::npos) << e.key_path();
 }
+
+}  // namespace test_j2_deck

@@ -15,6 +15,8 @@
 #include "material_driver.hpp"
 #include "materials/j2_plasticity.hpp"
 
+namespace test_j2_hardening {
+
 using namespace ballista;
 using namespace ballista::test;
 
@@ -628,3 +630,5 @@ TEST(J2Hardening, Parameters) {
     }
   }
 }
+
+}  // namespace test_j2_hardening

@@ -8,6 +8,8 @@
 
 #include "material_driver.hpp"
 
+namespace test_j2_plasticity {
+
 using namespace ballista;
 using namespace ballista::test;
 
@@ -419,3 +421,5 @@ TEST(J2Plasticity, Parameters) {
   // Hypoelastic: no initial stress for a prestrained start.
   for (double x : m->initial_stress(Mat3::diag(1.1, 1, 1)).a) EXPECT_EQ(x, 0.0);
 }
+
+}  // namespace test_j2_plasticity

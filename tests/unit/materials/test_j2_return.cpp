@@ -10,6 +10,8 @@
 
 #include "materials/j2_return.hpp"
 
+namespace test_j2_return {
+
 using namespace ballista;
 
 namespace {
@@ -109,3 +111,5 @@ TEST(J2Return, NonlinearLawsConverge) {
     EXPECT_LE(std::abs(c.q - kC * x - c.f(x).value), 1e-15 * c.q + 1e-12 * x * (kC + c.f(x).slope)) << c.name;
   }
 }
+
+}  // namespace test_j2_return

@@ -21,6 +21,8 @@
 #include "tangent_check.hpp"
 #include "materials/strain_increment.hpp"
 
+namespace test_j2_tangent {
+
 using namespace ballista;
 using namespace ballista::test;
 
@@ -202,3 +204,5 @@ TEST(J2Tangent, JohnsonCook) {
   EXPECT_LT(fd_tangent_error(pt, (0.1) * elastic_increment(), 1e-5, kH * 0.1).rel_err, kTol);
   EXPECT_EQ(pt.state_after("eqps"), 0.0);
 }
+
+}  // namespace test_j2_tangent

@@ -12,6 +12,8 @@
 #include "material_driver.hpp"
 #include "materials/johnson_cook.hpp"
 
+namespace test_johnson_cook {
+
 using namespace ballista;
 using namespace ballista::test;
 
@@ -508,3 +510,5 @@ TEST(JohnsonCook, InitialTemperaturePerMaterialInASharedStore) {
   EXPECT_EQ(T[2], 700.0);
   EXPECT_EQ(T[3], 700.0);
 }
+
+}  // namespace test_johnson_cook

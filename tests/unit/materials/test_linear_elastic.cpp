@@ -10,6 +10,8 @@
 #include "tangent_check.hpp"
 #include "materials/eos.hpp"
 
+namespace test_linear_elastic {
+
 using namespace ballista;
 using namespace ballista::test;
 
@@ -329,3 +331,5 @@ TEST(LinearElastic, MieGruneisenTangentAtTensionCutoff) {
   std::printf("linear_elastic MG cutoff: max |T_fd - T| / max|T| = %.2e\n", e.rel_err);
   EXPECT_LT(e.rel_err, 1e-8);
 }
+
+}  // namespace test_linear_elastic

@@ -8,6 +8,8 @@
 #include "material_driver.hpp"
 #include "materials/strain_increment.hpp"
 
+namespace test_material_adapter {
+
 using namespace ballista;
 using namespace ballista::test;
 
@@ -216,3 +218,5 @@ TEST(MaterialAdapter, InitialStress) {
   for (double x : make_material("linear_elastic", elastic_kg(1, 3, 2))->initial_stress(F).a) EXPECT_EQ(x, 0.0);
   for (double x : make_material("j2_plasticity", j2_steel_values())->initial_stress(F).a) EXPECT_EQ(x, 0.0);
 }
+
+}  // namespace test_material_adapter

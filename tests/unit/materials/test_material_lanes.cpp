@@ -16,6 +16,8 @@
 #include "materials/johnson_cook.hpp"
 #include "material_driver.hpp"
 
+namespace test_material_lanes {
+
 using namespace ballista;
 using namespace ballista::test;
 
@@ -210,3 +212,5 @@ TEST(MaterialLanes, APointDoesNotDependOnItsLaneNeighbours) {
       EXPECT_EQ(std::memcmp(&a.store.real(f)[p], &b.store.real(f)[p], sizeof(double)), 0) << f << " " << p;
   }
 }
+
+}  // namespace test_material_lanes

@@ -7,6 +7,8 @@
 #include "material_driver.hpp"
 #include "tangent_check.hpp"
 
+namespace test_neo_hookean {
+
 using namespace ballista;
 using namespace ballista::test;
 
@@ -222,3 +224,5 @@ TEST(NeoHookean, TangentMatchesFiniteDifferencesAtLargeStrain) {
   EXPECT_GE(checked, 4);
   std::printf("neo_hookean: %d samples, worst max |T_fd - T| / max|T| = %.2e\n", checked, worst);
 }
+
+}  // namespace test_neo_hookean

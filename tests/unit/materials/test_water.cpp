@@ -10,6 +10,8 @@
 #include "tangent_check.hpp"
 #include "materials/eos.hpp"
 
+namespace test_water {
+
 using namespace ballista;
 using namespace ballista::test;
 
@@ -186,3 +188,5 @@ TEST(Water, TangentIsZeroAtCavitationCutoff) {
   const Mat3 sp = pt.step(sym6(e0) + 1e-6 * Mat3::identity(), 1e-7);
   EXPECT_EQ(sp(0, 0), 1e5);
 }
+
+}  // namespace test_water

@@ -14,6 +14,8 @@
 #include "mpm/mpm_solver.hpp"
 #include "run/simulation.hpp"
 
+namespace test_active_blocks {
+
 using namespace ballista;
 
 namespace {
@@ -161,3 +163,5 @@ TEST(ActiveBlocks, MirrorImagesOfBlocksNearAMirrorFace) {
   ASSERT_EQ(b.active_list().size(), 1u);
   EXPECT_EQ(b.active_list()[0], b.block_of(24, 0, 0));
 }
+
+}  // namespace test_active_blocks

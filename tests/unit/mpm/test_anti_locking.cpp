@@ -20,6 +20,8 @@
 #include "core/parallel.hpp"
 #include "mpm/anti_locking.hpp"
 
+namespace test_anti_locking {
+
 using namespace ballista;
 
 namespace {
@@ -178,3 +180,5 @@ TEST(AntiLocking, BitwiseIndependentOfThreadCount) {
   EXPECT_EQ(std::memcmp(a.L.data(), b.L.data(), a.L.size() * sizeof(Mat3)), 0);
   EXPECT_EQ(std::memcmp(a.vol.data(), b.vol.data(), a.vol.size() * sizeof(double)), 0);
 }
+
+}  // namespace test_anti_locking

@@ -11,6 +11,8 @@
 #include "mpm/axis_hoop.hpp"
 #include "mpm/graded_shape_functions.hpp"
 
+namespace test_axis_hoop {
+
 using namespace ballista;
 
 namespace {
@@ -104,3 +106,5 @@ TEST(AxisHoop, BoundedAsTheParticleReachesTheAxis) {
     EXPECT_GT(plain, 0.01 / r) << "r = " << r;
   }
 }
+
+}  // namespace test_axis_hoop

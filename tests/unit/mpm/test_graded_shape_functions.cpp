@@ -10,6 +10,8 @@
 
 #include "mpm/graded_shape_functions.hpp"
 
+namespace test_graded_shape_functions {
+
 using namespace ballista;
 
 namespace {
@@ -195,3 +197,5 @@ TEST(GradedShapeFunctions, ASliverOfOverlapKeepsItsWeightBesideItsGradient) {
   EXPECT_NEAR(a.w[2], r * r / (4 * l * h), 1e-6 * r * r / (4 * l * h));
   EXPECT_NEAR(a.dw[2], r / (2 * l * h), 1e-6 * r / (2 * l * h));
 }
+
+}  // namespace test_graded_shape_functions

@@ -7,6 +7,8 @@
 
 #include "mpm/grid_contact.hpp"
 
+namespace test_grid_contact {
+
 using namespace ballista;
 
 namespace {
@@ -154,3 +156,5 @@ TEST(GridContact, NodeVolumesTileTheGrid) {
   EXPECT_NEAR(row, 0.5 * R * R, 1e-15);
   EXPECT_DOUBLE_EQ(g.node_volume(g.node_index(2, 1, 0), true), 2 * g.h * g.h * g.h);
 }
+
+}  // namespace test_grid_contact

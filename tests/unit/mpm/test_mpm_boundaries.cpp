@@ -22,9 +22,9 @@
 #include "mpm/mpm_solver.hpp"
 #include "run/simulation.hpp"
 
-using namespace ballista;
+namespace test_mpm_boundaries {
 
-namespace {
+using namespace ballista;
 
 constexpr double kH = 0.00390625;  // 2^-8 m, 8 cells per axis on [0, 2^-5]
 constexpr double kTop = 0.03125;
@@ -73,8 +73,6 @@ class FaceCondition : public ::testing::TestWithParam<BcCase> {};
 std::string bc_name(const ::testing::TestParamInfo<BcCase>& info) {
   return std::get<0>(info.param) + "_" + std::get<1>(info.param) + "_" + kFaceNames[std::get<2>(info.param)];
 }
-
-}  // namespace
 
 TEST_P(FaceCondition, ConstrainsExactlyTheFaceNodes) {
   const auto& [dim, bc, f] = GetParam();
@@ -393,3 +391,5 @@ TEST(Boundaries, Bspline3SymmetryPlaneIsTheMirroredWholeBody) {
     EXPECT_LT(diff, 1e-10 * dmax) << update;
   }
 }
+
+}  // namespace test_mpm_boundaries

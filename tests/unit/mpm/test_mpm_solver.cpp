@@ -40,9 +40,9 @@
 #include "points/mms_axis_aligned.hpp"
 #include "run/simulation.hpp"
 
-using namespace ballista;
+namespace test_mpm_solver {
 
-namespace {
+using namespace ballista;
 
 constexpr double kH = 0.00390625;  // 2^-8 m
 constexpr double kRho = 1000.0;
@@ -135,8 +135,6 @@ std::string case_name(const ::testing::TestParamInfo<Case>& info) {
 }
 
 class EveryDimensionAndShape : public ::testing::TestWithParam<Case> {};
-
-}  // namespace
 
 TEST_P(EveryDimensionAndShape, FreeBlockTranslatesRigidly) {
   const auto& [dim, sf] = GetParam();
@@ -732,7 +730,6 @@ TEST(MpmSolver, LoadCurvesScaleLoadsAtTheStartOfEachStep) {
   EXPECT_NEAR(e.total(), e0.total(), 1e-11 * ke);
 }
 
-
 TEST(MpmSolver, XpicKeepsMoreOfARigidRotationThanPic) {
   // A free elastic disk spinning rigidly (plane strain, GIMP, MUSL, the whole update PIC-like:
   // flip 0). A rigid rotation v = w x r is linear, so the grid can carry it exactly; what PIC loses
@@ -852,3 +849,5 @@ TEST(MpmSolver, TemporalOrderOfTheUpdateSchemes) {
   }
   EXPECT_LT(finest[0], 0.6 * finest[1]);
 }
+
+}  // namespace test_mpm_solver

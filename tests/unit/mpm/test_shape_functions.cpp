@@ -17,6 +17,8 @@
 #include "core/error.hpp"
 #include "mpm/shape_functions.hpp"
 
+namespace test_shape_functions {
+
 using namespace ballista;
 
 namespace {
@@ -868,3 +870,5 @@ TEST(ShapeFunctions, BSplineFacesLeaveOtherCellsBitwiseUniform) {
     }
   }
 }
+
+}  // namespace test_shape_functions

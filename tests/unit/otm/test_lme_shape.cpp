@@ -8,7 +8,7 @@
 
 #include "otm/lme_shape.hpp"
 
-namespace ballista::otm {
+namespace ballista::otm::test_lme_shape {
 namespace {
 
 struct Cloud {
@@ -161,9 +161,9 @@ TEST(LmeShape, SymmetricCondition) {
 }
 
 }  // namespace
-}  // namespace ballista::otm
+}  // namespace ballista::otm::test_lme_shape
 
-namespace ballista::otm {
+namespace ballista::otm::test_lme_shape {
 namespace {
 
 // Seed 003 §5.2 (Figs. 5-4, 5-5): nodes of a cube, an LME evaluation "injected" anywhere in it,
@@ -216,4 +216,4 @@ TEST(LmeCubeExperiment, LineSearchMakesEverySolveSucceed) {
 }
 
 }  // namespace
-}  // namespace ballista::otm
+}  // namespace ballista::otm::test_lme_shape

@@ -19,7 +19,7 @@
 #include "otm/otm_solver.hpp"
 #include "run/simulation.hpp"
 
-namespace ballista {
+namespace ballista::test_otm_adaptivity {
 namespace {
 
 // These tests are of the split's geometry and bookkeeping: the children copy the state
@@ -258,4 +258,4 @@ bodies:
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_otm_adaptivity

@@ -18,7 +18,7 @@
 #include "core/parallel.hpp"
 #include "otm/otm_fbar.hpp"
 
-namespace ballista::otm {
+namespace ballista::otm::test_otm_fbar {
 namespace {
 
 constexpr double kDt = 1e-6;
@@ -144,4 +144,4 @@ TEST(OtmFBar, ThreadCountIndependent) {
 }
 
 }  // namespace
-}  // namespace ballista::otm
+}  // namespace ballista::otm::test_otm_fbar

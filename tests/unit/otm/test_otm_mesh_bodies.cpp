@@ -29,7 +29,7 @@
 #include "support/exodus_files.hpp"
 #include "support/test_files.hpp"
 
-namespace ballista {
+namespace ballista::test_otm_mesh_bodies {
 namespace {
 
 constexpr double kH = 0.005;  // m: the mesh's hexahedra and grid.cell_size
@@ -210,4 +210,4 @@ TEST(OtmMeshBody, WhatItDoesNotSupportIsADeckErrorAtItsKey) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_otm_mesh_bodies

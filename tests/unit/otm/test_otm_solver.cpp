@@ -19,7 +19,7 @@
 #include "otm/otm_solver.hpp"
 #include "run/simulation.hpp"
 
-namespace ballista {
+namespace ballista::test_otm_solver {
 namespace {
 
 std::string deck(const std::string& dim, const std::string& velocity, const std::string& extra = "") {
@@ -133,4 +133,4 @@ TEST(OtmDeterminism, ThreadCountIndependent) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_otm_solver

@@ -13,7 +13,7 @@
 #include "otm/otm_adaptivity.hpp"
 #include "otm/split_state.hpp"
 
-namespace ballista {
+namespace ballista::test_split_state {
 namespace {
 
 constexpr double kS0 = 1e-3;
@@ -178,4 +178,4 @@ TEST(OtmSplitState, AnIsolatedPointCopies) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_split_state

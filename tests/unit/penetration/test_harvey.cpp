@@ -6,6 +6,8 @@
 #include "core/error.hpp"
 #include "penetration/harvey.hpp"
 
+namespace test_harvey {
+
 namespace bp = ballista::penetration;
 
 TEST(Harvey, HandComputedBereaLikeValue) {
@@ -37,3 +39,5 @@ TEST(Harvey, StrongRockBranchAndReference) {
   EXPECT_NEAR(ref.depth, 0.5, 1e-15);
   EXPECT_THROW(bp::harvey_depth({0.5, 1e-4 / psi, 7000 * psi, 0, 0, 20}), ballista::Error);  // percent, not fraction
 }
+
+}  // namespace test_harvey

@@ -7,6 +7,8 @@
 #include "core/error.hpp"
 #include "penetration/hydrodynamic.hpp"
 
+namespace test_hydrodynamic {
+
 namespace bp = ballista::penetration;
 
 TEST(Hydrodynamic, LikeDensitiesPenetrateOneLength) {
@@ -67,3 +69,5 @@ TEST(Hydrodynamic, RejectsBadInput) {
     EXPECT_NE(std::string(e.what()).find("rho_t"), std::string::npos) << e.what();
   }
 }
+
+}  // namespace test_hydrodynamic

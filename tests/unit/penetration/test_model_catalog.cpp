@@ -9,6 +9,8 @@
 #include "penetration/model_catalog.hpp"
 #include "penetration/models_cli.hpp"
 
+namespace test_model_catalog {
+
 namespace bp = ballista::penetration;
 
 namespace {
@@ -63,3 +65,5 @@ TEST(ModelCatalog, DefaultsAreFilledAndEvaluationMatchesLibrary) {
   }
   EXPECT_EQ(found, 1);
 }
+
+}  // namespace test_model_catalog

@@ -7,6 +7,8 @@
 #include "core/error.hpp"
 #include "penetration/orphal_anderson.hpp"
 
+namespace test_orphal_anderson {
+
 namespace bp = ballista::penetration;
 
 TEST(OrphalAnderson, FitRecoversExactLine) {
@@ -76,3 +78,5 @@ TEST(OrphalAnderson, HydrodynamicSlopesOfThesisFigure510) {
   EXPECT_GT(bp::orphal_anderson_curvature(0.634, 19235, 2300), 0);
   EXPECT_GT(bp::orphal_anderson_curvature(0.672, 19235, 2300), 0);
 }
+
+}  // namespace test_orphal_anderson

@@ -7,6 +7,8 @@
 #include "core/error.hpp"
 #include "penetration/pack_evans_fit.hpp"
 
+namespace test_pack_evans_fit {
+
 namespace bp = ballista::penetration;
 
 namespace {
@@ -54,3 +56,5 @@ TEST(PackEvansFit, RejectsBadInput) {
   EXPECT_THROW(bp::pack_evans_extract_penalty(o), ballista::Error);
   EXPECT_THROW(bp::pack_evans_extract_lambda(billet(41.12, 3.13), 1.0), ballista::Error);  // x = 1
 }
+
+}  // namespace test_pack_evans_fit

@@ -8,6 +8,8 @@
 #include "core/error.hpp"
 #include "penetration/quadrature.hpp"
 
+namespace test_quadrature {
+
 namespace bp = ballista::penetration;
 
 TEST(Quadrature, IntegratesExpToTolerance) {
@@ -37,3 +39,5 @@ TEST(Quadrature, EvaluationBudgetStopsAnUnreachableTolerance) {
   EXPECT_THROW(bp::integrate_adaptive_simpson([](double x) { return std::sqrt(x); }, 0.0, 1.0, 0.0, 1000),
                ballista::Error);
 }
+
+}  // namespace test_quadrature

@@ -8,6 +8,8 @@
 #include "core/error.hpp"
 #include "penetration/strength_models.hpp"
 
+namespace test_steady_eroding_jet {
+
 namespace bp = ballista::penetration;
 
 namespace {
@@ -42,3 +44,5 @@ TEST(SteadyErodingJet, RigidRegimeMessagesNameTheirModel) {
   EXPECT_EQ(message_of([] { bp::grove({0.3, 8960, 8960, 1000, 0, 5e9, 1000}); }),
             "grove: rho_t V^2 = 1e+09 Pa <= 2 (Y - R) = 1e+10 Pa: the jet does not erode and eq. 3.13 does not apply");
 }
+
+}  // namespace test_steady_eroding_jet

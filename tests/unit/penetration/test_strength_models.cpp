@@ -8,6 +8,8 @@
 #include "penetration/hydrodynamic.hpp"
 #include "penetration/strength_models.hpp"
 
+namespace test_strength_models {
+
 namespace bp = ballista::penetration;
 
 TEST(Eichelberger, ReducesToParticulatedJetWithoutStrengthDifference) {
@@ -83,3 +85,5 @@ TEST(Gladkikh, HandComputedValue) {
   EXPECT_THROW(bp::gladkikh_depth(0.5, 7850, 7850, 2000, 2000), ballista::Error);  // no gradient
   EXPECT_THROW(bp::gladkikh_depth(0.5, 7850, 7850, 4000, 2000), ballista::Error);  // bracket < 0
 }
+
+}  // namespace test_strength_models

@@ -10,6 +10,8 @@
 #include "penetration/tate.hpp"
 #include "penetration/walters_segletes.hpp"
 
+namespace test_tate {
+
 namespace bp = ballista::penetration;
 
 namespace {
@@ -170,3 +172,5 @@ TEST(Tate, EqualStrengthsHaveClosedFormFinalState) {
   const bp::TateRun run = bp::integrate_tate(in, {});
   EXPECT_NEAR(run.final.P, ws.P, 1e-4 * ws.P);
 }
+
+}  // namespace test_tate

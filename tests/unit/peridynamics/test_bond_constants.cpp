@@ -13,6 +13,8 @@
 
 #include "peridynamics/bond_constants.hpp"
 
+namespace test_bond_constants {
+
 using namespace ballista;
 
 namespace {
@@ -124,3 +126,5 @@ TEST(BondConstants, SurfaceFactorsOnALatticeCube) {
   EXPECT_GT(at(0, 0, 0), at(3, 3, 0));
   EXPECT_LT(at(0, 0, 0), 8.0);
 }
+
+}  // namespace test_bond_constants

@@ -8,6 +8,8 @@
 
 #include "peridynamics/bond_family.hpp"
 
+namespace test_bond_family_size {
+
 using namespace ballista;
 
 TEST(BondFamilySize, CountsTheLatticePointsWithinTheHorizon) {
@@ -24,3 +26,5 @@ TEST(BondFamilySize, CountsTheLatticePointsWithinTheHorizon) {
   EXPECT_EQ(pd::lattice_family_size(0.5, 3), 0.0);                              // no family
   EXPECT_EQ(pd::lattice_family_size(std::nan(""), 3), 0.0);
 }
+
+}  // namespace test_bond_family_size

@@ -16,6 +16,8 @@
 
 #include "peridynamics/bond_pass.hpp"
 
+namespace test_bond_pass {
+
 using namespace ballista;
 
 namespace {
@@ -231,3 +233,5 @@ TEST(BondPass, MatchesEveryBondSeenFromBothEnds) {
 TEST(BondPass, MicroPlasticBondsMatchEveryBondSeenFromBothEnds) {
   check_against_reference(true);
 }
+
+}  // namespace test_bond_pass

@@ -16,7 +16,7 @@
 #include "peridynamics/contact_list.hpp"
 #include "points/cell_bins.hpp"
 
-namespace ballista {
+namespace ballista::test_contact_list {
 namespace {
 
 TEST(CellBins, ChessboardDistanceBoundsTheNearestPoint) {
@@ -365,4 +365,4 @@ TEST(PdContactList, RelativeTestWithCoarseAndVentedGasIn2DAnd3D) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_contact_list

@@ -16,7 +16,7 @@
 #include "peridynamics/bond_family.hpp"
 #include "peridynamics/gas_pass.hpp"
 
-namespace ballista {
+namespace ballista::test_gas_family {
 namespace {
 
 TEST(GasFamily, CoarseGasLatticeBesideAFineSolid) {
@@ -97,4 +97,4 @@ TEST(GasFamily, CoarseGasLatticeBesideAFineSolid) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_gas_family

@@ -18,7 +18,7 @@
 
 #include "peridynamics/gas_pass.hpp"
 
-namespace ballista {
+namespace ballista::test_gas_renewal {
 namespace {
 
 /// The checks of the renewal on the sheared cloud; `coarse`: a third of the gas points (every
@@ -107,4 +107,4 @@ TEST(GasRenewal, MeasureContinuousForcesBalancedPairsByTheRule) { check_renewal(
 TEST(GasRenewal, CoarseGasLatticeScalesItsHorizon) { check_renewal(true); }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_gas_renewal

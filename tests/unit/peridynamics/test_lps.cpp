@@ -20,6 +20,8 @@
 #include "run/simulation.hpp"
 #include "support/lps_lattice.hpp"
 
+namespace test_lps {
+
 using namespace ballista;
 
 namespace {
@@ -269,3 +271,5 @@ TEST(Lps, RefusesWhatItDoesNotModel) {
     EXPECT_NE(std::string(e.what()).find("formulation"), std::string::npos) << e.what();
   }
 }
+
+}  // namespace test_lps

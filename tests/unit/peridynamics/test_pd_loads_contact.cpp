@@ -14,6 +14,8 @@
 #include "points/point_loads.hpp"
 #include "run/simulation.hpp"
 
+namespace test_pd_loads_contact {
+
 using namespace ballista;
 
 namespace {
@@ -185,3 +187,5 @@ TEST(PdSeeding, CutoutsAndRadialVelocity) {
   // of 4 x 2 points are cut out (round-off used to keep one of them).
   EXPECT_EQ(in_block, 8 * 8 * 2 - 4 * 2 * 2);
 }
+
+}  // namespace test_pd_loads_contact

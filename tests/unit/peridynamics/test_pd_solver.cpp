@@ -578,7 +578,7 @@ TEST(PdSolver, LammpsBreakRuleAppliesTheBreakingBondOnce) {
   EXPECT_NEAR(dissipated[1], dissipated[0], 1e-12 * dissipated[0]);  // refresh: no motion, U booked alike
 }
 
-namespace ballista {
+namespace ballista::test_pd_solver {
 namespace {
 
 // Bonds bypass the material library's stress update, so an explosive would never burn under
@@ -649,7 +649,7 @@ detonation: {points: [{position: [-4.0e-3, 0], time: 0}]}
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_pd_solver
 
 TEST(PdSolver, ParameterErrorsNameTheLineOfTheKey) {
   // The solver's own checks of its section (here: horizon and m both given) point at the line of

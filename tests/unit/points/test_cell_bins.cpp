@@ -10,7 +10,7 @@
 
 #include "points/cell_bins.hpp"
 
-namespace ballista {
+namespace ballista::test_cell_bins {
 namespace {
 
 std::vector<Index> within(const CellBins& bins, const Vec3* x, const Vec3& y, double radius, int reach, int dim,
@@ -57,4 +57,4 @@ TEST(CellBins, VisitWithinFindsWhatVisitFindsInTheSameOrder) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_cell_bins

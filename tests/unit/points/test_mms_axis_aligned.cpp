@@ -11,6 +11,8 @@
 #include "materials/material.hpp"
 #include "points/mms_axis_aligned.hpp"
 
+namespace test_mms_axis_aligned {
+
 using namespace ballista;
 
 namespace {
@@ -124,3 +126,5 @@ TEST(MmsAxisAligned, StressOfTheRegisteredNeoHookeanMaterialIsThePiolaStressPush
       for (int j = 0; j < 3; ++j) EXPECT_NEAR(sigma(i, j), expected(i, j), 1e-12 * kMms.mu) << i << j;
   }
 }
+
+}  // namespace test_mms_axis_aligned

@@ -15,6 +15,8 @@
 #include "materials/material.hpp"
 #include "points/mms_generalized_vortex.hpp"
 
+namespace test_mms_generalized_vortex {
+
 using namespace ballista;
 
 namespace {
@@ -154,3 +156,5 @@ TEST(MmsGeneralizedVortex, BodyForceMatchesUintahsFactoredForm) {
     EXPECT_NEAR(b[1], std::sin(beta) * br + std::cos(beta) * bt, scale);
   }
 }
+
+}  // namespace test_mms_generalized_vortex

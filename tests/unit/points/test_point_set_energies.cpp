@@ -12,7 +12,7 @@
 #include "points/point_set.hpp"
 #include "run/simulation.hpp"
 
-namespace ballista {
+namespace ballista::test_point_set_energies {
 namespace {
 
 Scenario deck(bool with_failure) {
@@ -69,4 +69,4 @@ TEST(PointSetEnergies, SumsMatchWithoutFailedPoints) { check(false); }
 TEST(PointSetEnergies, ErodedEnergyIsThatOfTheFailedPoints) { check(true); }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_point_set_energies

@@ -15,7 +15,7 @@
 #include "core/error.hpp"
 #include "points/program_burn.hpp"
 
-namespace ballista {
+namespace ballista::test_program_burn {
 namespace {
 
 constexpr double kD = 8000.0;  // m/s, a detonation speed of the order of Composition B's
@@ -237,4 +237,4 @@ TEST(ProgramBurn, ADetonatorAwayFromTheChargeIsAnError) {
 }
 
 }  // namespace
-}  // namespace ballista
+}  // namespace ballista::test_program_burn

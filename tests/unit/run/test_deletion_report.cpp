@@ -11,6 +11,8 @@
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 
+namespace test_deletion_report {
+
 namespace fs = std::filesystem;
 using namespace ballista;
 
@@ -68,3 +70,5 @@ TEST(DeletionReport, DeletedPointsAreCountedPerBodyAndTheProbeOfALostBodyIsWarne
   EXPECT_NE(w[w.size() - 1].as<std::string>().find("probe 'ball_velocity' measures body 'ball', which has lost"),
             std::string::npos);
 }
+
+}  // namespace test_deletion_report

@@ -13,6 +13,8 @@
 #include "run/fragment_summary.hpp"
 #include "support/test_files.hpp"
 
+namespace test_fragment_summary {
+
 using namespace ballista;
 
 namespace {
@@ -113,3 +115,5 @@ TEST(FragmentPlots, FolderWithoutFragmentsIsAnError) {
   EXPECT_NE(err.find("plot_fragments.py"), std::string::npos) << err;
   EXPECT_NE(err.find("failed with status 2"), std::string::npos) << err;
 }
+
+}  // namespace test_fragment_summary

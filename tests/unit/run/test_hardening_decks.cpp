@@ -13,6 +13,8 @@
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 
+namespace test_hardening_decks {
+
 namespace fs = std::filesystem;
 using namespace ballista;
 
@@ -195,3 +197,5 @@ TEST(HardeningDecks, PeridynamicSolidsWriteNoPlaceholderKinematics) {
   EXPECT_FALSE(gas->points().info("R").output);
   EXPECT_TRUE(has(refusal(kPlatePd, {"output.domains=true"}), "no deforming domain"));
 }
+
+}  // namespace test_hardening_decks

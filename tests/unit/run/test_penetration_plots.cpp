@@ -11,6 +11,8 @@
 #include "run/penetration_plots.hpp"
 #include "support/test_files.hpp"
 
+namespace test_penetration_plots {
+
 using namespace ballista;
 
 TEST(PenetrationPlots, FolderWithoutHistoryIsAnError) {
@@ -34,3 +36,5 @@ TEST(PythonTool, QuotesShellWords) {
   EXPECT_EQ(shell_quote("a b"), "'a b'");
   EXPECT_EQ(shell_quote("it's"), "'it'\\''s'");
 }
+
+}  // namespace test_penetration_plots

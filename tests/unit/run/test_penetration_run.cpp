@@ -16,6 +16,8 @@
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 
+namespace test_penetration_run {
+
 using namespace ballista;
 
 namespace {
@@ -90,3 +92,5 @@ TEST(PenetrationRun, ThreeDimensionalSegmentedRodIntoABlock) {
 }
 
 }  // namespace
+
+}  // namespace test_penetration_run

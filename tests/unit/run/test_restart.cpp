@@ -13,6 +13,8 @@
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 
+namespace test_restart {
+
 namespace fs = std::filesystem;
 using namespace ballista;
 using ballista::test::slurp;
@@ -299,3 +301,5 @@ TEST(Restart, TrackedParticlesContinueTheirTables) {
   });
   EXPECT_NE(added.find("adds particle 5"), std::string::npos) << added;
 }
+
+}  // namespace test_restart

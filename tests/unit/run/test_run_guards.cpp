@@ -14,6 +14,8 @@
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 
+namespace test_run_guards {
+
 namespace fs = std::filesystem;
 using namespace ballista;
 
@@ -177,3 +179,5 @@ TEST(RunGuards, SecondRunIntoTheSameFolderLeavesNoStaleFiles) {
   EXPECT_EQ(test::count_tmp(dir.path), 0);
   EXPECT_TRUE(fs::exists(dir.path / "notes.txt"));
 }
+
+}  // namespace test_run_guards

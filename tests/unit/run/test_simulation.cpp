@@ -19,6 +19,8 @@
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 
+namespace test_simulation {
+
 namespace fs = std::filesystem;
 using namespace ballista;
 
@@ -260,3 +262,5 @@ TEST(RunSimulation, EnergyDriftLimitDoesNotTripOnAnExactBalance) {
   EXPECT_LT(s["statistics"]["worst_energy_drift"].as<double>(), 1e-10);
   EXPECT_GT(s["energy"]["external_work"].as<double>(), 0.0);
 }
+
+}  // namespace test_simulation

@@ -16,6 +16,8 @@
 #include "run/stage_criterion.hpp"
 #include "support/test_files.hpp"
 
+namespace test_stages {
+
 namespace fs = std::filesystem;
 using namespace ballista;
 
@@ -139,3 +141,5 @@ TEST(Stages, EquilibriumNotReachedStopsTheRunNamingTheWorstParticle) {
 }
 
 }  // namespace
+
+}  // namespace test_stages

@@ -10,6 +10,8 @@
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 
+namespace test_step_limiter {
+
 using namespace ballista;
 
 TEST(StepLimiter, SummaryNamesTheFastestSignal) {
@@ -35,3 +37,5 @@ bodies:
   EXPECT_NEAR(lim["speed"].as<double>(), 300.0, 1e-9);
   EXPECT_NEAR(lim["dt"].as<double>(), 0.3 * 1e-3 / (c + 300.0), 1e-12 * 1e-7);
 }
+
+}  // namespace test_step_limiter

@@ -10,6 +10,8 @@
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 
+namespace test_surface_body {
+
 using namespace ballista;
 
 namespace {
@@ -57,3 +59,5 @@ TEST(SurfaceBody, TheStlTaylorBarRunsAsTheAnalyticCylinder) {
 TEST(SurfaceBody, TheExodusTaylorBarRunsAsTheAnalyticCylinder) {
   expect_runs_as_the_cylinder("taylor_bar_mpm_3d_mesh.yaml");
 }
+
+}  // namespace test_surface_body

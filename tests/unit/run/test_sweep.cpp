@@ -12,6 +12,8 @@
 #include "run/sweep_table.hpp"
 #include "support/test_files.hpp"
 
+namespace test_sweep {
+
 using namespace ballista;
 
 namespace {
@@ -215,3 +217,5 @@ TEST(SweepRun, FailedChildrenAreRecordedAndPostStepsSeeTheTable) {
   EXPECT_EQ(t2.failed(), 3);
   EXPECT_NE(t2.rows()[0].error.find("no_such_binary"), std::string::npos) << t2.rows()[0].error;
 }
+
+}  // namespace test_sweep

@@ -14,6 +14,8 @@
 #include "run/sweep_table.hpp"
 #include "support/test_files.hpp"
 
+namespace test_sweep_penetration_fit {
+
 using namespace ballista;
 
 namespace {
@@ -171,3 +173,5 @@ TEST(SweepPenetrationFit, PostStepDrawsBothFigures) {
     EXPECT_EQ(data.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << png;
   }
 }
+
+}  // namespace test_sweep_penetration_fit

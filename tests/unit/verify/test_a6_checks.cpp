@@ -9,6 +9,8 @@
 #include "verify/a1_frame_indifference.hpp"
 #include "verify/a6_objectivity.hpp"
 
+namespace test_a6_checks {
+
 using namespace ballista;
 using namespace ballista::test;
 
@@ -106,3 +108,5 @@ TEST(A6Objectivity, MissingExampleIsNotApplicable) {
   EXPECT_EQ(c.status, VerifyStatus::NotApplicable);
   EXPECT_NE(c.reason.find("example"), std::string::npos);
 }
+
+}  // namespace test_a6_checks

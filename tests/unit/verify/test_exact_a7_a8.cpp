@@ -10,6 +10,8 @@
 #include "verify/uniaxial_strain_cap.hpp"
 #include "verify/uniaxial_strain_j2.hpp"
 
+namespace test_exact_a7_a8 {
+
 using namespace ballista;
 
 namespace {
@@ -135,3 +137,5 @@ TEST(UniaxialStrainCap, ConvergedGridAndStationaryState) {
   EXPECT_LT(moving.evp(0.03), -0.01);
   EXPECT_LT(moving.cap(0.03), -120e6);
 }
+
+}  // namespace test_exact_a7_a8

@@ -9,6 +9,8 @@
 #include "verify/drucker_prager_triaxial.hpp"
 #include "verify/hydrostatic_crush.hpp"
 
+namespace test_geo_analytic {
+
 using namespace ballista;
 
 namespace {
@@ -172,3 +174,5 @@ TEST(HydrostaticCap, EventsAndFixedCap) {
   EXPECT_DOUBLE_EQ(f.i1(), -90e6);
   EXPECT_NEAR(f.evp(), -0.05 + 3e-3, 1e-15);
 }
+
+}  // namespace test_geo_analytic

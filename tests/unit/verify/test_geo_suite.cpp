@@ -8,6 +8,8 @@
 #include "verify/a4_hydrostatic_cap.hpp"
 #include "verify/a5_load_unload.hpp"
 
+namespace test_geo_suite {
+
 using namespace ballista;
 
 namespace {
@@ -83,3 +85,5 @@ TEST(VerifyGeo, NotApplicableWithoutHookOrNonAssociativeFlow) {
   EXPECT_EQ(c.status, VerifyStatus::NotApplicable);
   EXPECT_NE(c.reason.find("non-associative"), std::string::npos) << c.reason;
 }
+
+}  // namespace test_geo_suite

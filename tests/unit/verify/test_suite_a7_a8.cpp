@@ -8,6 +8,8 @@
 #include "verify/a7_misaligned_rate.hpp"
 #include "verify/a8_uniaxial_strain_cap.hpp"
 
+namespace test_suite_a7_a8 {
+
 using namespace ballista;
 
 namespace {
@@ -72,3 +74,5 @@ TEST(VerifyA7A8, WrongCapOrCrushCurveFailsA8) {
   std::printf("A8 with CR doubled: %.3g, with P1 halved: %.3g (tolerance %.3g)\n", round.max_rel_error,
               stiff.max_rel_error, stiff.tolerance);
 }
+
+}  // namespace test_suite_a7_a8

@@ -10,6 +10,8 @@
 #include "verify/a2_uniaxial_strain.hpp"
 #include "verify/uniaxial_strain_j2.hpp"
 
+namespace test_uniaxial_strain_j2 {
+
 using namespace ballista;
 
 namespace {
@@ -185,3 +187,5 @@ TEST(UniaxialStrainJ2, SamplingIndependent) {
   EXPECT_EQ(a.yield_events().size(), b.yield_events().size());
   EXPECT_THROW(UniaxialStrainJ2({79e9, 70e9, -1.0}), Error);
 }
+
+}  // namespace test_uniaxial_strain_j2

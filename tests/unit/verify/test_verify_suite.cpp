@@ -15,6 +15,8 @@
 #include "verify/verify_json.hpp"
 #include "verify/verify_suite.hpp"
 
+namespace test_verify_suite {
+
 using namespace ballista;
 
 // Every registered model must provide `example` (CATALOGUE A6 applies to every model: a new model
@@ -195,3 +197,5 @@ TEST(VerifyJson, EscapingAndNumbers) {
   EXPECT_NE(j.find("\"t\": [0,1]"), std::string::npos);
   EXPECT_NE(j.find("\"status\": \"pass\""), std::string::npos);
 }
+
+}  // namespace test_verify_suite
