@@ -20,6 +20,8 @@
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 
+namespace test_pd_solver {
+
 using namespace ballista;
 
 namespace {
@@ -578,7 +580,6 @@ TEST(PdSolver, LammpsBreakRuleAppliesTheBreakingBondOnce) {
   EXPECT_NEAR(dissipated[1], dissipated[0], 1e-12 * dissipated[0]);  // refresh: no motion, U booked alike
 }
 
-namespace ballista::test_pd_solver {
 namespace {
 
 // Bonds bypass the material library's stress update, so an explosive would never burn under
@@ -649,7 +650,6 @@ detonation: {points: [{position: [-4.0e-3, 0], time: 0}]}
 }
 
 }  // namespace
-}  // namespace ballista::test_pd_solver
 
 TEST(PdSolver, ParameterErrorsNameTheLineOfTheKey) {
   // The solver's own checks of its section (here: horizon and m both given) point at the line of
@@ -673,3 +673,5 @@ bodies:
     EXPECT_NE(std::string(e.what()).find("not both"), std::string::npos) << e.what();
   }
 }
+
+}  // namespace test_pd_solver
