@@ -104,10 +104,7 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
     const Index a = which[i], b = n + i;
     const Vec3 d = half[i], d0 = half0[i];
     const Vec3 u = (1.0 / norm(d)) * d;
-    // Shares of the reference volume: 1/2 each, or in axisymmetric runs the two half-rings,
-    // (r0 +- d0_r) / (2 r0) (Pappus: a half-cell's volume per radian is its area times its
-    // centroid's radius), which sum to 1 exactly.
-    const double wa = axisymmetric ? 0.5 * (x0[a][0] + d0[0]) / x0[a][0] : 0.5;
+    const double wa = first_child_share(x0[a][0], d0[0], axisymmetric);
     share[2 * i] = wa;
     share[2 * i + 1] = 1.0 - wa;
     x[b] = x[a] - d;

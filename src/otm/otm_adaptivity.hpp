@@ -69,6 +69,13 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
                                 const Vec3& upper, const AdaptivityOptions& opt, const SplitStateSpec& state,
                                 const std::string& failed, std::int64_t& next_id);
 
+/// The first child's share of a split point's reference volume, the child at r0 + d0_r: 1/2, or in
+/// axisymmetric runs its half-ring's, (r0 + d0_r) / (2 r0) (Pappus: a half-cell's volume per radian
+/// is its area times its centroid's radius); the second child's, 1 minus it, sums to 1 exactly.
+inline double first_child_share(double r0, double d0_r, bool axisymmetric) {
+  return axisymmetric ? 0.5 * (r0 + d0_r) / r0 : 0.5;
+}
+
 /// True if two nodes of one body that carry mass are closer than `distance` (z ignored in 2D).
 bool nodes_crowded(const NodeCloud& nodes, double distance, int dim);
 

@@ -53,9 +53,8 @@ std::vector<SplitIncrement> split_increments(const FieldStore& pts, const std::v
     double lo, hi;
     symmetric_extremes(extent[p] * transpose(extent[p]), dim, lo, hi);
     radius[i] = 1.5 * std::sqrt(std::max(hi, 0.0));
-    // The limiter's factors: the shares of otm_adaptivity.cpp (its own, passed to
-    // apply_split_increments, are the ones the conservation rests on).
-    share_first[i] = axisymmetric ? 0.5 * (x0[p][0] + ref_offsets[i][0]) / x0[p][0] : 0.5;
+    // The limiter's factors; apply_split_increments takes the same shares from split_points.
+    share_first[i] = first_child_share(x0[p][0], ref_offsets[i][0], axisymmetric);
   }
   const auto* body = pts.ints(kBodyIndex);
   const auto* material = pts.ints(kMaterialIndex);
