@@ -363,6 +363,9 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
       }
       if (a >= 0 && surface == "top") { depth = s.center[a] + s.length - X[a]; N[a] = 1.0; }
       if (a >= 0 && surface == "bottom") { depth = X[a] - s.center[a]; N[a] = -1.0; }
+      // A hole in the loaded end face around the axis, through which a penetrator enters without
+      // dragging loaded surface points into its channel (thesis seed 000 §6.2 and Fig. 6.14).
+      if ((surface == "top" || surface == "bottom") && r < load.params.number_or("hole_radius", 0.0)) continue;
     }
     // Band of lattice points carrying the surface: depth in [0, w) with w = dx max_i |N_i|. A
     // lattice column along the dominant normal axis then holds exactly one point of the band, so

@@ -1,7 +1,10 @@
 // The overburden on a cylindrical rock target (thesis seed 000 §5.1, Table 5.1): pressure
-// `radial` on its outer surface and `axial` on its top and bottom (both default to `pressure`),
+// `radial` on its outer surface and `axial` on its top and bottom (both default to `pressure`;
+// optionally none within `hole_radius` of the axis on the top, where the penetrator enters),
 // read as three pressure loads with the same curve, and the stress they hold the target at in
 // equilibrium, for stages that wait for it.
+#include <fmt/format.h>
+
 #include "points/load_registry.hpp"
 
 namespace ballista {
@@ -20,12 +23,18 @@ LoadReading read_confinement(LoadEntry& e, LoadSpec load) {
   const double p = e.number("pressure", 0.0, NumberRange::non_negative("Pa"));
   const double radial = e.number("radial", p, NumberRange::non_negative("Pa"));
   const double axial = e.number("axial", p, NumberRange::non_negative("Pa"));
+  // The penetrator enters through the top face; a hole there keeps loaded points out of its channel.
+  const double hole = e.number("hole_radius", 0.0, NumberRange::non_negative("m"));
+  if (hole >= body.shape.radius)
+    e.fail("hole_radius", fmt::format("the hole ({:g} m) must be narrower than the cylinder's radius ({:g} m)", hole,
+                                      body.shape.radius));
   load.curve = e.curve();
   load.type = "pressure";
   LoadReading out;
   for (const char* surface : {"outer", "top", "bottom"}) {
     load.params.choices["surface"] = surface;
     load.params["pressure"] = std::string(surface) == "outer" ? radial : axial;
+    load.params["hole_radius"] = std::string(surface) == "top" ? hole : 0.0;
     out.loads.push_back(load);
   }
   Vec3 stress;

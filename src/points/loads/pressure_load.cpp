@@ -100,6 +100,10 @@ LoadReading read_pressure(LoadEntry& e, LoadSpec load) {
   }
   load.params.choices["surface"] = surface;
   load.params["pressure"] = e.number("pressure", NumberRange::any("Pa"));
+  const double hole = e.number("hole_radius", 0.0, NumberRange::non_negative("m"));
+  if (hole > 0.0 && surface != "top" && surface != "bottom")
+    e.fail("hole_radius", "a hole is cut in a cylinder's or tube's top or bottom face, not in surface '" + surface + "'");
+  load.params["hole_radius"] = hole;
   load.curve = e.curve();
   return {{load}, {}};
 }

@@ -170,7 +170,9 @@ TEST(Revolution, SeededChargeAndLinerVolumesConverge) {
     const double liner_bound = band * (r_ds(liner) + 4 * 15e-3 * band);
     const double err = std::abs(body_volume(s->pts, 1) - liner_exact);
     EXPECT_LT(err, liner_bound) << ppc;
-    if (ppc == 8) EXPECT_LT(liner_bound, 0.2 * liner_exact);  // informative: catches a wrong r weight or cell volume
+    if (ppc == 8) {
+      EXPECT_LT(liner_bound, 0.2 * liner_exact);  // informative: catches a wrong r weight or cell volume
+    }
     last_error = err;
     // The charge: the cylinder without the cone (the cutout), within the same kind of bound.
     const double charge_exact = cyl - cone;

@@ -444,6 +444,26 @@ TEST(PressureSurface, AxisymmetricAreasArePerRadian) {
   EXPECT_NEAR(sum_area(s->pts, 5)[1], 0.5 * 0.5 * 0.5, kSumTol) << "cylinder top";
 }
 
+// A hole in a loaded end face (thesis seed 000 §6.2: the penetrator enters through it): the top
+// face of an axisymmetric cylinder of radius R with a hole of radius h carries the per-radian area
+// of the annulus, (R^2 - h^2)/2; h and R are whole point spacings, so the band's midpoint sum of
+// r dr is exact (to summation rounding). The hole is in the top face only: the bottom keeps R^2/2.
+TEST(PressureSurface, AHoleInAnEndFaceLeavesItsAnnulus) {
+  const auto s = seed(deck("axisymmetric", kGrid2,
+                           "  - {name: c, material: m, particles_per_cell: 4, shape: {type: cylinder, center: [0, 1.0], axis: y, radius: 0.5, length: 0.75}}\n",
+                           "  - {type: pressure, body: c, surface: top, pressure: 1, hole_radius: 0.25}\n"
+                           "  - {type: pressure, body: c, surface: bottom, pressure: 1}\n"));
+  const double annulus = 0.5 * (0.5 * 0.5 - 0.25 * 0.25);
+  EXPECT_NEAR(sum_area(s->pts, 0)[1], annulus, kSumTol * annulus);
+  EXPECT_NEAR(sum_area(s->pts, 1)[1], -0.5 * 0.5 * 0.5, kSumTol);
+  const auto* area = s->pts.view<Vec3>("load_area_0");
+  const auto* x0 = s->pts.view<Vec3>("x0");
+  for (Index p = 0; p < s->pts.size(); ++p)
+    if (x0[p][0] < 0.25) {
+      EXPECT_EQ(norm(area[p]), 0.0) << "a point inside the hole is loaded";
+    }
+}
+
 TEST(PressureSurface, CurvedSurfacesMatchTheAnalyticArea) {
   // The band quadrature (points with depth in [0, dx |N_dominant|), area dx^(d-1) / |N_dominant|)
   // is exact on flat faces. On a convex curved surface the depth changes by more than the band

@@ -92,8 +92,12 @@ TEST(SurfaceSolid, IcosphereContainsTheInscribedBallAndNothingOutsideTheSphere) 
   // radius r cos(0.11) > 0.99 r and lies within the sphere of radius r.
   for (const Vec3& x : samples(c - Vec3{{r, r, r}}, c + Vec3{{r, r, r}}, 0.05, 20000)) {
     const double d = norm(x - c);
-    if (d < 0.99 * r) ASSERT_TRUE(ball.contains(x)) << d / r;
-    if (d > r) ASSERT_FALSE(ball.contains(x)) << d / r;
+    if (d < 0.99 * r) {
+      ASSERT_TRUE(ball.contains(x)) << d / r;
+    }
+    if (d > r) {
+      ASSERT_FALSE(ball.contains(x)) << d / r;
+    }
   }
 }
 

@@ -150,5 +150,30 @@ TEST(LoadRegistry, ConfinementIsThreePressures) {
   }
 }
 
+// A confinement's `hole_radius` is cut in the top face only (where a penetrator enters, thesis
+// seed 000 §6.2); a hole as wide as the cylinder, or a hole in a pressure on a side face, is an
+// error at its key.
+TEST(LoadRegistry, ConfinementHoleIsInTheTopFaceOnly) {
+  const Scenario sc =
+      parse_deck(deck("  - {type: confinement, body: block, pressure: 1.0e6, hole_radius: 0.5e-3}\n"), "loads.yaml");
+  ASSERT_EQ(sc.loads.size(), 3u);
+  for (const auto& l : sc.loads)
+    EXPECT_EQ(l.params.at("hole_radius"), l.params.choice("surface") == "top" ? 0.5e-3 : 0.0) << l.params.choice("surface");
+  try {
+    parse_deck(deck("  - {type: confinement, body: block, pressure: 1.0e6, hole_radius: 1.0e-3}\n"), "loads.yaml");
+    ADD_FAILURE() << "a hole as wide as the cylinder was accepted";
+  } catch (const DeckError& e) {
+    EXPECT_EQ(e.key_path(), "loads.0.hole_radius") << e.what();
+  }
+  try {
+    parse_deck(deck("  - {type: pressure, body: block, surface: outer, pressure: 1.0e6, hole_radius: 0.5e-3}\n"),
+               "loads.yaml");
+    ADD_FAILURE() << "a hole in the outer face was accepted";
+  } catch (const DeckError& e) {
+    EXPECT_EQ(e.key_path(), "loads.0.hole_radius") << e.what();
+    EXPECT_NE(std::string(e.what()).find("top or bottom"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace ballista
