@@ -464,7 +464,9 @@ TEST(MaterialPresets, GeomodelSandstoneDerivedValuesAndCrossChecks) {
                        (saturated ? cross(p, "water_density") * phi : 0.0);
     // A density a seed document states (the thesis's 2300 kg/m^3) is taken as stated, not derived
     // from the skeleton's porosity.
-    if (confidence_of(p, "density") != "seed") EXPECT_NEAR(num(p, "density") / rho, 1.0, 1e-3);
+    if (confidence_of(p, "density") != "seed") {
+      EXPECT_NEAR(num(p, "density") / rho, 1.0, 1e-3);
+    }
     EXPECT_GT(num(p, "peak_i1"), 0.0);   // tensile vertex: tension positive
     EXPECT_LT(num(p, "crush_p0"), 0.0);  // cap in compression
     EXPECT_GT(num(p, "crush_p1"), 0.0);
@@ -543,6 +545,19 @@ TEST(MaterialPresets, ThesisSandstoneIsBereaWithTheThesisDensityAndALinearSurfac
   EXPECT_NEAR(depth / cross(thesis, "thesis_hydrodynamic_depth_row3"), 1.0, 5e-4) << depth;
 }
 
+// The thesis's undrained sandstone is its drained one plus the pore fluid of the saturated Berea
+// preset, at the thesis's one density (2300 kg/m^3): every drained key is repeated unchanged, the
+// fluid keys are the saturated Berea's, and it has no stren either.
+TEST(MaterialPresets, ThesisSaturatedSandstoneIsTheThesisSkeletonPlusBereaWater) {
+  const MaterialPreset& dry = library().get("sandstone_thesis_drained");
+  const MaterialPreset& wet = library().get("sandstone_thesis_saturated");
+  const MaterialPreset& berea_wet = library().get("sandstone_berea_saturated");
+  for (const auto& [k, v] : flatten_parameters(dry.parameters)) EXPECT_EQ(num(wet, k), num(dry, k)) << k;
+  for (const char* k : {"fluid_bulk_modulus", "initial_pore_pressure", "matrix_bulk_modulus"})
+    EXPECT_EQ(num(wet, k), num(berea_wet, k)) << k;
+  EXPECT_FALSE(has(wet, "stren"));
+}
+
 // The sandstone presets in the real geomodel (once registered), on a hydrostatic compression path
 // of 2000 equal log-strain steps: pores start to collapse when the EFFECTIVE pressure -I1/3 - pf
 // reaches P* = 380 MPa (the cross-checked critical pressure), drained or saturated; past P* the
@@ -555,7 +570,8 @@ TEST(MaterialPresets, ThesisSandstoneIsBereaWithTheThesisDensityAndALinearSurfac
 TEST(MaterialPresets, SandstonePresetsCrushAtTheirCriticalPressureInTheRealModel) {
   ASSERT_NE(find_material("geomodel"), nullptr) << "the geomodel must be registered";
   const double pstar = cross(library().get("sandstone_berea_drained"), "critical_pressure");
-  for (const char* name : {"sandstone_berea_drained", "sandstone_berea_saturated", "sandstone_thesis_drained"}) {
+  for (const char* name : {"sandstone_berea_drained", "sandstone_berea_saturated", "sandstone_thesis_drained",
+                           "sandstone_thesis_saturated"}) {
     SCOPED_TRACE(name);
     const MaterialPreset& p = library().get(name);
     const ParamValues v = preset_param_values(p, find_material("geomodel")->params);
