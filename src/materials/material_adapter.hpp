@@ -181,6 +181,9 @@ class MaterialAdapter final : public Material {
       [[maybe_unused]] const Mat3 sigma_bar_old = kFailure ? sigma_bar : Mat3{};
       double st[kMaxState];
       for (int s = 0; s < ns; ++s) st[s] = sptr[s][p];
+      [[maybe_unused]] double st_old[kMaxState];
+      if constexpr (kFailure)
+        for (int s = 0; s < nm; ++s) st_old[s] = st[s];
       PointResult res;
       if (b.tangent) res.tangent = b.tangent + 36 * p;
       Model::update(prm, kin, sigma_bar, st, res);
@@ -197,6 +200,11 @@ class MaterialAdapter final : public Material {
             b.F_new[p] = (b.F_old || kNeedsFOld) ? kin.F_old : inverse(A) * kin.F_new;
             kin.R_new = R_old;
             kin.J_new = kin.J_old;
+            // and with it the model's state (EOS energy, temperature, plastic strain): the kernel
+            // advanced it along F_new, which the point does not take. Kept, a squeezed eroded
+            // point's Mie-Gruneisen energy grew by p dV every step without its volume changing,
+            // and its sound speed with it (35 km/s in tungsten, a 100x smaller time step).
+            for (int s = 0; s < nm; ++s) st[s] = st_old[s];
           }
         }
       }

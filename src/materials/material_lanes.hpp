@@ -85,6 +85,9 @@ void update_in_lanes(const typename Model::Params& prm, const FailureModel& fm, 
     Mat3L sigma_bar = unrotate_sym(R_old, sigma_old);
     Lane st[kMaxState];
     for (int s = 0; s < ns; ++s) st[s] = gather(state[s], idx);
+    [[maybe_unused]] Lane st_old[kMaxState];
+    if constexpr (kFailure)
+      for (int s = 0; s < nm; ++s) st_old[s] = st[s];
     Lane plastic_work = splat(0.0);
     [[maybe_unused]] const Mat3L sigma_bar_old = sigma_bar;
     [[maybe_unused]] PointResult res[kLanes];
@@ -130,6 +133,7 @@ void update_in_lanes(const typename Model::Params& prm, const FailureModel& fm, 
           if (l < n) b.F_new[idx[l]] = b.F_old ? b.F_old[idx[l]] : inverse(A.lane(l)) * F_new.lane(l);
           R_new.set_lane(l, R_old.lane(l));
           kin.J_new[l] = kin.J_old[l];
+          for (int s = 0; s < nm; ++s) st[s][l] = st_old[s][l];  // the model's state frozen with F
         }
       }
     }

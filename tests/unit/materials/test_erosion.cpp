@@ -10,6 +10,7 @@
 
 #include "material_driver.hpp"
 #include "materials/strain_increment.hpp"
+#include "materials/eos.hpp"
 #include "materials/failure.hpp"
 
 namespace test_erosion {
@@ -244,6 +245,46 @@ TEST(Erosion, ZeroStressFreezesJInASolverBatch) {
   EXPECT_GT(n_fail, 1);
   EXPECT_LT(n_fail, 350);
   EXPECT_GT(E_fail, 0.0);
+}
+
+// zero_stress freezes the model's state with F (eq. 6.14): a Johnson-Cook point with a
+// Mie-Gruneisen EOS (OFHC copper constants, Johnson & Cook 1983 and the EOS of test_eos.cpp) that
+// fails by max_stress under fast compression keeps its EOS energy, temperature and plastic strain
+// bit for bit while the compression goes on, and so its dilatational wave speed. Its kernel would
+// otherwise advance them along a volume change the point does not take: the EOS energy grew by
+// p dV every step (to 5e8 J/kg in a tungsten rod's eroded head) and the time step fell 100x.
+TEST(Erosion, ZeroStressFreezesTheModelsState) {
+  ParamValues v{{"density", 8930.0}, {"bulk_modulus", 137e9}, {"shear_modulus", 45e9}, {"jc_a", 90e6},
+                {"jc_b", 292e6},     {"jc_n", 0.31},          {"jc_c", 0.025},        {"jc_m", 1.09},
+                {"melt_temperature", 1356.0}, {"specific_heat", 383.0}, {"eos.sound_speed", 3940.0},
+                {"eos.hugoniot_slope", 1.49}, {"eos.gruneisen_gamma", 2.0}, {"failure.max_stress", 2.0e8}};
+  v.choices["eos.type"] = "mie_gruneisen";
+  v.choices["failure.criterion"] = "max_stress";
+  v.choices["failure.erosion"] = "zero_stress";
+  PointDriver d("johnson_cook", v);
+  const auto mat = make_material("johnson_cook", v);
+  const char* frozen[3] = {kEosEnergyField, "temperature", "eqps"};
+  int n_fail = 0;
+  double at_fail[3] = {0, 0, 0}, c_fail = 0.0;
+  for (int n = 1; n <= 400; ++n) {
+    // Uniaxial compression at 1e5 1/s with a shear that makes the point yield before it fails.
+    Mat3 F = Mat3::diag(1.0 - 1e-4 * n, 1.0, 1.0);
+    F(0, 1) = 2e-4 * n;
+    d.advance(F, 1e-9);
+    if (d.state(kFailedField) == 0.0) continue;
+    const double c = mat->wave_speed(d.store(), 0, det(d.F()));
+    if (n_fail == 0) {
+      n_fail = n;
+      for (int k = 0; k < 3; ++k) at_fail[k] = d.state(frozen[k]);
+      c_fail = c;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(d.state(frozen[k]), at_fail[k]) << frozen[k] << " at step " << n;
+    ASSERT_EQ(c, c_fail) << n;
+  }
+  EXPECT_GT(n_fail, 1);
+  EXPECT_LT(n_fail, 300);
+  EXPECT_GT(at_fail[2], 0.0) << "the point should have yielded before it failed";
 }
 
 // With a criterion and erosion the batch result does not depend on the number of threads.
