@@ -13,11 +13,10 @@ example to 500 us with each difference removed on its own and together, and prin
 A case whose folder already holds a summary.json is not run again (--table-only: run nothing).
 Each 0.2 m case takes ~15 min on 2 cores, each 40 mm case ~6 min.
 """
-import argparse
-import json
 import os
-import subprocess
 import sys
+
+from case_runs import run_once, study_arguments, summary
 
 DECK = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples", "rod_sandstone_mpm.yaml")
 THESIS_RADIUS = ["--set", "bodies.0.shape.radius=0.2", "--set", "grid.upper=[0.205,0.332]"]
@@ -39,29 +38,21 @@ THESIS_DEPTHS = (0.1554, 0.1581)
 
 
 def run(ballista, out, name, sets):
-    folder = os.path.join(out, name)
-    if os.path.exists(os.path.join(folder, "summary.json")):
-        return
-    cmd = [ballista, "run", DECK, "-o", folder, "-q", "--no-plots", "--set", "simulation.end_time=500e-6"] + sets
-    print(" ".join(cmd), flush=True)
-    subprocess.run(cmd, check=True)
+    run_once(ballista, DECK, os.path.join(out, name), ["--set", "simulation.end_time=500e-6"] + sets)
 
 
 def row(out, name, label):
-    path = os.path.join(out, name, "summary.json")
-    if not os.path.exists(path):
+    s = summary(os.path.join(out, name))
+    if s is None:
         return f"| {label} | not run | | | | |"
-    pen = json.load(open(path))["penetration"]
+    pen = s["penetration"]
     p, ph = pen["final_depth"], pen["hydrodynamic_depth"]
     return (f"| {label} | {pen['target_density']:.0f} | {1000 * p:.1f} | {1000 * ph:.1f} | {p / ph:.3f} "
             f"| {1e6 * pen['stop_time']:.0f} |")
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--ballista", default="build/ballista")
-    ap.add_argument("--out", default="out/thesis_rod")
-    ap.add_argument("--table-only", action="store_true")
+    ap = study_arguments(__doc__, "out/thesis_rod")
     a = ap.parse_args()
     if not a.table_only:
         for name, _, sets in CASES:

@@ -9,11 +9,10 @@ Each row runs examples/rod_sandstone_mpm.yaml to 500 us (~15 min on 2 cores); a 
 already holds a summary.json is not run again (--table-only: run nothing). The thesis's P/P_h rises
 with the rod's density, from 0.63 to 0.96-0.99.
 """
-import argparse
-import json
 import os
-import subprocess
 import sys
+
+from case_runs import final_depth, run_once, study_arguments
 
 DECK = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples", "rod_sandstone_mpm.yaml")
 # The thesis's target and rock (the catalogue's rod problem and validation/thesis_rod_causes.py run
@@ -43,21 +42,14 @@ def folder(out, k):
 
 def run(ballista, out, k):
     rho, length, _, _ = ROWS[k - 1]
-    if os.path.exists(os.path.join(folder(out, k), "summary.json")):
-        return
-    cmd = [ballista, "run", DECK, "-o", folder(out, k), "-q", "--no-plots"] + THESIS + [
+    run_once(ballista, DECK, folder(out, k), THESIS + [
         "--set", f"grid.upper=[0.205,{grid_upper(length):.5f}]",
-        "--set", f"materials.rod.density={rho}", "--set", f"bodies.1.rod.length={length}"]
-    print(" ".join(cmd), flush=True)
-    subprocess.run(cmd, check=True)
+        "--set", f"materials.rod.density={rho}", "--set", f"bodies.1.rod.length={length}"])
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--ballista", default="build/ballista")
-    ap.add_argument("--out", default="out/table_5_3")
+    ap = study_arguments(__doc__, "out/table_5_3")
     ap.add_argument("--rows", default="1,2,3,4,5", help="rows of Table 5.3 to run, 1-5")
-    ap.add_argument("--table-only", action="store_true")
     a = ap.parse_args()
     rows = [int(k) for k in a.rows.split(",")]
     if not a.table_only:
@@ -67,12 +59,8 @@ def main():
     print("|---|---|---|---|---|---|---|")
     for k, (rho, length, none, zero) in enumerate(ROWS, start=1):
         ph = length * (rho / TARGET_DENSITY) ** 0.5
-        path = os.path.join(folder(a.out, k), "summary.json")
-        if os.path.exists(path):
-            p = json.load(open(path))["penetration"]["final_depth"]
-            ours = f"{1000 * p:.1f} | {p / ph:.3f}"
-        else:
-            ours = "not run | "
+        p = final_depth(folder(a.out, k))
+        ours = "not run | " if p is None else f"{1000 * p:.1f} | {p / ph:.3f}"
         print(f"| {rho} | {1000 * length:.2f} | {1000 * ph:.1f} | {ours} | {1000 * none:.1f} / {1000 * zero:.1f} "
               f"| {none / ph:.3f} / {zero / ph:.3f} |")
     return 0

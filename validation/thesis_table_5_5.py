@@ -11,11 +11,10 @@ Each run takes 15-25 min on 2 cores; a run whose folder already holds a summary.
 again (--table-only: run nothing). The thesis's depth falls with confinement by 10 % (drained,
 0 to 10 ksi) and 17 % (undrained, 0 to 15 ksi), erosion none.
 """
-import argparse
-import json
 import os
-import subprocess
 import sys
+
+from case_runs import run_once, study_arguments, summary
 
 DECK = os.path.join(os.path.dirname(os.path.abspath(__file__)), "rod_sandstone_thesis.yaml")
 # Thesis Table 5.1 lists the levels in MPa: 6.895, 34.48, 68.96, 103.4.
@@ -39,22 +38,16 @@ def folder(out, rock, ksi, hole=0.0):
 
 
 def run(ballista, out, rock, ksi, hole):
-    path = folder(out, rock, ksi, hole)
-    if os.path.exists(os.path.join(path, "summary.json")):
-        return
     preset, damping = ROCKS[rock]
-    cmd = [ballista, "run", DECK, "-o", path, "-q", "--no-plots",
-           "--set", f"materials.rock.preset={preset}", "--set", f"stages.0.damping={damping}",
-           "--set", f"loads.0.pressure={LEVELS[ksi]}", "--set", f"loads.0.hole_radius={hole}"]
-    print(" ".join(cmd), flush=True)
-    subprocess.run(cmd, check=True)
+    run_once(ballista, DECK, folder(out, rock, ksi, hole), [
+        "--set", f"materials.rock.preset={preset}", "--set", f"stages.0.damping={damping}",
+        "--set", f"loads.0.pressure={LEVELS[ksi]}", "--set", f"loads.0.hole_radius={hole}"])
 
 
 def depth(out, rock, ksi, hole):
-    path = os.path.join(folder(out, rock, ksi, hole), "summary.json")
-    if not os.path.exists(path):
+    s = summary(folder(out, rock, ksi, hole))
+    if s is None:
         return None, None
-    s = json.load(open(path))
     stages = s.get("stages", [])
     preload = stages[0]["end_time"] - stages[0]["start_time"] if stages else None
     return s["penetration"]["final_depth"], preload
@@ -65,14 +58,11 @@ def cell(v, ref):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--ballista", default="build/ballista")
-    ap.add_argument("--out", default="out/table_5_5")
+    ap = study_arguments(__doc__, "out/table_5_5")
     ap.add_argument("--rocks", default="drained,saturated")
     ap.add_argument("--ksi", default="0,1,5,10,15", help="confinement levels of Table 5.5, ksi")
     ap.add_argument("--hole-radius", type=float, default=0.0,
                     help="m; no overburden on the top face within this radius (thesis §6.2, Fig. 6.14)")
-    ap.add_argument("--table-only", action="store_true")
     a = ap.parse_args()
     rocks = a.rocks.split(",")
     levels = [int(k) for k in a.ksi.split(",")]

@@ -16,11 +16,10 @@ so the plastic heating, vanishes as T approaches T_m.) The discrete-jet rows are
 thesis gives its jet's segments as plots only (Figs. 5.3-5.4). A run whose folder already holds a
 summary.json is not run again (--table-only: run nothing).
 """
-import argparse
-import json
 import os
-import subprocess
 import sys
+
+from case_runs import run_once, study_arguments, summary
 
 DECK = os.path.join(os.path.dirname(os.path.abspath(__file__)), "rod_sandstone_thesis.yaml")
 RADIUS, TARGET_LENGTH = 0.0254, 0.35  # m
@@ -35,27 +34,18 @@ EROSION = {"none": [], "zero_stress": ["--set", ZERO_STRESS]}
 
 
 def run(ballista, out, erosion):
-    path = os.path.join(out, erosion)
-    if os.path.exists(os.path.join(path, "summary.json")):
-        return
     nose = TARGET_LENGTH + 2.0e-3
     top = nose + ROD["length"] + 6.5e-3
-    cmd = [ballista, "run", DECK, "-o", path, "-q", "--no-plots",
+    run_once(ballista, DECK, os.path.join(out, erosion), [
            "--set", f"bodies.0.shape.radius={RADIUS}", "--set", f"bodies.0.shape.length={TARGET_LENGTH}",
            "--set", f"grid.lower=[0,{-GRID_BELOW}]", "--set", f"grid.upper=[{RADIUS + 5e-3:.6g},{top:.6g}]", "--set", f"bodies.1.rod.nose=[0,{nose:.6g}]",
            "--set", f"bodies.1.rod.diameter={ROD['diameter']}", "--set", f"bodies.1.rod.length={ROD['length']}",
            "--set", f"bodies.1.rod.speed={ROD['speed']}", "--set", f"materials.rod.density={ROD['density']}",
-           "--set", "simulation.end_time=500e-6"] + EROSION[erosion]
-    print(" ".join(cmd), flush=True)
-    subprocess.run(cmd, check=True)
+           "--set", "simulation.end_time=500e-6"] + EROSION[erosion])
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--ballista", default="build/ballista")
-    ap.add_argument("--out", default="out/table_6_8")
-    ap.add_argument("--table-only", action="store_true")
-    a = ap.parse_args()
+    a = study_arguments(__doc__, "out/table_6_8").parse_args()
     if not a.table_only:
         for erosion in EROSION:
             run(a.ballista, a.out, erosion)
@@ -64,9 +54,14 @@ def main():
     print("| penetrator erosion | Ballista P [mm] | P/P_h | thesis P [mm] | thesis P/P_h |")
     print("|---|---|---|---|---|")
     for erosion, ref in THESIS.items():
-        path = os.path.join(a.out, erosion, "summary.json")
-        p = json.load(open(path))["penetration"]["final_depth"] if os.path.exists(path) else None
-        ours = "not run | " if p is None else f"{1000 * p:.1f} | {p / ph:.3f}"
+        s = summary(os.path.join(a.out, erosion))
+        if s is None:
+            ours = "not run | "
+        elif s["penetration"]["max_depth"] > TARGET_LENGTH:  # the rod went through and off the grid
+            ours = f"through the {TARGET_LENGTH:g} m target | "
+        else:
+            p = s["penetration"]["final_depth"]
+            ours = f"{1000 * p:.1f} | {p / ph:.3f}"
         print(f"| {erosion} | {ours} | {1000 * ref:.1f} | {ref / ph:.3f} |")
     return 0
 

@@ -13,11 +13,10 @@ quoted in docs/validation.md, are trends: with a free surface the depth grows as
 below ~0.35 m, with a fixed one it falls, and both approach one depth as the diameter grows.
 A run whose folder already holds a summary.json is not run again (--table-only: run nothing).
 """
-import argparse
-import json
 import os
-import subprocess
 import sys
+
+from case_runs import final_depth, run_once, study_arguments
 
 DECK = os.path.join(os.path.dirname(os.path.abspath(__file__)), "rod_sandstone_thesis.yaml")
 FREE_MARGIN = 5.0e-3  # m of grid outside a free surface (thesis §5.1: preferably five cells)
@@ -31,29 +30,16 @@ def folder(out, boundary, radius):
 
 
 def run(ballista, out, boundary, radius):
-    path = folder(out, boundary, radius)
-    if os.path.exists(os.path.join(path, "summary.json")):
-        return
     x_max = radius + (FREE_MARGIN if boundary == "free" else 0.0)
-    cmd = [ballista, "run", DECK, "-o", path, "-q", "--no-plots", "--set", f"bodies.0.shape.radius={radius}",
-           "--set", f"grid.lower=[0,{-GRID_BELOW}]", "--set", f"grid.upper=[{x_max:.6g},0.332]",
-           "--set", f"grid.boundary.x_max={boundary}"]
-    print(" ".join(cmd), flush=True)
-    subprocess.run(cmd, check=True)
-
-
-def depth(out, boundary, radius):
-    path = os.path.join(folder(out, boundary, radius), "summary.json")
-    return json.load(open(path))["penetration"]["final_depth"] if os.path.exists(path) else None
+    run_once(ballista, DECK, folder(out, boundary, radius), [
+        "--set", f"bodies.0.shape.radius={radius}", "--set", f"grid.lower=[0,{-GRID_BELOW}]",
+        "--set", f"grid.upper=[{x_max:.6g},0.332]", "--set", f"grid.boundary.x_max={boundary}"])
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--ballista", default="build/ballista")
-    ap.add_argument("--out", default="out/target_diameter")
+    ap = study_arguments(__doc__, "out/target_diameter")
     ap.add_argument("--radii", default="0.0254,0.05,0.1,0.2", help="target radii [m]")
     ap.add_argument("--boundaries", default="free,fixed")
-    ap.add_argument("--table-only", action="store_true")
     a = ap.parse_args()
     radii = [float(r) for r in a.radii.split(",")]
     boundaries = a.boundaries.split(",")
@@ -66,7 +52,7 @@ def main():
     for radius in radii:
         cells = []
         for b in boundaries:
-            p = depth(a.out, b, radius)
+            p = final_depth(folder(a.out, b, radius))
             cells.append("not run" if p is None else f"{1000 * p:.1f}")
         print(f"| {2 * radius:g} | " + " | ".join(cells) + " |")
     return 0
