@@ -1,6 +1,7 @@
 """What the thesis-scale study scripts share: run a deck into a folder once (a folder that already
-holds a summary.json is a finished run and is not run again), read its summary, and the command
-line every such script takes (--ballista, --out, --table-only)."""
+holds a summary.json is a finished run and is not run again; a run that stops with an error is
+reported and the study goes on), read its summary, and the command line every such script takes
+(--ballista, --out, --table-only)."""
 import argparse
 import json
 import os
@@ -15,7 +16,8 @@ def run_once(ballista, deck, folder, sets):
         return
     cmd = [ballista, "run", deck, "-o", folder, "-q", "--no-plots"] + list(sets)
     print(" ".join(cmd), flush=True)
-    subprocess.run(cmd, check=True)
+    if subprocess.run(cmd).returncode != 0:
+        print(f"the run in {folder} stopped with an error (its summary.json says why)", flush=True)
 
 
 def summary(folder):
@@ -25,9 +27,19 @@ def summary(folder):
 
 
 def final_depth(folder):
-    """The penetrator's final depth [m], or None if the run has not run."""
+    """The penetrator's final depth [m]; None if the run has not run or stopped with an error."""
     s = summary(folder)
-    return None if s is None else s["penetration"]["final_depth"]
+    return None if s is None or s["status"] != "completed" else s["penetration"]["final_depth"]
+
+
+def state(folder):
+    """'not run', 'failed at t = ... us' or 'completed'."""
+    s = summary(folder)
+    if s is None:
+        return "not run"
+    if s["status"] != "completed":
+        return f"failed at t = {1e6 * s['statistics']['end_time']:.0f} us"
+    return "completed"
 
 
 def study_arguments(doc, out):

@@ -16,7 +16,7 @@ Each 0.2 m case takes ~15 min on 2 cores, each 40 mm case ~6 min.
 import os
 import sys
 
-from case_runs import run_once, study_arguments, summary
+from case_runs import run_once, state, study_arguments, summary
 
 DECK = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples", "rod_sandstone_mpm.yaml")
 THESIS_RADIUS = ["--set", "bodies.0.shape.radius=0.2", "--set", "grid.upper=[0.205,0.332]"]
@@ -43,8 +43,8 @@ def run(ballista, out, name, sets):
 
 def row(out, name, label):
     s = summary(os.path.join(out, name))
-    if s is None:
-        return f"| {label} | not run | | | | |"
+    if s is None or s["status"] != "completed":
+        return f"| {label} | {state(os.path.join(out, name))} | | | | |"
     pen = s["penetration"]
     p, ph = pen["final_depth"], pen["hydrodynamic_depth"]
     return (f"| {label} | {pen['target_density']:.0f} | {1000 * p:.1f} | {1000 * ph:.1f} | {p / ph:.3f} "

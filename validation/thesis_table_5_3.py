@@ -12,7 +12,7 @@ with the rod's density, from 0.63 to 0.96-0.99.
 import os
 import sys
 
-from case_runs import final_depth, run_once, study_arguments
+from case_runs import final_depth, run_once, state, study_arguments
 
 DECK = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples", "rod_sandstone_mpm.yaml")
 # The thesis's target and rock (the catalogue's rod problem and validation/thesis_rod_causes.py run
@@ -60,7 +60,7 @@ def main():
     for k, (rho, length, none, zero) in enumerate(ROWS, start=1):
         ph = length * (rho / TARGET_DENSITY) ** 0.5
         p = final_depth(folder(a.out, k))
-        ours = "not run | " if p is None else f"{1000 * p:.1f} | {p / ph:.3f}"
+        ours = f"{state(folder(a.out, k))} | " if p is None else f"{1000 * p:.1f} | {p / ph:.3f}"
         print(f"| {rho} | {1000 * length:.2f} | {1000 * ph:.1f} | {ours} | {1000 * none:.1f} / {1000 * zero:.1f} "
               f"| {none / ph:.3f} / {zero / ph:.3f} |")
     return 0

@@ -14,7 +14,7 @@ again (--table-only: run nothing). The thesis's depth falls with confinement by 
 import os
 import sys
 
-from case_runs import run_once, study_arguments, summary
+from case_runs import run_once, state, study_arguments, summary
 
 DECK = os.path.join(os.path.dirname(os.path.abspath(__file__)), "rod_sandstone_thesis.yaml")
 # Thesis Table 5.1 lists the levels in MPa: 6.895, 34.48, 68.96, 103.4.
@@ -46,7 +46,7 @@ def run(ballista, out, rock, ksi, hole):
 
 def depth(out, rock, ksi, hole):
     s = summary(folder(out, rock, ksi, hole))
-    if s is None:
+    if s is None or s["status"] != "completed":
         return None, None
     stages = s.get("stages", [])
     preload = stages[0]["end_time"] - stages[0]["start_time"] if stages else None
@@ -77,8 +77,10 @@ def main():
     for rock in rocks:
         p0, _ = depth(a.out, rock, 0, 0.0)
         for ksi in sorted(LEVELS):
-            p, preload = depth(a.out, rock, ksi, a.hole_radius if ksi > 0 else 0.0)
-            ours = "not run" if p is None else cell(100 * p, None if ksi == 0 or p0 is None else 100 * p0)
+            hole = a.hole_radius if ksi > 0 else 0.0
+            p, preload = depth(a.out, rock, ksi, hole)
+            ours = state(folder(a.out, rock, ksi, hole)) if p is None else cell(
+                100 * p, None if ksi == 0 or p0 is None else 100 * p0)
             pre = "" if preload is None else f"{1e6 * preload:.0f}"
             refs = []
             for erosion in ("none", "zero_stress"):

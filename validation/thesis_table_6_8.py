@@ -19,7 +19,7 @@ summary.json is not run again (--table-only: run nothing).
 import os
 import sys
 
-from case_runs import run_once, study_arguments, summary
+from case_runs import run_once, state, study_arguments, summary
 
 DECK = os.path.join(os.path.dirname(os.path.abspath(__file__)), "rod_sandstone_thesis.yaml")
 RADIUS, TARGET_LENGTH = 0.0254, 0.35  # m
@@ -55,8 +55,8 @@ def main():
     print("|---|---|---|---|---|")
     for erosion, ref in THESIS.items():
         s = summary(os.path.join(a.out, erosion))
-        if s is None:
-            ours = "not run | "
+        if s is None or s["status"] != "completed":
+            ours = f"{state(os.path.join(a.out, erosion))} | "
         elif s["penetration"]["max_depth"] > TARGET_LENGTH:  # the rod went through and off the grid
             ours = f"through the {TARGET_LENGTH:g} m target | "
         else:

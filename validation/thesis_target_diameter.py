@@ -16,7 +16,7 @@ A run whose folder already holds a summary.json is not run again (--table-only: 
 import os
 import sys
 
-from case_runs import final_depth, run_once, study_arguments
+from case_runs import final_depth, run_once, state, study_arguments
 
 DECK = os.path.join(os.path.dirname(os.path.abspath(__file__)), "rod_sandstone_thesis.yaml")
 FREE_MARGIN = 5.0e-3  # m of grid outside a free surface (thesis §5.1: preferably five cells)
@@ -53,7 +53,7 @@ def main():
         cells = []
         for b in boundaries:
             p = final_depth(folder(a.out, b, radius))
-            cells.append("not run" if p is None else f"{1000 * p:.1f}")
+            cells.append(state(folder(a.out, b, radius)) if p is None else f"{1000 * p:.1f}")
         print(f"| {2 * radius:g} | " + " | ".join(cells) + " |")
     return 0
 
