@@ -309,6 +309,7 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
                             double h, Dimension dim, FieldStore& points) {
   const std::string& surface = load.params.choices.at("surface");
   const std::string field = "load_area_" + std::to_string(k);
+  const double hole_radius = load.params.number_or("hole_radius", 0.0);
   points.add_real(field, 3, "m^2", false);
   const int nd = dim == Dimension::ThreeD ? 3 : 2;
   const double dx = seed_spacing(body, h);
@@ -365,7 +366,7 @@ Index mark_pressure_surface(const LoadSpec& load, int k, const BodySpec& body, i
       if (a >= 0 && surface == "bottom") { depth = X[a] - s.center[a]; N[a] = -1.0; }
       // A hole in the loaded end face around the axis, through which a penetrator enters without
       // dragging loaded surface points into its channel (thesis seed 000 §6.2 and Fig. 6.14).
-      if ((surface == "top" || surface == "bottom") && r < load.params.number_or("hole_radius", 0.0)) continue;
+      if ((surface == "top" || surface == "bottom") && r < hole_radius) continue;
     }
     // Band of lattice points carrying the surface: depth in [0, w) with w = dx max_i |N_i|. A
     // lattice column along the dominant normal axis then holds exactly one point of the band, so
