@@ -34,6 +34,7 @@ void OtmSolver::save_state(StateArchive& a) const {
                                                   static_cast<std::int64_t>(regenerations_), max_support_,
                                                   max_iterations_, static_cast<std::int64_t>(fallbacks_),
                                                   static_cast<std::int64_t>(retries_)});
+  if (contact_) a.put_real("otm.contact_work", contact_work_);
   a.put_records("otm.nodes.x", nodes_.x);
   a.put_records("otm.nodes.v", nodes_.v);
   a.put_records("otm.nodes.f", nodes_.f);
@@ -56,6 +57,7 @@ void OtmSolver::load_state(const StateArchive& a) {
                              &max_condition_});
   a.get_integers_into("otm.counters", next_id_, splits_, regenerations_, max_support_, max_iterations_, fallbacks_,
                       retries_);
+  if (contact_) contact_work_ = a.real("otm.contact_work");
   a.get_records("otm.nodes.x", nodes_.x);
   const std::size_t nn = nodes_.x.size();
   a.get_records("otm.nodes.v", nodes_.v, nn);

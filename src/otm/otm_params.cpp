@@ -45,7 +45,7 @@ std::vector<ParamSpec> otm_params() {
                  "adaptivity: re-generate the nodes when a point's LME Hessian condition number exceeds this", false,
                  1e6, 1.0, 1e300};
   const ParamSpec nodes = word_param("nodes",
-                                     "node sets: per_body (each body its own nodes; bodies do not interact) or shared "
+                                     "node sets: per_body (each body its own nodes; bodies interact through contact: pinball) or shared "
                                      "(one node set over every body: bodies move together where they touch, no slip "
                                      "and no separation, as MPM's single_field)",
                                      {"per_body", "shared"});
@@ -53,7 +53,16 @@ std::vector<ParamSpec> otm_params() {
                                        "volumetric locking treatment: none, or fbar (each point's volume change over "
                                        "the step replaced by its average over the supports of its nodes; otm_fbar.hpp)",
                                        {"none", "fbar"});
-  return {gamma, tol, minsup, wall, pen, ls, adapt, split, split_state, gap, crowd, cond, nodes, locking};
+  const ParamSpec contact = word_param("contact",
+                                       "contact between bodies with their own nodes: none (they pass through each "
+                                       "other) or pinball (a frictionless penalty between the material points of "
+                                       "different bodies; Belytschko & Neal 1991; otm_contact.hpp)",
+                                       {"none", "pinball"});
+  ParamSpec cpen{"contact_penalty", "1",
+                 "pinball contact: spring k = contact_penalty / 2 min(m_p w_p^2, m_q w_q^2) (the points' stiffness "
+                 "bounds times this)",
+                 false, 1.0, 0.0, 100.0, true};
+  return {gamma, tol, minsup, wall, pen, ls, adapt, split, split_state, gap, crowd, cond, nodes, locking, contact, cpen};
 }
 
 OtmParams read_otm_params(const ParamValues& P) {
@@ -72,6 +81,8 @@ OtmParams read_otm_params(const ParamValues& P) {
   o.max_condition = P.at("max_condition");
   o.shared_nodes = P.choices.at("nodes") == "shared";
   o.fbar = P.choices.at("anti_locking") == "fbar";
+  o.contact = P.choices.at("contact") == "pinball";
+  o.contact_penalty = P.at("contact_penalty");
   return o;
 }
 

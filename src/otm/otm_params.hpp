@@ -26,6 +26,8 @@ struct OtmParams {
   double max_condition = 1e6;        ///< adaptivity: re-generate beyond this LME Hessian condition number
   bool shared_nodes = false;         ///< nodes: shared (one node set over every body), else per_body
   bool fbar = false;                 ///< anti_locking: fbar (otm_fbar.hpp)
+  bool contact = false;              ///< contact: pinball (otm_contact.hpp), else none
+  double contact_penalty = 1.0;      ///< pinball contact: spring factor on the points' stiffness bound
 };
 
 /// Reads the section (Scenario::solver_params of an otm deck: every key present, the deck reader

@@ -15,6 +15,7 @@
 #include "core/point_fields.hpp"
 #include "geometry/element_seeding.hpp"
 #include "materials/failure.hpp"
+#include "otm/otm_contact.hpp"
 #include "points/cell_bins.hpp"
 #include "points/solver_registry.hpp"
 #include "scenario/material_model.hpp"
@@ -65,6 +66,11 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   damping_ = sc.simulation.damping;
   penalty_ = P.penalty_walls;
   penalty_factor_ = P.penalty;
+  contact_ = P.contact;
+  contact_penalty_ = P.contact_penalty;
+  if (contact_ && P.shared_nodes)
+    section_error(sc, "contact", "pinball contact acts between bodies with their own nodes; with otm.nodes: shared "
+                                 "the bodies are already tied where they touch (choose one)");
   sopt_.h = sc.grid.cell_size;
   sopt_.gamma = P.gamma;
   sopt_.tolerance = P.support_tolerance;
@@ -111,7 +117,7 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     // Products that act on nothing would "succeed" with the other bodies untouched.
     if (first_material_of_model(sc, "explosive") && sc.bodies.size() > 1 && !shared)
       section_error(sc, "nodes", "an explosive with other bodies needs otm.nodes: shared (with a node set per body "
-                                 "the products would push nothing: OTM has no contact between bodies yet)");
+                                 "the products would push nothing: the pinball contact is for solids)");
     for (Index p = 0; p < n; ++p) group[p] = shared ? 0 : body[p];
   }
   nodes_ = initial_nodes(sc, P);
@@ -475,6 +481,32 @@ void OtmSolver::assemble() {
   });
 }
 
+std::vector<Vec3> OtmSolver::contact_node_forces() {
+  // Each point's stiffness bound m_p w_p^2, w_p^2 the largest omega_a^2 of its nodes (stable_dt
+  // computed them for these supports), the pinball forces at the points, then gathered node by
+  // node over the influence domains as the external forces are (f_a += N_a f_p).
+  const Index n = points_.size(), nn = nodes_.size();
+  const auto* mass = points_.real(kMass);
+  std::vector<double> stiff(static_cast<size_t>(n), 0.0);
+  for_each(0, n, [&](Index p) {
+    double w2 = 0.0;
+    for (Index k = sup_.offset[p]; k < sup_.offset[p + 1]; ++k)
+      if (const Index a = sup_.node[k]; a < static_cast<Index>(omega2_.size())) w2 = std::max(w2, omega2_[a]);
+    stiff[p] = mass[p] * w2;
+  });
+  std::vector<Vec3> fp;
+  contact_pairs_ = otm::pinball_forces(points_.view(kPosition), points_.real(kVolume), points_.ints(kNodeGroup),
+                                       stiff.data(), n, contact_penalty_, {dim_, axisym_}, fp);
+  std::vector<Vec3> f(static_cast<size_t>(nn), Vec3{});
+  if (contact_pairs_ == 0) return f;
+  for_each(0, nn, [&](Index a) {
+    Vec3 s;
+    for (Index i = inf_.start[a]; i < inf_.start[a + 1]; ++i) s += sup_.N[inf_.entry[i]] * fp[inf_.owner[i]];
+    f[a] = s;
+  });
+  return f;
+}
+
 void OtmSolver::apply_face_conditions(double dt) {
   // Box faces at the nodes: fixed and symmetry faces hold the nodes on them; a wall stops (or, with
   // the penalty, pushes back) a node that would cross it. The kinetic energy a wall takes is booked.
@@ -561,7 +593,8 @@ double OtmSolver::stable_dt() {
   w2 = comm_.max(w2);
   // A penalty wall's spring k_a = penalty m_a omega_a^2 raises a wall node's omega^2 by the
   // factor 1 + penalty.
-  const double bound = penalty_ ? 2.0 / std::sqrt(1.0 + penalty_factor_) : 2.0;
+  // Pinball contact's springs (otm_contact.hpp) raise it by about 1 + contact_penalty.
+  const double bound = 2.0 / std::sqrt(1.0 + (penalty_ ? penalty_factor_ : 0.0) + (contact_ ? contact_penalty_ : 0.0));
   const double dt = w2 > 0.0 ? scenario_.simulation.cfl * bound / std::sqrt(w2) : scenario_.simulation.end_time;
   return std::min(dt, max_dt);
 }
@@ -593,17 +626,20 @@ void OtmSolver::step(double dt) {
         }
     wall_force_ = wall_force;
   }
+  std::vector<Vec3> fcon;
+  if (contact_) fcon = contact_node_forces();
   // Central difference with a variable step (Algorithm 1 line 11, l_k = M_k v_k): v_a gains
   // (dt_k + dt_k+1)/2 f_a / m_a; damping -c v (stages) with its work booked (midpoint velocity).
   const double dt_mid = 0.5 * (dt_prev_ + dt);
   v_start_.assign(static_cast<size_t>(nn), Vec3{});
   const double c = damping_;
-  double dw[2];
-  deterministic_sum<2>(0, nn, [&](Index a, double* o) {
+  double dw[3];
+  deterministic_sum<3>(0, nn, [&](Index a, double* o) {
     const double m = nodes_.mass[a];
     if (!(m > kTinyMass)) return;  // a node no point reaches: it keeps its velocity, carries nothing
     Vec3 f = nodes_.f[a];
     if (penalty_) f += fpen[a];
+    if (contact_) f += fcon[a];
     const Vec3 v0 = nodes_.v[a];
     v_start_[a] = v0;
     const Vec3 acc = (1.0 / m) * f - c * v0;
@@ -611,9 +647,11 @@ void OtmSolver::step(double dt) {
     const Vec3 vmid = 0.5 * (v0 + nodes_.v[a]);
     o[0] -= dt_mid * c * m * dot(v0, vmid);
     if (penalty_) o[1] += dt_mid * dot(fpen[a], vmid);
+    if (contact_) o[2] += dt_mid * dot(fcon[a], vmid);
   }, dw);
   damping_work_ += comm_.sum(dw[0]);
   wall_work_ += comm_.sum(dw[1]);
+  contact_work_ += comm_.sum(dw[2]);
   apply_face_conditions(dt);
   for_each(0, nn, [&](Index a) { nodes_.x[a] += dt * nodes_.v[a]; });
 
@@ -697,7 +735,7 @@ EnergyTotals OtmSolver::energies() const {
   e.kinetic = k * s[0];
   e.momentum = Vec3{{axisym_ ? 0.0 : k * s[1], k * s[2], k * s[3]}};
   e.damping = k * damping_work_;
-  e.contact = k * wall_work_;
+  e.contact = k * (wall_work_ + contact_work_);
   e.transfer = k * remap_work_;  // the node re-generations' velocity projection (adaptivity)
   return e;
 }
@@ -710,9 +748,15 @@ std::string OtmSolver::derived_constants() const {
       otm::support_radius(sopt_) / sopt_.h, sup_.mean_size);
 }
 
-std::vector<std::string> OtmSolver::history_columns() const { return {"wall_force"}; }
+std::vector<std::string> OtmSolver::history_columns() const {
+  if (contact_) return {"wall_force", "contact_pairs"};
+  return {"wall_force"};
+}
 
-std::vector<double> OtmSolver::history_values() const { return {reporting_scale() * wall_force_}; }
+std::vector<double> OtmSolver::history_values() const {
+  if (contact_) return {reporting_scale() * wall_force_, static_cast<double>(contact_pairs_)};
+  return {reporting_scale() * wall_force_};
+}
 
 std::vector<std::pair<std::string, double>> OtmSolver::result_values() const {
   const EnergyTotals e = energies();

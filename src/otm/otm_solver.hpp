@@ -102,6 +102,9 @@ class OtmSolver final : public Solver {
   /// Velocity constraints of the box faces on the nodes after the update (fixed, symmetry, and
   /// constraint walls, whose normal reaction goes to wall_force_ for the history).
   void apply_face_conditions(double dt);
+  /// Pinball contact between the bodies (otm.contact: pinball; otm_contact.hpp): the force on each
+  /// node from its points' contact forces; sets contact_pairs_.
+  std::vector<Vec3> contact_node_forces();
 
   Scenario scenario_;
   Communicator comm_;
@@ -130,11 +133,14 @@ class OtmSolver final : public Solver {
   bool axisym_ = false;
   bool penalty_ = false;       ///< rigid walls by penalty instead of the constraint
   double penalty_factor_ = 1.0;
+  bool contact_ = false;       ///< pinball contact between bodies (otm.contact)
+  double contact_penalty_ = 1.0;
+  Index contact_pairs_ = 0;    ///< pairs of points in contact at the last step
   double damping_ = 0.0;       ///< 1/s (stages)
   double dt_prev_ = 0.0;       ///< s, the previous step (0 before the first)
   double time_ = 0.0;
   long steps_ = 0;
-  double external_work_ = 0.0, damping_work_ = 0.0, wall_work_ = 0.0;
+  double external_work_ = 0.0, damping_work_ = 0.0, wall_work_ = 0.0, contact_work_ = 0.0;
   double wall_force_ = 0.0;    ///< N, last step's normal wall reaction
   Vec3 momentum0_;             ///< initial nodal momentum (per radian / per metre)
   otm::Influences inf_;          ///< influence domains of sup_ (node-wise gathers)
