@@ -49,9 +49,13 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
   const auto* xc = pts.view<Vec3>("x");
   const auto* Fc = pts.view<Mat3>("F");
   const auto* xr = pts.view<Vec3>("x0");
+  // A failed (eroded) point does not split: it carries no stress, so resolving its shape buys
+  // nothing, and, stretched freely by the material around it, it would split without end.
+  const double* dead = !failed.empty() && pts.has(failed) ? pts.real(failed) : nullptr;
   std::vector<Index> which;
   std::vector<Vec3> half, half0;  // parent centre to the first child's: current and reference
   for (Index p = 0; p < n; ++p) {
+    if (dead && dead[p] != 0.0) continue;
     const double s0 = spacing.at(static_cast<size_t>(body[p]));
     const Mat3 SSt = S[p] * transpose(S[p]);
     double lo, hi;

@@ -56,9 +56,10 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
       pts_(sc, std::move(materials), SeedLattice{sc.grid, 0, support_bytes_per_point(sc)}, 0.0, "", comm),
       points_(pts_.store()) {
   const OtmParams P = read_otm_params(sc.solver_params);
-  if (pts_.pending() > 0)
-    section_error(sc, "", "bodies with a later activation (activation_time, activation_stage, rods, jets) are not "
-                          "supported by the OTM solver yet: their nodes would have to be seeded on arrival");
+  if (pts_.pending() > 0 && P.shared_nodes)
+    section_error(sc, "nodes", "a body with a later activation (activation_time, activation_stage, rods, jets) gets "
+                               "its own nodes when it arrives; it cannot join a shared node set (use otm.nodes: "
+                               "per_body with contact: pinball)");
   if (sc.simulation.on_particle_exit != "stop")
     section_error(sc, "", "simulation.on_particle_exit: delete is not supported by the OTM solver yet");
   dim_ = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
@@ -96,7 +97,7 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   if (adapt_.enabled) {
     // The extent tensor of each point's cell (s0 I at seeding) and the ids the splits continue.
     for (const BodySpec& b : sc.bodies) spacing_.push_back(sc.grid.cell_size / b.particles_per_cell);
-    points_.declare(otm::kExtent, "m", false);
+    pts_.declare(otm::kExtent, "m", false);  // also on the bodies not active yet
     auto* S = points_.view(otm::kExtent);
     const auto* body = points_.ints(kBodyIndex);
     const auto* id = points_.ints(kId);
@@ -109,7 +110,7 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   }
   // Node groups: each body its own nodes (bodies do not interact), or one node set over every body
   // (otm.nodes: shared; bodies then move together where they touch, as MPM's single_field).
-  points_.declare(kNodeGroup, "1", false);
+  pts_.declare(kNodeGroup, "1", false);
   {
     auto* group = points_.ints(kNodeGroup);
     const auto* body = points_.ints(kBodyIndex);
@@ -155,6 +156,12 @@ otm::NodeCloud OtmSolver::initial_nodes(const Scenario& sc, const OtmParams& P) 
   if (P.adaptivity)
     section_error(sc, "adaptivity", "adaptivity re-generates the nodes on the lattice of grid.cell_size; it is not "
                                     "supported with a body seeded at its mesh's elements yet");
+  if (pts_.pending() > 0)
+    for (const int b : at_elements)
+      if (sc.bodies[static_cast<std::size_t>(b)].activation_time > 0.0 ||
+          sc.bodies[static_cast<std::size_t>(b)].activation_stage != 0)
+        section_error(sc, "", "a body seeded at its mesh's elements cannot arrive later yet (its nodes are the mesh's "
+                              "vertices, seeded at the start)");
   if (P.shared_nodes)
     section_error(sc, "nodes", "a body seeded at its mesh's elements has the mesh's vertices as its own nodes; "
                                "otm.nodes: shared is not supported with it");
@@ -221,6 +228,56 @@ double OtmSolver::reporting_scale() const { return axisym_ ? 2.0 * std::numbers:
 void OtmSolver::begin_stage(int stage, double damping) {
   pts_.begin_stage(stage, time_);
   damping_ = damping;
+}
+
+void OtmSolver::activate_pending() {
+  const Index n0 = points_.size();
+  if (!pts_.activate(time_)) return;
+  // The arrived points (appended at the end) take their body's node set, a cell of their seeded
+  // spacing (adaptivity), and nodes of their own at the vertices of the lattice cells holding them,
+  // as the bodies present from the start (otm_nodes.hpp).
+  const Index n = points_.size(), nn0 = nodes_.size();
+  auto* group = points_.ints(kNodeGroup);
+  const auto* body = points_.ints(kBodyIndex);
+  for (Index p = n0; p < n; ++p) group[p] = body[p];
+  if (adapt_.enabled) {
+    auto* S = points_.view(otm::kExtent);
+    const auto* id = points_.ints(kId);
+    for (Index p = n0; p < n; ++p) {
+      const double s0 = spacing_[static_cast<size_t>(body[p])];
+      S[p] = Mat3::diag(s0, s0, s0);
+      next_id_ = std::max(next_id_, id[p] + 1);
+    }
+    Fr_.resize(static_cast<size_t>(n), Mat3::identity());
+  }
+  const otm::NodeCloud add = otm::seed_nodes(points_.view(kPosition) + n0, group + n0, n - n0, scenario_.grid.lower,
+                                             scenario_.grid.cell_size, dim_);
+  auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+  append(nodes_.x, add.x);
+  append(nodes_.v, add.v);
+  append(nodes_.f, add.f);
+  append(nodes_.mass, add.mass);
+  append(nodes_.body, add.body);
+  refresh_supports();
+  // The new nodes' velocities: the mass-weighted projection of their points' (exact for a body in
+  // uniform motion, a fired rod); the momentum they bring counts as initial (momentum_change).
+  const auto* v = points_.view(kVelocity);
+  const auto* mass = points_.real(kMass);
+  std::vector<Vec3> mom(static_cast<size_t>(nodes_.size() - nn0));
+  std::vector<double> m(static_cast<size_t>(nodes_.size() - nn0), 0.0);
+  for (Index p = n0; p < n; ++p)
+    for (Index k = sup_.offset[p]; k < sup_.offset[p + 1]; ++k) {
+      const Index a = sup_.node[k] - nn0;
+      if (a < 0) continue;
+      m[a] += sup_.N[k] * mass[p];
+      mom[a] += (sup_.N[k] * mass[p]) * v[p];
+    }
+  for (Index a = nn0; a < nodes_.size(); ++a) {
+    const double ma = m[a - nn0];
+    nodes_.mass[a] = ma;
+    nodes_.v[a] = ma > kTinyMass ? (1.0 / ma) * mom[a - nn0] : Vec3{};
+    momentum0_ += ma * nodes_.v[a];
+  }
 }
 
 void OtmSolver::refresh_supports() {
@@ -549,6 +606,8 @@ void OtmSolver::apply_face_conditions(double dt) {
 }
 
 double OtmSolver::stable_dt() {
+  // A body whose time has come joins before the step's limit is set, so its stiffness counts.
+  if (pts_.pending() > 0) activate_pending();
   const ScopedPhase timer(seconds_.stable_dt);
   // The central difference is stable for dt <= 2 / omega_max (Belytschko, Liu & Moran, Nonlinear
   // Finite Elements for Continua and Structures (2000) §6.3). omega_max^2 is bounded by the largest

@@ -87,6 +87,9 @@ class OtmSolver final : public Solver {
   /// points (otm_nodes.hpp), and the vertices of each element-seeded body's mesh; refuses what
   /// such a body does not support yet (adaptivity, shared nodes, a mesh of another spacing).
   otm::NodeCloud initial_nodes(const Scenario& sc, const OtmParams& P);
+  /// Bodies whose activation time has come (rods, jets, activation_time): their points join, with
+  /// nodes of their own seeded as at the start, and the nodes' velocities projected from the points.
+  void activate_pending();
   /// Supports and shape functions at the current positions; stops the run on a failed solve.
   void refresh_supports();
   /// Builds the supports; false if a point's LME solve failed (sup_.failed names it).

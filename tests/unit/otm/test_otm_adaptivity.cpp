@@ -155,6 +155,22 @@ TEST(OtmAdaptivity, PointsNearAFaceAreNotSplit) {
   EXPECT_EQ(otm::split_points(g, ext, {s0}, 3, false, Vec3{{0.01 - 1.6 * s0, 0.0, 0.0}}, upper, opt, kCopy, "", next_id).size(), 1u);
 }
 
+TEST(OtmAdaptivity, FailedPointsAreNotSplit) {
+  // Point 0 is stretched 3x (it splits when intact: SplitConservesExtensiveQuantitiesAndCopiesState);
+  // failed, it carries no stress and stays whole.
+  const double s0 = 1e-3;
+  const std::vector<std::string> ext = {"mass"};
+  otm::AdaptivityOptions opt;
+  std::int64_t next_id = 2;
+  FieldStore f = two_points(s0);
+  f.add_real("failed", 1, "1");
+  f.real("failed")[0] = 1.0;
+  const Vec3 lower{{0.0, 0.0, 0.0}}, upper{{1.0, 1.0, 1.0}};
+  EXPECT_TRUE(otm::split_points(f, ext, {s0}, 3, false, lower, upper, opt, kCopy, "failed", next_id).empty());
+  f.real("failed")[0] = 0.0;
+  EXPECT_EQ(otm::split_points(f, ext, {s0}, 3, false, lower, upper, opt, kCopy, "failed", next_id).size(), 1u);
+}
+
 TEST(OtmAdaptivity, AxisymmetricSplitSharesByTheHalfRings) {
   // A ring of reference radius r0 = 10 s0 stretched radially by 3 (F = diag(3, 1/3, 1)... with the
   // hoop stretch r / r0 of a ring now at 3 r0): children at r0 +- s0/4 in the reference carry

@@ -14,6 +14,7 @@
 #include <memory>
 #include <string>
 
+#include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "deck/deck_reader.hpp"
 #include "otm/otm_solver.hpp"
@@ -85,6 +86,53 @@ TEST_P(OtmFreeBlock, TranslatesRigidly) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Dims, OtmFreeBlock, ::testing::Values("3d", "plane_strain", "axisymmetric"));
+
+// A body with a later activation (activation_time) arrives with nodes of its own at the vertices of
+// the cells holding its points, their velocities projected from the points: from its arrival it
+// translates rigidly, x = x0 + v (t - t_arrival), while the body present from the start stays at
+// rest; its kinetic energy is booked as inserted and its momentum counts as initial.
+TEST(OtmActivation, ALaterBodyArrivesWithItsNodesAndTranslatesRigidly) {
+  const std::string yaml = deck("plane_strain", "[0, 0, 0]",
+                                "  - {name: late, material: rubber, shape: {type: box, lower: [0.065, 0.03], upper: "
+                                "[0.08, 0.045]}, velocity: [2.0, 1.0, 0], activation_time: 2.0e-5}\n");
+  auto s = make(yaml);
+  FieldStore& pts = s->points();
+  const Index n_block = pts.size(), nodes_block = s->nodes().size();
+  double t = 0.0, arrival = -1.0;
+  for (int k = 0; k < 40; ++k) {
+    const double dt = s->stable_dt();
+    if (arrival < 0.0 && pts.size() > n_block) arrival = t;
+    s->step(dt);
+    t += dt;
+  }
+  ASSERT_GE(arrival, 2.0e-5);
+  ASSERT_GT(pts.size(), n_block);
+  // The late box (3 x 3 cells of 5 mm, its corner on the lattice) brings its own 4 x 4 nodes.
+  EXPECT_EQ(s->nodes().size(), nodes_block + 16);
+  const auto* x = pts.view<Vec3>("x");
+  const auto* x0 = pts.view<Vec3>("x0");
+  const auto* body = pts.ints("body");
+  const Vec3 v{{2.0, 1.0, 0.0}};
+  double kinetic = 0.0;
+  const auto* m = pts.real("mass");
+  for (Index p = 0; p < pts.size(); ++p) {
+    const double move = body[p] == 1 ? t - arrival : 0.0;
+    for (int a = 0; a < 2; ++a) EXPECT_NEAR(x[p][a], x0[p][a] + (body[p] == 1 ? v[a] : 0.0) * move, 1e-13) << p;
+    if (body[p] == 1) kinetic += 0.5 * m[p] * dot(v, v);
+  }
+  const EnergyTotals e = s->energies();
+  EXPECT_NEAR(e.kinetic, kinetic, 1e-12 * kinetic);
+  EXPECT_NEAR(e.inserted_energy, kinetic, 1e-12 * kinetic);
+  for (const auto& [name, value] : s->result_values())
+    if (name.rfind("momentum_change", 0) == 0) EXPECT_NEAR(value, 0.0, 1e-12 * kinetic) << name;
+}
+
+TEST(OtmActivation, ALaterBodyCannotJoinASharedNodeSet) {
+  const std::string yaml = deck("plane_strain", "[0, 0, 0]",
+                                "  - {name: late, material: rubber, shape: {type: box, lower: [0.065, 0.03], upper: "
+                                "[0.08, 0.045]}, activation_time: 2.0e-5}\notm: {nodes: shared}\n");
+  EXPECT_THROW(make(yaml), DeckError);
+}
 
 // Nodes at the vertices of the cells that hold points: a 6 x 4 cell box (h = 5 mm) has 7 x 5 nodes.
 TEST(OtmNodes, VerticesOfTheOccupiedCells) {

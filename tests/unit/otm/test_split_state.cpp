@@ -3,7 +3,7 @@
 //    field is its gradient) and its share-weighted sum is the parent's;
 //  - the limiter makes no new extrema;
 //  - F stays the parent's (each child's cell is half of the parent's, which F maps);
-//  - copy, failed points and fields left out are unchanged.
+//  - copy and fields left out are unchanged.
 // Round-off: LSQ solves over ~50 neighbours of O(1) quantities, ~1e-15 each; bounds 1e-12.
 #include <gtest/gtest.h>
 
@@ -117,7 +117,7 @@ TEST(OtmSplitState, TheLimiterMakesNoNewExtremum) {
   EXPECT_NEAR(f.real("mass")[a] * f.real("eqps")[a] + f.real("mass")[b] * f.real("eqps")[b], 0.0, 1e-15);
 }
 
-TEST(OtmSplitState, CopyFailedPointsDiscreteFieldsAndFKeepTheParentsState) {
+TEST(OtmSplitState, CopyDiscreteFieldsAndFKeepTheParentsState) {
   auto setup = [](Lattice& L) {
     FieldStore& f = L.f;
     for (Index p = 0; p < f.size(); ++p) {
@@ -140,18 +140,8 @@ TEST(OtmSplitState, CopyFailedPointsDiscreteFieldsAndFKeepTheParentsState) {
       for (int i = 0; i < 9; ++i) EXPECT_EQ(f.view<Mat3>("F")[k].a[i], F.a[i]);
     }
   }
-  // A failed parent passes its state on; a field not named (substeps) and F are copied when
-  // interpolating (F varies along x here, so an interpolated F would differ).
-  {
-    Lattice L = lattice(2, 7);
-    setup(L);
-    FieldStore& f = L.f;
-    f.real("failed")[L.centre] = 1.0;
-    const double e = f.real("eqps")[L.centre];
-    const auto [a, b] = split(f, 2, kInterpolate);
-    EXPECT_EQ(f.real("eqps")[a], e);
-    EXPECT_EQ(f.real("eqps")[b], e);
-  }
+  // A field not named (substeps) and F are copied when interpolating (F varies along x here, so an
+  // interpolated F would differ). (A failed point is not split at all: test_otm_adaptivity.cpp.)
   {
     Lattice L = lattice(2, 7);
     setup(L);
