@@ -33,6 +33,7 @@ SOLVER_DECKS = {
                               "simulation.end_time": "1.0e-6"},
     "taylor_bar_otm": {"grid.cell_size": "0.8e-3", "simulation.end_time": "5.0e-6"},
     "taylor_bar_otm_750": {"grid.cell_size": "1.6e-3", "simulation.end_time": "5.0e-6"},
+    "rod_plate_otm": {"grid.cell_size": "1.0e-3", "simulation.end_time": "3.0e-6"},
     "explosive_sandwich_mpm": {"grid.cell_size": "1.0e-3", "simulation.end_time": "3.0e-6"},
 }
 OVERLAP_DECKS = {
