@@ -19,18 +19,13 @@
 #include "core/point_fields.hpp"
 #include "deck/deck_reader.hpp"
 #include "otm/otm_solver.hpp"
+#include "otm_steel_bar.hpp"
 #include "run/simulation.hpp"
 
 namespace ballista::test_otm_contact {
 namespace {
 
 constexpr double kRho = 7850.0, kE = 200.0e9, kL = 0.05, kV = 10.0, kEnd = 1.0e-4;
-
-const char* kMaterial = R"(
-simulation: {solver: otm, dimension: axisymmetric, end_time: 1.0e-4, cfl: 0.9}
-materials:
-  steel: {model: linear_elastic, density: 7850, youngs_modulus: 200.0e9, poisson_ratio: 0.3}
-)";
 
 struct Bars {
   double first = -1.0, last = -1.0;  ///< s, first and last step with a pair in contact
@@ -43,7 +38,7 @@ struct Bars {
 Bars run_bars() {
   // The points sit on a 0.5 mm lattice from y = -60 mm: the bars' nearest points are 1.5 mm apart
   // (their balls' surfaces 1 mm), so they meet after 50 us.
-  const std::string yaml = std::string(kMaterial) + R"(
+  const std::string yaml = otm_steel_bar::head("1.0e-4") + R"(
 otm: {contact: pinball}
 grid: {lower: [0, -0.06], upper: [0.02, 0.06], cell_size: 1.0e-3, boundary: {x_min: symmetry}}
 bodies:
@@ -87,13 +82,7 @@ bodies:
 }
 
 double wall_rebound() {
-  const std::string yaml = std::string(kMaterial) + R"(
-grid: {lower: [0, 0], upper: [0.02, 0.06], cell_size: 1.0e-3, boundary: {x_min: symmetry, y_min: wall}}
-bodies:
-  - {name: bar, material: steel, shape: {type: cylinder, center: [0, 0, 0], axis: y, radius: 5.0e-3, length: 0.05},
-     particles_per_cell: 2, velocity: [0, -10.0, 0]}
-)";
-  const Scenario sc = parse_deck(yaml, "otm_wall_bar.yaml");
+  const Scenario sc = parse_deck(otm_steel_bar::on_wall("constraint", "3.0e-5"), "otm_wall_bar.yaml");
   OtmSolver s(sc, make_materials(sc));
   while (s.time() < 3.0e-5) s.step(s.stable_dt());
   const EnergyTotals e = s.energies();

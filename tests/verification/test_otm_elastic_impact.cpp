@@ -17,6 +17,7 @@
 
 #include "deck/deck_reader.hpp"
 #include "otm/otm_solver.hpp"
+#include "otm_steel_bar.hpp"
 #include "run/simulation.hpp"
 
 namespace ballista::test_otm_elastic_impact {
@@ -31,16 +32,7 @@ struct Impact {
 };
 
 Impact run(const std::string& wall) {
-  const std::string yaml = R"(
-simulation: {solver: otm, dimension: axisymmetric, end_time: 3.0e-5, cfl: 0.9}
-materials:
-  steel: {model: linear_elastic, density: 7850, youngs_modulus: 200.0e9, poisson_ratio: 0.3}
-otm: {wall_model: )" + wall + R"(}
-grid: {lower: [0, 0], upper: [0.02, 0.06], cell_size: 1.0e-3, boundary: {x_min: symmetry, y_min: wall}}
-bodies:
-  - {name: bar, material: steel, shape: {type: cylinder, center: [0, 0, 0], axis: y, radius: 5.0e-3, length: 0.05},
-     particles_per_cell: 2, velocity: [0, -10.0, 0]}
-)";
+  const std::string yaml = otm_steel_bar::on_wall(wall, "3.0e-5");
   const Scenario sc = parse_deck(yaml, "otm_elastic_impact.yaml");
   OtmSolver s(sc, make_materials(sc));
   const EnergyTotals e0 = s.energies();
