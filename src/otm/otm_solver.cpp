@@ -60,8 +60,7 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     section_error(sc, "nodes", "a body with a later activation (activation_time, activation_stage, rods, jets) gets "
                                "its own nodes when it arrives; it cannot join a shared node set (use otm.nodes: "
                                "per_body with contact: pinball)");
-  if (sc.simulation.on_particle_exit != "stop")
-    section_error(sc, "", "simulation.on_particle_exit: delete is not supported by the OTM solver yet");
+  delete_exits_ = sc.simulation.on_particle_exit == "delete";
   dim_ = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
   axisym_ = sc.simulation.dimension == Dimension::Axisymmetric;
   damping_ = sc.simulation.damping;
@@ -771,11 +770,72 @@ void OtmSolver::step(double dt) {
   ++steps_;
   if (const Index p = bad.load(); p < n)
     pts_.fail(p, "inverted or non-finite deformation gradient (J <= 0 or NaN)", steps_, time_);
+  const bool removed = delete_exits_ && remove_exits();
   phase.emplace(seconds_.material);
   pts_.update_stress(dt, steps_, time_);
   phase.reset();
   if (adapt_.enabled) adapt();
   else refresh_supports();
+  if (removed) drop_orphan_nodes();
+}
+
+bool OtmSolver::remove_exits() {
+  // Points outside the grid box leave the run (simulation.on_particle_exit: delete); the points
+  // layer books their mass, momentum and kinetic and internal energy as removed, with the points'
+  // interpolated velocity (the nodes' kinetic energy they took differs by the velocity's variation
+  // over their supports, which the energy residual shows).
+  const Index n = points_.size();
+  const auto* x = points_.view(kPosition);
+  const GridSpec& g = scenario_.grid;
+  std::vector<char> keep(static_cast<size_t>(n), 1);
+  bool any = false;
+  for (Index p = 0; p < n; ++p)
+    for (int a = 0; a < dim_; ++a)
+      if (!(x[p][a] >= g.lower[a] && x[p][a] <= g.upper[a])) {
+        keep[p] = 0;
+        any = true;
+      }
+  if (!any) return false;
+  pts_.remove(keep);
+  // The solver's own per-point arrays follow (the supports are rebuilt after the step).
+  auto compact = [&](auto& v) {
+    if (v.size() != static_cast<size_t>(n)) return;
+    size_t k = 0;
+    for (Index p = 0; p < n; ++p)
+      if (keep[p]) v[k++] = v[p];
+    v.resize(k);
+  };
+  compact(lambda_);
+  compact(Fr_);
+  compact(scale_);
+  prev_sup_ = otm::Supports{};  // of the old numbering: no retries from it
+  return true;
+}
+
+void OtmSolver::drop_orphan_nodes() {
+  // Nodes that no point supports any more (their points deleted) carry nothing; kept, they would
+  // drift on at their last velocity and could enter a later support. They go, and the supports'
+  // node numbers follow.
+  const Index nn = nodes_.size();
+  std::vector<std::int32_t> renumber(static_cast<size_t>(nn), -1);
+  for (const std::int32_t a : sup_.node) renumber[a] = 0;
+  std::int32_t next = 0;
+  for (Index a = 0; a < nn; ++a)
+    if (renumber[a] == 0) renumber[a] = next++;
+  if (next == nn) return;
+  auto compact = [&](auto& v) {
+    for (Index a = 0; a < nn; ++a)
+      if (renumber[a] >= 0) v[renumber[a]] = v[a];
+    v.resize(static_cast<size_t>(next));
+  };
+  compact(nodes_.x);
+  compact(nodes_.v);
+  compact(nodes_.f);
+  compact(nodes_.mass);
+  compact(nodes_.body);
+  for (std::int32_t& a : sup_.node) a = renumber[a];
+  prev_sup_ = otm::Supports{};
+  otm::build_influences(sup_, nodes_.size(), inf_);
 }
 
 EnergyTotals OtmSolver::energies() const {
@@ -820,6 +880,8 @@ std::vector<double> OtmSolver::history_values() const {
 std::vector<std::pair<std::string, double>> OtmSolver::result_values() const {
   const EnergyTotals e = energies();
   const Vec3 p0 = reporting_scale() * momentum0_;
+  // What deleted points carried off is not a change of the momentum (on_particle_exit: delete).
+  const Vec3 carried = delete_exits_ ? e.momentum + e.removed_momentum : e.momentum;
   return {{"node_count", static_cast<double>(nodes_.size())},
           {"support_mean", mean_support_},
           {"support_max", static_cast<double>(max_support_)},
@@ -830,9 +892,9 @@ std::vector<std::pair<std::string, double>> OtmSolver::result_values() const {
           {"lme_failures", 0.0},  // a failed solve stops the run
           {"point_splits", static_cast<double>(splits_)},
           {"node_regenerations", static_cast<double>(regenerations_)},
-          {"momentum_change_x", axisym_ ? 0.0 : e.momentum[0] - p0[0]},
-          {"momentum_change_y", e.momentum[1] - p0[1]},
-          {"momentum_change_z", e.momentum[2] - p0[2]}};
+          {"momentum_change_x", axisym_ ? 0.0 : carried[0] - p0[0]},
+          {"momentum_change_y", carried[1] - p0[1]},
+          {"momentum_change_z", carried[2] - p0[2]}};
 }
 
 std::vector<std::pair<std::string, double>> OtmSolver::timing_values() const {

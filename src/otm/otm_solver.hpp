@@ -90,6 +90,11 @@ class OtmSolver final : public Solver {
   /// Bodies whose activation time has come (rods, jets, activation_time): their points join, with
   /// nodes of their own seeded as at the start, and the nodes' velocities projected from the points.
   void activate_pending();
+  /// on_particle_exit: delete: removes the points outside the grid box (booked as removed by the
+  /// points layer) with their solver state; true if any left.
+  bool remove_exits();
+  /// Removes the nodes no support references (after points were deleted) and renumbers the supports.
+  void drop_orphan_nodes();
   /// Supports and shape functions at the current positions; stops the run on a failed solve.
   void refresh_supports();
   /// Builds the supports; false if a point's LME solve failed (sup_.failed names it).
@@ -136,6 +141,7 @@ class OtmSolver final : public Solver {
   bool axisym_ = false;
   bool penalty_ = false;       ///< rigid walls by penalty instead of the constraint
   double penalty_factor_ = 1.0;
+  bool delete_exits_ = false;  ///< simulation.on_particle_exit: delete
   bool contact_ = false;       ///< pinball contact between bodies (otm.contact)
   double contact_penalty_ = 1.0;
   Index contact_pairs_ = 0;    ///< pairs of points in contact at the last step
