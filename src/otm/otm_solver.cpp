@@ -97,14 +97,7 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     // The extent tensor of each point's cell (s0 I at seeding) and the ids the splits continue.
     for (const BodySpec& b : sc.bodies) spacing_.push_back(sc.grid.cell_size / b.particles_per_cell);
     pts_.declare(otm::kExtent, "m", false);  // also on the bodies not active yet
-    auto* S = points_.view(otm::kExtent);
-    const auto* body = points_.ints(kBodyIndex);
-    const auto* id = points_.ints(kId);
-    for (Index p = 0; p < n; ++p) {
-      const double s0 = spacing_[static_cast<size_t>(body[p])];
-      S[p] = Mat3::diag(s0, s0, s0);
-      next_id_ = std::max(next_id_, id[p] + 1);
-    }
+    seed_extents(0, n);
     Fr_.assign(static_cast<size_t>(n), Mat3::identity());
   }
   // Node groups: each body its own nodes (bodies do not interact), or one node set over every body
@@ -123,22 +116,39 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   nodes_ = initial_nodes(sc, P);
   lambda_.assign(static_cast<size_t>(n), Vec3{});
   refresh_supports();
-  // Initial node velocities: the mass-weighted projection of the points' (exact for a body in
-  // uniform motion: the shape functions are a partition of unity).
+  project_node_velocities(0, n, 0);
+}
+
+void OtmSolver::seed_extents(Index p0, Index p1) {
+  auto* S = points_.view(otm::kExtent);
+  const auto* body = points_.ints(kBodyIndex);
+  const auto* id = points_.ints(kId);
+  for (Index p = p0; p < p1; ++p) {
+    const double s0 = spacing_[static_cast<size_t>(body[p])];
+    S[p] = Mat3::diag(s0, s0, s0);
+    next_id_ = std::max(next_id_, id[p] + 1);
+  }
+}
+
+void OtmSolver::project_node_velocities(Index p0, Index p1, Index a0) {
+  // The mass-weighted projection of the points' velocities (exact for a body in uniform motion: the
+  // shape functions are a partition of unity); the momentum counts as initial (momentum_change).
   const auto* v = points_.view(kVelocity);
   const auto* mass = points_.real(kMass);
-  std::vector<Vec3> mom(static_cast<size_t>(nodes_.size()));
-  std::vector<double> m(static_cast<size_t>(nodes_.size()), 0.0);
-  for (Index p = 0; p < n; ++p)
+  const Index count = nodes_.size() - a0;
+  std::vector<Vec3> mom(static_cast<size_t>(count));
+  std::vector<double> m(static_cast<size_t>(count), 0.0);
+  for (Index p = p0; p < p1; ++p)
     for (Index k = sup_.offset[p]; k < sup_.offset[p + 1]; ++k) {
-      const Index a = sup_.node[k];
+      const Index a = sup_.node[k] - a0;
+      if (a < 0) continue;
       m[a] += sup_.N[k] * mass[p];
       mom[a] += (sup_.N[k] * mass[p]) * v[p];
     }
-  for (Index a = 0; a < nodes_.size(); ++a) {
-    nodes_.mass[a] = m[a];
-    nodes_.v[a] = m[a] > kTinyMass ? (1.0 / m[a]) * mom[a] : Vec3{};
-    momentum0_ += m[a] * nodes_.v[a];
+  for (Index a = 0; a < count; ++a) {
+    nodes_.mass[a0 + a] = m[a];
+    nodes_.v[a0 + a] = m[a] > kTinyMass ? (1.0 / m[a]) * mom[a] : Vec3{};
+    momentum0_ += m[a] * nodes_.v[a0 + a];
   }
 }
 
@@ -240,13 +250,7 @@ void OtmSolver::activate_pending() {
   const auto* body = points_.ints(kBodyIndex);
   for (Index p = n0; p < n; ++p) group[p] = body[p];
   if (adapt_.enabled) {
-    auto* S = points_.view(otm::kExtent);
-    const auto* id = points_.ints(kId);
-    for (Index p = n0; p < n; ++p) {
-      const double s0 = spacing_[static_cast<size_t>(body[p])];
-      S[p] = Mat3::diag(s0, s0, s0);
-      next_id_ = std::max(next_id_, id[p] + 1);
-    }
+    seed_extents(n0, n);
     Fr_.resize(static_cast<size_t>(n), Mat3::identity());
   }
   const otm::NodeCloud add = otm::seed_nodes(points_.view(kPosition) + n0, group + n0, n - n0, scenario_.grid.lower,
@@ -258,25 +262,7 @@ void OtmSolver::activate_pending() {
   append(nodes_.mass, add.mass);
   append(nodes_.body, add.body);
   refresh_supports();
-  // The new nodes' velocities: the mass-weighted projection of their points' (exact for a body in
-  // uniform motion, a fired rod); the momentum they bring counts as initial (momentum_change).
-  const auto* v = points_.view(kVelocity);
-  const auto* mass = points_.real(kMass);
-  std::vector<Vec3> mom(static_cast<size_t>(nodes_.size() - nn0));
-  std::vector<double> m(static_cast<size_t>(nodes_.size() - nn0), 0.0);
-  for (Index p = n0; p < n; ++p)
-    for (Index k = sup_.offset[p]; k < sup_.offset[p + 1]; ++k) {
-      const Index a = sup_.node[k] - nn0;
-      if (a < 0) continue;
-      m[a] += sup_.N[k] * mass[p];
-      mom[a] += (sup_.N[k] * mass[p]) * v[p];
-    }
-  for (Index a = nn0; a < nodes_.size(); ++a) {
-    const double ma = m[a - nn0];
-    nodes_.mass[a] = ma;
-    nodes_.v[a] = ma > kTinyMass ? (1.0 / ma) * mom[a - nn0] : Vec3{};
-    momentum0_ += ma * nodes_.v[a];
-  }
+  project_node_velocities(n0, n, nn0);  // the fired rod's uniform velocity, exactly
 }
 
 void OtmSolver::refresh_supports() {

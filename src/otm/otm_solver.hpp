@@ -90,6 +90,11 @@ class OtmSolver final : public Solver {
   /// Bodies whose activation time has come (rods, jets, activation_time): their points join, with
   /// nodes of their own seeded as at the start, and the nodes' velocities projected from the points.
   void activate_pending();
+  /// Adaptivity: the extent tensor s0 I of points [p0, p1) and the ids the splits continue after.
+  void seed_extents(Index p0, Index p1);
+  /// Nodes [a0, end): lumped mass and the mass-weighted projection of the velocities of points
+  /// [p0, p1), their momentum added to the initial momentum.
+  void project_node_velocities(Index p0, Index p1, Index a0);
   /// on_particle_exit: delete: removes the points outside the grid box (booked as removed by the
   /// points layer) with their solver state; true if any left.
   bool remove_exits();

@@ -66,7 +66,6 @@ std::vector<SplitIncrement> split_increments(const FieldStore& pts, const std::v
   std::vector<double> coef;
   for (size_t i = 0; i < parents.size(); ++i) {
     const Index p = parents[i];
-    if (dead && dead[p] != 0.0) continue;
     const double r2 = radius[i] * radius[i];
     nb.clear();
     dxs.clear();

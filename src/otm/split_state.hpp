@@ -20,8 +20,9 @@
 // maps exactly; an F from the neighbours would no longer map the child's own cell (its extent
 // tensor, reference box and reference offset), and on the 750 m/s Taylor bar it halved the splits
 // (docs/validation.md, OTM). A parent with too few neighbours for a gradient (fewer than dim + 1, or
-// all on a line) passes its state on unchanged, as do failed points and the fields of discrete
-// values (failure flags, counters), which the caller leaves out.
+// all on a line) passes its state on unchanged, as do the fields of discrete values (failure flags,
+// counters), which the caller leaves out; failed points are not split (otm_adaptivity.hpp) and take
+// no part in a neighbour's gradient.
 #include <string>
 #include <vector>
 
