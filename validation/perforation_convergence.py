@@ -98,6 +98,26 @@ def segment_depths(out):
     return depths
 
 
+DEPTH_TIMES = (30e-6, 40e-6, 50e-6, 60e-6, 70e-6, 80e-6)
+
+
+def depth_at_times(out, t0, times=DEPTH_TIMES):
+    """The depth into the rock (history.csv penetration_depth) at these times after the main stage
+    began (at t0, summary.json main_stage_start), m: where the levels part in time (the jet's
+    arrival at the rock, or its rate in it)."""
+    import csv
+    rows = list(csv.DictReader(open(os.path.join(out, "history.csv"))))
+    if not rows or t0 is None:
+        return [None for _ in times]
+    depths = []
+    for t in times:
+        # The nearest row, if within 0.2 us (0.2 mm of depth at the jet's ~1 km/s in the rock).
+        near = min(rows, key=lambda r: abs(float(r["time"]) - t0 - t))
+        ok = abs(float(near["time"]) - t0 - t) <= 0.2e-6
+        depths.append(float(near["penetration_depth"]) if ok else None)
+    return depths
+
+
 def tunnel_entrance(pen, out):
     """The rock tunnel's entrance diameter, m: summary.json's, or for a run written before that key
     had its rule (where the wall begins below a crushed face), the same rule on channel.csv."""
@@ -133,6 +153,7 @@ def extract(s, out):
         "first_main_dt": first_main_step(out),
         "cells_across_radius": pen.get("cells_across_radius"),
         "segment_depths": [mm(d) for d in segment_depths(out)],
+        "depth_at_times": [mm(d) for d in depth_at_times(out, s.get("main_stage_start"))],
         "particles": s["statistics"]["particles_seeded"],
         "steps": s["statistics"]["steps"],
         "wall_time": s["statistics"]["wall_time"],
@@ -225,6 +246,11 @@ def main():
                   "|---|---|"]
         for r in rows:
             lines.append(f"| {r['h'] * 1e3:g} | " + ", ".join(fmt(d) for d in r["segment_depths"]) + " |")
+    # When the levels part: the depth at equal times after the main stage began.
+    lines += ["", "| band cell (mm) | " + " | ".join(f"depth at {t * 1e6:g} µs (mm)" for t in DEPTH_TIMES) + " |",
+              "|---|" + "---|" * len(DEPTH_TIMES)]
+    for r in rows:
+        lines.append(f"| {r['h'] * 1e3:g} | " + " | ".join(fmt(d) for d in r["depth_at_times"]) + " |")
     open(os.path.join(a.out, "convergence.md"), "w").write("\n".join(lines) + "\n")
     print("\n".join(lines))
     try:

@@ -35,21 +35,24 @@ void CellFBar::apply(const GridGeometry& g, Dimension dimension, double dt, cons
   const int dim = g.dim;
   cell_.resize(n);
   v_old_p_.resize(n);
-  if (v_new_.size() != static_cast<size_t>(g.node_count())) {
-    v_new_.assign(g.node_count(), 0.0);
-    v_old_.assign(g.node_count(), 0.0);
+  const int nmat = pts.material ? pts.materials : 1;
+  const size_t slots = static_cast<size_t>(g.node_count()) * static_cast<size_t>(nmat);
+  if (v_new_.size() != slots) {
+    v_new_.assign(slots, 0.0);
+    v_old_.assign(slots, 0.0);
   }
   const Mat3 I = Mat3::identity();
-  // 1. Per point: its cell (clamped into the block like the solver's sort) and its volume at t_n,
-  // V_p^n = V_p^{n+1} / dJ_p, dJ_p = det dF_p.
+  // 1. Per point: its (cell, material) slot (the cell clamped into the block like the solver's
+  // sort) and its volume at t_n, V_p^n = V_p^{n+1} / dJ_p, dJ_p = det dF_p.
   for_each(0, n, [&](Index p) {
     int c[3] = {0, 0, 0};
     for (int a = 0; a < dim; ++a) c[a] = std::clamp(g.cell_of(pts.x[p][a], a), 0, g.nodes[a] - 1);
-    cell_[p] = g.node_index(c[0], c[1], c[2]);
+    cell_[p] = g.node_index(c[0], c[1], c[2]) * nmat + (pts.material ? pts.material[p] : 0);
     v_old_p_[p] = pts.volume[p] / det(I + dt * pts.L[p]);
   });
-  // 2. Per cell: V_c^{n+1} and V_c^n, summed in point order by one thread (the sums, and so the
-  // result, do not depend on the thread count). Only the cells that hold points are cleared.
+  // 2. Per (cell, material): V_c^{n+1} and V_c^n, summed in point order by one thread (the sums,
+  // and so the result, do not depend on the thread count). Only the slots that hold points are
+  // cleared.
   double* vn = v_new_.data();
   double* vo = v_old_.data();
   for (Index p = 0; p < n; ++p) vn[cell_[p]] = vo[cell_[p]] = 0.0;
@@ -77,6 +80,42 @@ void CellFBar::apply(const GridGeometry& g, Dimension dimension, double dt, cons
       L(i, i) += (s - 1.0) * inv_dt;
     }
     pts.volume[p] = pts.volume0[p] * det(F);
+  });
+}
+
+void CellFBar::force_pressure(const GridGeometry& g, const FBarForcePoints& pts, std::vector<double>& out) {
+  const Index n = pts.count;
+  out.resize(n);
+  if (n == 0) return;
+  const int dim = g.dim;
+  const int nmat = pts.material ? pts.materials : 1;
+  const size_t slots = static_cast<size_t>(g.node_count()) * static_cast<size_t>(nmat);
+  if (v_new_.size() != slots) {
+    v_new_.assign(slots, 0.0);
+    v_old_.assign(slots, 0.0);
+  }
+  cell_.resize(n);
+  // 1. Per point: its (cell, material) slot, and its total pressure p + q (in out, for now).
+  for_each(0, n, [&](Index p) {
+    int c[3] = {0, 0, 0};
+    for (int a = 0; a < dim; ++a) c[a] = std::clamp(g.cell_of(pts.x[p][a], a), 0, g.nodes[a] - 1);
+    cell_[p] = g.node_index(c[0], c[1], c[2]) * nmat + (pts.material ? pts.material[p] : 0);
+    const Mat3& s = pts.stress[p];
+    out[p] = -(s(0, 0) + s(1, 1) + s(2, 2)) / 3.0 + (pts.viscous_pressure ? pts.viscous_pressure[p] : 0.0);
+  });
+  // 2. Per slot: sum V (p + q) and sum V, in point order by one thread (thread-count independent).
+  double* vp = v_new_.data();
+  double* vv = v_old_.data();
+  for (Index p = 0; p < n; ++p) vp[cell_[p]] = vv[cell_[p]] = 0.0;
+  for (Index p = 0; p < n; ++p) {
+    vp[cell_[p]] += pts.volume[p] * out[p];
+    vv[cell_[p]] += pts.volume[p];
+  }
+  // 3. Per point: the isotropic stress to take off sigma_p, P_bar + tr(sigma_p) / 3.
+  for_each(0, n, [&](Index p) {
+    const Index c = cell_[p];
+    const Mat3& s = pts.stress[p];
+    out[p] = vp[c] / vv[c] + (s(0, 0) + s(1, 1) + s(2, 2)) / 3.0;
   });
 }
 

@@ -229,6 +229,13 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
     });
   const bool axisym = dimension_ == Dimension::Axisymmetric;
   const double* bq = bulk_viscosity_.active() ? points_.real(kBulkViscosity) : nullptr;
+  if (!momentum_only && anti_locking_ == AntiLocking::FBar) {
+    // The F-bar's forces read the averaged pressure (mean dilatation, anti_locking.hpp); it
+    // includes the bulk viscosity.
+    fbar_.force_pressure(g, {points_.size(), x, vol, stress, bq, points_.ints(kMaterialIndex),
+                             static_cast<int>(pts_.materials().size())}, force_pressure_);
+    bq = force_pressure_.data();
+  }
   const std::vector<Vec3>& fext = loads_.total();
   const std::vector<Vec3>& ftrac = loads_.traction();
   const bool has_ext = !fext.empty();
@@ -260,7 +267,8 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
         // f_I = -V_p sigma_p grad N_I + N_I f_ext,p (Sulsky et al. 1994, eq. 14); axisymmetric
         // adds the hoop term -V_p sigma_tt N_I / r_p to the radial force (per-radian volume; its
         // domain average for a uGIMP domain across the axis, mpm/axis_hoop.hpp). The
-        // bulk viscosity's pressure q acts beside the material's stress: sigma - q I.
+        // bulk viscosity's pressure q acts beside the material's stress: sigma - q I (with the
+        // F-bar, bq holds what replaces the pressure by its cell average).
         Mat3 Vs = vol[p] * stress[p];
         if (bq)
           for (int i = 0; i < 3; ++i) Vs(i, i) -= vol[p] * bq[p];
@@ -599,7 +607,7 @@ void MpmSolver::step_impl(double dt) {
     fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0 or NaN)");
   const double sdt = usavg_ ? 0.5 * dt : dt;  // USAVG: the second half
   if (anti_locking_ == AntiLocking::FBar)  // volumetric increment averaged per cell (anti_locking.hpp)
-    fbar_.apply(grid_.geom, dimension_, sdt, {points_.size(), x_, L_, F_, vol_, vol0_});
+    fbar_.apply(grid_.geom, dimension_, sdt, fbar_points());
   pts_.update_stress(sdt, steps_, time_);
   if (bulk_viscosity_.active()) bulk_viscosity_pass(sdt, false);
 }
@@ -654,9 +662,14 @@ void MpmSolver::first_half_stress_update(double dt) {
     pts_.fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0 or NaN) in the first half of the step",
               steps_ + 1, time_);
   if (anti_locking_ == AntiLocking::FBar)
-    fbar_.apply(grid_.geom, dimension_, 0.5 * dt, {points_.size(), x_, L_, F_, vol_, vol0_});
+    fbar_.apply(grid_.geom, dimension_, 0.5 * dt, fbar_points());
   pts_.update_stress(0.5 * dt, steps_, time_);
   if (bulk_viscosity_.active()) bulk_viscosity_pass(0.5 * dt, true);  // the q the step's forces use
+}
+
+FBarPoints MpmSolver::fbar_points() {
+  return {points_.size(), x_, L_, F_, vol_, vol0_, points_.ints(kMaterialIndex),
+          static_cast<int>(pts_.materials().size())};
 }
 
 void MpmSolver::bind_fields() {

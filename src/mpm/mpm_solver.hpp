@@ -106,6 +106,8 @@ class MpmSolver final : public Solver {
   void finish_point(Index p, const Mat3& l, const Vec3& disp, double dt, std::atomic<Index>& bad,
                     std::atomic<Index>& out);
   void bind_fields();
+  /// The point fields the F-bar reads and rewrites, with each point's material (averaged per material).
+  FBarPoints fbar_points();
   void update_grid(double dt);
   /// One velocity change a face or axis condition made at a node (field-major node index).
   struct BoundaryImpulse {
@@ -189,6 +191,7 @@ class MpmSolver final : public Solver {
   double damping_;
   AntiLocking anti_locking_ = AntiLocking::None;  ///< mpm.anti_locking
   CellFBar fbar_;                                 ///< F-bar scratch (anti_locking: fbar)
+  std::vector<double> force_pressure_;            ///< per point: isotropic stress the F-bar's forces take off sigma, Pa
   GridData grid_;
   ActiveBlocks blocks_;  ///< the grid blocks particles reach this step (only they are zeroed and updated)
   GridExchange exchange_;   ///< several ranks: the blocks shared with other ranks and their sums

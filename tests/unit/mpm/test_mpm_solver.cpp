@@ -271,16 +271,23 @@ TEST_P(EveryDimensionAndShape, CollisionConservesMomentum) {
   // USAVG (two stress halves, its constraints applied to the mapped velocity first) as well: the
   // same impulses reach the particles, so the same argument holds.
   const std::string friction = "{model: friction, friction: 0.3}";
-  const std::tuple<std::string, int, std::string> variants[] = {
-      {"", 1, "usl"}, {friction, 1, "usl"}, {"", 4, "musl"}, {friction, 4, "musl"}, {"", 1, "usavg"}, {friction, 1, "usavg"}};
-  for (const auto& [contact, xpic, update] : variants) {
+  // With anti_locking: fbar (each material averaged on its own, the forces reading the averaged
+  // pressure) the internal forces still sum to zero, and USAVG's audit still closes: the forces'
+  // work with the averaged pressure is the work the materials book with the averaged rate.
+  const std::tuple<std::string, int, std::string, std::string> variants[] = {
+      {"", 1, "usl", "none"},     {friction, 1, "usl", "none"},     {"", 4, "musl", "none"},
+      {friction, 4, "musl", "none"}, {"", 1, "usavg", "none"},     {friction, 1, "usavg", "none"},
+      {"", 1, "usavg", "fbar"},   {friction, 1, "usavg", "fbar"}};
+  for (const auto& [contact, xpic, update, locking] : variants) {
   if (update == "usavg" && sf == "cpdi") continue;  // refused (MpmSolver: CPDI's weights follow F)
-  SCOPED_TRACE((contact.empty() ? std::string("single field") : contact) + " xpic " + std::to_string(xpic) + " " + update);
+  SCOPED_TRACE((contact.empty() ? std::string("single field") : contact) + " xpic " + std::to_string(xpic) + " " + update +
+               " " + locking);
   DeckParts d;
   d.dim = dim;
   d.shape_function = sf;
   d.contact = contact;
   d.update = update;
+  d.anti_locking = locking;
   if (xpic > 1) {
     d.flip = 0.0;
     d.xpic_order = xpic;
@@ -326,8 +333,8 @@ TEST_P(EveryDimensionAndShape, CollisionConservesMomentum) {
     // a surface point's stress on a node it barely reaches), so they are not held to it.
     const EnergyTotals e = solver->energies();
     const double residual = (e.total() - e0.total()) / e0.kinetic;
-    std::printf("usavg %s %s %s: residual %.3e of KE0\n", dim.c_str(), sf.c_str(), contact.empty() ? "one field" : "friction",
-                residual);
+    std::printf("usavg %s %s %s %s: residual %.3e of KE0\n", dim.c_str(), sf.c_str(), contact.empty() ? "one field" : "friction",
+                locking.c_str(), residual);
     if (sf != "linear") {
       EXPECT_LT(std::abs(residual), 5e-3);
     }
@@ -499,6 +506,35 @@ TEST_P(MpmFBar, KinematicsStayConsistent) {
     }
   }
   EXPECT_GT(solver->energies().internal, 0.0);  // the block did deform
+}
+
+TEST(MpmFBar, EnergyAuditClosesInAStrongImpact) {
+  // A rubber cylinder (wave speed 52 m/s) strikes the wall at 30 m/s: the pressure differs
+  // strongly between the points of a cell, which is where the F-bar's volumetric average and the
+  // grid's forces part. With the forces reading each cell's averaged pressure (mean dilatation,
+  // mpm/anti_locking.hpp) USAVG's audit closes as well as it does without the F-bar. Measured
+  // after 60 steps (the body compressed and rebounding): 1.06 % of KE0 without the F-bar, 0.76 %
+  // with it, 2.56 % with the F-bar's forces left plain. Bound: 1.5 times the plain run's, which
+  // separates the paired forces from the plain ones with a margin either side.
+  auto residual_with = [](const std::string& locking) {
+    DeckParts d;
+    d.dim = "axisymmetric";
+    d.shape_function = "gimp";
+    d.update = "usavg";
+    d.anti_locking = locking;
+    d.boundary = "{x_min: symmetry, y_min: wall}";
+    d.bodies = "  - {name: a, material: rubber, velocity: [0, -30], particles_per_cell: 3, shape: {type: cylinder, "
+               "center: [0, 0.0078125], axis: y, radius: 0.01171875, length: 0.015625}}\n";
+    auto solver = make_solver_from(make_deck(d));
+    const EnergyTotals e0 = solver->energies();
+    for (int n = 0; n < 60; ++n) solver->step(solver->stable_dt());
+    const EnergyTotals e = solver->energies();
+    EXPECT_GT(e.internal, 0.1 * e0.kinetic) << locking;  // the impact did compress the body
+    return (e.total() - e0.total()) / e0.kinetic;
+  };
+  const double plain = residual_with("none"), fbar = residual_with("fbar");
+  std::printf("strong impact: residual %.3e of KE0 without the F-bar, %.3e with it\n", plain, fbar);
+  EXPECT_LT(std::abs(fbar), 1.5 * std::abs(plain));
 }
 
 INSTANTIATE_TEST_SUITE_P(
