@@ -29,9 +29,19 @@ AntiLocking parse_anti_locking(const std::string& name) {
   throw Error("unknown anti_locking '" + name + "'; valid names: none, fbar");
 }
 
-void CellFBar::apply(const GridGeometry& g, Dimension dimension, double dt, const FBarPoints& pts) {
+void CellFBar::clear_slots(Index n, bool across_ranks) {
+  if (across_ranks) {
+    std::fill(v_new_.begin(), v_new_.end(), 0.0);
+    std::fill(v_old_.begin(), v_old_.end(), 0.0);
+    return;
+  }
+  for (Index p = 0; p < n; ++p) v_new_[cell_[p]] = v_old_[cell_[p]] = 0.0;
+}
+
+void CellFBar::apply(const GridGeometry& g, Dimension dimension, double dt, const FBarPoints& pts,
+                     const FBarSlotSum& across_ranks) {
   const Index n = pts.count;
-  if (n == 0 || !(dt > 0.0)) return;
+  if (!(dt > 0.0) || (n == 0 && !across_ranks)) return;  // a rank without points still takes part
   const int dim = g.dim;
   cell_.resize(n);
   v_old_p_.resize(n);
@@ -55,11 +65,12 @@ void CellFBar::apply(const GridGeometry& g, Dimension dimension, double dt, cons
   // cleared.
   double* vn = v_new_.data();
   double* vo = v_old_.data();
-  for (Index p = 0; p < n; ++p) vn[cell_[p]] = vo[cell_[p]] = 0.0;
+  clear_slots(n, static_cast<bool>(across_ranks));
   for (Index p = 0; p < n; ++p) {
     vn[cell_[p]] += pts.volume[p];
     vo[cell_[p]] += v_old_p_[p];
   }
+  if (across_ranks) across_ranks(vn, vo, nmat);
   // 3. Per point: dFbar = s dF with s = (dJbar_c / dJ_p)^(1/m) on the deforming axes (Coombs et
   // al. 2018); F_{n+1} = dFbar F_n = S F_{n+1}, S = diag(s, s, s) or diag(s, s, 1) in plane
   // strain (F and dF have no in-plane/out-of-plane coupling there); Lbar = (S dF - I)/dt =
@@ -83,10 +94,11 @@ void CellFBar::apply(const GridGeometry& g, Dimension dimension, double dt, cons
   });
 }
 
-void CellFBar::force_pressure(const GridGeometry& g, const FBarForcePoints& pts, std::vector<double>& out) {
+void CellFBar::force_pressure(const GridGeometry& g, const FBarForcePoints& pts, std::vector<double>& out,
+                              const FBarSlotSum& across_ranks) {
   const Index n = pts.count;
   out.resize(n);
-  if (n == 0) return;
+  if (n == 0 && !across_ranks) return;  // a rank without points still takes part in the exchange
   const int dim = g.dim;
   const int nmat = pts.material ? pts.materials : 1;
   const size_t slots = static_cast<size_t>(g.node_count()) * static_cast<size_t>(nmat);
@@ -106,11 +118,12 @@ void CellFBar::force_pressure(const GridGeometry& g, const FBarForcePoints& pts,
   // 2. Per slot: sum V (p + q) and sum V, in point order by one thread (thread-count independent).
   double* vp = v_new_.data();
   double* vv = v_old_.data();
-  for (Index p = 0; p < n; ++p) vp[cell_[p]] = vv[cell_[p]] = 0.0;
+  clear_slots(n, static_cast<bool>(across_ranks));
   for (Index p = 0; p < n; ++p) {
     vp[cell_[p]] += pts.volume[p] * out[p];
     vv[cell_[p]] += pts.volume[p];
   }
+  if (across_ranks) across_ranks(vp, vv, nmat);
   // 3. Per point: the isotropic stress to take off sigma_p, P_bar + tr(sigma_p) / 3.
   for_each(0, n, [&](Index p) {
     const Index c = cell_[p];

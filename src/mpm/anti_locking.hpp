@@ -31,6 +31,7 @@
 // additions per point); the per-point passes before and after are independent per point, so the
 // result is bitwise the same on any thread count.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -70,13 +71,19 @@ struct FBarForcePoints {
   int materials = 1;
 };
 
+/// Sums the per-(cell, material) partial sums over the MPI ranks that share a cell: two arrays of
+/// `materials` doubles per grid node (node-major), summed in place so that every sharer holds the
+/// same totals (the solver's GridExchange). Empty on one rank.
+using FBarSlotSum = std::function<void(double* a, double* b, int materials)>;
+
 /// Cell-averaged F-bar (Coombs et al. 2018). Keeps its scratch buffers between steps: after the
 /// first step with a given point and cell count, apply() allocates nothing.
 class CellFBar {
  public:
   /// Replaces each point's volumetric increment by its cell's (see the header comment). dt > 0;
   /// every dJ_p = det(I + dt L_p) must be positive (the solver checks J > 0 before).
-  void apply(const GridGeometry& g, Dimension dimension, double dt, const FBarPoints& pts);
+  void apply(const GridGeometry& g, Dimension dimension, double dt, const FBarPoints& pts,
+             const FBarSlotSum& across_ranks = {});
 
   /// The pressure the internal forces use at each point, with the F-bar on: the volume average
   /// P_bar = sum V_p (p_p + q_p) / sum V_p over the point's material in its cell (p = -tr sigma / 3,
@@ -88,13 +95,18 @@ class CellFBar {
   /// every point of the group carries P_bar. Without the pairing a copper jet's energy audit drifts
   /// by 5 % of its energy (the perforation demo at 1 mm). Writes out[p] = P_bar + tr(sigma_p) / 3,
   /// what the forces take off sigma_p's diagonal (in place of q_p): sigma_p - out[p] I = s_p - P_bar I.
-  void force_pressure(const GridGeometry& g, const FBarForcePoints& pts, std::vector<double>& out);
+  void force_pressure(const GridGeometry& g, const FBarForcePoints& pts, std::vector<double>& out,
+                      const FBarSlotSum& across_ranks = {});
 
  private:
   std::vector<Index> cell_;      ///< (cell, material) slot of each point: cell node index × materials + material
   std::vector<double> v_old_p_;  ///< V_p^n = V_p^{n+1} / dJ_p of each point, m^3
   std::vector<double> v_new_;    ///< per (cell, material): sum of V^{n+1}, m^3
   std::vector<double> v_old_;    ///< per (cell, material): sum of V^n, m^3
+
+  /// Zeroes the slots about to be summed: those of the points on one rank, every slot when the
+  /// sums go across ranks (the exchange sends whole blocks of nodes).
+  void clear_slots(Index n, bool across_ranks);
 };
 
 }  // namespace ballista

@@ -54,7 +54,11 @@ int MpmSolver::stencil_reach_now() const {
 }
 
 void MpmSolver::mark_active_blocks() {
-  blocks_.mark(x_, points_.size(), reach_);
+  // On several ranks the F-bar sums each point's cell after the position update (at most a cell
+  // from where it starts the step, CFL < 1) across the ranks sharing it: one more cell of reach
+  // keeps that cell's corner node in the blocks the ranks exchange.
+  const bool fbar_halo = comm_.distributed() && anti_locking_ == AntiLocking::FBar;
+  blocks_.mark(x_, points_.size(), reach_ + (fbar_halo ? 1 : 0));
   const auto& surface = loads_.surface_forces();
   if (!surface.empty()) {
     std::vector<Vec3> at(surface.size());

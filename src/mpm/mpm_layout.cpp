@@ -169,11 +169,6 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     throw_solver_param_error(sc, "mpm", "update",
                              "usavg does not work with shape_function: cpdi yet (its weights follow F, which the "
                              "first half of the stress update changes within the step); use gimp or bspline3");
-  if (comm_.distributed() && anti_locking_ == AntiLocking::FBar)
-    // The cell average would see only this rank's particles of a cell shared with another rank.
-    throw_solver_param_error(sc, "mpm", "anti_locking",
-                             "fbar runs on one MPI rank only so far (" + std::to_string(comm_.size()) +
-                                 " ranks were started; docs/parallel.md)");
   if (comm_.distributed()) {
     // Every rank seeded every body: keep a share, then the first partition moves each particle to
     // the rank owning its region.

@@ -233,7 +233,7 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
     // The F-bar's forces read the averaged pressure (mean dilatation, anti_locking.hpp); it
     // includes the bulk viscosity.
     fbar_.force_pressure(g, {points_.size(), x, vol, stress, bq, points_.ints(kMaterialIndex),
-                             static_cast<int>(pts_.materials().size())}, force_pressure_);
+                             static_cast<int>(pts_.materials().size())}, force_pressure_, fbar_across_ranks());
     bq = force_pressure_.data();
   }
   const std::vector<Vec3>& fext = loads_.total();
@@ -607,7 +607,7 @@ void MpmSolver::step_impl(double dt) {
     fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0 or NaN)");
   const double sdt = usavg_ ? 0.5 * dt : dt;  // USAVG: the second half
   if (anti_locking_ == AntiLocking::FBar)  // volumetric increment averaged per cell (anti_locking.hpp)
-    fbar_.apply(grid_.geom, dimension_, sdt, fbar_points());
+    fbar_.apply(grid_.geom, dimension_, sdt, fbar_points(), fbar_across_ranks());
   pts_.update_stress(sdt, steps_, time_);
   if (bulk_viscosity_.active()) bulk_viscosity_pass(sdt, false);
 }
@@ -662,7 +662,7 @@ void MpmSolver::first_half_stress_update(double dt) {
     pts_.fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0 or NaN) in the first half of the step",
               steps_ + 1, time_);
   if (anti_locking_ == AntiLocking::FBar)
-    fbar_.apply(grid_.geom, dimension_, 0.5 * dt, fbar_points());
+    fbar_.apply(grid_.geom, dimension_, 0.5 * dt, fbar_points(), fbar_across_ranks());
   pts_.update_stress(0.5 * dt, steps_, time_);
   if (bulk_viscosity_.active()) bulk_viscosity_pass(0.5 * dt, true);  // the q the step's forces use
 }
@@ -670,6 +670,16 @@ void MpmSolver::first_half_stress_update(double dt) {
 FBarPoints MpmSolver::fbar_points() {
   return {points_.size(), x_, L_, F_, vol_, vol0_, points_.ints(kMaterialIndex),
           static_cast<int>(pts_.materials().size())};
+}
+
+FBarSlotSum MpmSolver::fbar_across_ranks() {
+  if (!comm_.distributed()) return {};
+  // The (cell, material) sums are node arrays of `materials` components: the blocks shared with
+  // other ranks are summed like the P2G's (mark_active_blocks widens the blocks by a cell so that
+  // a point's cell after the position update lies in them).
+  return [this](double* a, double* b, int materials) {
+    exchange_.sum(comm_, {{a, materials}, {b, materials}}, 1);
+  };
 }
 
 void MpmSolver::bind_fields() {

@@ -108,6 +108,8 @@ class MpmSolver final : public Solver {
   void bind_fields();
   /// The point fields the F-bar reads and rewrites, with each point's material (averaged per material).
   FBarPoints fbar_points();
+  /// On several ranks: the F-bar's per-(cell, material) sums over the ranks sharing a cell.
+  FBarSlotSum fbar_across_ranks();
   void update_grid(double dt);
   /// One velocity change a face or axis condition made at a node (field-major node index).
   struct BoundaryImpulse {
