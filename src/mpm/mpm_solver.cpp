@@ -48,14 +48,25 @@ inline void stencil_of(const GridGeometry& g, const SplineFaces& faces, const Ve
   }
 }
 
+/// Whether a uGIMP particle's domain may reach across the axis, decided without the domain's
+/// effective half-length l (axis_hoop.hpp): a uniform grid's domains are at most h/2 long; on a
+/// graded grid l = min(max(l_p, 1e-12 h_c), h_c / 2) for the local cells h_c, so l <= l_p once l_p
+/// exceeds 1e-12 of the grid's radial extent (which bounds h_c). False means r >= l: the plain
+/// w_k / r applies, exactly as axis_hoop_weights would decide.
+inline bool may_cross_axis(const GridGeometry& g, const Vec3& x, const Vec3& half) {
+  if (!g.graded) return x[0] < 0.5 * g.h;
+  if (x[0] < half[0]) return true;
+  const GradedAxis& radial = (*g.graded)[0];
+  return half[0] < 1e-12 * (radial.at(g.nodes[0] - 1) - radial.at(0));
+}
+
 /// The hoop operator of an axisymmetric uGIMP particle whose domain crosses the axis
 /// (mpm/axis_hoop.hpp); false (use w_k / r) for every other particle and shape function.
 template <int Dim, ShapeKind K>
 inline bool hoop_near_axis(const GridGeometry& g, const Vec3& x, const Vec3& half, const Stencil<Dim>& st,
                            double* hoop) {
   if constexpr (Dim == 2 && K == ShapeKind::Gimp) {
-    // A uniform grid's domains are at most h/2 long: a particle farther out needs no look.
-    if (!g.graded && !(x[0] < 0.5 * g.h)) return false;
+    if (!may_cross_axis(g, x, half)) return false;
     return axis_hoop_weights(g, x[0], half[0], st, hoop);
   } else {
     return false;
@@ -67,7 +78,7 @@ template <int Dim, ShapeKind K>
 inline bool hoop_rate_near_axis(const GridGeometry& g, const Vec3& x, const Vec3& half, const Stencil<Dim>& st,
                                 const Vec3* field, double& rate) {
   if constexpr (Dim == 2 && K == ShapeKind::Gimp) {
-    if (!g.graded && !(x[0] < 0.5 * g.h)) return false;
+    if (!may_cross_axis(g, x, half)) return false;
     return axis_hoop_rate(g, x[0], half[0], st, field, rate);
   } else {
     return false;
