@@ -38,26 +38,38 @@ void CellFBar::clear_slots(Index n, bool across_ranks) {
   for (Index p = 0; p < n; ++p) v_new_[cell_[p]] = v_old_[cell_[p]] = 0.0;
 }
 
-void CellFBar::apply(const GridGeometry& g, Dimension dimension, double dt, const FBarPoints& pts,
-                     const FBarSlotSum& across_ranks) {
-  const Index n = pts.count;
-  if (!(dt > 0.0) || (n == 0 && !across_ranks)) return;  // a rank without points still takes part
-  const int dim = g.dim;
-  cell_.resize(n);
-  v_old_p_.resize(n);
-  const int nmat = pts.material ? pts.materials : 1;
+namespace {
+/// The (cell, material) slot of a point at x: the node index of its cell's lowest corner (the cell
+/// clamped into the block like the solver's sort) times the material count, plus its material.
+inline Index slot_of(const GridGeometry& g, const Vec3& x, const std::int64_t* material, int nmat, Index p) {
+  int c[3] = {0, 0, 0};
+  for (int a = 0; a < g.dim; ++a) c[a] = std::clamp(g.cell_of(x[a], a), 0, g.nodes[a] - 1);
+  return g.node_index(c[0], c[1], c[2]) * nmat + (material ? material[p] : 0);
+}
+}  // namespace
+
+int CellFBar::prepare(const GridGeometry& g, const std::int64_t* material, int materials, Index n) {
+  const int nmat = material ? materials : 1;
   const size_t slots = static_cast<size_t>(g.node_count()) * static_cast<size_t>(nmat);
   if (v_new_.size() != slots) {
     v_new_.assign(slots, 0.0);
     v_old_.assign(slots, 0.0);
   }
+  cell_.resize(n);
+  return nmat;
+}
+
+void CellFBar::apply(const GridGeometry& g, Dimension dimension, double dt, const FBarPoints& pts,
+                     const FBarSlotSum& across_ranks) {
+  const Index n = pts.count;
+  if (!(dt > 0.0) || (n == 0 && !across_ranks)) return;  // a rank without points still takes part
+  const int nmat = prepare(g, pts.material, pts.materials, n);
+  v_old_p_.resize(n);
   const Mat3 I = Mat3::identity();
-  // 1. Per point: its (cell, material) slot (the cell clamped into the block like the solver's
-  // sort) and its volume at t_n, V_p^n = V_p^{n+1} / dJ_p, dJ_p = det dF_p.
+  // 1. Per point: its (cell, material) slot and its volume at t_n, V_p^n = V_p^{n+1} / dJ_p,
+  // dJ_p = det dF_p.
   for_each(0, n, [&](Index p) {
-    int c[3] = {0, 0, 0};
-    for (int a = 0; a < dim; ++a) c[a] = std::clamp(g.cell_of(pts.x[p][a], a), 0, g.nodes[a] - 1);
-    cell_[p] = g.node_index(c[0], c[1], c[2]) * nmat + (pts.material ? pts.material[p] : 0);
+    cell_[p] = slot_of(g, pts.x[p], pts.material, nmat, p);
     v_old_p_[p] = pts.volume[p] / det(I + dt * pts.L[p]);
   });
   // 2. Per (cell, material): V_c^{n+1} and V_c^n, summed in point order by one thread (the sums,
@@ -99,19 +111,10 @@ void CellFBar::force_pressure(const GridGeometry& g, const FBarForcePoints& pts,
   const Index n = pts.count;
   out.resize(n);
   if (n == 0 && !across_ranks) return;  // a rank without points still takes part in the exchange
-  const int dim = g.dim;
-  const int nmat = pts.material ? pts.materials : 1;
-  const size_t slots = static_cast<size_t>(g.node_count()) * static_cast<size_t>(nmat);
-  if (v_new_.size() != slots) {
-    v_new_.assign(slots, 0.0);
-    v_old_.assign(slots, 0.0);
-  }
-  cell_.resize(n);
+  const int nmat = prepare(g, pts.material, pts.materials, n);
   // 1. Per point: its (cell, material) slot, and its total pressure p + q (in out, for now).
   for_each(0, n, [&](Index p) {
-    int c[3] = {0, 0, 0};
-    for (int a = 0; a < dim; ++a) c[a] = std::clamp(g.cell_of(pts.x[p][a], a), 0, g.nodes[a] - 1);
-    cell_[p] = g.node_index(c[0], c[1], c[2]) * nmat + (pts.material ? pts.material[p] : 0);
+    cell_[p] = slot_of(g, pts.x[p], pts.material, nmat, p);
     const Mat3& s = pts.stress[p];
     out[p] = -(s(0, 0) + s(1, 1) + s(2, 2)) / 3.0 + (pts.viscous_pressure ? pts.viscous_pressure[p] : 0.0);
   });

@@ -104,6 +104,9 @@ class CellFBar {
   std::vector<double> v_new_;    ///< per (cell, material): sum of V^{n+1}, m^3
   std::vector<double> v_old_;    ///< per (cell, material): sum of V^n, m^3
 
+  /// Sizes the per-slot sums for this grid and material count (kept between calls) and cell_ for
+  /// n points; returns the material count the slots use (1 without material indices).
+  int prepare(const GridGeometry& g, const std::int64_t* material, int materials, Index n);
   /// Zeroes the slots about to be summed: those of the points on one rank, every slot when the
   /// sums go across ranks (the exchange sends whole blocks of nodes).
   void clear_slots(Index n, bool across_ranks);
