@@ -84,6 +84,34 @@ void Communicator::sum(double* values, int n) const {
   check(MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_SUM, comm_of(handle_)), "MPI_Allreduce");
 }
 
+void Communicator::sum_in_rank_order(double* values, std::size_t n) const {
+  if (!distributed() || n == 0) return;
+  const MPI_Comm c = comm_of(handle_);
+  // Rank r adds up chunk r of the array from every rank's partial values, then every rank
+  // gathers the chunks.
+  std::vector<int> count(size_), displ(size_);
+  for (int r = 0; r < size_; ++r) {
+    const std::size_t lo = n * static_cast<std::size_t>(r) / static_cast<std::size_t>(size_);
+    const std::size_t hi = n * static_cast<std::size_t>(r + 1) / static_cast<std::size_t>(size_);
+    displ[r] = static_cast<int>(lo);
+    count[r] = static_cast<int>(hi - lo);
+  }
+  const int mine = count[rank_];
+  std::vector<double> parts(static_cast<std::size_t>(mine) * static_cast<std::size_t>(size_));
+  std::vector<int> rcount(size_, mine), rdispl(size_);
+  for (int r = 0; r < size_; ++r) rdispl[r] = r * mine;
+  check(MPI_Alltoallv(values, count.data(), displ.data(), MPI_DOUBLE, parts.data(), rcount.data(), rdispl.data(),
+                      MPI_DOUBLE, c),
+        "MPI_Alltoallv");
+  for (int i = 0; i < mine; ++i) {
+    double s = parts[static_cast<std::size_t>(i)];
+    for (int r = 1; r < size_; ++r) s += parts[static_cast<std::size_t>(r) * static_cast<std::size_t>(mine) + i];
+    values[static_cast<std::size_t>(displ[rank_] + i)] = s;
+  }
+  check(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, values, count.data(), displ.data(), MPI_DOUBLE, c),
+        "MPI_Allgatherv");
+}
+
 void Communicator::sum(std::int64_t* values, int n) const {
   if (!distributed() || n == 0) return;
   check(MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_INT64_T, MPI_SUM, comm_of(handle_)), "MPI_Allreduce");
@@ -152,6 +180,23 @@ std::vector<std::int64_t> Communicator::all_gather(const std::vector<std::int64_
   for (int r = 1; r < size_; ++r) displ[r] = displ[r - 1] + counts[r - 1];
   std::vector<std::int64_t> all(static_cast<std::size_t>(displ[size_ - 1] + counts[size_ - 1]));
   check(MPI_Allgatherv(mine.data(), n, MPI_INT64_T, all.data(), counts.data(), displ.data(), MPI_INT64_T, c),
+        "MPI_Allgatherv");
+  return all;
+}
+
+std::vector<double> Communicator::all_gather_reals(const std::vector<double>& mine, std::vector<int>& counts) const {
+  if (!distributed()) {
+    counts.assign(1, static_cast<int>(mine.size()));
+    return mine;
+  }
+  const MPI_Comm c = comm_of(handle_);
+  int n = static_cast<int>(mine.size());
+  counts.assign(size_, 0);
+  check(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, c), "MPI_Allgather");
+  std::vector<int> displ(size_, 0);
+  for (int r = 1; r < size_; ++r) displ[r] = displ[r - 1] + counts[r - 1];
+  std::vector<double> all(static_cast<std::size_t>(displ[size_ - 1] + counts[size_ - 1]));
+  check(MPI_Allgatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displ.data(), MPI_DOUBLE, c),
         "MPI_Allgatherv");
   return all;
 }

@@ -329,19 +329,23 @@ void write_domain_datasets(hid_t h5, const FieldStore& points, int dim, Index n,
                 {static_cast<hsize_t>(n), static_cast<hsize_t>(nc)}, cells.data(), "", rows);
 }
 
-/// The second point cloud (OTM nodes), one rank only: every real field, prefixed node_, with its
-/// own vertices.
-void write_node_datasets(hid_t h5, const FieldStore& nodes, const UnitOf& unit_of) {
+/// The second point cloud (OTM nodes): every real field, prefixed node_, with its own vertices.
+/// Several ranks hold every node alike (OTM): rank 0 writes them (`rows` says which rank it is).
+void write_node_datasets(hid_t h5, const FieldStore& nodes, const UnitOf& unit_of, RowSlice rows) {
   const Index nn = nodes.size();
+  if (rows.dxpl != H5P_DEFAULT) {
+    rows.first = 0;
+    rows.rows = rows.root ? static_cast<hsize_t>(nn) : 0;
+  }
   for (const FieldInfo& f : nodes.fields()) {
     if (f.type != FieldType::Real) continue;
     std::vector<hsize_t> dims{static_cast<hsize_t>(nn)};
     if (f.ncomp != 1) dims.push_back(static_cast<hsize_t>(f.ncomp));
-    write_dataset(h5, "node_" + f.name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, dims, nodes.real(f.name), unit_of(f));
+    write_dataset(h5, "node_" + f.name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, dims, nodes.real(f.name), unit_of(f), rows);
   }
   std::vector<std::int64_t> nv(static_cast<size_t>(nn));
   for (Index a = 0; a < nn; ++a) nv[a] = a;
-  write_dataset(h5, "node_cells", H5T_NATIVE_INT64, H5T_STD_I64LE, {static_cast<hsize_t>(nn)}, nv.data(), "");
+  write_dataset(h5, "node_cells", H5T_NATIVE_INT64, H5T_STD_I64LE, {static_cast<hsize_t>(nn)}, nv.data(), "", rows);
 }
 
 /// The XDMF grid(s) of output `index` in `file`: particles (Polyvertex), with domains the deformed
@@ -414,7 +418,6 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
   const bool parallel = comm_.distributed();
   const bool root = comm_.rank() == 0;
   const auto [n, first] = global_rows(comm_, local);
-  if (parallel && nodes) throw Error("node output (OTM) is not written by several ranks");
   const int index = count();
   const std::string path = h5_path(index);
   const std::string file = std::filesystem::path(path).filename().string();  // relative to the xdmf
@@ -443,7 +446,7 @@ void ParticleWriter::write(double time, long step, const FieldStore& points, con
       const UnitOf unit_of{extensive_, extensive_suffix_};
       write_point_datasets(h5, points, sel, n, first, rows, unit_of);
       if (domains_) write_domain_datasets(h5, points, dim_, n, first, rows);
-      if (nodes) write_node_datasets(h5, *nodes, unit_of);
+      if (nodes) write_node_datasets(h5, *nodes, unit_of, rows);
       h5.close("close '" + tmp + "'");  // collective: every rank's rows are in the file
     }
     if (root) out->commit();

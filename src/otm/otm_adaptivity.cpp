@@ -39,7 +39,8 @@ Vec3 largest_eigenvector(const Mat3& A, int dim, double hi) {
 std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>& extensive,
                                 const std::vector<double>& spacing, int dim, bool axisymmetric, const Vec3& lower,
                                 const Vec3& upper, const AdaptivityOptions& opt, const SplitStateSpec& state,
-                                const std::string& failed, std::int64_t& next_id) {
+                                const std::string& failed, std::int64_t& next_id,
+                                const FieldStore* neighbourhood) {
   const Index n = pts.size();
   // Fields by name here, not by typed key (core/field_key.hpp): the keys change how GCC optimises
   // this file's split arithmetic (FMA contraction with -march=native) and with it the last bits of
@@ -85,7 +86,7 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
   // Computed and applied outside the split arithmetic below, whose last bits (GCC's FMA contraction
   // of this function) the 750 m/s bar with the copied state keeps.
   const std::vector<SplitIncrement> increments =
-      split_increments(pts, which, half, half0, axisymmetric, state, dim, failed);
+      split_increments(neighbourhood ? *neighbourhood : pts, which, half, half0, axisymmetric, state, dim, failed);
   FieldStore kids = pts.empty_like();
   kids.append_from(pts, which);
   // Second children are appended; the parents become the first children.

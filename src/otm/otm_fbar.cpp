@@ -1,5 +1,6 @@
 #include "otm/otm_fbar.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/parallel.hpp"
@@ -22,7 +23,8 @@ void scale(Mat3& A, double s, bool plane) {
 
 }  // namespace
 
-void NodalFBar::apply(const Supports& sup, Index node_count, bool plane, double dt, const FBarFields& f) {
+void NodalFBar::apply(const Supports& sup, Index node_count, bool plane, double dt, const FBarFields& f,
+                      const Communicator& comm) {
   const Index n = f.count;
   dj_.resize(static_cast<std::size_t>(n));
   vn_.resize(static_cast<std::size_t>(n));
@@ -39,6 +41,13 @@ void NodalFBar::apply(const Supports& sup, Index node_count, bool plane, double 
       w_[a] += wv;
       theta_[a] += wv * dj_[p];
     }
+  if (comm.distributed()) {
+    std::vector<double> both(w_);
+    both.insert(both.end(), theta_.begin(), theta_.end());
+    comm.sum_in_rank_order(both.data(), both.size());
+    std::copy(both.begin(), both.begin() + node_count, w_.begin());
+    std::copy(both.begin() + node_count, both.end(), theta_.begin());
+  }
   for_each(0, node_count, [&](Index a) {
     if (w_[a] > 0.0) theta_[a] /= w_[a];
   });

@@ -18,9 +18,11 @@
 // the standard update's. N are the step's shape functions (at x_p^k, those that moved the points).
 //
 // Thread determinism: the nodal sums are accumulated in point order by one thread; the passes
-// before and after are independent per point.
+// before and after are independent per point. On several ranks each rank adds its own points'
+// share and the ranks' shares are added in rank order (the nodes are every rank's).
 #include <vector>
 
+#include "core/communicator.hpp"
 #include "core/tensor.hpp"
 #include "otm/otm_support.hpp"
 
@@ -40,7 +42,8 @@ struct FBarFields {
 /// Node-averaged F-bar over one step (header comment). `plane`: plane strain (m = 2, in-plane block).
 class NodalFBar {
  public:
-  void apply(const Supports& sup, Index node_count, bool plane, double dt, const FBarFields& f);
+  void apply(const Supports& sup, Index node_count, bool plane, double dt, const FBarFields& f,
+             const Communicator& comm = {});
 
  private:
   std::vector<double> dj_, vn_;        ///< per point: dJ_p, V_p^n

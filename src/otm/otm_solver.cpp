@@ -9,6 +9,7 @@
 #include <numbers>
 #include <optional>
 
+#include "core/agreed_failure.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/phase_timer.hpp"
@@ -44,6 +45,20 @@ double support_bytes_per_point(const Scenario& sc) {
   const bool three_d = sc.simulation.dimension == Dimension::ThreeD;
   const double nodes = three_d ? 4.0 / 3.0 * std::numbers::pi * rho * rho * rho : std::numbers::pi * rho * rho;
   return 2.0 * 44.0 * std::max({nodes, static_cast<double>(P.min_support), three_d ? 5.0 : 4.0});
+}
+
+/// Several ranks: every rank's points' positions and node groups, in rank order (the nodes a
+/// set of points makes do not depend on their order: otm::seed_nodes sorts them).
+void gather_points(const Communicator& comm, std::vector<Vec3>& x, std::vector<std::int64_t>& group) {
+  if (!comm.distributed()) return;
+  std::vector<double> flat;
+  flat.reserve(3 * x.size());
+  for (const Vec3& v : x) flat.insert(flat.end(), {v[0], v[1], v[2]});
+  std::vector<int> counts;
+  flat = comm.all_gather_reals(flat, counts);
+  group = comm.all_gather(group, counts);
+  x.resize(group.size());
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = Vec3{{flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]}};
 }
 
 }  // namespace
@@ -113,10 +128,36 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
                                  "the products would push nothing: the pinball contact is for solids)");
     for (Index p = 0; p < n; ++p) group[p] = shared ? 0 : body[p];
   }
+  // Every rank seeded every body, so every rank makes every node; then it keeps its share of the
+  // points (several ranks).
   nodes_ = initial_nodes(sc, P);
-  lambda_.assign(static_cast<size_t>(n), Vec3{});
+  seeded_points_ = n;
+  pts_.keep_share(comm_);
+  const Index own = points_.size();
+  if (adapt_.enabled) Fr_.resize(static_cast<size_t>(own));
+  lambda_.assign(static_cast<size_t>(own), Vec3{});
   refresh_supports();
-  project_node_velocities(0, n, 0);
+  project_node_velocities(0, own, 0);
+  reduce_support_statistics();
+}
+
+bool OtmSolver::pending_anywhere() const { return comm_.any(pts_.pending() > 0); }
+
+void OtmSolver::reduce_support_statistics() {
+  SupportTotals& t = support_totals_;
+  if (!comm_.distributed()) {
+    t = {mean_support_, max_condition_, max_support_, max_iterations_, fallbacks_, retries_};
+    return;
+  }
+  const double own = static_cast<double>(points_.size());
+  double s[4] = {mean_support_ * own, own, static_cast<double>(fallbacks_), static_cast<double>(retries_)};
+  comm_.sum(s, 4);
+  t.mean = s[1] > 0.0 ? s[0] / s[1] : 0.0;
+  t.fallbacks = static_cast<Index>(s[2]);
+  t.retries = static_cast<Index>(s[3]);
+  t.max_condition = comm_.max(max_condition_);
+  t.max_size = static_cast<int>(comm_.max(static_cast<std::int64_t>(max_support_)));
+  t.max_iterations = static_cast<int>(comm_.max(static_cast<std::int64_t>(max_iterations_)));
 }
 
 void OtmSolver::seed_extents(Index p0, Index p1) {
@@ -145,6 +186,18 @@ void OtmSolver::project_node_velocities(Index p0, Index p1, Index a0) {
       m[a] += sup_.N[k] * mass[p];
       mom[a] += (sup_.N[k] * mass[p]) * v[p];
     }
+  if (comm_.distributed()) {  // this rank's points' share: the ranks' shares added
+    std::vector<double> packed(static_cast<size_t>(4 * count));
+    for (Index a = 0; a < count; ++a) packed[static_cast<size_t>(4 * a)] = m[a];
+    for (Index a = 0; a < count; ++a)
+      for (int c = 0; c < 3; ++c) packed[static_cast<size_t>(4 * a + 1 + c)] = mom[a][c];
+    sum_over_ranks(packed);
+    for (Index a = 0; a < count; ++a) {
+      m[a] = packed[static_cast<size_t>(4 * a)];
+      mom[a] = Vec3{{packed[static_cast<size_t>(4 * a + 1)], packed[static_cast<size_t>(4 * a + 2)],
+                     packed[static_cast<size_t>(4 * a + 3)]}};
+    }
+  }
   for (Index a = 0; a < count; ++a) {
     nodes_.mass[a0 + a] = m[a];
     nodes_.v[a0 + a] = m[a] > kTinyMass ? (1.0 / m[a]) * mom[a] : Vec3{};
@@ -241,7 +294,7 @@ void OtmSolver::begin_stage(int stage, double damping) {
 
 void OtmSolver::activate_pending() {
   const Index n0 = points_.size();
-  if (!pts_.activate(time_)) return;
+  if (!comm_.any(pts_.activate(time_))) return;  // every rank takes part: each makes every node
   // The arrived points (appended at the end) take their body's node set, a cell of their seeded
   // spacing (adaptivity), and nodes of their own at the vertices of the lattice cells holding them,
   // as the bodies present from the start (otm_nodes.hpp).
@@ -251,9 +304,13 @@ void OtmSolver::activate_pending() {
   for (Index p = n0; p < n; ++p) group[p] = body[p];
   if (adapt_.enabled) {
     seed_extents(n0, n);
+    next_id_ = comm_.max(next_id_);  // the split ids continue after every rank's arrived points
     Fr_.resize(static_cast<size_t>(n), Mat3::identity());
   }
-  const otm::NodeCloud add = otm::seed_nodes(points_.view(kPosition) + n0, group + n0, n - n0, scenario_.grid.lower,
+  std::vector<Vec3> xa(points_.view(kPosition) + n0, points_.view(kPosition) + n);
+  std::vector<std::int64_t> ga(group + n0, group + n);
+  gather_points(comm_, xa, ga);
+  const otm::NodeCloud add = otm::seed_nodes(xa.data(), ga.data(), static_cast<Index>(xa.size()), scenario_.grid.lower,
                                              scenario_.grid.cell_size, dim_);
   auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
   append(nodes_.x, add.x);
@@ -344,19 +401,25 @@ void OtmSolver::adapt() {
     if (scenario_.grid.faces[2 * ax] == FaceBC::Free) held_lower[ax] = -kInf;
     if (scenario_.grid.faces[2 * ax + 1] == FaceBC::Free) held_upper[ax] = kInf;
   }
+  // Several ranks: a parent's neighbours may be another rank's points (the children's state).
+  const std::optional<FieldStore> around = comm_.distributed() ? neighbourhood_for_splits() : std::nullopt;
+  const Index n_before = points_.size();
+  std::int64_t next_id = next_id_;
   const std::vector<Index> parents =
       otm::split_points(points_, extensive, spacing_, dim_, axisym_, held_lower, held_upper, adapt_,
-                        split_state_, kFailedField, next_id_);
+                        split_state_, kFailedField, next_id, around ? &*around : nullptr);
+  const Index split_count = comm_.distributed() ? number_children(parents, n_before) : static_cast<Index>(parents.size());
+  if (!comm_.distributed()) next_id_ = next_id;
   if (!parents.empty()) {
     // The second children take their parents' solver state; a child outside the hull of its
     // nodes fails its LME solve below, which re-generates the nodes.
-    splits_ += static_cast<Index>(parents.size());
     pts_.mark_reordered();
     for (const Index p : parents) {
       Fr_.push_back(Fr_[p]);
       lambda_.push_back(lambda_[p]);
     }
   }
+  splits_ += split_count;
   {
     regenerate = !build_current_supports();
     // The seed's distance metric (Fig. 5-2), seen from the points: a point whose nearest node is
@@ -372,10 +435,11 @@ void OtmSolver::adapt() {
       }
       regenerate = near2 > gap2;
     }
-    if (!regenerate) regenerate = otm::nodes_crowded(nodes_, adapt_.node_crowding * sopt_.h, dim_);
     // Conditioning (seed 003 ch. 5.2): an LME Hessian this ill-conditioned means a point's nodes
     // have collapsed onto a line or plane around it.
     if (!regenerate) regenerate = sup_.max_condition > adapt_.max_condition;
+    regenerate = comm_.any(regenerate);  // the nodes are every rank's: all re-generate or none
+    if (!regenerate) regenerate = otm::nodes_crowded(nodes_, adapt_.node_crowding * sopt_.h, dim_);
   }
   // A split conserves the points' mass, momentum sum_p m_p v_p and energies exactly; the nodes'
   // lumped masses then follow at the next assembly, as they do every step in the momentum form
@@ -389,8 +453,14 @@ void OtmSolver::regenerate_nodes() {
   const otm::NodeCloud old = std::move(nodes_);
   double ke0 = 0.0;
   for (Index b = 0; b < old.size(); ++b) ke0 += 0.5 * old.mass[b] * dot(old.v[b], old.v[b]);
-  nodes_ = otm::seed_nodes(points_.view(kPosition), points_.ints(kNodeGroup), n, scenario_.grid.lower,
-                           scenario_.grid.cell_size, dim_);
+  {
+    // Several ranks: the nodes over every rank's points.
+    std::vector<Vec3> xa(points_.view(kPosition), points_.view(kPosition) + n);
+    std::vector<std::int64_t> ga(points_.ints(kNodeGroup), points_.ints(kNodeGroup) + n);
+    gather_points(comm_, xa, ga);
+    nodes_ = otm::seed_nodes(xa.data(), ga.data(), static_cast<Index>(xa.size()), scenario_.grid.lower,
+                             scenario_.grid.cell_size, dim_);
+  }
   const Index nn = nodes_.size();
   // Velocities of the new nodes: the old nodes' LME interpolant evaluated at them,
   // v_a = sum_b N_b(x_a) v_b. An interpolation, not the mass-weighted projection from the points
@@ -417,7 +487,9 @@ void OtmSolver::regenerate_nodes() {
   Fr_.assign(static_cast<size_t>(n), Mat3::identity());
   sup_ = otm::Supports{};  // no previous supports: their node indices are gone
   prev_sup_ = otm::Supports{};
-  if (!build_current_supports()) report_failed_solve();
+  // Several ranks: a failed solve stops the run after the sums below, which every rank takes part in.
+  const bool solved = build_current_supports();
+  if (!solved && !comm_.distributed()) report_failed_solve();
   // Lumped masses on the new nodes (eq. 2.13).
   const auto* v = points_.view(kVelocity);
   const auto* mass = points_.real(kMass);
@@ -431,17 +503,39 @@ void OtmSolver::regenerate_nodes() {
       nodes_.mass[a] += sup_.N[k] * mass[p];
     }
   }
+  if (comm_.distributed()) {  // this rank's points' share of both
+    std::vector<double> packed(nodes_.mass);
+    for (const Vec3& q : p_points) packed.insert(packed.end(), {q[0], q[1], q[2]});
+    sum_over_ranks(packed);
+    std::copy(packed.begin(), packed.begin() + nn, nodes_.mass.begin());
+    for (size_t b = 0; b < nb; ++b)
+      p_points[b] = Vec3{{packed[nn + 3 * b], packed[nn + 3 * b + 1], packed[nn + 3 * b + 2]}};
+  }
   // A node outside the old nodes' hull (a lattice vertex beyond the old edge of the material)
   // takes the velocity of its nearest point, v_p = sum N_b v_b: an extrapolation, not an average.
   {
-    const auto* xp = points_.view(kPosition);
-    const CellBins bins(xp, n, std::sqrt(static_cast<double>(dim_)) * scenario_.grid.cell_size, dim_);
+    const Vec3* xp = points_.view(kPosition);
+    const Vec3* vp = v;
+    const std::int64_t* gp = pbody;
+    Index np = n;
+    // Several ranks: every rank's points, in id order (the serial run's point order; ties go to
+    // the first).
+    std::vector<Vec3> xs, vs;
+    std::vector<std::int64_t> gs;
+    if (comm_.distributed()) {
+      points_in_id_order(xs, vs, gs);
+      xp = xs.data();
+      vp = vs.data();
+      gp = gs.data();
+      np = static_cast<Index>(xs.size());
+    }
+    const CellBins bins(xp, np, std::sqrt(static_cast<double>(dim_)) * scenario_.grid.cell_size, dim_);
     for (Index a = 0; a < nn; ++a) {
       if (interpolated_[a]) continue;
       double best = kInf;
       Index q = -1;
       bins.visit(nodes_.x[a], [&](Index p) {
-        if (pbody[p] != nodes_.body[a]) return;
+        if (gp[p] != nodes_.body[a]) return;
         Vec3 d = xp[p] - nodes_.x[a];
         if (dim_ == 2) d[2] = 0.0;
         const double d2 = dot(d, d);
@@ -450,7 +544,7 @@ void OtmSolver::regenerate_nodes() {
           q = p;
         }
       });
-      nodes_.v[a] = q >= 0 ? v[q] : Vec3{};
+      nodes_.v[a] = q >= 0 ? vp[q] : Vec3{};
     }
   }
   // Linear momentum is restored exactly by a uniform velocity change of each body's nodes that are
@@ -487,6 +581,79 @@ void OtmSolver::regenerate_nodes() {
   for (Index a = 0; a < nn; ++a) ke1 += 0.5 * nodes_.mass[a] * dot(nodes_.v[a], nodes_.v[a]);
   remap_work_ += ke1 - ke0;
   ++regenerations_;
+  if (!solved) report_failed_solve();
+}
+
+std::optional<FieldStore> OtmSolver::neighbourhood_for_splits() {
+  // Only when some rank has a point stretched enough to split (split_points' test before its face
+  // rules) and the children interpolate their state: then every rank sends every other its points.
+  if (!split_state_.interpolate) return std::nullopt;
+  const Index n = points_.size();
+  const auto* S = points_.view(otm::kExtent);
+  const auto* body = points_.ints(kBodyIndex);
+  bool candidate = false;
+  for (Index p = 0; p < n && !candidate; ++p) {
+    double lo, hi;
+    otm::symmetric_extremes(S[p] * transpose(S[p]), dim_, lo, hi);
+    candidate = std::sqrt(std::max(hi, 0.0)) > adapt_.split_stretch * spacing_[static_cast<size_t>(body[p])];
+  }
+  if (!comm_.any(candidate)) return std::nullopt;
+  std::vector<Index> all(static_cast<size_t>(n));
+  for (Index p = 0; p < n; ++p) all[p] = p;
+  const std::vector<std::vector<char>> received =
+      comm_.all_to_all(std::vector<std::vector<char>>(static_cast<size_t>(comm_.size()), points_.pack(all)));
+  FieldStore around = points_;
+  for (int r = 0; r < comm_.size(); ++r)
+    if (r != comm_.rank()) around.append_packed(received[r].data(), received[r].size());
+  return around;
+}
+
+Index OtmSolver::number_children(const std::vector<Index>& parents, Index first_child) {
+  // A serial run numbers the second children in its point order, which is id order while the
+  // bodies arriving later come after the others in the deck (points are appended with ids above
+  // every other). Here the same: by the parents' ids over every rank.
+  auto* id = points_.ints(kId);
+  std::vector<std::int64_t> mine;
+  for (const Index p : parents) mine.push_back(id[p]);
+  std::vector<int> counts;
+  std::vector<std::int64_t> every = comm_.all_gather(mine, counts);
+  std::sort(every.begin(), every.end());
+  for (size_t i = 0; i < parents.size(); ++i) {
+    const auto at = std::lower_bound(every.begin(), every.end(), mine[i]) - every.begin();
+    id[first_child + static_cast<Index>(i)] = next_id_ + at;
+  }
+  next_id_ += static_cast<std::int64_t>(every.size());
+  return static_cast<Index>(every.size());
+}
+
+void OtmSolver::points_in_id_order(std::vector<Vec3>& x, std::vector<Vec3>& v, std::vector<std::int64_t>& group) const {
+  const Index n = points_.size();
+  const auto* xp = points_.view(kPosition);
+  const auto* vp = points_.view(kVelocity);
+  const auto* gp = points_.ints(kNodeGroup);
+  const auto* id = points_.ints(kId);
+  std::vector<double> xv;
+  std::vector<std::int64_t> ig;
+  for (Index p = 0; p < n; ++p) {
+    xv.insert(xv.end(), {xp[p][0], xp[p][1], xp[p][2], vp[p][0], vp[p][1], vp[p][2]});
+    ig.insert(ig.end(), {id[p], gp[p]});
+  }
+  std::vector<int> counts;
+  xv = comm_.all_gather_reals(xv, counts);
+  ig = comm_.all_gather(ig, counts);
+  const std::size_t m = ig.size() / 2;
+  std::vector<std::size_t> order(m);
+  for (std::size_t i = 0; i < m; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return ig[2 * a] < ig[2 * b]; });
+  x.resize(m);
+  v.resize(m);
+  group.resize(m);
+  for (std::size_t k = 0; k < m; ++k) {
+    const std::size_t i = order[k];
+    x[k] = Vec3{{xv[6 * i], xv[6 * i + 1], xv[6 * i + 2]}};
+    v[k] = Vec3{{xv[6 * i + 3], xv[6 * i + 4], xv[6 * i + 5]}};
+    group[k] = ig[2 * i + 1];
+  }
 }
 
 void OtmSolver::assemble() {
@@ -521,6 +688,20 @@ void OtmSolver::assemble() {
     nodes_.mass[a] = m;
     nodes_.f[a] = f;
   });
+  if (!comm_.distributed()) return;
+  // Several ranks: the sums above are this rank's points' share.
+  std::vector<double> packed(static_cast<size_t>(4 * nn));
+  for_each(0, nn, [&](Index a) {
+    double* o = &packed[static_cast<size_t>(4 * a)];
+    o[0] = nodes_.mass[a];
+    for (int c = 0; c < 3; ++c) o[1 + c] = nodes_.f[a][c];
+  });
+  sum_over_ranks(packed);
+  for_each(0, nn, [&](Index a) {
+    const double* o = &packed[static_cast<size_t>(4 * a)];
+    nodes_.mass[a] = o[0];
+    nodes_.f[a] = Vec3{{o[1], o[2], o[3]}};
+  });
 }
 
 std::vector<Vec3> OtmSolver::contact_node_forces() {
@@ -537,8 +718,34 @@ std::vector<Vec3> OtmSolver::contact_node_forces() {
     stiff[p] = mass[p] * w2;
   });
   std::vector<Vec3> fp;
-  contact_pairs_ = otm::pinball_forces(points_.view(kPosition), points_.real(kVolume), points_.ints(kNodeGroup),
-                                       stiff.data(), n, contact_penalty_, {dim_, axisym_}, fp);
+  if (!comm_.distributed()) {
+    contact_pairs_ = otm::pinball_forces(points_.view(kPosition), points_.real(kVolume), points_.ints(kNodeGroup),
+                                         stiff.data(), n, contact_penalty_, {dim_, axisym_}, fp);
+  } else {
+    // Several ranks: every rank's balls, gathered in rank order; this rank keeps its points' forces.
+    const auto* xp = points_.view(kPosition);
+    const auto* vol = points_.real(kVolume);
+    const auto* group = points_.ints(kNodeGroup);
+    std::vector<Vec3> x(xp, xp + n);
+    std::vector<std::int64_t> g(group, group + n);
+    std::vector<double> vs;
+    for (Index p = 0; p < n; ++p) vs.insert(vs.end(), {vol[p], stiff[p]});
+    gather_points(comm_, x, g);
+    std::vector<int> counts;
+    vs = comm_.all_gather_reals(vs, counts);
+    const Index all = static_cast<Index>(x.size());
+    std::vector<double> va(static_cast<size_t>(all)), sa(static_cast<size_t>(all));
+    for (Index q = 0; q < all; ++q) {
+      va[q] = vs[static_cast<size_t>(2 * q)];
+      sa[q] = vs[static_cast<size_t>(2 * q + 1)];
+    }
+    Index first = 0;
+    for (int r = 0; r < comm_.rank(); ++r) first += counts[r] / 2;
+    std::vector<Vec3> fall;
+    contact_pairs_ = otm::pinball_forces(x.data(), va.data(), g.data(), sa.data(), all, contact_penalty_,
+                                         {dim_, axisym_}, fall);
+    fp.assign(fall.begin() + first, fall.begin() + first + n);
+  }
   std::vector<Vec3> f(static_cast<size_t>(nn), Vec3{});
   if (contact_pairs_ == 0) return f;
   for_each(0, nn, [&](Index a) {
@@ -546,6 +753,15 @@ std::vector<Vec3> OtmSolver::contact_node_forces() {
     for (Index i = inf_.start[a]; i < inf_.start[a + 1]; ++i) s += sup_.N[inf_.entry[i]] * fp[inf_.owner[i]];
     f[a] = s;
   });
+  if (comm_.distributed()) {  // this rank's points' share
+    std::vector<double> packed(static_cast<size_t>(3 * nn));
+    for (Index a = 0; a < nn; ++a)
+      for (int c = 0; c < 3; ++c) packed[static_cast<size_t>(3 * a + c)] = f[a][c];
+    sum_over_ranks(packed);
+    for (Index a = 0; a < nn; ++a)
+      f[a] = Vec3{{packed[static_cast<size_t>(3 * a)], packed[static_cast<size_t>(3 * a + 1)],
+                   packed[static_cast<size_t>(3 * a + 2)]}};
+  }
   return f;
 }
 
@@ -592,7 +808,7 @@ void OtmSolver::apply_face_conditions(double dt) {
 
 double OtmSolver::stable_dt() {
   // A body whose time has come joins before the step's limit is set, so its stiffness counts.
-  if (pts_.pending() > 0) activate_pending();
+  if (pending_anywhere()) activate_pending();
   const ScopedPhase timer(seconds_.stable_dt);
   // The central difference is stable for dt <= 2 / omega_max (Belytschko, Liu & Moran, Nonlinear
   // Finite Elements for Continua and Structures (2000) §6.3). omega_max^2 is bounded by the largest
@@ -606,7 +822,8 @@ double OtmSolver::stable_dt() {
   const Index n = points_.size(), nn = nodes_.size();
   const double c = comm_.max(pts_.max_signal_speed());
   const double max_dt = scenario_.simulation.max_dt > 0.0 ? scenario_.simulation.max_dt : kInf;
-  if (!(c > 0.0) || n == 0) return std::min(max_dt, scenario_.simulation.end_time);
+  const bool none = comm_.distributed() ? comm_.sum(static_cast<std::int64_t>(n)) == 0 : n == 0;
+  if (!(c > 0.0) || none) return std::min(max_dt, scenario_.simulation.end_time);
   const auto* mass = points_.real(kMass);
   const auto* x = points_.view(kPosition);
   auto g = [&](Index p, Index kk) {
@@ -623,15 +840,30 @@ double OtmSolver::stable_dt() {
     G[p] = s;
   });
   omega2_.assign(static_cast<size_t>(nn), 0.0);
-  for_each_heavy(0, nn, [&](Index a) {
-    double k = 0.0, m = 0.0;
+  // The node's sums: m_a and sum_p m_p G_p g_a,p.
+  auto node_sums = [&](Index a, double& k, double& m) {
     for (Index i = inf_.start[a]; i < inf_.start[a + 1]; ++i) {
       const Index kk = inf_.entry[i], p = inf_.owner[i];
       k += mass[p] * G[p] * g(p, kk);
       m += sup_.N[kk] * mass[p];
     }
-    if (m > kTinyMass) omega2_[a] = k / m * c * c;
-  });
+  };
+  if (!comm_.distributed()) {
+    for_each_heavy(0, nn, [&](Index a) {
+      double k = 0.0, m = 0.0;
+      node_sums(a, k, m);
+      if (m > kTinyMass) omega2_[a] = k / m * c * c;
+    });
+  } else {
+    // Several ranks: this rank's points' share of the sums, added over the ranks.
+    std::vector<double> km(static_cast<size_t>(2 * nn));
+    for_each_heavy(0, nn, [&](Index a) { node_sums(a, km[static_cast<size_t>(2 * a)], km[static_cast<size_t>(2 * a + 1)]); });
+    sum_over_ranks(km);
+    for_each(0, nn, [&](Index a) {
+      const double k = km[static_cast<size_t>(2 * a)], m = km[static_cast<size_t>(2 * a + 1)];
+      if (m > kTinyMass) omega2_[a] = k / m * c * c;
+    });
+  }
   double w2 = 0.0;
   for (Index a = 0; a < nn; ++a) w2 = std::max(w2, omega2_[a]);
   w2 = comm_.max(w2);
@@ -644,6 +876,26 @@ double OtmSolver::stable_dt() {
 }
 
 void OtmSolver::step(double dt) {
+  if (!comm_.distributed()) {
+    step_local(dt);
+    if (removed_) drop_orphan_nodes();
+    reduce_support_statistics();
+    return;
+  }
+  // A failure on one rank stops every rank with the same diagnostic: nothing after the first place
+  // a rank can throw (the kinematics check) waits for the other ranks.
+  std::exception_ptr failure;
+  try {
+    step_local(dt);
+  } catch (const std::exception&) {
+    failure = std::current_exception();
+  }
+  rethrow_agreed(comm_, failure);
+  if (comm_.any(removed_)) drop_orphan_nodes();
+  reduce_support_statistics();
+}
+
+void OtmSolver::step_local(double dt) {
   const Index n = points_.size(), nn = nodes_.size();
   loads_.compute(scenario_, points_, time_);
   assemble();
@@ -693,9 +945,10 @@ void OtmSolver::step(double dt) {
     if (penalty_) o[1] += dt_mid * dot(fpen[a], vmid);
     if (contact_) o[2] += dt_mid * dot(fcon[a], vmid);
   }, dw);
-  damping_work_ += comm_.sum(dw[0]);
-  wall_work_ += comm_.sum(dw[1]);
-  contact_work_ += comm_.sum(dw[2]);
+  // Sums over the nodes, which every rank holds whole: totals already.
+  damping_work_ += dw[0];
+  wall_work_ += dw[1];
+  contact_work_ += dw[2];
   apply_face_conditions(dt);
   for_each(0, nn, [&](Index a) { nodes_.x[a] += dt * nodes_.v[a]; });
 
@@ -748,21 +1001,21 @@ void OtmSolver::step(double dt) {
     }
   }, ew);
   external_work_ += comm_.sum(ew[0]);
-  if (fbar_on_ && bad.load() == n)
+  // Every rank averages (its nodal sums are collective), unless a point failed on any rank.
+  if (fbar_on_ && !comm_.any(bad.load() < n))
     fbar_.apply(sup_, nn, dim_ == 2 && !axisym_, dt,
-                {n, L, F, vol, vol0, extent, adapt_.enabled ? Fr_.data() : nullptr});
+                {n, L, F, vol, vol0, extent, adapt_.enabled ? Fr_.data() : nullptr}, comm_);
   dt_prev_ = dt;
   time_ += dt;
   ++steps_;
   if (const Index p = bad.load(); p < n)
     pts_.fail(p, "inverted or non-finite deformation gradient (J <= 0 or NaN)", steps_, time_);
-  const bool removed = delete_exits_ && remove_exits();
+  removed_ = delete_exits_ && remove_exits();
   phase.emplace(seconds_.material);
   pts_.update_stress(dt, steps_, time_);
   phase.reset();
   if (adapt_.enabled) adapt();
   else refresh_supports();
-  if (removed) drop_orphan_nodes();
 }
 
 bool OtmSolver::remove_exits() {
@@ -805,6 +1058,12 @@ void OtmSolver::drop_orphan_nodes() {
   const Index nn = nodes_.size();
   std::vector<std::int32_t> renumber(static_cast<size_t>(nn), -1);
   for (const std::int32_t a : sup_.node) renumber[a] = 0;
+  if (comm_.distributed()) {  // a node any rank's points use stays
+    std::vector<std::int64_t> used(static_cast<size_t>(nn));
+    for (Index a = 0; a < nn; ++a) used[a] = renumber[a] == 0 ? 1 : 0;
+    comm_.sum(used.data(), static_cast<int>(nn));
+    for (Index a = 0; a < nn; ++a) renumber[a] = used[a] > 0 ? 0 : -1;
+  }
   std::int32_t next = 0;
   for (Index a = 0; a < nn; ++a)
     if (renumber[a] == 0) renumber[a] = next++;
@@ -849,8 +1108,8 @@ std::string OtmSolver::derived_constants() const {
   return fmt::format(
       "# otm: {} nodes, {} points; beta = gamma / h^2 = {:.6g} 1/m^2; support radius {:.6g} m "
       "({:.3g} h); {:.1f} support nodes per point on average\n",
-      nodes_.size(), points_.size(), sopt_.gamma / (sopt_.h * sopt_.h), otm::support_radius(sopt_),
-      otm::support_radius(sopt_) / sopt_.h, sup_.mean_size);
+      nodes_.size(), seeded_points_, sopt_.gamma / (sopt_.h * sopt_.h), otm::support_radius(sopt_),
+      otm::support_radius(sopt_) / sopt_.h, support_totals_.mean);
 }
 
 std::vector<std::string> OtmSolver::history_columns() const {
@@ -868,13 +1127,14 @@ std::vector<std::pair<std::string, double>> OtmSolver::result_values() const {
   const Vec3 p0 = reporting_scale() * momentum0_;
   // What deleted points carried off is not a change of the momentum (on_particle_exit: delete).
   const Vec3 carried = delete_exits_ ? e.momentum + e.removed_momentum : e.momentum;
+  const SupportTotals& t = support_totals_;
   return {{"node_count", static_cast<double>(nodes_.size())},
-          {"support_mean", mean_support_},
-          {"support_max", static_cast<double>(max_support_)},
-          {"lme_max_iterations", static_cast<double>(max_iterations_)},
-          {"lme_max_condition", max_condition_},
-          {"lme_fallbacks", static_cast<double>(fallbacks_)},
-          {"support_retries", static_cast<double>(retries_)},
+          {"support_mean", t.mean},
+          {"support_max", static_cast<double>(t.max_size)},
+          {"lme_max_iterations", static_cast<double>(t.max_iterations)},
+          {"lme_max_condition", t.max_condition},
+          {"lme_fallbacks", static_cast<double>(t.fallbacks)},
+          {"support_retries", static_cast<double>(t.retries)},
           {"lme_failures", 0.0},  // a failed solve stops the run
           {"point_splits", static_cast<double>(splits_)},
           {"node_regenerations", static_cast<double>(regenerations_)},
@@ -894,10 +1154,9 @@ std::vector<std::pair<std::string, double>> OtmSolver::timing_values() const {
 
 namespace {
 
-// One rank only so far (SolverFactory::distributed is false): the run refuses more.
 std::unique_ptr<Solver> make_otm(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials,
-                                const Communicator&) {
-  return std::make_unique<OtmSolver>(sc, std::move(materials));
+                                const Communicator& comm) {
+  return std::make_unique<OtmSolver>(sc, std::move(materials), comm);
 }
 
 }  // namespace
@@ -912,5 +1171,6 @@ BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
     .section = "otm",
     .params = ballista::otm_params(),
     .create = &ballista::make_otm,
+    .distributed = true,
     .element_seeding = true,
     .courant_step = true})

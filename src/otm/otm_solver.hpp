@@ -21,11 +21,21 @@
 // price is that momentum changes when the lumped masses change as points move among their nodes;
 // the solver reports that drift (docs/validation.md).
 //
+// Several MPI ranks: every rank holds every node (the nodes are few beside the points' supports),
+// and a contiguous share of the points, which never migrate (any share works, since a point finds
+// its nodes on its own rank). The node sums (lumped masses, forces, the stable step's bounds, the
+// F-bar's averages, the projections) add each rank's points' share, and the ranks' shares are added
+// in rank order (Communicator::sum_in_rank_order), so every rank updates bitwise the same nodes;
+// the point updates, the supports and the material are each rank's own. Pinball contact gathers
+// every point's ball; adaptivity gathers every point where one may split (the children's state
+// reads the parent's neighbours) and re-generates the nodes from every rank's points.
+//
 // Rigid walls (seed 003 ch. 4) at the grid box faces marked `wall`: `constraint` (a node that would
 // cross the wall is stopped on it: zero normal displacement into it) or `penalty` (a spring
 // k_a = penalty m_a omega_a^2 on the crossing distance, omega_a the node's stiffness bound).
 // `fixed` faces stop nodes; `symmetry` faces and the axis hold the normal velocity at zero.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/communicator.hpp"
@@ -110,6 +120,22 @@ class OtmSolver final : public Solver {
   /// nodes if a point split, a point lost its nearby nodes, nodes crowded or a solve failed.
   void adapt();
 
+  /// The step on this rank; step() makes the ranks agree on a failure, then drops orphan nodes.
+  void step_local(double dt);
+  /// Several ranks: this rank's nodal partial sums (packed, every node) become the totals.
+  void sum_over_ranks(std::vector<double>& packed) const { comm_.sum_in_rank_order(packed.data(), packed.size()); }
+  /// True if a body still waits for its activation on any rank.
+  bool pending_anywhere() const;
+  /// Several ranks: the support statistics of every rank's points (summary), after a step.
+  void reduce_support_statistics();
+  /// Several ranks, adaptivity: this rank's points followed by every other rank's, if a point
+  /// anywhere may split (a parent's neighbours for its children's state); else none.
+  std::optional<FieldStore> neighbourhood_for_splits();
+  /// Several ranks: ids for the second children (points first_child, ...) of `parents`, numbered
+  /// over every rank's parents in their ids' order as a serial run numbers them; the count of all.
+  Index number_children(const std::vector<Index>& parents, Index first_child);
+  /// Several ranks: every rank's points' positions, velocities and node sets, in id order.
+  void points_in_id_order(std::vector<Vec3>& x, std::vector<Vec3>& v, std::vector<std::int64_t>& group) const;
   /// Lumped masses and residual forces from the current supports.
   void assemble();
   /// Velocity constraints of the box faces on the nodes after the update (fixed, symmetry, and
@@ -166,6 +192,14 @@ class OtmSolver final : public Solver {
   int max_support_ = 0, max_iterations_ = 0;
   double max_condition_ = 0.0;
   Index fallbacks_ = 0, retries_ = 0;
+  /// The statistics above over every rank (summary; this rank's own on one rank).
+  struct SupportTotals {
+    double mean = 0.0, max_condition = 0.0;
+    int max_size = 0, max_iterations = 0;
+    Index fallbacks = 0, retries = 0;
+  } support_totals_;
+  Index seeded_points_ = 0;  ///< every rank's points at the start (derived_constants)
+  bool removed_ = false;     ///< points left the box this step: orphan nodes go after it
 };
 
 }  // namespace ballista

@@ -8,7 +8,6 @@ import os, shutil, subprocess, sys
 
 CASES = [
     # (deck, extra arguments, text the error must contain)
-    ("taylor_bar_otm.yaml", [], "solver 'otm' runs on one MPI rank only"),
     ("pd_lps_kalthoff_winkler.yaml", ["--set", "grid.cell_size=0.005", "--set", "peridynamics.yield_stress=1e9"],
      "the state-based plasticity runs on one MPI rank"),
 ]
