@@ -14,4 +14,18 @@ namespace ballista {
 /// Collective. Returns if no rank failed; otherwise throws on every rank.
 void rethrow_agreed(const Communicator& comm, std::exception_ptr local);
 
+/// Runs `body` (a solver's step on this rank), then agrees on a failure as above. Nothing in
+/// `body` after the first place a rank can throw may wait for the other ranks, so that the ranks
+/// that did not fail reach the agreement too.
+template <class Body>
+void run_agreed(const Communicator& comm, Body&& body) {
+  std::exception_ptr failure;
+  try {
+    body();
+  } catch (const std::exception&) {
+    failure = std::current_exception();
+  }
+  rethrow_agreed(comm, failure);
+}
+
 }  // namespace ballista

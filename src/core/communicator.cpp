@@ -166,22 +166,31 @@ std::string Communicator::broadcast(const std::string& s, int root) const {
   return out;
 }
 
+namespace {
+
+/// Every rank's vector, concatenated in rank order (MPI_Allgatherv of `type`).
+template <class T>
+std::vector<T> gather_to_all(const std::vector<T>& mine, std::vector<int>& counts, MPI_Datatype type, MPI_Comm c,
+                             int size) {
+  int n = static_cast<int>(mine.size());
+  counts.assign(size, 0);
+  check(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, c), "MPI_Allgather");
+  std::vector<int> displ(size, 0);
+  for (int r = 1; r < size; ++r) displ[r] = displ[r - 1] + counts[r - 1];
+  std::vector<T> all(static_cast<std::size_t>(displ[size - 1] + counts[size - 1]));
+  check(MPI_Allgatherv(mine.data(), n, type, all.data(), counts.data(), displ.data(), type, c), "MPI_Allgatherv");
+  return all;
+}
+
+}  // namespace
+
 std::vector<std::int64_t> Communicator::all_gather(const std::vector<std::int64_t>& mine,
                                                    std::vector<int>& counts) const {
   if (!distributed()) {
     counts.assign(1, static_cast<int>(mine.size()));
     return mine;
   }
-  const MPI_Comm c = comm_of(handle_);
-  int n = static_cast<int>(mine.size());
-  counts.assign(size_, 0);
-  check(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, c), "MPI_Allgather");
-  std::vector<int> displ(size_, 0);
-  for (int r = 1; r < size_; ++r) displ[r] = displ[r - 1] + counts[r - 1];
-  std::vector<std::int64_t> all(static_cast<std::size_t>(displ[size_ - 1] + counts[size_ - 1]));
-  check(MPI_Allgatherv(mine.data(), n, MPI_INT64_T, all.data(), counts.data(), displ.data(), MPI_INT64_T, c),
-        "MPI_Allgatherv");
-  return all;
+  return gather_to_all(mine, counts, MPI_INT64_T, comm_of(handle_), size_);
 }
 
 std::vector<double> Communicator::all_gather_reals(const std::vector<double>& mine, std::vector<int>& counts) const {
@@ -189,16 +198,7 @@ std::vector<double> Communicator::all_gather_reals(const std::vector<double>& mi
     counts.assign(1, static_cast<int>(mine.size()));
     return mine;
   }
-  const MPI_Comm c = comm_of(handle_);
-  int n = static_cast<int>(mine.size());
-  counts.assign(size_, 0);
-  check(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, c), "MPI_Allgather");
-  std::vector<int> displ(size_, 0);
-  for (int r = 1; r < size_; ++r) displ[r] = displ[r - 1] + counts[r - 1];
-  std::vector<double> all(static_cast<std::size_t>(displ[size_ - 1] + counts[size_ - 1]));
-  check(MPI_Allgatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displ.data(), MPI_DOUBLE, c),
-        "MPI_Allgatherv");
-  return all;
+  return gather_to_all(mine, counts, MPI_DOUBLE, comm_of(handle_), size_);
 }
 
 std::vector<std::vector<char>> Communicator::all_to_all(const std::vector<std::vector<char>>& send) const {

@@ -708,15 +708,8 @@ void MpmSolver::step(double dt) {
     return;
   }
   // A failure on one rank stops every rank with the same diagnostic. Nothing after the first
-  // place a rank can throw (the kinematics check) waits for the other ranks, so the ranks that
-  // did not fail reach the agreement too.
-  std::exception_ptr failure;
-  try {
-    step_local(dt);
-  } catch (const std::exception&) {
-    failure = std::current_exception();
-  }
-  rethrow_agreed(comm_, failure);
+  // place a rank can throw (the kinematics check) waits for the other ranks.
+  run_agreed(comm_, [&] { step_local(dt); });
 }
 
 void MpmSolver::step_local(double dt) {

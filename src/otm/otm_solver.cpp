@@ -884,13 +884,7 @@ void OtmSolver::step(double dt) {
   }
   // A failure on one rank stops every rank with the same diagnostic: nothing after the first place
   // a rank can throw (the kinematics check) waits for the other ranks.
-  std::exception_ptr failure;
-  try {
-    step_local(dt);
-  } catch (const std::exception&) {
-    failure = std::current_exception();
-  }
-  rethrow_agreed(comm_, failure);
+  run_agreed(comm_, [&] { step_local(dt); });
   if (comm_.any(removed_)) drop_orphan_nodes();
   reduce_support_statistics();
 }

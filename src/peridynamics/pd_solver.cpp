@@ -495,13 +495,7 @@ void PdSolver::compute_forces() {
 void PdSolver::step(double dt) {
   // A failure on one rank (a point not finite or out of the box, found after the step's last
   // collective) stops every rank with the lowest failing rank's diagnostic (core/agreed_failure.hpp).
-  std::exception_ptr failure;
-  try {
-    advance(dt);
-  } catch (const std::exception&) {
-    failure = std::current_exception();
-  }
-  rethrow_agreed(comm_, failure);
+  run_agreed(comm_, [&] { advance(dt); });
 }
 
 void PdSolver::advance(double dt) {
