@@ -62,7 +62,14 @@ std::vector<ParamSpec> otm_params() {
                  "pinball contact: spring k = contact_penalty / 2 min(m_p w_p^2, m_q w_q^2) (the points' stiffness "
                  "bounds times this)",
                  false, 1.0, 0.0, 100.0, true};
-  return {gamma, tol, minsup, wall, pen, ls, adapt, split, split_state, gap, crowd, cond, nodes, locking, contact, cpen};
+  const ParamSpec bound = word_param(
+      "step_bound",
+      "the stable step's bound on omega_max^2: gershgorin (the largest row sum of M^-1 K) or symmetric (of "
+      "M^-1/2 K M^-1/2, the same eigenvalues: as large on a regular lattice, far larger steps where a node "
+      "carries little mass; otm_solver.cpp, stable_dt)",
+      {"gershgorin", "symmetric"});
+  return {gamma, tol, minsup, wall, pen, ls, adapt, split, split_state, gap, crowd, cond, nodes, locking, contact, cpen,
+          bound};
 }
 
 OtmParams read_otm_params(const ParamValues& P) {
@@ -80,6 +87,7 @@ OtmParams read_otm_params(const ParamValues& P) {
   o.node_crowding = P.at("node_crowding");
   o.max_condition = P.at("max_condition");
   o.shared_nodes = P.choices.at("nodes") == "shared";
+  o.symmetric_step_bound = P.choices.at("step_bound") == "symmetric";
   o.fbar = P.choices.at("anti_locking") == "fbar";
   o.contact = P.choices.at("contact") == "pinball";
   o.contact_penalty = P.at("contact_penalty");

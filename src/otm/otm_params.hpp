@@ -28,6 +28,7 @@ struct OtmParams {
   bool fbar = false;                 ///< anti_locking: fbar (otm_fbar.hpp)
   bool contact = false;              ///< contact: pinball (otm_contact.hpp), else none
   double contact_penalty = 1.0;      ///< pinball contact: spring factor on the points' stiffness bound
+  bool symmetric_step_bound = false;  ///< step_bound: symmetric (rows of M^-1/2 K M^-1/2), else gershgorin
 };
 
 /// Reads the section (Scenario::solver_params of an otm deck: every key present, the deck reader

@@ -106,6 +106,7 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
                               split_state_.fields.end())
         split_state_.fields.push_back(f.name);
   fbar_on_ = P.fbar;
+  symmetric_bound_ = P.symmetric_step_bound;
 
   const Index n = points_.size();
   if (adapt_.enabled) {
@@ -831,6 +832,9 @@ double OtmSolver::stable_dt() {
     if (axisym_) v += sup_.N[kk] / x[p][0];
     return v;
   };
+  if (symmetric_bound_) {
+    symmetric_node_bounds(c);
+  } else {
   // G_p = sum_b g_b,p per point, then omega_a^2 node by node over the influence domains (a
   // gather: parallel and deterministic).
   std::vector<double> G(static_cast<size_t>(n), 0.0);
@@ -864,6 +868,7 @@ double OtmSolver::stable_dt() {
       if (m > kTinyMass) omega2_[a] = k / m * c * c;
     });
   }
+  }
   double w2 = 0.0;
   for (Index a = 0; a < nn; ++a) w2 = std::max(w2, omega2_[a]);
   w2 = comm_.max(w2);
@@ -873,6 +878,54 @@ double OtmSolver::stable_dt() {
   const double bound = 2.0 / std::sqrt(1.0 + (penalty_ ? penalty_factor_ : 0.0) + (contact_ ? contact_penalty_ : 0.0));
   const double dt = w2 > 0.0 ? scenario_.simulation.cfl * bound / std::sqrt(w2) : scenario_.simulation.end_time;
   return std::min(dt, max_dt);
+}
+
+void OtmSolver::symmetric_node_bounds(double c) {
+  // M^-1 K and A = M^-1/2 K M^-1/2 have the same eigenvalues, and Gershgorin's theorem bounds them
+  // by A's largest row sum: omega_max^2 <= max_a sum_b |K_ab| / sqrt(m_a m_b). With the tangent
+  // bound of stable_dt, |K_ab| <= sum_p m_p c^2 g_a,p g_b,p, so
+  //   omega_a^2 <= c^2 / sqrt(m_a) sum_p m_p g_a,p H_p,   H_p = sum_b g_b,p / sqrt(m_b).
+  // On a lattice of equal masses this is the row sum of M^-1 K; a node that carries a small share
+  // of its points' mass (a far node of a support, N_a ~ 0, whose g_a,p / N_a ~ 2 beta |x_p - x_a|
+  // stays large) no longer sets it: its couplings to heavy nodes are scaled by sqrt(m_a m_b), not
+  // by m_a alone (the lumped-mass bound of Belytschko, Liu & Moran (2000) §6.3 with the symmetric
+  // scaling of the mass matrix).
+  const Index n = points_.size(), nn = nodes_.size();
+  const auto* mass = points_.real(kMass);
+  const auto* x = points_.view(kPosition);
+  auto g = [&](Index p, Index kk) {
+    double v = norm(sup_.dN[kk]);
+    if (axisym_) v += sup_.N[kk] / x[p][0];
+    return v;
+  };
+  omega2_.assign(static_cast<size_t>(nn), 0.0);
+  std::vector<double> m(static_cast<size_t>(nn), 0.0);
+  for_each_heavy(0, nn, [&](Index a) {
+    double s = 0.0;
+    for (Index i = inf_.start[a]; i < inf_.start[a + 1]; ++i) s += sup_.N[inf_.entry[i]] * mass[inf_.owner[i]];
+    m[a] = s;
+  });
+  sum_over_ranks(m);
+  std::vector<double> H(static_cast<size_t>(n), 0.0);
+  for_each_heavy(0, n, [&](Index p) {
+    double s = 0.0;
+    for (Index kk = sup_.offset[p]; kk < sup_.offset[p + 1]; ++kk)
+      if (const Index b = sup_.node[kk]; m[b] > kTinyMass) s += g(p, kk) / std::sqrt(m[b]);
+    H[p] = s;
+  });
+  std::vector<double> k(static_cast<size_t>(nn), 0.0);
+  for_each_heavy(0, nn, [&](Index a) {
+    double s = 0.0;
+    for (Index i = inf_.start[a]; i < inf_.start[a + 1]; ++i) {
+      const Index kk = inf_.entry[i], p = inf_.owner[i];
+      s += mass[p] * g(p, kk) * H[p];
+    }
+    k[a] = s;
+  });
+  sum_over_ranks(k);
+  for_each(0, nn, [&](Index a) {
+    if (m[a] > kTinyMass) omega2_[a] = k[a] / std::sqrt(m[a]) * c * c;
+  });
 }
 
 void OtmSolver::step(double dt) {
@@ -1096,6 +1149,44 @@ EnergyTotals OtmSolver::energies() const {
   e.contact = k * (wall_work_ + contact_work_);
   e.transfer = k * remap_work_;  // the node re-generations' velocity projection (adaptivity)
   return e;
+}
+
+StepLimiter OtmSolver::step_limiter() const {
+  const Index nn = static_cast<Index>(omega2_.size());
+  if (nn == 0 || nn != nodes_.size()) return pts_.step_limiter();  // no bound computed for these nodes
+  Index top = 0;
+  for (Index a = 1; a < nn; ++a)
+    if (omega2_[a] > omega2_[top]) top = a;
+  const auto* mass = points_.real(kMass);
+  const auto* x = points_.view(kPosition);
+  auto g = [&](Index p, Index k) {
+    double v = norm(sup_.dN[k]);
+    if (axisym_) v += sup_.N[k] / x[p][0];
+    return v;
+  };
+  double best = -1.0;
+  Index which = -1;
+  for (Index i = inf_.start[top]; i < inf_.start[top + 1]; ++i) {
+    const Index kk = inf_.entry[i], p = inf_.owner[i];
+    double G = 0.0;
+    for (Index k = sup_.offset[p]; k < sup_.offset[p + 1]; ++k) G += g(p, k);
+    const double term = mass[p] * G * g(p, kk);
+    if (term > best) {
+      best = term;
+      which = p;
+    }
+  }
+  StepLimiter out;
+  if (which >= 0) {
+    const double J = det(points_.view(kDeformationGradient)[which]);
+    const int m = static_cast<int>(points_.ints(kMaterialIndex)[which]);
+    out = {points_.ints(kId)[which], static_cast<int>(points_.ints(kBodyIndex)[which]),
+           pts_.materials()[static_cast<size_t>(m)]->wave_speed(points_, which, J), norm(points_.view(kVelocity)[which]),
+           J};
+  }
+  if (!comm_.distributed()) return out;
+  comm_.broadcast(&out, sizeof out, comm_.rank_of_max(which >= 0 ? best : -1.0));
+  return out;
 }
 
 std::string OtmSolver::derived_constants() const {

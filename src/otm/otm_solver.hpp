@@ -67,7 +67,9 @@ class OtmSolver final : public Solver {
   EnergyTotals energies() const override;
   double reporting_scale() const override;
   void begin_stage(int stage, double damping) override;
-  StepLimiter step_limiter() const override { return pts_.step_limiter(); }
+  /// The point whose term m_p G_p g_a,p is the largest in the sum of the node that sets the step
+  /// (the largest Gershgorin bound, stable_dt): OTM's step is the nodes', not a point's wave speed.
+  StepLimiter step_limiter() const override;
   std::string derived_constants() const override;
   /// wall_force (N, the normal reaction of the rigid walls, summed), node_count.
   std::vector<std::string> history_columns() const override;
@@ -136,6 +138,9 @@ class OtmSolver final : public Solver {
   Index number_children(const std::vector<Index>& parents, Index first_child);
   /// Several ranks: every rank's points' positions, velocities and node sets, in id order.
   void points_in_id_order(std::vector<Vec3>& x, std::vector<Vec3>& v, std::vector<std::int64_t>& group) const;
+  /// otm.step_bound: symmetric: omega2_ from the rows of M^-1/2 K M^-1/2 (stable_dt), c the
+  /// largest signal speed; G_p the sum of the point's g_b,p is not needed.
+  void symmetric_node_bounds(double c);
   /// Lumped masses and residual forces from the current supports.
   void assemble();
   /// Velocity constraints of the box faces on the nodes after the update (fixed, symmetry, and
@@ -163,6 +168,7 @@ class OtmSolver final : public Solver {
   std::vector<Mat3> Fr_;       ///< adaptivity: each point's deformation since the nodes were last re-generated
   std::vector<double> spacing_;  ///< m, seeded point spacing per body (cell_size / particles_per_cell)
   bool fbar_on_ = false;  ///< otm.anti_locking: fbar
+  bool symmetric_bound_ = false;  ///< otm.step_bound: symmetric
   otm::NodalFBar fbar_;
   std::int64_t next_id_ = 0;     ///< id of the next point made by a split
   std::vector<char> interpolated_;  ///< last re-generation: node velocity interpolated (1) or projected (0)

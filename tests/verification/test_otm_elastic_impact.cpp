@@ -9,6 +9,11 @@
 //    inertia and the stopped node layer keep some energy in vibration: 1D theory is an upper bound);
 //  - the contact lasts 2L/c_0 within 10 % (first to last step with a wall force).
 //  - the two wall forms give rebound speeds within 2 % of each other ("nearly equal", seed ch. 4).
+//  - with otm.step_bound: symmetric at CFL 1 (the step at the bound itself: a bound that
+//    overestimated the stable step would let the central difference grow without limit, which
+//    the energy residual shows at O(1) within a few hundred steps) the same holds, in no more steps
+//    than the Gershgorin bound at CFL 1 takes (the bar's edge nodes carry less mass than the
+//    inner ones: the symmetric scaling bounds their rows lower).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -29,10 +34,11 @@ struct Impact {
   double residual = 0.0;   ///< (total - total0) / KE0
   double rebound = 0.0;    ///< mean axial velocity at the end / kV
   double contact = 0.0;    ///< s, time the wall pushed
+  long steps = 0;
 };
 
-Impact run(const std::string& wall) {
-  const std::string yaml = otm_steel_bar::on_wall(wall, "3.0e-5");
+Impact run(const std::string& wall, const std::string& cfl = "0.9", const std::string& otm_extra = "") {
+  const std::string yaml = otm_steel_bar::on_wall(wall, "3.0e-5", cfl, otm_extra);
   const Scenario sc = parse_deck(yaml, "otm_elastic_impact.yaml");
   OtmSolver s(sc, make_materials(sc));
   const EnergyTotals e0 = s.energies();
@@ -47,6 +53,7 @@ Impact run(const std::string& wall) {
     }
   }
   out.contact = last - first;
+  out.steps = s.steps();
   const EnergyTotals e = s.energies();
   out.residual = (e.total() - e0.total()) / e0.kinetic;
   out.rebound = e.momentum[1] / e.mass / kV;
@@ -66,6 +73,18 @@ TEST(OtmElasticImpact, EnergyClosesAndTheBarRebounds) {
   std::printf("constraint: residual %.4f rebound %.4f contact %.3g s; penalty: residual %.4f rebound %.4f contact "
               "%.3g s; 2L/c0 = %.3g s\n",
               a.residual, a.rebound, a.contact, b.residual, b.rebound, b.contact, t_contact);
+}
+
+TEST(OtmElasticImpact, TheSymmetricStepBoundIsStableAtItsLimit) {
+  const double c0 = std::sqrt(kE / kRho), t_contact = 2.0 * kL / c0;
+  const Impact s = run("constraint", "1.0", ", step_bound: symmetric"), g = run("constraint", "1.0");
+  EXPECT_LT(std::abs(s.residual), 0.01);
+  EXPECT_GT(s.rebound, 0.85);
+  EXPECT_LE(s.rebound, 1.0);
+  EXPECT_NEAR(s.contact, t_contact, 0.1 * t_contact);
+  EXPECT_LE(s.steps, g.steps);
+  std::printf("symmetric bound at CFL 1: residual %.4f rebound %.4f, %ld steps; Gershgorin at CFL 1: %ld steps\n",
+              s.residual, s.rebound, s.steps, g.steps);
 }
 
 }  // namespace
