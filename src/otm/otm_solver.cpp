@@ -893,9 +893,21 @@ void OtmSolver::symmetric_node_bounds(double c) {
   const Index n = points_.size(), nn = nodes_.size();
   const auto* mass = points_.real(kMass);
   const auto* x = points_.view(kPosition);
+  // A failed point of a material whose failed points carry no stress (erosion zero_stress) has no
+  // stiffness, so its terms could all go; its hoop term N_a / r_p does, since an eroded point that
+  // drifts onto the axis (r_p -> 0) would otherwise set the step alone (the rod through a plate at
+  // 0.125 mm: r_p = h/480, the step 1/43 of the first; docs/validation.md).
+  std::vector<char> hoop(static_cast<size_t>(n), axisym_ ? 1 : 0);
+  if (axisym_ && points_.has(kFailed)) {
+    const auto* failed = points_.real(kFailed);
+    const auto* mat = points_.ints(kMaterialIndex);
+    for (Index p = 0; p < n; ++p)
+      if (failed[p] > 0.0 && pts_.materials()[static_cast<size_t>(mat[p])]->failed_points_are_stress_free())
+        hoop[p] = 0;
+  }
   auto g = [&](Index p, Index kk) {
     double v = norm(sup_.dN[kk]);
-    if (axisym_) v += sup_.N[kk] / x[p][0];
+    if (hoop[p]) v += sup_.N[kk] / x[p][0];
     return v;
   };
   omega2_.assign(static_cast<size_t>(nn), 0.0);
