@@ -1164,8 +1164,12 @@ EnergyTotals OtmSolver::energies() const {
 }
 
 StepLimiter OtmSolver::step_limiter() const {
+  // A point whose signal speed is not finite (J beyond its equation of state's limit) collapses
+  // every node's bound at once: it is the one to name.
+  const StepLimiter fastest = pts_.step_limiter();
+  if (!std::isfinite(fastest.wave_speed + fastest.speed)) return fastest;
   const Index nn = static_cast<Index>(omega2_.size());
-  if (nn == 0 || nn != nodes_.size()) return pts_.step_limiter();  // no bound computed for these nodes
+  if (nn == 0 || nn != nodes_.size()) return fastest;  // no bound computed for these nodes
   Index top = 0;
   for (Index a = 1; a < nn; ++a)
     if (omega2_[a] > omega2_[top]) top = a;
