@@ -61,6 +61,14 @@ void gather_points(const Communicator& comm, std::vector<Vec3>& x, std::vector<s
   for (std::size_t i = 0; i < x.size(); ++i) x[i] = Vec3{{flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]}};
 }
 
+/// g_a,p of the stable step's bound (stable_dt): |grad N_a(x_p)|, plus the hoop strain's N_a / r_p
+/// where `hoop`.
+double coupling(const otm::Supports& sup, Index k, const Vec3& xp, bool hoop) {
+  double v = norm(sup.dN[k]);
+  if (hoop) v += sup.N[k] / xp[0];
+  return v;
+}
+
 }  // namespace
 
 OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials, Communicator comm)
@@ -905,11 +913,7 @@ void OtmSolver::symmetric_node_bounds(double c) {
       if (failed[p] > 0.0 && pts_.materials()[static_cast<size_t>(mat[p])]->failed_points_are_stress_free())
         hoop[p] = 0;
   }
-  auto g = [&](Index p, Index kk) {
-    double v = norm(sup_.dN[kk]);
-    if (hoop[p]) v += sup_.N[kk] / x[p][0];
-    return v;
-  };
+  auto g = [&](Index p, Index kk) { return coupling(sup_, kk, x[p], hoop[p] != 0); };
   omega2_.assign(static_cast<size_t>(nn), 0.0);
   std::vector<double> m(static_cast<size_t>(nn), 0.0);
   for_each_heavy(0, nn, [&](Index a) {
@@ -1175,11 +1179,7 @@ StepLimiter OtmSolver::step_limiter() const {
     if (omega2_[a] > omega2_[top]) top = a;
   const auto* mass = points_.real(kMass);
   const auto* x = points_.view(kPosition);
-  auto g = [&](Index p, Index k) {
-    double v = norm(sup_.dN[k]);
-    if (axisym_) v += sup_.N[k] / x[p][0];
-    return v;
-  };
+  auto g = [&](Index p, Index k) { return coupling(sup_, k, x[p], axisym_); };
   double best = -1.0;
   Index which = -1;
   for (Index i = inf_.start[top]; i < inf_.start[top + 1]; ++i) {
