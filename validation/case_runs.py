@@ -1,7 +1,8 @@
 """What the thesis-scale study scripts share: run a deck into a folder once (a folder that already
-holds a summary.json is a finished run and is not run again; a run that stops with an error is
-reported and the study goes on), read its summary, and the command line every such script takes
-(--ballista, --out, --table-only)."""
+holds a summary.json is a finished run and is not run again, unless it was interrupted: then it
+continues from its last checkpoint; a run that stops with an error is reported and the study goes
+on), read its summary, and the command line every such script takes (--ballista, --out,
+--table-only)."""
 import argparse
 import json
 import os
@@ -11,10 +12,17 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def run_once(ballista, deck, folder, sets):
-    """`ballista run DECK -o FOLDER` with the --set arguments `sets`, unless FOLDER is finished."""
-    if os.path.exists(os.path.join(folder, "summary.json")):
+    """`ballista run DECK -o FOLDER` with the --set arguments `sets`, unless FOLDER is finished; an
+    interrupted run (SIGTERM, a batch system's notice) continues from its last checkpoint, with the
+    deck it was started with and the thread count of `sets`."""
+    s = summary(folder)
+    if s is not None and s.get("status") != "interrupted":
         return
-    cmd = [ballista, "run", deck, "-o", folder, "-q", "--no-plots"] + list(sets)
+    if s is None:
+        cmd = [ballista, "run", deck, "-o", folder, "-q", "--no-plots"] + list(sets)
+    else:
+        threads = [a for i, a in enumerate(sets) if a == "--threads" or (i > 0 and sets[i - 1] == "--threads")]
+        cmd = [ballista, "run", "--restart", folder, "-q", "--no-plots"] + threads
     print(" ".join(cmd), flush=True)
     if subprocess.run(cmd).returncode != 0:
         print(f"the run in {folder} stopped with an error (its summary.json says why)", flush=True)
