@@ -195,18 +195,7 @@ void OtmSolver::project_node_velocities(Index p0, Index p1, Index a0) {
       m[a] += sup_.N[k] * mass[p];
       mom[a] += (sup_.N[k] * mass[p]) * v[p];
     }
-  if (comm_.distributed()) {  // this rank's points' share: the ranks' shares added
-    std::vector<double> packed(static_cast<size_t>(4 * count));
-    for (Index a = 0; a < count; ++a) packed[static_cast<size_t>(4 * a)] = m[a];
-    for (Index a = 0; a < count; ++a)
-      for (int c = 0; c < 3; ++c) packed[static_cast<size_t>(4 * a + 1 + c)] = mom[a][c];
-    sum_over_ranks(packed);
-    for (Index a = 0; a < count; ++a) {
-      m[a] = packed[static_cast<size_t>(4 * a)];
-      mom[a] = Vec3{{packed[static_cast<size_t>(4 * a + 1)], packed[static_cast<size_t>(4 * a + 2)],
-                     packed[static_cast<size_t>(4 * a + 3)]}};
-    }
-  }
+  sum_over_ranks(m, mom);
   for (Index a = 0; a < count; ++a) {
     nodes_.mass[a0 + a] = m[a];
     nodes_.v[a0 + a] = m[a] > kTinyMass ? (1.0 / m[a]) * mom[a] : Vec3{};
@@ -512,14 +501,7 @@ void OtmSolver::regenerate_nodes() {
       nodes_.mass[a] += sup_.N[k] * mass[p];
     }
   }
-  if (comm_.distributed()) {  // this rank's points' share of both
-    std::vector<double> packed(nodes_.mass);
-    for (const Vec3& q : p_points) packed.insert(packed.end(), {q[0], q[1], q[2]});
-    sum_over_ranks(packed);
-    std::copy(packed.begin(), packed.begin() + nn, nodes_.mass.begin());
-    for (size_t b = 0; b < nb; ++b)
-      p_points[b] = Vec3{{packed[nn + 3 * b], packed[nn + 3 * b + 1], packed[nn + 3 * b + 2]}};
-  }
+  sum_over_ranks(nodes_.mass, p_points);
   // A node outside the old nodes' hull (a lattice vertex beyond the old edge of the material)
   // takes the velocity of its nearest point, v_p = sum N_b v_b: an extrapolation, not an average.
   {
@@ -697,20 +679,7 @@ void OtmSolver::assemble() {
     nodes_.mass[a] = m;
     nodes_.f[a] = f;
   });
-  if (!comm_.distributed()) return;
-  // Several ranks: the sums above are this rank's points' share.
-  std::vector<double> packed(static_cast<size_t>(4 * nn));
-  for_each(0, nn, [&](Index a) {
-    double* o = &packed[static_cast<size_t>(4 * a)];
-    o[0] = nodes_.mass[a];
-    for (int c = 0; c < 3; ++c) o[1 + c] = nodes_.f[a][c];
-  });
-  sum_over_ranks(packed);
-  for_each(0, nn, [&](Index a) {
-    const double* o = &packed[static_cast<size_t>(4 * a)];
-    nodes_.mass[a] = o[0];
-    nodes_.f[a] = Vec3{{o[1], o[2], o[3]}};
-  });
+  sum_over_ranks(nodes_.mass, nodes_.f);  // several ranks: the sums above are this rank's share
 }
 
 std::vector<Vec3> OtmSolver::contact_node_forces() {
@@ -762,15 +731,8 @@ std::vector<Vec3> OtmSolver::contact_node_forces() {
     for (Index i = inf_.start[a]; i < inf_.start[a + 1]; ++i) s += sup_.N[inf_.entry[i]] * fp[inf_.owner[i]];
     f[a] = s;
   });
-  if (comm_.distributed()) {  // this rank's points' share
-    std::vector<double> packed(static_cast<size_t>(3 * nn));
-    for (Index a = 0; a < nn; ++a)
-      for (int c = 0; c < 3; ++c) packed[static_cast<size_t>(3 * a + c)] = f[a][c];
-    sum_over_ranks(packed);
-    for (Index a = 0; a < nn; ++a)
-      f[a] = Vec3{{packed[static_cast<size_t>(3 * a)], packed[static_cast<size_t>(3 * a + 1)],
-                   packed[static_cast<size_t>(3 * a + 2)]}};
-  }
+  std::vector<double> no_scalars;
+  sum_over_ranks(no_scalars, f);  // several ranks: this rank's points' share
   return f;
 }
 
@@ -833,6 +795,21 @@ double OtmSolver::stable_dt() {
   const double max_dt = scenario_.simulation.max_dt > 0.0 ? scenario_.simulation.max_dt : kInf;
   const bool none = comm_.distributed() ? comm_.sum(static_cast<std::int64_t>(n)) == 0 : n == 0;
   if (!(c > 0.0) || none) return std::min(max_dt, scenario_.simulation.end_time);
+  if (symmetric_bound_) symmetric_node_bounds(c);
+  else row_sum_node_bounds(c);
+  double w2 = 0.0;
+  for (Index a = 0; a < nn; ++a) w2 = std::max(w2, omega2_[a]);
+  w2 = comm_.max(w2);
+  // A penalty wall's spring k_a = penalty m_a omega_a^2 raises a wall node's omega^2 by the
+  // factor 1 + penalty.
+  // Pinball contact's springs (otm_contact.hpp) raise it by about 1 + contact_penalty.
+  const double bound = 2.0 / std::sqrt(1.0 + (penalty_ ? penalty_factor_ : 0.0) + (contact_ ? contact_penalty_ : 0.0));
+  const double dt = w2 > 0.0 ? scenario_.simulation.cfl * bound / std::sqrt(w2) : scenario_.simulation.end_time;
+  return std::min(dt, max_dt);
+}
+
+void OtmSolver::row_sum_node_bounds(double c) {
+  const Index n = points_.size(), nn = nodes_.size();
   const auto* mass = points_.real(kMass);
   const auto* x = points_.view(kPosition);
   auto g = [&](Index p, Index kk) {
@@ -840,9 +817,6 @@ double OtmSolver::stable_dt() {
     if (axisym_) v += sup_.N[kk] / x[p][0];
     return v;
   };
-  if (symmetric_bound_) {
-    symmetric_node_bounds(c);
-  } else {
   // G_p = sum_b g_b,p per point, then omega_a^2 node by node over the influence domains (a
   // gather: parallel and deterministic).
   std::vector<double> G(static_cast<size_t>(n), 0.0);
@@ -866,26 +840,16 @@ double OtmSolver::stable_dt() {
       node_sums(a, k, m);
       if (m > kTinyMass) omega2_[a] = k / m * c * c;
     });
-  } else {
-    // Several ranks: this rank's points' share of the sums, added over the ranks.
-    std::vector<double> km(static_cast<size_t>(2 * nn));
-    for_each_heavy(0, nn, [&](Index a) { node_sums(a, km[static_cast<size_t>(2 * a)], km[static_cast<size_t>(2 * a + 1)]); });
-    sum_over_ranks(km);
-    for_each(0, nn, [&](Index a) {
-      const double k = km[static_cast<size_t>(2 * a)], m = km[static_cast<size_t>(2 * a + 1)];
-      if (m > kTinyMass) omega2_[a] = k / m * c * c;
-    });
+    return;
   }
-  }
-  double w2 = 0.0;
-  for (Index a = 0; a < nn; ++a) w2 = std::max(w2, omega2_[a]);
-  w2 = comm_.max(w2);
-  // A penalty wall's spring k_a = penalty m_a omega_a^2 raises a wall node's omega^2 by the
-  // factor 1 + penalty.
-  // Pinball contact's springs (otm_contact.hpp) raise it by about 1 + contact_penalty.
-  const double bound = 2.0 / std::sqrt(1.0 + (penalty_ ? penalty_factor_ : 0.0) + (contact_ ? contact_penalty_ : 0.0));
-  const double dt = w2 > 0.0 ? scenario_.simulation.cfl * bound / std::sqrt(w2) : scenario_.simulation.end_time;
-  return std::min(dt, max_dt);
+  // Several ranks: this rank's points' share of the sums, added over the ranks.
+  std::vector<double> km(static_cast<size_t>(2 * nn));
+  for_each_heavy(0, nn, [&](Index a) { node_sums(a, km[static_cast<size_t>(2 * a)], km[static_cast<size_t>(2 * a + 1)]); });
+  sum_over_ranks(km);
+  for_each(0, nn, [&](Index a) {
+    const double k = km[static_cast<size_t>(2 * a)], m = km[static_cast<size_t>(2 * a + 1)];
+    if (m > kTinyMass) omega2_[a] = k / m * c * c;
+  });
 }
 
 void OtmSolver::symmetric_node_bounds(double c) {
@@ -942,6 +906,17 @@ void OtmSolver::symmetric_node_bounds(double c) {
   for_each(0, nn, [&](Index a) {
     if (m[a] > kTinyMass) omega2_[a] = k[a] / std::sqrt(m[a]) * c * c;
   });
+}
+
+void OtmSolver::sum_over_ranks(std::vector<double>& scalars, std::vector<Vec3>& vectors) const {
+  if (!comm_.distributed()) return;
+  std::vector<double> packed(scalars);
+  packed.reserve(scalars.size() + 3 * vectors.size());
+  for (const Vec3& v : vectors) packed.insert(packed.end(), {v[0], v[1], v[2]});
+  sum_over_ranks(packed);
+  std::copy(packed.begin(), packed.begin() + static_cast<std::ptrdiff_t>(scalars.size()), scalars.begin());
+  const double* q = packed.data() + scalars.size();
+  for (std::size_t i = 0; i < vectors.size(); ++i) vectors[i] = Vec3{{q[3 * i], q[3 * i + 1], q[3 * i + 2]}};
 }
 
 void OtmSolver::step(double dt) {

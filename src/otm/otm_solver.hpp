@@ -126,6 +126,8 @@ class OtmSolver final : public Solver {
   void step_local(double dt);
   /// Several ranks: this rank's nodal partial sums (packed, every node) become the totals.
   void sum_over_ranks(std::vector<double>& packed) const { comm_.sum_in_rank_order(packed.data(), packed.size()); }
+  /// The same for per-node scalars and vectors together (one message).
+  void sum_over_ranks(std::vector<double>& scalars, std::vector<Vec3>& vectors) const;
   /// True if a body still waits for its activation on any rank.
   bool pending_anywhere() const;
   /// Several ranks: the support statistics of every rank's points (summary), after a step.
@@ -138,8 +140,9 @@ class OtmSolver final : public Solver {
   Index number_children(const std::vector<Index>& parents, Index first_child);
   /// Several ranks: every rank's points' positions, velocities and node sets, in id order.
   void points_in_id_order(std::vector<Vec3>& x, std::vector<Vec3>& v, std::vector<std::int64_t>& group) const;
-  /// otm.step_bound: symmetric: omega2_ from the rows of M^-1/2 K M^-1/2 (stable_dt), c the
-  /// largest signal speed; G_p the sum of the point's g_b,p is not needed.
+  /// omega2_ per node (stable_dt; c the largest signal speed): from the rows of M^-1 K
+  /// (otm.step_bound: gershgorin) or of M^-1/2 K M^-1/2 (symmetric).
+  void row_sum_node_bounds(double c);
   void symmetric_node_bounds(double c);
   /// Lumped masses and residual forces from the current supports.
   void assemble();
