@@ -98,6 +98,7 @@ void OtmSolver::save_state(StateArchive& a) const {
                                                   static_cast<std::int64_t>(regenerations_), t.max_size,
                                                   t.max_iterations, static_cast<std::int64_t>(t.fallbacks),
                                                   static_cast<std::int64_t>(t.retries)});
+  a.put_int("otm.light_node_steps", carried_node_steps_);
   if (contact_) a.put_real("otm.contact_work", contact_work_);
   a.put_records("otm.nodes.x", nodes_.x);
   a.put_records("otm.nodes.v", nodes_.v);
@@ -129,6 +130,8 @@ void OtmSolver::load_state(const StateArchive& a) {
                              &max_condition_});
   a.get_integers_into("otm.counters", next_id_, splits_, regenerations_, max_support_, max_iterations_, fallbacks_,
                       retries_);
+  // Checkpoints written before light nodes were carried have none.
+  carried_node_steps_ = a.has("otm.light_node_steps") ? a.integer("otm.light_node_steps") : 0;
   if (comm_.rank() != 0) fallbacks_ = retries_ = 0;  // totals: counted once, on rank 0
   if (contact_) contact_work_ = a.real("otm.contact_work");
   a.get_records("otm.nodes.x", nodes_.x);

@@ -146,6 +146,10 @@ class OtmSolver final : public Solver {
   void symmetric_node_bounds(double c);
   /// Lumped masses and residual forces from the current supports.
   void assemble();
+  /// Nodes whose lumped mass is a negligible share of any point's (outside the body, reached only
+  /// by the tails of the shape functions), with the velocity the points give them: the
+  /// mass-weighted projection of Li, Habbal & Ortiz (2010). Empty if there are none.
+  std::vector<std::pair<Index, Vec3>> light_nodes() const;
   /// Velocity constraints of the box faces on the nodes after the update (fixed, symmetry, and
   /// constraint walls, whose normal reaction goes to wall_force_ for the history).
   void apply_face_conditions(double dt);
@@ -176,7 +180,9 @@ class OtmSolver final : public Solver {
   std::int64_t next_id_ = 0;     ///< id of the next point made by a split
   std::vector<char> interpolated_;  ///< last re-generation: node velocity interpolated (1) or projected (0)
   Index splits_ = 0, regenerations_ = 0;
+  std::int64_t carried_node_steps_ = 0;  ///< light nodes carried by the points, summed over the steps
   double remap_work_ = 0.0;      ///< J per radian/metre: kinetic-energy change of the node re-generations
+                                 ///< and of the light nodes carried by the points (light_nodes)
   int dim_ = 3;                ///< axes of the motion: 3, or 2 (plane strain, axisymmetric)
   bool axisym_ = false;
   bool penalty_ = false;       ///< rigid walls by penalty instead of the constraint
