@@ -30,9 +30,9 @@ constexpr double kTinyMass = 1e-300;
 /// A node lighter than this share of the lightest point's mass is carried by the points
 /// (OtmSolver::light_nodes). Such a node is about two node spacings or more from every point (the
 /// LME weight's factor exp(-gamma d^2 / h^2) is 7e-4 at d = 2h for gamma = 1.8); no node of a
-/// freshly seeded body is that light. On the 3D lattice
-/// Taylor bar at 0.8 mm, a share of 1e-6 still left nodes between 1e-6 and 1e-3 at 1.4 times the
-/// impact speed; with 1e-3 none is faster than the material around it (docs/validation.md).
+/// freshly seeded body is that light. On the 3D lattice Taylor bar at 0.8 mm, a share of 1e-6 still
+/// left nodes between 1e-6 and 1e-3 at 1.4 times the impact speed; with 1e-3 none is faster than
+/// the material around it (docs/validation.md).
 constexpr double kLightNodeShare = 1e-3;
 /// Per point: the node set it belongs to (its body, or 0 for all with otm.nodes: shared) (1).
 constexpr FieldKey<std::int64_t> kNodeGroup{"node_group"};
@@ -710,19 +710,17 @@ std::vector<std::pair<Index, Vec3>> OtmSolver::light_nodes() const {
     if (nodes_.mass[a] > kTinyMass && nodes_.mass[a] < bar) light.emplace_back(a, Vec3{});
   if (light.empty()) return light;  // the same on every rank: the masses are the ranks' totals
   const auto* v = points_.view(kVelocity);
-  std::vector<double> momentum(3 * light.size(), 0.0);
+  std::vector<Vec3> momentum(light.size());
   for (size_t i = 0; i < light.size(); ++i) {
     const Index a = light[i].first;
     for (Index j = inf_.start[a]; j < inf_.start[a + 1]; ++j) {
       const Index k = inf_.entry[j], p = inf_.owner[j];
-      for (int c = 0; c < 3; ++c) momentum[3 * i + static_cast<size_t>(c)] += sup_.N[k] * mass[p] * v[p][c];
+      momentum[i] += (sup_.N[k] * mass[p]) * v[p];
     }
   }
-  sum_over_ranks(momentum);
-  for (size_t i = 0; i < light.size(); ++i) {
-    const double inv = 1.0 / nodes_.mass[light[i].first];
-    light[i].second = Vec3{{inv * momentum[3 * i], inv * momentum[3 * i + 1], inv * momentum[3 * i + 2]}};
-  }
+  std::vector<double> none;
+  sum_over_ranks(none, momentum);
+  for (size_t i = 0; i < light.size(); ++i) light[i].second = (1.0 / nodes_.mass[light[i].first]) * momentum[i];
   return light;
 }
 
