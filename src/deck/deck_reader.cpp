@@ -373,7 +373,11 @@ class Reader {
       body.material = b.string("material");
       if (std::find(materials.begin(), materials.end(), body.material) == materials.end())
         b.fail("material", "unknown material '" + body.material + "'" + suggest(body.material, materials));
-      body.seeding = b.choice("seeding", "lattice", {"lattice", "elements"});
+      body.seeding = b.choice("seeding", "lattice", {"lattice", "cut_lattice", "elements"});
+      if (body.seeding == "cut_lattice" && !solver_can(&SolverFactory::cut_lattice))
+        b.fail("seeding", "points cut to the surface have unequal volumes off the lattice's sites, for solvers "
+                          "that take them (" + solvers_that(&SolverFactory::cut_lattice) + "); solver '" +
+                              sc_.simulation.solver + "' builds on the regular lattice (seeding: lattice)");
       if (body.seeding == "elements") {
         if (!solver_can(&SolverFactory::element_seeding))
           b.fail("seeding", "points at a mesh's elements are for solvers whose nodes are the mesh's vertices (" +
@@ -384,7 +388,7 @@ class Reader {
                                        "particles_per_cell applies to seeding: lattice");
       }
       // Not read for element seeding, so that resolved.yaml (which a restart reads) does not list it.
-      if (body.seeding == "lattice") body.particles_per_cell = static_cast<int>(b.integer("particles_per_cell", 2, 1, 8));
+      if (body.seeding != "elements") body.particles_per_cell = static_cast<int>(b.integer("particles_per_cell", 2, 1, 8));
       body.point_spacing = b.optional_number("point_spacing", NumberRange::positive("m")).value_or(0.0);
       if (body.point_spacing > 0.0 && !solver_can(&SolverFactory::point_spacing))
         b.fail("point_spacing", "a body's own lattice spacing is a peridynamics key (solver '" + sc_.simulation.solver +

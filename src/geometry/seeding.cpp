@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/point_fields.hpp"
+#include "geometry/cut_lattice.hpp"
 #include "geometry/element_seeding.hpp"
 #include "geometry/grid_axes.hpp"
 #include "geometry/mesh_solid.hpp"
@@ -166,7 +167,31 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
   }
   std::vector<Vec3> pos;
   std::vector<Vec3> spacing;  // graded grids: each point's lattice spacing per axis
-  if (!grid.graded()) {
+  std::vector<CutLatticePoint> cut;  // seeding: cut_lattice: each point's measure and half size
+  if (body.seeding == "cut_lattice") {
+    LatticeSites sites;
+    if (grid.graded()) {
+      GraduatedSites g = graded_sites(grid, nd, body.particles_per_cell, lo, hi);
+      sites.at = std::move(g.at);
+      sites.spacing = std::move(g.spacing);
+    } else {
+      for (int a = 0; a < 3; ++a) {
+        if (a >= nd) {
+          sites.at[a] = {0.0};
+          sites.spacing[a] = {0.0};
+          continue;
+        }
+        for (int i = from[a]; i <= to[a]; ++i) {
+          sites.at[a].push_back(grid.lower[a] + (i + 0.5) * dx);
+          sites.spacing[a].push_back(dx);
+        }
+      }
+    }
+    cut = cut_lattice_points(sites, nd, dim == Dimension::Axisymmetric, [&](const Vec3& x) {
+      return in_box(x) && shape_contains(body.shape, x, nd) && !in_cutout(x);
+    });
+    for (const CutLatticePoint& c : cut) pos.push_back(c.at);
+  } else if (!grid.graded()) {
     for (int k = from[2]; k <= to[2]; ++k)
       for (int j = from[1]; j <= to[1]; ++j)
         for (int i = from[0]; i <= to[0]; ++i) {
@@ -239,6 +264,10 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
       if (len > 0.0) v += (body.radial_speed / len) * r;
     }
     if (nd == 2) v[2] = 0.0;
+    if (!cut.empty()) {
+      seeded.set(q, next_id, body_index, material_index, material.density(), pos[q], v, cut[q].measure, cut[q].half);
+      continue;
+    }
     // Axisymmetric: volume per radian = r * area (thesis seed 000 ch. 5 uses Uintah's convention).
     const double volume = dim == Dimension::Axisymmetric ? pos[q][0] * cell_volume : cell_volume;
     seeded.set(q, next_id, body_index, material_index, material.density(), pos[q], v, volume,

@@ -811,5 +811,6 @@ BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
     .create = &ballista::make_mpm,
     .distributed = true,
     .graded_grid = true,
+    .cut_lattice = true,
     .velocity_fields = true,
     .courant_step = true})

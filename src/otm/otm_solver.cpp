@@ -1305,4 +1305,5 @@ BALLISTA_REGISTER_SOLVER(ballista::SolverFactory{
     .create = &ballista::make_otm,
     .distributed = true,
     .element_seeding = true,
+    .cut_lattice = true,
     .courant_step = true})

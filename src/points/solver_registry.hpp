@@ -40,6 +40,9 @@ struct SolverFactory {
   /// Seeds a mesh body at its elements (bodies[].seeding: elements) and builds its discretisation
   /// on the mesh's vertices; otherwise that seeding is a deck error.
   bool element_seeding = false;
+  /// Takes points of unequal volumes off the lattice's sites (bodies[].seeding: cut_lattice);
+  /// otherwise that seeding is a deck error.
+  bool cut_lattice = false;
   /// Cuts pre-cracks into its bonds (`cracks`); otherwise they are a deck error.
   bool pre_cracks = false;
   /// Has separate grid velocity fields with contact between them (contact.model with several

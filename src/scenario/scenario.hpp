@@ -149,9 +149,10 @@ struct BodySpec {
   std::string material;
   ShapeSpec shape;               ///< plain bodies; for rods and jets the first segment's shape
   int particles_per_cell = 2;    ///< per direction
-  /// How the points are placed: `lattice` (particles_per_cell per grid cell inside the shape) or
-  /// `elements` (a mesh shape's elements: one point per tetrahedron at its centroid, with its volume;
-  /// geometry/seeding.hpp seed_elements).
+  /// How the points are placed: `lattice` (particles_per_cell per grid cell inside the shape),
+  /// `cut_lattice` (the same, the sub-cells the surface cuts keeping the part inside:
+  /// geometry/cut_lattice.hpp) or `elements` (a mesh shape's elements: one point per tetrahedron at
+  /// its centroid, with its volume; geometry/seeding.hpp seed_elements).
   std::string seeding = "lattice";
   /// Peridynamics: this body's lattice spacing, m (0: grid.cell_size). Only explosive bodies (the
   /// products, a peridynamic gas) may be coarser than the case they drive (docs/deck.md).
