@@ -93,65 +93,60 @@ std::vector<CutLatticePoint> cut_lattice_points(const LatticeSites& sites, int d
   auto centre = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
     return Vec3{{sites.at[0][i], sites.at[1][j], sites.at[2][k]}};
   };
-  auto whole_measure = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+  // A whole sub-cell's volume (3D) or area (2D); its measure is r times that when axisymmetric.
+  auto whole_size = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
     const double area = sites.spacing[0][i] * sites.spacing[1][j];
-    if (dim == 3) return area * sites.spacing[2][k];
-    return axisymmetric ? sites.at[0][i] * area : area;
+    return dim == 3 ? area * sites.spacing[2][k] : area;
   };
   auto region = [&](const Vec3& x) { return (!axisymmetric || x[0] > 0.0) && inside(x); };
+  // The sub-cells of the 3^dim block around (i, j, k) that lie on the lattice, the cell itself too.
+  const std::int64_t reach_z = dim == 3 ? 1 : 0;
+  auto for_each_neighbour = [&](std::int64_t i, std::int64_t j, std::int64_t k, auto&& visit) {
+    for (std::int64_t c = -reach_z; c <= reach_z; ++c)
+      for (std::int64_t b = -1; b <= 1; ++b)
+        for (std::int64_t a = -1; a <= 1; ++a) {
+          const std::int64_t ii = i + a, jj = j + b, kk = k + c;
+          visit(ii, jj, kk, ii >= 0 && jj >= 0 && kk >= 0 && ii < n[0] && jj < n[1] && kk < n[2]);
+        }
+  };
 
   // Centres inside or out.
   std::vector<std::uint8_t> in(static_cast<std::size_t>(n[0] * n[1] * n[2]), 0);
   for (std::int64_t k = 0; k < n[2]; ++k)
     for (std::int64_t j = 0; j < n[1]; ++j)
       for (std::int64_t i = 0; i < n[0]; ++i) in[flat(i, j, k)] = region(centre(i, j, k)) ? 1 : 0;
-  const std::int64_t reach_z = dim == 3 ? 1 : 0;
-  auto differs_from_a_neighbour = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
-    const std::uint8_t own = in[flat(i, j, k)];
-    for (std::int64_t c = -reach_z; c <= reach_z; ++c)
-      for (std::int64_t b = -1; b <= 1; ++b)
-        for (std::int64_t a = -1; a <= 1; ++a) {
-          const std::int64_t ii = i + a, jj = j + b, kk = k + c;
-          const bool out_of_range = ii < 0 || jj < 0 || kk < 0 || ii >= n[0] || jj >= n[1] || kk >= n[2];
-          const std::uint8_t other = out_of_range ? 0 : in[flat(ii, jj, kk)];
-          if (other != own) return true;
-        }
-    return false;
-  };
 
-  // The part of each sub-cell inside: whole, empty, or sampled when the surface may cross it.
+  // The part of each sub-cell inside: whole or empty when its centre and its neighbours' agree,
+  // else sampled (the surface may cross it). Off the lattice counts as outside.
   std::vector<CellPart> part(in.size());
   for (std::int64_t k = 0; k < n[2]; ++k)
     for (std::int64_t j = 0; j < n[1]; ++j)
       for (std::int64_t i = 0; i < n[0]; ++i) {
+        const std::uint8_t own = in[flat(i, j, k)];
+        bool differs = false;
+        for_each_neighbour(i, j, k, [&](std::int64_t ii, std::int64_t jj, std::int64_t kk, bool on) {
+          differs = differs || (on ? in[flat(ii, jj, kk)] : 0) != own;
+        });
         CellPart& c = part[flat(i, j, k)];
-        if (!differs_from_a_neighbour(i, j, k)) {
-          if (in[flat(i, j, k)]) c.whole = true;
+        if (!differs) {
+          c.whole = own != 0;
           continue;
         }
-        const CellPart sampled = sample_part(centre(i, j, k), sites.spacing[0][i], sites.spacing[1][j],
-                                             sites.spacing[2][k], dim, axisymmetric, region);
-        c = sampled;
+        c = sample_part(centre(i, j, k), sites.spacing[0][i], sites.spacing[1][j], sites.spacing[2][k], dim,
+                        axisymmetric, region);
       }
 
-  // Points: whole sub-cells and parts of at least kSliverShare; each sliver goes to the kept
-  // neighbour whose centre is nearest its centroid.
-  auto whole_size = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
-    const double area = sites.spacing[0][i] * sites.spacing[1][j];
-    return dim == 3 ? area * sites.spacing[2][k] : area;
+  // Points: whole sub-cells and parts of at least kSliverShare of theirs; each sliver goes to the
+  // kept neighbour whose centre is nearest its centroid. `held` is what each point holds.
+  struct Held {
+    std::int64_t i, j, k;
+    CellPart part;
   };
+  std::vector<Held> held;
   std::vector<std::int64_t> point_of(in.size(), -1);
-  std::vector<CutLatticePoint> points;
-  std::vector<CellPart> held;  // what each point holds (its own part and the slivers it took)
-  std::vector<double> whole_of;  // its own sub-cell's whole size
   auto keep = [&](std::int64_t i, std::int64_t j, std::int64_t k, const CellPart& c) {
-    const Vec3 half{{0.5 * sites.spacing[0][i], 0.5 * sites.spacing[1][j], 0.5 * sites.spacing[2][k]}};
-    point_of[flat(i, j, k)] = static_cast<std::int64_t>(points.size());
-    CellPart h = c;
-    if (c.whole) h = CellPart{whole_measure(i, j, k), whole_size(i, j, k), whole_size(i, j, k) * centre(i, j, k), true};
-    points.push_back({c.whole ? centre(i, j, k) : (1.0 / c.size) * c.moment, h.measure, half});
-    held.push_back(h);
-    whole_of.push_back(whole_size(i, j, k));
+    point_of[flat(i, j, k)] = static_cast<std::int64_t>(held.size());
+    held.push_back({i, j, k, c});
   };
   auto kept = [&](const CellPart& c, std::int64_t i, std::int64_t j, std::int64_t k) {
     return c.whole || (c.measure > 0.0 && c.size >= kSliverShare * whole_size(i, j, k));
@@ -160,7 +155,7 @@ std::vector<CutLatticePoint> cut_lattice_points(const LatticeSites& sites, int d
     for (std::int64_t j = 0; j < n[1]; ++j)
       for (std::int64_t i = 0; i < n[0]; ++i)
         if (kept(part[flat(i, j, k)], i, j, k)) keep(i, j, k, part[flat(i, j, k)]);
-  const std::size_t first_pass = points.size();
+  const std::size_t first_pass = held.size();
   for (std::int64_t k = 0; k < n[2]; ++k)
     for (std::int64_t j = 0; j < n[1]; ++j)
       for (std::int64_t i = 0; i < n[0]; ++i) {
@@ -169,33 +164,39 @@ std::vector<CutLatticePoint> cut_lattice_points(const LatticeSites& sites, int d
         const Vec3 centroid = (1.0 / c.size) * c.moment;
         std::int64_t best = -1;
         double nearest = std::numeric_limits<double>::infinity();
-        for (std::int64_t cc = -reach_z; cc <= reach_z; ++cc)
-          for (std::int64_t b = -1; b <= 1; ++b)
-            for (std::int64_t a = -1; a <= 1; ++a) {
-              const std::int64_t ii = i + a, jj = j + b, kk = k + cc;
-              if (ii < 0 || jj < 0 || kk < 0 || ii >= n[0] || jj >= n[1] || kk >= n[2]) continue;
-              const std::int64_t q = point_of[flat(ii, jj, kk)];
-              if (q < 0 || static_cast<std::size_t>(q) >= first_pass) continue;  // slivers take none
-              const double dist = norm(centre(ii, jj, kk) - centroid);
-              if (dist < nearest) nearest = dist, best = q;
-            }
+        for_each_neighbour(i, j, k, [&](std::int64_t ii, std::int64_t jj, std::int64_t kk, bool on) {
+          if (!on) return;
+          const std::int64_t q = point_of[flat(ii, jj, kk)];
+          if (q < 0 || static_cast<std::size_t>(q) >= first_pass) return;  // slivers take none
+          const double dist = norm(centre(ii, jj, kk) - centroid);
+          if (dist < nearest) nearest = dist, best = q;
+        });
         if (best < 0) {  // no kept neighbour: a point of its own
           keep(i, j, k, c);
           continue;
         }
-        CellPart& h = held[static_cast<std::size_t>(best)];
+        CellPart& h = held[static_cast<std::size_t>(best)].part;
+        if (h.whole) {  // from now on a part: the whole sub-cell's own measure and moment
+          const Held& w = held[static_cast<std::size_t>(best)];
+          const double size = whole_size(w.i, w.j, w.k);
+          h = CellPart{(axisymmetric ? sites.at[0][w.i] : 1.0) * size, size, size * centre(w.i, w.j, w.k), false};
+        }
         h.measure += c.measure;
         h.size += c.size;
         h.moment += c.moment;
-        h.whole = false;
       }
-  for (std::size_t q = 0; q < points.size(); ++q) {
-    const CellPart& h = held[q];
-    if (h.whole) continue;  // exactly the plain lattice's point
-    CutLatticePoint& p = points[q];
-    p.at = (1.0 / h.size) * h.moment;
-    p.measure = h.measure;
-    p.half = std::pow(h.size / whole_of[q], 1.0 / dim) * p.half;
+
+  std::vector<CutLatticePoint> points;
+  points.reserve(held.size());
+  for (const Held& p : held) {
+    const double size = whole_size(p.i, p.j, p.k);
+    const Vec3 half{{0.5 * sites.spacing[0][p.i], 0.5 * sites.spacing[1][p.j], 0.5 * sites.spacing[2][p.k]}};
+    if (p.part.whole) {  // exactly the plain lattice's point
+      points.push_back({centre(p.i, p.j, p.k), (axisymmetric ? sites.at[0][p.i] : 1.0) * size, half});
+      continue;
+    }
+    points.push_back({(1.0 / p.part.size) * p.part.moment, p.part.measure,
+                      std::pow(p.part.size / size, 1.0 / dim) * half});
   }
   return points;
 }

@@ -31,7 +31,7 @@ namespace ballista {
 struct CutLatticePoint {
   Vec3 at;         ///< m: the sub-cell's centre when whole, else the centroid of its part inside
   double measure;  ///< the volume (3D), area (2D) or r-weighted area (axisymmetric: volume per radian)
-  Vec3 half;       ///< m: half the sub-cell's size, scaled by (measure / whole sub-cell's)^(1/dim)
+  Vec3 half;       ///< m: half the sub-cell's size, scaled by (its volume or area / the whole sub-cell's)^(1/dim)
 };
 
 /// The lattice's sites along each axis (sub-cell centres, increasing) and their spacings; axes
