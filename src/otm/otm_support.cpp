@@ -39,20 +39,31 @@ void build_supports(const Vec3* xp, const std::int64_t* pbody, Index np, const V
     for (Index p = 0; p < np; ++p) smax = std::max(smax, std::min(scale[p], kMaxScale));
   const CellBins bins(xn, nn, r0 * smax * (1.0 + 1e-9), opt.dim);
   auto radius = [&](Index p) { return scale ? r0 * std::clamp(scale[p], 1.0, kMaxScale) : r0; };
-  // Pass 1: how many nodes each point reaches.
+  // Pass 1: the nodes each point reaches, searched once: blocks of points fill their own lists
+  // in parallel, which are then laid out in point order (the same for any thread count).
+  constexpr Index kBlock = 64;
+  const Index blocks = (np + kBlock - 1) / kBlock;
+  std::vector<std::vector<std::int32_t>> found(static_cast<size_t>(blocks));
   out.offset.assign(static_cast<size_t>(np) + 1, 0);
-  for_each_heavy(0, np, [&](Index p) {
-    thread_local std::vector<std::int32_t> ids;
-    ids.clear();
-    nodes_within(bins, xp[p], pbody[p], xn, nbody, radius(p), opt.dim, ids);
-    out.offset[p + 1] = static_cast<Index>(ids.size());
-  });
+#pragma omp parallel for schedule(dynamic, 1) if (np > kHeavyParallelThreshold)
+  for (Index b = 0; b < blocks; ++b) {
+    std::vector<std::int32_t>& ids = found[static_cast<size_t>(b)];
+    for (Index p = b * kBlock; p < std::min(np, (b + 1) * kBlock); ++p) {
+      const size_t before = ids.size();
+      nodes_within(bins, xp[p], pbody[p], xn, nbody, radius(p), opt.dim, ids);
+      out.offset[p + 1] = static_cast<Index>(ids.size() - before);
+    }
+  }
   for (Index p = 0; p < np; ++p) out.offset[p + 1] += out.offset[p];
   const Index total = out.offset[np];
   out.node.resize(static_cast<size_t>(total));
   out.N.resize(static_cast<size_t>(total));
   out.dN.resize(static_cast<size_t>(total));
-  // Pass 2: the nodes (in increasing index: deterministic for any thread count) and the LME solve.
+  for_each(0, blocks, [&](Index b) {
+    const std::vector<std::int32_t>& ids = found[static_cast<size_t>(b)];
+    std::copy(ids.begin(), ids.end(), out.node.begin() + out.offset[b * kBlock]);
+  });
+  // Pass 2: the LME solve over each point's nodes (in increasing index).
   const double beta = opt.gamma / (opt.h * opt.h);
   std::vector<char> ok(static_cast<size_t>(np), 1);
   int max_size = 0, max_iter = 0;
@@ -63,11 +74,8 @@ void build_supports(const Vec3* xp, const std::int64_t* pbody, Index np, const V
   for (Index p = 0; p < np; ++p) {
     const Index k0 = out.offset[p];
     const int k = static_cast<int>(out.offset[p + 1] - k0);
-    thread_local std::vector<std::int32_t> ids;
+    const std::int32_t* ids = out.node.data() + k0;
     thread_local std::vector<Vec3> d;
-    ids.clear();
-    nodes_within(bins, xp[p], pbody[p], xn, nbody, radius(p), opt.dim, ids);
-    std::copy(ids.begin(), ids.end(), out.node.begin() + k0);
     d.resize(static_cast<size_t>(k));
     for (int j = 0; j < k; ++j) d[j] = xp[p] - xn[ids[j]];
     LmeResult res;
