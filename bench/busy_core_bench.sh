@@ -43,8 +43,8 @@ printf '%-6s %-8s %10s %12s  %s\n' "other" "threads" "wall [s]" "Mpsteps/s" "bal
 run_case() {  # $1 = alone|busy, $2 = threads
   local t0 t1 line rate
   t0=$(date +%s.%N)
-  line=$("$exe" run "$deck" -q --no-plots -o "$out/run" --threads "$2" \
-           --set simulation.end_time="$END_TIME" | grep -E '^(completed|FAILED)')
+  line=$("$exe" run "$deck" --no-plots -o "$out/run" --overwrite --threads "$2" \
+           --set simulation.end_time="$END_TIME" 2>/dev/null | grep -E '^(completed|FAILED)')
   t1=$(date +%s.%N)
   rate=$(echo "$line" | sed -E 's/.*\(([0-9.e+-]+) particle-steps\/s\).*/\1/')
   awk -v o="$1" -v t="$2" -v a="$t0" -v b="$t1" -v r="$rate" -v l="$line" \

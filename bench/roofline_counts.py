@@ -16,6 +16,13 @@ the VM's cache is 256 MiB). docs/performance.md ("Roofline") turns these and ben
 
   /usr/bin/python3 bench/roofline_counts.py --bench build/bench/mpm_block_impact_bench \\
       --filter 'BM_BlockImpact/linear/100000/1/' --out out/roofline_linear
+
+Other steps through `ballista run` of a deck (--target, --deck): `pd` (the peridynamic step),
+`mpm-deck` (MPM with another material, e.g. Johnson-Cook in Karamelo's Taylor bar) and `otm`. Their
+native rate is particles x S / (t(W + S) - t(W)) from two runs of W and W + S steps (--warm-steps,
+--native-steps), so the setup cancels. valgrind 3.19 does not decode AVX-512: on a machine that has
+it, count a build configured with -DBALLISTA_NATIVE=OFF -DCMAKE_CXX_FLAGS=-march=x86-64-v3 and give
+the same binary as --ballista, so that the counts, the shares and the rate are of one build.
 """
 import argparse
 import collections
@@ -24,13 +31,19 @@ import os
 import re
 import shutil
 import subprocess
+import time
+
+LIBM = r"^(__ieee754_|__)?(pow|exp|expm1|log|log1p|hypot|cbrt|sin|cos|atan2?)(_fma)?(@.*)?$"
 
 # Kernels of the step, matched on the demangled function name (first match wins). Inlined code
 # belongs to the function it was inlined into.
 KERNELS = [
     ("stable step", r"max_signal_speed|stable_dt|wave_speed"),
     ("stress update", r"MaterialAdapter|polar_rotation|reorthogonalise|j2_return|J2Plasticity|JohnsonCook|update_stress|"
-                      r"midpoint_strain_increment|remap_if_distorted"),
+                      r"midpoint_strain_increment|remap_if_distorted|update_in_lanes|j2_|failure_update|Geomodel|geo_"),
+    # The C library's transcendental functions (Johnson-Cook's powers, the geomodel's exponentials,
+    # the LME shape functions' exponentials): a kernel of their own, so that their cost shows.
+    ("libm (pow, exp, log)", LIBM),
     ("P2G", r"particles_to_grid"),
     ("G2P", r"grid_to_particles|deterministic_sum"),
     # The shape functions of a point, computed in P2G, G2P and the MUSL pass alike when not inlined.
@@ -56,6 +69,21 @@ PD_KERNELS = [
     ("update of the points", r"PdSolver::advance|PdSolver::compute_forces|PdSolver::step|for_each"),
     ("grid zeroing", r"memset"),
 ]
+# The OTM step (`ballista run` of an OTM deck): the supports (which nodes each point sees, searched
+# every step), the local max-entropy shape functions, the assembly of nodal mass and forces, the
+# stress update, the stable step (the Gershgorin bound over the nodes' rows) and the node and point
+# update (the rest of the step).
+OTM_KERNELS = [
+    ("stable step", r"OtmSolver::stable_dt|node_bounds|max_signal_speed|wave_speed"),
+    ("supports (neighbour search)", r"build_supports|build_influences|build_current_supports|refresh_supports"),
+    ("LME shape functions", r"lme_|otm::\(anonymous namespace\)::(evaluate|solve)"),
+    ("libm (pow, exp, log)", LIBM),
+    ("stress update", KERNELS[1][1]),
+    ("assembly (mass, forces)", r"OtmSolver::assemble"),
+    ("contact, light nodes, faces", r"contact_node_forces|light_nodes|apply_face_conditions"),
+    ("grid zeroing", r"memset"),
+    ("node and point update", r"OtmSolver::step_local|for_each"),
+]
 TARGETS = {
     # toggles (what callgrind counts), the function called once per step (the whole name: its
     # lambdas' names contain it too), the kernels
@@ -63,6 +91,11 @@ TARGETS = {
             r"^ballista::MpmSolver::step_local\(double\)$", KERNELS),
     "pd": (["ballista::PdSolver::step(double)", "ballista::PdSolver::stable_dt()"],
            r"^ballista::PdSolver::advance\(double\)$", PD_KERNELS),
+    # MPM through `ballista run` of a deck (--deck): another material than the bench's J2 block
+    "mpm-deck": (["ballista::MpmSolver::step(double)", "ballista::MpmSolver::stable_dt()"],
+                 r"^ballista::MpmSolver::step_local\(double\)$", KERNELS),
+    "otm": (["ballista::OtmSolver::step(double)", "ballista::OtmSolver::stable_dt()"],
+            r"^ballista::OtmSolver::step_local\(double\)$", OTM_KERNELS),
 }
 
 
@@ -103,6 +136,9 @@ def parse_callgrind(path, step_fn):
     """Self cost per function and address (Ir), per function (every event), and the calls of the
     step function and of the sort."""
     names = {}
+    objects = {}  # ob id -> path
+    fn_object = {}  # fn -> path of the object it is in
+    ob = None
     events = []
     cost = collections.defaultdict(collections.Counter)  # fn -> addr -> Ir
     per_fn = collections.defaultdict(collections.Counter)  # fn -> event -> count
@@ -117,6 +153,14 @@ def parse_callgrind(path, step_fn):
         if line.startswith("events:"):
             events = line.split()[1:]
             continue
+        o = re.match(r"^(c?ob)=\((\d+)\)(?: (.*))?$", line)
+        if o:
+            key, ident, name = o.groups()
+            if name is not None:
+                objects[ident] = name
+            if key == "ob":
+                ob = objects[ident]
+            continue
         m = re.match(r"^(c?fn)=\((\d+)\)(?: (.*))?$", line)
         if m:
             key, ident, name = m.groups()
@@ -124,6 +168,7 @@ def parse_callgrind(path, step_fn):
                 names[ident] = name
             if key == "fn":
                 fn = names[ident]
+                fn_object.setdefault(fn, ob)
             else:
                 cfn = names[ident]
             continue
@@ -153,7 +198,7 @@ def parse_callgrind(path, step_fn):
         vec = dict(zip(events, values))
         cost[fn][addr] += vec.get("Ir", 0)
         per_fn[fn].update(vec)
-    return cost, per_fn, step_calls, sort_calls
+    return cost, per_fn, step_calls, sort_calls, fn_object
 
 
 def perf_shares(args, kernels):
@@ -168,7 +213,8 @@ def perf_shares(args, kernels):
     for line in rep.splitlines():
         m = re.match(r"^\s+([\d.]+)%\s+\[\.\]\s+(.*)$", line)
         if m:
-            shares[kernel_of(m.group(2), kernels)] += float(m.group(1))
+            name = re.sub(r"\s{2,}.*$", "", m.group(2))  # without the report's trailing columns
+            shares[kernel_of(name, kernels)] += float(m.group(1))
     # The samples also cover the bench's setup (seeding, deck), which lands in "other"; the step's
     # own "other" is ~0.2 % of its instructions (callgrind), so the kernels' shares are taken
     # relative to their sum.
@@ -186,10 +232,14 @@ def main():
     ap.add_argument("--bounds", help="bench/machine_bounds_bench --benchmark_format=json output: adds the roofline")
     ap.add_argument("--threads", type=int, default=1, help="threads of the filtered benchmark (for --bounds)")
     ap.add_argument("--target", choices=sorted(TARGETS), default="mpm",
-                    help="mpm: the block bench (--bench, --filter); pd: `ballista run` of --deck")
+                    help="mpm: the block bench (--bench, --filter); pd, mpm-deck, otm: `ballista run` of --deck")
     ap.add_argument("--ballista", default="build/ballista")
     ap.add_argument("--deck", default="bench/pd_cube_bench.yaml")
-    ap.add_argument("--steps", type=int, default=None, help="pd: steps counted under valgrind")
+    ap.add_argument("--steps", type=int, default=None, help="deck targets: steps counted under valgrind")
+    ap.add_argument("--native-steps", type=int, default=None,
+                    help="mpm-deck, otm: steady steps of the native runs (perf shares and the rate, which is "
+                         "particles x S / (t(W + S) - t(W)) with W = --warm-steps, so the setup cancels)")
+    ap.add_argument("--warm-steps", type=int, default=20)
     ap.add_argument("--sort-every", type=int, default=20, help="the bench deck's mpm.sort_every")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
@@ -213,25 +263,36 @@ def main():
         particles = a.particles or bench["benchmarks"][0]["particles"]  # the same block every repetition
     else:
         particles = a.particles or json.load(open(a.out + "/run/summary.json"))["statistics"]["particles_seeded"]
-    insn, syms = disassemble(kept if os.path.exists(kept) else binary)
-    cost, per_fn, steps, sorts = parse_callgrind(cg, step_fn)
+    cost, per_fn, steps, sorts, fn_object = parse_callgrind(cg, step_fn)
     if steps == 0:
         raise SystemExit(f"no call of {step_fn} found in {cg}")
-    # The load base of the executable under valgrind: the most common difference between where a
+    # Each object's code (the executable from its kept copy, the C math library where the step
+    # calls it) and its load base under valgrind: the most common difference between where a
     # function's lowest executed address lies and where objdump puts its symbol.
-    diffs = collections.Counter()
-    for fn, addrs in cost.items():
-        at = syms.get(fn.split("'")[0])  # callgrind marks recursion cycles with 'N
-        if at is not None:
-            diffs[min(addrs) - at] += 1
-    base = diffs.most_common(1)[0][0] if diffs else 0
+    exe = os.path.realpath(binary)
+    code = {}  # object path -> (insn, base)
+    for path in sorted({p for p in fn_object.values() if p}):
+        if os.path.realpath(path) == exe:
+            insn, syms = disassemble(kept if os.path.exists(kept) else binary)
+        elif re.search(r"/libm[.-]", path) and os.path.exists(path):
+            insn, syms = disassemble(path)
+        else:
+            continue
+        diffs = collections.Counter()
+        for fn, addrs in cost.items():
+            at = syms.get(fn.split("'")[0])  # callgrind marks recursion cycles with 'N
+            if fn_object.get(fn) == path and at is not None:
+                diffs[min(addrs) - at] += 1
+        code[path] = (insn, diffs.most_common(1)[0][0] if diffs else 0)
+    base = code.get(next((p for p in code if os.path.realpath(p) == exe), None), (None, 0))[1]
     ps = particles * steps
     rows = collections.defaultdict(collections.Counter)
     unknown = 0
     for fn, addrs in cost.items():
         k = kernel_of(fn, kernels)
+        insn, fn_base = code.get(fn_object.get(fn), ({}, 0))
         for addr, ir in addrs.items():
-            ins = insn.get(addr - base)
+            ins = insn.get(addr - fn_base)
             if ins is None:
                 unknown += ir
                 continue
@@ -243,10 +304,11 @@ def main():
         rows[k]["bytes"] += 64 * (miss.get("DLmr", 0) + 2 * miss.get("DLmw", 0))
     shares = {} if a.no_perf else perf_shares(a, kernels)
     total_ir = sum(r["Ir"] for r in rows.values())
-    result = {"filter": a.filter, "particles": particles, "steps": steps, "sorts": sorts, "load_base": hex(base),
+    result = {"workload": a.filter if a.target == "mpm" else a.deck, "particles": particles, "steps": steps, "sorts": sorts, "load_base": hex(base),
               "unmatched_instruction_share": unknown / max(total_ir, 1), "kernels": {}}
     order = [k for k, _ in kernels] + ["other"]
-    print(f"{a.filter}: {particles:.0f} particles x {steps} steps (valgrind); per particle-step:")
+    print(f"{a.filter if a.target == 'mpm' else a.deck}: {particles:.0f} particles x {steps} steps (valgrind); "
+          "per particle-step:")
     print(f"{'kernel':26s} {'instr':>8s} {'flops':>8s} {'bytes':>8s} {'flop/B':>7s} {'time %':>7s}")
     # Each solver the bench builds sorts at its first step: far more often than the steady state's
     # once every --sort-every steps, to which the sort's counts are scaled.
@@ -282,11 +344,25 @@ def workload(a, steps, native=False):
                 "--benchmark_format=json"]
     cmd = [a.ballista, "run", a.deck, "-o", a.out + ("/native" if native else "/run"), "-q", "--no-plots",
            "--overwrite", "--threads", str(a.threads if native else 1)]
+    if native and a.target != "pd" and a.native_steps:
+        steps = a.warm_steps + a.native_steps
     return cmd + (["--set", f"simulation.max_steps={steps}"] if steps else [])
 
 
 def measured_rate(a):
     """Particle-steps per second of the workload on this machine, natively."""
+    if a.target in ("mpm-deck", "otm"):
+        # Two runs, W and W + S steps: the difference is S steady steps without the setup.
+        walls = []
+        for steps in (a.warm_steps, a.warm_steps + a.native_steps):
+            cmd = workload(a, steps, True)
+            cmd[cmd.index("--set") + 1] = f"simulation.max_steps={steps}"
+            t0 = time.perf_counter()
+            subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True,
+                           env=dict(os.environ, OMP_WAIT_POLICY="passive"))
+            walls.append(time.perf_counter() - t0)
+        particles = json.load(open(a.out + "/native/summary.json"))["statistics"]["particles_seeded"]
+        return particles * a.native_steps / (walls[1] - walls[0])
     if a.target == "pd":
         subprocess.run(workload(a, None, True), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
         # The run's own rate: its steps' wall time, without the setup (bond families).
