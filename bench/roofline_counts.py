@@ -132,6 +132,18 @@ def disassemble(binary):
     return insn, syms
 
 
+def compressed_name(line, kind, table):
+    """callgrind's name compression: `kind=(id) name` (or `ckind=...`, the callee's) defines id,
+    `kind=(id)` refers to it. (key, name) of such a line, else None."""
+    m = re.match(rf"^(c?{kind})=\((\d+)\)(?: (.*))?$", line)
+    if not m:
+        return None
+    key, ident, name = m.groups()
+    if name is not None:
+        table[ident] = name
+    return key, table[ident]
+
+
 def parse_callgrind(path, step_fn):
     """Self cost per function and address (Ir), per function (every event), and the calls of the
     step function and of the sort."""
@@ -153,24 +165,18 @@ def parse_callgrind(path, step_fn):
         if line.startswith("events:"):
             events = line.split()[1:]
             continue
-        o = re.match(r"^(c?ob)=\((\d+)\)(?: (.*))?$", line)
+        o = compressed_name(line, "ob", objects)
         if o:
-            key, ident, name = o.groups()
-            if name is not None:
-                objects[ident] = name
-            if key == "ob":
-                ob = objects[ident]
+            if o[0] == "ob":
+                ob = o[1]
             continue
-        m = re.match(r"^(c?fn)=\((\d+)\)(?: (.*))?$", line)
+        m = compressed_name(line, "fn", names)
         if m:
-            key, ident, name = m.groups()
-            if name is not None:
-                names[ident] = name
-            if key == "fn":
-                fn = names[ident]
+            if m[0] == "fn":
+                fn = m[1]
                 fn_object.setdefault(fn, ob)
             else:
-                cfn = names[ident]
+                cfn = m[1]
             continue
         if line.startswith("calls="):
             if cfn and re.search(step_fn, cfn):
