@@ -347,7 +347,7 @@ bool OtmSolver::build_current_supports() {
   std::swap(prev_sup_, sup_);
   otm::build_supports(points_.view(kPosition), points_.ints(kNodeGroup), n, nodes_.x.data(), nodes_.body.data(),
                       nodes_.size(), sopt_, scale_.data(), prev_sup_.offset.empty() ? nullptr : &prev_sup_,
-                      lambda_.data(), sup_);
+                      lambda_.data(), sup_, &candidates_);
   otm::build_influences(sup_, nodes_.size(), inf_);
   retries_ += sup_.retries;
   mean_support_ = sup_.mean_size;

@@ -166,6 +166,7 @@ class OtmSolver final : public Solver {
   FieldStore node_out_;           ///< the nodes as written (output_nodes)
   otm::SupportOptions sopt_;
   otm::Supports sup_, prev_sup_;  ///< this step's supports and the last step's (retries)
+  otm::SupportCandidates candidates_;  ///< each point's nodes within a margin (not checkpointed: searched again)
   std::vector<Vec3> v_start_;     ///< node velocities at the start of the step (wall booking)
   std::vector<double> omega2_;    ///< 1/s^2, each node's Gershgorin bound on omega^2 (stable_dt; penalty walls)
   std::vector<double> scale_;     ///< support radius scale per point (largest principal stretch)

@@ -27,42 +27,113 @@ void nodes_within(const Bins& bins, const Vec3& x, std::int64_t body, const Vec3
   std::sort(ids.begin() + static_cast<std::ptrdiff_t>(first), ids.end());
 }
 
-}  // namespace
+/// Squared distance from a point to a node as the search measures it (in the plane in 2D).
+double distance2(const Vec3& x, const Vec3& xa, int dim) {
+  Vec3 d = x - xa;
+  if (dim == 2) d[2] = 0.0;
+  return dot(d, d);
+}
 
-void build_supports(const Vec3* xp, const std::int64_t* pbody, Index np, const Vec3* xn, const std::int64_t* nbody,
-                    Index nn, const SupportOptions& opt, const double* scale, const Supports* previous, Vec3* lambda,
-                    Supports& out) {
-  const double r0 = support_radius(opt);
-  const int min_support = opt.min_support > 0 ? opt.min_support : opt.dim + 2;
-  double smax = 1.0;
-  if (scale)
-    for (Index p = 0; p < np; ++p) smax = std::max(smax, std::min(scale[p], kMaxScale));
-  const CellBins bins(xn, nn, r0 * smax * (1.0 + 1e-9), opt.dim);
-  auto radius = [&](Index p) { return scale ? r0 * std::clamp(scale[p], 1.0, kMaxScale) : r0; };
-  // Pass 1: the nodes each point reaches, searched once: blocks of points fill their own lists
-  // in parallel, which are then laid out in point order (the same for any thread count).
+/// Compressed rows of points 0..np: append(p, ids) appends point p's nodes to ids. Blocks of
+/// points fill their own lists in parallel, laid out in point order afterwards (the same for any
+/// thread count).
+template <class Append>
+void rows_of_points(Index np, const Append& append, std::vector<Index>& offset, std::vector<std::int32_t>& node) {
   constexpr Index kBlock = 64;
   const Index blocks = (np + kBlock - 1) / kBlock;
   std::vector<std::vector<std::int32_t>> found(static_cast<size_t>(blocks));
-  out.offset.assign(static_cast<size_t>(np) + 1, 0);
+  offset.assign(static_cast<size_t>(np) + 1, 0);
 #pragma omp parallel for schedule(dynamic, 1) if (np > kHeavyParallelThreshold)
   for (Index b = 0; b < blocks; ++b) {
     std::vector<std::int32_t>& ids = found[static_cast<size_t>(b)];
     for (Index p = b * kBlock; p < std::min(np, (b + 1) * kBlock); ++p) {
       const size_t before = ids.size();
-      nodes_within(bins, xp[p], pbody[p], xn, nbody, radius(p), opt.dim, ids);
-      out.offset[p + 1] = static_cast<Index>(ids.size() - before);
+      append(p, ids);
+      offset[p + 1] = static_cast<Index>(ids.size() - before);
     }
   }
-  for (Index p = 0; p < np; ++p) out.offset[p + 1] += out.offset[p];
-  const Index total = out.offset[np];
-  out.node.resize(static_cast<size_t>(total));
-  out.N.resize(static_cast<size_t>(total));
-  out.dN.resize(static_cast<size_t>(total));
+  for (Index p = 0; p < np; ++p) offset[p + 1] += offset[p];
+  node.resize(static_cast<size_t>(offset[np]));
   for_each(0, blocks, [&](Index b) {
     const std::vector<std::int32_t>& ids = found[static_cast<size_t>(b)];
-    std::copy(ids.begin(), ids.end(), out.node.begin() + out.offset[b * kBlock]);
+    std::copy(ids.begin(), ids.end(), node.begin() + offset[b * kBlock]);
   });
+}
+
+/// True while every point's candidate list still holds every node of its body within radius(p):
+/// r_p + |x_p - x_p'| + max_a |x_a - x_a'| <= reach_p, with the sizes and bodies of the search.
+template <class Radius>
+bool candidates_hold(const SupportCandidates& c, const Vec3* xp, const std::int64_t* pbody, Index np, const Vec3* xn,
+                     const std::int64_t* nbody, Index nn, int dim, const Radius& radius) {
+  if (static_cast<Index>(c.point_x.size()) != np || static_cast<Index>(c.node_x.size()) != nn) return false;
+  double moved2 = 0.0;
+  for (Index a = 0; a < nn; ++a) {
+    if (nbody[a] != c.node_body[a]) return false;
+    moved2 = std::max(moved2, distance2(xn[a], c.node_x[a], dim));
+  }
+  const double node_moved = std::sqrt(moved2);
+  for (Index p = 0; p < np; ++p) {
+    if (pbody[p] != c.point_body[p]) return false;
+    // The 1e-12 covers the round-off of the sum.
+    if (radius(p) + std::sqrt(distance2(xp[p], c.point_x[p], dim)) + node_moved > c.reach[p] * (1.0 - 1e-12))
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void build_supports(const Vec3* xp, const std::int64_t* pbody, Index np, const Vec3* xn, const std::int64_t* nbody,
+                    Index nn, const SupportOptions& opt, const double* scale, const Supports* previous, Vec3* lambda,
+                    Supports& out, SupportCandidates* candidates) {
+  const double r0 = support_radius(opt);
+  const int min_support = opt.min_support > 0 ? opt.min_support : opt.dim + 2;
+  double smax = 1.0;
+  if (scale)
+    for (Index p = 0; p < np; ++p) smax = std::max(smax, std::min(scale[p], kMaxScale));
+  auto radius = [&](Index p) { return scale ? r0 * std::clamp(scale[p], 1.0, kMaxScale) : r0; };
+  // Pass 1: the nodes each point reaches: from its candidate list, searched again when it may no
+  // longer hold them all, or (without lists) by the binned search.
+  if (candidates) {
+    SupportCandidates& c = *candidates;
+    if (!candidates_hold(c, xp, pbody, np, xn, nbody, nn, opt.dim, radius)) {
+      const CellBins bins(xn, nn, kSkin * r0 * smax * (1.0 + 1e-9), opt.dim);
+      c.reach.resize(static_cast<size_t>(np));
+      for (Index p = 0; p < np; ++p) c.reach[p] = kSkin * radius(p);
+      rows_of_points(
+          np,
+          [&](Index p, std::vector<std::int32_t>& ids) {
+            nodes_within(bins, xp[p], pbody[p], xn, nbody, c.reach[p], opt.dim, ids);
+          },
+          c.offset, c.node);
+      c.point_x.assign(xp, xp + np);
+      c.point_body.assign(pbody, pbody + np);
+      c.node_x.assign(xn, xn + nn);
+      c.node_body.assign(nbody, nbody + nn);
+      ++c.searches;
+    }
+    // The candidates are in increasing index, so the nodes within r_p keep that order: the rows
+    // are those the search would give.
+    rows_of_points(
+        np,
+        [&](Index p, std::vector<std::int32_t>& ids) {
+          const double r = radius(p), r2 = r * r;
+          for (Index k = c.offset[p]; k < c.offset[p + 1]; ++k)
+            if (distance2(xp[p], xn[c.node[k]], opt.dim) <= r2) ids.push_back(c.node[k]);
+        },
+        out.offset, out.node);
+  } else {
+    const CellBins bins(xn, nn, r0 * smax * (1.0 + 1e-9), opt.dim);
+    rows_of_points(
+        np,
+        [&](Index p, std::vector<std::int32_t>& ids) {
+          nodes_within(bins, xp[p], pbody[p], xn, nbody, radius(p), opt.dim, ids);
+        },
+        out.offset, out.node);
+  }
+  const Index total = out.offset[np];
+  out.N.resize(static_cast<size_t>(total));
+  out.dN.resize(static_cast<size_t>(total));
   // Pass 2: the LME solve over each point's nodes (in increasing index).
   const double beta = opt.gamma / (opt.h * opt.h);
   std::vector<char> ok(static_cast<size_t>(np), 1);

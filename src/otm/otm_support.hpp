@@ -8,7 +8,10 @@
 //
 // Rebuilt every step, from the current node and point positions: the seed recomputes supports
 // every few steps (Fig. 2-1 caption), but Algorithm 1 line 7 evaluates the shape functions every
-// step anyway, and the search costs less than the LME solves it feeds (docs/performance.md).
+// step anyway. The binned search itself is not redone every step: each point keeps the nodes
+// within a wider radius (a Verlet list, Verlet 1967), and while no point and node can have come
+// within its radius from outside that margin, its support is picked from that list, the same
+// nodes in the same order as a search would give (docs/performance.md).
 #include <cstdint>
 #include <vector>
 
@@ -46,8 +49,29 @@ struct Supports {
   Index size() const { return static_cast<Index>(offset.size()) - 1; }
 };
 
+/// Candidate nodes of each point (Verlet lists): the nodes of its body within reach[p] = kSkin
+/// times its support radius at the search, in increasing index, with the positions and bodies the
+/// search saw.
+struct SupportCandidates {
+  std::vector<Index> offset;
+  std::vector<std::int32_t> node;
+  std::vector<double> reach;
+  std::vector<Vec3> point_x, node_x;
+  std::vector<std::int64_t> point_body, node_body;
+  Index searches = 0;  ///< how many times the lists were searched
+};
+
+/// Margin of the candidate lists, as a factor on each point's support radius: wider lists cost
+/// more to filter each step (the factor cubed in 3D) and are searched again less often.
+inline constexpr double kSkin = 1.2;
+
 /// Supports and shape functions of points xp[0..np) (bodies pbody) over nodes xn[0..nn) (bodies
 /// nbody); lambda[p] is each point's LME multiplier (warm start in, solution out).
+///
+/// With `candidates` (may be null) each point's nodes are taken from its candidate list while
+/// every point p satisfies r_p + |x_p - x_p'| + max_a |x_a - x_a'| <= reach_p (' at the lists'
+/// search, bodies unchanged; so by the triangle inequality no node within r_p of it can be
+/// missing), else the lists are searched again; the supports are the same either way.
 ///
 /// scale[p] (>= 1, may be null) widens point p's radius: the nodes move with the material, so
 /// where it has been stretched by s the nodes around a point are s times further apart (the solver
@@ -58,7 +82,7 @@ struct Supports {
 /// retries are counted.
 void build_supports(const Vec3* xp, const std::int64_t* pbody, Index np, const Vec3* xn, const std::int64_t* nbody,
                     Index nn, const SupportOptions& opt, const double* scale, const Supports* previous, Vec3* lambda,
-                    Supports& out);
+                    Supports& out, SupportCandidates* candidates = nullptr);
 
 /// Largest radius scale honoured by build_supports (the bins are sized for it).
 inline constexpr double kMaxScale = 4.0;
