@@ -33,6 +33,14 @@ Cloud make_cloud(int n, double h, std::mt19937& rng) {
   return c;
 }
 
+/// The options of a 3D lattice of spacing h (gamma and tolerance the defaults).
+SupportOptions options_3d(double h) {
+  SupportOptions opt;
+  opt.h = h;
+  opt.dim = 3;
+  return opt;
+}
+
 void expect_same(const Supports& a, const Supports& b) {
   ASSERT_EQ(a.offset, b.offset);
   ASSERT_EQ(a.node, b.node);
@@ -45,11 +53,7 @@ TEST(OtmSupportCandidates, TheSameSupportsAsTheSearchWhileKeptAndWhenSearchedAga
   std::mt19937 rng(7);
   const double h = 1.0e-3;
   Cloud c = make_cloud(8, h, rng);
-  SupportOptions opt;
-  opt.h = h;
-  opt.gamma = 1.8;
-  opt.tolerance = 1e-4;
-  opt.dim = 3;
+  const SupportOptions opt = options_3d(h);
   const Index np = static_cast<Index>(c.points.size()), nn = static_cast<Index>(c.nodes.size());
   std::vector<double> scale(static_cast<size_t>(np), 1.0);
   std::vector<Vec3> lambda_a(static_cast<size_t>(np)), lambda_b(static_cast<size_t>(np));
@@ -82,9 +86,7 @@ TEST(OtmSupportCandidates, SearchedAgainWhenTheNodesChange) {
   std::mt19937 rng(11);
   const double h = 1.0e-3;
   Cloud c = make_cloud(6, h, rng);
-  SupportOptions opt;
-  opt.h = h;
-  opt.dim = 3;
+  const SupportOptions opt = options_3d(h);
   const Index np = static_cast<Index>(c.points.size());
   std::vector<Vec3> lambda(static_cast<size_t>(np));
   SupportCandidates lists;
