@@ -69,8 +69,7 @@ PD_KERNELS = [
     ("update of the points", r"PdSolver::advance|PdSolver::compute_forces|PdSolver::step|for_each"),
     ("grid zeroing", r"memset"),
 ]
-# The OTM step (`ballista run` of an OTM deck): the supports (which nodes each point sees, searched
-# every step), the local max-entropy shape functions, the assembly of nodal mass and forces, the
+# The OTM step (`ballista run` of an OTM deck): the supports (which nodes each point sees), the local max-entropy shape functions, the assembly of nodal mass and forces, the
 # stress update, the stable step (the Gershgorin bound over the nodes' rows) and the node and point
 # update (the rest of the step).
 OTM_KERNELS = [
@@ -310,11 +309,11 @@ def main():
         rows[k]["bytes"] += 64 * (miss.get("DLmr", 0) + 2 * miss.get("DLmw", 0))
     shares = {} if a.no_perf else perf_shares(a, kernels)
     total_ir = sum(r["Ir"] for r in rows.values())
-    result = {"workload": a.filter if a.target == "mpm" else a.deck, "particles": particles, "steps": steps, "sorts": sorts, "load_base": hex(base),
+    name = a.filter if a.target == "mpm" else a.deck
+    result = {"workload": name, "particles": particles, "steps": steps, "sorts": sorts, "load_base": hex(base),
               "unmatched_instruction_share": unknown / max(total_ir, 1), "kernels": {}}
     order = [k for k, _ in kernels] + ["other"]
-    print(f"{a.filter if a.target == 'mpm' else a.deck}: {particles:.0f} particles x {steps} steps (valgrind); "
-          "per particle-step:")
+    print(f"{name}: {particles:.0f} particles x {steps} steps (valgrind); per particle-step:")
     print(f"{'kernel':26s} {'instr':>8s} {'flops':>8s} {'bytes':>8s} {'flop/B':>7s} {'time %':>7s}")
     # Each solver the bench builds sorts at its first step: far more often than the steady state's
     # once every --sort-every steps, to which the sort's counts are scaled.
@@ -350,8 +349,8 @@ def workload(a, steps, native=False):
                 "--benchmark_format=json"]
     cmd = [a.ballista, "run", a.deck, "-o", a.out + ("/native" if native else "/run"), "-q", "--no-plots",
            "--overwrite", "--threads", str(a.threads if native else 1)]
-    if native and a.target != "pd" and a.native_steps:
-        steps = a.warm_steps + a.native_steps
+    if native and steps is None and a.target != "pd" and a.native_steps:
+        steps = a.warm_steps + a.native_steps  # the perf run: the rate's longer run
     return cmd + (["--set", f"simulation.max_steps={steps}"] if steps else [])
 
 
@@ -362,7 +361,6 @@ def measured_rate(a):
         walls = []
         for steps in (a.warm_steps, a.warm_steps + a.native_steps):
             cmd = workload(a, steps, True)
-            cmd[cmd.index("--set") + 1] = f"simulation.max_steps={steps}"
             t0 = time.perf_counter()
             subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True,
                            env=dict(os.environ, OMP_WAIT_POLICY="passive"))

@@ -12,6 +12,13 @@ double support_radius(const SupportOptions& opt) { return opt.h * std::sqrt(-std
 
 namespace {
 
+/// Squared distance from a point to a node as the search measures it (in the plane in 2D).
+double distance2(const Vec3& x, const Vec3& xa, int dim) {
+  Vec3 d = x - xa;
+  if (dim == 2) d[2] = 0.0;
+  return dot(d, d);
+}
+
 /// Nodes of point p's body within radius r of it, in increasing index, appended to ids.
 template <class Bins>
 void nodes_within(const Bins& bins, const Vec3& x, std::int64_t body, const Vec3* xn, const std::int64_t* nbody,
@@ -20,18 +27,9 @@ void nodes_within(const Bins& bins, const Vec3& x, std::int64_t body, const Vec3
   const size_t first = ids.size();
   bins.visit(x, [&](Index a) {
     if (nbody[a] != body) return;
-    Vec3 d = x - xn[a];
-    if (dim == 2) d[2] = 0.0;
-    if (dot(d, d) <= r2) ids.push_back(static_cast<std::int32_t>(a));
+    if (distance2(x, xn[a], dim) <= r2) ids.push_back(static_cast<std::int32_t>(a));
   });
   std::sort(ids.begin() + static_cast<std::ptrdiff_t>(first), ids.end());
-}
-
-/// Squared distance from a point to a node as the search measures it (in the plane in 2D).
-double distance2(const Vec3& x, const Vec3& xa, int dim) {
-  Vec3 d = x - xa;
-  if (dim == 2) d[2] = 0.0;
-  return dot(d, d);
 }
 
 /// Compressed rows of points 0..np: append(p, ids) appends point p's nodes to ids. Blocks of
@@ -92,20 +90,24 @@ void build_supports(const Vec3* xp, const std::int64_t* pbody, Index np, const V
   if (scale)
     for (Index p = 0; p < np; ++p) smax = std::max(smax, std::min(scale[p], kMaxScale));
   auto radius = [&](Index p) { return scale ? r0 * std::clamp(scale[p], 1.0, kMaxScale) : r0; };
+  // The binned search of every point's nodes within factor * radius(p).
+  auto search = [&](double factor, std::vector<Index>& offset, std::vector<std::int32_t>& node) {
+    const CellBins bins(xn, nn, factor * r0 * smax * (1.0 + 1e-9), opt.dim);
+    rows_of_points(
+        np,
+        [&](Index p, std::vector<std::int32_t>& ids) {
+          nodes_within(bins, xp[p], pbody[p], xn, nbody, factor * radius(p), opt.dim, ids);
+        },
+        offset, node);
+  };
   // Pass 1: the nodes each point reaches: from its candidate list, searched again when it may no
   // longer hold them all, or (without lists) by the binned search.
   if (candidates) {
     SupportCandidates& c = *candidates;
     if (!candidates_hold(c, xp, pbody, np, xn, nbody, nn, opt.dim, radius)) {
-      const CellBins bins(xn, nn, kSkin * r0 * smax * (1.0 + 1e-9), opt.dim);
       c.reach.resize(static_cast<size_t>(np));
       for (Index p = 0; p < np; ++p) c.reach[p] = kSkin * radius(p);
-      rows_of_points(
-          np,
-          [&](Index p, std::vector<std::int32_t>& ids) {
-            nodes_within(bins, xp[p], pbody[p], xn, nbody, c.reach[p], opt.dim, ids);
-          },
-          c.offset, c.node);
+      search(kSkin, c.offset, c.node);
       c.point_x.assign(xp, xp + np);
       c.point_body.assign(pbody, pbody + np);
       c.node_x.assign(xn, xn + nn);
@@ -123,13 +125,7 @@ void build_supports(const Vec3* xp, const std::int64_t* pbody, Index np, const V
         },
         out.offset, out.node);
   } else {
-    const CellBins bins(xn, nn, r0 * smax * (1.0 + 1e-9), opt.dim);
-    rows_of_points(
-        np,
-        [&](Index p, std::vector<std::int32_t>& ids) {
-          nodes_within(bins, xp[p], pbody[p], xn, nbody, radius(p), opt.dim, ids);
-        },
-        out.offset, out.node);
+    search(1.0, out.offset, out.node);
   }
   const Index total = out.offset[np];
   out.N.resize(static_cast<size_t>(total));
