@@ -10,11 +10,15 @@ namespace {
 std::atomic<int> g_requested{0};  // lock-free: the only thing the handler touches; 1 signal, 2 caller
 
 extern "C" void on_signal(int sig) {
-  if (g_requested.exchange(1) != 0) {
-    // A second signal: the user insists. Default action (terminate) without the checkpoint.
+  if (g_requested.exchange(1) != 0 && sig == SIGINT) {
+    // A second Ctrl-C: the user insists. Default action (terminate) without the checkpoint.
     std::signal(sig, SIG_DFL);
     std::raise(sig);
   }
+  // A second SIGTERM is not insistence but a copy: a batch system signals every task of the job,
+  // and mpirun passes the one it got on odls_base_sigkill_timeout seconds later. Ending the rank
+  // then would cut its checkpoint short; the scheduler's SIGKILL follows anyway if it lasts.
+  // (glibc's std::signal keeps the handler installed after a call, so the copy lands here too.)
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 #pragma once
 // Stopping a run cleanly on SIGTERM (a batch system's notice before it kills a job) or SIGINT
 // (Ctrl-C): the handler only sets a flag; the run loop reads it after each step, writes a
-// checkpoint of that step and ends with status "interrupted" (docs/restart.md). A second signal
-// while the first is being handled kills the process as the default action would.
+// checkpoint of that step and ends with status "interrupted" (docs/restart.md). A second SIGINT
+// while the first is being handled kills the process as the default action would; a second
+// SIGTERM is ignored (a scheduler and mpirun may each send one; the scheduler's SIGKILL follows).
 namespace ballista {
 
 /// Installs the handlers while alive (the run loop's steps) and restores the previous ones after:
