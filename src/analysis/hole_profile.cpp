@@ -52,7 +52,17 @@ std::vector<double> wall_radii(const std::vector<LateralPoint>& points, double a
       bool wall = true;
       for (int j = k; j < k + o.sustain && wall; ++j) wall = f[j] >= o.threshold * annulus(j);
       if (wall) {
-        out[b] = k * o.dr;
+        // Within the annuli: the fraction's profile, linear between the centres of annulus k - 1
+        // (below the threshold, else it would have been the wall) and annulus k, crosses the
+        // threshold here. A sharp wall is then found within about a tenth of an annulus instead
+        // of anywhere in the annulus by its inner edge (test_hole_profile.cpp).
+        double r = k * o.dr;
+        if (k > 0) {
+          const double below = f[k - 1] / annulus(k - 1), at = f[k] / annulus(k);
+          const double s = at > below ? (o.threshold - below) / (at - below) : 1.0;
+          r = (k - 0.5 + std::clamp(s, 0.0, 1.0)) * o.dr;
+        }
+        out[b] = r;
         break;
       }
     }

@@ -5,9 +5,10 @@
 // thrown back into the hole, would make it look closed. So the wall is where the material is
 // dense: within each axial bin, the radial profile of the solid volume fraction (the points'
 // current volumes, each spread over its own lateral extent so that annuli finer than the
-// points' spacing see no gaps, over the volume of each annulus) is scanned outward from the axis, and the
-// wall is the inner edge of the first annulus whose fraction reaches one half and stays there
-// over the next one too. Loose debris fills an annulus far less than a half; an intact wall fills
+// points' spacing see no gaps, over the volume of each annulus) is scanned outward from the axis; the
+// first annulus whose fraction reaches one half and stays there over the next one too holds the
+// wall, placed where the fraction, linear between the centres of that annulus and the one
+// inside it, crosses one half. Loose debris fills an annulus far less than a half; an intact wall fills
 // it entirely (tests/unit/analysis/test_hole_profile.cpp).
 #include <vector>
 
@@ -33,9 +34,10 @@ struct WallOptions {
   int sustain = 2;           ///< consecutive annuli at or above it
 };
 
-/// The wall radius (m) of each of `bins` equal axial bins over [axial_lo, axial_hi]: the inner
-/// edge of the first annulus from the axis whose volume fraction and the next sustain - 1 ones'
-/// reach the threshold; NaN where the points never make a wall.
+/// The wall radius (m) of each of `bins` equal axial bins over [axial_lo, axial_hi]: in the first
+/// annulus from the axis whose volume fraction and the next sustain - 1 ones' reach the threshold,
+/// where the fraction interpolated from the inner annulus's centre crosses it (0 when the first
+/// annulus is already wall); NaN where the points never make a wall.
 std::vector<double> wall_radii(const std::vector<LateralPoint>& points, double axial_lo, double axial_hi, int bins,
                                LateralGeometry geometry, const WallOptions& options);
 

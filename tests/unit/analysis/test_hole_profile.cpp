@@ -1,7 +1,8 @@
 // The wall of a hole (analysis/hole_profile.hpp) on known geometries: a plate with a hole of
 // radius R, with and without crushed debris lying in the hole (a tenth of the hole's volume in
-// loose points), in the three lateral geometries. The wall must be found within one annulus of R
-// (the annuli are the resolution of the measurement), and the debris must not close the hole.
+// loose points), in the three lateral geometries. The wall must be found within one annulus of R,
+// the debris must not close the hole, and a sharp wall must be placed within the annulus that holds
+// it, not at that annulus's edge.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -55,6 +56,23 @@ TEST(HoleProfile, TheWallOfAHoleIsFoundWithinOneAnnulusWithOrWithoutDebris) {
         const std::vector<double> w = wall_radii(plate(g, debris), 0.0, kThick, 4, g, {dr});
         for (double r : w) EXPECT_NEAR(r, kR, dr) << "geometry " << static_cast<int>(g) << " debris " << debris << " dr " << dr;
       }
+}
+
+TEST(HoleProfile, ASharpWallIsPlacedWithinItsAnnulus) {
+  // On the radial lattice (axisymmetric, plane strain) the plate's points keep r >= kR with centres
+  // at (i + 1/2) kS, so the material's edge is at 12 kS = 3.0 mm. Annuli not commensurate with it
+  // put that edge anywhere inside one: the inner-edge rule was off by up to half an annulus (0.43
+  // of one at dr = 0.35 mm); the interpolated crossing of one half is within a tenth (the linear
+  // profile between two centres against the true step: at most 0.09 of an annulus in plane
+  // strain, where the fraction is linear in r; the axisymmetric annulus weighs r, a few per cent
+  // more). 0.15 leaves room for that and still fails the inner-edge rule.
+  const double edge = 12 * kS;
+  for (const LateralGeometry g : {LateralGeometry::Axisymmetric, LateralGeometry::PlaneStrain})
+    for (const double dr : {0.35e-3, 0.7e-3, 0.27e-3, 0.9e-3}) {
+      // Each point spread over its own domain: the plate's material is a step at the edge.
+      for (double r : wall_radii(plate(g, false), 0.0, kThick, 2, g, {dr}))
+        EXPECT_NEAR(r, edge, 0.15 * dr) << "geometry " << static_cast<int>(g) << " dr " << dr;
+    }
 }
 
 TEST(HoleProfile, DenseMaterialOnTheAxisClosesTheHoleAndNothingIsNoWall) {
