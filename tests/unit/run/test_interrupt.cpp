@@ -9,6 +9,8 @@
 
 #include "run/interrupt.hpp"
 
+namespace test_interrupt {
+
 using namespace ballista;
 
 namespace {
@@ -57,3 +59,5 @@ TEST(Interrupt, ACallersRequestIsNotASignal) {
   EXPECT_TRUE(interrupt_from_caller());
   clear_interrupt();
 }
+
+}  // namespace test_interrupt
