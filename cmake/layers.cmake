@@ -21,6 +21,17 @@ target_precompile_headers(ballista_pch_owner PRIVATE
   <algorithm> <array> <cmath> <cstdint> <cstdio> <filesystem> <functional> <map> <memory> <optional>
   <string> <vector> <fmt/format.h> <spdlog/spdlog.h> <yaml-cpp/yaml.h>)
 
+# The layers without numerical kernels (the deck reader, the writers, the run loop's bookkeeping,
+# the verification catalogue, the post-processing) are compiled as unity batches of 8 files: their
+# files share most of their headers (the deck, the scenario, the solvers' interfaces), and a batch
+# parses them once; these six layers' compile time fell to about a third, the whole build's by about
+# 30 % (docs/validation.md, "What `make test` costs"). The numerical layers are not batched: a
+# batch lets the compiler inline one file's functions into another's, and with -march=native's FMA
+# contraction that may change the rounding of results. Every example's results were compared
+# bitwise with the file-by-file build (tools/compare_builds.py). A name a file keeps to itself must
+# be unique in its layer.
+set(BALLISTA_UNITY_LAYERS run deck io verify analysis penetration)
+
 # ballista_layer(<name> [DEPENDS <lower layer>...])
 function(ballista_layer name)
   cmake_parse_arguments(PARSE_ARGV 1 arg "" "" "DEPENDS")
@@ -28,6 +39,13 @@ function(ballista_layer name)
   add_library(ballista_${name} STATIC ${sources})
   target_link_libraries(ballista_${name} PUBLIC ballista_common)
   target_precompile_headers(ballista_${name} REUSE_FROM ballista_pch_owner)
+  if(name IN_LIST BALLISTA_UNITY_LAYERS)
+    set_target_properties(ballista_${name} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
+    # GCC 12's -O3 inlining of `"literal" + std::string&&` across a batch warns of a memcpy bound
+    # or offset beyond the largest object, known false positives (GCC bugs 105329 and 105651).
+    target_compile_options(ballista_${name} PRIVATE
+                           $<$<CXX_COMPILER_ID:GNU>:-Wno-stringop-overflow -Wno-array-bounds>)
+  endif()
   foreach(dep IN LISTS arg_DEPENDS)
     if(NOT TARGET ballista_${dep})
       message(FATAL_ERROR "layer ${name}: '${dep}' is not a layer declared before it")

@@ -24,7 +24,7 @@ namespace ballista {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 /// Half-extent along direction `a` of a point's current domain (F times the box of half-sizes h).
@@ -179,7 +179,7 @@ std::vector<double> PenetrationProbe::sample(const FieldStore& pts, bool fired, 
       record_layer_exits(pts, front, t, scale);
     }
   }
-  std::vector<double> row = {fired ? t : kNaN, depth, cavity, total};
+  std::vector<double> row = {fired ? t : kNotMeasured, depth, cavity, total};
   row.insert(row.end(), seg.begin(), seg.end());
   return row;
 }
@@ -199,7 +199,7 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   // Rates by a smoothing local quadratic (thesis §7.2 differentiates with a local Lagrange
   // polynomial; a least-squares one over 2w+1 samples also damps the sampling noise).
   const int w = spec_.rate_half_window;
-  std::vector<double> rate(t_.size(), kNaN), cavity_rate(t_.size(), kNaN);
+  std::vector<double> rate(t_.size(), kNotMeasured), cavity_rate(t_.size(), kNotMeasured);
   if (static_cast<int>(t_.size()) >= 2 * w + 1) {
     rate = local_polynomial_derivative(t_, depth_, w, 2);
     cavity_rate = local_polynomial_derivative(t_, cavity_, w, 2);
@@ -225,7 +225,7 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   out["arrival_time"] = arrival;
   // Stopped: the depth changes by less than stop_tolerance over at least the last tenth of the run.
   const double stop =
-      t_.size() >= 2 ? penetration_stop_time(t_, depth_, spec_.stop_tolerance, 0.1 * main_duration) : kNaN;
+      t_.size() >= 2 ? penetration_stop_time(t_, depth_, spec_.stop_tolerance, 0.1 * main_duration) : kNotMeasured;
   out["stop_time"] = std::isfinite(stop) ? JsonValue(stop) : JsonValue();
   const SteadyFit fit = t_.size() >= 5 ? steady_state_fit(t_, depth_, rate) : SteadyFit{};
   out["steady_rate"] = fit.ok ? JsonValue(fit.slope) : JsonValue();
@@ -241,12 +241,12 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   // Hydrodynamic theory (thesis eq. 3.1-3.4): U_h and the Birkhoff depth L sqrt(rho_p/rho_t);
   // a segmented penetrator also gets the fully particulated bound (lambda = 2, eq. 3.4).
   const bool have = rho_p_ > 0 && rho_t_ > 0;
-  const double uh = have ? penetration::hydrodynamic_penetration_velocity(speed_, rho_p_, rho_t_) : kNaN;
+  const double uh = have ? penetration::hydrodynamic_penetration_velocity(speed_, rho_p_, rho_t_) : kNotMeasured;
   out["hydrodynamic_rate"] = uh;
   out["rate_over_hydrodynamic"] = fit.ok && uh > 0 ? JsonValue(fit.slope / uh) : JsonValue();
   out["cells_across_radius"] = radius_cells_;
   out["resolved"] = radius_cells_ >= kResolvedRadiusCells;
-  const double ph = have ? penetration::birkhoff_depth(length_, rho_p_, rho_t_) : kNaN;
+  const double ph = have ? penetration::birkhoff_depth(length_, rho_p_, rho_t_) : kNotMeasured;
   out["hydrodynamic_depth"] = ph;
   JsonValue& an = out["analytic"];
   an = JsonValue::array();

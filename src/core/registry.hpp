@@ -30,8 +30,10 @@ class Registry {
 #define BALLISTA_REGISTRY_CONCAT_(a, b) a##b
 #define BALLISTA_REGISTRY_CONCAT(a, b) BALLISTA_REGISTRY_CONCAT_(a, b)
 /// Registers a factory in `registry` (a Registry<...> type) from a .cpp by a static initialiser.
+/// The flag is named by __COUNTER__, not __LINE__: files compiled in one unity batch
+/// (cmake/layers.cmake) may register on the same line.
 #define BALLISTA_REGISTER(registry, ...)                                                            \
   namespace {                                                                                       \
-  [[maybe_unused]] const bool BALLISTA_REGISTRY_CONCAT(ballista_registered_, __LINE__) = \
+  [[maybe_unused]] const bool BALLISTA_REGISTRY_CONCAT(ballista_registered_, __COUNTER__) = \
       registry::add(__VA_ARGS__);                                                                   \
   }

@@ -497,4 +497,11 @@ DriveResult drive_point(const Material& material, const DriveProgram& program, s
   return d.run();
 }
 
+size_t record_nearest(const DriveResult& result, double t) {
+  size_t best = 0;
+  for (size_t k = 0; k < result.records.size(); ++k)
+    if (std::abs(result.records[k].t - t) < std::abs(result.records[best].t - t)) best = k;
+  return best;
+}
+
 }  // namespace ballista

@@ -124,6 +124,9 @@ struct DriveResult {
   int max_iterations = 0;            ///< most Newton iterations any step needed
 };
 
+/// Index of the record nearest time t (a table row's end is recorded exactly, so this finds it).
+size_t record_nearest(const DriveResult& result, double t);
+
 /// Drives one point of `material` through `program`. Throws Error on a bad program (no rows and
 /// no legs, both, non-increasing times, det F <= 0 or non-finite entries in the table or in an
 /// interpolated step, zero rotation axis with a non-zero angle, non-positive durations or steps),

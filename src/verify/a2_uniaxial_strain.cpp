@@ -58,14 +58,6 @@ const char* kind_name(A2Hardening h) {
   return h == A2Hardening::None ? "no" : h == A2Hardening::Isotropic ? "linear isotropic" : "linear kinematic";
 }
 
-/// Index of the record at time t (a table row end: recorded exactly).
-size_t record_at(const DriveResult& r, double t) {
-  size_t best = 0;
-  for (size_t k = 0; k < r.records.size(); ++k)
-    if (std::abs(r.records[k].t - t) < std::abs(r.records[best].t - t)) best = k;
-  return best;
-}
-
 /// The catalogue's F11 table driven through the model: the records every later phase reads.
 DriveResult drive_uniaxial_strain(const Material& mat, const A2Problem& pb) {
   DriveProgram prog;
@@ -159,7 +151,7 @@ void check_catalogue_figures(VerifyCase& c, const A2Computed& cs, const Uniaxial
                              const DriveResult& res, const A2Accuracy& a, double sy) {
   const size_t n = cs.e.size();
   // Catalogue figures, given to 4 significant digits: tolerance half the last digit (0.05 MPa).
-  const size_t k1 = record_at(res, 1.0), k3 = record_at(res, 3.0);
+  const size_t k1 = record_nearest(res, 1.0), k3 = record_nearest(res, 3.0);
   c.check("yield at t = 1: sigma11 = 351.8 MPa (catalogue), |difference| in MPa",
           std::abs(cs.s11[k1] - 351.8e6) / 1e6, 0.05);
   c.check("yield at t = 1: sigma22 = 66.0 MPa (catalogue), |difference| in MPa",

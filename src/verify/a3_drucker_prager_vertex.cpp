@@ -29,13 +29,6 @@ namespace ballista {
 
 namespace {
 
-size_t record_at(const DriveResult& r, double t) {
-  size_t best = 0;
-  for (size_t k = 0; k < r.records.size(); ++k)
-    if (std::abs(r.records[k].t - t) < std::abs(r.records[best].t - t)) best = k;
-  return best;
-}
-
 Mat3 published(size_t row) {
   const double s22 = A3Reference::sigma22()[row];
   return Mat3::diag(A3Reference::sigma11()[row], s22, s22);
@@ -51,7 +44,7 @@ std::vector<double> row_errors(const DriveResult& r) {
   std::vector<double> e;
   for (size_t row = 1; row < A3Reference::t().size(); ++row) {
     const Mat3 pub = published(row);
-    e.push_back(frobenius(r.records[record_at(r, A3Reference::t()[row])].sigma - pub) / frobenius(pub));
+    e.push_back(frobenius(r.records[record_nearest(r, A3Reference::t()[row])].sigma - pub) / frobenius(pub));
   }
   return e;
 }
@@ -148,7 +141,7 @@ VerifyCase run_a3(const MaterialFactory& f, const A3Problem& pb) {
   // so only at the row ends: inside the row the linearly interpolated F makes a ln-strain path that
   // bows off the flow direction M, and the exact solution itself leaves the dwell point by a few
   // 1e-3 before returning at t = 2 (path independence on the flat cone); reported as a scalar.
-  const size_t k15 = record_at(res, 1.5), k2 = record_at(res, 2.0);
+  const size_t k15 = record_nearest(res, 1.5), k2 = record_nearest(res, 2.0);
   double dwell = 0.0, wander = 0.0;
   for (size_t k = k15; k <= k2; ++k) {
     dwell = std::max(dwell, frobenius(res.records[k].sigma - res.records[k15].sigma) / frobenius(published(2)));
