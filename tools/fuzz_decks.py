@@ -108,6 +108,12 @@ RUN_REDUCTIONS = {
     "rod_sandstone_reduced": {"grid.cell_size": "2.0e-3", "simulation.end_time": "5.0e-6"},
     # 126k points at the deck's 0.86 mm: the bond families alone took over 20 s under the sanitizers.
     "exploding_cylinder_pd": {"grid.cell_size": "1.72e-3", "simulation.end_time": "1.0e-6"},
+    # The 3D peridynamic decks at their tests/examples sizes: at the decks' own the bond families
+    # alone took 3 to 9 s a case.
+    "pd_lps_kalthoff_winkler": {"grid.cell_size": "0.002", "simulation.end_time": "1.0e-6"},
+    "munition_case_pd": {"grid.cell_size": "1.72e-3", "bodies.1.point_spacing": "3.44e-3",
+                         "simulation.end_time": "1.0e-6"},
+    "pd_disk_indent": {"bodies.0.shape.radius": "0.0050001", "simulation.end_time": "1.0e-6"},
 }
 DEFAULT_RUN_REDUCTION = {"simulation.end_time": "1.0e-6"}
 MAX_STEPS = 30
