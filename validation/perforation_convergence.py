@@ -37,6 +37,7 @@ QUANTITIES = [
     ("cement_hole", "cement entrance hole diameter", "mm"),
     ("tunnel_entrance", "rock tunnel entrance diameter", "mm"),
     ("cavity_depth", "cavity depth in the rock", "mm"),
+    ("tunnel_volume", "rock tunnel volume", "cm³"),
 ]
 
 
@@ -132,6 +133,23 @@ def tunnel_entrance(pen, out):
     return None
 
 
+def tunnel_volume(out):
+    """The rock tunnel's volume, cm^3: channel.csv's wall radius r(z) as a body of revolution about
+    the line of flight, the sum of pi r^2 dz over the bins with a wall. What the jet's energy buys
+    in the rock: a crater's volume grows with the energy the impactor delivers (in sandstone,
+    Dufresne et al., Meteorit. Planet. Sci. 48 (2013), doi:10.1111/maps.12024), so levels that
+    deliver the same energy can agree on it while they part on the tunnel's shape, depth against
+    width."""
+    import csv
+    rows = list(csv.DictReader(open(os.path.join(out, "channel.csv"))))
+    if len(rows) < 2:
+        return None
+    z = [float(r["depth"]) for r in rows]
+    dz = z[1] - z[0]
+    radii = [float(r["radius"]) for r in rows]
+    return 1e6 * sum(math.pi * r * r * dz for r in radii if math.isfinite(r))
+
+
 def extract(s, out):
     pen = s["penetration"]
     holes = pen.get("holes", {})
@@ -143,6 +161,7 @@ def extract(s, out):
         "casing_hole": mm(holes.get("casing", {}).get("entrance_diameter")),
         "cement_hole": mm(holes.get("cement", {}).get("entrance_diameter")),
         "tunnel_entrance": mm(tunnel_entrance(pen, out)),
+        "tunnel_volume": tunnel_volume(out),
         # What the jet has left behind the casing and behind the cement, against the hydrodynamic
         # erosion T sqrt(rho_layer / rho_jet) (thesis eq. 3.2 inverted; docs/penetration.md).
         "jet_behind": {layer: {k: holes.get(layer, {}).get("jet_behind", {}).get(k)
@@ -211,13 +230,14 @@ def main():
             result["estimates"][key] = est
     json.dump(result, open(os.path.join(a.out, "convergence.json"), "w"), indent=2)
     lines = ["| band cell (mm) | cells across the tip radius | particles | steps | wall time (s) | depth (mm) | "
-             "casing hole (mm) | cement hole (mm) | rock tunnel entrance (mm) | cavity depth (mm) |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
+             "casing hole (mm) | cement hole (mm) | rock tunnel entrance (mm) | cavity depth (mm) | "
+             "tunnel volume (cm³) |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     fmt = lambda v: "—" if v is None else f"{v:.3g}"
     for r in rows:
         lines.append(f"| {r['h'] * 1e3:g} | {fmt(r['cells_across_radius'])} | {r['particles']} | {r['steps']} | "
                      f"{r['wall_time']:.0f} | {fmt(r['depth'])} | {fmt(r['casing_hole'])} | {fmt(r['cement_hole'])} | "
-                     f"{fmt(r['tunnel_entrance'])} | {fmt(r['cavity_depth'])} |")
+                     f"{fmt(r['tunnel_entrance'])} | {fmt(r['cavity_depth'])} | {fmt(r['tunnel_volume'])} |")
     if result["estimates"]:
         for name, key in (("observed order", "observed_order"), ("Richardson estimate", "richardson"),
                           ("finest vs Richardson", "finest_relative_gap")):
