@@ -13,6 +13,10 @@ Engineering", 1998, ch. 5; the grid convergence index uses the same extrapolatio
 
 Writes DIR/convergence.json, DIR/convergence.md (the table for docs/validation.md) and
 DIR/convergence.png. Long (the finest level takes tens of minutes on 2 cores); not in make test.
+A level that takes hours can be checkpointed and continued after an interruption:
+
+  ... --set output.checkpoint_interval=5e-6            # first run, cut short
+  ... --set output.checkpoint_interval=5e-6 --resume   # continues each level that has no summary
 
   /usr/bin/python3 validation/perforation_convergence.py --ballista build/ballista --out out/perfconv
 
@@ -55,9 +59,15 @@ def run_level(a, h):
     summary = os.path.join(out, "summary.json")
     if a.reuse and os.path.exists(summary):
         return json.load(open(summary)), None
-    cmd = [a.ballista, "run", a.deck, "-o", out, "-q", "--no-plots", "--threads", str(a.threads), "--overwrite"]
-    for s in level_sets(h, a.far, a.band, a.path) + a.set:
-        cmd += ["--set", s]
+    checkpoints = os.path.join(out, "checkpoints")
+    if a.resume and not os.path.exists(summary) and os.path.isdir(checkpoints) and os.listdir(checkpoints):
+        # A level cut short (a machine restart, a session's end) continues from its newest
+        # checkpoint: the deck and the level's overrides are the checkpoint's (docs/restart.md).
+        cmd = [a.ballista, "run", "--restart", out, "-q", "--no-plots", "--threads", str(a.threads)]
+    else:
+        cmd = [a.ballista, "run", a.deck, "-o", out, "-q", "--no-plots", "--threads", str(a.threads), "--overwrite"]
+        for s in level_sets(h, a.far, a.band, a.path) + a.set:
+            cmd += ["--set", s]
     print("running", " ".join(cmd), flush=True)
     t0 = time.time()
     p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
@@ -210,6 +220,10 @@ def main():
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--set", action="append", default=[], help="further --set overrides for every level")
     ap.add_argument("--reuse", action="store_true", help="reuse the summary of a level already run into --out")
+    ap.add_argument("--resume", action="store_true",
+                    help="continue a level that has checkpoints but no summary from its newest checkpoint "
+                         "(run the levels with --set output.checkpoint_interval=...); its wall time is then "
+                         "the last part's only")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     rows = []
