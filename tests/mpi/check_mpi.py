@@ -189,7 +189,8 @@ def main():
     ap.add_argument("deck")
     ap.add_argument("workdir")
     ap.add_argument("--ranks", default="1,2,4")
-    ap.add_argument("--threads", default="1,2")
+    ap.add_argument("--threads", default="1,2",
+                    help="thread counts per rank; more than 1 thread runs on up to 2 ranks only")
     ap.add_argument("--set", action="append", default=[])
     ap.add_argument("--tol", type=float, default=1e-12)
     ap.add_argument("--empty-rank", action="store_true")
