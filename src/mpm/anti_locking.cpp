@@ -40,10 +40,15 @@ void CellFBar::clear_slots(Index n, bool across_ranks) {
 
 namespace {
 /// The (cell, material) slot of a point at x: the node index of its cell's lowest corner (the cell
-/// clamped into the block like the solver's sort) times the material count, plus its material.
-inline Index slot_of(const GridGeometry& g, const Vec3& x, const std::int64_t* material, int nmat, Index p) {
+/// clamped into the block like the solver's sort; with patches of k cells per axis, the patch's
+/// lowest cell) times the material count, plus its material.
+inline Index slot_of(const GridGeometry& g, const Vec3& x, const std::int64_t* material, int nmat, int patch,
+                     Index p) {
   int c[3] = {0, 0, 0};
-  for (int a = 0; a < g.dim; ++a) c[a] = std::clamp(g.cell_of(x[a], a), 0, g.nodes[a] - 1);
+  for (int a = 0; a < g.dim; ++a) {
+    c[a] = std::clamp(g.cell_of(x[a], a), 0, g.nodes[a] - 1);
+    c[a] -= c[a] % patch;
+  }
   return g.node_index(c[0], c[1], c[2]) * nmat + (material ? material[p] : 0);
 }
 }  // namespace
@@ -69,7 +74,7 @@ void CellFBar::apply(const GridGeometry& g, Dimension dimension, double dt, cons
   // 1. Per point: its (cell, material) slot and its volume at t_n, V_p^n = V_p^{n+1} / dJ_p,
   // dJ_p = det dF_p.
   for_each(0, n, [&](Index p) {
-    cell_[p] = slot_of(g, pts.x[p], pts.material, nmat, p);
+    cell_[p] = slot_of(g, pts.x[p], pts.material, nmat, patch_, p);
     v_old_p_[p] = pts.volume[p] / det(I + dt * pts.L[p]);
   });
   // 2. Per (cell, material): V_c^{n+1} and V_c^n, summed in point order by one thread (the sums,
@@ -114,7 +119,7 @@ void CellFBar::force_pressure(const GridGeometry& g, const FBarForcePoints& pts,
   const int nmat = prepare(g, pts.material, pts.materials, n);
   // 1. Per point: its (cell, material) slot, and its total pressure p + q (in out, for now).
   for_each(0, n, [&](Index p) {
-    cell_[p] = slot_of(g, pts.x[p], pts.material, nmat, p);
+    cell_[p] = slot_of(g, pts.x[p], pts.material, nmat, patch_, p);
     const Mat3& s = pts.stress[p];
     out[p] = -(s(0, 0) + s(1, 1) + s(2, 2)) / 3.0 + (pts.viscous_pressure ? pts.viscous_pressure[p] : 0.0);
   });

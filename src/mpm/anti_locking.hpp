@@ -27,6 +27,14 @@
 // copper (nor the copper's stiffness to the rock). With one material this is Coombs et al.'s
 // average; Σ_p V_p^{n+1} over each material of each cell is the standard update's.
 //
+// Patches (mpm.fbar_patch = k > 1): the average runs over fixed blocks of k cells per axis
+// instead of single cells, the F-bar patch of de Souza Neto, Pires & Owen, IJNME 62 (2005) 353
+// (the patch's volume change is the standard update's, as the cell's is for k = 1). What it is for:
+// a point that is the only one of its material in its cell has nothing to be averaged with, and
+// the grid's in-plane compression of a sheet thinner than a cell (jet copper thinned along a
+// crater's wall while its hoop stretch grows) squeezes it towards its equation of state's limit; a
+// patch of k^d cells holds its neighbours. A patch is keyed by its lowest cell.
+//
 // Thread determinism: the per-cell sums are accumulated in point order by one thread (two
 // additions per point); the per-point passes before and after are independent per point, so the
 // result is bitwise the same on any thread count.
@@ -80,6 +88,9 @@ using FBarSlotSum = std::function<void(double* a, double* b, int materials)>;
 /// first step with a given point and cell count, apply() allocates nothing.
 class CellFBar {
  public:
+  /// Cells per axis of an averaging patch (>= 1; 1 = each cell on its own, the default).
+  void set_patch(int cells) { patch_ = cells < 1 ? 1 : cells; }
+
   /// Replaces each point's volumetric increment by its cell's (see the header comment). dt > 0;
   /// every dJ_p = det(I + dt L_p) must be positive (the solver checks J > 0 before).
   void apply(const GridGeometry& g, Dimension dimension, double dt, const FBarPoints& pts,
@@ -99,6 +110,7 @@ class CellFBar {
                       const FBarSlotSum& across_ranks = {});
 
  private:
+  int patch_ = 1;                ///< cells per axis of an averaging patch
   std::vector<Index> cell_;      ///< (cell, material) slot of each point: cell node index × materials + material
   std::vector<double> v_old_p_;  ///< V_p^n = V_p^{n+1} / dJ_p of each point, m^3
   std::vector<double> v_new_;    ///< per (cell, material): sum of V^{n+1}, m^3

@@ -127,6 +127,7 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   xpic_order_ = P.xpic_order;
   sort_every_ = P.sort_every;
   anti_locking_ = P.anti_locking;
+  fbar_.set_patch(P.fbar_patch);
   rebalance_ = P.rebalance_imbalance;
   damping_ = sc.simulation.damping;
   grid_.geom = layout_.geom;
@@ -163,6 +164,16 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     throw DeckError(sc.grid.refine_mark.file, sc.grid.refine_mark.line, sc.grid.refine_mark.column, "grid.refine",
                     "a graded grid runs on one MPI rank only so far (" + std::to_string(comm_.size()) +
                         " ranks were started; docs/parallel.md)");
+  if (P.fbar_patch > 1 && anti_locking_ != AntiLocking::FBar)
+    throw_solver_param_error(sc, "mpm", "fbar_patch",
+                             "is the F-bar's patch and does nothing without anti_locking: fbar (set it, or remove "
+                             "fbar_patch)");
+  if (P.fbar_patch > 1 && comm_.distributed())
+    // A patch is keyed by its corner cell, which a rank holding another part of the patch need
+    // not share: the per-patch sums would not meet across ranks.
+    throw_solver_param_error(sc, "mpm", "fbar_patch",
+                             "F-bar patches larger than a cell run on one MPI rank only so far (" +
+                                 std::to_string(comm_.size()) + " ranks were started; docs/parallel.md)");
   if (usavg_ && shape_ == ShapeKind::Cpdi)
     // CPDI's domains follow F, which the first stress half changes within the step: the second
     // mapping and the update would use other weights than the first, and momentum would drift.

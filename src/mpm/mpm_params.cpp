@@ -25,6 +25,12 @@ std::vector<ParamSpec> mpm_params() {
                     false, 0};
   locking.choices = anti_locking_names();
   locking.default_choice = "none";
+  ParamSpec patch{"fbar_patch", "cells",
+                  "edge of the F-bar's averaging patch in grid cells (anti_locking: fbar): 1 averages over each cell; "
+                  "k > 1 over fixed blocks of k x k (x k) cells, the F-bar patch of de Souza Neto, Pires & Owen, IJNME "
+                  "62 (2005) 353",
+                  false, 1, 1, 8};
+  patch.integer = true;
   ParamSpec xpic{"xpic_order", "1",
                  "order m of XPIC for the PIC share (1 - flip) of the update: 1 = PIC; m > 1 keeps the part of the "
                  "particle velocities the grid can carry (Hammerquist & Nairn, CMAME 318 (2017) 724)",
@@ -45,7 +51,7 @@ std::vector<ParamSpec> mpm_params() {
                        "history, which such models do not read, dropped): material flowing like a fluid otherwise "
                        "stretches until det F and the polar decomposition are lost to round-off. 0 = never",
                        false, 1000.0, 0.0, 1e12};
-  return {shape, update, flip, sort, locking, rebalance, xpic, bv_linear, bv_quadratic, distortion};
+  return {shape, update, flip, sort, locking, patch, rebalance, xpic, bv_linear, bv_quadratic, distortion};
 }
 
 MpmParams read_mpm_params(const ParamValues& P) {
@@ -58,6 +64,7 @@ MpmParams read_mpm_params(const ParamValues& P) {
   m.flip = P.at("flip");
   m.sort_every = static_cast<int>(P.at("sort_every"));
   m.anti_locking = parse_anti_locking(P.choices.at("anti_locking"));
+  m.fbar_patch = static_cast<int>(P.at("fbar_patch"));
   m.rebalance_imbalance = P.at("rebalance_imbalance");
   m.xpic_order = static_cast<int>(P.at("xpic_order"));
   m.bulk_viscosity = {P.at("bulk_viscosity_linear"), P.at("bulk_viscosity_quadratic")};

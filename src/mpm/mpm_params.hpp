@@ -21,6 +21,7 @@ struct MpmParams {
   double flip = 1.0;                 ///< FLIP fraction of the velocity update (1 FLIP, 0 PIC)
   int sort_every = 20;               ///< steps between particle sorts by cell (0 = never)
   AntiLocking anti_locking = AntiLocking::None;
+  int fbar_patch = 1;                ///< F-bar patch edge, cells (1: each cell on its own)
   double rebalance_imbalance = 0.1;  ///< repartition when the largest rank holds > (1 + this) x the mean
   int xpic_order = 1;                ///< 1 = PIC for the PIC share
   BulkViscosity bulk_viscosity;      ///< C_L and C_Q (0: off)

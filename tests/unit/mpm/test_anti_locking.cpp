@@ -11,6 +11,9 @@
 //  - the forces' pressure (force_pressure) is the volume average of p + q over the point's
 //    material in its cell, by hand, and the work the forces do with it equals the work the
 //    averaged rates book (the mean-dilatation identity sum V_p Pbar tr L_p = sum V_p P_p tr Lbar);
+//  - with patches of k cells per axis (set_patch), points in different cells of one patch get the
+//    patch's volume ratio and the patch's volume is unchanged, a point alone in its cell is
+//    averaged with its patch, patches do not interact, and the forces read the patch's pressure;
 //  - the result is bitwise the same on 1 and 2 threads.
 // Tolerances: every quantity is a handful of flops from its inputs (a cube root, a 3x3
 // determinant), so 1e-13 relative is ~100 ulp of slack over the round-off of the formulas.
@@ -231,6 +234,57 @@ TEST(AntiLocking, ForcesReadTheCellAveragedPressureOfTheirMaterial) {
   // Without the pairing the two differ: what the demo's energy audit showed.
   const double unpaired = vol[0] * P[0] * trL[0] + vol[1] * P[1] * trL[1];
   EXPECT_GT(std::abs(unpaired - booked), 0.1 * std::abs(booked));
+}
+
+TEST(AntiLocking, PatchesAverageOverBlocksOfCells) {
+  // h = 0.5, patches of 2 x 2 cells in an axisymmetric grid: cells (0,0) and (1,1) lie in patch
+  // (0,0); cell (2,0) starts the next patch. Point 0 is alone in its cell and compressed hard (a
+  // thinned jet point), points 1 and 2 share the other cell of the patch, point 3 is in the next
+  // patch.
+  Points p;
+  p.add({{0.3, 0.2, 0.0}}, Mat3::identity(), mat(-200.0, 0.0, 0.0, 0.0, -150.0, 0.0, 0.0, 0.0, 40.0), 0.002, kDt);
+  p.add({{0.6, 0.7, 0.0}}, Mat3::identity(), mat(10.0, 5.0, 0.0, 2.0, -10.0, 0.0, 0.0, 0.0, 5.0), 0.003, kDt);
+  p.add({{0.9, 0.9, 0.0}}, Mat3::identity(), mat(-5.0, 0.0, 0.0, 1.0, 8.0, 0.0, 0.0, 0.0, -2.0), 0.004, kDt);
+  p.add({{1.1, 0.3, 0.0}}, Mat3::identity(), mat(-90.0, 0.0, 0.0, 0.0, -90.0, 0.0, 0.0, 0.0, 0.0), 0.005, kDt);
+  const Points before = p;
+  CellFBar fbar;
+  fbar.set_patch(2);
+  fbar.apply(grid(2), Dimension::Axisymmetric, kDt, p.view());
+  double vn = 0.0, vo = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    vn += before.vol[k];
+    vo += before.vol[k] / det(Mat3::identity() + kDt * before.L[k]);
+  }
+  const double dJbar = vn / vo;
+  double vsum = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(det(Mat3::identity() + kDt * p.L[k]), dJbar, kTol) << k;  // the patch's ratio
+    EXPECT_LT(max_abs_diff((Mat3::identity() + kDt * p.L[k]) * before.Fn[k], p.F[k]), kTol) << k;
+    vsum += p.vol[k];
+  }
+  EXPECT_NEAR(vsum, vn, kTol * vn);  // the patch's volume is that of the plain update
+  // The lone point's own ratio (0.71) would have stood with cell averages; the patch lifts it.
+  EXPECT_LT(det(Mat3::identity() + kDt * before.L[0]), 0.72);
+  EXPECT_GT(dJbar, 0.85);
+  // Alone in its patch: unchanged.
+  EXPECT_LT(max_abs_diff(p.F[3], before.F[3]), kTol);
+  // With each cell on its own the lone point keeps its ratio: what the patch changes.
+  Points cells = before;
+  CellFBar per_cell;
+  per_cell.apply(grid(2), Dimension::Axisymmetric, kDt, cells.view());
+  EXPECT_LT(max_abs_diff(cells.F[0], before.F[0]), kTol);
+  // The forces read the patch's volume-averaged pressure.
+  const Vec3 x[] = {before.x[0], before.x[1], before.x[3]};
+  const double vol[] = {0.002, 0.003, 0.005};
+  const Mat3 s[] = {mat(-9e10, 0.0, 0.0, 0.0, -9e10, 0.0, 0.0, 0.0, -9e10),
+                    mat(-1e9, 0.0, 0.0, 0.0, -2e9, 0.0, 0.0, 0.0, -3e9),
+                    mat(-4e9, 0.0, 0.0, 0.0, -4e9, 0.0, 0.0, 0.0, -4e9)};
+  std::vector<double> out;
+  fbar.force_pressure(grid(2), {3, x, vol, s, nullptr, nullptr, 1}, out);
+  const double pbar = (vol[0] * 9e10 + vol[1] * 2e9) / (vol[0] + vol[1]);
+  EXPECT_NEAR(out[0], pbar - 9e10, 1e-13 * 1e11);
+  EXPECT_NEAR(out[1], pbar - 2e9, 1e-13 * 1e11);
+  EXPECT_NEAR(out[2], 0.0, 1e-13 * 1e10);  // alone in its patch: its own pressure
 }
 
 TEST(AntiLocking, BitwiseIndependentOfThreadCount) {

@@ -886,4 +886,24 @@ TEST(MpmSolver, TemporalOrderOfTheUpdateSchemes) {
   EXPECT_LT(finest[0], 0.6 * finest[1]);
 }
 
+TEST(MpmSolver, AnFBarPatchWithoutTheFBarIsADeckError) {
+  // mpm.fbar_patch sizes the F-bar's averaging patch: without anti_locking: fbar it would be
+  // ignored, so the deck is refused, naming the key; with the F-bar it is taken.
+  DeckParts d;
+  d.dim = "axisymmetric";
+  d.bodies = "  - {name: a, material: soft, shape: {type: box, lower: [0, 0.0078125], upper: [0.015625, 0.0234375]}}\n";
+  d.anti_locking = "none, fbar_patch: 2";
+  try {
+    make_solver_from(make_deck(d));
+    ADD_FAILURE() << "fbar_patch without the F-bar was accepted";
+  } catch (const DeckError& e) {
+    EXPECT_EQ(e.key_path(), "mpm.fbar_patch");
+    EXPECT_NE(std::string(e.what()).find("anti_locking: fbar"), std::string::npos) << e.what();
+  }
+  d.anti_locking = "fbar, fbar_patch: 2";
+  auto solver = make_solver_from(make_deck(d));
+  solver->step(1e-7);
+  EXPECT_GT(solver->points().size(), 0);
+}
+
 }  // namespace test_mpm_solver
