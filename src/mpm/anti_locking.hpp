@@ -33,7 +33,9 @@
 // a point that is the only one of its material in its cell has nothing to be averaged with, and
 // the grid's in-plane compression of a sheet thinner than a cell (jet copper thinned along a
 // crater's wall while its hoop stretch grows) squeezes it towards its equation of state's limit; a
-// patch of k^d cells holds its neighbours. A patch is keyed by its lowest cell.
+// patch of k^d cells holds its neighbours. A patch is keyed by its lowest cell. (On the
+// perforation demo 2 x 2 patches do not keep the step: they hand the jet's hot tip its
+// neighbours' expansion instead; docs/validation.md.)
 //
 // Thread determinism: the per-cell sums are accumulated in point order by one thread (two
 // additions per point); the per-point passes before and after are independent per point, so the
