@@ -1,5 +1,7 @@
 #include "materials/eos.hpp"
 
+#include <algorithm>
+
 namespace ballista {
 
 std::vector<ParamSpec> eos_param_specs() {
@@ -17,7 +19,21 @@ std::vector<ParamSpec> eos_param_specs() {
        nan, 0.0, inf, false, false},
       {"eos.min_pressure", "Pa", "tension cutoff: the pressure never drops below it (cavitation, spall); default none",
        false, nan, -inf, 0.0, false, false},
+      {"eos.max_particle_velocity", "m/s",
+       "Mie-Grüneisen: particle velocity where the Us-up line's data end; beyond that shock's compression "
+       "the Hugoniot continues along its tangent instead of to the line's pole; default none",
+       false, nan, 0.0, inf, true, false},
   };
+}
+
+double eos_hugoniot_tangent(const Eos& e, double eta) { return e.p_fit + e.dp_fit * (eta - e.eta_fit); }
+
+double eos_bulk_modulus_tangent(const Eos& e, double J, double energy) {
+  // eos_bulk_modulus with p_H' = p_H'(eta_f): dp/deta|_s = p_H' (1 - Gamma0 eta/2) - Gamma0 p_H / 2 + Gamma0 p.
+  const double eta = 1.0 - J;
+  const double p = eos_mg_pressure(e, J, energy);
+  const double dp = e.dp_fit * (1.0 - 0.5 * e.gamma0 * eta) - 0.5 * e.gamma0 * eos_hugoniot_pressure(e, J) + e.gamma0 * p;
+  return std::max((1.0 - eta) * dp, 0.5 * e.rho0 * e.c0 * e.c0);
 }
 
 Eos make_eos(const ParamValues& v, double bulk, double density) {
@@ -26,7 +42,11 @@ Eos make_eos(const ParamValues& v, double bulk, double density) {
   e.rho0 = density;
   e.p_min = v.number_or("eos.min_pressure", -std::numeric_limits<double>::infinity());
   const std::string type = v.choice("eos.type", "linear");
-  if (type == "linear") return e;
+  if (type == "linear") {
+    if (v.given("eos.max_particle_velocity"))
+      throw ParamError("eos.max_particle_velocity", "eos.max_particle_velocity needs eos.type mie_gruneisen");
+    return e;
+  }
   if (type != "mie_gruneisen") throw ParamError("eos.type", "unknown eos.type '" + type + "'");
   e.kind = Eos::Kind::MieGruneisen;
   for (const char* k : {"eos.sound_speed", "eos.hugoniot_slope", "eos.gruneisen_gamma"})
@@ -34,6 +54,17 @@ Eos make_eos(const ParamValues& v, double bulk, double density) {
   e.c0 = v.at("eos.sound_speed");
   e.s = v.at("eos.hugoniot_slope");
   e.gamma0 = v.at("eos.gruneisen_gamma");
+  if (v.given("eos.max_particle_velocity")) {
+    // The Hugoniot's compression at that particle velocity, eta = up / Us (Meyers 1994 eq. 4.13),
+    // and the line's pressure and slope there (eos.hpp): the tangent's anchor.
+    const double u = v.at("eos.max_particle_velocity");
+    const double eta = u / (e.c0 + e.s * u);
+    const double k0 = e.rho0 * e.c0 * e.c0;
+    const double den = 1.0 - e.s * eta;
+    e.p_fit = k0 * eta / (den * den);
+    e.dp_fit = k0 * (1.0 + e.s * eta) / (den * den * den);
+    e.eta_fit = eta;
+  }
   return e;
 }
 

@@ -21,6 +21,15 @@
 //   E_{n+1} = E_n + W_dev - (p_n + p_{n+1}) (J_{n+1} - J_n) / 2       (dE = J sigma : D dt)
 // A compression beyond the Hugoniot pole eta = 1/s is outside the model: the pressure is NaN and
 // the solver stops with its non-finite-stress diagnostic.
+// eos.max_particle_velocity u_f (default none) ends the Us-up line where its data end, or above
+// the strongest shock the problem can produce: beyond the
+// Hugoniot's compression at that particle velocity, eta_f = u_f / (c0 + s u_f) (eta = up/Us,
+// Meyers 1994 eq. 4.13), p_H continues along its tangent,
+//   p_H(eta) = p_H(eta_f) + p_H'(eta_f) (eta - eta_f)                      (eta > eta_f),
+// instead of rising to the pole at eta = 1/s, where the stiffness and the wave speed grow without
+// bound. The pole is an artefact of extrapolating a straight Us-up line (the line's limiting
+// compression s/(s-1) is not a property of the material), and a point squeezed there by the
+// grid, not by a shock, would set the whole run's stable step.
 // eos.min_pressure (default -inf) caps tension (cavitation / spall cutoff): p >= p_min.
 #include <cmath>
 #include <limits>
@@ -43,9 +52,14 @@ struct Eos {
   double s = 0.0;       ///< slope of the Us-up line, 1
   double gamma0 = 0.0;  ///< Grüneisen coefficient at the reference state, 1
   double p_min = -std::numeric_limits<double>::infinity();  ///< tension cutoff, Pa
+  /// Compression eta_f where the Us-up line ends (eos.max_particle_velocity); +inf: to the pole.
+  double eta_fit = std::numeric_limits<double>::infinity();
+  double p_fit = 0.0;   ///< p_H(eta_f) on the line, Pa
+  double dp_fit = 0.0;  ///< p_H'(eta_f) on the line, Pa
 };
 
-/// eos.type, eos.sound_speed, eos.hugoniot_slope, eos.gruneisen_gamma, eos.min_pressure.
+/// eos.type, eos.sound_speed, eos.hugoniot_slope, eos.gruneisen_gamma, eos.min_pressure,
+/// eos.max_particle_velocity.
 std::vector<ParamSpec> eos_param_specs();
 
 /// Reads the eos.* parameters; `bulk` is the model's elastic bulk modulus (used by eos.type
@@ -57,11 +71,16 @@ inline StateFieldSpec eos_state_field() {
   return {kEosEnergyField, "J/m^3", 0.0};
 }
 
+/// p_H beyond the end of the Us-up line (eta > eta_f): its tangent there. Out of line, so that the
+/// line's own path compiles as it did without the key (its results bitwise unchanged).
+[[gnu::noinline]] double eos_hugoniot_tangent(const Eos& e, double eta);
+
 /// Reference (Hugoniot) pressure p_H(J) of the Mie-Grüneisen EOS, Pa.
 inline double eos_hugoniot_pressure(const Eos& e, double J) {
   const double eta = 1.0 - J;
   const double k0 = e.rho0 * e.c0 * e.c0;
   if (eta < 0.0) return k0 * eta;
+  if (eta > e.eta_fit) [[unlikely]] return eos_hugoniot_tangent(e, eta);
   const double den = 1.0 - e.s * eta;
   if (!(den > 0.0)) return std::numeric_limits<double>::quiet_NaN();  // beyond the Hugoniot pole
   return k0 * eta / (den * den);
@@ -92,15 +111,21 @@ inline double eos_update(const Eos& e, const PointKinematics& k, double p_old, d
   return p_new;
 }
 
+/// eos_bulk_modulus beyond the end of the Us-up line (eta > eta_f), with the tangent's slope; out of
+/// line for the same reason as eos_hugoniot_tangent.
+[[gnu::noinline]] double eos_bulk_modulus_tangent(const Eos& e, double J, double energy);
+
 /// Isentropic bulk modulus rho dp/drho at (J, E), Pa, for the time-step estimate. For
 /// Mie-Grüneisen, along an isentrope dE = p d(eta), so
 ///   dp/deta|_s = p_H' (1 - Gamma0 eta/2) - Gamma0 p_H / 2 + Gamma0 p,
-///   p_H' = rho0 c0^2 (1 + s eta) / (1 - s eta)^3  (eta >= 0),  rho dp/drho = (1 - eta) dp/deta;
+///   p_H' = rho0 c0^2 (1 + s eta) / (1 - s eta)^3  (0 <= eta <= eta_f; its value at eta_f beyond),
+///   rho dp/drho = (1 - eta) dp/deta;
 /// bounded below by the reference rho0 c0^2 / 2 so that tension never gives a vanishing speed.
 inline double eos_bulk_modulus(const Eos& e, double J, double energy) {
   if (e.kind == Eos::Kind::Linear) return e.bulk;
   const double eta = 1.0 - J;
   const double k0 = e.rho0 * e.c0 * e.c0;
+  if (eta > e.eta_fit) [[unlikely]] return eos_bulk_modulus_tangent(e, J, energy);
   double dpH = k0;
   if (eta >= 0.0) {
     const double den = 1.0 - e.s * eta;

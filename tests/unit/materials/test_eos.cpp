@@ -202,4 +202,53 @@ TEST(Eos, WaveSpeedIsTheIsentropicSoundSpeed) {
   EXPECT_NEAR(water->wave_speed(st, 0, 1.0), m.c0, 1e-12 * m.c0);  // bulk sound speed at rest
 }
 
+// eos.max_particle_velocity u_f ends the Us-up line at the Hugoniot's compression for that shock,
+// eta_f = u_f / (c0 + s u_f). Up to it nothing changes (the Hugoniot of the test above, bitwise);
+// beyond it p_H follows the line's tangent at eta_f, written here from the jump conditions: at
+// eta_f, p_f = rho0 Us u_f and dp_H/deta = rho0 c0^2 (1 + s eta_f)/(1 - s eta_f)^3 (the derivative
+// of rho0 c0^2 eta/(1 - s eta)^2). So the pressure stays finite at and past the line's pole
+// eta = 1/s, and the wave speed of a point squeezed there is the tangent's, not unbounded. The
+// tolerances: 1e-12 relative, as above (closed forms of the same doubles).
+TEST(Eos, TheUsUpLineEndsAtItsLastParticleVelocity) {
+  const MG m = kCopper;
+  const double uf = 4000.0;
+  ParamValues v = copper_values();
+  v["eos.max_particle_velocity"] = uf;
+  PointDriver ended("linear_elastic", v), full("linear_elastic", copper_values());
+  const double Usf = m.c0 + m.s * uf, eta_f = uf / Usf, pf = m.rho0 * Usf * uf;
+  const double k0 = m.rho0 * m.c0 * m.c0;
+  const double slope = k0 * (1.0 + m.s * eta_f) / std::pow(1.0 - m.s * eta_f, 3);
+  // On the line, below eta_f: the same pressure as without the key, to the bit.
+  for (double up : {500.0, 2000.0, 3999.0}) {
+    const double eta = up / (m.c0 + m.s * up), E = 0.5 * m.rho0 * up * up;
+    const Mat3 F = Mat3::diag(1.0 - eta, 1.0, 1.0);
+    EXPECT_EQ(pressure_at(ended, F, E), pressure_at(full, F, E)) << "up = " << up;
+  }
+  // Beyond it, up to and past the pole 1/s = 0.671: the tangent, (1 - Gamma0 eta / 2) and Gamma0 E.
+  for (double eta : {eta_f + 1e-3, 0.55, 1.0 / m.s, 0.75}) {
+    const double E = 3.0e10;
+    const double pH = pf + slope * (eta - eta_f);
+    const double p = pH * (1.0 - 0.5 * m.gamma0 * eta) + m.gamma0 * E;
+    EXPECT_NEAR(pressure_at(ended, Mat3::diag(1.0 - eta, 1.0, 1.0), E), p, 1e-12 * std::abs(p)) << "eta = " << eta;
+  }
+  // The wave speed: continuous at eta_f (the tangent's slope is the line's there) and, past it,
+  // the isentropic modulus with the tangent's slope (eos.hpp), finite where the line's is not.
+  const auto cu = make_material("linear_elastic", v);
+  const auto cu_full = make_material("linear_elastic", copper_values());
+  FieldStore st;
+  cu->declare_fields(st);
+  st.resize(1);
+  st.real(kEosEnergyField)[0] = 0.5 * m.rho0 * uf * uf;
+  const double c_below = cu->wave_speed(st, 0, 1.0 - eta_f + 1e-9), c_above = cu->wave_speed(st, 0, 1.0 - eta_f - 1e-9);
+  EXPECT_NEAR(c_above, c_below, 1e-6 * c_below);
+  EXPECT_NEAR(cu_full->wave_speed(st, 0, 1.0 - eta_f + 1e-9), c_below, 1e-12 * c_below);
+  const double J_near_pole = 1.0 - 0.99 / m.s;  // the line's stiffness there is 1e6 times its value at rest
+  EXPECT_TRUE(std::isfinite(cu->wave_speed(st, 0, 1.0 - 1.0 / m.s)));
+  EXPECT_LT(cu->wave_speed(st, 0, J_near_pole), 0.1 * cu_full->wave_speed(st, 0, J_near_pole));
+  // A key without a Mie-Grüneisen EOS to act on is an error, not ignored.
+  ParamValues lin{{"density", m.rho0}, {"bulk_modulus", kCuK}, {"shear_modulus", kCuG},
+                  {"eos.max_particle_velocity", uf}};
+  EXPECT_THROW(make_material("linear_elastic", lin), ParamError);
+}
+
 }  // namespace test_eos

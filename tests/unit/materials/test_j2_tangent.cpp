@@ -156,6 +156,14 @@ TEST(J2Tangent, VoceKinematicMieGruneisen) {
   // The same check in tension (eta < 0 branch of the Hugoniot).
   for (int i = 0; i < 3; ++i) eps(i, i) += 2e-2 / 3.0;
   EXPECT_LT(fd_tangent_error(pt, eps, 1e-6, kH).rel_err, kTol);
+  // And beyond the end of the Us-up line (eos.max_particle_velocity): a line ended at 10 m/s
+  // (eta_f = 2.5e-3) puts the compressed step's eta ~ 1e-2 on the tangent.
+  v["eos.max_particle_velocity"] = 10.0;
+  TangentPoint ended("j2_plasticity", v);
+  ended.set_stress_bar(start_stress());
+  ended.set_state("energy_density", 3e7);
+  for (int i = 0; i < 3; ++i) eps(i, i) -= 2e-2 / 3.0;
+  EXPECT_LT(fd_tangent_error(ended, eps, 1e-6, kH).rel_err, kTol);
 }
 
 // Tension cutoff: while eos.min_pressure holds the pressure, dp/d eps = 0 (and the FD agrees).
