@@ -55,7 +55,7 @@ Eos make_eos(const ParamValues& v, double bulk, double density) {
   e.s = v.at("eos.hugoniot_slope");
   e.gamma0 = v.at("eos.gruneisen_gamma");
   if (v.given("eos.max_particle_velocity")) {
-    // The Hugoniot's compression at that particle velocity, eta = up / Us (Meyers 1994 eq. 4.13),
+    // The Hugoniot's compression at that particle velocity, eta = up / Us (Meyers 1994 §4.3),
     // and the line's pressure and slope there (eos.hpp): the tangent's anchor.
     const double u = v.at("eos.max_particle_velocity");
     const double eta = u / (e.c0 + e.s * u);

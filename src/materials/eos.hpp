@@ -24,7 +24,7 @@
 // eos.max_particle_velocity u_f (default none) ends the Us-up line where its data end, or above
 // the strongest shock the problem can produce: beyond the
 // Hugoniot's compression at that particle velocity, eta_f = u_f / (c0 + s u_f) (eta = up/Us,
-// Meyers 1994 eq. 4.13), p_H continues along its tangent,
+// Meyers 1994 §4.3), p_H continues along its tangent,
 //   p_H(eta) = p_H(eta_f) + p_H'(eta_f) (eta - eta_f)                      (eta > eta_f),
 // instead of rising to the pole at eta = 1/s, where the stiffness and the wave speed grow without
 // bound. The pole is an artefact of extrapolating a straight Us-up line (the line's limiting
