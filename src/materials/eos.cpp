@@ -1,7 +1,5 @@
 #include "materials/eos.hpp"
 
-#include <algorithm>
-
 namespace ballista {
 
 std::vector<ParamSpec> eos_param_specs() {
@@ -29,11 +27,7 @@ std::vector<ParamSpec> eos_param_specs() {
 double eos_hugoniot_tangent(const Eos& e, double eta) { return e.p_fit + e.dp_fit * (eta - e.eta_fit); }
 
 double eos_bulk_modulus_tangent(const Eos& e, double J, double energy) {
-  // eos_bulk_modulus with p_H' = p_H'(eta_f): dp/deta|_s = p_H' (1 - Gamma0 eta/2) - Gamma0 p_H / 2 + Gamma0 p.
-  const double eta = 1.0 - J;
-  const double p = eos_mg_pressure(e, J, energy);
-  const double dp = e.dp_fit * (1.0 - 0.5 * e.gamma0 * eta) - 0.5 * e.gamma0 * eos_hugoniot_pressure(e, J) + e.gamma0 * p;
-  return std::max((1.0 - eta) * dp, 0.5 * e.rho0 * e.c0 * e.c0);
+  return eos_modulus_with_slope(e, J, energy, e.dp_fit);
 }
 
 Eos make_eos(const ParamValues& v, double bulk, double density) {
@@ -62,7 +56,7 @@ Eos make_eos(const ParamValues& v, double bulk, double density) {
     const double k0 = e.rho0 * e.c0 * e.c0;
     const double den = 1.0 - e.s * eta;
     e.p_fit = k0 * eta / (den * den);
-    e.dp_fit = k0 * (1.0 + e.s * eta) / (den * den * den);
+    e.dp_fit = eos_line_slope(e, eta);
     e.eta_fit = eta;
   }
   return e;

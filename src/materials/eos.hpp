@@ -111,30 +111,43 @@ inline double eos_update(const Eos& e, const PointKinematics& k, double p_old, d
   return p_new;
 }
 
+/// Slope dp_H/deta of the Us-up line at 0 <= eta < 1/s: the derivative of rho0 c0^2 eta / (1 - s eta)^2,
+/// rho0 c0^2 (1 + s eta) / (1 - s eta)^3.
+inline double eos_line_slope(const Eos& e, double eta) {
+  const double k0 = e.rho0 * e.c0 * e.c0;
+  const double den = 1.0 - e.s * eta;
+  return k0 * (1.0 + e.s * eta) / (den * den * den);
+}
+
+/// Isentropic bulk modulus rho dp/drho at (J, E), Pa, given the reference curve's slope p_H' there.
+/// Along an isentrope dE = p d(eta), so
+///   dp/deta|_s = p_H' (1 - Gamma0 eta/2) - Gamma0 p_H / 2 + Gamma0 p,   rho dp/drho = (1 - eta) dp/deta;
+/// bounded below by the reference rho0 c0^2 / 2 so that tension never gives a vanishing speed.
+inline double eos_modulus_with_slope(const Eos& e, double J, double energy, double dpH) {
+  const double eta = 1.0 - J;
+  const double k0 = e.rho0 * e.c0 * e.c0;
+  const double p = eos_mg_pressure(e, J, energy);
+  const double dp = dpH * (1.0 - 0.5 * e.gamma0 * eta) - 0.5 * e.gamma0 * eos_hugoniot_pressure(e, J) + e.gamma0 * p;
+  return std::max((1.0 - eta) * dp, 0.5 * k0);
+}
+
 /// eos_bulk_modulus beyond the end of the Us-up line (eta > eta_f), with the tangent's slope; out of
 /// line for the same reason as eos_hugoniot_tangent.
 [[gnu::noinline]] double eos_bulk_modulus_tangent(const Eos& e, double J, double energy);
 
-/// Isentropic bulk modulus rho dp/drho at (J, E), Pa, for the time-step estimate. For
-/// Mie-Grüneisen, along an isentrope dE = p d(eta), so
-///   dp/deta|_s = p_H' (1 - Gamma0 eta/2) - Gamma0 p_H / 2 + Gamma0 p,
-///   p_H' = rho0 c0^2 (1 + s eta) / (1 - s eta)^3  (0 <= eta <= eta_f; its value at eta_f beyond),
-///   rho dp/drho = (1 - eta) dp/deta;
-/// bounded below by the reference rho0 c0^2 / 2 so that tension never gives a vanishing speed.
+/// Isentropic bulk modulus rho dp/drho at (J, E), Pa, for the time-step estimate
+/// (eos_modulus_with_slope): p_H' = rho0 c0^2 in tension, the line's slope up to eta_f, its value at
+/// eta_f beyond; infinite past the line's pole when the line does not end.
 inline double eos_bulk_modulus(const Eos& e, double J, double energy) {
   if (e.kind == Eos::Kind::Linear) return e.bulk;
   const double eta = 1.0 - J;
-  const double k0 = e.rho0 * e.c0 * e.c0;
   if (eta > e.eta_fit) [[unlikely]] return eos_bulk_modulus_tangent(e, J, energy);
-  double dpH = k0;
+  double dpH = e.rho0 * e.c0 * e.c0;
   if (eta >= 0.0) {
-    const double den = 1.0 - e.s * eta;
-    if (!(den > 0.0)) return std::numeric_limits<double>::infinity();
-    dpH = k0 * (1.0 + e.s * eta) / (den * den * den);
+    if (!(1.0 - e.s * eta > 0.0)) return std::numeric_limits<double>::infinity();
+    dpH = eos_line_slope(e, eta);
   }
-  const double p = eos_mg_pressure(e, J, energy);
-  const double dp = dpH * (1.0 - 0.5 * e.gamma0 * eta) - 0.5 * e.gamma0 * eos_hugoniot_pressure(e, J) + e.gamma0 * p;
-  return std::max((1.0 - eta) * dp, 0.5 * k0);
+  return eos_modulus_with_slope(e, J, energy, dpH);
 }
 
 }  // namespace ballista

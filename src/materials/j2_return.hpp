@@ -192,12 +192,8 @@ inline Mat3 j2_compose_eos(const Eos& eos, const PointKinematics& k, const Mat3&
         const double eta = 1.0 - k.J_new;
         const double k0 = eos.rho0 * eos.c0 * eos.c0;
         double dpH_deta = k0;  // tension branch p_H = k0 eta
-        if (eta > eos.eta_fit) {
-          dpH_deta = eos.dp_fit;  // beyond the end of the Us-up line: its tangent
-        } else if (eta >= 0.0) {
-          const double den = 1.0 - eos.s * eta;
-          dpH_deta = k0 * (1.0 + eos.s * eta) / (den * den * den);
-        }
+        if (eta > eos.eta_fit) dpH_deta = eos.dp_fit;  // beyond the end of the Us-up line: its tangent
+        else if (eta >= 0.0) dpH_deta = eos_line_slope(eos, eta);
         // A(J) = p_H (1 - Gamma0 eta/2);  dA/dJ = -dp_H/deta (1 - Gamma0 eta/2) + Gamma0 p_H / 2.
         const double pH = eos_hugoniot_pressure(eos, k.J_new);
         const double dA = -dpH_deta * (1.0 - 0.5 * eos.gamma0 * eta) + 0.5 * eos.gamma0 * pH;
