@@ -54,6 +54,7 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
   line_point_ = ps.nose;
   nd_ = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
   segments_ = std::max<int>(1, static_cast<int>(pb.segments.size()));
+  segment_entered_.assign(static_cast<std::size_t>(segments_), -1);
   rho_p_ = density_of(sc, pb.material);
   rho_t_ = density_of(sc, sc.bodies.at(target_).material);
   length_ = ps.length;
@@ -176,12 +177,25 @@ std::vector<double> PenetrationProbe::sample(const FieldStore& pts, bool fired, 
       t_.push_back(t);
       depth_.push_back(depth);
       cavity_.push_back(cavity);
+      kinetic_.push_back(total);
+      for (std::size_t k = 0; k < seg.size(); ++k)
+        if (segment_entered_[k] < 0 && seg[k] > 0.0) segment_entered_[k] = static_cast<std::int64_t>(t_.size()) - 1;
+      check_spent();
       record_layer_exits(pts, front, t, scale);
     }
   }
   std::vector<double> row = {fired ? t : kNotMeasured, depth, cavity, total};
   row.insert(row.end(), seg.begin(), seg.end());
   return row;
+}
+
+void PenetrationProbe::check_spent() {
+  if (!(spec_.end_when_spent > 0.0) || spent_sample_ >= 0 || kinetic_.empty()) return;
+  for (const std::int64_t s : segment_entered_)
+    if (s < 0) return;  // a segment still to come brings its energy later
+  const double peak = *std::max_element(kinetic_.begin(), kinetic_.end());
+  if (peak > 0.0 && kinetic_.back() <= spec_.end_when_spent * peak)
+    spent_sample_ = static_cast<std::int64_t>(kinetic_.size()) - 1;
 }
 
 void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir, double main_duration, JsonValue& out) {
@@ -223,10 +237,17 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
       break;
     }
   out["arrival_time"] = arrival;
-  // Stopped: the depth changes by less than stop_tolerance over at least the last tenth of the run.
-  const double stop =
-      t_.size() >= 2 ? penetration_stop_time(t_, depth_, spec_.stop_tolerance, 0.1 * main_duration) : kNotMeasured;
+  // Stopped: the depth changes by less than stop_tolerance over at least the last tenth of the run;
+  // a run that ended because the penetrator was spent has stopped by then, whatever is left of it.
+  const double hold = spent() ? 0.0 : 0.1 * main_duration;
+  const double stop = t_.size() >= 2 ? penetration_stop_time(t_, depth_, spec_.stop_tolerance, hold) : kNotMeasured;
   out["stop_time"] = std::isfinite(stop) ? JsonValue(stop) : JsonValue();
+  if (spec_.end_when_spent > 0.0) {
+    JsonValue& e = out["end_when_spent"];
+    e = JsonValue::object();
+    e["share"] = spec_.end_when_spent;
+    e["time"] = spent() ? JsonValue(t_[static_cast<std::size_t>(spent_sample_)]) : JsonValue();
+  }
   const SteadyFit fit = t_.size() >= 5 ? steady_state_fit(t_, depth_, rate) : SteadyFit{};
   out["steady_rate"] = fit.ok ? JsonValue(fit.slope) : JsonValue();
   JsonValue& sf = out["steady_fit"];
@@ -422,12 +443,28 @@ void PenetrationProbe::save_state(StateArchive& a, std::size_t samples) const {
                                e.jet.remaining_length, e.jet.tip_velocity, static_cast<double>(e.jet.tip_segment)});
   }
   a.put("penetration.layer_exits", exits);
+  a.put("penetration.kinetic", first(kinetic_));
+  std::vector<double> entered;  // sample indices, -1: not entered in the saved state
+  for (const std::int64_t s : segment_entered_)
+    entered.push_back(s >= 0 && static_cast<std::size_t>(s) < samples ? static_cast<double>(s) : -1.0);
+  a.put("penetration.segment_entered", entered);
 }
 
 void PenetrationProbe::load_state(const StateArchive& a) {
   t_ = a.reals("penetration.time");
   depth_ = a.reals("penetration.depth", t_.size());
   cavity_ = a.reals("penetration.cavity", t_.size());
+  // Checkpoints from before the record: no energies yet (the peak is taken from the samples to
+  // come), every segment seen anew when it next carries energy.
+  kinetic_ = a.has("penetration.kinetic") ? a.reals("penetration.kinetic", t_.size())
+                                          : std::vector<double>(t_.size(), 0.0);
+  segment_entered_.assign(static_cast<std::size_t>(segments_), -1);
+  if (a.has("penetration.segment_entered")) {
+    const std::vector<double>& e = a.reals("penetration.segment_entered", segment_entered_.size());
+    for (std::size_t k = 0; k < e.size(); ++k) segment_entered_[k] = static_cast<std::int64_t>(e[k]);
+  }
+  // The state checkpointed was not spent, or the run would have ended there.
+  spent_sample_ = -1;
   layer_exit_.assign(layers_.size(), LayerExit{});
   if (!a.has("penetration.layer_exits")) return;  // a checkpoint from before the record: none yet
   const std::vector<double>& r = a.reals("penetration.layer_exits", 6 * layers_.size());

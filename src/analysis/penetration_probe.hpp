@@ -42,6 +42,9 @@ class PenetrationProbe {
   /// Checkpoint: the recorded series (under "penetration."), its first `samples` entries (all by
   /// default: fewer for the state before the latest samples).
   void save_state(StateArchive& archive, std::size_t samples = SIZE_MAX) const;
+  /// With penetration.end_when_spent: true from the first sample at which every segment of the
+  /// penetrator has entered and its kinetic energy is at most that share of its peak so far.
+  bool spent() const { return spent_sample_ >= 0; }
   std::size_t samples() const { return t_.size(); }
   void load_state(const StateArchive& archive);
 
@@ -97,6 +100,11 @@ class PenetrationProbe {
   double radius_cells_ = 0.0;  ///< the thinnest segment radius over the cell size
   static constexpr double kResolvedRadiusCells = 4.0;  ///< cells across the radius for a resolved rate
   std::vector<double> t_, depth_, cavity_;
+  std::vector<double> kinetic_;               ///< J: the penetrator's kinetic energy per sample
+  std::vector<std::int64_t> segment_entered_;  ///< per segment: first sample with kinetic energy, -1 before
+  std::int64_t spent_sample_ = -1;            ///< end_when_spent: the sample it held first, -1 before
+  /// end_when_spent: notes the newest sample if it is the first at which the penetrator is spent.
+  void check_spent();
 };
 
 }  // namespace ballista

@@ -719,6 +719,8 @@ class Reader {
     }
     pe.axis_radius = n.number("axis_radius", cell, NumberRange::positive("m"));
     pe.stop_tolerance = n.number("stop_tolerance", cell, NumberRange::positive("m"));
+    // A share of the penetrator's peak kinetic energy; 0 (absent) ends the run at end_time.
+    pe.end_when_spent = n.number("end_when_spent", 0.0, NumberRange::between(0.0, 1.0, false, true, "1"));
     pe.rate_half_window = static_cast<int>(n.integer("rate_half_window", 3, 1, 1000));
     pe.channel_bins = static_cast<int>(n.integer("channel_bins", 0, 0, 100000));
     std::vector<std::string> others;

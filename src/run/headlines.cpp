@@ -36,6 +36,17 @@ void penetration_lines(const JsonValue& p, std::vector<std::string>& out) {
     const double d = number_at(p.at("tunnel"), "entrance_diameter");
     if (std::isfinite(d)) out.push_back(fmt::format("tunnel entrance diameter {}", mm(d)));
   }
+  // Whether the depth is final: a depth read while the penetrator still moves is one at end_time.
+  const bool ended_spent = p.contains("end_when_spent") && std::isfinite(number_at(p.at("end_when_spent"), "time"));
+  if (ended_spent)
+    out.push_back(fmt::format("the penetrator was spent {:.1f} us after firing (kinetic energy at most {:g} of its peak): "
+                              "the depth is final",
+                              number_at(p.at("end_when_spent"), "time") * 1e6, number_at(p.at("end_when_spent"), "share")));
+  else if (p.contains("stop_time") && p.at("stop_time").kind() == JsonValue::Kind::Null &&
+           std::isfinite(number_at(p, "final_depth")) && number_at(p, "final_depth") > 0.0)
+    out.push_back(
+        "STILL PENETRATING at the end of the run: the depth is the depth at end_time, not the final one (a longer "
+        "simulation.end_time, with penetration.end_when_spent to stop once the penetrator is spent)");
   const double cells = number_at(p, "cells_across_radius");
   if (p.contains("resolved") && !p.at("resolved").as_bool() && std::isfinite(cells))
     out.push_back(fmt::format(

@@ -274,8 +274,19 @@ void RunLoop::step_loop() {
       continue;
     }
     const bool at_output = solver_->time() >= rs_.next_output * (1.0 - 1e-12);
-    const bool at_end = solver_->time() >= rs_.end * (1.0 - 1e-12);
-    if (solver_->steps() % std::max(1, sc_.output.history_every) == 0 || at_output || at_end) record_history(dt);
+    bool at_end = solver_->time() >= rs_.end * (1.0 - 1e-12);
+    if (solver_->steps() % std::max(1, sc_.output.history_every) == 0 || at_output || at_end) {
+      record_history(dt);
+      // penetration.end_when_spent: the main stage ends here (rank 0 keeps the series).
+      if (!at_end && penetration_ && sc_.penetration.end_when_spent > 0.0 &&
+          comm_.any(root_ && penetration_->spent())) {
+        spdlog::info("the penetrator is spent at t = {:.6g} s (its kinetic energy is at most {:g} of its peak): the "
+                     "main stage ends",
+                     solver_->time(), sc_.penetration.end_when_spent);
+        rs_.end = solver_->time();
+        at_end = true;
+      }
+    }
     if (at_output && !at_end) {
       write_output();
       rs_.next_output += interval_;

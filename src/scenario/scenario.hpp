@@ -243,6 +243,9 @@ struct PenetrationSpec {
   double surface = 0.0;        ///< m: axial coordinate of the target's struck face
   double axis_radius = 0.0;    ///< m: radius around the axis used to find the cavity tip (0: one cell)
   double stop_tolerance = 0.0; ///< m: depth change below which penetration has stopped (0: one cell)
+  /// (0, 1): the main stage ends at the first history sample at which every segment of the
+  /// penetrator has entered and its kinetic energy is at most this share of its peak; 0: at end_time.
+  double end_when_spent = 0.0;
   int rate_half_window = 3;    ///< samples each side of the local-polynomial derivative
   int channel_bins = 0;        ///< bins of the channel profile (0: one per cell of the final depth)
   /// Bodies the penetrator perforates before the target (casing, cement): the hole in each is

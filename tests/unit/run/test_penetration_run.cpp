@@ -11,8 +11,11 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include "core/error.hpp"
 #include "deck/deck_reader.hpp"
+#include "io/checkpoint_file.hpp"
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 
@@ -89,6 +92,107 @@ TEST(PenetrationRun, ThreeDimensionalSegmentedRodIntoABlock) {
   EXPECT_LT(last, first);
   EXPECT_TRUE(std::filesystem::exists(dir.path / "penetration.csv"));
   EXPECT_TRUE(std::filesystem::exists(dir.path / "channel.csv"));
+}
+
+
+// A soft copper rod flattening on a hard steel block (axisymmetric): its kinetic energy goes into
+// plastic work within about L/V = 20 us and never comes back beyond the elastic ringing, so
+// penetration.end_when_spent must end the run well before its end_time.
+const char* kSpentDeck = R"(simulation: {dimension: axisymmetric, end_time: 100.0e-6}
+mpm: {shape_function: gimp, update: usavg}
+grid:
+  lower: [0, -0.001]
+  upper: [0.008, 0.016]
+  cell_size: 0.5e-3
+  boundary: {x_min: symmetry}
+materials:
+  steel: {model: j2_plasticity, density: 7850, youngs_modulus: 200e9, poisson_ratio: 0.29, yield_stress: 1e9}
+  cu: {model: j2_plasticity, density: 8960, youngs_modulus: 120e9, poisson_ratio: 0.34, yield_stress: 2e8}
+bodies:
+  - {name: block, material: steel, shape: {type: box, lower: [0, 0], upper: [0.006, 0.006]}}
+  - name: rod
+    material: cu
+    rod: {nose: [0, 0.0065], axis: y, direction: -1, diameter: 3e-3, length: 6e-3, speed: 300}
+penetration: {penetrator: rod, target: block, end_when_spent: 0.05}
+output: {history_every: 5, checkpoint_interval: 4.0e-6}
+)";
+
+/// history.csv's column `name` as numbers.
+std::vector<double> history_column(const std::filesystem::path& dir, const std::string& name) {
+  std::ifstream h(dir / "history.csv");
+  std::string header;
+  std::getline(h, header);
+  int col = -1, k = 0;
+  for (size_t a = 0, b; a <= header.size(); a = b + 1, ++k) {
+    b = header.find(',', a);
+    if (b == std::string::npos) b = header.size();
+    if (header.substr(a, b - a) == name) col = k;
+  }
+  std::vector<double> out;
+  if (col < 0) return out;
+  for (std::string line; std::getline(h, line);) {
+    std::stringstream ss(line);
+    std::string cell;
+    for (int c = 0; c <= col; ++c) std::getline(ss, cell, ',');
+    out.push_back(std::stod(cell));
+  }
+  return out;
+}
+
+TEST(PenetrationRun, EndsWhenThePenetratorIsSpentAndARestartEndsAtTheSameStep) {
+  test::TempDir dir;
+  RunOptions o;
+  o.out_dir = dir.path.string();
+  o.progress = false;
+  o.threads = 1;
+  const Scenario sc = parse_deck(kSpentDeck, "spent.yaml", {"output.checkpoint_keep=20"});
+  const RunResult r = run_simulation(sc, o);
+  ASSERT_TRUE(r.ok) << r.error;
+  const YAML::Node p = YAML::LoadFile((dir.path / "summary.json").string())["penetration"];
+  ASSERT_TRUE(p["end_when_spent"].IsMap());
+  EXPECT_DOUBLE_EQ(p["end_when_spent"]["share"].as<double>(), 0.05);
+  const double spent_at = p["end_when_spent"]["time"].as<double>();
+  // The run ends at the first sample at which the energy is at most 5 % of its peak: that sample
+  // is the history's last, and the one before it still held more.
+  const std::vector<double> ke = history_column(dir.path, "penetrator_kinetic_energy");
+  const std::vector<double> t = history_column(dir.path, "penetration_time");
+  ASSERT_GE(ke.size(), 3u);
+  double peak = 0.0;
+  for (double e : ke) peak = std::max(peak, e);
+  EXPECT_LE(ke.back(), 0.05 * peak);
+  EXPECT_GT(ke[ke.size() - 2], 0.05 * peak);
+  EXPECT_DOUBLE_EQ(t.back(), spent_at);
+  EXPECT_LT(spent_at, 50.0e-6);  // long before end_time: the rod is spent within a few L/V
+  EXPECT_TRUE(p["stop_time"].IsScalar());  // a spent penetrator has stopped
+  // Restarted from each of its checkpoints, the run ends at the same step with the same history.
+  const std::string history = test::slurp(dir.path / "history.csv");
+  const std::vector<std::string> cks = list_checkpoints(dir.path.string());
+  ASSERT_GE(cks.size(), 3u);
+  for (const std::string& ck : cks) {
+    test::TempDir copy("spent_copy");
+    std::filesystem::copy(dir.path, copy.path, std::filesystem::copy_options::recursive);
+    RunOptions c = o;
+    c.out_dir = copy.path.string();
+    c.restart_from = (copy.path / "checkpoints" / std::filesystem::path(ck).filename()).string();
+    const RunResult again = run_simulation(sc, c);
+    ASSERT_TRUE(again.ok) << again.error;
+    EXPECT_EQ(again.steps, r.steps) << ck;
+    EXPECT_TRUE(test::slurp(copy.path / "history.csv") == history) << "restart from " << ck;
+  }
+  // Without the key the same run goes on to its end_time and the summary has no such record.
+  test::TempDir full;
+  RunOptions f = o;
+  f.out_dir = full.path.string();
+  const Scenario without = parse_deck(kSpentDeck, "spent.yaml", {"penetration.end_when_spent=0", "simulation.end_time=30e-6"});
+  ASSERT_TRUE(run_simulation(without, f).ok);
+  const YAML::Node q = YAML::LoadFile((full.path / "summary.json").string())["penetration"];
+  EXPECT_FALSE(q["end_when_spent"].IsDefined());
+  EXPECT_NEAR(history_column(full.path, "penetration_time").back(), 30.0e-6, 1e-12);
+}
+
+TEST(PenetrationRun, EndWhenSpentIsAShareOfThePeak) {
+  for (const char* bad : {"penetration.end_when_spent=1", "penetration.end_when_spent=-0.1"})
+    EXPECT_THROW(parse_deck(kSpentDeck, "spent.yaml", {bad}), DeckError) << bad;
 }
 
 }  // namespace
