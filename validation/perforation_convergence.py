@@ -181,6 +181,9 @@ def extract(s, out):
         "min_dt": s["statistics"].get("min_dt"),
         "first_main_dt": first_main_step(out),
         "cells_across_radius": pen.get("cells_across_radius"),
+        # When the run ended because the jet was spent (penetration.end_when_spent), µs after firing;
+        # None: it ran to end_time.
+        "spent_time": (lambda t: None if t is None else 1e6 * t)((pen.get("end_when_spent") or {}).get("time")),
         "segment_depths": [mm(d) for d in segment_depths(out)],
         "depth_at_times": [mm(d) for d in depth_at_times(out, s.get("main_stage_start"))],
         "particles": s["statistics"]["particles_seeded"],
@@ -214,9 +217,9 @@ def main():
     ap.add_argument("--levels", type=float, nargs="+", default=[1.0e-3, 0.5e-3, 0.25e-3],
                     help="cell sizes in the bands, m, coarse to fine (ratio 2)")
     ap.add_argument("--far", type=float, default=1.0e-3, help="far-field cell size, m (the deck's)")
-    ap.add_argument("--band", type=float, default=6.0e-3, help="radius of the refined band around the line of flight, m")
-    ap.add_argument("--path", type=float, nargs=2, default=[20.0e-3, 135.0e-3],
-                    help="axial extent of the refined band, m (the jet's path through casing, cement and rock)")
+    ap.add_argument("--band", type=float, default=9.0e-3, help="radius of the refined band around the line of flight, m")
+    ap.add_argument("--path", type=float, nargs=2, default=[-30.0e-3, 135.0e-3],
+                    help="axial extent of the refined band, m (the jet's path through casing, cement and the rock to 130 mm deep)")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--set", action="append", default=[], help="further --set overrides for every level")
     ap.add_argument("--reuse", action="store_true", help="reuse the summary of a level already run into --out")
@@ -245,13 +248,14 @@ def main():
     json.dump(result, open(os.path.join(a.out, "convergence.json"), "w"), indent=2)
     lines = ["| band cell (mm) | cells across the tip radius | particles | steps | wall time (s) | depth (mm) | "
              "casing hole (mm) | cement hole (mm) | rock tunnel entrance (mm) | cavity depth (mm) | "
-             "tunnel volume (cm³) |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
+             "tunnel volume (cm³) | jet spent at (µs) |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     fmt = lambda v: "—" if v is None else f"{v:.3g}"
     for r in rows:
         lines.append(f"| {r['h'] * 1e3:g} | {fmt(r['cells_across_radius'])} | {r['particles']} | {r['steps']} | "
                      f"{r['wall_time']:.0f} | {fmt(r['depth'])} | {fmt(r['casing_hole'])} | {fmt(r['cement_hole'])} | "
-                     f"{fmt(r['tunnel_entrance'])} | {fmt(r['cavity_depth'])} | {fmt(r['tunnel_volume'])} |")
+                     f"{fmt(r['tunnel_entrance'])} | {fmt(r['cavity_depth'])} | {fmt(r['tunnel_volume'])} | "
+                     f"{fmt(r.get('spent_time'))} |")
     if result["estimates"]:
         for name, key in (("observed order", "observed_order"), ("Richardson estimate", "richardson"),
                           ("finest vs Richardson", "finest_relative_gap")):

@@ -29,6 +29,8 @@ const std::vector<std::pair<std::string, std::string>>& unit_table() {
       {"penetration.segments", "1"},
       {"penetration.arrival_time", "s"},
       {"penetration.stop_time", "s"},
+      {"penetration.end_when_spent.share", "1"},
+      {"penetration.end_when_spent.time", "s"},
       {"penetration.steady_rate", "m/s"},
       {"penetration.hydrodynamic_rate", "m/s"},
       {"penetration.rate_over_hydrodynamic", "1"},
