@@ -54,7 +54,6 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
   line_point_ = ps.nose;
   nd_ = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
   segments_ = std::max<int>(1, static_cast<int>(pb.segments.size()));
-  segment_entered_.assign(static_cast<std::size_t>(segments_), -1);
   rho_p_ = density_of(sc, pb.material);
   rho_t_ = density_of(sc, sc.bodies.at(target_).material);
   length_ = ps.length;
@@ -155,7 +154,8 @@ double PenetrationProbe::cavity_depth(const FieldStore& pts) const {
   return std::isfinite(tip) ? tip : bottom;
 }
 
-std::vector<double> PenetrationProbe::sample(const FieldStore& pts, bool fired, double t, double scale) {
+std::vector<double> PenetrationProbe::sample(const FieldStore& pts, bool fired, double t, double scale,
+                                             bool all_entered) {
   std::vector<double> seg(static_cast<size_t>(segments_), 0.0);
   const auto* bid = pts.ints(kBodyIndex);
   const auto* sid = pts.ints(kSegment);
@@ -178,9 +178,8 @@ std::vector<double> PenetrationProbe::sample(const FieldStore& pts, bool fired, 
       depth_.push_back(depth);
       cavity_.push_back(cavity);
       kinetic_.push_back(total);
-      for (std::size_t k = 0; k < seg.size(); ++k)
-        if (segment_entered_[k] < 0 && seg[k] > 0.0) segment_entered_[k] = static_cast<std::int64_t>(t_.size()) - 1;
-      check_spent();
+      peak_kinetic_ = std::max(peak_kinetic_, total);
+      check_spent(all_entered);
       record_layer_exits(pts, front, t, scale);
     }
   }
@@ -189,13 +188,15 @@ std::vector<double> PenetrationProbe::sample(const FieldStore& pts, bool fired, 
   return row;
 }
 
-void PenetrationProbe::check_spent() {
-  if (!(spec_.end_when_spent > 0.0) || spent_sample_ >= 0 || kinetic_.empty()) return;
-  for (const std::int64_t s : segment_entered_)
-    if (s < 0) return;  // a segment still to come brings its energy later
-  const double peak = *std::max_element(kinetic_.begin(), kinetic_.end());
-  if (peak > 0.0 && kinetic_.back() <= spec_.end_when_spent * peak)
-    spent_sample_ = static_cast<std::int64_t>(kinetic_.size()) - 1;
+void PenetrationProbe::check_spent(bool all_entered) {
+  const auto newest = static_cast<std::int64_t>(kinetic_.size()) - 1;
+  if (entered_sample_ < 0 && all_entered) entered_sample_ = newest;
+  if (!(spec_.end_when_spent > 0.0) || spent_sample_ >= 0 || entered_sample_ < 0) return;
+  // Fallen since the last segment came in, so that a slow last segment, whose own energy may be
+  // below the share of the early peak, is not taken for a spent jet the moment it enters.
+  const double at_entry = kinetic_[static_cast<std::size_t>(entered_sample_)];
+  const double now = kinetic_.back();
+  if (peak_kinetic_ > 0.0 && now < at_entry && now <= spec_.end_when_spent * peak_kinetic_) spent_sample_ = newest;
 }
 
 void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir, double main_duration, JsonValue& out) {
@@ -444,25 +445,19 @@ void PenetrationProbe::save_state(StateArchive& a, std::size_t samples) const {
   }
   a.put("penetration.layer_exits", exits);
   a.put("penetration.kinetic", first(kinetic_));
-  std::vector<double> entered;  // sample indices, -1: not entered in the saved state
-  for (const std::int64_t s : segment_entered_)
-    entered.push_back(s >= 0 && static_cast<std::size_t>(s) < samples ? static_cast<double>(s) : -1.0);
-  a.put("penetration.segment_entered", entered);
+  // The first sample with every segment in, if the saved state had it (-1: not yet).
+  a.put_int("penetration.entered_sample",
+            entered_sample_ >= 0 && static_cast<std::size_t>(entered_sample_) < samples ? entered_sample_ : -1);
 }
 
 void PenetrationProbe::load_state(const StateArchive& a) {
   t_ = a.reals("penetration.time");
   depth_ = a.reals("penetration.depth", t_.size());
   cavity_ = a.reals("penetration.cavity", t_.size());
-  // Checkpoints from before the record: no energies yet (the peak is taken from the samples to
-  // come), every segment seen anew when it next carries energy.
-  kinetic_ = a.has("penetration.kinetic") ? a.reals("penetration.kinetic", t_.size())
-                                          : std::vector<double>(t_.size(), 0.0);
-  segment_entered_.assign(static_cast<std::size_t>(segments_), -1);
-  if (a.has("penetration.segment_entered")) {
-    const std::vector<double>& e = a.reals("penetration.segment_entered", segment_entered_.size());
-    for (std::size_t k = 0; k < e.size(); ++k) segment_entered_[k] = static_cast<std::int64_t>(e[k]);
-  }
+  kinetic_ = a.reals("penetration.kinetic", t_.size());
+  peak_kinetic_ = 0.0;
+  for (const double e : kinetic_) peak_kinetic_ = std::max(peak_kinetic_, e);
+  entered_sample_ = a.integer("penetration.entered_sample");
   // The state checkpointed was not spent, or the run would have ended there.
   spent_sample_ = -1;
   layer_exit_.assign(layers_.size(), LayerExit{});

@@ -32,8 +32,10 @@ class PenetrationProbe {
   /// Values of those columns for the current points. `fired` is false during preparation stages
   /// (time and depths are then NaN and 0, nothing is recorded); otherwise the sample at
   /// `time_since_fire` (s) joins the series the summary is computed from.
-  /// `scale` turns per-point sums into physical totals (2 pi in axisymmetric runs).
-  std::vector<double> sample(const FieldStore& points, bool fired, double time_since_fire, double scale);
+  /// `scale` turns per-point sums into physical totals (2 pi in axisymmetric runs). `all_entered`:
+  /// no point of the run waits for its activation (every segment of the penetrator is in).
+  std::vector<double> sample(const FieldStore& points, bool fired, double time_since_fire, double scale,
+                             bool all_entered = true);
 
   /// Writes penetration.csv (time, depth, cavity_depth, rate, cavity_rate) and channel.csv
   /// (depth, radius) into out_dir and fills `out` (the summary's "penetration" object).
@@ -43,7 +45,8 @@ class PenetrationProbe {
   /// default: fewer for the state before the latest samples).
   void save_state(StateArchive& archive, std::size_t samples = SIZE_MAX) const;
   /// With penetration.end_when_spent: true from the first sample at which every segment of the
-  /// penetrator has entered and its kinetic energy is at most that share of its peak so far.
+  /// penetrator has entered, its kinetic energy has fallen since, and it is at most that share of
+  /// its peak so far.
   bool spent() const { return spent_sample_ >= 0; }
   std::size_t samples() const { return t_.size(); }
   void load_state(const StateArchive& archive);
@@ -100,11 +103,12 @@ class PenetrationProbe {
   double radius_cells_ = 0.0;  ///< the thinnest segment radius over the cell size
   static constexpr double kResolvedRadiusCells = 4.0;  ///< cells across the radius for a resolved rate
   std::vector<double> t_, depth_, cavity_;
-  std::vector<double> kinetic_;               ///< J: the penetrator's kinetic energy per sample
-  std::vector<std::int64_t> segment_entered_;  ///< per segment: first sample with kinetic energy, -1 before
-  std::int64_t spent_sample_ = -1;            ///< end_when_spent: the sample it held first, -1 before
+  std::vector<double> kinetic_;      ///< J: the penetrator's kinetic energy per sample
+  double peak_kinetic_ = 0.0;        ///< J: the largest of kinetic_
+  std::int64_t entered_sample_ = -1;  ///< the first sample with every segment in, -1 before
+  std::int64_t spent_sample_ = -1;    ///< end_when_spent: the sample it held first, -1 before
   /// end_when_spent: notes the newest sample if it is the first at which the penetrator is spent.
-  void check_spent();
+  void check_spent(bool all_entered);
 };
 
 }  // namespace ballista

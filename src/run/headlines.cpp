@@ -18,7 +18,9 @@ double number_at(const JsonValue& obj, const std::string& key) {
 
 std::string mm(double metres) { return std::isfinite(metres) ? fmt::format("{:.1f} mm", metres * 1e3) : "n/a"; }
 
-void penetration_lines(const JsonValue& p, std::vector<std::string>& out) {
+/// `completed`: the run reached its end (not failed, not interrupted): only then is a depth final
+/// or known to be the depth at end_time.
+void penetration_lines(const JsonValue& p, bool completed, std::vector<std::string>& out) {
   const std::string target = p.contains("target") ? p.at("target").as_string() : "the target";
   out.push_back(fmt::format("depth into '{}' = {} (cavity {})", target, mm(number_at(p, "final_depth")),
                             mm(number_at(p, "final_cavity_depth"))));
@@ -36,17 +38,19 @@ void penetration_lines(const JsonValue& p, std::vector<std::string>& out) {
     const double d = number_at(p.at("tunnel"), "entrance_diameter");
     if (std::isfinite(d)) out.push_back(fmt::format("tunnel entrance diameter {}", mm(d)));
   }
-  // Whether the depth is final: a depth read while the penetrator still moves is one at end_time.
+  // Whether the depth is final: a depth read while the penetrator still moves is one at end_time
+  // (or, through a perforated target, no depth at all).
   const bool ended_spent = p.contains("end_when_spent") && std::isfinite(number_at(p.at("end_when_spent"), "time"));
-  if (ended_spent)
+  if (completed && ended_spent)
     out.push_back(fmt::format("the penetrator was spent {:.1f} us after firing (kinetic energy at most {:g} of its peak): "
                               "the depth is final",
                               number_at(p.at("end_when_spent"), "time") * 1e6, number_at(p.at("end_when_spent"), "share")));
-  else if (p.contains("stop_time") && p.at("stop_time").kind() == JsonValue::Kind::Null &&
+  else if (completed && p.contains("stop_time") && p.at("stop_time").kind() == JsonValue::Kind::Null &&
            std::isfinite(number_at(p, "final_depth")) && number_at(p, "final_depth") > 0.0)
     out.push_back(
-        "STILL PENETRATING at the end of the run: the depth is the depth at end_time, not the final one (a longer "
-        "simulation.end_time, with penetration.end_when_spent to stop once the penetrator is spent)");
+        "STILL MOVING at the end of the run: the depth is the depth at end_time, not a final one (a longer "
+        "simulation.end_time, with penetration.end_when_spent to stop once the penetrator is spent, or a longer "
+        "target if it was perforated)");
   const double cells = number_at(p, "cells_across_radius");
   if (p.contains("resolved") && !p.at("resolved").as_bool() && std::isfinite(cells))
     out.push_back(fmt::format(
@@ -59,7 +63,9 @@ void penetration_lines(const JsonValue& p, std::vector<std::string>& out) {
 
 std::vector<std::string> headline_lines(const JsonValue& summary) {
   std::vector<std::string> out;
-  if (summary.contains("penetration")) penetration_lines(summary.at("penetration"), out);
+  const bool completed = summary.contains("status") && summary.at("status").kind() == JsonValue::Kind::String &&
+                         summary.at("status").as_string() == "completed";
+  if (summary.contains("penetration")) penetration_lines(summary.at("penetration"), completed, out);
   if (summary.contains("fragments")) {
     const JsonValue& f = summary.at("fragments");
     const double n = number_at(f, "count");

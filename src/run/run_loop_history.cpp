@@ -46,9 +46,12 @@ double RunLoop::history_row(double dt) {
     // Several ranks: the analysis runs on rank 0 over every rank's particles (gathered), which
     // alone keeps the series and writes the row.
     const FieldStore all = comm_.distributed() ? gather_points(comm_, solver_->points()) : FieldStore{};
+    // Every segment in: no point of the run waits for its activation (end_when_spent only).
+    const bool all_entered =
+        sc_.penetration.end_when_spent > 0.0 && comm_.sum(static_cast<std::int64_t>(solver_->pending_points())) == 0;
     if (root_)
       for (double v : penetration_->sample(comm_.distributed() ? all : solver_->points(), rs_.stage == nstages_,
-                                           solver_->time() - rs_.stage_start, solver_->reporting_scale()))
+                                           solver_->time() - rs_.stage_start, solver_->reporting_scale(), all_entered))
         row.push_back(v);
   }
   if (history_) history_->row(row);

@@ -95,9 +95,10 @@ TEST(PenetrationRun, ThreeDimensionalSegmentedRodIntoABlock) {
 }
 
 
-// A soft copper rod flattening on a hard steel block (axisymmetric): its kinetic energy goes into
-// plastic work within about L/V = 20 us and never comes back beyond the elastic ringing, so
-// penetration.end_when_spent must end the run well before its end_time.
+// Two soft copper segments flattening on a hard steel block (axisymmetric), the second inserted
+// at 20 us, after the first is spent: their kinetic energy goes into plastic work within a few
+// L/V = 10 us and never comes back beyond the elastic ringing, so penetration.end_when_spent must
+// end the run after the second segment has come in and well before end_time.
 const char* kSpentDeck = R"(simulation: {dimension: axisymmetric, end_time: 100.0e-6}
 mpm: {shape_function: gimp, update: usavg}
 grid:
@@ -110,10 +111,11 @@ materials:
   cu: {model: j2_plasticity, density: 8960, youngs_modulus: 120e9, poisson_ratio: 0.34, yield_stress: 2e8}
 bodies:
   - {name: block, material: steel, shape: {type: box, lower: [0, 0], upper: [0.006, 0.006]}}
-  - name: rod
+  - name: jet
     material: cu
-    rod: {nose: [0, 0.0065], axis: y, direction: -1, diameter: 3e-3, length: 6e-3, speed: 300}
-penetration: {penetrator: rod, target: block, end_when_spent: 0.05}
+    jet: {face: [0, 0.006], axis: y, direction: -1, insert_distance: 4.0e-3,
+          segments: [[1.5e-3, 3.0e-3, 300, 0], [1.5e-3, 3.0e-3, 300, 20.0e-6]]}
+penetration: {penetrator: jet, target: block, end_when_spent: 0.05}
 output: {history_every: 5, checkpoint_interval: 4.0e-6}
 )";
 
@@ -162,12 +164,14 @@ TEST(PenetrationRun, EndsWhenThePenetratorIsSpentAndARestartEndsAtTheSameStep) {
   EXPECT_LE(ke.back(), 0.05 * peak);
   EXPECT_GT(ke[ke.size() - 2], 0.05 * peak);
   EXPECT_DOUBLE_EQ(t.back(), spent_at);
-  EXPECT_LT(spent_at, 50.0e-6);  // long before end_time: the rod is spent within a few L/V
+  // After the second segment came in (the first alone is spent by then), long before end_time.
+  EXPECT_GT(spent_at, 20.0e-6);
+  EXPECT_LT(spent_at, 60.0e-6);
   EXPECT_TRUE(p["stop_time"].IsScalar());  // a spent penetrator has stopped
   // Restarted from each of its checkpoints, the run ends at the same step with the same history.
   const std::string history = test::slurp(dir.path / "history.csv");
   const std::vector<std::string> cks = list_checkpoints(dir.path.string());
-  ASSERT_GE(cks.size(), 3u);
+  ASSERT_GE(cks.size(), 6u);  // before and after the second segment came in
   for (const std::string& ck : cks) {
     test::TempDir copy("spent_copy");
     std::filesystem::copy(dir.path, copy.path, std::filesystem::copy_options::recursive);

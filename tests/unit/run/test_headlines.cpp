@@ -1,0 +1,69 @@
+// What a penetration run prints about its depth (src/run/headlines.cpp): final when it ended
+// because the penetrator was spent, "STILL MOVING" when it reached end_time with the penetration
+// not stopped, and neither when the run did not complete (a failed or interrupted run's depth is
+// neither final nor the depth at end_time).
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "run/headlines.hpp"
+
+namespace test_headlines {
+
+using namespace ballista;
+
+namespace {
+
+JsonValue summary(const char* status, bool spent, bool stopped) {
+  JsonValue s = JsonValue::object();
+  s["status"] = status;
+  JsonValue& p = s["penetration"];
+  p = JsonValue::object();
+  p["target"] = "rock";
+  p["final_depth"] = 0.0487;
+  p["final_cavity_depth"] = 0.0484;
+  p["stop_time"] = stopped ? JsonValue(8.9e-5) : JsonValue();
+  if (spent) {
+    JsonValue& e = p["end_when_spent"];
+    e = JsonValue::object();
+    e["share"] = 1e-3;
+    e["time"] = 8.92e-5;
+  }
+  return s;
+}
+
+int lines_with(const std::vector<std::string>& lines, const std::string& what) {
+  int n = 0;
+  for (const std::string& l : lines) n += l.find(what) != std::string::npos;
+  return n;
+}
+
+TEST(Headlines, ASpentRunSaysItsDepthIsFinal) {
+  const std::vector<std::string> l = headline_lines(summary("completed", true, true));
+  EXPECT_EQ(lines_with(l, "depth into 'rock' = 48.7 mm"), 1);
+  EXPECT_EQ(lines_with(l, "spent 89.2 us after firing"), 1);
+  EXPECT_EQ(lines_with(l, "STILL MOVING"), 0);
+}
+
+TEST(Headlines, ARunStillPenetratingAtItsEndSaysSo) {
+  const std::vector<std::string> l = headline_lines(summary("completed", false, false));
+  EXPECT_EQ(lines_with(l, "STILL MOVING"), 1);
+  EXPECT_EQ(lines_with(l, "is final"), 0);
+  // Stopped before the end: nothing to say.
+  const std::vector<std::string> s = headline_lines(summary("completed", false, true));
+  EXPECT_EQ(lines_with(s, "STILL MOVING") + lines_with(s, "is final"), 0);
+}
+
+TEST(Headlines, AnUnfinishedRunMakesNoClaimAboutItsDepth) {
+  for (const char* status : {"failed", "interrupted"})
+    for (const bool spent : {true, false}) {
+      const std::vector<std::string> l = headline_lines(summary(status, spent, false));
+      EXPECT_EQ(lines_with(l, "STILL MOVING") + lines_with(l, "is final"), 0) << status << " spent " << spent;
+      EXPECT_EQ(lines_with(l, "depth into"), 1) << status;
+    }
+}
+
+}  // namespace
+
+}  // namespace test_headlines
