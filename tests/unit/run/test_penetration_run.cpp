@@ -45,6 +45,28 @@ penetration: {penetrator: rod, target: block}
 output: {history_every: 2}
 )";
 
+/// history.csv's column `name` as numbers.
+std::vector<double> history_column(const std::filesystem::path& dir, const std::string& name) {
+  std::ifstream h(dir / "history.csv");
+  std::string header;
+  std::getline(h, header);
+  int col = -1, k = 0;
+  for (size_t a = 0, b; a <= header.size(); a = b + 1, ++k) {
+    b = header.find(',', a);
+    if (b == std::string::npos) b = header.size();
+    if (header.substr(a, b - a) == name) col = k;
+  }
+  std::vector<double> out;
+  if (col < 0) return out;
+  for (std::string line; std::getline(h, line);) {
+    std::stringstream ss(line);
+    std::string cell;
+    for (int c = 0; c <= col; ++c) std::getline(ss, cell, ',');
+    out.push_back(std::stod(cell));
+  }
+  return out;
+}
+
 TEST(PenetrationRun, ThreeDimensionalSegmentedRodIntoABlock) {
   test::TempDir dir;
   RunOptions o;
@@ -67,27 +89,11 @@ TEST(PenetrationRun, ThreeDimensionalSegmentedRodIntoABlock) {
   ASSERT_TRUE(p["arrival_time"].IsScalar());
   EXPECT_NEAR(p["arrival_time"].as<double>(), 0.5e-3 / 800.0, 0.5e-6);  // within the sampling
   // Penetrator kinetic energy: starts at 1/2 m V^2 of the quarter rod, never grows.
-  std::ifstream h(dir.path / "history.csv");
-  std::string header;
-  std::getline(h, header);
-  int col = -1, k = 0;
-  for (size_t a = 0, b; a <= header.size(); a = b + 1, ++k) {
-    b = header.find(',', a);
-    if (b == std::string::npos) b = header.size();
-    if (header.substr(a, b - a) == "penetrator_kinetic_energy") col = k;
-  }
-  ASSERT_GE(col, 0);
+  const std::vector<double> ke = history_column(dir.path, "penetrator_kinetic_energy");
+  ASSERT_FALSE(ke.empty());
   const double quarter_mass = 17600 * M_PI * 1e-6 * 4e-3 / 4;  // lattice seeding: +-10 % (checked below)
-  double first = -1, last = 0;
-  for (std::string line; std::getline(h, line);) {
-    std::stringstream ss(line);
-    std::string cell;
-    for (int c = 0; c <= col; ++c) std::getline(ss, cell, ',');
-    const double e = std::stod(cell);
-    if (first < 0) first = e;
-    EXPECT_LE(e, first * (1 + 1e-9));  // the block can only take energy from the rod
-    last = e;
-  }
+  const double first = ke.front(), last = ke.back();
+  for (const double e : ke) EXPECT_LE(e, first * (1 + 1e-9));  // the block can only take energy from the rod
   EXPECT_NEAR(first, 0.5 * quarter_mass * 800.0 * 800.0, 0.1 * 0.5 * quarter_mass * 800.0 * 800.0);
   EXPECT_LT(last, first);
   EXPECT_TRUE(std::filesystem::exists(dir.path / "penetration.csv"));
@@ -118,28 +124,6 @@ bodies:
 penetration: {penetrator: jet, target: block, end_when_spent: 0.05}
 output: {history_every: 5, checkpoint_interval: 4.0e-6}
 )";
-
-/// history.csv's column `name` as numbers.
-std::vector<double> history_column(const std::filesystem::path& dir, const std::string& name) {
-  std::ifstream h(dir / "history.csv");
-  std::string header;
-  std::getline(h, header);
-  int col = -1, k = 0;
-  for (size_t a = 0, b; a <= header.size(); a = b + 1, ++k) {
-    b = header.find(',', a);
-    if (b == std::string::npos) b = header.size();
-    if (header.substr(a, b - a) == name) col = k;
-  }
-  std::vector<double> out;
-  if (col < 0) return out;
-  for (std::string line; std::getline(h, line);) {
-    std::stringstream ss(line);
-    std::string cell;
-    for (int c = 0; c <= col; ++c) std::getline(ss, cell, ',');
-    out.push_back(std::stod(cell));
-  }
-  return out;
-}
 
 TEST(PenetrationRun, EndsWhenThePenetratorIsSpentAndARestartEndsAtTheSameStep) {
   test::TempDir dir;
