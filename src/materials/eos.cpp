@@ -53,9 +53,7 @@ Eos make_eos(const ParamValues& v, double bulk, double density) {
     // and the line's pressure and slope there (eos.hpp): the tangent's anchor.
     const double u = v.at("eos.max_particle_velocity");
     const double eta = u / (e.c0 + e.s * u);
-    const double k0 = e.rho0 * e.c0 * e.c0;
-    const double den = 1.0 - e.s * eta;
-    e.p_fit = k0 * eta / (den * den);
+    e.p_fit = eos_line_pressure(e, eta);
     e.dp_fit = eos_line_slope(e, eta);
     e.eta_fit = eta;
   }

@@ -75,15 +75,21 @@ inline StateFieldSpec eos_state_field() {
 /// line's own path compiles as it did without the key (its results bitwise unchanged).
 [[gnu::noinline]] double eos_hugoniot_tangent(const Eos& e, double eta);
 
-/// Reference (Hugoniot) pressure p_H(J) of the Mie-Grüneisen EOS, Pa.
-inline double eos_hugoniot_pressure(const Eos& e, double J) {
-  const double eta = 1.0 - J;
+/// The Us-up line's Hugoniot pressure rho0 c0^2 eta / (1 - s eta)^2 at 0 <= eta, Pa; NaN beyond its
+/// pole eta = 1/s.
+inline double eos_line_pressure(const Eos& e, double eta) {
   const double k0 = e.rho0 * e.c0 * e.c0;
-  if (eta < 0.0) return k0 * eta;
-  if (eta > e.eta_fit) [[unlikely]] return eos_hugoniot_tangent(e, eta);
   const double den = 1.0 - e.s * eta;
   if (!(den > 0.0)) return std::numeric_limits<double>::quiet_NaN();  // beyond the Hugoniot pole
   return k0 * eta / (den * den);
+}
+
+/// Reference (Hugoniot) pressure p_H(J) of the Mie-Grüneisen EOS, Pa.
+inline double eos_hugoniot_pressure(const Eos& e, double J) {
+  const double eta = 1.0 - J;
+  if (eta < 0.0) return e.rho0 * e.c0 * e.c0 * eta;
+  if (eta > e.eta_fit) [[unlikely]] return eos_hugoniot_tangent(e, eta);
+  return eos_line_pressure(e, eta);
 }
 
 /// Mie-Grüneisen pressure p(J, E), E the energy per reference volume, before the tension cutoff.
