@@ -1,4 +1,5 @@
 #include "mpm/mpm_solver.hpp"
+#include "mpm/p2g_linear_3d.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -261,7 +262,33 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
       for (int k = 0; k < st.count; ++k) gf[fo + st.node[k]] += st.w[k] * sf.force;
     }
   }
-  for (int color = 0; color < 2; ++color) {
+  bool done = false;
+  if constexpr (K == ShapeKind::Linear && Dim == 3 && !G) {
+    if (!multi && !gv) {
+      // Eight nodes per vector (mpm/p2g_linear_3d.hpp): the grid bitwise that of the loop below.
+      P2gLinear3dArgs a;
+      a.g = &g;
+      a.slab_start = slab_start_.data();
+      a.slab_points = slab_points_.data();
+      a.nslab = nslab;
+      a.x = x;
+      a.v = v;
+      a.mass = mass;
+      a.vol = vol;
+      a.stress = stress;
+      a.bq = bq;
+      a.fext = has_ext ? fext.data() : nullptr;
+      a.ftrac = has_trac ? ftrac.data() : nullptr;
+      a.momentum_only = momentum_only;
+      a.parallel = points_.size() > kParallelThreshold;
+      a.gm = gm;
+      a.gp = gp;
+      a.gf = gf;
+      p2g_linear_3d(a);
+      done = true;
+    }
+  }
+  for (int color = 0; color < 2 && !done; ++color) {
 #pragma omp parallel for schedule(dynamic, 1) if (points_.size() > kParallelThreshold)
     for (int s = color; s < nslab; s += 2) {
       Stencil<Dim> st;
