@@ -1,0 +1,57 @@
+#pragma once
+// The velocity gradient at the points, L_p = sum_I v_I (x) grad N_I(x_p), with linear weights in
+// 3D on a uniform grid, eight points per vector: the points of a group lie in one cell, so they
+// share its eight nodes, whose velocities are read once for the group, and each lane (a point)
+// forms its weights' gradients and its nine sums.
+//
+// Bitwise the general loop of MpmSolver::velocity_gradient_from_grid: every gradient is the
+// product linear_stencil forms (the same multiplications in the same order), and each point's sums
+// run over the cell's nodes in linear_stencil's order, one multiply-add per node, as there. The
+// lanes are points, which never share a sum, so which points form a group changes nothing.
+#include "core/tensor.hpp"
+#include "mpm/shape_functions.hpp"
+
+namespace ballista {
+
+inline constexpr int kGradientGroup = 8;
+
+/// The cell of point x (node index of its lowest corner) and its offsets t in the cell per axis,
+/// exactly as linear_1d locates it.
+inline Index linear_cell_3d(const GridGeometry& g, const Vec3& x, double (&t)[3]) {
+  int first[3];
+  for (int d = 0; d < 3; ++d) shape_detail::locate(x[d], g.origin[d], g.h, first[d], t[d]);
+  return static_cast<Index>(first[2]) * shape_detail::stride_z(g) + static_cast<Index>(first[1]) * shape_detail::stride_y(g) +
+         first[0];
+}
+
+/// l[j] for the n <= 8 points of cell `base` whose offsets are t[j]; vg: the field's node velocities.
+inline void linear_3d_gradients(const GridGeometry& g, const Vec3* vg, Index base, const double (*t)[3], int n,
+                                Mat3* l) {
+  typedef double V8 __attribute__((vector_size(kGradientGroup * sizeof(double))));
+  const double inv_h = 1.0 / g.h;
+  const Index sy = shape_detail::stride_y(g), sz = shape_detail::stride_z(g);
+  V8 T[3] = {};
+  for (int d = 0; d < 3; ++d)
+    for (int j = 0; j < kGradientGroup; ++j) T[d][j] = t[j < n ? j : n - 1][d];
+  // linear_1d: w = (1 - t, t), dw = (-1/h, 1/h).
+  const V8 W[3][2] = {{1.0 - T[0], T[0]}, {1.0 - T[1], T[1]}, {1.0 - T[2], T[2]}};
+  const double dw[2] = {-inv_h, inv_h};
+  V8 L[3][3] = {};
+  for (int c = 0; c < 2; ++c) {
+    for (int b = 0; b < 2; ++b) {
+      // linear_stencil's products (shape_detail::tensor_product_n).
+      const V8 wyz = W[1][b] * W[2][c], dyz = dw[b] * W[2][c], yzd = W[1][b] * dw[c];
+      for (int a = 0; a < 2; ++a) {
+        const V8 grad[3] = {dw[a] * wyz, W[0][a] * dyz, W[0][a] * yzd};
+        const Vec3& u = vg[base + c * sz + b * sy + a];
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) L[i][j] += u[i] * grad[j];
+      }
+    }
+  }
+  for (int p = 0; p < n; ++p)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) l[p](i, j) = L[i][j][p];
+}
+
+}  // namespace ballista
