@@ -565,19 +565,15 @@ void MpmSolver::velocity_gradient_from_grid(double dt, bool move) {
   std::atomic<Index> bad{n}, out{n};
   if constexpr (K == ShapeKind::Linear && Dim == 3 && !G) {
     if (grid_.fields == 1) {
-      // Eight points of a cell per vector (mpm/gradient_linear_3d.hpp), bitwise the loop below.
+      // Eight points per vector (mpm/gradient_linear_3d.hpp): the loop below's sums to round-off.
       constexpr Index kChunk = 512;
       for_each_chunk((n + kChunk - 1) / kChunk, [&](Index c) {
         const Index end = std::min(n, (c + 1) * kChunk);
-        double t[kGradientGroup][3];
         Mat3 l[kGradientGroup];
-        for (Index p0 = c * kChunk; p0 < end;) {
-          const Index base = linear_cell_3d(g, x_[p0], t[0]);
-          int m = 1;
-          while (m < kGradientGroup && p0 + m < end && linear_cell_3d(g, x_[p0 + m], t[m]) == base) ++m;
-          linear_3d_gradients(g, vg, base, t, m, l);
+        for (Index p0 = c * kChunk; p0 < end; p0 += kGradientGroup) {
+          const int m = static_cast<int>(std::min<Index>(kGradientGroup, end - p0));
+          linear_3d_gradients(g, vg, x_ + p0, m, l);
           for (int j = 0; j < m; ++j) finish_point(p0 + j, l[j], move ? displacement_[p0 + j] : Vec3{}, dt, bad, out);
-          p0 += m;
         }
       });
       first_bad_ = bad.load();
