@@ -1,8 +1,10 @@
 #pragma once
-// Four points at a time: 3x3 tensors whose every entry is a vector of four doubles (one lane per
-// point), for per-point kernels whose cost is a chain of dependent operations on one point (the
-// polar decomposition, a radial return). Four independent chains fill the SIMD width (AVX2: one
-// 256-bit register per entry) and the out-of-order core.
+// kLanes points at a time: 3x3 tensors whose every entry is a vector of kLanes doubles (one lane
+// per point), for per-point kernels whose cost is a chain of dependent operations on one point (the
+// polar decomposition, a radial return). The lanes fill the target's SIMD width (one register per
+// entry: 8 doubles with AVX-512, else 4, AVX2's width) and give the out-of-order core independent
+// chains. The width changes no lane's arithmetic (the same operations on each lane), so results
+// are the same for either width.
 //
 // Every function here repeats, operation by operation, the expression of its scalar namesake in
 // tensor.hpp: IEEE addition, multiplication, division and square root are exactly rounded lane by
@@ -19,16 +21,28 @@
 
 namespace ballista {
 
+#ifdef __AVX512F__
+inline constexpr int kLanes = 8;
+#else
 inline constexpr int kLanes = 4;
-/// Four doubles, one per point (GCC/Clang vector extension: + - * / and comparisons lane-wise).
+#endif
+/// kLanes doubles, one per point (GCC/Clang vector extension: + - * / and comparisons lane-wise).
 typedef double Lane __attribute__((vector_size(kLanes * sizeof(double))));
 /// Result of a lane-wise comparison: all bits set where true, zero where false.
 typedef long LaneMask __attribute__((vector_size(kLanes * sizeof(long))));
 
-inline Lane splat(double x) { return Lane{x, x, x, x}; }
+inline Lane splat(double x) {
+  Lane r;
+  for (int l = 0; l < kLanes; ++l) r[l] = x;
+  return r;
+}
 /// Lane-wise a where mask, else b.
 inline Lane select(LaneMask mask, Lane a, Lane b) { return mask ? a : b; }
-inline bool any(LaneMask m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
+inline bool any(LaneMask m) {
+  long r = 0;
+  for (int l = 0; l < kLanes; ++l) r |= m[l];
+  return r != 0;
+}
 inline Lane lane_sqrt(Lane x) {
   Lane r;
   for (int l = 0; l < kLanes; ++l) r[l] = std::sqrt(x[l]);
@@ -54,14 +68,17 @@ struct Mat3L {
   }
 };
 
-/// The tensors x[idx[l]] of four points, one per lane.
+/// The tensors x[idx[l]] of kLanes points, one per lane.
 inline Mat3L gather(const Mat3* x, const Index (&idx)[kLanes]) {
   Mat3L m;
-  for (int k = 0; k < 9; ++k) m.a[k] = Lane{x[idx[0]].a[k], x[idx[1]].a[k], x[idx[2]].a[k], x[idx[3]].a[k]};
+  for (int k = 0; k < 9; ++k)
+    for (int l = 0; l < kLanes; ++l) m.a[k][l] = x[idx[l]].a[k];
   return m;
 }
 inline Lane gather(const double* x, const Index (&idx)[kLanes]) {
-  return Lane{x[idx[0]], x[idx[1]], x[idx[2]], x[idx[3]]};
+  Lane r;
+  for (int l = 0; l < kLanes; ++l) r[l] = x[idx[l]];
+  return r;
 }
 
 inline Mat3L operator+(const Mat3L& A, const Mat3L& B) {

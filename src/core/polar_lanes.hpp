@@ -1,5 +1,5 @@
 #pragma once
-// The rotation of F = R U for four points at once: polar_rotation (polar.hpp) lane by lane.
+// The rotation of F = R U for kLanes points at once: polar_rotation (polar.hpp) lane by lane.
 #include "core/lanes.hpp"
 #include "core/polar.hpp"
 
@@ -14,8 +14,8 @@ namespace ballista {
 inline Mat3L polar_rotation(const Mat3L& F, const Mat3L& guess) {
   Mat3L X = transpose_times(guess, F);
   Mat3L Qtot = Mat3L::identity();
-  LaneMask active = {-1, -1, -1, -1};  // every lane iterates ...
-  LaneMask fallback = {0, 0, 0, 0};     // ... none needs Higham's iteration yet
+  LaneMask active = LaneMask{} - 1;  // every lane iterates ...
+  LaneMask fallback = LaneMask{};    // ... none needs Higham's iteration yet
   for (int it = 0; it < 8 && any(active); ++it) {
     const Lane a0 = 0.5 * (X.a[7] - X.a[5]);
     const Lane a1 = 0.5 * (X.a[2] - X.a[6]);

@@ -27,7 +27,7 @@ inline bool beyond_distortion_limit(const Mat3& F, double J, double limit) {
   return trC * trC * trC > 27.0 * l2 * l2 * l2 * J * J;
 }
 
-/// The same test for four points (lanes.hpp), all bits set in the lanes beyond `limit`.
+/// The same test for kLanes points (lanes.hpp), all bits set in the lanes beyond `limit`.
 inline LaneMask beyond_distortion_limit(const Mat3L& F, Lane J, double limit) {
   Lane trC = splat(0.0);
   for (const Lane& f : F.a) trC += f * f;

@@ -565,7 +565,7 @@ struct Geomodel {
     return to_d(x);
   }
 
-  /// The kinematics four points at a time (material_lanes.hpp), this kernel lane by lane.
+  /// The kinematics kLanes points at a time (material_lanes.hpp), this kernel lane by lane.
   static bool lanes_apply(const Params&) { return true; }
 
   static void update(const Params& p, const PointKinematics& k, Mat3& sigma, double* st, PointResult& res) {

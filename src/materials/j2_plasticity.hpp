@@ -187,7 +187,7 @@ struct J2Plasticity {
     res.eqps = eqps;
   }
 
-  /// update_fast for four points (material_lanes.hpp), bitwise the same lane by lane: the plastic
+  /// update_fast for kLanes points (material_lanes.hpp), bitwise the same lane by lane: the plastic
   /// correction is computed on every lane and kept where the trial stress is beyond yield.
   static bool lanes_apply(const Params& p) { return p.fast; }
   static void update_lanes(const Params& p, const LaneKinematics& k, Mat3L& sigma, Lane* state, Lane& plastic_work) {

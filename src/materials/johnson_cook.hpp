@@ -182,7 +182,7 @@ struct JohnsonCook {
     return 1.0 - std::pow(Ts, p.m);
   }
 
-  /// The kinematics four points at a time (material_lanes.hpp), this kernel lane by lane.
+  /// The kinematics kLanes points at a time (material_lanes.hpp), this kernel lane by lane.
   static bool lanes_apply(const Params&) { return true; }
 
   static void update(const Params& p, const PointKinematics& k, Mat3& sigma, double* state, PointResult& res) {

@@ -55,7 +55,7 @@ class MaterialAdapter final : public Material {
   }
 
   /// The failure branch is chosen once per batch, so a material without a criterion pays nothing.
-  /// Four points at a time where the model allows it (material_lanes.hpp: the same results to
+  /// kLanes points at a time (core/lanes.hpp) where the model allows it (material_lanes.hpp: the same results to
   /// round-off; the choice is per material, never per point).
   void update(const MaterialBatch& b) const override {
     if (in_lanes(b))

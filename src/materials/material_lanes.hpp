@@ -1,19 +1,19 @@
 #pragma once
-// The stress update of a batch of points four at a time (core/lanes.hpp), for the models that allow
+// The stress update of a batch of points kLanes at a time (core/lanes.hpp: 8 with AVX-512, else 4), for the models that allow
 // it (`lanes_apply` below): the strain increment, the polar decomposition, the unrotated frame, the model, the
-// rotation back and the energy bookkeeping of MaterialAdapter's per-point loop, each on four
+// rotation back and the energy bookkeeping of MaterialAdapter's per-point loop, each on kLanes
 // points per instruction. It evaluates the per-point loop's expressions; the results agree with
 // that loop's to round-off (tests/unit/materials/test_material_lanes.cpp), and the choice is made
 // per material and per step from the material's parameters and the batch's options, never per
 // point, so a run is bitwise reproducible for any thread count, ranks and restarts.
 //
 // A model takes this path where its
-//   static bool lanes_apply(const Params&);   // this parameter set runs four points at a time
+//   static bool lanes_apply(const Params&);   // this parameter set runs kLanes points at a time
 // is true; it may add a lane kernel
 //   static void update_lanes(const Params&, const LaneKinematics&, Mat3L& sigma_bar, Lane* state,
 //                            Lane& plastic_work_density);
-// doing for four points what its update() does for one, else its update() runs lane by lane on
-// the kinematics computed four at a time (always with a failure criterion, which reads the
+// doing for kLanes points what its update() does for one, else its update() runs lane by lane on
+// the kinematics computed kLanes at a time (always with a failure criterion, which reads the
 // kernel's PointResult). The per-point loop stays for tangents, models that read F_n, and dt = 0.
 #include <algorithm>
 #include <atomic>
@@ -28,7 +28,7 @@
 
 namespace ballista {
 
-/// What a lane kernel reads of the motion of four points over the step (PointKinematics' D_bar,
+/// What a lane kernel reads of the motion of kLanes points over the step (PointKinematics' D_bar,
 /// J_old, J_new and dt).
 struct LaneKinematics {
   Mat3L D_bar;  ///< unrotated rate of deformation, 1/s
@@ -95,7 +95,7 @@ void update_in_lanes(const typename Model::Params& prm, const FailureModel& fm, 
       Model::update_lanes(prm, kin, sigma_bar, st, plastic_work);
     } else {
       // A model without a lane kernel (Johnson-Cook: its return needs pow and log per iteration)
-      // runs its scalar kernel lane by lane on the kinematics computed four at a time.
+      // runs its scalar kernel lane by lane on the kinematics computed kLanes at a time.
       PointKinematics pk;
       pk.dt = dt;
       pk.time = b.time;

@@ -21,7 +21,7 @@ inline Mat3 midpoint_strain_increment(const Mat3& G) {
   return sym(G * inverse(B));
 }
 
-/// The same for four points (lanes.hpp): the scalar function lane by lane, to round-off.
+/// The same for kLanes points (lanes.hpp): the scalar function lane by lane, to round-off.
 inline Mat3L midpoint_strain_increment(const Mat3L& G) {
   const Mat3L B = Mat3L::identity() + 0.5 * G;
   return sym(G * inverse(B));

@@ -21,7 +21,7 @@ namespace test_material_lanes {
 using namespace ballista;
 using namespace ballista::test;
 
-// The stress update four points at a time (material_lanes.hpp) against the per-point loop of
+// The stress update kLanes points at a time (material_lanes.hpp) against the per-point loop of
 // MaterialAdapter, and its independence of which points share a group of lanes.
 namespace {
 
@@ -158,7 +158,7 @@ TEST(MaterialLanes, J2StepIsThePerPointLoopToRoundOff) {
   expect_paths_agree("j2_plasticity", v, {"eqps"});
 }
 
-// Johnson-Cook's scalar kernel lane by lane on the kinematics of four points (copper with the
+// Johnson-Cook's scalar kernel lane by lane on the kinematics of kLanes points (copper with the
 // Mie-Grueneisen EOS: the EOS energy is a state field too).
 TEST(MaterialLanes, JohnsonCookStepIsThePerPointLoopToRoundOff) {
   const ParamValues v = JohnsonCook::example_params();
@@ -193,7 +193,7 @@ TEST(MaterialLanes, FailureAndErosionAreThePerPointLoopToRoundOff) {
   EXPECT_LT(failed, n / 2);  // ... beside intact points
 }
 
-// A point's result does not depend on which points share its group of four lanes (nor on the
+// A point's result does not depend on which points share its group of kLanes lanes (nor on the
 // position of its lane): the batch in another order gives bitwise the same points. This is what
 // keeps results independent of the thread count, the ranks and the sorting of the points.
 TEST(MaterialLanes, APointDoesNotDependOnItsLaneNeighbours) {
