@@ -267,25 +267,23 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
   if constexpr (K == ShapeKind::Linear && Dim == 3 && !G) {
     if (!multi && !gv) {
       // Eight nodes per vector (mpm/p2g_linear_3d.hpp): the grid bitwise that of the loop below.
-      P2gLinear3dArgs a;
-      a.g = &g;
-      a.slab_start = slab_start_.data();
-      a.slab_points = slab_points_.data();
-      a.nslab = nslab;
-      a.x = x;
-      a.v = v;
-      a.mass = mass;
-      a.vol = vol;
-      a.stress = stress;
-      a.bq = bq;
-      a.fext = has_ext ? fext.data() : nullptr;
-      a.ftrac = has_trac ? ftrac.data() : nullptr;
-      a.momentum_only = momentum_only;
-      a.parallel = points_.size() > kParallelThreshold;
-      a.gm = gm;
-      a.gp = gp;
-      a.gf = gf;
-      p2g_linear_3d(a);
+      p2g_linear_3d({.g = &g,
+                     .slab_start = slab_start_.data(),
+                     .slab_points = slab_points_.data(),
+                     .nslab = nslab,
+                     .x = x,
+                     .v = v,
+                     .mass = mass,
+                     .vol = vol,
+                     .stress = stress,
+                     .bq = bq,
+                     .fext = has_ext ? fext.data() : nullptr,
+                     .ftrac = has_trac ? ftrac.data() : nullptr,
+                     .momentum_only = momentum_only,
+                     .parallel = points_.size() > kParallelThreshold,
+                     .gm = gm,
+                     .gp = gp,
+                     .gf = gf});
       done = true;
     }
   }
