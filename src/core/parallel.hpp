@@ -75,6 +75,14 @@ inline void for_each_uneven(Index begin, Index end, F&& f) {
   for (Index i = begin; i < end; ++i) f(i);
 }
 
+/// for_each_uneven with its own threshold (iterations below which the loop runs on the calling
+/// thread) and chunk, for iterations that each do the work of several (a group of lanes).
+template <class F>
+inline void for_each_uneven_chunked(Index begin, Index end, Index threshold, int chunk, F&& f) {
+#pragma omp parallel for schedule(dynamic, chunk) if (end - begin > threshold)
+  for (Index i = begin; i < end; ++i) f(i);
+}
+
 /// Chunk size for reductions: fixed, so chunk boundaries (and thus round-off) do not depend on
 /// the number of threads.
 inline constexpr Index kReduceChunk = 4096;
