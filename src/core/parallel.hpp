@@ -66,21 +66,20 @@ inline void for_each_chunk(Index nchunk, F&& f) {
   for (Index c = 0; c < nchunk; ++c) f(c);
 }
 
+/// for_each_uneven (below) with its own threshold (iterations below which the loop runs on the
+/// calling thread) and chunk, for iterations that each do the work of several (a group of lanes).
+template <class F>
+inline void for_each_uneven_chunked(Index begin, Index end, Index threshold, int chunk, F&& f) {
+#pragma omp parallel for schedule(dynamic, chunk) if (end - begin > threshold)
+  for (Index i = begin; i < end; ++i) f(i);
+}
+
 /// for_each for loops whose cheap iterations cost unevenly by index (a peridynamic step: the
 /// gas points, stored after the case's, carry the gas pairs too): a static split would leave one
 /// thread with most of the work.
 template <class F>
 inline void for_each_uneven(Index begin, Index end, F&& f) {
-#pragma omp parallel for schedule(dynamic, 512) if (end - begin > kParallelThreshold)
-  for (Index i = begin; i < end; ++i) f(i);
-}
-
-/// for_each_uneven with its own threshold (iterations below which the loop runs on the calling
-/// thread) and chunk, for iterations that each do the work of several (a group of lanes).
-template <class F>
-inline void for_each_uneven_chunked(Index begin, Index end, Index threshold, int chunk, F&& f) {
-#pragma omp parallel for schedule(dynamic, chunk) if (end - begin > threshold)
-  for (Index i = begin; i < end; ++i) f(i);
+  for_each_uneven_chunked(begin, end, kParallelThreshold, 512, f);
 }
 
 /// Chunk size for reductions: fixed, so chunk boundaries (and thus round-off) do not depend on

@@ -23,8 +23,7 @@ inline constexpr int kGradientGroup = 8;
 inline Index linear_cell_3d(const GridGeometry& g, const Vec3& x, double (&t)[3]) {
   int first[3];
   for (int d = 0; d < 3; ++d) shape_detail::locate(x[d], g.origin[d], g.h, first[d], t[d]);
-  return static_cast<Index>(first[2]) * shape_detail::stride_z(g) + static_cast<Index>(first[1]) * shape_detail::stride_y(g) +
-         first[0];
+  return g.node_index(first[0], first[1], first[2]);
 }
 
 /// l[j] = sum_I v_I (x) grad N_I(x[j]) for n <= 8 points x[0..n); vg: the field's node velocities.

@@ -11,8 +11,6 @@
 // contributions in the same order (a cell's nodes are read from the grid when its run of points
 // starts and written back when it ends, and no other point of the slab touches them in between).
 // The lanes of a vector are nodes, never points, so no sum is reordered.
-#include <vector>
-
 #include "core/parallel.hpp"
 #include "core/tensor.hpp"
 #include "mpm/shape_functions.hpp"
@@ -43,8 +41,6 @@ struct P2gLinear3dArgs {
 namespace p2g_detail {
 
 typedef double V8 __attribute__((vector_size(8 * sizeof(double))));
-
-inline V8 splat8(double a) { return V8{a, a, a, a, a, a, a, a}; }
 
 /// The node sums of one cell's eight nodes (tensor_product's order: x fastest, then y, then z).
 struct CellSums {
@@ -83,7 +79,6 @@ struct CellSums {
 /// f_I = -V_p sigma_p grad N_I + N_I f_ext,p (Sulsky et al. 1994, eq. 14), m_I and (m v)_I, for every
 /// point of every slab (slabs of one colour in parallel, as the general loop).
 inline void p2g_linear_3d(const P2gLinear3dArgs& a) {
-  using p2g_detail::splat8;
   using p2g_detail::V8;
   const GridGeometry& g = *a.g;
   const Index sy = shape_detail::stride_y(g), sz = shape_detail::stride_z(g);
@@ -91,14 +86,12 @@ inline void p2g_linear_3d(const P2gLinear3dArgs& a) {
   for (int color = 0; color < 2; ++color) {
 #pragma omp parallel for schedule(dynamic, 1) if (a.parallel)
     for (int s = color; s < a.nslab; s += 2) {
-      p2g_detail::CellSums cell;
-      const Index off[8] = {0, 1, sy, sy + 1, sz, sz + 1, sz + sy, sz + sy + 1};
-      for (int k = 0; k < 8; ++k) cell.off[k] = off[k];
+      p2g_detail::CellSums cell{.off = {0, 1, sy, sy + 1, sz, sz + 1, sz + sy, sz + sy + 1}};
       for (Index q = a.slab_start[s]; q < a.slab_start[s + 1]; ++q) {
         const Index p = a.slab_points[q];
         shape_detail::Axis1D<2> ax[3];
         for (int d = 0; d < 3; ++d) shape_detail::linear_1d(a.x[p][d], g.origin[d], g.h, inv_h, ax[d]);
-        const Index base = static_cast<Index>(ax[2].first) * sz + static_cast<Index>(ax[1].first) * sy + ax[0].first;
+        const Index base = g.node_index(ax[0].first, ax[1].first, ax[2].first);
         if (base != cell.base) {
           cell.write_back(a);
           cell.take(base, a);
@@ -131,6 +124,8 @@ inline void p2g_linear_3d(const P2gLinear3dArgs& a) {
           for (int i = 0; i < 3; ++i) Vs(i, i) -= a.vol[p] * a.bq[p];
         const Vec3 fe = a.fext ? (a.ftrac ? a.fext[p] - a.ftrac[p] : a.fext[p]) : Vec3{};
         cell.m += W * m;
+        // The general loop subtracts the hoop term hoop w (hoop = 0 in 3D) from f_x; subtracting
+        // 0 W here keeps every bit of f_x the same, the sign of a zero included.
         cell.fx += W * fe[0] - (Vs(0, 0) * GX + Vs(0, 1) * GY + Vs(0, 2) * GZ) - 0.0 * W;
         cell.fy += W * fe[1] - (Vs(1, 0) * GX + Vs(1, 1) * GY + Vs(1, 2) * GZ);
         cell.fz += W * fe[2] - (Vs(2, 0) * GX + Vs(2, 1) * GY + Vs(2, 2) * GZ);
