@@ -203,14 +203,18 @@ struct JohnsonCook {
       tangent = DevTangent{};
     } else {
       const double e0 = eqps;
-      J2Return r = j2_trial(s, nullptr, (p.A + p.B * std::pow(e0, p.n)) * theta);
+      // A virgin point's hardening is A: pow(0, n) = +0 for n > 0, so A + B 0^n is A bitwise, and
+      // most points of a run have not yielded yet (a NaN eqps still propagates).
+      const double hard0 = e0 == 0.0 ? p.A : p.A + p.B * std::pow(e0, p.n);
+      J2Return r = j2_trial(s, nullptr, hard0 * theta);
       if (r.plastic) {
         // Rate factor R(Delta) = 1 + C ln(max(Delta/(dt eps_dot_0), 1)); dt <= 0 (no time) is
         // treated as rate-independent.
         const double inv_rate_dt = k.dt > 0.0 ? 1.0 / (k.dt * p.rate0) : 0.0;
+        // With C = 0 the factor is 1 + 0 ln x = 1 bitwise: the logarithm is not taken.
         auto rate_factor = [&](double d, double& dR) {
           const double x = d * inv_rate_dt;
-          if (x > 1.0) {
+          if (x > 1.0 && p.C != 0.0) {
             dR = p.C / d;
             return 1.0 + p.C * std::log(x);
           }

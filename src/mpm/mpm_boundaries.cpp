@@ -36,7 +36,7 @@ inline Vec3 mirrored(Vec3 v, int axis) {
 }
 }  // namespace
 
-void MpmSolver::fold_mirror_faces(bool momentum_only) {
+void MpmSolver::fold_mirror_faces(P2gPart part) {
   // Image particles (the body reflected in the face) would add to inside node I what the real
   // ones put on its mirror ghost G, reflected: m_I += m_G, p_I += R p_G, f_I += R f_G (the image's
   // stress R sigma R and gradient R grad N_G give R f_G; the axisymmetric hoop term flips with r).
@@ -52,26 +52,31 @@ void MpmSolver::fold_mirror_faces(bool momentum_only) {
     for_each_mirror_pair(g, ghost_, mirror_faces_, [&](Index G, Index I, int a) {
       G += o;
       I += o;
+      // Only the sums this pass formed (the others were folded when they were formed).
       if (G == I) {
-        grid_.velocity[I][a] = 0.0;
-        if (momentum_only) return;
-        grid_.force[I][a] = 0.0;
-        if (grid_.fields > 1) grid_.grad[I][a] = 0.0;
-        if (grid_.with_volume) grid_.volume[I] *= 2.0;  // the image fills the other half of the face node
+        if (maps_momentum(part)) grid_.velocity[I][a] = 0.0;
+        if (maps_forces(part)) grid_.force[I][a] = 0.0;
+        if (maps_mass(part) && grid_.fields > 1) grid_.grad[I][a] = 0.0;
+        if (maps_volume(part) && grid_.with_volume) grid_.volume[I] *= 2.0;  // the image fills the other half of the face node
         return;
       }
-      grid_.velocity[I] += mirrored(grid_.velocity[G], a);
-      grid_.velocity[G] = Vec3{};
-      if (momentum_only) return;
-      grid_.mass[I] += grid_.mass[G];
-      grid_.mass[G] = 0.0;
-      grid_.force[I] += mirrored(grid_.force[G], a);
-      grid_.force[G] = Vec3{};
-      if (grid_.fields > 1) {
+      if (maps_momentum(part)) {
+        grid_.velocity[I] += mirrored(grid_.velocity[G], a);
+        grid_.velocity[G] = Vec3{};
+      }
+      if (maps_mass(part)) {
+        grid_.mass[I] += grid_.mass[G];
+        grid_.mass[G] = 0.0;
+      }
+      if (maps_forces(part)) {
+        grid_.force[I] += mirrored(grid_.force[G], a);
+        grid_.force[G] = Vec3{};
+      }
+      if (maps_mass(part) && grid_.fields > 1) {
         grid_.grad[I] += mirrored(grid_.grad[G], a);
         grid_.grad[G] = Vec3{};
       }
-      if (grid_.with_volume) {
+      if (maps_volume(part) && grid_.with_volume) {
         grid_.volume[I] += grid_.volume[G];
         grid_.volume[G] = 0.0;
       }

@@ -215,7 +215,7 @@ inline void MpmSolver::point_stencil(Index p, const Vec3& x, const Vec3& half, S
 }
 
 template <int Dim, ShapeKind K, bool G>
-void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
+void MpmSolver::particles_to_grid(P2gPart part, const Vec3* v_source) {
   const GridGeometry& g = grid_.geom;
   const auto* x = points_.view(kPosition);
   const auto* v = v_source ? v_source : points_.view(kVelocity);
@@ -229,20 +229,23 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
   const bool multi = grid_.fields > 1;
   Vec3* gg = multi ? grid_.grad.data() : nullptr;
   double* gv = grid_.with_volume ? grid_.volume.data() : nullptr;
+  const bool mass_part = maps_mass(part), momentum_part = maps_momentum(part), force_part = maps_forces(part);
+  if (!maps_volume(part)) gv = nullptr;
   // Only the blocks particles reach are cleared: the others are zero already (active_blocks.hpp).
+  // The sums this pass does not form are left as they are.
   for (int k = 0; k < grid_.fields; ++k)
     blocks_.for_each_run(k * g.node_count(), [&](Index b, Index e) {
-      if (!momentum_only) {
+      if (mass_part) {
         std::fill(gm + b, gm + e, 0.0);
-        std::fill(gf + b, gf + e, Vec3{});
         if (multi) std::fill(gg + b, gg + e, Vec3{});
-        if (gv) std::fill(gv + b, gv + e, 0.0);
       }
-      std::fill(gp + b, gp + e, Vec3{});
+      if (force_part) std::fill(gf + b, gf + e, Vec3{});
+      if (gv) std::fill(gv + b, gv + e, 0.0);
+      if (momentum_part) std::fill(gp + b, gp + e, Vec3{});
     });
   const bool axisym = dimension_ == Dimension::Axisymmetric;
   const double* bq = bulk_viscosity_.active() ? points_.real(kBulkViscosity) : nullptr;
-  if (!momentum_only && anti_locking_ == AntiLocking::FBar) {
+  if (force_part && anti_locking_ == AntiLocking::FBar) {
     // The F-bar's forces read the averaged pressure (mean dilatation, anti_locking.hpp); it
     // includes the bulk viscosity.
     fbar_.force_pressure(g, {points_.size(), x, vol, stress, bq, points_.ints(kMaterialIndex),
@@ -252,7 +255,7 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
   const std::vector<Vec3>& fext = loads_.total();
   const std::vector<Vec3>& ftrac = loads_.traction();
   const bool has_ext = !fext.empty();
-  const bool has_trac = !momentum_only && !ftrac.empty();
+  const bool has_trac = force_part && !ftrac.empty();
   const int nslab = static_cast<int>(slab_start_.size()) - 1;
   if (has_trac) {
     // Tractions at the surface points, with the kernel's weights there (serial: few points).
@@ -279,7 +282,7 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
                      .bq = bq,
                      .fext = has_ext ? fext.data() : nullptr,
                      .ftrac = has_trac ? ftrac.data() : nullptr,
-                     .momentum_only = momentum_only,
+                     .part = part,
                      .parallel = points_.size() > kParallelThreshold,
                      .gm = gm,
                      .gp = gp,
@@ -287,7 +290,10 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
       done = true;
     }
   }
-  for (int color = 0; color < 2 && !done; ++color) {
+  // The loop for one part (kPart); each node's sums in point order whatever the part.
+  auto scatter = [&]<P2gPart kPart>() {
+  constexpr bool kMass = maps_mass(kPart);
+  for (int color = 0; color < 2; ++color) {
 #pragma omp parallel for schedule(dynamic, 1) if (points_.size() > kParallelThreshold)
     for (int s = color; s < nslab; s += 2) {
       Stencil<Dim> st;
@@ -297,8 +303,21 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
         const double m = mass[p];
         const Vec3 mv = m * v[p];
         const Index fo = field_offset(p);
-        if (momentum_only) {
+        if constexpr (kPart == P2gPart::Momentum) {
           for (int k = 0; k < st.count; ++k) gp[fo + st.node[k]] += st.w[k] * mv;
+          continue;
+        }
+        if constexpr (kPart == P2gPart::Kinematics) {
+          for (int k = 0; k < st.count; ++k) {
+            const Index I = fo + st.node[k];
+            const double w = st.w[k];
+            if (multi) {
+              gg[I] += m * st.grad[k];
+              if (gv) gv[I] += w * vol[p];
+            }
+            gm[I] += w * m;
+            gp[I] += w * mv;
+          }
           continue;
         }
         // f_I = -V_p sigma_p grad N_I + N_I f_ext,p (Sulsky et al. 1994, eq. 14); axisymmetric
@@ -319,11 +338,13 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
           const double w = st.w[k];
           const Vec3& dN = st.grad[k];
           if (multi) {
-            gg[I] += m * dN;  // outward vector of the field: the contact normal (grid_contact.hpp)
+            if constexpr (kMass) gg[I] += m * dN;  // outward vector of the field: the contact normal (grid_contact.hpp)
             if (gv) gv[I] += w * vol[p];  // how much of the node the field fills (contact's gap check)
           }
-          gm[I] += w * m;
-          gp[I] += w * mv;
+          if constexpr (kMass) {
+            gm[I] += w * m;
+            gp[I] += w * mv;
+          }
           Vec3 f;
           for (int i = 0; i < 3; ++i)
             f[i] = w * fe[i] - (Vs(i, 0) * dN[0] + Vs(i, 1) * dN[1] + Vs(i, 2) * dN[2]);
@@ -333,22 +354,29 @@ void MpmSolver::particles_to_grid(bool momentum_only, const Vec3* v_source) {
       }
     }
   }
+  };
+  if (!done) {
+    switch (part) {
+      case P2gPart::All: scatter.template operator()<P2gPart::All>(); break;
+      case P2gPart::Momentum: scatter.template operator()<P2gPart::Momentum>(); break;
+      case P2gPart::Kinematics: scatter.template operator()<P2gPart::Kinematics>(); break;
+      case P2gPart::Forces: scatter.template operator()<P2gPart::Forces>(); break;
+    }
+  }
   if (comm_.distributed()) {
     // Partial sums of the blocks shared with other ranks, added in rank order (grid_exchange.hpp).
     std::vector<GridExchange::Array> arrays;
-    if (!momentum_only) arrays.push_back({gm, 1});
-    arrays.push_back({reinterpret_cast<double*>(gp), 3});
-    if (!momentum_only) {
-      arrays.push_back({reinterpret_cast<double*>(gf), 3});
-      if (multi) arrays.push_back({reinterpret_cast<double*>(gg), 3});
-      if (gv) arrays.push_back({gv, 1});
-    }
+    if (mass_part) arrays.push_back({gm, 1});
+    if (momentum_part) arrays.push_back({reinterpret_cast<double*>(gp), 3});
+    if (force_part) arrays.push_back({reinterpret_cast<double*>(gf), 3});
+    if (multi && mass_part) arrays.push_back({reinterpret_cast<double*>(gg), 3});
+    if (gv) arrays.push_back({gv, 1});
     exchange_.sum(comm_, arrays, grid_.fields);
     halo_bytes_ += static_cast<double>(exchange_.last_bytes());
     halo_messages_ += static_cast<double>(exchange_.last_messages());
-    if (!momentum_only) halo_steps_ += 1.0;
+    if (part != P2gPart::Momentum) halo_steps_ += 1.0;
   }
-  if (!mirror_faces_.empty()) fold_mirror_faces(momentum_only);
+  if (!mirror_faces_.empty()) fold_mirror_faces(part);
 }
 
 template <int Dim, ShapeKind K, bool G>
@@ -388,7 +416,7 @@ void MpmSolver::xpic_velocity(double dt) {
       for (int j = 0; j < st.count; ++j) u += st.w[j] * prev[fo + st.node[j]];
       xpic_.at_points[p] = u;
     });
-    particles_to_grid<Dim, K, G>(true, xpic_.at_points.data());
+    particles_to_grid<Dim, K, G>(P2gPart::Momentum, xpic_.at_points.data());
     const double scale = static_cast<double>(m - k + 1) / k;
     for_each_active_node([&](Index i) {
       const double mi = grid_.mass[i];
@@ -626,11 +654,12 @@ void MpmSolver::step_impl(double dt) {
   // The first mapping computes each point's GIMP windows; the step's later passes reuse them.
   windows_current_ = false;
   if constexpr (K == ShapeKind::Gimp) gimp_windows_of_points<Dim>().resize(points_.size());
-  particles_to_grid<Dim, K, G>(false);
+  // USAVG's first half update reads the mass and momentum; the forces come from its stress.
+  particles_to_grid<Dim, K, G>(usavg_ ? P2gPart::Kinematics : P2gPart::All);
   windows_current_ = K == ShapeKind::Gimp;
   if (usavg_) {
     first_half_stress_update<Dim, K, G>(dt);
-    particles_to_grid<Dim, K, G>(false);  // the forces of the half-updated stress
+    particles_to_grid<Dim, K, G>(P2gPart::Forces);  // the forces of the half-updated stress
   }
   update_grid(dt);
   if (xpic_active()) xpic_velocity<Dim, K, G>(dt);
@@ -642,7 +671,7 @@ void MpmSolver::step_impl(double dt) {
   }
   if (musl_) {
     // Map the updated particle momenta back with the same shape functions, then L from them.
-    particles_to_grid<Dim, K, G>(true);
+    particles_to_grid<Dim, K, G>(P2gPart::Momentum);
     velocity_from_momentum();
     // Kinematics only (the particle velocities are final): the same constraints, nothing booked.
     apply_velocity_bcs(grid_.velocity_new.data());

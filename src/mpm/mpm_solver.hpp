@@ -16,6 +16,7 @@
 #include "mpm/bulk_viscosity.hpp"
 #include "mpm/grid_exchange.hpp"
 #include "mpm/grid_geometry.hpp"
+#include "mpm/p2g_part.hpp"
 #include "mpm/shape_functions.hpp"
 #include "points/point_loads.hpp"
 #include "points/point_set.hpp"
@@ -94,8 +95,8 @@ class MpmSolver final : public Solver {
   void sort_by_cell();
   void build_slabs();
   template <int Dim, ShapeKind K, bool G> void step_impl(double dt);
-  /// P2G; `momentum_only` maps only the momenta m_p v_p (of `v_source` if given) into grid_.velocity.
-  template <int Dim, ShapeKind K, bool G> void particles_to_grid(bool momentum_only, const Vec3* v_source = nullptr);
+  /// P2G of the sums of `part` (p2g_part.hpp); the momenta m_p v_p are those of `v_source` if given.
+  template <int Dim, ShapeKind K, bool G> void particles_to_grid(P2gPart part, const Vec3* v_source = nullptr);
   /// XPIC(m): the grid velocity the PIC share of the update reads, into xpic_.target.
   template <int Dim, ShapeKind K, bool G> void xpic_velocity(double dt);
   template <int Dim, ShapeKind K, bool G, bool Usavg> void grid_to_particles(double dt);
@@ -127,7 +128,7 @@ class MpmSolver final : public Solver {
   /// Cubic B-spline at symmetry faces and the axis: folds what the stencils put on the ghost nodes
   /// beyond a mirror face onto their mirror images inside (normal component negated) and leaves
   /// the ghosts empty; all arrays of the first P2G pass, or only the momentum (MUSL remap).
-  void fold_mirror_faces(bool momentum_only);
+  void fold_mirror_faces(P2gPart part);
   /// ... and sets the ghost nodes of every field to the mirror image of the inside values.
   void fill_mirror_ghosts(Vec3* v);
   /// Multi-field contact on `vel` (every field); with `book` its impulses go to grid_.impulse and

@@ -13,6 +13,7 @@
 // The lanes of a vector are nodes, never points, so no sum is reordered.
 #include "core/parallel.hpp"
 #include "core/tensor.hpp"
+#include "mpm/p2g_part.hpp"
 #include "mpm/shape_functions.hpp"
 
 namespace ballista {
@@ -31,7 +32,7 @@ struct P2gLinear3dArgs {
   const double* bq = nullptr;    ///< pressure beside the stress (bulk viscosity or the F-bar's), or null
   const Vec3* fext = nullptr;    ///< external point forces, or null
   const Vec3* ftrac = nullptr;   ///< the part of fext spread from surface points, or null
-  bool momentum_only = false;
+  P2gPart part = P2gPart::All;  ///< the sums formed (the others are left as they are)
   bool parallel = false;
   double* gm = nullptr;
   Vec3* gp = nullptr;
@@ -52,32 +53,34 @@ struct CellSums {
     base = b;
     for (int k = 0; k < 8; ++k) {
       const Index I = b + off[k];
-      px[k] = a.gp[I][0];
-      py[k] = a.gp[I][1];
-      pz[k] = a.gp[I][2];
-      if (a.momentum_only) continue;
-      m[k] = a.gm[I];
-      fx[k] = a.gf[I][0];
-      fy[k] = a.gf[I][1];
-      fz[k] = a.gf[I][2];
+      if (maps_momentum(a.part)) {
+        px[k] = a.gp[I][0];
+        py[k] = a.gp[I][1];
+        pz[k] = a.gp[I][2];
+      }
+      if (maps_mass(a.part)) m[k] = a.gm[I];
+      if (maps_forces(a.part)) {
+        fx[k] = a.gf[I][0];
+        fy[k] = a.gf[I][1];
+        fz[k] = a.gf[I][2];
+      }
     }
   }
   void write_back(const P2gLinear3dArgs& a) const {
     if (base < 0) return;
     for (int k = 0; k < 8; ++k) {
       const Index I = base + off[k];
-      a.gp[I] = Vec3{{px[k], py[k], pz[k]}};
-      if (a.momentum_only) continue;
-      a.gm[I] = m[k];
-      a.gf[I] = Vec3{{fx[k], fy[k], fz[k]}};
+      if (maps_momentum(a.part)) a.gp[I] = Vec3{{px[k], py[k], pz[k]}};
+      if (maps_mass(a.part)) a.gm[I] = m[k];
+      if (maps_forces(a.part)) a.gf[I] = Vec3{{fx[k], fy[k], fz[k]}};
     }
   }
 };
 
 }  // namespace p2g_detail
 
-/// f_I = -V_p sigma_p grad N_I + N_I f_ext,p (Sulsky et al. 1994, eq. 14), m_I and (m v)_I, for every
-/// point of every slab (slabs of one colour in parallel, as the general loop).
+/// f_I = -V_p sigma_p grad N_I + N_I f_ext,p (Sulsky et al. 1994, eq. 14), m_I and (m v)_I (those of
+/// a.part), for every point of every slab (slabs of one colour in parallel, as the general loop).
 inline void p2g_linear_3d(const P2gLinear3dArgs& a) {
   using p2g_detail::V8;
   const GridGeometry& g = *a.g;
@@ -109,11 +112,14 @@ inline void p2g_linear_3d(const P2gLinear3dArgs& a) {
         const V8 WX{ax[0].w[0], ax[0].w[1], ax[0].w[0], ax[0].w[1], ax[0].w[0], ax[0].w[1], ax[0].w[0], ax[0].w[1]};
         const V8 W = WX * WYZ;
         const double m = a.mass[p];
-        const Vec3 mv = m * a.v[p];
-        cell.px += W * mv[0];
-        cell.py += W * mv[1];
-        cell.pz += W * mv[2];
-        if (a.momentum_only) continue;
+        if (maps_momentum(a.part)) {
+          const Vec3 mv = m * a.v[p];
+          cell.px += W * mv[0];
+          cell.py += W * mv[1];
+          cell.pz += W * mv[2];
+        }
+        if (maps_mass(a.part)) cell.m += W * m;
+        if (!maps_forces(a.part)) continue;
         const V8 DWX{ax[0].dw[0], ax[0].dw[1], ax[0].dw[0], ax[0].dw[1],
                      ax[0].dw[0], ax[0].dw[1], ax[0].dw[0], ax[0].dw[1]};
         const V8 GX = DWX * WYZ;
@@ -123,7 +129,6 @@ inline void p2g_linear_3d(const P2gLinear3dArgs& a) {
         if (a.bq)
           for (int i = 0; i < 3; ++i) Vs(i, i) -= a.vol[p] * a.bq[p];
         const Vec3 fe = a.fext ? (a.ftrac ? a.fext[p] - a.ftrac[p] : a.fext[p]) : Vec3{};
-        cell.m += W * m;
         // The general loop subtracts the hoop term hoop w (hoop = 0 in 3D) from f_x; subtracting
         // 0 W here keeps every bit of f_x the same, the sign of a zero included.
         cell.fx += W * fe[0] - (Vs(0, 0) * GX + Vs(0, 1) * GY + Vs(0, 2) * GZ) - 0.0 * W;

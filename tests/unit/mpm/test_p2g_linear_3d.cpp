@@ -1,8 +1,9 @@
 // The eight-nodes-per-vector particle-to-grid pass (mpm/p2g_linear_3d.hpp) against the general
 // loop of MpmSolver::particles_to_grid, written out here point by point from linear_stencil: the
 // grid must be bitwise the same (the kernel only keeps a cell's node sums in registers while
-// consecutive points lie in that cell), for the full pass and the momentum-only pass, with and
-// without external forces and a pressure beside the stress, and whatever the points' order.
+// consecutive points lie in that cell), for the full pass and for each part (momentum only; USAVG's
+// mass and momentum, then forces), with and without external forces and a pressure beside the
+// stress, and whatever the points' order.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -76,7 +77,7 @@ void reference(const P2gLinear3dArgs& a) {
       linear_stencil<3>(*a.g, a.x[p], st);
       const double m = a.mass[p];
       const Vec3 mv = m * a.v[p];
-      if (a.momentum_only) {
+      if (a.part == P2gPart::Momentum) {
         for (int k = 0; k < st.count; ++k) a.gp[st.node[k]] += st.w[k] * mv;
         continue;
       }
@@ -89,8 +90,11 @@ void reference(const P2gLinear3dArgs& a) {
         const Index I = st.node[k];
         const double w = st.w[k];
         const Vec3& dN = st.grad[k];
-        a.gm[I] += w * m;
-        a.gp[I] += w * mv;
+        if (maps_mass(a.part)) {
+          a.gm[I] += w * m;
+          a.gp[I] += w * mv;
+        }
+        if (!maps_forces(a.part)) continue;
         Vec3 f;
         for (int i = 0; i < 3; ++i)
           f[i] = w * fe[i] - (Vs(i, 0) * dN[0] + Vs(i, 1) * dN[1] + Vs(i, 2) * dN[2]);
@@ -100,7 +104,7 @@ void reference(const P2gLinear3dArgs& a) {
     }
 }
 
-void expect_same_grid(int n, bool sorted, bool momentum_only, bool ext, bool trac, bool bq, unsigned seed) {
+void expect_same_grid(int n, bool sorted, P2gPart part, bool ext, bool trac, bool bq, unsigned seed) {
   const Cloud c = make_cloud(n, sorted, seed);
   const Index nn = c.g.node_count();
   // Both grids start from the same non-zero values (a momentum-only pass adds to what is there).
@@ -126,7 +130,7 @@ void expect_same_grid(int n, bool sorted, bool momentum_only, bool ext, bool tra
   a.bq = bq ? c.bq.data() : nullptr;
   a.fext = ext ? c.fext.data() : nullptr;
   a.ftrac = ext && trac ? c.ftrac.data() : nullptr;
-  a.momentum_only = momentum_only;
+  a.part = part;
   a.gm = gm1.data();
   a.gp = gp1.data();
   a.gf = gf1.data();
@@ -137,30 +141,79 @@ void expect_same_grid(int n, bool sorted, bool momentum_only, bool ext, bool tra
   reference(a);
   int touched = 0;
   for (Index i = 0; i < nn; ++i) {
-    touched += gp1[i][0] != gp0[i][0];
+    touched += gp1[i][0] != gp0[i][0] || gf1[i][1] != gf0[i][1];
     EXPECT_EQ(gm1[i], gm2[i]) << "node " << i;
+    // A sum the part does not form is left exactly as it was.
+    if (!maps_mass(part)) EXPECT_EQ(gm1[i], gm0[i]) << "node " << i;
     for (int d = 0; d < 3; ++d) {
       EXPECT_EQ(gp1[i][d], gp2[i][d]) << "node " << i << " axis " << d;
       EXPECT_EQ(gf1[i][d], gf2[i][d]) << "node " << i << " axis " << d;
+      if (!maps_momentum(part)) EXPECT_EQ(gp1[i][d], gp0[i][d]) << "node " << i << " axis " << d;
+      if (!maps_forces(part)) EXPECT_EQ(gf1[i][d], gf0[i][d]) << "node " << i << " axis " << d;
     }
   }
   EXPECT_GT(touched, 20);  // the points reached many nodes: the comparison is not vacuous
 }
 
 TEST(P2gLinear3d, BitwiseTheGeneralLoopForSortedPoints) {
-  expect_same_grid(400, true, false, false, false, false, 1);
-  expect_same_grid(400, true, false, true, true, true, 2);
-  expect_same_grid(400, true, false, true, false, true, 3);
+  expect_same_grid(400, true, P2gPart::All, false, false, false, 1);
+  expect_same_grid(400, true, P2gPart::All, true, true, true, 2);
+  expect_same_grid(400, true, P2gPart::All, true, false, true, 3);
 }
 
 TEST(P2gLinear3d, BitwiseTheGeneralLoopForScatteredPoints) {
-  expect_same_grid(300, false, false, true, true, true, 4);
-  expect_same_grid(300, false, false, false, false, false, 5);
+  expect_same_grid(300, false, P2gPart::All, true, true, true, 4);
+  expect_same_grid(300, false, P2gPart::All, false, false, false, 5);
 }
 
 TEST(P2gLinear3d, BitwiseTheGeneralLoopForMomentumOnly) {
-  expect_same_grid(400, true, true, false, false, false, 6);
-  expect_same_grid(300, false, true, true, true, true, 7);
+  expect_same_grid(400, true, P2gPart::Momentum, false, false, false, 6);
+  expect_same_grid(300, false, P2gPart::Momentum, true, true, true, 7);
+}
+
+// USAVG's two passes: mass and momentum first, then the forces.
+TEST(P2gLinear3d, BitwiseTheGeneralLoopForEachPart) {
+  expect_same_grid(400, true, P2gPart::Kinematics, true, true, true, 8);
+  expect_same_grid(300, false, P2gPart::Forces, true, true, true, 9);
+  expect_same_grid(400, true, P2gPart::Forces, false, false, false, 10);
+}
+
+// The two passes on a cleared grid form exactly the grid of one full pass.
+TEST(P2gLinear3d, KinematicsThenForcesIsTheFullPass) {
+  const Cloud c = make_cloud(400, true, 11);
+  const Index nn = c.g.node_count();
+  std::vector<double> gm1(nn, 0.0), gm2(nn, 0.0);
+  std::vector<Vec3> gp1(nn), gp2(nn), gf1(nn), gf2(nn);
+  P2gLinear3dArgs a{.g = &c.g,
+                    .slab_start = c.slab_start.data(),
+                    .slab_points = c.slab_points.data(),
+                    .nslab = static_cast<int>(c.slab_start.size()) - 1,
+                    .x = c.x.data(),
+                    .v = c.v.data(),
+                    .mass = c.mass.data(),
+                    .vol = c.vol.data(),
+                    .stress = c.stress.data(),
+                    .bq = c.bq.data(),
+                    .fext = c.fext.data(),
+                    .ftrac = c.ftrac.data()};
+  a.gm = gm1.data();
+  a.gp = gp1.data();
+  a.gf = gf1.data();
+  p2g_linear_3d(a);
+  a.gm = gm2.data();
+  a.gp = gp2.data();
+  a.gf = gf2.data();
+  a.part = P2gPart::Kinematics;
+  p2g_linear_3d(a);
+  a.part = P2gPart::Forces;
+  p2g_linear_3d(a);
+  for (Index i = 0; i < nn; ++i) {
+    EXPECT_EQ(gm1[i], gm2[i]) << "node " << i;
+    for (int d = 0; d < 3; ++d) {
+      EXPECT_EQ(gp1[i][d], gp2[i][d]) << "node " << i << " axis " << d;
+      EXPECT_EQ(gf1[i][d], gf2[i][d]) << "node " << i << " axis " << d;
+    }
+  }
 }
 
 }  // namespace
