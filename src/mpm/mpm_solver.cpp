@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/agreed_failure.hpp"
@@ -437,11 +438,13 @@ inline void MpmSolver::finish_point(Index p, const Mat3& l, const Vec3& disp, do
   Vec3& x = x_[p];
   x += disp;
   // F_{n+1} = (I + dt L) F_n (thesis seed 000 eq. 4.9); volume from J = det F.
-  Mat3& F = F_[p];
-  F = (Mat3::identity() + dt * l) * F;
+  const Mat3 F = (Mat3::identity() + dt * l) * F_[p];
+  F_[p] = F;
   const double J = det(F);
   vol_[p] = vol0_[p] * J;
-  if (!(J > 0.0) || !all_finite(F)) record_min(bad, p);
+  // Every entry of F enters det F, so a NaN or infinite entry leaves J NaN or infinite: J finite
+  // and positive is F finite and not inverted (an overflowing J, of a finite F, is refused too).
+  if (!(J > 0.0 && J <= std::numeric_limits<double>::max())) record_min(bad, p);
   for (int a = 0; a < dim_; ++a)
     if (!(x[a] >= layout_.box_lower[a] && x[a] <= layout_.box_upper[a])) record_min(out, p);
 }
