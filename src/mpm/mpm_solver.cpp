@@ -291,78 +291,67 @@ void MpmSolver::particles_to_grid(P2gPart part, const Vec3* v_source) {
       done = true;
     }
   }
-  // The loop for one part (kPart); each node's sums in point order whatever the part.
-  auto scatter = [&]<P2gPart kPart>() {
-    constexpr bool kMass = maps_mass(kPart);
-    for (int color = 0; color < 2; ++color) {
+  // Each node receives its sums in point order, whatever the part.
+  for (int color = 0; color < 2 && !done; ++color) {
 #pragma omp parallel for schedule(dynamic, 1) if (points_.size() > kParallelThreshold)
-      for (int s = color; s < nslab; s += 2) {
-        Stencil<Dim> st;
-        for (Index q = slab_start_[s]; q < slab_start_[s + 1]; ++q) {
-          const Index p = slab_points_[q];
-          point_stencil<Dim, K, G>(p, x[p], half[p], st);
-          const double m = mass[p];
-          const Vec3 mv = m * v[p];
-          const Index fo = field_offset(p);
-          if constexpr (kPart == P2gPart::Momentum) {
-            for (int k = 0; k < st.count; ++k) gp[fo + st.node[k]] += st.w[k] * mv;
-            continue;
-          }
-          if constexpr (kPart == P2gPart::Kinematics) {
-            for (int k = 0; k < st.count; ++k) {
-              const Index I = fo + st.node[k];
-              const double w = st.w[k];
-              if (multi) {
-                gg[I] += m * st.grad[k];
-                if (gv) gv[I] += w * vol[p];
-              }
-              gm[I] += w * m;
-              gp[I] += w * mv;
-            }
-            continue;
-          }
-          // f_I = -V_p sigma_p grad N_I + N_I f_ext,p (Sulsky et al. 1994, eq. 14); axisymmetric
-          // adds the hoop term -V_p sigma_tt N_I / r_p to the radial force (per-radian volume; its
-          // domain average for a uGIMP domain across the axis, mpm/axis_hoop.hpp). The
-          // bulk viscosity's pressure q acts beside the material's stress: sigma - q I (with the
-          // F-bar, bq holds what replaces the pressure by its cell average).
-          Mat3 Vs = vol[p] * stress[p];
-          if (bq)
-            for (int i = 0; i < 3; ++i) Vs(i, i) -= vol[p] * bq[p];
-          const double hoop = axisym ? Vs(2, 2) / x[p][0] : 0.0;
-          double near_axis[Stencil<Dim>::kMax];
-          const bool crosses_axis = axisym && hoop_near_axis<Dim, K>(g, x[p], half[p], st, near_axis);
-          // Surface tractions are spread from their own points below.
-          const Vec3 fe = has_ext ? (has_trac ? fext[p] - ftrac[p] : fext[p]) : Vec3{};
+    for (int s = color; s < nslab; s += 2) {
+      Stencil<Dim> st;
+      for (Index q = slab_start_[s]; q < slab_start_[s + 1]; ++q) {
+        const Index p = slab_points_[q];
+        point_stencil<Dim, K, G>(p, x[p], half[p], st);
+        const double m = mass[p];
+        const Vec3 mv = m * v[p];
+        const Index fo = field_offset(p);
+        if (part == P2gPart::Momentum) {
+          for (int k = 0; k < st.count; ++k) gp[fo + st.node[k]] += st.w[k] * mv;
+          continue;
+        }
+        if (!force_part) {  // P2gPart::Kinematics
           for (int k = 0; k < st.count; ++k) {
             const Index I = fo + st.node[k];
             const double w = st.w[k];
-            const Vec3& dN = st.grad[k];
             if (multi) {
-              // The outward vector of the field: the contact normal (grid_contact.hpp).
-              if constexpr (kMass) gg[I] += m * dN;
-              if (gv) gv[I] += w * vol[p];  // how much of the node the field fills (contact's gap check)
+              gg[I] += m * st.grad[k];
+              if (gv) gv[I] += w * vol[p];
             }
-            if constexpr (kMass) {
-              gm[I] += w * m;
-              gp[I] += w * mv;
-            }
-            Vec3 f;
-            for (int i = 0; i < 3; ++i)
-              f[i] = w * fe[i] - (Vs(i, 0) * dN[0] + Vs(i, 1) * dN[1] + Vs(i, 2) * dN[2]);
-            f[0] -= crosses_axis ? Vs(2, 2) * near_axis[k] : hoop * w;
-            gf[I] += f;
+            gm[I] += w * m;
+            gp[I] += w * mv;
           }
+          continue;
+        }
+        // f_I = -V_p sigma_p grad N_I + N_I f_ext,p (Sulsky et al. 1994, eq. 14); axisymmetric
+        // adds the hoop term -V_p sigma_tt N_I / r_p to the radial force (per-radian volume; its
+        // domain average for a uGIMP domain across the axis, mpm/axis_hoop.hpp). The
+        // bulk viscosity's pressure q acts beside the material's stress: sigma - q I (with the
+        // F-bar, bq holds what replaces the pressure by its cell average).
+        Mat3 Vs = vol[p] * stress[p];
+        if (bq)
+          for (int i = 0; i < 3; ++i) Vs(i, i) -= vol[p] * bq[p];
+        const double hoop = axisym ? Vs(2, 2) / x[p][0] : 0.0;
+        double near_axis[Stencil<Dim>::kMax];
+        const bool crosses_axis = axisym && hoop_near_axis<Dim, K>(g, x[p], half[p], st, near_axis);
+        // Surface tractions are spread from their own points below.
+        const Vec3 fe = has_ext ? (has_trac ? fext[p] - ftrac[p] : fext[p]) : Vec3{};
+        for (int k = 0; k < st.count; ++k) {
+          const Index I = fo + st.node[k];
+          const double w = st.w[k];
+          const Vec3& dN = st.grad[k];
+          if (multi) {
+            // The outward vector of the field: the contact normal (grid_contact.hpp).
+            if (mass_part) gg[I] += m * dN;
+            if (gv) gv[I] += w * vol[p];  // how much of the node the field fills (contact's gap check)
+          }
+          if (mass_part) {
+            gm[I] += w * m;
+            gp[I] += w * mv;
+          }
+          Vec3 f;
+          for (int i = 0; i < 3; ++i)
+            f[i] = w * fe[i] - (Vs(i, 0) * dN[0] + Vs(i, 1) * dN[1] + Vs(i, 2) * dN[2]);
+          f[0] -= crosses_axis ? Vs(2, 2) * near_axis[k] : hoop * w;
+          gf[I] += f;
         }
       }
-    }
-  };
-  if (!done) {
-    switch (part) {
-      case P2gPart::All: scatter.template operator()<P2gPart::All>(); break;
-      case P2gPart::Momentum: scatter.template operator()<P2gPart::Momentum>(); break;
-      case P2gPart::Kinematics: scatter.template operator()<P2gPart::Kinematics>(); break;
-      case P2gPart::Forces: scatter.template operator()<P2gPart::Forces>(); break;
     }
   }
   if (comm_.distributed()) {
