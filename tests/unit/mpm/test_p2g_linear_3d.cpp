@@ -104,6 +104,30 @@ void reference(const P2gLinear3dArgs& a) {
     }
 }
 
+/// The pass's arguments for a cloud: its points, and the external forces, tractions and pressure
+/// beside the stress if asked.
+P2gLinear3dArgs args_of(const Cloud& c, bool ext, bool trac, bool bq) {
+  return {.g = &c.g,
+          .slab_start = c.slab_start.data(),
+          .slab_points = c.slab_points.data(),
+          .nslab = static_cast<int>(c.slab_start.size()) - 1,
+          .x = c.x.data(),
+          .v = c.v.data(),
+          .mass = c.mass.data(),
+          .vol = c.vol.data(),
+          .stress = c.stress.data(),
+          .bq = bq ? c.bq.data() : nullptr,
+          .fext = ext ? c.fext.data() : nullptr,
+          .ftrac = ext && trac ? c.ftrac.data() : nullptr};
+}
+
+/// Points the pass at one set of grid arrays.
+void set_grid(P2gLinear3dArgs& a, std::vector<double>& gm, std::vector<Vec3>& gp, std::vector<Vec3>& gf) {
+  a.gm = gm.data();
+  a.gp = gp.data();
+  a.gf = gf.data();
+}
+
 void expect_same_grid(int n, bool sorted, P2gPart part, bool ext, bool trac, bool bq, unsigned seed) {
   const Cloud c = make_cloud(n, sorted, seed);
   const Index nn = c.g.node_count();
@@ -117,27 +141,11 @@ void expect_same_grid(int n, bool sorted, P2gPart part, bool ext, bool trac, boo
   }
   std::vector<double> gm1 = gm0, gm2 = gm0;
   std::vector<Vec3> gp1 = gp0, gp2 = gp0, gf1 = gf0, gf2 = gf0;
-  P2gLinear3dArgs a;
-  a.g = &c.g;
-  a.slab_start = c.slab_start.data();
-  a.slab_points = c.slab_points.data();
-  a.nslab = static_cast<int>(c.slab_start.size()) - 1;
-  a.x = c.x.data();
-  a.v = c.v.data();
-  a.mass = c.mass.data();
-  a.vol = c.vol.data();
-  a.stress = c.stress.data();
-  a.bq = bq ? c.bq.data() : nullptr;
-  a.fext = ext ? c.fext.data() : nullptr;
-  a.ftrac = ext && trac ? c.ftrac.data() : nullptr;
+  P2gLinear3dArgs a = args_of(c, ext, trac, bq);
   a.part = part;
-  a.gm = gm1.data();
-  a.gp = gp1.data();
-  a.gf = gf1.data();
+  set_grid(a, gm1, gp1, gf1);
   p2g_linear_3d(a);
-  a.gm = gm2.data();
-  a.gp = gp2.data();
-  a.gf = gf2.data();
+  set_grid(a, gm2, gp2, gf2);
   reference(a);
   int touched = 0;
   for (Index i = 0; i < nn; ++i) {
@@ -184,25 +192,10 @@ TEST(P2gLinear3d, KinematicsThenForcesIsTheFullPass) {
   const Index nn = c.g.node_count();
   std::vector<double> gm1(nn, 0.0), gm2(nn, 0.0);
   std::vector<Vec3> gp1(nn), gp2(nn), gf1(nn), gf2(nn);
-  P2gLinear3dArgs a{.g = &c.g,
-                    .slab_start = c.slab_start.data(),
-                    .slab_points = c.slab_points.data(),
-                    .nslab = static_cast<int>(c.slab_start.size()) - 1,
-                    .x = c.x.data(),
-                    .v = c.v.data(),
-                    .mass = c.mass.data(),
-                    .vol = c.vol.data(),
-                    .stress = c.stress.data(),
-                    .bq = c.bq.data(),
-                    .fext = c.fext.data(),
-                    .ftrac = c.ftrac.data()};
-  a.gm = gm1.data();
-  a.gp = gp1.data();
-  a.gf = gf1.data();
+  P2gLinear3dArgs a = args_of(c, true, true, true);
+  set_grid(a, gm1, gp1, gf1);
   p2g_linear_3d(a);
-  a.gm = gm2.data();
-  a.gp = gp2.data();
-  a.gf = gf2.data();
+  set_grid(a, gm2, gp2, gf2);
   a.part = P2gPart::Kinematics;
   p2g_linear_3d(a);
   a.part = P2gPart::Forces;
