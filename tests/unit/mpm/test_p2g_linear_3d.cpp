@@ -26,7 +26,9 @@ struct Cloud {
 
 /// n points in a 6 x 5 x 4 cell box, a few per cell and some cells shared by runs of points
 /// (sorted by cell, as the solver sorts them) or scattered (unsorted); slabs of two cells along z.
-Cloud make_cloud(int n, bool sorted, unsigned seed) {
+/// With `one_per_cell`, point p lies in cell p (x fastest) of every cell of the box (n <= 120), as
+/// at one particle per cell, where every point starts a new run of held node sums.
+Cloud make_cloud(int n, bool sorted, unsigned seed, bool one_per_cell = false) {
   Cloud c;
   c.g.origin = Vec3{{-0.1, 0.2, 0.05}};
   c.g.h = 0.013;
@@ -38,7 +40,12 @@ Cloud make_cloud(int n, bool sorted, unsigned seed) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int p = 0; p < n; ++p) {
     // Points in a few cells only, so that runs of several points per cell occur.
-    const int ci = static_cast<int>(u(rng) * 3), cj = static_cast<int>(u(rng) * 2), ck = static_cast<int>(u(rng) * 4);
+    int ci = static_cast<int>(u(rng) * 3), cj = static_cast<int>(u(rng) * 2), ck = static_cast<int>(u(rng) * 4);
+    if (one_per_cell) {
+      ci = p % 6;
+      cj = (p / 6) % 5;
+      ck = p / 30;
+    }
     c.x.push_back(Vec3{{c.g.origin[0] + (ci + u(rng)) * c.g.h, c.g.origin[1] + (cj + u(rng)) * c.g.h,
                         c.g.origin[2] + (ck + u(rng)) * c.g.h}});
     c.v.push_back(Vec3{{u(rng) - 0.5, 200.0 * (u(rng) - 0.5), 3.0 * u(rng)}});
@@ -128,8 +135,9 @@ void set_grid(P2gLinear3dArgs& a, std::vector<double>& gm, std::vector<Vec3>& gp
   a.gf = gf.data();
 }
 
-void expect_same_grid(int n, bool sorted, P2gPart part, bool ext, bool trac, bool bq, unsigned seed) {
-  const Cloud c = make_cloud(n, sorted, seed);
+void expect_same_grid(int n, bool sorted, P2gPart part, bool ext, bool trac, bool bq, unsigned seed,
+                      bool one_per_cell = false) {
+  const Cloud c = make_cloud(n, sorted, seed, one_per_cell);
   const Index nn = c.g.node_count();
   // Both grids start from the same non-zero values (a momentum-only pass adds to what is there).
   std::vector<double> gm0(nn);
@@ -184,6 +192,15 @@ TEST(P2gLinear3d, BitwiseTheGeneralLoopForEachPart) {
   expect_same_grid(400, true, P2gPart::Kinematics, true, true, true, 8);
   expect_same_grid(300, false, P2gPart::Forces, true, true, true, 9);
   expect_same_grid(400, true, P2gPart::Forces, false, false, false, 10);
+}
+
+// One point per cell: every point takes and writes back its cell's eight nodes.
+TEST(P2gLinear3d, BitwiseTheGeneralLoopForOnePointPerCell) {
+  expect_same_grid(120, true, P2gPart::All, true, true, true, 12, true);
+  expect_same_grid(120, true, P2gPart::Momentum, false, false, false, 13, true);
+  expect_same_grid(120, true, P2gPart::Kinematics, false, false, true, 14, true);
+  expect_same_grid(120, true, P2gPart::Forces, true, false, true, 15, true);
+  expect_same_grid(100, true, P2gPart::All, false, false, false, 16, true);  // rows cut short
 }
 
 // The two passes on a cleared grid form exactly the grid of one full pass.
