@@ -647,7 +647,8 @@ void MpmSolver::step_impl(double dt) {
   // The first mapping computes each point's GIMP windows; the step's later passes reuse them.
   windows_current_ = false;
   if constexpr (K == ShapeKind::Gimp) gimp_windows_of_points<Dim>().resize(points_.size());
-  // USAVG's first half update reads the mass and momentum; the forces come from its stress.
+  // USAVG's first half update reads the mass and momentum; the forces come from its stress (the
+  // weights must not follow F within the step: p2g_part.hpp).
   particles_to_grid<Dim, K, G>(usavg_ ? P2gPart::Kinematics : P2gPart::All);
   windows_current_ = K == ShapeKind::Gimp;
   if (usavg_) {
@@ -681,7 +682,7 @@ void MpmSolver::step_impl(double dt) {
   time_ += dt;
   ++steps_;
   if (first_bad_ < points_.size())
-    fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0 or NaN)");
+    fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0, NaN or infinite)");
   const double sdt = usavg_ ? 0.5 * dt : dt;  // USAVG: the second half
   if (anti_locking_ == AntiLocking::FBar)  // volumetric increment averaged per cell (anti_locking.hpp)
     fbar_.apply(grid_.geom, dimension_, sdt, fbar_points(), fbar_across_ranks());
@@ -736,7 +737,8 @@ void MpmSolver::first_half_stress_update(double dt) {
   if (!mirror_faces_.empty()) fill_mirror_ghosts(grid_.velocity_new.data());
   velocity_gradient_from_grid<Dim, K, G>(0.5 * dt, false);
   if (first_bad_ < points_.size())  // named as the step it happens in (steps_ counts completed ones)
-    pts_.fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0 or NaN) in the first half of the step",
+    pts_.fail(first_bad_,
+              "inverted or non-finite deformation gradient (J <= 0, NaN or infinite) in the first half of the step",
               steps_ + 1, time_);
   if (anti_locking_ == AntiLocking::FBar)
     fbar_.apply(grid_.geom, dimension_, 0.5 * dt, fbar_points(), fbar_across_ranks());

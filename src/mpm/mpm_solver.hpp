@@ -127,7 +127,7 @@ class MpmSolver final : public Solver {
   std::vector<BoundaryImpulse> boundary_impulses_;  ///< this step's, for book_impulses
   /// Cubic B-spline at symmetry faces and the axis: folds what the stencils put on the ghost nodes
   /// beyond a mirror face onto their mirror images inside (normal component negated) and leaves
-  /// the ghosts empty; all arrays of the first P2G pass, or only the momentum (MUSL remap).
+  /// the ghosts empty; the arrays of the pass's part (p2g_part.hpp).
   void fold_mirror_faces(P2gPart part);
   /// ... and sets the ghost nodes of every field to the mirror image of the inside values.
   void fill_mirror_ghosts(Vec3* v);

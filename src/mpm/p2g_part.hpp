@@ -6,7 +6,9 @@
 // needs the mass and momentum (the grid velocity v_n the half update reads), the second only the
 // forces of the half-updated stress. Mass, momentum and the contact normals are the same sums in
 // both passes, so each is formed once; the contact's node volumes read the points' volumes, which
-// the half update changes, so both passes form them.
+// the half update changes, so both passes form them. This needs weights that do not follow F
+// within the step: linear, GIMP (its windows are kept for the step) and the B-spline; CPDI, whose
+// domains follow F, is refused with USAVG (mpm_layout.cpp).
 namespace ballista {
 
 enum class P2gPart {
