@@ -19,24 +19,19 @@ void ActiveBlocks::reset(const GridGeometry& g) {
 void ActiveBlocks::mark(const Vec3* x, Index n, int reach) {
   const int nd = g_.dim;
   std::uint8_t* flag = flag_.data();
-  // Points come sorted by cell (MpmSolver::sort_by_cell), so a run of points in one cell marks
-  // its blocks once, and a run of cells whose reach covers the same blocks (eight cells a block
-  // along x: with one point per cell most points start no new range) marks them once: each chunk
-  // remembers the last cell and the last range of blocks it marked.
+  // Points come sorted by cell (MpmSolver::sort_by_cell), and neighbouring cells mostly reach the
+  // same blocks (eight cells a block along x), so a run of points marks its blocks once: each
+  // chunk remembers the last range of blocks it marked.
   constexpr Index kChunk = 1024;
   const Index chunks = (n + kChunk - 1) / kChunk;
   for_each_chunk(chunks, [&](Index ch) {
-    int last[3] = {-1, -1, -1};
     int last_lo[3] = {-1, -1, -1}, last_hi[3] = {-1, -1, -1};
     for (Index p = ch * kChunk; p < std::min(n, (ch + 1) * kChunk); ++p) {
-      int c[3] = {0, 0, 0};
-      for (int a = 0; a < nd; ++a) c[a] = std::clamp(g_.cell_of(x[p][a], a), 0, g_.nodes[a] - 1);
-      if (c[0] == last[0] && c[1] == last[1] && c[2] == last[2]) continue;
       int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
       for (int a = 0; a < nd; ++a) {
-        lo[a] = std::max(c[a] - reach, 0) / kBlock;
-        hi[a] = std::min(c[a] + 1 + reach, g_.nodes[a] - 1) / kBlock;
-        last[a] = c[a];
+        const int c = std::clamp(g_.cell_of(x[p][a], a), 0, g_.nodes[a] - 1);
+        lo[a] = std::max(c - reach, 0) / kBlock;
+        hi[a] = std::min(c + 1 + reach, g_.nodes[a] - 1) / kBlock;
       }
       if (std::equal(lo, lo + 3, last_lo) && std::equal(hi, hi + 3, last_hi)) continue;
       std::copy(lo, lo + 3, last_lo);

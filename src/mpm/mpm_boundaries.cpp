@@ -57,7 +57,8 @@ void MpmSolver::fold_mirror_faces(P2gPart part) {
         if (maps_momentum(part)) grid_.velocity[I][a] = 0.0;
         if (maps_forces(part)) grid_.force[I][a] = 0.0;
         if (maps_mass(part) && grid_.fields > 1) grid_.grad[I][a] = 0.0;
-        if (maps_volume(part) && grid_.with_volume) grid_.volume[I] *= 2.0;  // the image fills the other half of the face node
+        // The image fills the other half of the face node.
+        if (maps_volume(part) && grid_.with_volume) grid_.volume[I] *= 2.0;
         return;
       }
       if (maps_momentum(part)) {
