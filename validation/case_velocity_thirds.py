@@ -12,7 +12,7 @@ The flash X-ray's velocity (seed 001, "Explosive Testing"): the seed divides a h
 distance by a flight time, the X-ray's time less the detonator's 3 us and 6.426 us for the shock to
 reach the charge's centre, so its figure is a mean over the flight, acceleration included, and not
 the case's velocity at the X-ray. The like-for-like figure of a run is the same arithmetic on its own
-flight: the middle third's mean radius at the last file less the case's mean radius at t = 0, over
+flight: the middle third's mean radius at the last file less its mean radius at t = 0, over
 the run's time less 6.426 us (t = 0 is the detonator's output).
 
 Usage: validation/case_velocity_thirds.py RUN_DIR [--length 0.098] [--json FILE]

@@ -29,6 +29,7 @@ than --min-mass, and the mass-weighted mean sum(m^2)/sum(m).
 Usage: validation/exploding_cylinders.py --ballista build/ballista --out DIR
            [--configs 4340_HT1,...] [--spacing 0.86e-3] [--seeds 0,1,2,3,4] [--threads 2]
            [--end-time 100e-6] [--min-mass 0.3e-3] [--set KEY=VALUE ...] [--plot] [--tube seed_timing]
+           [--fracture-energy 6.676e5]
 A finished run (its summary.json present) is not run again: the table can be rebuilt, or a study
 continued, by calling the script again with the same OUT.
 """
@@ -81,8 +82,23 @@ def tube(name, geometry):
 
 
 def run_dir(args, name, spacing, seed):
-    tag = "" if args.tube == "example" else "_timing"
+    tag = ("" if args.tube == "example" else "_timing") + (f"_G{args.fracture_energy:g}" if args.fracture_energy else "")
     return os.path.join(args.out, f"{name}{tag}_h{spacing * 1e3:.3g}mm_seed{seed}")
+
+
+def deck(args):
+    """The example's deck, or with --fracture-energy a copy in OUT whose bonds break at that energy
+    (peridynamics.fracture_work: bond_law, the critical stretch then follows the horizon) instead of
+    at the example's critical stretch."""
+    if not args.fracture_energy:
+        return DECK
+    text = open(DECK).read()
+    line = next(l for l in text.splitlines() if l.strip().startswith("critical_stretch:"))
+    text = text.replace(line, f"  fracture_work: bond_law\n  fracture_energy: {args.fracture_energy:g}")
+    path = os.path.join(args.out, f"exploding_cylinder_G{args.fracture_energy:g}.yaml")
+    with open(path, "w") as f:
+        f.write(text)
+    return path
 
 
 def run(args, name, spacing, seed):
@@ -96,7 +112,7 @@ def run(args, name, spacing, seed):
     ] + (args.set or [])
     if seed:
         sets.append(f"peridynamics.scatter_seed={seed}")
-    cmd = [args.ballista, "run", DECK, "-o", out, "--overwrite", "-q", "--no-plots", "--threads", str(args.threads)]
+    cmd = [args.ballista, "run", deck(args), "-o", out, "--overwrite", "-q", "--no-plots", "--threads", str(args.threads)]
     for s in sets:
         cmd += ["--set", s]
     print("running", name, f"h = {spacing * 1e3:g} mm, seed {seed}", flush=True)
@@ -173,6 +189,8 @@ def main():
     ap.add_argument("--min-mass", type=float, default=0.3e-3, help="kg: fragments counted as heavy")
     ap.add_argument("--set", action="append")
     ap.add_argument("--plot", action="store_true", help="also draw OUT/cylinders.png")
+    ap.add_argument("--fracture-energy", type=float, help="J/m^2: bonds break at this energy (bond_law), "
+                    "not at the example's critical stretch; 6.676e5 is the example's at 0.86 mm")
     ap.add_argument("--tube", choices=("example", "seed_timing"), default="example",
                     help="the tube's length and bore (see TIMING_LENGTH)")
     args = ap.parse_args()
