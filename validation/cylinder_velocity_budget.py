@@ -25,9 +25,9 @@ import h5py
 import numpy as np
 
 from case_velocity_thirds import case_thirds
+from exploding_cylinders import OUTER_RADIUS as OUTER, TIMING_LENGTH, timing_bore
 
 GURNEY_SQRT_2E = 2970.0  # m/s, LX-14 (data/materials.yaml, lx14_pbxn9_standin)
-OUTER = 16.13e-3
 
 
 def deck(length, bore, yield_stress, end_time, cell, r_max):
@@ -59,12 +59,12 @@ def main():
     ap.add_argument("--out", required=True)
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
-    bore_timing = np.sqrt(OUTER ** 2 - 0.2399 / (7850 * np.pi * 0.108))
+    bore_timing = timing_bore("4340_HT1_PBXN9")
     cases = [  # name, length, bore, yield stress, end time, cell
         ("long_no_strength", 0.392, 12.7e-3, 1e6, 60e-6, 0.86e-3),
         ("long_j2", 0.392, 12.7e-3, 750e6, 60e-6, 0.86e-3),
         ("example_tube", 0.098, 12.7e-3, 750e6, 25e-6, 0.43e-3),
-        ("timing_tube", 0.108, bore_timing, 750e6, 25e-6, 0.43e-3),
+        ("timing_tube", TIMING_LENGTH, bore_timing, 750e6, 25e-6, 0.43e-3),
     ]
     print("| tube | M/C | Gurney | case velocity | where |")
     print("|---|---|---|---|---|")

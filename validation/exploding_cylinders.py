@@ -70,15 +70,19 @@ OUTER_RADIUS = 16.13e-3
 TIMING_LENGTH = 0.108
 
 
+def timing_bore(name):
+    """Bore radius (m) of a configuration's case in the timing tube: its own mass at TIMING_LENGTH."""
+    mass, density = CONFIGS[name][4] * 1e-3, CONFIGS[name][5]
+    return float(np.sqrt(OUTER_RADIUS ** 2 - mass / (density * np.pi * TIMING_LENGTH)))
+
+
 def tube(name, geometry):
     """(length m, deck overrides) of the tube of a configuration."""
     if geometry == "example":
         return 0.098, []
-    mass, density = CONFIGS[name][4] * 1e-3, CONFIGS[name][5]
-    bore = np.sqrt(OUTER_RADIUS ** 2 - mass / (density * np.pi * TIMING_LENGTH))
+    bore = timing_bore(name)
     return TIMING_LENGTH, [f"bodies.0.shape.length={TIMING_LENGTH}", f"bodies.1.shape.length={TIMING_LENGTH}",
                            f"bodies.0.shape.inner_radius={bore:.6g}", f"bodies.1.shape.radius={bore:.6g}"]
-
 
 
 def run_dir(args, name, spacing, seed):
