@@ -97,7 +97,8 @@ def main():
     if not a.table_only:
         for rock in rocks:
             for ksi in levels:
-                run(a.ballista, a.out, rock, ksi, a.hole_radius, a.set, a.tag)
+                # an unloaded face has no hole to leave: the 0 ksi run is the same with or without
+                run(a.ballista, a.out, rock, ksi, a.hole_radius if ksi > 0 else 0.0, a.set, a.tag)
     print("Depth [cm] (change from 0 ksi); the preload stage's length [us]")
     print()
     print("| rock | ksi | MPa | Ballista | preload | thesis, none | thesis, ZeroStress |")
