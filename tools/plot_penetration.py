@@ -88,7 +88,9 @@ def depth_series(hist, pen):
         return t, pen["depth"], pen.get("cavity_depth")
     if "penetration_time" in hist and "penetration_depth" in hist:
         t = hist["penetration_time"]
-        after = t >= 0  # before firing (overburden stage) the time is negative and the depths 0
+        after = t >= 0  # before firing (a preparation stage) the time is nan or negative
+        if not np.any(after):
+            return None  # stopped before the penetrator was fired
         cav = hist.get("cavity_depth")
         return t[after], hist["penetration_depth"][after], None if cav is None else cav[after]
     return None
@@ -131,7 +133,8 @@ def save(fig, ax, out_dir, name, title, p, source):
 
 def plot_depth(out_dir, series, p):
     if series is None:
-        note("penetration_depth.png skipped: no depth data (penetration.csv or history.csv penetration_depth)")
+        note("penetration_depth.png skipped: no depth data (penetration.csv or history.csv penetration_depth "
+             "after the penetrator was fired)")
         return
     t, d, cav = series
     fig, ax = plt.subplots(figsize=(6.4, 4.6))

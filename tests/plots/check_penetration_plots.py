@@ -9,6 +9,8 @@ and tools/plot_penetration.py): depth = U (t - t_s) after a quadratic start-up t
   partial    only history.csv (one segment) and a summary whose penetration values are null: depth
              and energy figures are drawn from history.csv, rate and channel are skipped with a
              note naming them, exit status 0
+  unfired    a run stopped in its preparation stage, before the penetrator was fired (every
+             penetration_time nan): exit status 0, the depth figure skipped with a note
   empty      no history.csv: non-zero exit and a message naming history.csv, no PNG
   sweep      a sweep_penetration.json of an exact line U = a + bV: both sweep PNGs are valid
 """
@@ -159,6 +161,22 @@ def main():
             fail(f"partial: {name} drawn without its data")
         if f"{name} skipped" not in err:
             fail(f"partial: no note that {name} was skipped in stderr: {err!r}")
+
+    unfired = os.path.join(a.out, "unfired")
+    os.makedirs(unfired)
+    t = np.linspace(0, 5e-6, 11)
+    write_csv(os.path.join(unfired, "history.csv"), {
+        "time": t, "step": np.arange(len(t)), "kinetic_energy": 1e-3 * t, "penetration_time": np.full(len(t), np.nan),
+        "penetration_depth": np.zeros(len(t)), "cavity_depth": np.zeros(len(t)),
+        "penetrator_kinetic_energy": np.zeros(len(t))})
+    with open(os.path.join(unfired, "summary.json"), "w") as f:
+        json.dump({"status": "interrupted", "penetration": {"steady_rate": None, "steady_fit": None,
+                                                            "hydrodynamic_rate": 2000.0, "analytic": None}}, f)
+    rc, err = run([py, plot, unfired])
+    if rc != 0:
+        fail(f"a run stopped before firing must still succeed, exit {rc}: {err}")
+    if "penetration_depth.png skipped" not in err or os.path.exists(os.path.join(unfired, "penetration_depth.png")):
+        fail(f"unfired: the depth figure must be skipped with a note: {err!r}")
 
     empty = os.path.join(a.out, "empty")
     os.makedirs(empty)
