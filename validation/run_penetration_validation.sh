@@ -39,7 +39,8 @@ for s in $studies; do
     confinement)
       "$bin" sweep "$deck" -o "$out/confinement" \
         --vary materials.rock.preset=sandstone_berea_drained,sandstone_berea_saturated \
-        --vary loads.0.pressure=0,34.48e6,103.4e6 || note confinement ;;
+        --vary loads.0.pressure=0,34.48e6,103.4e6 \
+        --set simulation.end_time=150e-6 || note confinement ;;  # the unconfined rods still go at 60 us
     segmented)
       "$bin" sweep "$here/../examples/rod_billet_4130_mpm.yaml" -o "$out/segmented" --vary bodies.1.rod.segment_ld=0,0.5 || note segmented ;;
     resolution)
