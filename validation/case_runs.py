@@ -1,10 +1,12 @@
 """What the thesis-scale study scripts share: run a deck into a folder once (a folder that already
 holds a summary.json is a finished run and is not run again, unless it was interrupted: then it
 continues from its last checkpoint; a run that stops with an error is reported and the study goes
-on), read its summary, and the command line every such script takes (--ballista, --out,
+on), read its summary and its history after the shot, and the command line every such script takes (--ballista, --out,
 --table-only)."""
 import argparse
+import csv
 import json
+import math
 import os
 import subprocess
 
@@ -34,6 +36,23 @@ def summary(folder):
     return json.load(open(path)) if os.path.exists(path) else None
 
 
+def after_firing(folder, column, times):
+    """history.csv's `column` at each time [s] after the main stage began, None past the run's end:
+    the first row at or after it. (perforation_convergence.depth_at_times takes the nearest row
+    within 0.2 us, for the jet's dense rows; the thesis-scale runs' rows are up to ~1 us apart, and
+    this reads a run still going, from its penetration_time column.)"""
+    path = os.path.join(folder, "history.csv")
+    if not os.path.exists(path):
+        return [None] * len(times)
+    rows = [(float(r["penetration_time"]), float(r[column])) for r in csv.DictReader(open(path))
+            if not math.isnan(float(r["penetration_time"]))]
+    found = []
+    for t in times:
+        past = [v for (tp, v) in rows if tp >= t]
+        found.append(past[0] if past else None)
+    return found
+
+
 def final_depth(folder):
     """The penetrator's final depth [m]; None if the run has not run or stopped with an error."""
     s = summary(folder)
@@ -57,3 +76,21 @@ def study_arguments(doc, out):
     ap.add_argument("--out", default=out)
     ap.add_argument("--table-only", action="store_true", help="run nothing; print the table of what has run")
     return ap
+
+
+def add_deck_changes(ap):
+    """The options of a study of a confined target: a hole in the struck face's load, and deck
+    changes for every run, whose folders a tag names apart."""
+    ap.add_argument("--hole-radius", type=float, default=0.0,
+                    help="m; no overburden on the top face within this radius (thesis §6.2, Fig. 6.14)")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a deck change for every run of the study (repeatable)")
+    ap.add_argument("--tag", default="", help="appended to the run folders' names")
+
+
+def parse_study(ap):
+    """The parsed options; a deck change without a tag is refused."""
+    a = ap.parse_args()
+    if getattr(a, "set", None) and not a.tag:
+        ap.error("--set needs --tag, so that its runs do not mix with the deck's own")
+    return a

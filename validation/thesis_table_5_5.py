@@ -15,12 +15,10 @@ Each run takes 15-25 min on 2 cores; a run whose folder already holds a summary.
 again (--table-only: run nothing). The thesis's depth falls with confinement by 10 % (drained,
 0 to 10 ksi) and 17 % (undrained, 0 to 15 ksi), erosion none.
 """
-import csv
-import math
 import os
 import sys
 
-from case_runs import run_once, state, study_arguments, summary
+from case_runs import add_deck_changes, after_firing, parse_study, run_once, state, study_arguments, summary
 
 DECK = os.path.join(os.path.dirname(os.path.abspath(__file__)), "rod_sandstone_thesis.yaml")
 # Thesis Table 5.1 lists the levels in MPa: 6.895, 34.48, 68.96, 103.4.
@@ -61,23 +59,6 @@ def depth(out, rock, ksi, hole, tag=""):
     return s["penetration"]["final_depth"], preload
 
 
-def depth_history(out, rock, ksi, hole, tag, times):
-    """The penetration depth [m] at each time after the main stage began (history.csv), None past
-    the run's end: the first row at or after it. (perforation_convergence.depth_at_times takes the
-    nearest row within 0.2 us, for the jet's dense rows; these runs' rows are up to ~1 us apart,
-    and this reads a run still going, from its penetration_time column.)"""
-    path = os.path.join(folder(out, rock, ksi, hole, tag), "history.csv")
-    if not os.path.exists(path):
-        return [None] * len(times)
-    rows = [(float(r["penetration_time"]), float(r["penetration_depth"])) for r in csv.DictReader(open(path))
-            if not math.isnan(float(r["penetration_time"]))]
-    found = []
-    for t in times:
-        past = [d for (tp, d) in rows if tp >= t]
-        found.append(past[0] if past else None)
-    return found
-
-
 def cell(v, ref):
     return "" if v is None else (f"{v:.2f}" if ref is None else f"{v:.2f} ({v / ref - 1:+.1%})")
 
@@ -86,14 +67,8 @@ def main():
     ap = study_arguments(__doc__, "out/table_5_5")
     ap.add_argument("--rocks", default="drained,saturated")
     ap.add_argument("--ksi", default="0,1,5,10,15", help="confinement levels of Table 5.5, ksi")
-    ap.add_argument("--hole-radius", type=float, default=0.0,
-                    help="m; no overburden on the top face within this radius (thesis §6.2, Fig. 6.14)")
-    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
-                    help="a deck change for every run of the study (repeatable)")
-    ap.add_argument("--tag", default="", help="appended to the run folders' names")
-    a = ap.parse_args()
-    if a.set and not a.tag:
-        ap.error("--set needs --tag, so that its runs do not mix with the deck's own")
+    add_deck_changes(ap)
+    a = parse_study(ap)
     rocks = a.rocks.split(",")
 
     def hole_at(ksi):
@@ -132,7 +107,7 @@ def main():
     print("|---|---|" + "---|" * len(times))
     for rock in rocks:
         for ksi in sorted(LEVELS):
-            h = depth_history(a.out, rock, ksi, hole_at(ksi), a.tag, times)
+            h = after_firing(folder(a.out, rock, ksi, hole_at(ksi), a.tag), "penetration_depth", times)
             if all(v is None for v in h):
                 continue
             print(f"| {rock} | {ksi} | " + " | ".join("" if v is None else f"{1e3 * v:.1f}" for v in h) + " |")
