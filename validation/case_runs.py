@@ -1,8 +1,8 @@
 """What the thesis-scale study scripts share: run a deck into a folder once (a folder that already
 holds a summary.json is a finished run and is not run again, unless it was interrupted: then it
 continues from its last checkpoint; a run that stops with an error is reported and the study goes
-on), read its summary and its history after the shot, and the command line every such script takes (--ballista, --out,
---table-only)."""
+on), read its summary and its history after the shot, and the command line every such script
+takes (--ballista, --out, --table-only)."""
 import argparse
 import csv
 import json
@@ -89,8 +89,8 @@ def add_deck_changes(ap):
 
 
 def parse_study(ap):
-    """The parsed options; a deck change without a tag is refused."""
+    """The parsed options of a parser given add_deck_changes; a deck change without a tag is refused."""
     a = ap.parse_args()
-    if getattr(a, "set", None) and not a.tag:
+    if a.set and not a.tag:
         ap.error("--set needs --tag, so that its runs do not mix with the deck's own")
     return a

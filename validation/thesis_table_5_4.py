@@ -91,13 +91,16 @@ def run(a, test):
     run_once(a.ballista, DECK, folder(a.out, a.cell, test, a.tag), sets)
 
 
-def cavity(out, cell, test, tag):
-    """The final cavity depth [m] (the deepest jet point can be one point driven ahead of the
-    cavity's bottom; docs/validation.md, the grid study of this deck), or None."""
-    s = summary(folder(out, cell, test, tag))
+def final_cavity(s):
+    """The final cavity depth [m] of a run's summary (the deepest jet point can be one point driven
+    ahead of the cavity's bottom; docs/validation.md, the grid study of this deck), or None."""
     if s is None or s["status"] != "completed":
         return None
     return s["penetration"]["final_cavity_depth"]
+
+
+def cavity(out, cell, test, tag):
+    return final_cavity(summary(folder(out, cell, test, tag)))
 
 
 def main():
@@ -126,7 +129,7 @@ def main():
         s = summary(f)
         if s is None:
             continue
-        p = cavity(a.out, a.cell, t, a.tag)
+        p = final_cavity(s)
         ours = state(f) if p is None else (f"{1e3 * p:.1f}" + ("" if t == REFERENCE or ref is None
                                                                 else f" ({p / ref - 1:+.1%})"))
         ax, rad = tractions(t)
