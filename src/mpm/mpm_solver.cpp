@@ -11,6 +11,7 @@
 #include "core/agreed_failure.hpp"
 #include "core/parallel.hpp"
 #include "core/point_fields.hpp"
+#include "materials/failure.hpp"
 #include "mpm/axis_hoop.hpp"
 #include "mpm/graded_shape_functions.hpp"
 #include "mpm/mpm_params.hpp"
@@ -428,12 +429,27 @@ inline void MpmSolver::finish_point(Index p, const Mat3& l, const Vec3& disp, do
   x += disp;
   // F_{n+1} = (I + dt L) F_n (thesis seed 000 eq. 4.9); volume from J = det F.
   const Mat3 F = (Mat3::identity() + dt * l) * F_[p];
-  F_[p] = F;
   const double J = det(F);
-  vol_[p] = vol0_[p] * J;
   // Every entry of F enters det F, so a NaN or infinite entry leaves J NaN or infinite: J finite
   // and positive is F finite and not inverted (an overflowing J, of a finite F, is refused too).
-  if (!(J > 0.0 && J <= std::numeric_limits<double>::max())) record_min(bad, p);
+  if (!(J > 0.0 && J <= std::numeric_limits<double>::max())) [[unlikely]] {
+    if (deformation_frozen(p)) {
+      // A point eroded under zero_stress keeps F_n (thesis eq. 6.14: its stress update puts F_n
+      // back whatever the increment). An inverting increment of such a stress-free point, which
+      // nothing resists, is the grid's, not the material's: it is discarded here (the point moves,
+      // its F, volume and state stay), instead of stopping the run. Counted in the summary.
+      L_[p] = Mat3{};
+      vol_[p] = vol0_[p] * det(F_[p]);
+      frozen_discarded_.fetch_add(1, std::memory_order_relaxed);
+    } else {
+      F_[p] = F;
+      vol_[p] = vol0_[p] * J;
+      record_min(bad, p);
+    }
+  } else {
+    F_[p] = F;
+    vol_[p] = vol0_[p] * J;
+  }
   for (int a = 0; a < dim_; ++a)
     if (!(x[a] >= layout_.box_lower[a] && x[a] <= layout_.box_upper[a])) record_min(out, p);
 }
@@ -681,6 +697,7 @@ void MpmSolver::step_impl(double dt) {
   // name the step whose state they show.
   time_ += dt;
   ++steps_;
+  if (const std::int64_t d = frozen_discarded_.exchange(0)) pts_.add_frozen_increments_discarded(d);
   if (first_bad_ < points_.size())
     fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0, NaN or infinite)");
   const double sdt = usavg_ ? 0.5 * dt : dt;  // USAVG: the second half
@@ -768,6 +785,8 @@ void MpmSolver::bind_fields() {
   vol_ = points_.real(kVolume);
   vol0_ = points_.real(kReferenceVolume);
   body_ = points_.ints(kBodyIndex);
+  failed_ = points_.has(kFailed) ? points_.real(kFailed) : nullptr;
+  material_ = points_.ints(kMaterialIndex);
 }
 
 void MpmSolver::step(double dt) {
@@ -828,6 +847,9 @@ std::vector<std::pair<std::string, double>> MpmSolver::result_values() const {
   const std::int64_t remaps = pts_.distortion_remaps();
   std::vector<std::pair<std::string, double>> out;
   if (remaps > 0) out.emplace_back("distortion_remaps", static_cast<double>(remaps));
+  // Inverting increments of stress-free eroded points, discarded (finish_point; absent: none).
+  const std::int64_t frozen = pts_.frozen_increments_discarded();
+  if (frozen > 0) out.emplace_back("frozen_increments_discarded", static_cast<double>(frozen));
   if (!comm_.distributed()) return out;
   const double steps = std::max(halo_steps_, 1.0);
   const double n = static_cast<double>(points_.size());

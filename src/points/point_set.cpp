@@ -255,6 +255,7 @@ void PointSet::update_stress(double dt, long step, double time, const std::vecto
 }
 
 std::int64_t PointSet::distortion_remaps() const { return comm_.sum(distortion_remaps_); }
+std::int64_t PointSet::frozen_increments_discarded() const { return comm_.sum(frozen_discarded_); }
 
 void PointSet::remove(const std::vector<char>& keep) {
   const Index n = points_.size();
@@ -389,6 +390,7 @@ struct PointsRecord {
   const std::vector<double>& stage_start;
   std::vector<double> removed;
   std::int64_t distortion_remaps;
+  std::int64_t frozen_discarded;
 
   void put(StateArchive& a) const {
     a.put_fields("points.", points);
@@ -398,6 +400,7 @@ struct PointsRecord {
     a.put("points.stage_start", stage_start);
     a.put("points.removed", removed);
     a.put_int("points.distortion_remaps", distortion_remaps);
+    a.put_int("points.frozen_increments_discarded", frozen_discarded);
   }
 };
 
@@ -407,7 +410,9 @@ void PointSet::save_state(StateArchive& a) const {
   const std::vector<double> removed = removal_record();
   const std::vector<double> stage(pending_stage_.begin(), pending_stage_.end());
   if (!comm_.distributed()) {
-    PointsRecord{points_, pending_, pending_activation_, stage, stage_start_, removed, distortion_remaps_}.put(a);
+    PointsRecord{points_,      pending_, pending_activation_, stage,
+                 stage_start_, removed,  distortion_remaps_,  frozen_discarded_}
+        .put(a);
     return;
   }
   // Several ranks: rank 0's archive is a serial checkpoint of every rank's points (rank order),
@@ -422,8 +427,10 @@ void PointSet::save_state(StateArchive& a) const {
   std::vector<double> totals = removed;
   comm_.sum(totals.data(), static_cast<int>(totals.size()));
   const std::int64_t remaps = distortion_remaps();
+  const std::int64_t frozen = frozen_increments_discarded();
   if (comm_.rank() != 0) return;
-  PointsRecord{all, all_pending, std::move(activation), std::move(all_stage), stage_start_, std::move(totals), remaps}
+  PointsRecord{all,          all_pending,       std::move(activation), std::move(all_stage),
+               stage_start_, std::move(totals), remaps,                frozen}
       .put(a);
   a.put("points.rank_counts", std::vector<std::int64_t>(counts.begin(), counts.end()));  // active, pending per rank
   a.put("points.removed_by_rank", removed_by_rank);
@@ -489,6 +496,9 @@ void PointSet::restore_removed(const StateArchive& a, bool own) {
   // Only the total matters: rank 0 takes it (a checkpoint without the key has none).
   distortion_remaps_ =
       comm_.rank() == 0 && a.has("points.distortion_remaps") ? a.integer("points.distortion_remaps") : 0;
+  frozen_discarded_ = comm_.rank() == 0 && a.has("points.frozen_increments_discarded")
+                          ? a.integer("points.frozen_increments_discarded")
+                          : 0;
   groups_dirty_ = true;
 }
 

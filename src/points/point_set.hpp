@@ -92,6 +92,10 @@ class PointSet {
   void set_distortion_limit(double limit) { distortion_limit_ = limit; }
   /// Remaps so far, summed over the ranks (collective).
   std::int64_t distortion_remaps() const;
+  /// Inverting increments of stress-free eroded points that a solver discarded (their F is frozen,
+  /// thesis eq. 6.14), summed over the ranks; kept in checkpoints.
+  std::int64_t frozen_increments_discarded() const;
+  void add_frozen_increments_discarded(std::int64_t n) { frozen_discarded_ += n; }
 
   // ---- removal and diagnostics -------------------------------------------------------------
   /// Keeps the points with keep[p] != 0; the others' mass, momentum and kinetic + internal energy
@@ -158,6 +162,7 @@ class PointSet {
   double inserted_energy_ = 0.0;  ///< per-point sum of the energy of activated points (this rank)
   double distortion_limit_ = 0.0;
   std::int64_t distortion_remaps_ = 0;  ///< this rank's (a restart gives the total to rank 0)
+  std::int64_t frozen_discarded_ = 0;   ///< this rank's (a restart gives the total to rank 0)
 };
 
 }  // namespace ballista
