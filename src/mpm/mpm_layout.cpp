@@ -124,7 +124,6 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   if (bulk_viscosity_.active()) pts_.declare(kBulkViscosity, "Pa");
   flip_ = P.flip;
   pts_.set_distortion_limit(P.distortion_limit);
-  for (const auto& m : pts_.materials()) stress_free_when_failed_.push_back(m->failed_points_are_stress_free() ? 1 : 0);
   xpic_order_ = P.xpic_order;
   sort_every_ = P.sort_every;
   anti_locking_ = P.anti_locking;

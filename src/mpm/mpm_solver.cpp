@@ -11,7 +11,6 @@
 #include "core/agreed_failure.hpp"
 #include "core/parallel.hpp"
 #include "core/point_fields.hpp"
-#include "materials/failure.hpp"
 #include "mpm/axis_hoop.hpp"
 #include "mpm/graded_shape_functions.hpp"
 #include "mpm/mpm_params.hpp"
@@ -433,7 +432,7 @@ inline void MpmSolver::finish_point(Index p, const Mat3& l, const Vec3& disp, do
   // Every entry of F enters det F, so a NaN or infinite entry leaves J NaN or infinite: J finite
   // and positive is F finite and not inverted (an overflowing J, of a finite F, is refused too).
   if (!(J > 0.0 && J <= std::numeric_limits<double>::max())) [[unlikely]] {
-    if (deformation_frozen(p)) {
+    if (pts_.failed_stress_free(p)) {
       // A point eroded under zero_stress keeps F_n (thesis eq. 6.14: its stress update puts F_n
       // back whatever the increment). An inverting increment of such a stress-free point, which
       // nothing resists, is the grid's, not the material's: it is discarded here (the point moves,
@@ -785,8 +784,6 @@ void MpmSolver::bind_fields() {
   vol_ = points_.real(kVolume);
   vol0_ = points_.real(kReferenceVolume);
   body_ = points_.ints(kBodyIndex);
-  failed_ = points_.has(kFailed) ? points_.real(kFailed) : nullptr;
-  material_ = points_.ints(kMaterialIndex);
 }
 
 void MpmSolver::step(double dt) {

@@ -255,15 +255,7 @@ class MpmSolver final : public Solver {
   // Last: placed among the members the step reads every time, this scratch shifted their layout
   // and cost the 3D block-impact bench ~3 % (docs/performance.md).
   std::vector<double> force_pressure_;  ///< per point: isotropic stress the F-bar's forces take off sigma, Pa
-  // Points whose deformation is frozen (failed under `failure.erosion: zero_stress`, thesis eq.
-  // 6.14): bound with the fields; finish_point reads them only for an inverted increment.
-  const double* failed_ = nullptr;                 ///< `failed` of each point (null: no criterion)
-  const std::int64_t* material_ = nullptr;         ///< material index of each point
-  std::vector<char> stress_free_when_failed_;      ///< per material: failed points carry no stress, F frozen
   std::atomic<std::int64_t> frozen_discarded_{0};  ///< this step's discarded increments (finish_point)
-  bool deformation_frozen(Index p) const {
-    return failed_ && failed_[p] != 0.0 && stress_free_when_failed_[static_cast<std::size_t>(material_[p])];
-  }
 };
 
 }  // namespace ballista

@@ -257,6 +257,11 @@ void PointSet::update_stress(double dt, long step, double time, const std::vecto
 std::int64_t PointSet::distortion_remaps() const { return comm_.sum(distortion_remaps_); }
 std::int64_t PointSet::frozen_increments_discarded() const { return comm_.sum(frozen_discarded_); }
 
+bool PointSet::failed_stress_free(Index p) const {
+  if (!points_.has(kFailed) || points_.real(kFailed)[p] == 0.0) return false;
+  return materials_[static_cast<std::size_t>(points_.ints(kMaterialIndex)[p])]->failed_points_are_stress_free();
+}
+
 void PointSet::remove(const std::vector<char>& keep) {
   const Index n = points_.size();
   const auto* v = points_.view(kVelocity);

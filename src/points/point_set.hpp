@@ -96,6 +96,9 @@ class PointSet {
   /// thesis eq. 6.14), summed over the ranks; kept in checkpoints.
   std::int64_t frozen_increments_discarded() const;
   void add_frozen_increments_discarded(std::int64_t n) { frozen_discarded_ += n; }
+  /// True if point p has failed and its material's failed points carry no stress (erosion
+  /// zero_stress: its F is frozen, thesis eq. 6.14). Looks its fields up: not for a per-point loop.
+  bool failed_stress_free(Index p) const;
 
   // ---- removal and diagnostics -------------------------------------------------------------
   /// Keeps the points with keep[p] != 0; the others' mass, momentum and kinetic + internal energy
