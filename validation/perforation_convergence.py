@@ -11,8 +11,9 @@ p = log(|f1 - f2| / |f2 - f3|) / log 2, the Richardson estimate f3 + (f3 - f2) /
 finest level's distance from it (Roache, "Verification and Validation in Computational Science and
 Engineering", 1998, ch. 5; the grid convergence index uses the same extrapolation).
 
-Writes DIR/convergence.json, DIR/convergence.md (the table for docs/validation.md) and
-DIR/convergence.png. Long (the finest level takes tens of minutes on 2 cores); not in make test.
+Writes DIR/convergence.json, DIR/convergence.md (the table for docs/validation.md),
+DIR/convergence.png and DIR/final_states.png (each level's last output near the line of flight:
+where the spent jet lies). Long (the finest level takes tens of minutes on 2 cores); not in make test.
 A level that takes hours can be checkpointed and continued after an interruption:
 
   ... --set output.checkpoint_interval=5e-6            # first run, cut short
@@ -160,6 +161,86 @@ def tunnel_volume(out):
     return 1e6 * sum(math.pi * r * r * dz for r in radii if math.isfinite(r))
 
 
+def final_points(out, pen):
+    """The last particle output of a level (the run's end): the penetrator's and the target's
+    points as (depth below the struck face, radius, mass, segment, failed), or None without h5py
+    or output. Depth is measured along the line of flight, positive into the target."""
+    import glob
+    try:
+        import h5py
+        import numpy as np
+    except ImportError:
+        return None
+    files = sorted(glob.glob(os.path.join(out, "particles_*.h5")))
+    if not files:
+        return None
+    import yaml
+    bodies = yaml.safe_load(open(os.path.join(out, "resolved.yaml")))["bodies"]
+    jet = next(b for b in bodies if b["name"] == pen["penetrator"]).get("jet", {})
+    if (jet.get("axis"), jet.get("direction")) != ("y", -1):
+        return None  # the depth below assumes a jet flying along -y, as every deck of this study
+    with h5py.File(files[-1], "r") as f:
+        names = json.loads(f.attrs["body_names"])
+        body = f["body"][:]
+        x = f["x"][:]
+        depth = pen["surface"] - x[:, 1]
+        pick = lambda name: body == names.index(name)
+        return {role: {"depth": depth[pick(pen[role])], "r": np.abs(x[pick(pen[role]), 0]),
+                       "mass": f["mass"][:][pick(pen[role])], "segment": f["segment"][:][pick(pen[role])],
+                       "failed": f["failed"][:][pick(pen[role])]}
+                for role in ("penetrator", "target")}
+
+
+SPENT_WINDOW = 10.0e-3
+
+
+def jet_at_bottom(points, cavity_depth):
+    """The share of the penetrator's mass within SPENT_WINDOW (10 mm) of the cavity's bottom at the
+    end of the run. Each segment's copper, once spent, either lines the tunnel's wall or stays in
+    the next segment's path; a lining spread evenly over a train's ~150 mm would put about a tenth
+    of the jet, plus the last segment's own copper, in the last 10 mm. At 1 mm cells the spent
+    copper piles at the bottom instead (docs/validation.md, "Why later segments need finer
+    cells"): the lining is thinner than a cell."""
+    if points is None or cavity_depth is None:
+        return None
+    p = points["penetrator"]
+    total = p["mass"].sum()
+    if not total > 0:
+        return None
+    near = abs(p["depth"] - cavity_depth) <= SPENT_WINDOW
+    return float(p["mass"][near].sum() / total)
+
+
+def plot_final_states(a, rows):
+    """DIR/final_states.png: each level's last output near the line of flight, the penetrator's
+    points coloured by segment, the target's failed points orange and its intact points grey."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return
+    states = [(r["h"], final_points(os.path.join(a.out, f"h_{r['h'] * 1e3:g}mm"), r["_pen"])) for r in rows]
+    states = [(h, p) for h, p in states if p is not None]
+    if not states:
+        return
+    deepest = max(float(p["penetrator"]["depth"].max()) for _, p in states) * 1e3
+    fig, axes = plt.subplots(len(states), 1, figsize=(14, 1.9 * len(states)), squeeze=False)
+    for ax, (h, p) in zip(axes[:, 0], states):
+        t, j = p["target"], p["penetrator"]
+        for mask, colour in ((t["failed"] == 0, "0.75"), (t["failed"] != 0, "orange")):
+            ax.scatter(1e3 * t["depth"][mask], 1e3 * t["r"][mask], s=0.3, c=colour, lw=0)
+        ax.scatter(1e3 * j["depth"], 1e3 * j["r"], s=1.0, c=j["segment"] % 10, cmap="tab10", vmin=0, vmax=9, lw=0)
+        ax.set_xlim(-5, deepest + 10)
+        ax.set_ylim(0, 12)
+        ax.set_aspect("equal")
+        ax.set_ylabel("r (mm)")
+        ax.set_title(f"{h * 1e3:g} mm cells around the jet, end of the run", fontsize=9)
+    axes[-1, 0].set_xlabel("depth below the struck face (mm)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(a.out, "final_states.png"), dpi=110)
+
+
 def extract(s, out):
     pen = s["penetration"]
     holes = pen.get("holes", {})
@@ -192,6 +273,7 @@ def extract(s, out):
         "residual_over_scale": s["energy"]["residual_over_scale"],
         # Particles whose F was remapped at mpm.distortion_limit (docs/deck.md); absent: none.
         "distortion_remaps": s.get("solver_results", {}).get("distortion_remaps", 0),
+        "jet_at_bottom": jet_at_bottom(final_points(out, pen), pen.get("final_cavity_depth")),
     }
 
 
@@ -206,7 +288,7 @@ def richardson(f1, f2, f3, ratio=2.0):
     p = math.log(abs(d12) / abs(d23)) / math.log(ratio)
     if p <= 0:
         return p, None  # the differences do not shrink: there is no limit to extrapolate to
-    return p, f3 + d23 / (ratio ** p - 1.0)
+    return p, f3 - d23 / (ratio ** p - 1.0)  # f3 + (f3 - f2) / (r^p - 1): beyond the finest, away from the coarser
 
 
 def main():
@@ -234,8 +316,12 @@ def main():
         s, wall = run_level(a, h)
         r = extract(s, os.path.join(a.out, f"h_{h * 1e3:g}mm"))
         r["h"] = h
-        rows.append(r)
         print(json.dumps(r), flush=True)
+        r["_pen"] = s["penetration"]
+        rows.append(r)
+    plot_final_states(a, rows)
+    for r in rows:
+        del r["_pen"]
     result = {"levels": rows, "band": a.band, "path": a.path, "far": a.far, "estimates": {}}
     if len(rows) >= 3:
         for key, what, unit in QUANTITIES:
@@ -267,7 +353,8 @@ def main():
     # Where the jet goes (the casing's cost explained) and the axis (smallest step vs the first).
     lines += ["", "| band cell (mm) | jet consumed by the casing (mm; hydrodynamic) | tip speed behind the casing "
               "(m/s; initial) | consumed by casing + cement (mm; hydrodynamic) | tip speed behind the cement (m/s; "
-              "initial) | smallest step / first main step | F remaps |", "|---|---|---|---|---|---|---|"]
+              "initial) | smallest step / first main step | F remaps | jet within 10 mm of the cavity's bottom at the end |",
+              "|---|---|---|---|---|---|---|---|"]
     for r in rows:
         cells = []
         for layer in ("casing", "cement"):
@@ -277,7 +364,9 @@ def main():
             cells += [f"{mm(j['consumed_length'])} ({mm(j['hydrodynamic_consumed_length'])})",
                       f"{speed(j['tip_velocity'])} ({speed(j['tip_initial_velocity'])})"]
         ratio = (f"1/{r['first_main_dt'] / r['min_dt']:.1f}" if r["min_dt"] and r["first_main_dt"] else "—")
-        lines.append(f"| {r['h'] * 1e3:g} | " + " | ".join(cells) + f" | {ratio} | {r.get('distortion_remaps', 0)} |")
+        share = r.get("jet_at_bottom")
+        lines.append(f"| {r['h'] * 1e3:g} | " + " | ".join(cells) + f" | {ratio} | {r.get('distortion_remaps', 0)} | "
+                     + ("—" if share is None else f"{100 * share:.0f} %") + " |")
     # How the depth is built: the depth when each segment has slowed to half its speed.
     if any(r["segment_depths"] for r in rows):
         lines += ["", "| band cell (mm) | depth when each segment has slowed to half its speed, tip first (mm) |",

@@ -1,0 +1,88 @@
+#!/usr/bin/python3
+"""validation/perforation_convergence.py's arithmetic on inputs with known answers.
+
+- Where the spent jet lies: a run folder written by hand (resolved.yaml and one particle output) in
+  which a jet flying along -y onto a face at y = 0.2 m has a known share of its mass within 10 mm of
+  the cavity's bottom (points placed 9.9 and 10.1 mm from it on either side, and far away; a
+  target body present so that the penetrator must be picked by name). The share is a ratio of
+  sums of exactly representable masses: exact to round-off. A jet flying along +y is refused (the
+  depth is measured along -y), not read as garbage.
+- Richardson: f(h) = f0 + c h^2 at h, h/2, h/4 gives the observed order 2 and the estimate f0 to
+  round-off (Roache 1998, ch. 5); differences that grow give no estimate; a non-monotone sequence
+  gives no order."""
+import argparse
+import os
+import sys
+
+import h5py
+import numpy as np
+
+SURFACE, CAVITY = 0.2, 0.150
+
+
+def write_run(run_dir, direction):
+    os.makedirs(run_dir, exist_ok=True)
+    open(os.path.join(run_dir, "resolved.yaml"), "w").write(
+        "bodies:\n"
+        "  - name: rock\n    material: rock\n"
+        f"  - name: jet\n    material: copper\n    jet: {{axis: y, direction: {direction}}}\n")
+    # depth below the face -> (mass, count); within 10 mm of CAVITY: 0.1402-0.1599 m
+    jet = [(CAVITY - 0.0099, 2.0, 3), (CAVITY + 0.0099, 1.0, 2), (CAVITY, 0.5, 4),  # near: 6 + 2 + 2 = 10
+           (CAVITY - 0.0101, 4.0, 5), (CAVITY + 0.0101, 1.0, 6), (0.030, 0.25, 16)]  # far: 20 + 6 + 4 = 30
+    depth = np.concatenate([np.full(n, d) for d, _, n in jet])
+    mass = np.concatenate([np.full(n, m) for _, m, n in jet])
+    rock_depth = np.linspace(0.0, 0.2, 50)
+    x = np.zeros((depth.size + rock_depth.size, 3))
+    x[:, 1] = SURFACE - np.r_[rock_depth, depth]
+    x[:, 0] = 1.0e-3
+    with h5py.File(os.path.join(run_dir, "particles_000000.h5"), "w") as f:
+        f.attrs["body_names"] = '["rock", "jet"]'
+        f["x"] = x
+        f["body"] = np.r_[np.zeros(rock_depth.size, dtype=np.int32), np.ones(depth.size, dtype=np.int32)]
+        f["mass"] = np.r_[np.full(rock_depth.size, 100.0), mass]  # heavy rock: counted as jet, it shows
+        f["segment"] = np.r_[np.full(rock_depth.size, -1), np.zeros(depth.size, dtype=np.int32)]
+        f["failed"] = np.zeros(depth.size + rock_depth.size, dtype=np.int32)
+        f["time"] = 1.0e-4
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--source", required=True)
+    ap.add_argument("--out", required=True)
+    a = ap.parse_args()
+    sys.path.insert(0, os.path.join(a.source, "validation"))
+    from perforation_convergence import final_points, jet_at_bottom, richardson
+    pen = {"penetrator": "jet", "target": "rock", "surface": SURFACE}
+    failures = 0
+
+    run_dir = os.path.join(a.out, "jet_down")
+    write_run(run_dir, -1)
+    share = jet_at_bottom(final_points(run_dir, pen), CAVITY)
+    ok = share is not None and abs(share - 0.25) < 1e-12
+    print(f"jet within 10 mm of the cavity's bottom: {share} (exact 0.25): {'ok' if ok else 'FAIL'}")
+    failures += not ok
+
+    run_dir = os.path.join(a.out, "jet_up")
+    write_run(run_dir, 1)
+    refused = final_points(run_dir, pen) is None
+    print(f"a jet flying along +y refused: {'ok' if refused else 'FAIL'}")
+    failures += not refused
+
+    f0, c, h = 150.0, 40.0, 1.0
+    p, est = richardson(*(f0 + c * (h / 2 ** k) ** 2 for k in range(3)))
+    ok = abs(p - 2.0) < 1e-12 and abs(est - f0) < 1e-12 * f0
+    print(f"Richardson on f0 + c h^2: order {p}, estimate {est} (exact 2, {f0}): {'ok' if ok else 'FAIL'}")
+    failures += not ok
+    p, est = richardson(123.0, 153.0, 185.0)  # differences 30 and 32: they grow
+    ok = p is not None and p < 0 and est is None
+    print(f"growing differences: order {p}, no estimate: {'ok' if ok else 'FAIL'}")
+    failures += not ok
+    p, est = richardson(10.0, 12.0, 11.0)
+    ok = p is None and est is None
+    print(f"not monotone: no order: {'ok' if ok else 'FAIL'}")
+    failures += not ok
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
