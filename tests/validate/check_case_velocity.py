@@ -5,12 +5,13 @@ charge (body 1) at rest. The seed's X-ray arithmetic on such a flight is V exact
 6.426 us) over the same time), and so is the middle third's mass-weighted radial velocity; a charge
 point counted as case, or the wrong file read for t = 0, moves either figure by far more than the
 round-off bound 1e-9 relative."""
-import argparse
 import os
 import sys
 
 import h5py
 import numpy as np
+
+import script_args
 
 V, T_END, T_START = 1500.0, 97.78e-6, 6.426e-6
 LENGTH, RO, RI = 0.098, 16.13e-3, 12.7e-3
@@ -40,11 +41,7 @@ def write(run_dir, three_d):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--source", required=True)
-    ap.add_argument("--out", required=True)
-    a = ap.parse_args()
-    sys.path.insert(0, os.path.join(a.source, "validation"))
+    a = script_args.parse()
     from case_velocity_thirds import case_thirds, seed_flight_velocity
     failures = 0
     for three_d in (True, False):

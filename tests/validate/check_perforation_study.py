@@ -10,12 +10,13 @@
 - Richardson: f(h) = f0 + c h^2 at h, h/2, h/4 gives the observed order 2 and the estimate f0 to
   round-off (Roache 1998, ch. 5); differences that grow give no estimate; a non-monotone sequence
   gives no order."""
-import argparse
 import os
 import sys
 
 import h5py
 import numpy as np
+
+import script_args
 
 SURFACE, CAVITY = 0.2, 0.150
 
@@ -46,11 +47,7 @@ def write_run(run_dir, direction):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--source", required=True)
-    ap.add_argument("--out", required=True)
-    a = ap.parse_args()
-    sys.path.insert(0, os.path.join(a.source, "validation"))
+    a = script_args.parse()
     from perforation_convergence import final_points, jet_at_bottom, richardson
     pen = {"penetrator": "jet", "target": "rock", "surface": SURFACE}
     failures = 0
