@@ -199,8 +199,8 @@ def jet_at_bottom(points, cavity_depth):
     end of the run. Each segment's copper, once spent, either lines the tunnel's wall or stays in
     the next segment's path; a lining spread evenly over a train's ~150 mm would put about a tenth
     of the jet, plus the last segment's own copper, in the last 10 mm. At 1 mm cells the spent
-    copper piles at the bottom instead (docs/validation.md, "Why later segments need finer
-    cells"): the lining is thinner than a cell."""
+    copper piles at the bottom instead (docs/validation.md, "Where the spent copper ends, and
+    why a cell cannot hold it"): the lining is thinner than a cell."""
     if points is None or cavity_depth is None:
         return None
     p = points["penetrator"]
@@ -211,16 +211,16 @@ def jet_at_bottom(points, cavity_depth):
     return float(p["mass"][near].sum() / total)
 
 
-def plot_final_states(a, rows):
-    """DIR/final_states.png: each level's last output near the line of flight, the penetrator's
-    points coloured by segment, the target's failed points orange and its intact points grey."""
+def plot_final_states(a, states):
+    """DIR/final_states.png: each level's last output near the line of flight (states: (h, points of
+    final_points) per level), the penetrator's points coloured by segment, the target's failed
+    points orange and its intact points grey."""
     try:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:
         return
-    states = [(r["h"], final_points(os.path.join(a.out, f"h_{r['h'] * 1e3:g}mm"), r["_pen"])) for r in rows]
     states = [(h, p) for h, p in states if p is not None]
     if not states:
         return
@@ -241,7 +241,7 @@ def plot_final_states(a, rows):
     fig.savefig(os.path.join(a.out, "final_states.png"), dpi=110)
 
 
-def extract(s, out):
+def extract(s, out, points):
     pen = s["penetration"]
     holes = pen.get("holes", {})
     mm = lambda v: None if v is None else 1e3 * v
@@ -273,7 +273,7 @@ def extract(s, out):
         "residual_over_scale": s["energy"]["residual_over_scale"],
         # Particles whose F was remapped at mpm.distortion_limit (docs/deck.md); absent: none.
         "distortion_remaps": s.get("solver_results", {}).get("distortion_remaps", 0),
-        "jet_at_bottom": jet_at_bottom(final_points(out, pen), pen.get("final_cavity_depth")),
+        "jet_at_bottom": jet_at_bottom(points, pen.get("final_cavity_depth")),
     }
 
 
@@ -311,17 +311,17 @@ def main():
                          "the last part's only")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
-    rows = []
+    rows, states = [], []
     for h in a.levels:
         s, wall = run_level(a, h)
-        r = extract(s, os.path.join(a.out, f"h_{h * 1e3:g}mm"))
+        out = os.path.join(a.out, f"h_{h * 1e3:g}mm")
+        points = final_points(out, s["penetration"])
+        r = extract(s, out, points)
         r["h"] = h
         print(json.dumps(r), flush=True)
-        r["_pen"] = s["penetration"]
         rows.append(r)
-    plot_final_states(a, rows)
-    for r in rows:
-        del r["_pen"]
+        states.append((h, points))
+    plot_final_states(a, states)
     result = {"levels": rows, "band": a.band, "path": a.path, "far": a.far, "estimates": {}}
     if len(rows) >= 3:
         for key, what, unit in QUANTITIES:
