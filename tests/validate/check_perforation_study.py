@@ -7,6 +7,12 @@
   target body present so that the penetrator must be picked by name). The share is a ratio of
   sums of exactly representable masses: exact to round-off. A jet flying along +y is refused (the
   depth is measured along -y), not read as garbage.
+- The depth to which the tunnel is as wide as the jet's tip: a run folder written by hand whose
+  intact rock reaches r < 1 mm (the tip radius its resolved.yaml states) first at 160 mm, with a
+  hole 0.05 mm wide on the axis beyond it to 170 mm and failed debris at 100 mm inside the tunnel;
+  every point's half-extent along the flight is |F_yx| h_x + |F_yy| h_y = 0.1 mm. The depth is
+  159.9 mm at the tip radius and 169.9 mm at 0.1 mm, the debris not counted: sums of exactly
+  representable numbers, to 1e-12 m.
 - Richardson: f(h) = f0 + c h^2 at h, h/2, h/4 gives the observed order 2 and the estimate f0 to
   round-off (Roache 1998, ch. 5); differences that grow give no estimate; a non-monotone sequence
   gives no order."""
@@ -46,9 +52,44 @@ def write_run(run_dir, direction):
         f["time"] = 1.0e-4
 
 
+def write_tunnel(run_dir):
+    """Rock whose tunnel narrows below the jet's 1 mm tip radius at 160 mm, a 0.05 mm hole on the
+    axis to 170 mm, failed debris at 100 mm on the axis; one jet point."""
+    os.makedirs(run_dir, exist_ok=True)
+    open(os.path.join(run_dir, "resolved.yaml"), "w").write(
+        "bodies:\n"
+        "  - name: rock\n    material: rock\n"
+        "  - name: jet\n    material: copper\n"
+        "    jet: {axis: y, direction: -1, segments: [[1.0e-3, 6.0e-3, 7000, 0]]}\n")
+    depths = np.linspace(0.0, 0.2, 401)
+    rock = [(d, 3.0e-3, 0) for d in depths]                     # the tunnel's wall, r = 3 mm
+    rock += [(d, 0.5e-3, 0) for d in depths if d >= 0.160]      # it narrows below 1 mm at 160 mm
+    rock += [(d, 0.05e-3, 0) for d in depths if d >= 0.170]     # the axis is rock again at 170 mm
+    rock += [(0.100, 0.02e-3, 1), (0.100, 0.5e-3, 1)]           # failed debris: not the floor
+    n = len(rock) + 1
+    x = np.zeros((n, 3))
+    x[:-1, 0] = [r for _, r, _ in rock]
+    x[:-1, 1] = [SURFACE - d for d, _, _ in rock]
+    x[-1] = [0.0, SURFACE - 0.150, 0.0]
+    F = np.tile([1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0], (n, 1))
+    F[::2, 3] = -0.5       # a sheared point: F_yx h_x + F_yy h_y = 0.5 * 0.04 + 1 * 0.08 = 0.1 mm
+    half = np.tile([0.0e-3, 0.1e-3, 0.0], (n, 1))
+    half[::2] = [0.04e-3, 0.08e-3, 0.0]
+    with h5py.File(os.path.join(run_dir, "particles_000000.h5"), "w") as f:
+        f.attrs["body_names"] = '["rock", "jet"]'
+        f["x"] = x
+        f["body"] = np.r_[np.zeros(n - 1, dtype=np.int32), [1]]
+        f["mass"] = np.ones(n)
+        f["segment"] = np.r_[np.full(n - 1, -1), [0]]
+        f["failed"] = np.r_[[fl for _, _, fl in rock], [0]].astype(np.int32)
+        f["F"] = F
+        f["half_size"] = half
+        f["time"] = 1.0e-4
+
+
 def main():
     a = script_args.parse()
-    from perforation_convergence import final_points, jet_at_bottom, richardson
+    from perforation_convergence import final_points, jet_at_bottom, richardson, tunnel_depth
     pen = {"penetrator": "jet", "target": "rock", "surface": SURFACE}
     failures = 0
 
@@ -64,6 +105,16 @@ def main():
     refused = final_points(run_dir, pen) is None
     print(f"a jet flying along +y refused: {'ok' if refused else 'FAIL'}")
     failures += not refused
+
+    run_dir = os.path.join(a.out, "tunnel")
+    write_tunnel(run_dir)
+    points = final_points(run_dir, pen)
+    tip = points["tip_radius"]
+    at_tip, at_hole = tunnel_depth(points, tip), tunnel_depth(points, 0.1e-3)
+    ok = (tip == 1.0e-3 and abs(at_tip - 0.1599) < 1e-12 and abs(at_hole - 0.1699) < 1e-12)
+    print(f"tunnel depth at the tip radius {tip}: {at_tip} (exact 0.1599), at 0.1 mm: {at_hole} (exact 0.1699): "
+          f"{'ok' if ok else 'FAIL'}")
+    failures += not ok
 
     f0, c, h = 150.0, 40.0, 1.0
     p, est = richardson(*(f0 + c * (h / 2 ** k) ** 2 for k in range(3)))
