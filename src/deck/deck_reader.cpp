@@ -564,17 +564,6 @@ class Reader {
       if (pair.model == "single_field") parent[root(a)] = root(b);
       cs.pairs.push_back(pair);
     }
-    if (c.has("spent")) {
-      DeckNode sp = c.map("spent", true);
-      cs.spent_mark = sp.mark();
-      cs.spent_bodies = sp.strings("bodies", {});
-      if (cs.spent_bodies.empty()) sp.fail("bodies", "expected the names of the bodies whose spent points get their own field, e.g. [jet]");
-      for (const std::string& n : cs.spent_bodies)
-        if (!find_body(n)) sp.fail("bodies", "unknown body '" + n + "'" + suggest(n, body_names()));
-      cs.spent_plastic_strain = sp.number("plastic_strain", NumberRange::positive("1"));
-      cs.spent_friction = sp.number("friction", cs.friction, NumberRange::non_negative("1"));
-      sp.finish();
-    }
     c.finish();
     if (cs.model == "single_field")
       for (int a = 0; a < nb; ++a)
@@ -594,18 +583,9 @@ class Reader {
       }
       cs.body_field[b] = field_of_root[r];
     }
-    cs.spent_field = -1;
-    if (!cs.spent_bodies.empty()) {
-      cs.spent_field = static_cast<int>(cs.field_names.size());
-      cs.field_names.push_back("spent");
-    }
     cs.fields = static_cast<int>(cs.field_names.size());
     const int nf = cs.fields;
     cs.field_friction.assign(static_cast<size_t>(nf) * nf, cs.friction);
-    if (cs.spent_field >= 0)
-      for (int f = 0; f < nf; ++f)
-        cs.field_friction[static_cast<size_t>(cs.spent_field) * nf + f] =
-            cs.field_friction[static_cast<size_t>(f) * nf + cs.spent_field] = cs.spent_friction;
     std::vector<int> set_by(static_cast<size_t>(nf) * nf, -1);
     for (size_t i = 0; i < cs.pairs.size(); ++i) {
       const ContactPairSpec& pair = cs.pairs[i];

@@ -103,27 +103,6 @@ double grid_bytes(const GridGeometry& g, int fields, int extra) {
 }
 }  // namespace
 
-void MpmSolver::set_up_spent_field(const Scenario& sc) {
-  const ContactSpec& cs = sc.contact;
-  if (cs.spent_field < 0) return;
-  spent_body_.assign(sc.bodies.size(), 0);
-  for (const std::string& name : cs.spent_bodies) {
-    const size_t b = static_cast<size_t>(body_index(sc, name));
-    const std::string& material = sc.bodies[b].material;
-    size_t m = 0;
-    while (m < sc.materials.size() && sc.materials[m].name != material) ++m;
-    bool plastic = false;
-    for (const StateFieldSpec& s : pts_.materials().at(m)->state_fields()) plastic = plastic || s.name == "eqps";
-    if (!plastic)
-      throw DeckError(cs.spent_mark.file, cs.spent_mark.line, cs.spent_mark.column, cs.spent_mark.key_path + ".bodies",
-                      "body '" + name + "' is of material '" + material +
-                          "', whose model has no equivalent plastic strain (eqps) to tell its spent points by; "
-                          "spent fields need a plastic model (johnson_cook, j2, the geomodel)");
-    spent_body_[b] = 1;
-  }
-  spent_threshold_ = cs.spent_plastic_strain;
-}
-
 MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> materials, Communicator comm)
     : scenario_(sc),
       comm_(comm),
@@ -156,7 +135,6 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   grid_.with_volume = grid_.fields > 1 && sc.contact.min_volume_fraction > 0.0;
   slab_axis_ = dim_ - 1;
   grid_.resize(grid_.geom.node_count() * grid_.fields);
-  set_up_spent_field(sc);
   blocks_.reset(grid_.geom);
   if (shape_ == ShapeKind::BSpline3) {
     // The cubic B-spline reaches one node beyond the face cell. Fixed and wall faces bound the

@@ -800,7 +800,6 @@ void MpmSolver::step_local(double dt) {
   if (comm_.distributed()) redistribute();
   activate_pending();
   if (sort_every_ > 0 && steps_ % sort_every_ == 0) sort_by_cell();
-  assign_spent_points();
   const bool three = dim_ == 3;
   if (grid_.geom.graded) {  // no cubic B-spline on a graded grid (refused in the constructor)
     switch (shape_) {
@@ -832,25 +831,6 @@ void MpmSolver::step_local(double dt) {
     }
   }
   handle_exits();
-}
-
-void MpmSolver::assign_spent_points() {
-  if (spent_body_.empty()) return;
-  // A jet's copper that has turned at the crater's bottom has sheared far past the fresh jet's
-  // (eqps ~ 0 in flight); in the fresh jet's field it would share every node within a cell of the
-  // incoming jet and drag it (docs/validation.md, "The spent copper in its own field"). Plastic
-  // strain never decreases, so a spent point stays spent, and the assignment is a function of the
-  // state a checkpoint holds.
-  const Index n = points_.size();
-  const std::int64_t* body = points_.ints(kBodyIndex);
-  const double* eqps = points_.real("eqps");
-  const std::vector<int>& body_field = scenario_.contact.body_field;
-  const int spent = scenario_.contact.spent_field;
-  point_field_.resize(static_cast<size_t>(n));
-  for (Index p = 0; p < n; ++p) {
-    const auto b = static_cast<size_t>(body[p]);
-    point_field_[static_cast<size_t>(p)] = spent_body_[b] && eqps[p] > spent_threshold_ ? spent : body_field[b];
-  }
 }
 
 std::vector<double> MpmSolver::history_values() const {

@@ -136,15 +136,8 @@ class MpmSolver final : public Solver {
   void apply_contact(Vec3* vel, bool book);
   /// Offset of point p's velocity field in the grid arrays.
   Index field_offset(Index p) const {
-    if (grid_.fields == 1) return 0;
-    if (!point_field_.empty()) return point_field_[static_cast<size_t>(p)] * grid_.geom.node_count();
-    return scenario_.contact.body_field[body_[p]] * grid_.geom.node_count();
+    return grid_.fields > 1 ? scenario_.contact.body_field[body_[p]] * grid_.geom.node_count() : 0;
   }
-  /// `contact.spent`: checks that the listed bodies' models have an equivalent plastic strain.
-  void set_up_spent_field(const Scenario& sc);
-  /// `contact.spent`: each point's field for this step, fixed before the first transfer so that
-  /// every pass of the step maps a point through one field (its eqps changes within the step).
-  void assign_spent_points();
   void handle_exits();
   [[noreturn]] void fail(Index p, const std::string& what) const;
   int stencil_reach_now() const;
@@ -245,9 +238,6 @@ class MpmSolver final : public Solver {
   double* vol_ = nullptr;
   const double* vol0_ = nullptr;
   const std::int64_t* body_ = nullptr;
-  std::vector<char> spent_body_;   ///< `contact.spent`: 1 for the bodies whose spent points change field
-  double spent_threshold_ = 0.0;   ///< equivalent plastic strain past which a point is spent
-  std::vector<int> point_field_;   ///< each point's field this step (`contact.spent` only; else empty)
   std::vector<Index> slab_start_, slab_points_;      ///< CSR lists of point indices per slab
   std::vector<int> slab_of_point_;                   ///< scratch: slab of each point
   std::vector<Index> slab_fill_;                     ///< scratch: fill cursor per slab

@@ -273,17 +273,9 @@ struct ContactSpec {
   /// volume (a gap check; 0: wherever two fields have mass)
   double min_volume_fraction = 0.0;
   std::vector<ContactPairSpec> pairs;
-  /// `spent`: the points of these bodies whose equivalent plastic strain exceeds `plastic_strain`
-  /// move to one velocity field of their own, so that a jet's copper that has turned at the
-  /// crater's bottom slides past the fresh jet instead of sharing its nodes (docs/deck.md).
-  std::vector<std::string> spent_bodies;
-  double spent_plastic_strain = 0.0;  ///< equivalent plastic strain past which a point is spent, 1
-  double spent_friction = 0.0;        ///< Coulomb coefficient between the spent field and the others
-  DeckMark spent_mark;
   // Resolved by the deck reader:
   int fields = 1;                      ///< number of velocity fields
   std::vector<int> body_field;         ///< velocity field of each body (deck order)
-  int spent_field = -1;                ///< the spent points' field (the last), -1 without `spent`
   std::vector<std::string> field_names;  ///< bodies of each field joined by '+'
   std::vector<double> field_friction;  ///< fields x fields Coulomb coefficients (row-major)
   DeckMark mark;

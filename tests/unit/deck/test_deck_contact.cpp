@@ -122,39 +122,3 @@ TEST(DeckContact, OtherSolversRefuseSeparateFields) {
 }
 
 }  // namespace test_deck_contact
-
-namespace test_deck_contact {
-
-TEST(DeckContact, SpentPointsGetTheLastFieldWithTheirOwnFriction) {
-  // contact.spent adds one field after the bodies' (named "spent"), meeting every other field
-  // with its own coefficient (default: contact.friction).
-  const Scenario a = parse_deck(kBase + "contact:\n  model: friction\n  friction: 0.2\n"
-                                        "  spent: {bodies: [jet], plastic_strain: 1.5, friction: 0.0}\n",
-                                "deck.yaml");
-  EXPECT_EQ(a.contact.fields, 4);
-  EXPECT_EQ(a.contact.spent_field, 3);
-  EXPECT_EQ(a.contact.field_names[3], "spent");
-  EXPECT_EQ(a.contact.spent_bodies, (std::vector<std::string>{"jet"}));
-  EXPECT_EQ(a.contact.spent_plastic_strain, 1.5);
-  for (int f = 0; f < 4; ++f)
-    for (int g = 0; g < 4; ++g) EXPECT_EQ(a.contact.field_friction[f * 4 + g], f == 3 || g == 3 ? 0.0 : 0.2);
-  const Scenario b = parse_deck(kBase + "contact: {model: friction, friction: 0.3, spent: {bodies: [jet], plastic_strain: 1}}\n",
-                                "deck.yaml");
-  EXPECT_EQ(b.contact.field_friction[3 * 4 + 0], 0.3);
-  // Without the key: no spent field.
-  EXPECT_EQ(parse_deck(kBase, "deck.yaml").contact.spent_field, -1);
-}
-
-TEST(DeckContact, SpentErrorsNameTheKey) {
-  const DeckError unknown = contact_error("contact: {model: friction, spent: {bodies: [jett], plastic_strain: 1}}\n");
-  EXPECT_TRUE(contains(unknown.what(), "contact.spent.bodies")) << unknown.what();
-  EXPECT_TRUE(contains(unknown.what(), "did you mean 'jet'")) << unknown.what();
-  const DeckError missing = contact_error("contact: {model: friction, spent: {bodies: [jet]}}\n");
-  EXPECT_TRUE(contains(missing.what(), "contact.spent.plastic_strain")) << missing.what();
-  const DeckError zero = contact_error("contact: {model: friction, spent: {bodies: [jet], plastic_strain: 0}}\n");
-  EXPECT_TRUE(contains(zero.what(), "contact.spent.plastic_strain")) << zero.what();
-  const DeckError none = contact_error("contact: {model: friction, spent: {bodies: [], plastic_strain: 1}}\n");
-  EXPECT_TRUE(contains(none.what(), "contact.spent.bodies")) << none.what();
-}
-
-}  // namespace test_deck_contact
