@@ -34,14 +34,6 @@ ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, 
       if (filled < g.min_volume_fraction * g.geom->node_volume(i, g.axisymmetric)) return;
     }
     const Vec3 vcm = (1.0 / mtot) * ptot;
-    // Where three or more fields meet, each field's normal is its own (out of it, towards all
-    // the others), and the corrections of the approaching fields need not cancel: with masses 1,
-    // outward vectors (1,0,0), (-1,0,0), (0,1,0) and velocities (1,0,0), (-1,0,0), 0 they add
-    // up to a momentum of (0, 0.8, 0) made at the node. Two fields' normals are opposite and
-    // their corrections cancel exactly. So with three or more, the net impulse is taken back
-    // from every field present in proportion to its mass (a common velocity shift, which leaves
-    // the relative velocities the corrections set); the node's momentum is then kept.
-    Vec3 net;
     // Corrections use the velocities before any field at this node was corrected.
     for (int f = 0; f < nf; ++f) {
       const Index k = f * nn + i;
@@ -81,18 +73,6 @@ ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, 
         impulse[k] += c;
         friction_impulse[k] += ct;
       }
-      net += m * c;
-    }
-    if (present < 3) return;
-    const Vec3 shift = (-1.0 / mtot) * net;
-    for (int f = 0; f < nf; ++f) {
-      const Index k = f * nn + i;
-      const double m = g.mass[k];
-      if (!(m > tiny_mass)) continue;
-      const Vec3 vnew = vel[k] + shift;
-      if (!g.counted || g.counted[i]) o[0] += m * dot(shift, 0.5 * (vel[k] + vnew));
-      vel[k] = vnew;
-      if (impulse) impulse[k] += shift;
     }
   }, w);
   return {w[0], w[1]};

@@ -7,10 +7,7 @@
 // where two or more fields have mass, each field's velocity is compared with the centre-of-mass
 // velocity; a field approaching the others along the contact normal loses its normal relative
 // velocity (no interpenetration) and its tangential relative velocity is cut by Coulomb friction mu
-// times the normal correction, or stopped (stick). Fields that separate are left alone. Where
-// three or more fields meet, their own normals do not oppose one another and the corrections
-// need not cancel; their net impulse is taken back from every field present in proportion to its
-// mass, so the node's momentum is kept (two fields' corrections cancel by themselves).
+// times the normal correction, or stopped (stick). Fields that separate are left alone.
 #include <cstdint>
 
 #include "core/parallel.hpp"

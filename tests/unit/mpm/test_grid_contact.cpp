@@ -134,37 +134,6 @@ TEST(GridContact, FieldsThatFillLittleOfTheNodeAreNotInContact) {
   }
 }
 
-TEST(GridContact, ThreeFieldsAtANodeKeepItsMomentum) {
-  // Masses 1, outward vectors (1,0,0), (-1,0,0), (0,1,0), velocities (1,0,0), (-1,0,0), 0: each
-  // field's normal is its own (2 g_f minus the sum), the first two approach the centre of mass
-  // and their corrections, -(2/5)(2,-1,0) and -(2/5)(-2,-1,0), add up to (0, 0.8, 0): a momentum
-  // made at the node unless it is taken back. Taken back from the three in proportion to mass
-  // (-0.8/3 each along y), the momentum is zero as it was, the relative velocities are the
-  // corrected ones, and the work booked is the kinetic-energy change (a loss).
-  const std::vector<double> mass = {1.0, 1.0, 1.0};
-  const std::vector<Vec3> grad = {Vec3{{1.0, 0.0, 0.0}}, Vec3{{-1.0, 0.0, 0.0}}, Vec3{{0.0, 1.0, 0.0}}};
-  const std::vector<double> friction(9, 0.0);
-  const std::vector<Vec3> v0 = {Vec3{{1.0, 0.0, 0.0}}, Vec3{{-1.0, 0.0, 0.0}}, Vec3{}};
-  std::vector<Vec3> vel = v0;
-  const FieldGrid g{3, 1, mass.data(), grad.data(), friction.data()};
-  const ContactWork w = apply_grid_contact(g, vel.data(), kTiny);
-  Vec3 p;
-  double ke1 = 0.0, ke0 = 0.0;
-  for (int f = 0; f < 3; ++f) {
-    p += mass[f] * vel[f];
-    ke1 += ke(mass[f], vel[f]);
-    ke0 += ke(mass[f], v0[f]);
-  }
-  for (int a = 0; a < 3; ++a) EXPECT_NEAR(p[a], 0.0, 1e-15);
-  // Field 0: (1,0,0) - 0.4 (2,-1,0) = (0.2, 0.4, 0), then the shift (0, -0.8/3, 0).
-  EXPECT_NEAR(vel[0][0], 0.2, 1e-15);
-  EXPECT_NEAR(vel[0][1], 0.4 - 0.8 / 3.0, 1e-15);
-  EXPECT_NEAR(vel[1][0], -0.2, 1e-15);
-  EXPECT_NEAR(vel[2][1], -0.8 / 3.0, 1e-15);
-  EXPECT_NEAR(w.total, ke1 - ke0, 1e-14);
-  EXPECT_LT(w.total, 0.0);
-}
-
 TEST(GridContact, NodeVolumesTileTheGrid) {
   // The node volumes the gap check compares with sum to the volume of the box the nodes span
   // (half cells at the faces): h^2 per interior node in plane strain; in axisymmetric the
