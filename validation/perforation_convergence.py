@@ -184,8 +184,6 @@ def final_points(out, pen):
         names = json.loads(f.attrs["body_names"])
         body = f["body"][:]
         x = f["x"][:]
-        depth = pen["surface"] - x[:, 1]
-        pick = lambda name: body == names.index(name)
         # Each point's half-extent along the line of flight, as the probe's cavity depth takes it:
         # |F_yx| h_x + |F_yy| h_y (the domain is F times the box of half-sizes h).
         if "F" in f and "half_size" in f:
@@ -193,10 +191,12 @@ def final_points(out, pen):
             reach = np.abs(F[:, 3]) * half[:, 0] + np.abs(F[:, 4]) * half[:, 1]
         else:
             reach = np.zeros(body.size)
-        points = {role: {"depth": depth[pick(pen[role])], "r": np.abs(x[pick(pen[role]), 0]),
-                         "mass": f["mass"][:][pick(pen[role])], "segment": f["segment"][:][pick(pen[role])],
-                         "failed": f["failed"][:][pick(pen[role])], "reach": reach[pick(pen[role])]}
-                  for role in ("penetrator", "target")}
+        fields = {"depth": pen["surface"] - x[:, 1], "r": np.abs(x[:, 0]), "mass": f["mass"][:],
+                  "segment": f["segment"][:], "failed": f["failed"][:], "reach": reach}
+    points = {}
+    for role in ("penetrator", "target"):
+        mine = body == names.index(pen[role])
+        points[role] = {key: values[mine] for key, values in fields.items()}
     segments = jet.get("segments") or []
     points["tip_radius"] = float(segments[0][0]) if segments else None
     return points
