@@ -9,7 +9,6 @@
 #include <map>
 #include <memory>
 
-#include <spdlog/spdlog.h>
 #include <yaml-cpp/yaml.h>
 
 #include "deck/body_ref.hpp"
@@ -586,13 +585,6 @@ class Reader {
     }
     cs.fields = static_cast<int>(cs.field_names.size());
     const int nf = cs.fields;
-    // Each field's contact normal is its own, so where three fields meet at a node the
-    // corrections need not cancel (docs/validation.md, "The spent copper in one field of its own").
-    if (nf >= 3)
-      spdlog::warn("{}:{}: contact gives {} velocity fields; at a node where three or more of them meet the "
-                   "contact corrections do not keep the node's momentum (docs/deck.md, contact): read the "
-                   "contact_work of such runs with care",
-                   cs.mark.file, cs.mark.line, nf);
     cs.field_friction.assign(static_cast<size_t>(nf) * nf, cs.friction);
     std::vector<int> set_by(static_cast<size_t>(nf) * nf, -1);
     for (size_t i = 0; i < cs.pairs.size(); ++i) {

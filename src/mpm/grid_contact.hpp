@@ -4,10 +4,12 @@
 // friction contact, thesis seed 000 ch. 2). Applied twice per step, after the momenta are mapped
 // to the grid and after they are updated (Nairn, Hammerquist & Smith, CMAME 362 (2020) 112859).
 // Every field (a body, or bodies joined into one) has its own nodal mass and momentum. At a node
-// where two or more fields have mass, each field's velocity is compared with the centre-of-mass
-// velocity; a field approaching the others along the contact normal loses its normal relative
+// where two fields have mass, each field's velocity is compared with the centre-of-mass
+// velocity; a field approaching the other along the contact normal loses its normal relative
 // velocity (no interpenetration) and its tangential relative velocity is cut by Coulomb friction mu
-// times the normal correction, or stopped (stick). Fields that separate are left alone.
+// times the normal correction, or stopped (stick). Fields that separate are left alone. Where three
+// or more fields meet, the same law acts pair by pair with equal and opposite impulses, so that the
+// node's momentum is kept (grid_contact.cpp, resolve_pairs).
 #include <cstdint>
 
 #include "core/parallel.hpp"
