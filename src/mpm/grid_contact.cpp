@@ -61,9 +61,9 @@ ContactWork resolve_pairs(const FieldGrid& g, Index i, Vec3* vel, double tiny_ma
         if (mup > 0.0) jt = -(mred * mup * dvn / vt) * dvt;
         const Vec3 j = -(mred * dvn) * n + jt;  // impulse on a; b takes -j
         vel[ka] += (1.0 / ma) * j;
-        vel[kb] += (-1.0 / mb) * j;
+        vel[kb] = vel[kb] - (1.0 / mb) * j;
         ct_sum[a] += (1.0 / ma) * jt;
-        ct_sum[b] += (-1.0 / mb) * jt;
+        ct_sum[b] = ct_sum[b] - (1.0 / mb) * jt;
       }
     if (!any) break;
   }
@@ -122,13 +122,14 @@ ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, 
       }
       return;
     }
+    // Two fields: each against their centre of mass, the two normals opposite, so the two
+    // corrections cancel. Corrections use the velocities before either was corrected.
     const Vec3 vcm = (1.0 / mtot) * ptot;
-    // Corrections use the velocities before any field at this node was corrected.
     for (int f = 0; f < nf; ++f) {
       const Index k = f * nn + i;
       const double m = g.mass[k];
       if (!(m > tiny_mass)) continue;
-      // Normal out of field f towards the others: f's outward vector minus the others'.
+      // Normal out of field f towards the other: f's outward vector minus the other's.
       Vec3 n = 2.0 * g.grad[k] - gtot;
       const double nlen = norm(n);
       if (!(nlen > 0.0)) continue;
@@ -136,11 +137,8 @@ ContactWork apply_grid_contact(const FieldGrid& g, Vec3* vel, double tiny_mass, 
       const Vec3 dv = vel[k] - vcm;
       const double dvn = dot(dv, n);
       if (!(dvn > 0.0)) continue;  // separating or sliding: free (Bardenhagen et al. 2000)
-      // Friction with the heaviest other field at the node.
-      int other = -1;
-      double mo = 0.0;
-      for (int j = 0; j < nf; ++j)
-        if (j != f && g.mass[j * nn + i] > mo) { mo = g.mass[j * nn + i]; other = j; }
+      int other = 0;  // the other field at the node
+      while (other == f || !(g.mass[other * nn + i] > tiny_mass)) ++other;
       const double mu = g.friction[f * nf + other];
       const Vec3 dvt = dv - dvn * n;
       const double vt = norm(dvt);

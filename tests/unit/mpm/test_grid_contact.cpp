@@ -204,10 +204,10 @@ TEST(GridContact, ManyFieldsWithFrictionKeepMomentumAndLoseEnergy) {
   double worst0 = 0.0, worst1 = 0.0;
   for (size_t a = 0; a < mass.size(); ++a)
     for (size_t b = a + 1; b < mass.size(); ++b) {
-      Vec3 nab = grad[a] + (-1.0) * grad[b];
+      Vec3 nab = grad[a] - grad[b];
       nab = (1.0 / norm(nab)) * nab;
-      worst0 = std::max(worst0, dot(v0[a] + (-1.0) * v0[b], nab));
-      worst1 = std::max(worst1, dot(n.vel[a] + (-1.0) * n.vel[b], nab));
+      worst0 = std::max(worst0, dot(v0[a] - v0[b], nab));
+      worst1 = std::max(worst1, dot(n.vel[a] - n.vel[b], nab));
     }
   EXPECT_GT(worst0, 10.0);
   EXPECT_LT(worst1, 1e-2 * worst0);
