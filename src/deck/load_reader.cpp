@@ -29,6 +29,7 @@ class DeckLoadEntry final : public LoadEntry {
   std::string string(const std::string& key, const std::string& fallback) override {
     return node_.string(key, fallback);
   }
+  bool boolean(const std::string& key, bool fallback) override { return node_.boolean(key, fallback); }
   LoadCurve curve() override { return read_load_curve(node_); }
   [[noreturn]] void fail(const std::string& key, const std::string& message) override { node_.fail(key, message); }
   const Scenario& scenario() const override { return sc_; }
@@ -52,6 +53,15 @@ void read_loads(DeckNode& root, Scenario& sc, std::map<std::string, Vec3>& equil
     load.type = l.choice("type", kinds);
     DeckLoadEntry entry(l, sc);
     LoadReading r = find_load(load.type)->read(entry, load);
+    if (r.prestress && r.equilibrium_stress && !r.loads.empty()) {
+      BodySpec& body = sc.bodies[static_cast<size_t>(body_index(sc, r.loads.front().body))];
+      if (body.prestress)
+        l.fail("prestress", "body '" + body.name + "' is already prestressed by an earlier load");
+      if (body.initial_state != "none")
+        l.fail("prestress", "body '" + body.name + "' starts in initial_state " + body.initial_state +
+                                "; a prestress would overwrite it");
+      body.prestress = *r.equilibrium_stress;
+    }
     l.finish();
     if (r.equilibrium_stress && !r.loads.empty()) equilibrium_stress[r.loads.front().body] = *r.equilibrium_stress;
     for (LoadSpec& s : r.loads) sc.loads.push_back(std::move(s));

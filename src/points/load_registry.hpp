@@ -36,6 +36,7 @@ class LoadEntry {
   virtual std::string word(const std::string& key, const std::vector<std::string>& choices) = 0;
   virtual std::string string(const std::string& key) = 0;
   virtual std::string string(const std::string& key, const std::string& fallback) = 0;
+  virtual bool boolean(const std::string& key, bool fallback) = 0;
   /// `curve`: [time, scale] pairs (s, -), linear between them, constant outside; none: scale 1.
   virtual LoadCurve curve() = 0;
   [[noreturn]] virtual void fail(const std::string& key, const std::string& message) = 0;
@@ -48,6 +49,9 @@ class LoadEntry {
 struct LoadReading {
   std::vector<LoadSpec> loads;
   std::optional<Vec3> equilibrium_stress;  ///< Pa, principal stresses along x, y, z (r, z, theta)
+  /// Set when the body is to start in that equilibrium (BodySpec::prestress) rather than be
+  /// brought to it by the load's ramp.
+  bool prestress = false;
 };
 
 /// A force on a point and where it acts (a surface traction at the point's face).

@@ -19,6 +19,7 @@
 #include "materials/failure.hpp"
 #include "points/explosive_lighting.hpp"
 #include "points/initial_state_registry.hpp"
+#include "points/prestress.hpp"
 #include "points/load_registry.hpp"
 
 namespace ballista {
@@ -82,6 +83,14 @@ PointSet::PointSet(const Scenario& sc, std::vector<std::unique_ptr<Material>> ma
     materials_[mi]->initialise_state(points_, n0, points_.size());
     if (const InitialStateFactory* state = find_initial_state(body.initial_state))
       state->apply(body, *materials_[mi], points_, n0, points_.size());
+    if (body.prestress) {
+      try {
+        apply_prestress(*materials_[mi], *body.prestress, dim, points_, n0, points_.size());
+      } catch (const std::runtime_error& e) {
+        throw DeckError(body.mark.file, body.mark.line, body.mark.column, body.mark.key_path,
+                        "body '" + body.name + "' (prestressed by its confinement load): " + e.what());
+      }
+    }
   }
   check_body_overlaps(sc, points_);
   {

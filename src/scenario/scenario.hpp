@@ -5,6 +5,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -166,6 +167,10 @@ struct BodySpec {
   double activation_time = 0.0;  ///< s after the start of the activation stage; inert and invisible before
   int activation_stage = 0;      ///< index of the stage that starts the activation clock (stages.size() = main)
   std::string initial_state = "none";  ///< none or a registered initial state (points/initial_state_registry.hpp)
+  /// Principal stresses (Pa, tension positive; along x, y, z, or r, z, theta) the body starts in,
+  /// with the deformation and state its material reaches them with (points/prestress.hpp): set by a
+  /// `confinement` load with `prestress: true`, whose full traction then holds it from t = 0.
+  std::optional<Vec3> prestress;
   PenetratorSpec penetrator;     ///< rod / jet description (kind empty for plain bodies)
   std::vector<SegmentSpec> segments;  ///< rods and jets: the pieces seeded (empty for plain bodies)
   DeckMark mark;

@@ -2,7 +2,9 @@
 // `radial` on its outer surface and `axial` on its top and bottom (both default to `pressure`;
 // optionally none within `hole_radius` of the axis on the top, where the penetrator enters),
 // read as three pressure loads with the same curve, and the stress they hold the target at in
-// equilibrium, for stages that wait for it.
+// equilibrium, for stages that wait for it. With `prestress: true` the target starts in that
+// stress (points/prestress.hpp) instead of being brought to it by a ramp and a damped stage: the
+// uniform stress is the exact equilibrium of a solid cylinder under these tractions.
 #include <fmt/format.h>
 
 #include "points/load_registry.hpp"
@@ -29,8 +31,16 @@ LoadReading read_confinement(LoadEntry& e, LoadSpec load) {
     e.fail("hole_radius", fmt::format("the hole ({:g} m) must be narrower than the cylinder's radius ({:g} m)", hole,
                                       body.shape.radius));
   load.curve = e.curve();
-  load.type = "pressure";
   LoadReading out;
+  out.prestress = e.boolean("prestress", false);
+  if (out.prestress && sc.simulation.dimension == Dimension::PlaneStrain)
+    e.fail("prestress", "a prestress needs the stress along every axis; in plane strain the out-of-plane one is not "
+                        "the load's (use 3d or axisymmetric)");
+  if (out.prestress && load.curve.at(0.0) != 1.0)
+    e.fail("curve", fmt::format("a prestressed target is held by the full load from t = 0; the curve gives {:g} "
+                                "there (drop the ramp, or prestress: false)",
+                                load.curve.at(0.0)));
+  load.type = "pressure";
   for (const char* surface : {"outer", "top", "bottom"}) {
     load.params.choices["surface"] = surface;
     load.params["pressure"] = std::string(surface) == "outer" ? radial : axial;

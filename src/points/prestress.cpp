@@ -1,0 +1,213 @@
+#include "points/prestress.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/point_fields.hpp"
+
+namespace ballista {
+
+namespace {
+
+constexpr FieldKey<Mat3> kOldDeformationGradient{"F_old"};
+// Load increments along the proportional path, and the time each takes: slow enough that a
+// rate-dependent model answers as at rest (the overburden is applied over hours, not microseconds).
+constexpr int kIncrements = 20;
+constexpr double kIncrementTime = 1.0e-3;  // s
+constexpr int kMaxNewton = 30;
+// Finite-difference step of the Jacobian d sigma / d(log stretch): small against the strains of an
+// overburden (1e-3) and large against round-off of stresses of order K * 1e-3.
+constexpr double kStrainStep = 1.0e-7;
+
+/// Four trial points (the increment and its three perturbations) and the committed state (4).
+class DrivenPoint {
+ public:
+  explicit DrivenPoint(const Material& m) : m_(m) {
+    store_.declare(kDeformationGradient, "1");
+    store_.declare(kOldDeformationGradient, "1");
+    store_.declare(kVelocityGradient, "1/s");
+    store_.declare(kRotation, "1");
+    store_.declare(kStress, "Pa");
+    m.declare_fields(store_);
+    store_.resize(kCommitted + 1);
+    m.initialise_state(store_, 0, kCommitted + 1);
+    for (const StateFieldSpec& s : m.state_fields()) state_.push_back(store_.real(s.name));
+    Mat3* F = store_.view(kDeformationGradient);
+    Mat3* R = store_.view(kRotation);
+    Mat3* S = store_.view(kStress);
+    for (Index p = 0; p <= kCommitted; ++p) {
+      F[p] = R[p] = Mat3::identity();
+      S[p] = Mat3{};
+    }
+  }
+
+  /// The principal stresses of trial point j after the log-stretch increment e from the committed
+  /// state (all four trials in one update).
+  void evaluate(const std::array<Vec3, 4>& e, std::array<Vec3, 4>& stress, double time) {
+    Mat3* F = store_.view(kDeformationGradient);
+    Mat3* F_old = store_.view(kOldDeformationGradient);
+    Mat3* L = store_.view(kVelocityGradient);
+    Mat3* R = store_.view(kRotation);
+    Mat3* S = store_.view(kStress);
+    for (Index j = 0; j < 4; ++j) {
+      copy(kCommitted, j);
+      const Mat3 dF = Mat3::diag(std::exp(e[j][0]), std::exp(e[j][1]), std::exp(e[j][2]));
+      F_old[j] = F[kCommitted];
+      F[j] = dF * F[kCommitted];
+      L[j] = (1.0 / kIncrementTime) * (dF - Mat3::identity());
+    }
+    const Index points[4] = {0, 1, 2, 3};
+    MaterialBatch b;
+    b.points = points;
+    b.count = 4;
+    b.F_old = F_old;
+    b.F_new = F;
+    b.L = L;
+    b.R = R;
+    b.stress = S;
+    b.store = &store_;
+    b.dt = kIncrementTime;
+    b.time = time;
+    m_.update(b);
+    for (Index j = 0; j < 4; ++j) stress[j] = Vec3{{S[j](0, 0), S[j](1, 1), S[j](2, 2)}};
+  }
+
+  void commit(Index j) { copy(j, kCommitted); }
+
+  /// Copies the committed state to the points [first, last) of `points` (same model's fields).
+  void copy_to(FieldStore& points, Index first, Index last) const {
+    const Mat3 F = store_.view(kDeformationGradient)[kCommitted];
+    const Mat3 R = store_.view(kRotation)[kCommitted];
+    const Mat3 S = store_.view(kStress)[kCommitted];
+    Mat3* pF = points.view(kDeformationGradient);
+    Mat3* pR = points.view(kRotation);
+    Mat3* pS = points.view(kStress);
+    std::vector<double*> fields;
+    for (const StateFieldSpec& s : m_.state_fields()) fields.push_back(points.real(s.name));
+    for (Index p = first; p < last; ++p) {
+      pF[p] = F;
+      pR[p] = R;
+      pS[p] = S;
+      for (size_t k = 0; k < fields.size(); ++k) fields[k][p] = state_[k][kCommitted];
+    }
+  }
+
+  Mat3 F() const { return store_.view(kDeformationGradient)[kCommitted]; }
+  Mat3 stress() const { return store_.view(kStress)[kCommitted]; }
+
+ private:
+  static constexpr Index kCommitted = 4;
+  const Material& m_;
+  FieldStore store_;
+  std::vector<double*> state_;
+
+  void copy(Index from, Index to) {
+    Mat3* F = store_.view(kDeformationGradient);
+    Mat3* F_old = store_.view(kOldDeformationGradient);
+    Mat3* R = store_.view(kRotation);
+    Mat3* S = store_.view(kStress);
+    F[to] = F[from];
+    F_old[to] = F_old[from];
+    R[to] = R[from];
+    S[to] = S[from];
+    for (double* f : state_) f[to] = f[from];
+  }
+};
+
+/// Solves the 3x3 system A x = b (Cramer's rule; A is the Jacobian of three principal stresses).
+bool solve3(const Mat3& A, const Vec3& b, Vec3& x) {
+  const double d = det(A);
+  if (!(std::abs(d) > 0.0) || !std::isfinite(d)) return false;
+  const Mat3 inv = inverse(A);
+  for (int i = 0; i < 3; ++i) x[i] = inv(i, 0) * b[0] + inv(i, 1) * b[1] + inv(i, 2) * b[2];
+  return true;
+}
+
+double max_abs(const Vec3& v) { return std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])}); }
+
+}  // namespace
+
+PrestressState apply_prestress(const Material& material, const Vec3& stress, Dimension dim, FieldStore& points,
+                               Index first, Index last) {
+  PrestressState out;
+  out.stretch = Vec3{{1.0, 1.0, 1.0}};
+  const double scale = max_abs(stress);
+  if (scale == 0.0) return out;
+  // Converged when every principal stress is within this of its target: round-off of the model's
+  // own update, far below anything a damped stage would resolve (its band is 5 %).
+  const double tol = 1.0e-9 * scale;
+  DrivenPoint pt(material);
+  Vec3 e{};  // log-stretch increment of the last increment: the next one's first guess
+  double time = 0.0;
+  for (int k = 1; k <= kIncrements; ++k) {
+    const Vec3 target = (static_cast<double>(k) / kIncrements) * stress;
+    time += kIncrementTime;
+    bool converged = false;
+    Vec3 residual{};
+    for (int it = 0; it < kMaxNewton && !converged; ++it) {
+      std::array<Vec3, 4> trial{e, e, e, e};
+      for (int j = 0; j < 3; ++j) trial[static_cast<size_t>(j + 1)][j] += kStrainStep;
+      std::array<Vec3, 4> s;
+      pt.evaluate(trial, s, time);
+      residual = s[0] - target;
+      if (!std::isfinite(max_abs(residual))) break;
+      if (max_abs(residual) <= tol) {
+        pt.commit(0);
+        converged = true;
+        break;
+      }
+      Mat3 J;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) J(i, j) = (s[static_cast<size_t>(j + 1)][i] - s[0][i]) / kStrainStep;
+      Vec3 de;
+      if (!solve3(J, residual, de)) break;
+      e = e - de;
+    }
+    if (!converged)
+      throw std::runtime_error(fmt::format(
+          "material '{}' ({}) cannot be prestressed to [{:g}, {:g}, {:g}] Pa: at {:g} % of it its stress is {:g} Pa "
+          "from the target after {} iterations (beyond its strength?)",
+          material.name(), material.model(), stress[0], stress[1], stress[2], 100.0 * k / kIncrements,
+          max_abs(residual), kMaxNewton));
+  }
+  const Mat3 F = pt.F();
+  const Mat3 S = pt.stress();
+  out.stretch = Vec3{{F(0, 0), F(1, 1), F(2, 2)}};
+  out.stress = Vec3{{S(0, 0), S(1, 1), S(2, 2)}};
+  out.increments = kIncrements;
+  pt.copy_to(points, first, last);
+
+  // Positions and volumes follow the uniform deformation, about the centre of mass (the axis in
+  // axisymmetric runs, where F's hoop stretch is r / r0).
+  Vec3* x = points.view(kPosition);
+  const double* mass = points.real(kMass);
+  double* volume = points.real(kVolume);
+  const double* volume0 = points.real(kReferenceVolume);
+  Vec3 c{};
+  double m = 0.0;
+  for (Index p = first; p < last; ++p) {
+    c += mass[p] * x[p];
+    m += mass[p];
+  }
+  if (m > 0.0) c = (1.0 / m) * c;
+  if (dim == Dimension::Axisymmetric) c[0] = 0.0;
+  if (dim != Dimension::ThreeD) c[2] = 0.0;
+  const double J = det(F);
+  for (Index p = first; p < last; ++p) {
+    const Vec3 d = x[p] - c;
+    Vec3 moved = c;
+    for (int i = 0; i < 3; ++i) moved[i] += F(i, 0) * d[0] + F(i, 1) * d[1] + F(i, 2) * d[2];
+    if (dim != Dimension::ThreeD) moved[2] = x[p][2];
+    x[p] = moved;
+    volume[p] = J * volume0[p];
+  }
+  return out;
+}
+
+}  // namespace ballista
