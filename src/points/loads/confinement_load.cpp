@@ -59,7 +59,8 @@ LoadReading read_confinement(LoadEntry& e, LoadSpec load) {
 BALLISTA_REGISTER_LOAD(LoadFactory{
     .name = "confinement",
     .description = "overburden on a cylinder: `radial` on its outer surface, `axial` on top and bottom (Pa, both "
-                   "default to `pressure`), as three pressure loads",
+                   "default to `pressure`), as three pressure loads; `prestress: true` seeds the cylinder in that "
+                   "stress",
     .read = read_confinement})
 
 }  // namespace ballista
