@@ -10,12 +10,12 @@
 #include <vector>
 
 #include "core/point_fields.hpp"
+#include "materials/point_batch.hpp"
 
 namespace ballista {
 
 namespace {
 
-constexpr FieldKey<Mat3> kOldDeformationGradient{"F_old"};
 // Load increments along the proportional path, and the time each takes: slow enough that a
 // rate-dependent model answers as at rest (the overburden is applied over hours, not microseconds).
 constexpr int kIncrements = 20;
@@ -25,99 +25,52 @@ constexpr int kMaxNewton = 30;
 // overburden (1e-3) and large against round-off of stresses of order K * 1e-3.
 constexpr double kStrainStep = 1.0e-7;
 
-/// Four trial points (the increment and its three perturbations) and the committed state (4).
+/// The committed state of the driven point, and four trials from it (the increment and its three
+/// perturbations), updated together.
 class DrivenPoint {
  public:
-  explicit DrivenPoint(const Material& m) : m_(m) {
-    store_.declare(kDeformationGradient, "1");
-    store_.declare(kOldDeformationGradient, "1");
-    store_.declare(kVelocityGradient, "1/s");
-    store_.declare(kRotation, "1");
-    store_.declare(kStress, "Pa");
-    m.declare_fields(store_);
-    store_.resize(kCommitted + 1);
-    m.initialise_state(store_, 0, kCommitted + 1);
-    for (const StateFieldSpec& s : m.state_fields()) state_.push_back(store_.real(s.name));
-    Mat3* F = store_.view(kDeformationGradient);
-    Mat3* R = store_.view(kRotation);
-    Mat3* S = store_.view(kStress);
-    for (Index p = 0; p <= kCommitted; ++p) {
-      F[p] = R[p] = Mat3::identity();
-      S[p] = Mat3{};
-    }
-  }
+  explicit DrivenPoint(const Material& m) : committed_(m, 1), trials_(m, 4) {}
 
-  /// The principal stresses of trial point j after the log-stretch increment e from the committed
-  /// state (all four trials in one update).
-  void evaluate(const std::array<Vec3, 4>& e, std::array<Vec3, 4>& stress, double time) {
-    Mat3* F = store_.view(kDeformationGradient);
-    Mat3* F_old = store_.view(kOldDeformationGradient);
-    Mat3* L = store_.view(kVelocityGradient);
-    Mat3* R = store_.view(kRotation);
-    Mat3* S = store_.view(kStress);
+  /// The principal stresses of trial j after the log-stretch increment e[j] from the committed state.
+  void evaluate(const std::array<Vec3, 4>& e, std::array<Vec3, 4>& stress) {
     for (Index j = 0; j < 4; ++j) {
-      copy(kCommitted, j);
+      trials_.copy_point(committed_, 0, j);
       const Mat3 dF = Mat3::diag(std::exp(e[j][0]), std::exp(e[j][1]), std::exp(e[j][2]));
-      F_old[j] = F[kCommitted];
-      F[j] = dF * F[kCommitted];
-      L[j] = (1.0 / kIncrementTime) * (dF - Mat3::identity());
+      trials_.F_old(j) = committed_.F(0);
+      trials_.F(j) = dF * committed_.F(0);
+      trials_.L(j) = (1.0 / kIncrementTime) * (dF - Mat3::identity());
     }
-    const Index points[4] = {0, 1, 2, 3};
-    MaterialBatch b;
-    b.points = points;
-    b.count = 4;
-    b.F_old = F_old;
-    b.F_new = F;
-    b.L = L;
-    b.R = R;
-    b.stress = S;
-    b.store = &store_;
-    b.dt = kIncrementTime;
-    b.time = time;
-    m_.update(b);
-    for (Index j = 0; j < 4; ++j) stress[j] = Vec3{{S[j](0, 0), S[j](1, 1), S[j](2, 2)}};
+    trials_.step(kIncrementTime);
+    for (Index j = 0; j < 4; ++j) {
+      const Mat3& S = trials_.stress(j);
+      stress[j] = Vec3{{S(0, 0), S(1, 1), S(2, 2)}};
+    }
   }
 
-  void commit(Index j) { copy(j, kCommitted); }
+  void commit(Index j) { committed_.copy_point(trials_, j, 0); }
 
   /// Copies the committed state to the points [first, last) of `points` (same model's fields).
-  void copy_to(FieldStore& points, Index first, Index last) const {
-    const Mat3 F = store_.view(kDeformationGradient)[kCommitted];
-    const Mat3 R = store_.view(kRotation)[kCommitted];
-    const Mat3 S = store_.view(kStress)[kCommitted];
-    Mat3* pF = points.view(kDeformationGradient);
-    Mat3* pR = points.view(kRotation);
-    Mat3* pS = points.view(kStress);
+  void copy_to(FieldStore& points, Index first, Index last) {
+    Mat3* F = points.view(kDeformationGradient);
+    Mat3* R = points.view(kRotation);
+    Mat3* S = points.view(kStress);
+    const std::vector<std::string>& names = committed_.state_names();
     std::vector<double*> fields;
-    for (const StateFieldSpec& s : m_.state_fields()) fields.push_back(points.real(s.name));
+    for (const std::string& n : names) fields.push_back(points.real(n));
     for (Index p = first; p < last; ++p) {
-      pF[p] = F;
-      pR[p] = R;
-      pS[p] = S;
-      for (size_t k = 0; k < fields.size(); ++k) fields[k][p] = state_[k][kCommitted];
+      F[p] = committed_.F(0);
+      R[p] = committed_.R(0);
+      S[p] = committed_.stress(0);
+      for (size_t k = 0; k < fields.size(); ++k) fields[k][p] = committed_.state(static_cast<int>(k), 0);
     }
   }
 
-  Mat3 F() const { return store_.view(kDeformationGradient)[kCommitted]; }
-  Mat3 stress() const { return store_.view(kStress)[kCommitted]; }
+  Mat3 F() { return committed_.F(0); }
+  Mat3 stress() { return committed_.stress(0); }
 
  private:
-  static constexpr Index kCommitted = 4;
-  const Material& m_;
-  FieldStore store_;
-  std::vector<double*> state_;
-
-  void copy(Index from, Index to) {
-    Mat3* F = store_.view(kDeformationGradient);
-    Mat3* F_old = store_.view(kOldDeformationGradient);
-    Mat3* R = store_.view(kRotation);
-    Mat3* S = store_.view(kStress);
-    F[to] = F[from];
-    F_old[to] = F_old[from];
-    R[to] = R[from];
-    S[to] = S[from];
-    for (double* f : state_) f[to] = f[from];
-  }
+  PointBatch committed_;
+  PointBatch trials_;
 };
 
 /// Solves the 3x3 system A x = b (Cramer's rule; A is the Jacobian of three principal stresses).
@@ -144,17 +97,15 @@ PrestressState apply_prestress(const Material& material, const Vec3& stress, Dim
   const double tol = 1.0e-9 * scale;
   DrivenPoint pt(material);
   Vec3 e{};  // log-stretch increment of the last increment: the next one's first guess
-  double time = 0.0;
   for (int k = 1; k <= kIncrements; ++k) {
     const Vec3 target = (static_cast<double>(k) / kIncrements) * stress;
-    time += kIncrementTime;
     bool converged = false;
     Vec3 residual{};
     for (int it = 0; it < kMaxNewton && !converged; ++it) {
       std::array<Vec3, 4> trial{e, e, e, e};
       for (int j = 0; j < 3; ++j) trial[static_cast<size_t>(j + 1)][j] += kStrainStep;
       std::array<Vec3, 4> s;
-      pt.evaluate(trial, s, time);
+      pt.evaluate(trial, s);
       residual = s[0] - target;
       if (!std::isfinite(max_abs(residual))) break;
       if (max_abs(residual) <= tol) {

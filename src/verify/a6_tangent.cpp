@@ -38,7 +38,7 @@
 #include "materials/strain_increment.hpp"
 #include "verify/a6_objectivity.hpp"
 #include "verify/hook_material.hpp"
-#include "verify/point_batch.hpp"
+#include "materials/point_batch.hpp"
 
 namespace ballista {
 

@@ -1,4 +1,4 @@
-#include "verify/point_batch.hpp"
+#include "materials/point_batch.hpp"
 
 #include <numeric>
 

@@ -3,7 +3,8 @@
 // solvers and the single-element driver call a model (MaterialAdapter: polar decomposition,
 // unrotated frame, kernel, rotate back). Used by the A6 checks, which need several points with
 // independently prescribed F and L and the optional algorithmic tangent, neither of which the
-// single-element driver (driver/point_driver.hpp) exposes.
+// single-element driver (driver/point_driver.hpp) exposes, and by the prestress of a confined
+// body (points/prestress.hpp), which drives trial points from a committed state.
 #include <string>
 #include <vector>
 
