@@ -71,6 +71,39 @@ TEST(Prestress, ElasticCylinderCarriesTheLoadsStressWithHookesStretches) {
   }
 }
 
+TEST(Prestress, ThreeDimensionalCylinderAlongYIsStretchedAboutItsCentre) {
+  // The same rock and load in 3D: the axial stress along the cylinder's axis (y), the radial one
+  // along x and z; points moved about the centre of mass, here the cylinder's centre (0, 12 mm, 0).
+  const Scenario sc = parse_deck(R"(simulation: {dimension: 3d, end_time: 1.0e-6}
+grid: {lower: [-0.012, -0.002, -0.012], upper: [0.012, 0.026, 0.012], cell_size: 2.0e-3}
+materials:
+  rock: )" + kElastic + R"(
+bodies:
+  - name: target
+    material: rock
+    shape: {type: cylinder, center: [0, 0.002, 0], axis: y, radius: 0.01, length: 0.02}
+loads:
+  - )" + kLoad + "\n",
+                                 "prestress3d.yaml");
+  PointSet pts(sc, make_materials(sc), SeedLattice{sc.grid, 0}, 0.0, "");
+  FieldStore& s = pts.store();
+  const Mat3* F = s.view(kDeformationGradient);
+  const Mat3* S = s.view(kStress);
+  const Vec3* x = s.view(kPosition);
+  const Vec3* x0 = s.view(kReferencePosition);
+  const double sr = -20e6, sz = -30e6, E = 20e9, nu = 0.2;
+  const double er = (sr - nu * (sz + sr)) / E, ez = (sz - 2.0 * nu * sr) / E;
+  const Vec3 c{{0.0, 0.012, 0.0}};
+  for (Index p = 0; p < s.size(); ++p) {
+    EXPECT_NEAR(S[p](0, 0), sr, 1e-8 * 30e6);
+    EXPECT_NEAR(S[p](1, 1), sz, 1e-8 * 30e6);
+    EXPECT_NEAR(S[p](2, 2), sr, 1e-8 * 30e6);
+    EXPECT_NEAR(std::log(F[p](0, 0)), er, 1e-9 + 1e-6 * std::abs(er));
+    EXPECT_NEAR(std::log(F[p](1, 1)), ez, 1e-9 + 1e-6 * std::abs(ez));
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(x[p][i] - c[i], F[p](i, i) * (x0[p][i] - c[i]), 1e-12);
+  }
+}
+
 TEST(Prestress, GeomodelRockIsPrestressedElasticallyWithItsStateUntouched) {
   const Scenario sc = parse_deck(deck("{preset: sandstone_berea_drained}",
                                       "{type: confinement, body: target, pressure: 34.48e6, prestress: true}"),
