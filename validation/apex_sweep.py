@@ -29,10 +29,11 @@ import argparse
 import json
 import math
 import os
-import subprocess
 import sys
 
 import yaml
+
+from case_runs import run_once, summary
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
@@ -50,15 +51,13 @@ PATH = (-30.0e-3, 190.0e-3)
 BEHIND_APEX = 0.010   # m: explosive behind the apex
 
 
-def run(cmd):
-    print(" ".join(cmd), flush=True)
-    if subprocess.run(cmd).returncode != 0:
-        raise SystemExit("failed: " + " ".join(cmd))
-
-
-def summary(folder):
-    path = os.path.join(folder, "summary.json")
-    return json.load(open(path)) if os.path.exists(path) else None
+def run(ballista, deck, folder, sets):
+    """The run into `folder` (case_runs.run_once: not again once finished); the sweep stops if it failed."""
+    run_once(ballista, deck, folder, sets)
+    s = summary(folder)
+    if s is None or s["status"] != "completed":
+        raise SystemExit(f"the run in {folder} did not complete (its summary.json, if any, says why)")
+    return s
 
 
 def formation_sets(angle):
@@ -86,24 +85,20 @@ def one_angle(a, angle):
     folder = os.path.join(a.out, f"apex{angle:g}")
     os.makedirs(folder, exist_ok=True)
     form = os.path.join(folder, "formation")
-    if summary(form) is None:
-        run([a.ballista, "run", FORMATION, "-o", form, "-q", "--no-plots", "--overwrite", "--threads", str(a.threads),
-             "--set", f"grid.cell_size={a.formation_cell!r}"] + formation_sets(angle))
+    run(a.ballista, FORMATION, form,
+        ["--threads", str(a.threads), "--set", f"grid.cell_size={a.formation_cell!r}"] + formation_sets(angle))
     rows, rep = jet_table(form, segments=a.segments)
     table = os.path.join(folder, "jet.csv")
     with open(table, "w") as f:
         f.write("radius,length,velocity,insert_time\n")
         for r in rows:
             f.write(",".join(repr(x) for x in r) + "\n")
+    sets = ["--threads", str(a.threads)]
+    far = float(yaml.safe_load(open(PERFORATION))["grid"]["cell_size"])
+    for s in (level_sets(a.band_cell, far, BAND, PATH) if a.band_cell else []) + a.set:
+        sets += ["--set", s]
     perf = os.path.join(folder, "perforation")
-    if summary(perf) is None:
-        sets = []
-        far = float(yaml.safe_load(open(PERFORATION))["grid"]["cell_size"])
-        for s in (level_sets(a.band_cell, far, BAND, PATH) if a.band_cell else []) + a.set:
-            sets += ["--set", s]
-        run([a.ballista, "run", perforation_deck(table, folder), "-o", perf, "-q", "--no-plots", "--overwrite",
-             "--threads", str(a.threads)] + sets)
-    s = summary(perf)
+    s = run(a.ballista, perforation_deck(table, folder), perf, sets)
     pen = s["penetration"]
     holes = pen.get("holes", {})
     cell = a.band_cell or float(yaml.safe_load(open(os.path.join(perf, "resolved.yaml")))["grid"]["cell_size"])

@@ -66,32 +66,20 @@ class DrivenPoint {
   }
 
   Mat3 F() { return committed_.F(0); }
-  Mat3 stress() { return committed_.stress(0); }
 
  private:
   PointBatch committed_;
   PointBatch trials_;
 };
 
-/// Solves the 3x3 system A x = b (Cramer's rule; A is the Jacobian of three principal stresses).
-bool solve3(const Mat3& A, const Vec3& b, Vec3& x) {
-  const double d = det(A);
-  if (!(std::abs(d) > 0.0) || !std::isfinite(d)) return false;
-  const Mat3 inv = inverse(A);
-  for (int i = 0; i < 3; ++i) x[i] = inv(i, 0) * b[0] + inv(i, 1) * b[1] + inv(i, 2) * b[2];
-  return true;
-}
-
 double max_abs(const Vec3& v) { return std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])}); }
 
 }  // namespace
 
-PrestressState apply_prestress(const Material& material, const Vec3& stress, Dimension dim, FieldStore& points,
-                               Index first, Index last) {
-  PrestressState out;
-  out.stretch = Vec3{{1.0, 1.0, 1.0}};
+void apply_prestress(const Material& material, const Vec3& stress, Dimension dim, FieldStore& points, Index first,
+                     Index last) {
   const double scale = max_abs(stress);
-  if (scale == 0.0) return out;
+  if (scale == 0.0) return;
   // Converged when every principal stress is within this of its target: round-off of the model's
   // own update, far below anything a damped stage would resolve (its band is 5 %).
   const double tol = 1.0e-9 * scale;
@@ -116,9 +104,9 @@ PrestressState apply_prestress(const Material& material, const Vec3& stress, Dim
       Mat3 J;
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) J(i, j) = (s[static_cast<size_t>(j + 1)][i] - s[0][i]) / kStrainStep;
-      Vec3 de;
-      if (!solve3(J, residual, de)) break;
-      e = e - de;
+      const double d = det(J);
+      if (!(std::abs(d) > 0.0) || !std::isfinite(d)) break;
+      e = e - inverse(J) * residual;
     }
     if (!converged)
       throw std::runtime_error(fmt::format(
@@ -128,10 +116,6 @@ PrestressState apply_prestress(const Material& material, const Vec3& stress, Dim
           max_abs(residual), kMaxNewton));
   }
   const Mat3 F = pt.F();
-  const Mat3 S = pt.stress();
-  out.stretch = Vec3{{F(0, 0), F(1, 1), F(2, 2)}};
-  out.stress = Vec3{{S(0, 0), S(1, 1), S(2, 2)}};
-  out.increments = kIncrements;
   pt.copy_to(points, first, last);
 
   // Positions and volumes follow the uniform deformation, about the centre of mass (the axis in
@@ -151,14 +135,11 @@ PrestressState apply_prestress(const Material& material, const Vec3& stress, Dim
   if (dim != Dimension::ThreeD) c[2] = 0.0;
   const double J = det(F);
   for (Index p = first; p < last; ++p) {
-    const Vec3 d = x[p] - c;
-    Vec3 moved = c;
-    for (int i = 0; i < 3; ++i) moved[i] += F(i, 0) * d[0] + F(i, 1) * d[1] + F(i, 2) * d[2];
+    Vec3 moved = c + F * (x[p] - c);
     if (dim != Dimension::ThreeD) moved[2] = x[p][2];
     x[p] = moved;
     volume[p] = J * volume0[p];
   }
-  return out;
 }
 
 }  // namespace ballista

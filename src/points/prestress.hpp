@@ -14,18 +14,11 @@
 
 namespace ballista {
 
-/// What the drive reached: the stretches and the stress (principal, along x, y, z).
-struct PrestressState {
-  Vec3 stretch;     ///< principal stretches of F (1 = undeformed)
-  Vec3 stress;      ///< Pa, the stress reached (within the drive's tolerance of the request)
-  int increments = 0;
-};
-
 /// Drives one point of `material` to the principal stresses `stress` (Pa, tension positive; x, y, z
 /// or r, z, theta) and copies the result to the points [first, last) of `points`, moving them
 /// with it. Throws std::runtime_error naming the material if its model cannot carry that stress
 /// (beyond its strength, or not reached within the drive's iterations).
-PrestressState apply_prestress(const Material& material, const Vec3& stress, Dimension dim, FieldStore& points,
-                               Index first, Index last);
+void apply_prestress(const Material& material, const Vec3& stress, Dimension dim, FieldStore& points, Index first,
+                     Index last);
 
 }  // namespace ballista
