@@ -2,8 +2,10 @@
 // Parallel loops over index ranges. Maps to OpenMP today. Results never depend on the thread
 // count: loops write disjoint data, and reductions sum fixed-size chunks whose partial results
 // are combined in chunk order (see deterministic_sum).
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/threads.hpp"  // request_threads: a user's thread count, clamped to the cores
@@ -66,12 +68,73 @@ inline void for_each_chunk(Index nchunk, F&& f) {
   for (Index c = 0; c < nchunk; ++c) f(c);
 }
 
+/// The chunk of the point passes' common split (for_each_point_chunk, for_each_uneven_local):
+/// each thread takes one contiguous run of such chunks, the same run in every pass of a step, so
+/// that a pass finds on each core the points that core wrote in the pass before. Handed out one at
+/// a time instead, the chunks of a 10^4-point step moved between the cores' caches at every pass
+/// (docs/performance.md, "One split of the points").
+inline constexpr Index kPointChunk = 512;
+
+/// First chunk of thread r's run when `nchunk` chunks are split over `threads`: OpenMP's static
+/// schedule as libgomp cuts it (the first nchunk % threads threads take one chunk more).
+inline Index static_run_begin(Index nchunk, int threads, int r) {
+  const Index q = nchunk / threads, rem = nchunk % threads;
+  return r * q + (r < rem ? r : rem);
+}
+
+/// for_each_chunk for chunks of kPointChunk consecutive points that cost alike: each thread takes
+/// its run of the common split, the same at every call with the same count.
+template <class F>
+inline void for_each_point_chunk(Index nchunk, F&& f) {
+#pragma omp parallel for schedule(static) if (nchunk > 1)
+  for (Index c = 0; c < nchunk; ++c) f(c);
+}
+
 /// for_each_uneven (below) with its own threshold (iterations below which the loop runs on the
 /// calling thread) and chunk, for iterations that each do the work of several (a group of lanes).
 template <class F>
 inline void for_each_uneven_chunked(Index begin, Index end, Index threshold, int chunk, F&& f) {
 #pragma omp parallel for schedule(dynamic, chunk) if (end - begin > threshold)
   for (Index i = begin; i < end; ++i) f(i);
+}
+
+/// for_each_uneven_chunked for a pass over points whose cost clusters (a material update: the
+/// yielding points of a crater sit together, points being sorted by cell) that keeps the common
+/// split (kPointChunk, when `chunk` iterations are kPointChunk points): thread t first takes its
+/// own run of chunks, in order, then helps with the chunks the others have not yet taken. Which
+/// thread runs a chunk never changes what it computes.
+template <class F>
+inline void for_each_uneven_local(Index begin, Index end, Index threshold, Index chunk, F&& f) {
+  const Index n = end - begin;
+  const int threads = max_threads();
+  if (n <= threshold || threads < 2) {
+    for (Index i = begin; i < end; ++i) f(i);
+    return;
+  }
+  const Index nchunk = (n + chunk - 1) / chunk;
+  struct alignas(64) Cursor {
+    std::atomic<Index> next;
+  };
+  const std::unique_ptr<Cursor[]> cursor(new Cursor[threads]);
+  for (int r = 0; r < threads; ++r) cursor[r].next.store(static_run_begin(nchunk, threads, r), std::memory_order_relaxed);
+#pragma omp parallel num_threads(threads)
+  {
+#ifdef _OPENMP
+    const int t = omp_get_thread_num();
+#else
+    const int t = 0;
+#endif
+    for (int k = 0; k < threads; ++k) {
+      const int r = (t + k) % threads;
+      const Index stop = static_run_begin(nchunk, threads, r + 1);
+      for (Index c = cursor[r].next.fetch_add(1, std::memory_order_relaxed); c < stop;
+           c = cursor[r].next.fetch_add(1, std::memory_order_relaxed)) {
+        const Index lo = begin + c * chunk;
+        const Index hi = lo + chunk < end ? lo + chunk : end;
+        for (Index i = lo; i < hi; ++i) f(i);
+      }
+    }
+  }
 }
 
 /// for_each for loops whose cheap iterations cost unevenly by index (a peridynamic step: the

@@ -138,9 +138,9 @@ class MaterialAdapter final : public Material {
     const Params& prm = params_;
     const FailureModel& fm = failure_;
     const int nm = model_states_;  // failure's damage and failed follow the model's state
-    // Dynamic: a return-mapping model costs ten times more at its yielding points than at its
+    // Balanced: a return-mapping model costs ten times more at its yielding points than at its
     // elastic ones, and points sorted by cell put the yielding ones together (a crater).
-    for_each_uneven(0, b.count, [&](Index k) {
+    for_each_uneven_local(0, b.count, kParallelThreshold, kPointChunk, [&](Index k) {
       const Index p = b.points[k];
       PointKinematics kin;
       kin.F_new = b.F_new[p];

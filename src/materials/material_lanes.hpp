@@ -47,8 +47,9 @@ void update_in_lanes(const typename Model::Params& prm, const FailureModel& fm, 
   const Index groups = (b.count + kLanes - 1) / kLanes;
   const double dt = b.dt;
   // Parallel from kParallelThreshold points (not groups: a group is kLanes points' work), in
-  // chunks of 2048 points (yielding points cost more and cluster).
-  for_each_uneven_chunked(0, groups, (kParallelThreshold + kLanes - 1) / kLanes, 2048 / kLanes, [&](Index g) {
+  // chunks of 512 points, each thread on its own points first (yielding points cost more and
+  // cluster: for_each_uneven_local).
+  for_each_uneven_local(0, groups, (kParallelThreshold + kLanes - 1) / kLanes, kPointChunk / kLanes, [&](Index g) {
     const Index k0 = g * kLanes;
     const int n = static_cast<int>(std::min<Index>(kLanes, b.count - k0));
     Index idx[kLanes];  // a short last group repeats its last point in the unused lanes

@@ -22,9 +22,9 @@ void ActiveBlocks::mark(const Vec3* x, Index n, int reach) {
   // Points come sorted by cell (MpmSolver::sort_by_cell), and neighbouring cells mostly reach the
   // same blocks (eight cells a block along x), so a run of points marks its blocks once: each
   // chunk remembers the last range of blocks it marked.
-  constexpr Index kChunk = 1024;
+  constexpr Index kChunk = kPointChunk;  // the common split of the point passes
   const Index chunks = (n + kChunk - 1) / kChunk;
-  for_each_chunk(chunks, [&](Index ch) {
+  for_each_point_chunk(chunks, [&](Index ch) {
     int last_lo[3] = {-1, -1, -1}, last_hi[3] = {-1, -1, -1};
     for (Index p = ch * kChunk; p < std::min(n, (ch + 1) * kChunk); ++p) {
       int lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};

@@ -600,8 +600,8 @@ void MpmSolver::velocity_gradient_from_grid(double dt, bool move) {
   if constexpr (K == ShapeKind::Linear && Dim == 3 && !G) {
     if (grid_.fields == 1) {
       // Eight points per vector (mpm/gradient_linear_3d.hpp): the loop below's sums to round-off.
-      constexpr Index kChunk = 512;
-      for_each_chunk((n + kChunk - 1) / kChunk, [&](Index c) {
+      constexpr Index kChunk = kPointChunk;
+      for_each_point_chunk((n + kChunk - 1) / kChunk, [&](Index c) {
         const Index end = std::min(n, (c + 1) * kChunk);
         Mat3 l[kGradientGroup];
         for (Index p0 = c * kChunk; p0 < end; p0 += kGradientGroup) {

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -98,6 +99,49 @@ TEST(Parallel, ForEachVisitsEveryIndexExactlyOnce) {
     for (Index i = 5; i < n + 5; ++i) ASSERT_EQ(hits[i], 1) << i;
   }
 }
+
+TEST(Parallel, UnevenLocalVisitsEveryIndexExactlyOnce) {
+  ThreadGuard guard;
+  // Below the threshold (serial), one chunk, a partial last chunk, more chunks than threads, and
+  // an uneven cost (the first eighth of the indices 200 times dearer), so that a thread finishes
+  // its own run early and takes chunks from the other's.
+  for (int threads : {1, 2, 3}) {
+    set_threads(threads);
+    for (Index n : {Index(10), Index(kPointChunk), Index(23 * kPointChunk + 17), Index(40 * kPointChunk)}) {
+      std::vector<std::atomic<int>> hits(n + 3);
+      for (auto& h : hits) h.store(0);
+      std::vector<double> sink(n + 3, 0.0);
+      for_each_uneven_local(3, n + 3, 8, kPointChunk, [&](Index i) {
+        double x = 1.0;
+        const int work = i < 3 + n / 8 ? 200 : 1;
+        for (int k = 0; k < work; ++k) x = std::sqrt(x + static_cast<double>(k));
+        sink[i] = x;
+        hits[i].fetch_add(1);
+      });
+      for (Index i = 0; i < 3; ++i) EXPECT_EQ(hits[i].load(), 0);
+      for (Index i = 3; i < n + 3; ++i) ASSERT_EQ(hits[i].load(), 1) << "threads " << threads << " n " << n << " i " << i;
+    }
+  }
+}
+
+#ifdef _OPENMP
+TEST(Parallel, PointChunksFollowOpenMpStaticSplit) {
+  // for_each_uneven_local starts each thread on the run OpenMP's static schedule gives it in
+  // for_each_point_chunk (and for_each), so that the passes of a step keep each point on one core.
+  ThreadGuard guard;
+  for (int threads : {2, 3}) {
+    set_threads(threads);
+    for (Index nchunk : {Index(2), Index(3), Index(23), Index(64)}) {
+      std::vector<int> owner(nchunk, -1);
+      for_each_point_chunk(nchunk, [&](Index c) { owner[c] = omp_get_thread_num(); });
+      for (int r = 0; r < threads; ++r)
+        for (Index c = static_run_begin(nchunk, threads, r); c < static_run_begin(nchunk, threads, r + 1); ++c)
+          EXPECT_EQ(owner[c], r) << "threads " << threads << " chunks " << nchunk << " chunk " << c;
+      EXPECT_EQ(static_run_begin(nchunk, threads, threads), nchunk);
+    }
+  }
+}
+#endif
 
 #ifdef _OPENMP
 TEST(Parallel, SetThreadsChangesMaxThreads) {
