@@ -127,7 +127,7 @@ TEST(Parallel, UnevenLocalVisitsEveryIndexExactlyOnce) {
 #ifdef _OPENMP
 TEST(Parallel, PointChunksFollowOpenMpStaticSplit) {
   // for_each_uneven_local starts each thread on the run OpenMP's static schedule gives it in
-  // for_each_point_chunk (and for_each), so that the passes of a step keep each point on one core.
+  // for_each_point_chunk, so that the passes of a step keep each point on one core.
   ThreadGuard guard;
   for (int threads : {2, 3}) {
     set_threads(threads);
