@@ -90,19 +90,11 @@ inline void for_each_point_chunk(Index nchunk, F&& f) {
   for (Index c = 0; c < nchunk; ++c) f(c);
 }
 
-/// for_each_uneven (below) with its own threshold (iterations below which the loop runs on the
-/// calling thread) and chunk, for iterations that each do the work of several (a group of lanes).
-template <class F>
-inline void for_each_uneven_chunked(Index begin, Index end, Index threshold, int chunk, F&& f) {
-#pragma omp parallel for schedule(dynamic, chunk) if (end - begin > threshold)
-  for (Index i = begin; i < end; ++i) f(i);
-}
-
-/// for_each_uneven_chunked for a pass over points whose cost clusters (a material update: the
-/// yielding points of a crater sit together, points being sorted by cell) that keeps the common
-/// split (kPointChunk, when `chunk` iterations are kPointChunk points): thread t first takes its
-/// own run of chunks, in order, then helps with the chunks the others have not yet taken. Which
-/// thread runs a chunk never changes what it computes.
+/// A pass over points whose cost clusters (a material update: the yielding points of a crater sit
+/// together, points being sorted by cell) that keeps the common split (kPointChunk, when `chunk`
+/// iterations are kPointChunk points; serial up to `threshold` iterations): thread t first takes
+/// its own run of chunks, in order, then helps with the chunks the others have not yet taken.
+/// Which thread runs a chunk never changes what it computes.
 template <class F>
 inline void for_each_uneven_local(Index begin, Index end, Index threshold, Index chunk, F&& f) {
   const Index n = end - begin;
@@ -142,7 +134,8 @@ inline void for_each_uneven_local(Index begin, Index end, Index threshold, Index
 /// thread with most of the work.
 template <class F>
 inline void for_each_uneven(Index begin, Index end, F&& f) {
-  for_each_uneven_chunked(begin, end, kParallelThreshold, 512, f);
+#pragma omp parallel for schedule(dynamic, 512) if (end - begin > kParallelThreshold)
+  for (Index i = begin; i < end; ++i) f(i);
 }
 
 /// Chunk size for reductions: fixed, so chunk boundaries (and thus round-off) do not depend on
