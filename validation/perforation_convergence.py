@@ -17,7 +17,7 @@ where the spent jet lies). Long (the finest level takes tens of minutes on 2 cor
 A level that takes hours can be checkpointed and continued after an interruption:
 
   ... --set output.checkpoint_interval=5e-6            # first run, cut short
-  ... --set output.checkpoint_interval=5e-6 --resume   # continues each level that has no summary
+  ... --set output.checkpoint_interval=5e-6 --resume   # continues each level that has no completed summary
 
   /usr/bin/python3 validation/perforation_convergence.py --ballista build/ballista --out out/perfconv
 
@@ -56,13 +56,21 @@ def level_sets(h, far, band, path):
     return [f"grid.cell_size={far!r}", f"grid.refine={zones}"]
 
 
+def level_done(out):
+    """Whether the level in `out` has its answer. A run stopped by a signal or a failure writes its
+    summary too (status "interrupted" or "failed"): only a completed run's summary is one."""
+    summary = os.path.join(out, "summary.json")
+    return os.path.exists(summary) and json.load(open(summary)).get("status") == "completed"
+
+
 def run_level(a, h):
     out = os.path.join(a.out, f"h_{h * 1e3:g}mm")
     summary = os.path.join(out, "summary.json")
-    if a.reuse and os.path.exists(summary):
+    done = level_done(out)
+    if a.reuse and done:
         return json.load(open(summary)), None
     checkpoints = os.path.join(out, "checkpoints")
-    if a.resume and not os.path.exists(summary) and os.path.isdir(checkpoints) and os.listdir(checkpoints):
+    if a.resume and not done and os.path.isdir(checkpoints) and os.listdir(checkpoints):
         # A level cut short (a machine restart, a session's end) continues from its newest
         # checkpoint: the deck and the level's overrides are the checkpoint's (docs/restart.md).
         cmd = [a.ballista, "run", "--restart", out, "-q", "--no-plots", "--threads", str(a.threads)]

@@ -15,7 +15,11 @@
   representable numbers, to 1e-12 m.
 - Richardson: f(h) = f0 + c h^2 at h, h/2, h/4 gives the observed order 2 and the estimate f0 to
   round-off (Roache 1998, ch. 5); differences that grow give no estimate; a non-monotone sequence
-  gives no order."""
+  gives no order.
+- A level is done only when its summary says "completed": a run stopped by a signal writes
+  summary.json too (status "interrupted"), and `--reuse` must not take it for an answer nor
+  `--resume` skip it."""
+import json
 import os
 import sys
 
@@ -89,7 +93,7 @@ def write_tunnel(run_dir):
 
 def main():
     a = script_args.parse()
-    from perforation_convergence import final_points, jet_at_bottom, richardson, tunnel_depth
+    from perforation_convergence import final_points, jet_at_bottom, level_done, richardson, tunnel_depth
     pen = {"penetrator": "jet", "target": "rock", "surface": SURFACE}
     failures = 0
 
@@ -128,6 +132,20 @@ def main():
     p, est = richardson(10.0, 12.0, 11.0)
     ok = p is None and est is None
     print(f"not monotone: no order: {'ok' if ok else 'FAIL'}")
+    failures += not ok
+    states = {}
+    for status in ("completed", "interrupted", "failed", None):
+        level = os.path.join(a.out, f"level_{status}")
+        os.makedirs(level, exist_ok=True)
+        summary = os.path.join(level, "summary.json")
+        if status is None:
+            if os.path.exists(summary):
+                os.remove(summary)
+        else:
+            open(summary, "w").write(json.dumps({"status": status}))
+        states[status] = level_done(level)
+    ok = states == {"completed": True, "interrupted": False, "failed": False, None: False}
+    print(f"a level is done only when completed: {states}: {'ok' if ok else 'FAIL'}")
     failures += not ok
     sys.exit(1 if failures else 0)
 
