@@ -10,14 +10,16 @@ particle output, then reads the liner's particles by the station of the liner th
    a quarter of its initial radius) with Gurney's open-faced sandwich at the local explosive
    thickness normal to the liner, V = sqrt(2E) [((1 + 2 M/C)^3 + 1) / (6 (1 + M/C)) + M/C]^-1/2
    (R.W. Gurney, BRL Report 405, 1943; P.W. Cooper, Explosives Engineering, 1996, ch. 27).
-2. The steady collapse (Birkhoff, MacDougall, Pugh & Taylor, J. Appl. Phys. 19 (1948) 563; Pugh,
-   Eichelberger & Rostoker, J. Appl. Phys. 23 (1952) 532, without PER's unsteady term) from the
-   measured V0: Taylor's deflection sin(delta) = V0 / (2 U), U the speed at which the detonation
+2. The steady collapse (Birkhoff, MacDougall, Pugh & Taylor, J. Appl. Phys. 19 (1948) 563) from
+   the measured V0: Taylor's deflection sin(delta) = V0 / (2 U), U the speed at which the detonation
    sweeps the liner's outer surface (program burn from the point: U = D |P - P_det| / (s + y_a cos
    alpha)); the collapse angle beta = alpha + 2 delta; the jet velocity Vj = V0 cos(alpha + delta -
    beta/2) / sin(beta/2), the slug's Vs = V0 sin(alpha + delta - beta/2) / cos(beta/2) and the jet's
    share of the station's mass sin^2(beta/2). Simulated: the station's particles faster than the
-   collision point, (Vj + Vs)/2, at the end: their mass share and mean velocity.
+   collision point, (Vj + Vs)/2, at the end: their mass share and mean velocity. And the unsteady
+   collapse of Pugh, Eichelberger & Rostoker (J. Appl. Phys. 23 (1952) 532): the same relations
+   with the collapse angle of a liner whose V0 and delta change along it (per_collapse_angle, their
+   gradients between the stations), the station's jet split at PER's collision-point speed.
 3. The virtual origin: at the last two frames the jet's axial velocity against its position is a
    straight line v = (y - y0)/(t - t0) (every element left one point); the fit's r^2 and (y0, t0).
 
@@ -53,6 +55,41 @@ GURNEY = {"comp_b": 2700.0, "tnt": 2440.0}
 
 def gurney_open_sandwich(sqrt2e, m_over_c):
     return sqrt2e / math.sqrt(((1 + 2 * m_over_c) ** 3 + 1) / (6 * (1 + m_over_c)) + m_over_c)
+
+
+def per_collapse_angle(alpha, r0, v0, dv0, delta, ddelta, dT):
+    """Collapse angle beta of an element with PER's unsteady term (Pugh, Eichelberger & Rostoker,
+    J. Appl. Phys. 23 (1952) 532; in the form of Walters & Zukas, Fundamentals of Shaped Charges,
+    1989, ch. 2).
+
+    The element starts at distance r0 from the axis on a cone of half-angle alpha; x is its axial
+    position and every derivative is taken along x, between neighbouring elements: dv0 = dV0/dx,
+    ddelta = d(delta)/dx, dT = dT/dx (T the detonation's arrival: 1/(U cos alpha) for a sweep speed
+    U along the surface). It flies straight at V0 along the normal deflected by Taylor's delta,
+    theta = alpha + delta from the axis' normal, and reaches the axis after tau = r0 / (V0 cos
+    theta). At that instant the liner's profile through the collapse point is the curve of the
+    neighbouring elements' positions (x + V0 tau sin theta, r0 - V0 tau cos theta), tau = t - T(x);
+    its slope against the axis is tan beta:
+
+        tan beta = (tan alpha + V0 dT cos theta - tau (dv0 cos theta - V0 ddelta sin theta))
+                 / (1 - V0 dT sin theta + tau (dv0 sin theta + V0 ddelta cos theta)).
+
+    With dv0 = ddelta = 0 and dT = 1/(U cos alpha), V0 = 2 U sin delta, it is BMPT's steady beta =
+    alpha + 2 delta; with U constant (ddelta = tan(delta) dv0 / V0) and r0 = x tan alpha it is PER's
+    formula. A collapse velocity growing along the liner (dv0 > 0) narrows beta and speeds the jet."""
+    theta = alpha + delta
+    tau = r0 / (v0 * math.cos(theta))
+    num = math.tan(alpha) + v0 * dT * math.cos(theta) - tau * (dv0 * math.cos(theta) - v0 * ddelta * math.sin(theta))
+    den = 1.0 - v0 * dT * math.sin(theta) + tau * (dv0 * math.sin(theta) + v0 * ddelta * math.cos(theta))
+    return math.atan2(num, den)
+
+
+def jet_from_collapse(v0, alpha, delta, beta):
+    """Jet and slug velocities and the jet's mass share of an element collapsing at angle beta
+    (BMPT 1948 and PER 1952 alike: the steady relations in the collision point's frame)."""
+    vj = v0 * math.cos(alpha + delta - beta / 2) / math.sin(beta / 2)
+    vs = v0 * math.sin(alpha + delta - beta / 2) / math.cos(beta / 2)
+    return vj, vs, math.sin(beta / 2) ** 2
 
 
 def charge_geometry(resolved):
@@ -125,7 +162,7 @@ def analyse(run, n_stations=8):
         m = M[sel]
         return float(np.sum(m * X[sel, 0]) / m.sum()), np.sum(m[:, None] * V[sel, :2], axis=0) / m.sum()
 
-    rows = []
+    stations = []
     for k in range(n_stations):
         sm = 0.5 * (edges[k] + edges[k + 1])
         # Collapse velocity: largest centre-of-mass speed while the station is above a quarter of its radius.
@@ -147,25 +184,42 @@ def analyse(run, n_stations=8):
         t_e = min(t_side, t_back)
         m_over_c = g["rho_liner"] * t_l / (g["rho_explosive"] * t_e)
         v_gurney = gurney_open_sandwich(g["sqrt2e"], m_over_c) if g["sqrt2e"] else float("nan")
-        # Sweep speed of the detonation along the outer surface, Taylor's deflection, steady BMPT.
+        # Sweep speed of the detonation along the outer surface and Taylor's deflection.
         dist = math.hypot(p[0] - det[0], p[1] - det[1])
         U = D * dist / ((p[0] - det[0]) * math.sin(a) + (p[1] - det[1]) * math.cos(a))
         delta = math.asin(min(1.0, v0 / (2 * U)))
-        beta = a + 2 * delta
-        vj = v0 * math.cos(a + delta - beta / 2) / math.sin(beta / 2)
-        vs = v0 * math.sin(a + delta - beta / 2) / math.cos(beta / 2)
-        share = math.sin(beta / 2) ** 2
+        stations.append({"s": sm, "x": sm * math.cos(a), "r0": r_init, "v0": v0, "U": U, "delta": delta,
+                         "t_e": t_e, "m_over_c": m_over_c, "v_gurney": v_gurney})
+    # PER's unsteady term needs V0 and delta along the liner: their gradients between the stations
+    # (central differences inside, one-sided at the two ends).
+    xs = np.array([q["x"] for q in stations])
+    dv0 = np.gradient(np.array([q["v0"] for q in stations]), xs)
+    ddelta = np.gradient(np.array([q["delta"] for q in stations]), xs)
+    rows = []
+    for k, q in enumerate(stations):
+        v0, U, delta = q["v0"], q["U"], q["delta"]
+        beta = a + 2 * delta  # steady (BMPT)
+        vj, vs, share = jet_from_collapse(v0, a, delta, beta)
+        beta_per = per_collapse_angle(a, q["r0"], v0, dv0[k], delta, ddelta[k], 1.0 / (U * math.cos(a)))
+        vj_per, vs_per, share_per = jet_from_collapse(v0, a, delta, beta_per)
         t, st, X, V, M = series[-1]
         sel = st == k
         m, vy = M[sel], V[sel, 1]
         jet = vy > 0.5 * (vj + vs)
+        jet_per = vy > 0.5 * (vj_per + vs_per)
         m_station = mass_of_station[k]
         rows.append({
-            "s_mm": sm * 1e3, "explosive_mm": t_e * 1e3, "m_over_c": m_over_c, "v0": v0, "v0_gurney": v_gurney,
-            "sweep_speed": U, "delta_deg": math.degrees(delta), "beta_deg": math.degrees(beta),
-            "vj_theory": vj, "vs_theory": vs, "jet_share_theory": share,
+            "s_mm": q["s"] * 1e3, "explosive_mm": q["t_e"] * 1e3, "m_over_c": q["m_over_c"], "v0": v0,
+            "v0_gurney": q["v_gurney"], "sweep_speed": U, "delta_deg": math.degrees(delta),
+            "beta_deg": math.degrees(beta), "vj_theory": vj, "vs_theory": vs, "jet_share_theory": share,
+            "dv0_dx": float(dv0[k]), "beta_per_deg": math.degrees(beta_per), "vj_per": vj_per, "vs_per": vs_per,
+            "jet_share_per": share_per,
             "vj_sim": float(np.sum(m[jet] * vy[jet]) / m[jet].sum()) if jet.any() else float("nan"),
-            "jet_share_sim": float(m[jet].sum() / m_station), "points": int(np.count_nonzero(station0 == k)),
+            "jet_share_sim": float(m[jet].sum() / m_station),
+            # The same station's jet split at PER's collision-point speed (its slug is slower).
+            "vj_sim_per": float(np.sum(m[jet_per] * vy[jet_per]) / m[jet_per].sum()) if jet_per.any() else float("nan"),
+            "jet_share_sim_per": float(m[jet_per].sum() / m_station),
+            "points": int(np.count_nonzero(station0 == k)),
         })
     # Virtual origin: v against y over the jet (faster than 2 km/s and ahead of the slug) at the last two frames.
     origin = []
@@ -208,13 +262,15 @@ def plot(res, path, snap_path):
     ax[0].plot(s, [r["v0"] for r in st], "o-", label="collapse velocity $V_0$, MPM")
     ax[0].plot(s, [r["v0_gurney"] for r in st], "s--", label="Gurney, open-faced sandwich at the local C/M")
     ax[0].plot(s, [r["vj_sim"] for r in st], "o-", label="jet velocity from the station, MPM")
-    ax[0].plot(s, [r["vj_theory"] for r in st], "s--", label="BMPT jet velocity from $V_0$")
+    ax[0].plot(s, [r["vj_theory"] for r in st], "s--", label="BMPT jet velocity from $V_0$ (steady)")
+    ax[0].plot(s, [r["vj_per"] for r in st], "^:", label="PER jet velocity from $V_0$ and its gradient")
     ax[0].set_xlabel("station: distance from the apex along the liner (mm)")
     ax[0].set_ylabel("m/s")
     ax[0].legend(fontsize=7)
     ax[0].grid(alpha=0.3)
     ax[1].plot(s, [r["jet_share_sim"] for r in st], "o-", label="jet share of the station's mass, MPM")
     ax[1].plot(s, [r["jet_share_theory"] for r in st], "s--", label=r"$\sin^2(\beta/2)$ (BMPT)")
+    ax[1].plot(s, [r["jet_share_per"] for r in st], "^:", label=r"$\sin^2(\beta/2)$ (PER)")
     ax[1].set_xlabel("station (mm)")
     ax[1].set_ylabel("mass fraction")
     ax[1].legend(fontsize=7)
@@ -237,6 +293,9 @@ def plot(res, path, snap_path):
     scale = jet["liner_mass"] * 0.8 / sum(r["s_mm"] for r in st)
     ax[3].plot([t[0] for t in th], np.cumsum([t[1] * scale for t in th]) * 1e3, "s--",
                label="BMPT, stations sorted by their jet velocity")
+    th = sorted(((r["vj_per"], r["jet_share_per"] * r["s_mm"]) for r in st), reverse=True)
+    ax[3].plot([t[0] for t in th], np.cumsum([t[1] * scale for t in th]) * 1e3, "^:",
+               label="PER, stations sorted by their jet velocity")
     ax[3].set_xlabel("velocity (m/s)")
     ax[3].set_ylabel("cumulative jet mass (g)")
     ax[3].legend(fontsize=7)
@@ -286,11 +345,14 @@ def main():
     res = analyse(run, a.stations)
     json.dump(res, open(os.path.join(run, "theory.json"), "w"), indent=1)
     print(f"{'s mm':>6} {'C/M':>5} {'V0':>6} {'Gurney':>6} {'ratio':>6} {'beta':>5} {'Vj th':>6}"
-          f" {'Vj sim':>6} {'ratio':>6} {'share th':>8} {'sim':>6}")
+          f" {'Vj sim':>6} {'ratio':>6} {'share th':>8} {'sim':>6} | {'PER beta':>8} {'Vj PER':>6}"
+          f" {'Vj sim':>6} {'ratio':>6} {'share PER':>9} {'sim':>6}")
     for r in res["stations"]:
         print(f"{r['s_mm']:6.1f} {1 / r['m_over_c']:5.2f} {r['v0']:6.0f} {r['v0_gurney']:6.0f}"
               f" {r['v0'] / r['v0_gurney']:6.3f} {r['beta_deg']:5.1f} {r['vj_theory']:6.0f} {r['vj_sim']:6.0f}"
-              f" {r['vj_sim'] / r['vj_theory']:6.3f} {r['jet_share_theory']:8.3f} {r['jet_share_sim']:6.3f}")
+              f" {r['vj_sim'] / r['vj_theory']:6.3f} {r['jet_share_theory']:8.3f} {r['jet_share_sim']:6.3f} |"
+              f" {r['beta_per_deg']:8.1f} {r['vj_per']:6.0f} {r['vj_sim_per']:6.0f} {r['vj_sim_per'] / r['vj_per']:6.3f}"
+              f" {r['jet_share_per']:9.3f} {r['jet_share_sim_per']:6.3f}")
     for o in res["origin_fits"]:
         print(f"t = {o['time'] * 1e6:.2f} us: v = {o['slope']:.4g} y + {o['intercept']:.4g}, r^2 = {o['r2']:.4f}, "
               f"tip {o['tip_velocity']:.0f} m/s, {o['jet_points']} jet points")
