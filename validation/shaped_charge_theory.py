@@ -166,7 +166,7 @@ def analyse(run, n_stations=8):
     for k in range(n_stations):
         sm = 0.5 * (edges[k] + edges[k + 1])
         # Collapse velocity: largest centre-of-mass speed while the station is above a quarter of its radius.
-        r_init, v0 = None, 0.0
+        r_init, v0, history = None, 0.0, []
         for frame in series:
             c = centre(k, frame)
             if c is None:
@@ -177,6 +177,12 @@ def analyse(run, n_stations=8):
             if rc < 0.25 * r_init:
                 break
             v0 = max(v0, float(np.hypot(vc[0], vc[1])))
+            history.append(vc)
+        # The deflection the station took in free flight: its velocity when it first reaches 90 % of
+        # V0 (accelerated, not yet turned by the collision) against the liner's inward normal
+        # (-cos alpha, sin alpha) in (r, y), positive towards the detonation's travel.
+        flight = next((vc for vc in history if np.hypot(vc[0], vc[1]) >= 0.9 * v0), None)
+        delta_sim = math.atan2(flight[1], -flight[0]) - a if flight is not None else float("nan")
         # Gurney at the local explosive thickness normal to the outer surface (to the charge's side or back).
         p = (sm * math.sin(a), ya + sm * math.cos(a))
         t_side = (g["charge_radius"] - p[0]) / math.cos(a)
@@ -189,6 +195,7 @@ def analyse(run, n_stations=8):
         U = D * dist / ((p[0] - det[0]) * math.sin(a) + (p[1] - det[1]) * math.cos(a))
         delta = math.asin(min(1.0, v0 / (2 * U)))
         stations.append({"s": sm, "x": sm * math.cos(a), "r0": r_init, "v0": v0, "U": U, "delta": delta,
+                         "delta_sim": delta_sim,
                          "t_e": t_e, "m_over_c": m_over_c, "v_gurney": v_gurney})
     # PER's unsteady term needs V0 and delta along the liner: their gradients between the stations
     # (central differences inside, one-sided at the two ends).
@@ -211,6 +218,7 @@ def analyse(run, n_stations=8):
         rows.append({
             "s_mm": q["s"] * 1e3, "explosive_mm": q["t_e"] * 1e3, "m_over_c": q["m_over_c"], "v0": v0,
             "v0_gurney": q["v_gurney"], "sweep_speed": U, "delta_deg": math.degrees(delta),
+            "delta_sim_deg": math.degrees(q["delta_sim"]),
             "beta_deg": math.degrees(beta), "vj_theory": vj, "vs_theory": vs, "jet_share_theory": share,
             "dv0_dx": float(dv0[k]), "beta_per_deg": math.degrees(beta_per), "vj_per": vj_per, "vs_per": vs_per,
             "jet_share_per": share_per,
