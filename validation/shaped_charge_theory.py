@@ -19,7 +19,9 @@ particle output, then reads the liner's particles by the station of the liner th
    collision point, (Vj + Vs)/2, at the end: their mass share and mean velocity. And the unsteady
    collapse of Pugh, Eichelberger & Rostoker (J. Appl. Phys. 23 (1952) 532): the same relations
    with the collapse angle of a liner whose V0 and delta change along it (per_collapse_angle, their
-   gradients between the stations), the station's jet split at PER's collision-point speed.
+   gradients between the stations), the station's jet split at PER's collision-point speed; and PER
+   with each station's own acceleration (V = V0 (1 - exp(-(t - t0)/tau)) fitted to its speed
+   history before the collision; accelerated_collapse), the jet relations at the arrival speed.
 3. The virtual origin: at the last two frames the jet's axial velocity against its position is a
    straight line v = (y - y0)/(t - t0) (every element left one point); the fit's r^2 and (y0, t0).
 
@@ -82,6 +84,59 @@ def per_collapse_angle(alpha, r0, v0, dv0, delta, ddelta, dT):
     num = math.tan(alpha) + v0 * dT * math.cos(theta) - tau * (dv0 * math.cos(theta) - v0 * ddelta * math.sin(theta))
     den = 1.0 - v0 * dT * math.sin(theta) + tau * (dv0 * math.sin(theta) + v0 * ddelta * math.cos(theta))
     return math.atan2(num, den)
+
+
+def accelerated_collapse(alpha, r0, v0, dv0, delta, ddelta, t0, dt0, tau, dtau):
+    """Collapse angle beta and arrival speed of an element that accelerates as
+    V(t) = V0 (1 - exp(-(t - t0)/tau)) (the exponential history of Randers-Pehrson, used by Chou,
+    Carleone, Hirsch, Flis & Ciccarelli, Propellants Explos. Pyrotech. 8 (1983) 175) along PER's
+    straight path, instead of reaching V0 at once. Same construction as per_collapse_angle: the
+    element flies s = V0 g(t - t0), g(u) = u - tau (1 - exp(-u/tau)), along theta = alpha + delta
+    from the axis' normal, reaches the axis when s = r0 / cos theta, and beta is the slope of its
+    neighbours' positions (x + s sin theta, r0 - s cos theta) at that instant; every derivative
+    (dv0, ddelta, dt0 = dt0/dx, dtau) is along the axis, between neighbouring elements. With tau -> 0
+    it is per_collapse_angle with T = t0. Returns (beta, the speed on arrival)."""
+    theta = alpha + delta
+    path = r0 / math.cos(theta)
+
+    def g(u):
+        return u - tau * -math.expm1(-u / tau)
+
+    # g is increasing and convex from g(0) = 0: bracket and bisect the arrival, then polish by Newton.
+    lo, hi = 0.0, path / v0 + tau
+    while g(hi) * v0 < path:
+        hi *= 2.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if g(mid) * v0 < path:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo <= 1e-15 * hi:
+            break
+    u = 0.5 * (lo + hi)
+    e = math.exp(-u / tau)
+    g_u, g_tau = 1.0 - e, -(1.0 - e) + (u / tau) * e  # dg/du, dg/dtau
+    ds = dv0 * g(u) - v0 * g_u * dt0 + v0 * g_tau * dtau  # d s / dx at fixed t
+    s = v0 * g(u)
+    dz = 1.0 + ds * math.sin(theta) + s * math.cos(theta) * ddelta
+    dr = math.tan(alpha) - ds * math.cos(theta) + s * math.sin(theta) * ddelta
+    return math.atan2(dr, dz), v0 * g_u
+
+
+def fit_acceleration(times, speeds):
+    """V0, t0 and tau of V(t) = V0 (1 - exp(-(t - t0)/tau)) (zero before t0) fitted by least squares to
+    a station's speed history up to its largest speed."""
+    from scipy.optimize import curve_fit
+
+    def model(t, V0, t0, tau):
+        return np.where(t > t0, V0 * -np.expm1(-(t - t0) / np.abs(tau)), 0.0)
+
+    t, v = np.asarray(times), np.asarray(speeds)
+    start = t[np.argmax(v > 0.05 * v.max())]
+    p, _ = curve_fit(model, t, v, p0=[v.max(), start - 0.2e-6, 0.8e-6], maxfev=20000)
+    rms = float(np.sqrt(np.mean((model(t, *p) - v) ** 2)))
+    return float(p[0]), float(p[1]), abs(float(p[2])), rms
 
 
 def jet_from_collapse(v0, alpha, delta, beta):
@@ -177,11 +232,15 @@ def analyse(run, n_stations=8):
             if rc < 0.25 * r_init:
                 break
             v0 = max(v0, float(np.hypot(vc[0], vc[1])))
-            history.append(vc)
+            history.append((frame[0], vc))
         # The deflection the station took in free flight: its velocity when it first reaches 90 % of
         # V0 (accelerated, not yet turned by the collision) against the liner's inward normal
         # (-cos alpha, sin alpha) in (r, y), positive towards the detonation's travel.
-        flight = next((vc for vc in history if np.hypot(vc[0], vc[1]) >= 0.9 * v0), None)
+        flight = next((vc for _, vc in history if np.hypot(vc[0], vc[1]) >= 0.9 * v0), None)
+        # The acceleration history up to the largest speed (after it the collision turns the station).
+        speeds = [float(np.hypot(vc[0], vc[1])) for _, vc in history]
+        upto = int(np.argmax(speeds)) + 1
+        v_fit, t0_fit, tau_fit, rms_fit = fit_acceleration([t for t, _ in history[:upto]], speeds[:upto])
         delta_sim = math.atan2(flight[1], -flight[0]) - a if flight is not None else float("nan")
         # Gurney at the local explosive thickness normal to the outer surface (to the charge's side or back).
         p = (sm * math.sin(a), ya + sm * math.cos(a))
@@ -195,13 +254,19 @@ def analyse(run, n_stations=8):
         U = D * dist / ((p[0] - det[0]) * math.sin(a) + (p[1] - det[1]) * math.cos(a))
         delta = math.asin(min(1.0, v0 / (2 * U)))
         stations.append({"s": sm, "x": sm * math.cos(a), "r0": r_init, "v0": v0, "U": U, "delta": delta,
-                         "delta_sim": delta_sim,
+                         "delta_sim": delta_sim, "v_fit": v_fit, "t0_fit": t0_fit, "tau_fit": tau_fit,
+                         "rms_fit": rms_fit, "delta_fit": math.asin(min(1.0, v_fit / (2 * U))),
                          "t_e": t_e, "m_over_c": m_over_c, "v_gurney": v_gurney})
     # PER's unsteady term needs V0 and delta along the liner: their gradients between the stations
     # (central differences inside, one-sided at the two ends).
     xs = np.array([q["x"] for q in stations])
     dv0 = np.gradient(np.array([q["v0"] for q in stations]), xs)
     ddelta = np.gradient(np.array([q["delta"] for q in stations]), xs)
+    # The same with each station's fitted acceleration (its terminal V0, start t0 and time constant tau).
+    dv_fit = np.gradient(np.array([q["v_fit"] for q in stations]), xs)
+    ddelta_fit = np.gradient(np.array([q["delta_fit"] for q in stations]), xs)
+    dt0_fit = np.gradient(np.array([q["t0_fit"] for q in stations]), xs)
+    dtau_fit = np.gradient(np.array([q["tau_fit"] for q in stations]), xs)
     rows = []
     for k, q in enumerate(stations):
         v0, U, delta = q["v0"], q["U"], q["delta"]
@@ -209,11 +274,15 @@ def analyse(run, n_stations=8):
         vj, vs, share = jet_from_collapse(v0, a, delta, beta)
         beta_per = per_collapse_angle(a, q["r0"], v0, dv0[k], delta, ddelta[k], 1.0 / (U * math.cos(a)))
         vj_per, vs_per, share_per = jet_from_collapse(v0, a, delta, beta_per)
+        beta_acc, v_arrival = accelerated_collapse(a, q["r0"], q["v_fit"], dv_fit[k], q["delta_fit"], ddelta_fit[k],
+                                                   q["t0_fit"], dt0_fit[k], q["tau_fit"], dtau_fit[k])
+        vj_acc, vs_acc, share_acc = jet_from_collapse(v_arrival, a, q["delta_fit"], beta_acc)
         t, st, X, V, M = series[-1]
         sel = st == k
         m, vy = M[sel], V[sel, 1]
         jet = vy > 0.5 * (vj + vs)
         jet_per = vy > 0.5 * (vj_per + vs_per)
+        jet_acc = vy > 0.5 * (vj_acc + vs_acc)
         m_station = mass_of_station[k]
         rows.append({
             "s_mm": q["s"] * 1e3, "explosive_mm": q["t_e"] * 1e3, "m_over_c": q["m_over_c"], "v0": v0,
@@ -227,6 +296,11 @@ def analyse(run, n_stations=8):
             # The same station's jet split at PER's collision-point speed (its slug is slower).
             "vj_sim_per": float(np.sum(m[jet_per] * vy[jet_per]) / m[jet_per].sum()) if jet_per.any() else float("nan"),
             "jet_share_sim_per": float(m[jet_per].sum() / m_station),
+            "v0_fit": q["v_fit"], "t0_fit_us": q["t0_fit"] * 1e6, "tau_fit_us": q["tau_fit"] * 1e6,
+            "fit_rms": q["rms_fit"], "v_arrival": v_arrival, "beta_acc_deg": math.degrees(beta_acc),
+            "vj_acc": vj_acc, "vs_acc": vs_acc, "jet_share_acc": share_acc,
+            "vj_sim_acc": float(np.sum(m[jet_acc] * vy[jet_acc]) / m[jet_acc].sum()) if jet_acc.any() else float("nan"),
+            "jet_share_sim_acc": float(m[jet_acc].sum() / m_station),
             "points": int(np.count_nonzero(station0 == k)),
         })
     # Virtual origin: v against y over the jet (faster than 2 km/s and ahead of the slug) at the last two frames.
@@ -272,13 +346,15 @@ def plot(res, path, snap_path):
     ax[0].plot(s, [r["vj_sim"] for r in st], "o-", label="jet velocity from the station, MPM")
     ax[0].plot(s, [r["vj_theory"] for r in st], "s--", label="BMPT jet velocity from $V_0$ (steady)")
     ax[0].plot(s, [r["vj_per"] for r in st], "^:", label="PER jet velocity from $V_0$ and its gradient")
+    ax[0].plot(s, [r["vj_acc"] for r in st], "v-.", label="PER with each station's fitted acceleration")
     ax[0].set_xlabel("station: distance from the apex along the liner (mm)")
     ax[0].set_ylabel("m/s")
     ax[0].legend(fontsize=7)
     ax[0].grid(alpha=0.3)
-    ax[1].plot(s, [r["jet_share_sim"] for r in st], "o-", label="jet share of the station's mass, MPM")
+    ax[1].plot(s, [r["jet_share_sim"] for r in st], "o-", label="jet share of the station's mass, MPM (split at BMPT's collision speed)")
     ax[1].plot(s, [r["jet_share_theory"] for r in st], "s--", label=r"$\sin^2(\beta/2)$ (BMPT)")
     ax[1].plot(s, [r["jet_share_per"] for r in st], "^:", label=r"$\sin^2(\beta/2)$ (PER)")
+    ax[1].plot(s, [r["jet_share_acc"] for r in st], "v-.", label=r"$\sin^2(\beta/2)$ (PER, fitted acceleration)")
     ax[1].set_xlabel("station (mm)")
     ax[1].set_ylabel("mass fraction")
     ax[1].legend(fontsize=7)
@@ -304,6 +380,9 @@ def plot(res, path, snap_path):
     th = sorted(((r["vj_per"], r["jet_share_per"] * r["s_mm"]) for r in st), reverse=True)
     ax[3].plot([t[0] for t in th], np.cumsum([t[1] * scale for t in th]) * 1e3, "^:",
                label="PER, stations sorted by their jet velocity")
+    th = sorted(((r["vj_acc"], r["jet_share_acc"] * r["s_mm"]) for r in st), reverse=True)
+    ax[3].plot([t[0] for t in th], np.cumsum([t[1] * scale for t in th]) * 1e3, "v-.",
+               label="PER with the fitted acceleration")
     ax[3].set_xlabel("velocity (m/s)")
     ax[3].set_ylabel("cumulative jet mass (g)")
     ax[3].legend(fontsize=7)
@@ -361,6 +440,12 @@ def main():
               f" {r['vj_sim'] / r['vj_theory']:6.3f} {r['jet_share_theory']:8.3f} {r['jet_share_sim']:6.3f} |"
               f" {r['beta_per_deg']:8.1f} {r['vj_per']:6.0f} {r['vj_sim_per']:6.0f} {r['vj_sim_per'] / r['vj_per']:6.3f}"
               f" {r['jet_share_per']:9.3f} {r['jet_share_sim_per']:6.3f}")
+    print(f"{'s mm':>6} {'V0 fit':>6} {'t0 us':>6} {'tau us':>6} {'rms':>5} {'beta':>5} {'Vj acc':>6} {'Vj sim':>6}"
+          f" {'ratio':>6} {'share':>6} {'sim':>6}   (PER with each station's fitted acceleration)")
+    for r in res["stations"]:
+        print(f"{r['s_mm']:6.1f} {r['v0_fit']:6.0f} {r['t0_fit_us']:6.2f} {r['tau_fit_us']:6.2f} {r['fit_rms']:5.0f}"
+              f" {r['beta_acc_deg']:5.1f} {r['vj_acc']:6.0f} {r['vj_sim_acc']:6.0f} {r['vj_sim_acc'] / r['vj_acc']:6.3f}"
+              f" {r['jet_share_acc']:6.3f} {r['jet_share_sim_acc']:6.3f}")
     for o in res["origin_fits"]:
         print(f"t = {o['time'] * 1e6:.2f} us: v = {o['slope']:.4g} y + {o['intercept']:.4g}, r^2 = {o['r2']:.4f}, "
               f"tip {o['tip_velocity']:.0f} m/s, {o['jet_points']} jet points")

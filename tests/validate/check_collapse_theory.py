@@ -11,6 +11,10 @@
   h = 1e-6 m); the bound 1e-6 rad leaves room for the finite-difference round-off (1e-16 / 1e-6).
 - The steady limit (V0 and delta constant along the liner, the sweep along a cone lit by a plane
   wave): beta = alpha + 2 delta to round-off (BMPT 1948).
+- The accelerating element (V = V0 (1 - exp(-(t - t0)/tau)), with V0, t0 and tau changing along
+  the liner) against the same construction, the neighbours flown along their own histories; and
+  its tau -> 0 limit (tau = 1e-12 s) against PER's angle with T = t0 (to 1e-9 rad: the limit's
+  own error is tau-sized).
 - With U constant the formula is PER's as Walters & Zukas write it (ch. 2):
   tan beta = [sin a + 2 sin d cos(a + d) - x sin a (1 - tan(a + d) tan d) V0'/V0]
            / [cos a - 2 sin d sin(a + d) + x sin a (tan(a + d) + tan d) V0'/V0], to round-off."""
@@ -20,9 +24,24 @@ import sys
 import script_args
 
 
+def brent(f, a, b):
+    """Root of f in [a, b] by bisection to round-off (f changes sign once there)."""
+    fa = f(a)
+    for _ in range(200):
+        m = 0.5 * (a + b)
+        fm = f(m)
+        if (fm > 0) == (fa > 0):
+            a, fa = m, fm
+        else:
+            b = m
+        if b - a <= 1e-16 * abs(b):
+            break
+    return 0.5 * (a + b)
+
+
 def main():
     script_args.parse()
-    from shaped_charge_theory import jet_from_collapse, per_collapse_angle
+    from shaped_charge_theory import accelerated_collapse, jet_from_collapse, per_collapse_angle
     failures = 0
     alpha, D, det_behind = math.radians(30.0), 7980.0, 0.012  # detonator on the axis 12 mm behind the apex
 
@@ -59,6 +78,42 @@ def main():
               f" steady {math.degrees(alpha + 2 * delta(x)):8.4f} deg")
     ok = worst < 1e-6
     print(f"PER against the built profile: largest difference {worst:.2e} rad (bound 1e-6): {'ok' if ok else 'FAIL'}")
+    failures += not ok
+
+    def tau(x):  # the acceleration's time constant grows along the liner
+        return 0.3e-6 + 30e-6 * x
+
+    def flown(x, t):
+        th = alpha + delta(x)
+        u = max(t - arrival(x), 0.0)
+        s = v0(x) * (u - tau(x) * -math.expm1(-u / tau(x)))
+        return x + s * math.sin(th), x * math.tan(alpha) - s * math.cos(th)
+
+    worst = worst_speed = 0.0
+    for x in (5e-3, 10e-3, 15e-3, 20e-3, 25e-3):
+        t_c = brent(lambda t: flown(x, t)[1], arrival(x), arrival(x) + 1e-4)
+        h = 1e-6
+        (z1, r1), (z2, r2) = flown(x - h, t_c), flown(x + h, t_c)
+        built = math.atan2(r2 - r1, z2 - z1)
+        e = 1e-5
+        d = lambda f: (f(x + e) - f(x - e)) / (2 * e)
+        beta, v_arr = accelerated_collapse(alpha, x * math.tan(alpha), v0(x), 6.0e4, delta(x), d(delta),
+                                           arrival(x), d(arrival), tau(x), 30e-6)
+        worst = max(worst, abs(beta - built))
+        u = t_c - arrival(x)
+        worst_speed = max(worst_speed, abs(v_arr - v0(x) * -math.expm1(-u / tau(x))) / v0(x))
+    ok = worst < 1e-6 and worst_speed < 1e-9
+    print(f"accelerating elements against the built profile: largest difference {worst:.2e} rad (bound 1e-6), "
+          f"arrival speed {worst_speed:.1e} of V0 (bound 1e-9): {'ok' if ok else 'FAIL'}")
+    failures += not ok
+    x = 15e-3
+    e = 1e-5
+    d = lambda f: (f(x + e) - f(x - e)) / (2 * e)
+    fast, _ = accelerated_collapse(alpha, x * math.tan(alpha), v0(x), 6.0e4, delta(x), d(delta), arrival(x),
+                                   d(arrival), 1e-12, 0.0)
+    per = per_collapse_angle(alpha, x * math.tan(alpha), v0(x), 6.0e4, delta(x), d(delta), d(arrival))
+    ok = abs(fast - per) < 1e-9
+    print(f"tau -> 0: {math.degrees(fast):.6f} deg against PER's {math.degrees(per):.6f} deg: {'ok' if ok else 'FAIL'}")
     failures += not ok
 
     worst = 0.0
