@@ -61,7 +61,7 @@ function(ballista_layer name)
 endfunction()
 
 # Bottom to top. Why this order (docs/architecture.md): io holds the writers (CSV, JSON, HDF5,
-# checkpoints, the results folder) on core alone, so every layer may write; the registries
+# checkpoints, the results folder) on core alone, so a layer that writes needs nothing else; the registries
 # (materials; solvers, probes, loads and initial states in points) sit below deck, so the deck
 # reader validates against them without naming an implementation.
 ballista_layer(core)

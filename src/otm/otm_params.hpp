@@ -7,7 +7,7 @@
 
 namespace ballista {
 
-/// The spec of every otm.* key, in the order docs/deck.md lists them.
+/// The spec of every otm.* key (the order `ballista info` lists them in).
 std::vector<ParamSpec> otm_params();
 
 /// The otm.* section as the solver uses it.
