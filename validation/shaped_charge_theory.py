@@ -94,8 +94,9 @@ def accelerated_collapse(alpha, r0, v0, dv0, delta, ddelta, t0, dt0, tau, dtau):
     element flies s = V0 g(t - t0), g(u) = u - tau (1 - exp(-u/tau)), along theta = alpha + delta
     from the axis' normal, reaches the axis when s = r0 / cos theta, and beta is the slope of its
     neighbours' positions (x + s sin theta, r0 - s cos theta) at that instant; every derivative
-    (dv0, ddelta, dt0 = dt0/dx, dtau) is along the axis, between neighbouring elements. With tau -> 0
-    it is per_collapse_angle with T = t0. Returns (beta, the speed on arrival)."""
+    (dv0, ddelta, dt0 = dt0/dx, dtau) is along the axis, between neighbouring elements. With tau and
+    dtau -> 0 it is per_collapse_angle with T = t0 (for a flight much longer than tau it is PER
+    started at t0 + tau). Returns (beta, the speed on arrival)."""
     theta = alpha + delta
     path = r0 / math.cos(theta)
 

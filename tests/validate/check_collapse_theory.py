@@ -6,15 +6,21 @@
   sweep speed U changes along the liner), each flying straight at its own V0(x) = 900 + 6e4 x m/s
   along the normal deflected by Taylor's delta = asin(V0 / 2U). At the instant an element reaches
   the axis, its two neighbours at x +- 1e-6 m are placed where they are then, and the angle of the
-  chord between them against the axis is the collapse angle. The formula is a first-order Taylor
-  expansion of that construction, so the two differ by O(h^2) of the chord (a few 1e-9 rad at
-  h = 1e-6 m); the bound 1e-6 rad leaves room for the finite-difference round-off (1e-16 / 1e-6).
+  chord between them against the axis is the collapse angle. The formula is the limit of that
+  chord; the two differ by a few 1e-9 rad, set by the central differences (step 1e-5 m) that give
+  the formula its delta' and T' (the chord's own O(h^2) is about 1e-11 rad). A sign error in any
+  one term moves beta by more than 0.02 rad, so the bound 1e-6 rad fails it.
 - The steady limit (V0 and delta constant along the liner, the sweep along a cone lit by a plane
   wave): beta = alpha + 2 delta to round-off (BMPT 1948).
 - The accelerating element (V = V0 (1 - exp(-(t - t0)/tau)), with V0, t0 and tau changing along
   the liner) against the same construction, the neighbours flown along their own histories; and
-  its tau -> 0 limit (tau = 1e-12 s) against PER's angle with T = t0 (to 1e-9 rad: the limit's
-  own error is tau-sized).
+  its tau -> 0 limit (tau = 1e-12 s, tau' = 0) against PER's angle with T = t0 (to 1e-9 rad: the
+  limit's own error is tau-sized).
+- The jet relations at an unsteady beta (BMPT's steady beta and two others): V1 +- V2 in the
+  collision point's frame, where the wall flows in along its own direction.
+- fit_acceleration on a history written from known V0, t0 and tau (frames every 0.25 us, as the
+  runs write them, up to the largest speed): recovered to 1e-6 relative (least squares on exact
+  data).
 - With U constant the formula is PER's as Walters & Zukas write it (ch. 2):
   tan beta = [sin a + 2 sin d cos(a + d) - x sin a (1 - tan(a + d) tan d) V0'/V0]
            / [cos a - 2 sin d sin(a + d) + x sin a (tan(a + d) + tan d) V0'/V0], to round-off."""
@@ -41,7 +47,7 @@ def brent(f, a, b):
 
 def main():
     script_args.parse()
-    from shaped_charge_theory import accelerated_collapse, jet_from_collapse, per_collapse_angle
+    from shaped_charge_theory import accelerated_collapse, fit_acceleration, jet_from_collapse, per_collapse_angle
     failures = 0
     alpha, D, det_behind = math.radians(30.0), 7980.0, 0.012  # detonator on the axis 12 mm behind the apex
 
@@ -144,12 +150,23 @@ def main():
     # moves along the axis at V1 = V0 cos(beta - alpha - delta) / sin(beta), the liner flows into it
     # at V2 = V0 cos(alpha + delta) / sin(beta); the jet leaves at V1 + V2, the slug at V1 - V2.
     a, d = math.radians(30.0), math.radians(7.0)
-    b = a + 2 * d
-    vj, vs, share = jet_from_collapse(1500.0, a, d, b)
-    v1 = 1500.0 * math.cos(b - a - d) / math.sin(b)
-    v2 = 1500.0 * math.cos(a + d) / math.sin(b)
-    ok = abs(vj - (v1 + v2)) < 1e-9 * vj and abs(vs - (v1 - v2)) < 1e-9 * vj and abs(share - math.sin(b / 2) ** 2) < 1e-15
-    print(f"jet {vj:.3f} = V1 + V2 {v1 + v2:.3f}, slug {vs:.3f} = V1 - V2 {v1 - v2:.3f}: {'ok' if ok else 'FAIL'}")
+    for b in (a + 2 * d, math.radians(25.0), math.radians(70.0)):
+        vj, vs, share = jet_from_collapse(1500.0, a, d, b)
+        v1 = 1500.0 * math.cos(b - a - d) / math.sin(b)
+        v2 = 1500.0 * math.cos(a + d) / math.sin(b)
+        ok = abs(vj - (v1 + v2)) < 1e-9 * vj and abs(vs - (v1 - v2)) < 1e-9 * vj and abs(share - math.sin(b / 2) ** 2) < 1e-15
+        print(f"beta {math.degrees(b):4.1f} deg: jet {vj:.3f} = V1 + V2 {v1 + v2:.3f}, slug {vs:.3f} = V1 - V2 "
+              f"{v1 - v2:.3f}: {'ok' if ok else 'FAIL'}")
+        failures += not ok
+
+    V0, t0, tau0 = 1850.0, 3.1e-6, 1.05e-6
+    times = [0.25e-6 * k for k in range(41)]  # 0 to 10 us
+    speeds = [V0 * -math.expm1(-(t - t0) / tau0) if t > t0 else 0.0 for t in times]
+    v_fit, t0_fit, tau_fit, rms = fit_acceleration(times, speeds)
+    err = max(abs(v_fit - V0) / V0, abs(t0_fit - t0) / t0, abs(tau_fit - tau0) / tau0)
+    ok = err < 1e-6
+    print(f"fit of a known history: V0 {v_fit:.3f}, t0 {t0_fit * 1e6:.6f} us, tau {tau_fit * 1e6:.6f} us,"
+          f" largest relative error {err:.1e} (bound 1e-6): {'ok' if ok else 'FAIL'}")
     failures += not ok
     sys.exit(1 if failures else 0)
 
