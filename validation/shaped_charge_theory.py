@@ -106,10 +106,9 @@ def accelerated_collapse(alpha, r0, v0, dv0, delta, ddelta, t0, dt0, tau, dtau):
     def g(u):
         return u - tau * -math.expm1(-u / tau)
 
-    # g is increasing and convex from g(0) = 0: bracket and bisect the arrival, then polish by Newton.
+    # g is increasing from g(0) = 0 and g(u) >= u - tau, so the arrival lies in [0, path/v0 + tau]:
+    # bisect it to round-off.
     lo, hi = 0.0, path / v0 + tau
-    while g(hi) * v0 < path:
-        hi *= 2.0
     for _ in range(200):
         mid = 0.5 * (lo + hi)
         if g(mid) * v0 < path:

@@ -30,7 +30,7 @@ import sys
 import script_args
 
 
-def brent(f, a, b):
+def bisect_root(f, a, b):
     """Root of f in [a, b] by bisection to round-off (f changes sign once there)."""
     fa = f(a)
     for _ in range(200):
@@ -97,7 +97,7 @@ def main():
 
     worst = worst_speed = 0.0
     for x in (5e-3, 10e-3, 15e-3, 20e-3, 25e-3):
-        t_c = brent(lambda t: flown(x, t)[1], arrival(x), arrival(x) + 1e-4)
+        t_c = bisect_root(lambda t: flown(x, t)[1], arrival(x), arrival(x) + 1e-4)
         h = 1e-6
         (z1, r1), (z2, r2) = flown(x - h, t_c), flown(x + h, t_c)
         built = math.atan2(r2 - r1, z2 - z1)
