@@ -7,7 +7,9 @@ tetrahedron, the nodes at its vertices), and the same deck with the analytic cyl
 points per lattice cell (--lattice: `cut_lattice`, the surface's sub-cells cut to the cylinder, the
 default; or `lattice`, the staircase); grid.cell_size = H for both. The two runs go side by side,
 one thread each, with checkpoints every 10 minutes (an interrupted run is resumed by running this
-again). Prints the final length and foot radius of each and their difference.
+again). Prints the final length and foot radius of each and their difference, then the foot read
+from the final particle files in the ways of validation/otm_foot_reading.py (the body's slab radii
+against its rim).
 
   /usr/bin/python3 validation/otm_mesh_vs_lattice.py --ballista build/ballista --cell 0.4 --out out/otm_mesh_lattice
 """
@@ -76,6 +78,8 @@ def main():
         for key, name in (("final_length", "L_f"), ("foot_radius", "R_f")):
             d = probes["mesh"][key] / probes[a.lattice][key] - 1.0
             print(f"{name}: mesh against {a.lattice} {100 * d:+.2f} %")
+        subprocess.run([sys.executable, os.path.join(ROOT, "validation", "otm_foot_reading.py")] +
+                       [os.path.join(a.out, run) for run in pair], check=True)
 
 
 if __name__ == "__main__":

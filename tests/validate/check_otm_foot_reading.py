@@ -1,0 +1,85 @@
+#!/usr/bin/python3
+"""validation/otm_foot_reading.py on a bar written by hand with known answers.
+
+A quarter cylinder of radius R = 3.2 mm and height 8 mm, as n = 25 rings of equal area (ring k
+between R sqrt(k/n) and R sqrt((k+1)/n), its points at R sqrt((k+1/2)/n)) times 9 points by angle,
+in layers 0.25 mm high starting 0.1 mm below the anvil so that domains straddle the slabs' edges.
+Each point's volume is its share of the quarter disc times the layer's height, and its domain is
+F [-h, h] with F = diag(1, 1/2, 1) and h_y = a layer's height (a half-height of half a layer: the
+domains tile y exactly). So:
+- every 1 mm slab from y = 0 holds exactly its height times the quarter disc's area: its
+  volume-equivalent radius is R (to round-off, 1e-12 relative); the same bar mirrored to a half
+  bar (z of both signs) is recognised as one and gives R again; a wrong spreading of the domains
+  over the slabs (h_y without F) or a wrong sector moves it by far more;
+- r50 and r90 among the points centred within 0.5 mm fall inside rings 12 and 22 (cumulative
+  volume 0.48-0.52 and 0.88-0.92: not at a ring's edge), so they are those rings' radii exactly;
+- the outermost centre is ring 24's radius, and the corner radius is the largest of
+  |(r cos t + a, r sin t + a)| over the points (a = h_x = h_z), written out here independently."""
+import math
+import os
+import sys
+
+import h5py
+import numpy as np
+
+import script_args
+
+R, N_RING, N_ANGLE, LAYER, A = 3.2e-3, 25, 9, 0.25e-3, 0.05e-3
+
+
+def ring_radius(k):
+    return R * math.sqrt((k + 0.5) / N_RING)
+
+
+def write_bar(run_dir, half_bar):
+    os.makedirs(run_dir, exist_ok=True)
+    rings = np.repeat(np.arange(N_RING), N_ANGLE)
+    theta = np.tile((np.arange(N_ANGLE) + 0.5) * (math.pi / 2) / N_ANGLE, N_RING)
+    r = np.array([ring_radius(k) for k in rings])
+    ys = -0.1e-3 + LAYER * (np.arange(34) + 0.5)  # layers from -0.1 to 8.4 mm
+    x = np.concatenate([np.c_[r * np.cos(theta), np.full(r.size, y), r * np.sin(theta)] for y in ys])
+    volume = np.full(len(x), (math.pi * R * R / 4) / (N_RING * N_ANGLE) * LAYER)
+    if half_bar:
+        x = np.r_[x, x * np.array([1.0, 1.0, -1.0])]
+        volume = np.r_[volume, volume]
+    F = np.tile(np.diag([1.0, 0.5, 1.0]).ravel(), (len(x), 1))
+    half = np.tile([A, LAYER, A], (len(x), 1))
+    with h5py.File(os.path.join(run_dir, "particles_000001.h5"), "w") as f:
+        f["x"], f["volume"], f["F"], f["half_size"], f["time"] = x, volume, F, half, 80e-6
+    # An earlier output that must not be the one read.
+    with h5py.File(os.path.join(run_dir, "particles_000000.h5"), "w") as f:
+        f["x"], f["volume"], f["F"], f["half_size"], f["time"] = x * 2, volume, F, half, 0.0
+
+
+def main():
+    a = script_args.parse()
+    from otm_foot_reading import final_particle_file, foot_measures, load, sector_of, slab_radii
+    failures = []
+    edges = np.arange(9) * 1e-3
+    for half_bar in (False, True):
+        run = os.path.join(a.out, "half_bar" if half_bar else "quarter_bar")
+        write_bar(run, half_bar)
+        p = load(final_particle_file(run))
+        sector = sector_of(p["x"])
+        radii = slab_radii(p, edges, sector)
+        worst = max(abs(r / R - 1) for r in radii)
+        print(f"{os.path.basename(run)}: sector {sector}, slab radii within {worst:.1e} of R")
+        if sector != (0.5 if half_bar else 0.25) or worst > 1e-12:
+            failures.append(f"{run}: sector {sector}, slab radii {radii}")
+    m = foot_measures(load(final_particle_file(os.path.join(a.out, "quarter_bar"))), 0.5e-3)
+    theta = (np.arange(N_ANGLE) + 0.5) * (math.pi / 2) / N_ANGLE
+    corner = max(math.hypot(ring_radius(k) * math.cos(t) + A, ring_radius(k) * math.sin(t) + A)
+                 for k in range(N_RING) for t in theta)
+    expected = {"r50": ring_radius(12), "r90": ring_radius(22), "outermost_centre": ring_radius(24), "corner": corner}
+    for key, value in expected.items():
+        ok = abs(m[key] / value - 1) < 1e-12
+        print(f"{key}: {m[key] * 1e3:.6f} mm (expected {value * 1e3:.6f}): {'ok' if ok else 'FAIL'}")
+        if not ok:
+            failures.append(key)
+    if failures:
+        print("FAILED:", "; ".join(failures))
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,110 @@
+#!/usr/bin/python3
+"""The foot of a Taylor bar read from its final particle file in several ways, to tell where two
+discretisations of the same bar differ: in the body (how much volume lies at which radius) or only
+in the last layer of points at the rim, which the `max_radius` probe reads.
+
+docs/validation.md, "3D from a tetrahedral mesh" ("The bodies agree; their rims do not"). The bar's
+axis is y through x = z = 0 and it stands on the anvil at y = 0 (examples/taylor_bar_otm_3d_mesh.yaml,
+a quarter bar; a whole bar or a half is recognised from the points' signs). Per run folder:
+
+- slab radius: the volume-equivalent radius of each slab [a, b) along the axis. Each point's
+  current volume is spread evenly over its domain's height, the half-height along y of the domain
+  F [-h, h] being sum_j |F_yj| h_j; the slab's volume over its height is the cross-section's area,
+  taken as the bar's sector of a disc: r = sqrt(A / (sector pi)).
+- r50, r90: the radii within which 50 and 90 % of the volume of the points centred within `band`
+  of the anvil lies (points sorted by centre radius).
+- outermost centre: the largest centre radius among those points.
+- corner radius: what the probe reads, the largest distance from the axis of the corners
+  x + F (+-h) of the same points.
+
+  /usr/bin/python3 validation/otm_foot_reading.py out/otm_mesh_lattice/mesh out/otm_mesh_lattice/cut_lattice
+"""
+import argparse
+import glob
+import itertools
+import math
+import os
+
+import h5py
+import numpy as np
+
+
+def final_particle_file(run_dir):
+    files = sorted(glob.glob(os.path.join(run_dir, "particles_*.h5")))
+    if not files:
+        raise SystemExit(f"{run_dir}: no particles_*.h5 (not a run folder, or no output written)")
+    return files[-1]
+
+
+def load(path):
+    with h5py.File(path, "r") as f:
+        return {"x": f["x"][:], "volume": f["volume"][:], "F": f["F"][:].reshape(-1, 3, 3),
+                "half": f["half_size"][:], "time": float(f["time"][()])}
+
+
+def sector_of(x, tol=1e-12):
+    """The bar's share of a full disc: 1/4 if every point has x, z >= 0, 1/2 if one of them is
+    signed, 1 otherwise (the decks' symmetry planes are x = 0 and z = 0)."""
+    quarter_x, quarter_z = np.all(x[:, 0] >= -tol), np.all(x[:, 2] >= -tol)
+    return 0.25 if quarter_x and quarter_z else 0.5 if quarter_x or quarter_z else 1.0
+
+
+def slab_radii(p, edges, sector):
+    """Volume-equivalent radius (m) of each slab between successive `edges` (m along y)."""
+    hy = np.sum(np.abs(p["F"][:, 1, :] * p["half"]), axis=1)
+    lo, hi = p["x"][:, 1] - hy, p["x"][:, 1] + hy
+    height = np.maximum(hi - lo, np.finfo(float).tiny)
+    radii = []
+    for a, b in zip(edges[:-1], edges[1:]):
+        share = np.clip((np.minimum(hi, b) - np.maximum(lo, a)) / height, 0.0, 1.0)
+        area = float(np.sum(p["volume"] * share)) / (b - a)
+        radii.append(math.sqrt(area / (sector * math.pi)))
+    return radii
+
+
+def foot_measures(p, band):
+    """r50, r90, the outermost centre and the probe's corner radius (m) of the points centred
+    within `band` of the anvil."""
+    near = p["x"][:, 1] < band
+    if not near.any():
+        raise SystemExit(f"no point is centred within {band * 1e3:g} mm of the anvil")
+    x, vol = p["x"][near], p["volume"][near]
+    r = np.hypot(x[:, 0], x[:, 2])
+    order = np.argsort(r, kind="stable")
+    cumulative = np.cumsum(vol[order]) / vol.sum()
+    quantile = {q: float(r[order][np.searchsorted(cumulative, q)]) for q in (0.5, 0.9)}
+    corners = 0.0
+    for s in itertools.product((-1.0, 1.0), repeat=3):
+        c = x + np.einsum("pij,pj->pi", p["F"][near], p["half"][near] * np.array(s))
+        corners = max(corners, float(np.hypot(c[:, 0], c[:, 2]).max()))
+    return {"r50": quantile[0.5], "r90": quantile[0.9], "outermost_centre": float(r.max()), "corner": corners}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("runs", nargs="+", help="run folders (their last particles_*.h5 is read); the first is the reference")
+    ap.add_argument("--slab", type=float, default=1.0, help="slab height, mm (default 1)")
+    ap.add_argument("--slabs", type=int, default=8, help="number of slabs from the anvil (default 8)")
+    ap.add_argument("--band", type=float, default=0.5, help="the foot's band above the anvil, mm (default 0.5, the probe's)")
+    a = ap.parse_args()
+    edges = np.arange(a.slabs + 1) * a.slab * 1e-3
+    rows = []
+    for run in a.runs:
+        p = load(final_particle_file(run))
+        rows.append((run, p["time"], slab_radii(p, edges, sector_of(p["x"])), foot_measures(p, a.band * 1e-3)))
+    ref = rows[0]
+
+    def vs(value, reference):
+        return f" ({100 * (value / reference - 1):+.1f} %)" if reference > 0 and value is not reference else ""
+
+    print(f"slab radius, mm (slabs of {a.slab:g} mm from the anvil; in brackets against {ref[0]}):")
+    for run, t, radii, _ in rows:
+        cells = "  ".join(f"{r * 1e3:.3f}{vs(r, r0)}" for r, r0 in zip(radii, ref[2]))
+        print(f"  {run} (t = {t * 1e6:.2f} us): {cells}")
+    print(f"points centred within {a.band:g} mm of the anvil, mm:")
+    for run, _, _, m in rows:
+        print(f"  {run}: " + "  ".join(f"{k} {v * 1e3:.3f}{vs(v, ref[3][k])}" for k, v in m.items()))
+
+
+if __name__ == "__main__":
+    main()
