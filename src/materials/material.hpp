@@ -200,6 +200,11 @@ class Material {
   virtual double max_signal_speed(const FieldStore& store, const Index* points, Index count) const = 0;
   /// The dilatational wave speed of each of the points, m/s, into c[p] (indexed by point, not by k).
   virtual void wave_speeds(const FieldStore& store, const Index* points, Index count, double* c) const = 0;
+  /// The same with each point's EOS energy density (kEosEnergyField) at its reference value, zero:
+  /// the wave speed the point would have at its J and state had nothing heated it. Models without
+  /// that field give wave_speeds. The linear term of the artificial bulk viscosity reads it under
+  /// mpm.bulk_viscosity_sound_speed: reference (mpm/bulk_viscosity.hpp).
+  virtual void reference_wave_speeds(const FieldStore& store, const Index* points, Index count, double* c) const = 0;
   /// True if the model keeps the EOS energy density (kEosEnergyField, J/m^3 of reference volume):
   /// heat from outside the model (artificial viscosity) must enter it to reach its pressure.
   bool has_state(const std::string& field) const {

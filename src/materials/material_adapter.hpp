@@ -8,6 +8,7 @@
 #include "core/point_fields.hpp"
 #include "core/polar.hpp"
 #include "materials/distortion.hpp"
+#include "materials/eos.hpp"
 #include "materials/failure.hpp"
 #include "materials/material.hpp"
 #include "materials/material_lanes.hpp"
@@ -81,6 +82,12 @@ class MaterialAdapter final : public Material {
     for (Index k = 0; k < count; ++k) c[points[k]] = speed(points[k]);
   }
 
+  void reference_wave_speeds(const FieldStore& store, const Index* points, Index count, double* c) const override {
+    const PointWaveSpeed speed(*this, store, eos_energy_slot());
+#pragma omp parallel for schedule(static) if (count > kParallelThreshold)
+    for (Index k = 0; k < count; ++k) c[points[k]] = speed(points[k]);
+  }
+
   double wave_speed(const FieldStore& store, Index p, double J) const override {
     double st[kMaxState];
     for (size_t s = 0; s < state_.size(); ++s) st[s] = store.real(state_[s].name)[p];
@@ -92,21 +99,25 @@ class MaterialAdapter final : public Material {
 
   /// The model's wave speed of a point from its state fields and J = det F (the fields looked up
   /// once per batch): shared by max_signal_speed and wave_speeds.
+  /// `zero_slot` >= 0: that state slot is read as zero (reference_wave_speeds).
   class PointWaveSpeed {
    public:
-    PointWaveSpeed(const MaterialAdapter& m, const FieldStore& store)
-        : params_(m.params_), ns_(static_cast<int>(m.state_.size())), F_(store.view(kDeformationGradient)) {
+    PointWaveSpeed(const MaterialAdapter& m, const FieldStore& store, int zero_slot = -1)
+        : params_(m.params_), ns_(static_cast<int>(m.state_.size())), zero_slot_(zero_slot),
+          F_(store.view(kDeformationGradient)) {
       for (int s = 0; s < ns_; ++s) sptr_[s] = store.real(m.state_[s].name);
     }
     double operator()(Index p) const {
       double st[kMaxState];
       for (int s = 0; s < ns_; ++s) st[s] = sptr_[s][p];
+      if (zero_slot_ >= 0) st[zero_slot_] = 0.0;
       return Model::wave_speed(params_, st, det(F_[p]));
     }
 
    private:
     const Params& params_;
     int ns_;
+    int zero_slot_;
     const Mat3* F_;
     const double* sptr_[kMaxState] = {};
   };
@@ -251,6 +262,13 @@ class MaterialAdapter final : public Material {
       (void)F; (void)R;
       return Mat3{};
     }
+  }
+
+  /// The model's state slot of the EOS energy density, -1 without one.
+  int eos_energy_slot() const {
+    for (int s = 0; s < model_states_; ++s)
+      if (state_[s].name == kEosEnergyField) return s;
+    return -1;
   }
 
   std::string name_;

@@ -10,10 +10,12 @@
 namespace ballista {
 
 BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, double cell, double dt, bool book_new,
-                                       std::vector<double>& c, const double* cells) {
+                                       std::vector<double>& c, std::vector<double>& c_reference,
+                                       const double* cells) {
   FieldStore& s = pts.store();
   const Index n = s.size();
   c.resize(static_cast<std::size_t>(n));
+  if (bv.reference_sound_speed) c_reference.resize(static_cast<std::size_t>(n));
   // The sound speed of each point at its current J, and whether its model keeps an EOS energy.
   const auto& groups = pts.material_groups();
   const auto& materials = pts.materials();
@@ -21,6 +23,9 @@ BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, d
   for (std::size_t m = 0; m < materials.size(); ++m) {
     if (groups[m].empty()) continue;
     materials[m]->wave_speeds(s, groups[m].data(), static_cast<Index>(groups[m].size()), c.data());
+    if (bv.reference_sound_speed)
+      materials[m]->reference_wave_speeds(s, groups[m].data(), static_cast<Index>(groups[m].size()),
+                                          c_reference.data());
     eos_energy[m] = materials[m]->has_state(kEosEnergyField) ? 1 : 0;
     stress_free_failed[m] = materials[m]->failed_points_are_stress_free() ? 1 : 0;
   }
@@ -40,7 +45,8 @@ BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, d
     // Eroded to zero stress (thesis eq. 6.13-6.14): the point carries no pressure, viscous or not.
     const bool stress_free = failed && stress_free_failed[mat[p]] && failed[p] > 0.0;
     const double l = cells ? cells[p] : cell;
-    const double q_new = stress_free ? 0.0 : bulk_viscosity_pressure(bv, mass[p] / vol[p], c[p], l, trD);
+    const double c_linear = bv.reference_sound_speed ? c_reference[p] : c[p];
+    const double q_new = stress_free ? 0.0 : bulk_viscosity_pressure(bv, mass[p] / vol[p], c_linear, l, trD);
     // Heat = q (-dV): the pressure times the volume the point lost over dt (positive: q acts in
     // compression only), with the volume at the end of the update.
     const double w = (book_new ? q_new : q[p]) * (-trD) * vol[p] * dt;
@@ -50,7 +56,7 @@ BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, d
     o[0] += w;
     // The Courant speed with q, + |v|, in place of c; points without q (expanding, or eroded to
     // zero stress: debris that offers no resistance is squeezed at any rate) keep c.
-    c[p] = (q_new > 0.0 ? bulk_viscosity_signal_speed(bv, c[p], l, trD) : c[p]) + norm(v[p]);
+    c[p] = (q_new > 0.0 ? bulk_viscosity_signal_speed(bv, c[p], l, trD, c_linear) : c[p]) + norm(v[p]);
   }, out);
   double vmax = 0.0, rmax = 0.0;
 #pragma omp parallel for reduction(max : vmax, rmax) schedule(static) if (n > kParallelThreshold)

@@ -19,25 +19,37 @@ namespace ballista {
 struct BulkViscosity {
   double linear = 0.0;     ///< C_L, of the term linear in the compression rate (LS-DYNA 0.06, Uintah 0.2)
   double quadratic = 0.0;  ///< C_Q, of the quadratic term (LS-DYNA 1.5, Uintah 2.0)
+  /// mpm.bulk_viscosity_sound_speed: reference. The linear term reads each point's sound speed at
+  /// its reference EOS energy (Material::reference_wave_speeds) instead of its current one. A
+  /// point's Mie-Grueneisen sound speed grows with the heat the viscosity itself puts in (the
+  /// Gamma0 E term of eos_bulk_modulus), and with the current speed each compression of a hot point
+  /// heats it faster than the last; cold shocked metal sees the same coefficient either way
+  /// (docs/validation.md, "The heat is the bulk viscosity's").
+  bool reference_sound_speed = false;
   bool active() const { return linear > 0.0 || quadratic > 0.0; }
 };
 
 /// Viscous pressure q (Pa) of a point compressing at tr D < 0 (1/s): q = rho l |tr D| (C_L c +
-/// C_Q l |tr D|), rho the current density, c the sound speed, l the cell size (Wilkins 1980,
-/// eq. 8-9; Uintah's ConstitutiveModel::artificialBulkViscosity). Zero in expansion.
-inline double bulk_viscosity_pressure(const BulkViscosity& bv, double rho, double c, double l, double trD) {
+/// C_Q l |tr D|), rho the current density, c the sound speed (c_linear: the one the linear term
+/// reads, the current one unless reference_sound_speed), l the cell size (Wilkins 1980, eq. 8-9;
+/// Uintah's ConstitutiveModel::artificialBulkViscosity). Zero in expansion.
+inline double bulk_viscosity_pressure(const BulkViscosity& bv, double rho, double c_linear, double l, double trD) {
   if (!(trD < 0.0)) return 0.0;
   const double rate = -trD;
-  return rho * l * rate * (bv.linear * c + bv.quadratic * l * rate);
+  return rho * l * rate * (bv.linear * c_linear + bv.quadratic * l * rate);
 }
 
 /// The signal speed (m/s) that takes the place of c in the Courant condition when q acts:
-/// Q + sqrt(Q^2 + c^2) with Q = C_L c + C_Q l |tr D| (LS-DYNA Theory Manual, "Time step control",
-/// the element time step with bulk viscosity). Equals c in expansion.
-inline double bulk_viscosity_signal_speed(const BulkViscosity& bv, double c, double l, double trD) {
+/// Q + sqrt(Q^2 + c^2) with Q = C_L c_linear + C_Q l |tr D| (LS-DYNA Theory Manual, "Time step
+/// control", the element time step with bulk viscosity; c_linear as in bulk_viscosity_pressure,
+/// c the point's current sound speed). Equals c in expansion.
+inline double bulk_viscosity_signal_speed(const BulkViscosity& bv, double c, double l, double trD, double c_linear) {
   if (!(trD < 0.0)) return c;
-  const double Q = bv.linear * c + bv.quadratic * l * (-trD);
+  const double Q = bv.linear * c_linear + bv.quadratic * l * (-trD);
   return Q + std::sqrt(Q * Q + c * c);
+}
+inline double bulk_viscosity_signal_speed(const BulkViscosity& bv, double c, double l, double trD) {
+  return bulk_viscosity_signal_speed(bv, c, l, trD, c);
 }
 
 /// The point field holding q (Pa): the forces use stress - q I (MpmSolver::particles_to_grid).
@@ -56,9 +68,11 @@ struct BulkViscosityPass {
 /// as heat (into internal_energy, and into the EOS energy density of the models that keep one,
 /// so the shocked state reaches the Hugoniot's pressure), then sets q from this L. The forces used
 /// the q stored before the pass (usl and musl; USAVG's second half), or the q of this L
-/// (`book_new`: USAVG's first half, whose q the step's forces use). `c` is scratch (one per point).
+/// (`book_new`: USAVG's first half, whose q the step's forces use). `c` and `c_reference` are
+/// scratch (one per point; the second used with bv.reference_sound_speed only).
 /// l is `cell`, or on a graded grid each point's own cell length `cells[p]`.
 BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, double cell, double dt, bool book_new,
-                                       std::vector<double>& c, const double* cells = nullptr);
+                                       std::vector<double>& c, std::vector<double>& c_reference,
+                                       const double* cells = nullptr);
 
 }  // namespace ballista

@@ -45,13 +45,20 @@ std::vector<ParamSpec> mpm_params() {
                          "C_Q of the artificial bulk viscosity (see bulk_viscosity_linear): 0 = off; LS-DYNA 1.5, "
                          "Uintah 2.0",
                          false, 0.0, 0.0, 100.0};
+  ParamSpec bv_speed{"bulk_viscosity_sound_speed", "-",
+                     "the sound speed c of the linear term of the bulk viscosity: current (the point's own, Wilkins "
+                     "1980) or reference (at the point's J and state with its EOS energy at zero: heat the viscosity "
+                     "put in does not raise the coefficient of the next compression)",
+                     false, 0};
+  bv_speed.choices = {"current", "reference"};
+  bv_speed.default_choice = "current";
   ParamSpec distortion{"distortion_limit", "1",
                        "RMS isochoric stretch sqrt(tr(F^T F) / (3 J^(2/3))) beyond which a particle of a hypoelastic "
                        "or fluid material has F replaced by J^(1/3) R (J and the stress frame kept; its stretch "
                        "history, which such models do not read, dropped): material flowing like a fluid otherwise "
                        "stretches until det F and the polar decomposition are lost to round-off. 0 = never",
                        false, 1000.0, 0.0, 1e12};
-  return {shape, update, flip, sort, locking, patch, rebalance, xpic, bv_linear, bv_quadratic, distortion};
+  return {shape, update, flip, sort, locking, patch, rebalance, xpic, bv_linear, bv_quadratic, bv_speed, distortion};
 }
 
 MpmParams read_mpm_params(const ParamValues& P) {
@@ -67,7 +74,8 @@ MpmParams read_mpm_params(const ParamValues& P) {
   m.fbar_patch = static_cast<int>(P.at("fbar_patch"));
   m.rebalance_imbalance = P.at("rebalance_imbalance");
   m.xpic_order = static_cast<int>(P.at("xpic_order"));
-  m.bulk_viscosity = {P.at("bulk_viscosity_linear"), P.at("bulk_viscosity_quadratic")};
+  m.bulk_viscosity = {P.at("bulk_viscosity_linear"), P.at("bulk_viscosity_quadratic"),
+                      P.choices.at("bulk_viscosity_sound_speed") == "reference"};
   m.distortion_limit = P.at("distortion_limit");
   return m;
 }

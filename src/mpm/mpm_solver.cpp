@@ -709,6 +709,7 @@ void MpmSolver::step_impl(double dt) {
 void MpmSolver::bulk_viscosity_pass(double dt, bool book_new) {
   if (grid_.geom.graded) update_cell_lengths();  // the viscous length is each point's cell
   const BulkViscosityPass r = apply_bulk_viscosity(pts_, bulk_viscosity_, grid_.geom.h, dt, book_new, wave_scratch_,
+                                                   reference_wave_scratch_,
                                                    grid_.geom.graded ? cell_length_.data() : nullptr);
   // This rank's share only: a collective here would not match a rank that failed in the step
   // (rethrow_agreed); energies() and save_state() sum it.

@@ -180,6 +180,7 @@ class MpmSolver final : public Solver {
   BulkViscosity bulk_viscosity_;  ///< mpm.bulk_viscosity_linear / _quadratic (bulk_viscosity.hpp)
   double viscous_speed_ = 0.0;    ///< the last pass's signal speed with q, m/s (stable_dt)
   std::vector<double> wave_scratch_;
+  std::vector<double> reference_wave_scratch_;  ///< mpm.bulk_viscosity_sound_speed: reference
   /// After a stress update over dt: books the viscous heating, sets q (apply_bulk_viscosity).
   void bulk_viscosity_pass(double dt, bool book_new);
   double flip_;

@@ -251,4 +251,36 @@ TEST(Eos, TheUsUpLineEndsAtItsLastParticleVelocity) {
   EXPECT_THROW(make_material("linear_elastic", lin), ParamError);
 }
 
+// Material::reference_wave_speeds (the linear term of the bulk viscosity under
+// mpm.bulk_viscosity_sound_speed: reference) is each point's wave speed with its EOS energy read as
+// zero: a heated point gets the speed of the same point unheated, a cold one its own, bitwise (the
+// same expression on the same doubles), and the stored energy is left as it was. The heat raises
+// the Mie-Grüneisen speed (the Gamma0 E term of eos_bulk_modulus): by more than 10 % here, so the
+// test fails if the energy is read.
+TEST(Eos, ReferenceWaveSpeedReadsTheEnergyAsZero) {
+  const auto cu = make_material("linear_elastic", copper_values());
+  FieldStore st;
+  st.declare(kDeformationGradient, "1");
+  cu->declare_fields(st);
+  st.resize(3);
+  const double J[3] = {0.9, 1.0, 1.6};
+  for (int p = 0; p < 3; ++p) st.view(kDeformationGradient)[p] = Mat3::diag(J[p], 1.0, 1.0);
+  const double heat = 3.0e10;  // J/m^3 of reference volume: 3.3 MJ/kg in copper
+  double* E = st.real(kEosEnergyField);
+  E[0] = heat, E[1] = 0.0, E[2] = 4.0 * heat;
+  const Index all[3] = {0, 1, 2};
+  double c[3], c_ref[3];
+  cu->wave_speeds(st, all, 3, c);
+  cu->reference_wave_speeds(st, all, 3, c_ref);
+  EXPECT_EQ(E[0], heat);
+  EXPECT_EQ(E[2], 4.0 * heat);
+  double c_cold[3];
+  E[0] = E[2] = 0.0;
+  cu->wave_speeds(st, all, 3, c_cold);
+  for (int p = 0; p < 3; ++p) EXPECT_EQ(c_ref[p], c_cold[p]) << p;
+  EXPECT_EQ(c_ref[1], c[1]);
+  EXPECT_GT(c[0], 1.1 * c_ref[0]);
+  EXPECT_GT(c[2], 1.1 * c_ref[2]);
+}
+
 }  // namespace test_eos
