@@ -60,4 +60,26 @@ bool restart_may_change(const std::string& key_path) {
          key_path.rfind("penetration.layers", 0) == 0;
 }
 
+std::vector<DeckChange> refused_restart_changes(const std::string& stored, const std::string& plain,
+                                                const std::string& continued) {
+  std::vector<DeckChange> refused;
+  std::vector<DeckChange> overridden;  // what the overrides changed, computed once if needed
+  bool have_overridden = false;
+  const auto nested = [](const std::string& a, const std::string& b) {  // a is b or inside it
+    return a == b || (a.size() > b.size() && a.compare(0, b.size(), b) == 0 && a[b.size()] == '.');
+  };
+  for (DeckChange& c : deck_changes(stored, continued)) {
+    if (restart_may_change(c.key_path)) continue;
+    if (c.before.empty() && !c.after.empty()) {
+      if (!have_overridden) overridden = deck_changes(plain, continued), have_overridden = true;
+      bool set_by_override = false;
+      for (const DeckChange& o : overridden)
+        set_by_override = set_by_override || nested(o.key_path, c.key_path) || nested(c.key_path, o.key_path);
+      if (!set_by_override) continue;
+    }
+    refused.push_back(std::move(c));
+  }
+  return refused;
+}
+
 }  // namespace ballista

@@ -23,4 +23,12 @@ std::vector<DeckChange> deck_changes(const std::string& before_yaml, const std::
 /// analysis measures).
 bool restart_may_change(const std::string& key_path);
 
+/// The changes a restart is refused for. `stored` is the checkpoint's resolved deck, `continued`
+/// the same deck resolved again by this build with the --set overrides, `plain` resolved again
+/// without them. Every change restart_may_change refuses counts, except a key `stored` lacks that
+/// `continued` holds at its `plain` value: a key this build added after the checkpoint was
+/// written, at its default, and every key's default is the behaviour before the key existed.
+std::vector<DeckChange> refused_restart_changes(const std::string& stored, const std::string& plain,
+                                                const std::string& continued);
+
 }  // namespace ballista

@@ -4,6 +4,7 @@
 
 #include "core/error.hpp"
 #include "deck/deck_changes.hpp"
+#include "deck/deck_reader.hpp"
 
 namespace ballista {
 
@@ -38,9 +39,16 @@ void check_layout(const StateArchive& a, const Scenario& sc, const std::string& 
 }
 
 void check_restart_changes(const StateArchive& a, const Scenario& sc, const std::string& path) {
-  std::vector<DeckChange> refused;
-  for (const DeckChange& c : deck_changes(a.text("run.deck"), sc.resolved_yaml))
-    if (!restart_may_change(c.key_path)) refused.push_back(c);
+  const std::string stored = a.text("run.deck");
+  // The checkpoint's deck resolved by this build without the overrides: it tells a key a later
+  // build added, at its default, from one an override sets. Parsed only when a key is new.
+  std::string plain = sc.resolved_yaml;
+  for (const DeckChange& c : deck_changes(stored, sc.resolved_yaml))
+    if (c.before.empty() && !restart_may_change(c.key_path)) {
+      plain = parse_deck(stored, sc.file, {}).resolved_yaml;
+      break;
+    }
+  const std::vector<DeckChange> refused = refused_restart_changes(stored, plain, sc.resolved_yaml);
   if (refused.empty()) return;
   std::string list;
   for (std::size_t k = 0; k < refused.size() && k < 5; ++k)

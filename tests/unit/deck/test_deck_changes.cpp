@@ -48,4 +48,41 @@ TEST(DeckChanges, ARestartMayChangeTheEndOutputsLimitsAndGuardsOnly) {
     EXPECT_FALSE(restart_may_change(no)) << no;
 }
 
+// A checkpoint written before a key existed: its deck lacks the key, and this build resolves it at
+// its default. That is no change (a key's default is the behaviour before it existed); the same key
+// set by an override, a new key set inside a new section, and a removed or changed key still are.
+TEST(DeckChanges, AKeyAddedSinceTheCheckpointIsNoChangeAtItsDefault) {
+  const std::string stored = "mpm: {bulk_viscosity_linear: 0.2}\nsimulation: {end_time: 1.0e-4}\n";
+  const std::string plain =
+      "mpm: {bulk_viscosity_linear: 0.2, bulk_viscosity_sound_speed: current}\nsimulation: {end_time: 1.0e-4}\n"
+      "anti_locking: {patch: 1}\n";
+  EXPECT_TRUE(refused_restart_changes(stored, plain, plain).empty());
+  // An override of the new key to another value is refused, naming it.
+  const std::string set =
+      "mpm: {bulk_viscosity_linear: 0.2, bulk_viscosity_sound_speed: reference}\nsimulation: {end_time: 1.0e-4}\n"
+      "anti_locking: {patch: 1}\n";
+  std::vector<DeckChange> r = refused_restart_changes(stored, plain, set);
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_EQ(r[0].key_path, "mpm.bulk_viscosity_sound_speed");
+  EXPECT_EQ(r[0].before, "");
+  EXPECT_EQ(r[0].after, "reference");
+  // A whole new section is one change at its path; an override inside it refuses it.
+  const std::string inside =
+      "mpm: {bulk_viscosity_linear: 0.2, bulk_viscosity_sound_speed: current}\nsimulation: {end_time: 1.0e-4}\n"
+      "anti_locking: {patch: 2}\n";
+  r = refused_restart_changes(stored, plain, inside);
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_EQ(r[0].key_path, "anti_locking");
+  // An existing key changed, or one the checkpoint has and this build drops, stays refused; the
+  // run's end may still change.
+  const std::string changed =
+      "mpm: {bulk_viscosity_linear: 0.3, bulk_viscosity_sound_speed: current}\nsimulation: {end_time: 2.0e-4}\n"
+      "anti_locking: {patch: 1}\n";
+  r = refused_restart_changes(stored, changed, changed);
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_EQ(r[0].key_path, "mpm.bulk_viscosity_linear");
+  r = refused_restart_changes(plain, stored, stored);
+  ASSERT_EQ(r.size(), 2u);  // bulk_viscosity_sound_speed and anti_locking removed
+}
+
 }  // namespace test_deck_changes
