@@ -164,6 +164,7 @@ MPM_VALUES = {
     "shape_function": ["linear", "gimp", "cpdi", "bspline3", "x"],
     "bulk_viscosity_linear": ["0", "0.06", "0.2", "10", "10.1"] + BAD,
     "bulk_viscosity_quadratic": ["0", "1.5", "2", "100", "101"] + BAD,
+    "bulk_viscosity_sound_speed": ["current", "reference", "x"],
     "xpic_order": ["1", "2", "8", "9", "0"] + BAD,
     "distortion_limit": ["0", "0.5", "1", "1000", "1e12", "1.1e12", "-1"] + BAD,
 }

@@ -12,6 +12,7 @@ namespace ballista {
 struct DeckChange {
   std::string key_path;
   std::string before, after;
+  bool before_absent = false;  ///< the key is not in the first deck at all (not merely null, `key: ~`)
 };
 
 /// The leaves (scalars, and lists or maps given or removed as a whole) that differ between two
@@ -25,9 +26,11 @@ bool restart_may_change(const std::string& key_path);
 
 /// The changes a restart is refused for. `stored` is the checkpoint's resolved deck, `continued`
 /// the same deck resolved again by this build with the --set overrides, `plain` resolved again
-/// without them. Every change restart_may_change refuses counts, except a key `stored` lacks that
-/// `continued` holds at its `plain` value: a key this build added after the checkpoint was
-/// written, at its default, and every key's default is the behaviour before the key existed.
+/// without them. Every change restart_may_change refuses counts, except a key `stored` lacks (absent,
+/// not null) that `continued` holds at its `plain` value: a key this build added after the
+/// checkpoint was written, at its default. A new key's default is the behaviour from before the key
+/// existed (results stay bitwise) for every key but those whose default changed what a run does
+/// (mpm.distortion_limit: points older builds left alone are remapped); those are refused.
 std::vector<DeckChange> refused_restart_changes(const std::string& stored, const std::string& plain,
                                                 const std::string& continued);
 

@@ -23,7 +23,7 @@ struct BulkViscosity {
   /// its reference EOS energy (Material::reference_wave_speeds) instead of its current one. A
   /// point's Mie-Grueneisen sound speed grows with the heat the viscosity itself puts in (the
   /// Gamma0 E term of eos_bulk_modulus), and with the current speed each compression of a hot point
-  /// heats it faster than the last; cold shocked metal sees the same coefficient either way
+  /// heats it faster than the last; cold shocked metal sees nearly the same coefficient either way
   /// (docs/validation.md, "The heat is the bulk viscosity's").
   bool reference_sound_speed = false;
   bool active() const { return linear > 0.0 || quadratic > 0.0; }

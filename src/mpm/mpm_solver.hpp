@@ -177,7 +177,7 @@ class MpmSolver final : public Solver {
   std::vector<MirrorFace> mirror_faces_;
   bool musl_;
   bool usavg_ = false;  // update: usavg (first_half_stress_update)
-  BulkViscosity bulk_viscosity_;  ///< mpm.bulk_viscosity_linear / _quadratic (bulk_viscosity.hpp)
+  BulkViscosity bulk_viscosity_;  ///< mpm.bulk_viscosity_linear / _quadratic / _sound_speed
   double viscous_speed_ = 0.0;    ///< the last pass's signal speed with q, m/s (stable_dt)
   std::vector<double> wave_scratch_;
   std::vector<double> reference_wave_scratch_;  ///< mpm.bulk_viscosity_sound_speed: reference

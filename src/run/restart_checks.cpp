@@ -1,6 +1,7 @@
 #include "run/restart_checks.hpp"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "core/error.hpp"
 #include "deck/deck_changes.hpp"
@@ -38,14 +39,34 @@ void check_layout(const StateArchive& a, const Scenario& sc, const std::string& 
               "models)");
 }
 
+namespace {
+
+// The stored deck resolved again by this build, without the overrides. Its warnings (a surface
+// file read again) were given when the run began and are not repeated. A stored deck this build
+// cannot read alone gives the stored text itself: every key it lacks then counts as set by an
+// override, and a change of physics is refused, not guessed.
+std::string resolved_without_overrides(const std::string& stored, const std::string& file) {
+  const spdlog::level::level_enum level = spdlog::get_level();
+  spdlog::set_level(spdlog::level::err);
+  std::string text = stored;
+  try {
+    text = parse_deck(stored, file, {}).resolved_yaml;
+  } catch (const std::exception&) {
+  }
+  spdlog::set_level(level);
+  return text;
+}
+
+}  // namespace
+
 void check_restart_changes(const StateArchive& a, const Scenario& sc, const std::string& path) {
   const std::string stored = a.text("run.deck");
   // The checkpoint's deck resolved by this build without the overrides: it tells a key a later
   // build added, at its default, from one an override sets. Parsed only when a key is new.
   std::string plain = sc.resolved_yaml;
   for (const DeckChange& c : deck_changes(stored, sc.resolved_yaml))
-    if (c.before.empty() && !restart_may_change(c.key_path)) {
-      plain = parse_deck(stored, sc.file, {}).resolved_yaml;
+    if (c.before_absent && !restart_may_change(c.key_path)) {
+      plain = resolved_without_overrides(stored, sc.file);
       break;
     }
   const std::vector<DeckChange> refused = refused_restart_changes(stored, plain, sc.resolved_yaml);

@@ -85,4 +85,22 @@ TEST(DeckChanges, AKeyAddedSinceTheCheckpointIsNoChangeAtItsDefault) {
   ASSERT_EQ(r.size(), 2u);  // bulk_viscosity_sound_speed and anti_locking removed
 }
 
+// A key the checkpoint's deck holds as null (an optional value not given, `key: ~`) existed when
+// it was written: a value for it now is a change, default or not. And a key added with a default
+// that changes what some runs do is refused although absent.
+TEST(DeckChanges, ANullKeyOrAKeyWhoseDefaultChangedPhysicsIsStillAChange) {
+  const std::string stored = "materials:\n  cu: {eos: {max_particle_velocity: ~}}\n";
+  const std::string now = "materials:\n  cu: {eos: {max_particle_velocity: 5000}}\n";
+  std::vector<DeckChange> r = refused_restart_changes(stored, now, now);
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_EQ(r[0].key_path, "materials.cu.eos.max_particle_velocity");
+  EXPECT_FALSE(r[0].before_absent);
+  const std::string old_mpm = "mpm: {bulk_viscosity_linear: 0.2}\n";
+  const std::string new_mpm = "mpm: {bulk_viscosity_linear: 0.2, distortion_limit: 1000}\n";
+  r = refused_restart_changes(old_mpm, new_mpm, new_mpm);
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_EQ(r[0].key_path, "mpm.distortion_limit");
+  EXPECT_TRUE(r[0].before_absent);
+}
+
 }  // namespace test_deck_changes

@@ -257,8 +257,13 @@ TEST(Eos, TheUsUpLineEndsAtItsLastParticleVelocity) {
 // same expression on the same doubles), and the stored energy is left as it was. The heat raises
 // the Mie-Grüneisen speed (the Gamma0 E term of eos_bulk_modulus): by more than 10 % here, so the
 // test fails if the energy is read.
-TEST(Eos, ReferenceWaveSpeedReadsTheEnergyAsZero) {
-  const auto cu = make_material("linear_elastic", copper_values());
+// The reference wave speed (the bulk viscosity's `reference` sound speed) is the model's own speed
+// with the EOS energy read as zero, leaving the stored energy alone: for a model whose energy is
+// its only state (linear_elastic) and one whose energy follows other state (Johnson-Cook: eqps,
+// temperature, energy), so that a wrong slot would show. Heat raises the Mie-Grueneisen speed
+// (Gamma0 E term) by more than 10 % at 3.3 MJ/kg, so the current speed must differ.
+void expect_reference_speed_reads_energy_as_zero(const std::string& model, const ParamValues& v) {
+  const auto cu = make_material(model, v);
   FieldStore st;
   st.declare(kDeformationGradient, "1");
   cu->declare_fields(st);
@@ -272,15 +277,40 @@ TEST(Eos, ReferenceWaveSpeedReadsTheEnergyAsZero) {
   double c[3], c_ref[3];
   cu->wave_speeds(st, all, 3, c);
   cu->reference_wave_speeds(st, all, 3, c_ref);
-  EXPECT_EQ(E[0], heat);
-  EXPECT_EQ(E[2], 4.0 * heat);
+  EXPECT_EQ(E[0], heat) << model;
+  EXPECT_EQ(E[2], 4.0 * heat) << model;
   double c_cold[3];
   E[0] = E[2] = 0.0;
   cu->wave_speeds(st, all, 3, c_cold);
-  for (int p = 0; p < 3; ++p) EXPECT_EQ(c_ref[p], c_cold[p]) << p;
-  EXPECT_EQ(c_ref[1], c[1]);
-  EXPECT_GT(c[0], 1.1 * c_ref[0]);
-  EXPECT_GT(c[2], 1.1 * c_ref[2]);
+  for (int p = 0; p < 3; ++p) EXPECT_EQ(c_ref[p], c_cold[p]) << model << " " << p;
+  EXPECT_EQ(c_ref[1], c[1]) << model;
+  EXPECT_GT(c[0], 1.1 * c_ref[0]) << model;
+  EXPECT_GT(c[2], 1.1 * c_ref[2]) << model;
+}
+
+TEST(Eos, ReferenceWaveSpeedReadsTheEnergyAsZero) {
+  expect_reference_speed_reads_energy_as_zero("linear_elastic", copper_values());
+  ParamValues jc = copper_values();
+  jc["jc_a"] = 90e6, jc["jc_b"] = 292e6, jc["jc_n"] = 0.31, jc["jc_c"] = 0.025, jc["jc_m"] = 1.09;
+  jc["melt_temperature"] = 1356.0, jc["specific_heat"] = 383.0;  // OFHC copper (data/materials.yaml)
+  expect_reference_speed_reads_energy_as_zero("johnson_cook", jc);
+}
+
+// Without an EOS energy (the linear EOS) there is nothing to read as zero: the two speeds agree.
+TEST(Eos, ReferenceWaveSpeedWithoutAnEnergyIsTheWaveSpeed) {
+  const auto steel = make_material("linear_elastic", {{"density", 7850.0}, {"bulk_modulus", 160e9},
+                                                      {"shear_modulus", 80e9}});
+  FieldStore st;
+  st.declare(kDeformationGradient, "1");
+  steel->declare_fields(st);
+  st.resize(2);
+  st.view(kDeformationGradient)[0] = Mat3::diag(0.9, 1.0, 1.0);
+  st.view(kDeformationGradient)[1] = Mat3::diag(1.2, 1.0, 1.0);
+  const Index all[2] = {0, 1};
+  double c[2], c_ref[2];
+  steel->wave_speeds(st, all, 2, c);
+  steel->reference_wave_speeds(st, all, 2, c_ref);
+  for (int p = 0; p < 2; ++p) EXPECT_EQ(c_ref[p], c[p]) << p;
 }
 
 }  // namespace test_eos

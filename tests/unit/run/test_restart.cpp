@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "deck/deck_reader.hpp"
 #include "io/checkpoint_file.hpp"
+#include "run/restart_checks.hpp"
 #include "run/simulation.hpp"
 #include "support/test_files.hpp"
 
@@ -191,6 +192,26 @@ TEST(Restart, WhatCannotBeContinuedIsRefused) {
   // Repeating the original values is no change.
   EXPECT_TRUE(run_simulation(parse_deck(deck, "d.yaml", {"materials.metal.youngs_modulus=7.0e10"}),
                              options(dir.path, from)).ok);
+}
+
+// A checkpoint written by a build before a key existed: its stored deck lacks the key. This build
+// continues it at the key's default, and refuses the key set to anything else, naming it.
+TEST(Restart, AKeyAddedSinceTheCheckpointContinuesAtItsDefaultOnly) {
+  std::string older = parse_deck(kBlock, "block.yaml").resolved_yaml;
+  const std::string line = "bulk_viscosity_sound_speed: current";
+  const std::size_t at = older.find(line);
+  ASSERT_NE(at, std::string::npos) << older;
+  const std::size_t start = older.rfind('\n', at) + 1;
+  older.erase(start, older.find('\n', at) + 1 - start);
+  StateArchive a;
+  a.put_text("run.deck", older);
+  EXPECT_NO_THROW(check_restart_changes(a, parse_deck(older, "d.yaml"), "c.h5"));
+  const std::string set = error_of([&] {
+    check_restart_changes(a, parse_deck(older, "d.yaml", {"mpm.bulk_viscosity_sound_speed=reference"}), "c.h5");
+  });
+  EXPECT_NE(set.find("mpm.bulk_viscosity_sound_speed (not given -> reference)"), std::string::npos) << set;
+  EXPECT_NO_THROW(
+      check_restart_changes(a, parse_deck(older, "d.yaml", {"mpm.bulk_viscosity_sound_speed=current"}), "c.h5"));
 }
 
 TEST(Restart, AnEndBeforeTheCheckpointIsRefusedAndTheContinuedDeckIsRecorded) {
