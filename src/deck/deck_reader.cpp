@@ -531,6 +531,10 @@ class Reader {
     cs.model = c.choice("model", "single_field", models);
     cs.friction = c.number("friction", 0.0, NumberRange::non_negative("1"));
     cs.min_volume_fraction = c.number("min_volume_fraction", 0.0, NumberRange::between(0.0, 1.0, false, false, "1"));
+    cs.axisymmetric_normal = c.choice("axisymmetric_normal", "ring_mass", {"ring_mass", "density"});
+    // resolved.yaml states the default of every run, so only another value is refused elsewhere.
+    if (cs.axisymmetric_normal != "ring_mass" && sc_.simulation.dimension != Dimension::Axisymmetric)
+      c.fail("axisymmetric_normal", "applies to axisymmetric runs only (simulation.dimension: axisymmetric)");
     DeckNode ps = c.list("pairs", false);
     const int nb = static_cast<int>(sc_.bodies.size());
     std::vector<int> parent(nb);

@@ -245,6 +245,10 @@ void MpmSolver::particles_to_grid(P2gPart part, const Vec3* v_source) {
       if (momentum_part) std::fill(gp + b, gp + e, Vec3{});
     });
   const bool axisym = dimension_ == Dimension::Axisymmetric;
+  // The contact normal's gradient of the density, not of the mass per radian (scenario.hpp,
+  // ContactSpec::axisymmetric_normal): m_p / r_p = rho_p A_p. A point nearer the axis than its
+  // half-size divides by the half-size, so that the weight stays bounded as r_p -> 0.
+  const bool density_normal = multi && axisym && scenario_.contact.axisymmetric_normal == "density";
   const double* bq = bulk_viscosity_.active() ? points_.real(kBulkViscosity) : nullptr;
   if (force_part && anti_locking_ == AntiLocking::FBar) {
     // The F-bar's forces read the averaged pressure (mean dilatation, anti_locking.hpp); it
@@ -302,6 +306,7 @@ void MpmSolver::particles_to_grid(P2gPart part, const Vec3* v_source) {
         const double m = mass[p];
         const Vec3 mv = m * v[p];
         const Index fo = field_offset(p);
+        const double mg = density_normal ? m / std::max(x[p][0], half[p][0]) : m;  // contact normal's weight
         if (part == P2gPart::Momentum) {
           for (int k = 0; k < st.count; ++k) gp[fo + st.node[k]] += st.w[k] * mv;
           continue;
@@ -311,7 +316,7 @@ void MpmSolver::particles_to_grid(P2gPart part, const Vec3* v_source) {
             const Index I = fo + st.node[k];
             const double w = st.w[k];
             if (multi) {
-              gg[I] += m * st.grad[k];
+              gg[I] += mg * st.grad[k];
               if (gv) gv[I] += w * vol[p];
             }
             gm[I] += w * m;
@@ -338,7 +343,7 @@ void MpmSolver::particles_to_grid(P2gPart part, const Vec3* v_source) {
           const Vec3& dN = st.grad[k];
           if (multi) {
             // The outward vector of the field: the contact normal (grid_contact.hpp).
-            if (mass_part) gg[I] += m * dN;
+            if (mass_part) gg[I] += mg * dN;
             if (gv) gv[I] += w * vol[p];  // how much of the node the field fills (contact's gap check)
           }
           if (mass_part) {

@@ -277,6 +277,11 @@ struct ContactSpec {
   /// Fields meet at a node only where their particles fill at least this fraction of the node's
   /// volume (a gap check; 0: wherever two fields have mass)
   double min_volume_fraction = 0.0;
+  /// Axisymmetric runs: what the contact normal is the gradient of. ring_mass: the points' mass
+  /// per radian, rho r A, whose gradient in a uniform body is rho A e_r, not zero, and outweighs a
+  /// small body's own gradient within a few cells of the axis; density: the mass per radian over
+  /// the point's radius, rho A, as in a planar run
+  std::string axisymmetric_normal = "ring_mass";
   std::vector<ContactPairSpec> pairs;
   // Resolved by the deck reader:
   int fields = 1;                      ///< number of velocity fields
