@@ -48,6 +48,12 @@ TEST(DeckChanges, ARestartMayChangeTheEndOutputsLimitsAndGuardsOnly) {
     EXPECT_FALSE(restart_may_change(no)) << no;
 }
 
+// The refused changes are exactly one, at key_path.
+void expect_one_change(const std::vector<DeckChange>& r, const std::string& key_path) {
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_EQ(r[0].key_path, key_path);
+}
+
 // A checkpoint written before a key existed: its deck lacks the key, and this build resolves it at
 // its default. That is no change (a key's default is the behaviour before it existed); the same key
 // set by an override, a new key set inside a new section, and a removed or changed key still are.
@@ -70,17 +76,13 @@ TEST(DeckChanges, AKeyAddedSinceTheCheckpointIsNoChangeAtItsDefault) {
   const std::string inside =
       "mpm: {bulk_viscosity_linear: 0.2, bulk_viscosity_sound_speed: current}\nsimulation: {end_time: 1.0e-4}\n"
       "anti_locking: {patch: 2}\n";
-  r = refused_restart_changes(stored, plain, inside);
-  ASSERT_EQ(r.size(), 1u);
-  EXPECT_EQ(r[0].key_path, "anti_locking");
+  expect_one_change(refused_restart_changes(stored, plain, inside), "anti_locking");
   // An existing key changed, or one the checkpoint has and this build drops, stays refused; the
   // run's end may still change.
   const std::string changed =
       "mpm: {bulk_viscosity_linear: 0.3, bulk_viscosity_sound_speed: current}\nsimulation: {end_time: 2.0e-4}\n"
       "anti_locking: {patch: 1}\n";
-  r = refused_restart_changes(stored, changed, changed);
-  ASSERT_EQ(r.size(), 1u);
-  EXPECT_EQ(r[0].key_path, "mpm.bulk_viscosity_linear");
+  expect_one_change(refused_restart_changes(stored, changed, changed), "mpm.bulk_viscosity_linear");
   r = refused_restart_changes(plain, stored, stored);
   ASSERT_EQ(r.size(), 2u);  // bulk_viscosity_sound_speed and anti_locking removed
 }
