@@ -30,8 +30,11 @@ struct FieldGrid {
   int fields = 1;
   Index nodes = 0;
   const double* mass = nullptr;  ///< kg per field and node
-  /// sum_p m_p grad N_I(x_p) per field and node, kg/m: minus the gradient of the field's mass
-  /// density at the node, i.e. it points out of the field's material.
+  /// sum_p w_p grad N_I(x_p) per field and node: it points out of the field's material. w_p is the
+  /// point's mass (kg/m in a planar or 3D run: minus the gradient of the mass density; in an
+  /// axisymmetric run the mass per radian, so minus the gradient of rho r, which is -m_I / r_I
+  /// along r even inside a uniform body), or with contact.axisymmetric_normal: density the mass
+  /// per radian over the point's radius (kg/m^2: minus the gradient of rho, zero inside).
   const Vec3* grad = nullptr;
   const double* friction = nullptr;  ///< fields x fields Coulomb coefficients
   /// Several ranks: per node, 0 where a lower rank books the work of this shared node (the node's

@@ -306,11 +306,13 @@ void MpmSolver::particles_to_grid(P2gPart part, const Vec3* v_source) {
         const double m = mass[p];
         const Vec3 mv = m * v[p];
         const Index fo = field_offset(p);
-        const double mg = density_normal ? m / std::max(x[p][0], half[p][0]) : m;  // contact normal's weight
         if (part == P2gPart::Momentum) {
           for (int k = 0; k < st.count; ++k) gp[fo + st.node[k]] += st.w[k] * mv;
           continue;
         }
+        // The contact normal's weight (grid_contact.hpp): the mass per radian, or that over the
+        // point's radius (its half-size nearer the axis, where r_p -> 0 would blow it up).
+        const double mg = density_normal ? m / std::max(x[p][0], half[p][0]) : m;
         if (!force_part) {  // P2gPart::Kinematics
           for (int k = 0; k < st.count; ++k) {
             const Index I = fo + st.node[k];

@@ -35,7 +35,7 @@ struct GridData {
   std::vector<Vec3> force;       ///< N: internal + external during P2G
   std::vector<Vec3> velocity_new;///< m/s at t_{n+1} after boundary conditions
   std::vector<Vec3> accel;       ///< m/s^2 over the step (after boundary conditions)
-  std::vector<Vec3> grad;        ///< kg/m: sum_p m_p grad N_I, outward from the field's material (several fields only)
+  std::vector<Vec3> grad;        ///< sum_p w_p grad N_I, outward from the field's material (several fields only; w_p and units: FieldGrid::grad)
   std::vector<Vec3> impulse;     ///< m/s: the step's contact corrections per node (several fields only)
   std::vector<Vec3> friction_impulse;  ///< m/s: their tangential (Coulomb) parts
   /// sum_p N_I V_p per field and node, in the particle volumes' unit (contact's gap check only:
