@@ -246,8 +246,7 @@ void MpmSolver::particles_to_grid(P2gPart part, const Vec3* v_source) {
     });
   const bool axisym = dimension_ == Dimension::Axisymmetric;
   // The contact normal's gradient of the density, not of the mass per radian (scenario.hpp,
-  // ContactSpec::axisymmetric_normal): m_p / r_p = rho_p A_p. A point nearer the axis than its
-  // half-size divides by the half-size, so that the weight stays bounded as r_p -> 0.
+  // ContactSpec::axisymmetric_normal): m_p / r_p = rho_p A_p.
   const bool density_normal = multi && axisym && scenario_.contact.axisymmetric_normal == "density";
   const double* bq = bulk_viscosity_.active() ? points_.real(kBulkViscosity) : nullptr;
   if (force_part && anti_locking_ == AntiLocking::FBar) {
