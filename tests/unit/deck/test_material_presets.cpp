@@ -454,7 +454,8 @@ double bisect(G g, double lo, double hi) {
 TEST(MaterialPresets, GeomodelSandstoneDerivedValuesAndCrossChecks) {
   int checked = 0;
   for (const auto& p : library().presets()) {
-    if (p.model != "geomodel") continue;
+    // Porous presets only: a card without porosity (the cement) has no crush data to check.
+    if (p.model != "geomodel" || !has(p, "crush_p3")) continue;
     SCOPED_TRACE(p.name);
     const double phi = cross(p, "porosity");
     ASSERT_TRUE(std::isfinite(phi)) << "a geomodel preset records its porosity under cross_checks";
@@ -500,6 +501,38 @@ TEST(MaterialPresets, GeomodelSandstoneDerivedValuesAndCrossChecks) {
     ++checked;
   }
   EXPECT_GE(checked, 2);
+}
+
+// The class-G-like cement (a geomodel card without porosity) against the data its values were
+// derived from (cross_checks). Tolerances:
+// * density = (1 + w/c) / (1/rho_c + (w/c)/rho_w): rounded to 1 kg/m^3, 0.1 %.
+// * unconfined compressive strength of the limit surface against the 40 MPa FSLOPE was fitted to,
+//   and its high-pressure limit sqrt(J2) -> STREN against S_max f'c / sqrt(3) (Holmquist, Johnson &
+//   Cook 1993, S_max = 7): FSLOPE and STREN are written with 4 significant figures (0.4935 for
+//   0.49346, 161.7 for 161.66 MPa), which moves each by < 0.04 %; 0.1 %.
+// * tensile vertex PEAKI1 = 3 T exactly; E and nu from K and G against the recorded 13 GPa and 0.20,
+//   0.5 % (K and G are written to 2 significant figures: E = 12.96 GPa).
+// * the shear strength must saturate: sqrt(J2) at 10 GPa of pressure within 1 % of STREN. The
+//   linear cone the demo's cement had (FSLOPE 0.457 through the same vertex) gives 13.7 GPa there,
+//   85x as much; that unbounded strength is what this card replaces (docs/material_data.md).
+TEST(MaterialPresets, CementPresetMeetsItsStrengthsAndSaturates) {
+  const MaterialPreset& p = library().get("cement_class_g");
+  ASSERT_EQ(p.model, "geomodel");
+  EXPECT_FALSE(has(p, "crush_p3")) << "no porosity: the pores hold the mix water (notes)";
+  const double wc = cross(p, "water_cement_ratio");
+  EXPECT_NEAR(num(p, "density") / ((1.0 + wc) / (1.0 / cross(p, "cement_grain_density") + wc / 1000.0)), 1.0,
+              1e-3);
+  const double ucs_ref = cross(p, "unconfined_compressive_strength");
+  const double ucs =
+      bisect([&](double q) { return q / std::sqrt(3.0) - limit_function(p, -q); }, 0.0, 1e10);
+  EXPECT_NEAR(ucs / ucs_ref, 1.0, 1e-3) << "UCS of the limit surface " << ucs;
+  EXPECT_DOUBLE_EQ(num(p, "peak_i1"), 3.0 * cross(p, "tensile_strength"));
+  const double smax = cross(p, "hjc_max_normalised_strength");
+  EXPECT_NEAR(num(p, "stren") / (smax * ucs_ref / std::sqrt(3.0)), 1.0, 1e-3);
+  EXPECT_NEAR(limit_function(p, -3.0 * 10e9) / num(p, "stren"), 1.0, 1e-2);
+  const double K = num(p, "bulk_modulus"), G = num(p, "shear_modulus");
+  EXPECT_NEAR(9.0 * K * G / (3.0 * K + G) / cross(p, "youngs_modulus"), 1.0, 5e-3);
+  EXPECT_NEAR((3.0 * K - 2.0 * G) / (2.0 * (3.0 * K + G)) / cross(p, "poisson_ratio"), 1.0, 5e-3);
 }
 
 // The saturated sandstone is the drained skeleton plus water: every key of the drained preset
