@@ -1,11 +1,12 @@
-// The contact normal of an axisymmetric run (contact.axisymmetric_normal; src/mpm/grid_contact.hpp):
-// the outward vector of a field at a node, g_I = sum_p w_p grad N_I(x_p), is minus the gradient
-// of what w_p carries. Inside a body of uniform density it must vanish, so that only surfaces set
-// the normal. With w_p = m_p, the mass per radian rho r_p A_p, it does not: the mass per radian
-// grows with r, and g_I = -(d(rho r)/dr) A-sum = about -m_I / r_I along r at every interior node.
-// Within a few cells of the axis that outweighs a small body's own gradient (a jet point inside the
-// rock: 1/r against the point's few-per-cell weight), the normal turns radial and an axial approach
-// is read as sliding. With w_p = m_p / r_p = rho A_p ("density") the interior sum cancels.
+// The contact normal of an axisymmetric run (contact.axisymmetric_normal;
+// src/mpm/grid_contact.hpp): the outward vector of a field at a node, g_I = sum_p w_p grad
+// N_I(x_p), is minus the gradient of what w_p carries. Inside a body of uniform density it must
+// vanish, so that only surfaces set the normal. With w_p = m_p, the mass per radian rho r_p A_p, it
+// does not: the mass per radian grows with r, and g_I = -(d(rho r)/dr) A-sum = about -m_I / r_I
+// along r at every interior node. Within a few cells of the axis that outweighs a small body's own
+// gradient (a jet point inside the rock: 1/r against the point's few-per-cell weight), the normal
+// turns radial and an axial approach is read as sliding. With w_p = m_p / r_p = rho A_p ("density")
+// the interior sum cancels.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,7 +24,8 @@ using namespace ballista;
 
 // A uniform cylinder (r < 10 mm, 0 < y < 10 mm) at rest and a second body away from it, so that
 // the run has two velocity fields; 1 mm cells, 2 x 2 points per cell.
-std::string deck(const std::string& normal, const std::string& shape = "gimp", const std::string& update = "musl") {
+std::string deck(const std::string& normal, const std::string& shape = "gimp",
+                 const std::string& update = "musl") {
   return std::string(R"(
 simulation: {solver: mpm, dimension: axisymmetric, end_time: 1.0e-6, cfl: 0.3}
 materials:
@@ -39,10 +41,10 @@ contact: {model: friction, friction: 0, axisymmetric_normal: )" +
 }
 
 struct InteriorGradient {
-  double worst_density = 0.0;     ///< max |g_I| h r_I / m_I over the interior nodes (dimensionless)
-  double worst_ring_mass = 0.0;   ///< max |g_I| h / m_I over the same nodes (dimensionless)
+  double worst_density = 0.0;    ///< max |g_I| h r_I / m_I over the interior nodes (dimensionless)
+  double worst_ring_mass = 0.0;  ///< max |g_I| h / m_I over the same nodes (dimensionless)
   double worst_radial_vs_one_over_r = 0.0;  ///< max |g_I,r r_I / m_I + 1| over the same nodes
-  double r_min = 0.0;             ///< the innermost node radius checked, m
+  double r_min = 0.0;                       ///< the innermost node radius checked, m
 };
 
 // The block's field (0) after one step from rest, at the nodes whose stencils hold only the block's
@@ -67,13 +69,16 @@ InteriorGradient interior_gradient(const std::string& normal, const std::string&
   for (int i = 0; i < g.geom.nodes[0]; ++i)
     for (int j = 0; j < g.geom.nodes[1]; ++j) {
       const Vec3 x = g.geom.node_position(i, j, 0);
-      if (x[0] < out.r_min - 1e-9 || x[0] > 8.0e-3 + 1e-9 || x[1] < 2.0e-3 - 1e-9 || x[1] > 8.0e-3 + 1e-9) continue;
+      if (x[0] < out.r_min - 1e-9 || x[0] > 8.0e-3 + 1e-9 || x[1] < 2.0e-3 - 1e-9 ||
+          x[1] > 8.0e-3 + 1e-9)
+        continue;
       const Index I = g.geom.node_index(i, j, 0);
       const double m = g.mass[I];
       const Vec3 gr = g.grad[I];
       out.worst_density = std::max(out.worst_density, norm(gr) * h * x[0] / m);
       out.worst_ring_mass = std::max(out.worst_ring_mass, norm(gr) * h / m);
-      out.worst_radial_vs_one_over_r = std::max(out.worst_radial_vs_one_over_r, std::abs(gr[0] * x[0] / m + 1.0));
+      out.worst_radial_vs_one_over_r =
+          std::max(out.worst_radial_vs_one_over_r, std::abs(gr[0] * x[0] / m + 1.0));
     }
   return out;
 }
@@ -83,8 +88,9 @@ struct Scheme {
   const char* update;
 };
 // Every shape function with both updates that run contact (CPDI with USAVG is refused).
-constexpr Scheme kSchemes[] = {{"gimp", "musl"},  {"gimp", "usavg"},     {"linear", "musl"}, {"linear", "usavg"},
-                               {"bspline3", "musl"}, {"bspline3", "usavg"}, {"cpdi", "musl"}};
+constexpr Scheme kSchemes[] = {{"gimp", "musl"},    {"gimp", "usavg"},    {"linear", "musl"},
+                               {"linear", "usavg"}, {"bspline3", "musl"}, {"bspline3", "usavg"},
+                               {"cpdi", "musl"}};
 
 TEST(ContactNormalAxisymmetric, TheDensityGradientVanishesInsideAUniformBody) {
   // Round-off: g_I sums tens of terms of size rho A / h (A = h^2 / 4) that cancel in pairs by the
@@ -93,8 +99,9 @@ TEST(ContactNormalAxisymmetric, TheDensityGradientVanishesInsideAUniformBody) {
   // the weight's guard max(r_p, half) reads r_p here either way.
   for (const Scheme& sch : kSchemes) {
     const InteriorGradient d = interior_gradient("density", sch.shape, sch.update);
-    std::printf("density normal, %s/%s: worst |g| h r / m inside the block from r = %.0f mm: %.3e\n", sch.shape,
-                sch.update, d.r_min * 1e3, d.worst_density);
+    std::printf(
+        "density normal, %s/%s: worst |g| h r / m inside the block from r = %.0f mm: %.3e\n",
+        sch.shape, sch.update, d.r_min * 1e3, d.worst_density);
     EXPECT_LT(d.worst_density, 1e-12) << sch.shape << "/" << sch.update;
   }
 }
@@ -103,14 +110,17 @@ TEST(ContactNormalAxisymmetric, TheRingMassGradientIsMinusMassOverRadiusInside) 
   // The default's interior vector is -m_I / r_I e_r: on a uniform lattice the sum of the points'
   // r_p times their weights' slopes over a node is minus the node's weight sum (the linear
   // function r is reproduced exactly), so it holds to round-off (measured at most 1.5e-14, CPDI;
-  // bound 1e-12 as above). Its size, m / r, is h / r of what a free surface gives (about m / h): as large as a
-  // surface's at the first node off the axis, the reason the normal turns radial there.
+  // bound 1e-12 as above). Its size, m / r, is h / r of what a free surface gives (about m / h): as
+  // large as a surface's at the first node off the axis, the reason the normal turns radial there.
   for (const Scheme& sch : kSchemes) {
     const InteriorGradient r = interior_gradient("ring_mass", sch.shape, sch.update);
-    std::printf("ring-mass normal, %s/%s: worst |g_r r / m + 1| %.3e, worst |g| h / m %.3e from r = %.0f mm\n",
-                sch.shape, sch.update, r.worst_radial_vs_one_over_r, r.worst_ring_mass, r.r_min * 1e3);
+    std::printf(
+        "ring-mass normal, %s/%s: worst |g_r r / m + 1| %.3e, worst |g| h / m %.3e from r = %.0f "
+        "mm\n",
+        sch.shape, sch.update, r.worst_radial_vs_one_over_r, r.worst_ring_mass, r.r_min * 1e3);
     EXPECT_LT(r.worst_radial_vs_one_over_r, 1e-12) << sch.shape << "/" << sch.update;
-    EXPECT_NEAR(r.worst_ring_mass, 1.0e-3 / r.r_min, 1e-12) << sch.shape << "/" << sch.update;  // h / r_min
+    EXPECT_NEAR(r.worst_ring_mass, 1.0e-3 / r.r_min, 1e-12)
+        << sch.shape << "/" << sch.update;  // h / r_min
   }
 }
 
