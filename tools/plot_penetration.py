@@ -106,9 +106,16 @@ def subject(p):
 
 
 def convergence_note(p):
-    """The run's own statement that its penetrator is under-resolved (summary `resolved`)."""
+    """The run's own statement that it is under-resolved (summary `resolved`), with its cause: the
+    penetrator's cells across its radius, or a tunnel running on beyond the refined band."""
+    if p.get("resolved") is not False:
+        return ""
+    coarser = number(p.get("path_cells") or {}, "coarser_from_depth")
+    if coarser is not None:
+        return (f"NOT CONVERGED: the refined band along the flight ends {coarser * 1e3:.1f} mm deep; "
+                "the tunnel's end lies in coarser cells")
     cells = number(p, "cells_across_radius")
-    if p.get("resolved") is False and cells is not None:
+    if cells is not None:
         return (f"NOT CONVERGED: the penetrator is {cells:.2g} cells across its radius "
                 "(depth and rate converge from about 4; docs/validation.md)")
     return ""

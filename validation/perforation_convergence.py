@@ -301,6 +301,9 @@ def extract(s, out, points):
         "min_dt": s["statistics"].get("min_dt"),
         "first_main_dt": first_main_step(out),
         "cells_across_radius": pen.get("cells_across_radius"),
+        # Where the cells along the flight grow coarser than the band's, if the tunnel reaches there
+        # (the run's path_cells; None: the band covers the whole tunnel).
+        "coarser_from_depth": mm((pen.get("path_cells") or {}).get("coarser_from_depth")),
         # When the run ended because the jet was spent (penetration.end_when_spent), µs after firing;
         # None: it ran to end_time.
         "spent_time": (lambda t: None if t is None else 1e6 * t)((pen.get("end_when_spent") or {}).get("time")),
@@ -339,8 +342,9 @@ def main():
                     help="cell sizes in the bands, m, coarse to fine (ratio 2)")
     ap.add_argument("--far", type=float, default=1.0e-3, help="far-field cell size, m (the deck's)")
     ap.add_argument("--band", type=float, default=9.0e-3, help="radius of the refined band around the line of flight, m")
-    ap.add_argument("--path", type=float, nargs=2, default=[-30.0e-3, 135.0e-3],
-                    help="axial extent of the refined band, m (the jet's path through casing, cement and the rock to 130 mm deep)")
+    ap.add_argument("--path", type=float, nargs=2, default=[-60.0e-3, 135.0e-3],
+                    help="axial extent of the refined band, m (the jet's path through casing, cement and the rock to "
+                         "160 mm deep; a level whose tunnel runs on beyond it says so)")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--set", action="append", default=[], help="further --set overrides for every level")
     ap.add_argument("--reuse", action="store_true", help="reuse the summary of a level already run into --out")
@@ -390,6 +394,11 @@ def main():
                 v = result["estimates"][q].get(key)
                 cells.append("—" if v is None else (f"{100 * v:.1f} %" if key == "finest_relative_gap" else f"{v:.3g}"))
             lines.append(f"| {name} | | | | | " + " | ".join(cells) + " |")
+    for r in rows:
+        if r.get("coarser_from_depth") is not None:
+            lines.append(f"\nNOT CONVERGED at {r['h'] * 1e3:g} mm: the refined band along the flight ends "
+                         f"{r['coarser_from_depth']:.1f} mm deep and the tunnel runs on in coarser cells "
+                         "(a deeper --path).")
     # Where the jet goes (the casing's cost explained) and the axis (smallest step vs the first).
     lines += ["", "| band cell (mm) | jet consumed by the casing (mm; hydrodynamic) | tip speed behind the casing "
               "(m/s; initial) | consumed by casing + cement (mm; hydrodynamic) | tip speed behind the cement (m/s; "

@@ -62,11 +62,11 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
   // A graded grid's finest cells across and along the line of flight, where the jet is.
   lateral_cell_ = axial_cell_ = cell_;
   if (sc.grid.graded()) {
-    const GridAxes axes = build_grid_axes(sc.grid, nd_);
+    axes_ = build_grid_axes(sc.grid, nd_);
     lateral_cell_ = axial_cell_ = kInfinity;
     for (int a = 0; a < nd_; ++a) {
       double& finest = a == axis_ ? axial_cell_ : lateral_cell_;
-      finest = std::min(finest, axes.smallest(a));
+      finest = std::min(finest, axes_.smallest(a));
     }
     cell_ = lateral_cell_;
   }
@@ -267,7 +267,20 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   out["hydrodynamic_rate"] = uh;
   out["rate_over_hydrodynamic"] = fit.ok && uh > 0 ? JsonValue(fit.slope / uh) : JsonValue();
   out["cells_across_radius"] = radius_cells_;
-  out["resolved"] = radius_cells_ >= kResolvedRadiusCells;
+  // The radius's cells are the finest; a tunnel that runs on beyond the refined band ends in coarser
+  // ones, and its depth is not the band's answer.
+  const double tunnel_end = std::max(out.at("final_cavity_depth").as_number(), max_depth);
+  double entry = 0.0;
+  for (double face : layer_face_) entry = std::min(entry, depth_of_coordinate(face));
+  const JsonValue cells = path_cells(entry, tunnel_end);
+  const bool along = cells.at("coarser_from_depth").kind() == JsonValue::Kind::Null;
+  if (!along)
+    spdlog::warn("the tunnel reaches {:.4g} m deep, but the finest cells along the line of flight ({:.3g} m) end "
+                 "at {:.4g} m deep (cells up to {:.3g} m beyond): its end is not at the resolution "
+                 "cells_across_radius states; extend grid.refine along the flight",
+                 tunnel_end, axial_cell_, cells.at("coarser_from_depth").as_number(), cells.at("coarsest").as_number());
+  out["path_cells"] = cells;
+  out["resolved"] = radius_cells_ >= kResolvedRadiusCells && along;
   const double ph = have ? penetration::birkhoff_depth(length_, rho_p_, rho_t_) : kNotMeasured;
   out["hydrodynamic_depth"] = ph;
   JsonValue& an = out["analytic"];
@@ -302,7 +315,7 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
     dd.push_back(depth_of(x[p]));
     rr.push_back(std::max(0.0, lateral_of(x[p]) - reach));
   }
-  const double channel_depth = std::max(out.at("final_cavity_depth").as_number(), max_depth);
+  const double channel_depth = tunnel_end;
   const int bins = spec_.channel_bins > 0 ? spec_.channel_bins
                                           : std::max(1, static_cast<int>(std::ceil(channel_depth / axial_cell_)));
   double max_radius = 0.0, wall_sum = 0.0;
@@ -365,6 +378,26 @@ std::vector<LateralPoint> PenetrationProbe::lateral_points(const FieldStore& pts
     out.push_back({direction_ * (x0[p][axis_] - face), lateral_of(x[p]), volume, reach});
   }
   return out;
+}
+
+JsonValue PenetrationProbe::path_cells(double from, double to) const {
+  JsonValue c = JsonValue::object();
+  c["finest"] = axial_cell_;
+  double coarsest = axial_cell_, coarser_from = kInfinity;
+  const std::vector<double>& n = axes_.node[axis_];
+  for (std::size_t k = 0; k + 1 < n.size(); ++k) {
+    // The cell's depths along the flight, shallow end first; cells the path does not cross skipped.
+    const double d0 = depth_of_coordinate(n[k]), d1 = depth_of_coordinate(n[k + 1]);
+    const double shallow = std::min(d0, d1), deep = std::max(d0, d1);
+    if (deep <= from || shallow >= to) continue;
+    const double size = n[k + 1] - n[k];
+    coarsest = std::max(coarsest, size);
+    // Cells of a band are equal to its size up to round-off of the nodes' sums.
+    if (size > axial_cell_ * (1.0 + 1e-9)) coarser_from = std::min(coarser_from, std::max(from, shallow));
+  }
+  c["coarsest"] = coarsest;
+  c["coarser_from_depth"] = std::isfinite(coarser_from) ? JsonValue(coarser_from) : JsonValue();
+  return c;
 }
 
 JsonValue PenetrationProbe::layer_holes(const FieldStore& pts) const {

@@ -12,6 +12,7 @@
 #include "analysis/hole_profile.hpp"
 #include "analysis/jet_remainder.hpp"
 #include "core/state_archive.hpp"
+#include "geometry/grid_axes.hpp"
 #include "io/summary_writer.hpp"
 #include "scenario/scenario.hpp"
 
@@ -70,6 +71,10 @@ class PenetrationProbe {
   /// are now, or (seeded_axial) where they were seeded through the layer.
   std::vector<LateralPoint> lateral_points(const FieldStore& points, int body, double face,
                                            bool seeded_axial = false) const;
+  /// summary.json "path_cells": the cells along the line of flight over the depths [from, to] (the
+  /// layers' faces to the tunnel's end) against the finest ones there, and the depth from which
+  /// they are coarser (a graded grid whose band ends before the tunnel does).
+  JsonValue path_cells(double from, double to) const;
   /// summary.json "holes": the hole through each layer (entrance and smallest diameter).
   JsonValue layer_holes(const FieldStore& points) const;
   /// Records what is left of the jet when its front (penetrator_front) first passes the back face
@@ -94,6 +99,7 @@ class PenetrationProbe {
   std::vector<JetSegmentLine> jet_lines_;             ///< the penetrator's segments, tip first
   LateralGeometry lateral_geometry_ = LateralGeometry::ThreeD;
   double lateral_cell_ = 0.0, axial_cell_ = 0.0;  ///< m: the finest cells across and along the flight
+  GridAxes axes_;                                  ///< a graded grid's nodes (empty axes: uniform grid)
   int penetrator_ = -1, target_ = -1;  ///< body indices
   int axis_ = 1, nd_ = 3;
   double direction_ = -1.0, surface_ = 0.0;

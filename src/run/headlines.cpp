@@ -52,7 +52,15 @@ void penetration_lines(const JsonValue& p, bool completed, std::vector<std::stri
         "simulation.end_time, with penetration.end_when_spent to stop once the penetrator is spent, or a longer "
         "target if it was perforated)");
   const double cells = number_at(p, "cells_across_radius");
-  if (p.contains("resolved") && !p.at("resolved").as_bool() && std::isfinite(cells))
+  const double coarser = p.contains("path_cells") ? number_at(p.at("path_cells"), "coarser_from_depth") : NAN;
+  const bool unresolved = p.contains("resolved") && !p.at("resolved").as_bool();
+  if (unresolved && std::isfinite(coarser))
+    out.push_back(fmt::format(
+        "NOT CONVERGED: the finest cells along the line of flight end {} deep and the tunnel runs on to {} in "
+        "cells up to {}: its end is not at the resolution of the cells across the penetrator (extend grid.refine "
+        "along the flight)",
+        mm(coarser), mm(number_at(p.at("tunnel"), "depth")), mm(number_at(p.at("path_cells"), "coarsest"))));
+  else if (unresolved && std::isfinite(cells))
     out.push_back(fmt::format(
         "NOT CONVERGED: the penetrator is {:.3g} cells across its radius; depth and rate are not converged "
         "at this resolution (docs/validation.md)",

@@ -13,6 +13,9 @@ and tools/plot_penetration.py): depth = U (t - t_s) after a quadratic start-up t
              penetration_time nan): exit status 0, the depth figure skipped with a note
   empty      no history.csv: non-zero exit and a message naming history.csv, no PNG
   sweep      a sweep_penetration.json of an exact line U = a + bV: both sweep PNGs are valid
+  note       the caption's NOT CONVERGED note names its cause: the penetrator's cells across its
+             radius, or the refined band ending before the tunnel (summary path_cells); none when
+             resolved
 """
 import argparse
 import json
@@ -187,6 +190,18 @@ def main():
         fail(f"no history.csv: the message does not name history.csv: {err!r}")
     if any(f.endswith(".png") for f in os.listdir(empty)):
         fail("no history.csv: a PNG was written")
+
+    sys.path.insert(0, a.tools)
+    import plot_penetration  # noqa: E402
+    note = plot_penetration.convergence_note
+    thin = note({"resolved": False, "cells_across_radius": 1.0, "path_cells": {"coarser_from_depth": None}})
+    if "1 cells across its radius" not in thin:
+        fail(f"note of a thin penetrator: {thin!r}")
+    past = note({"resolved": False, "cells_across_radius": 4.0, "path_cells": {"coarser_from_depth": 0.13}})
+    if "ends 130.0 mm deep" not in past or "across its radius" in past:
+        fail(f"note of a tunnel beyond the band: {past!r}")
+    if note({"resolved": True, "cells_across_radius": 4.0}) != "":
+        fail("a resolved run has a NOT CONVERGED note")
 
     sweep = os.path.join(a.out, "sweep")
     os.makedirs(sweep)

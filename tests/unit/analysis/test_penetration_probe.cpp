@@ -225,6 +225,55 @@ TEST(PenetrationProbe, TunnelEntranceIsWhereTheWallBeginsBelowACrushedFace) {
   EXPECT_NEAR(t.at("entrance_depth").as_number(), 3e-3, 1e-12);
 }
 
+// The rod of kDeck, 4 cells across its radius in a band x < 3 mm of 0.25 mm cells, along the flight
+// from y = 12 to 30 mm (the target's face at 20 mm: 8 mm deep); graded to 1 mm beyond.
+const char* kBandDeck = R"(simulation: {dimension: axisymmetric, end_time: 1.0e-6}
+grid:
+  lower: [0, 0]
+  upper: [0.01, 0.04]
+  cell_size: 1.0e-3
+  refine: [{axis: x, from: 0, to: 3.0e-3, cell_size: 0.25e-3}, {axis: y, from: 0.012, to: 0.030, cell_size: 0.25e-3}]
+materials:
+  rock: {model: linear_elastic, density: 2300, youngs_modulus: 20e9, poisson_ratio: 0.2}
+  w: {model: linear_elastic, density: 18400, youngs_modulus: 350e9, poisson_ratio: 0.3}
+bodies:
+  - {name: target, material: rock, shape: {type: cylinder, center: [0, 0], axis: y, radius: 0.008, length: 0.02}}
+  - name: rod
+    material: w
+    rod: {nose: [0, 0.021], diameter: 2e-3, length: 4e-3, speed: 1000, segment_ld: 1.0}
+penetration: {penetrator: rod, target: target}
+)";
+
+TEST(PenetrationProbe, ATunnelBeyondTheRefinedBandIsNotResolved) {
+  const Scenario sc = parse_deck(kBandDeck, "band.yaml");
+  auto solver = make_solver(sc);
+  FieldStore& pts = solver->points();
+  auto* x = pts.view<Vec3>("x");
+  const auto* bid = pts.ints("body");
+  Index lead = -1;
+  for (Index p = 0; p < pts.size() && lead < 0; ++p)
+    if (bid[p] == 1) lead = p;
+  ASSERT_GE(lead, 0);
+  // A rod point 7 mm deep: the path to it lies in the band's cells.
+  x[lead][1] = 0.013;
+  JsonValue in = summary_of_one_sample(sc, *solver);
+  EXPECT_DOUBLE_EQ(in.at("cells_across_radius").as_number(), 4.0);
+  // The band's cells are its length over their count, 0.25 mm to the round-off of the node sums.
+  EXPECT_NEAR(in.at("path_cells").at("finest").as_number(), 0.25e-3, 1e-17);
+  EXPECT_NEAR(in.at("path_cells").at("coarsest").as_number(), 0.25e-3, 1e-17);
+  EXPECT_EQ(in.at("path_cells").at("coarser_from_depth").kind(), JsonValue::Kind::Null);
+  EXPECT_TRUE(in.at("resolved").as_bool());
+  // 14 mm deep: the last 6 mm lie in graded cells, coarser from the band's end at 8 mm deep (the
+  // band ends exactly on its node), growing to 1 mm by at most 1.2 per cell (at least 1.2 x 0.25 mm
+  // in the first).
+  x[lead][1] = 0.006;
+  JsonValue past = summary_of_one_sample(sc, *solver);
+  EXPECT_NEAR(past.at("path_cells").at("coarser_from_depth").as_number(), 0.008, 1e-15);
+  EXPECT_GT(past.at("path_cells").at("coarsest").as_number(), 0.3e-3);
+  EXPECT_LE(past.at("path_cells").at("coarsest").as_number(), 1.0e-3 * (1.0 + 1e-12));
+  EXPECT_FALSE(past.at("resolved").as_bool());
+}
+
 }  // namespace
 
 }  // namespace test_penetration_probe

@@ -1,7 +1,8 @@
 // What a penetration run prints about its depth (src/run/headlines.cpp): final when it ended
 // because the penetrator was spent, "STILL MOVING" when it reached end_time with the penetration
 // not stopped, and neither when the run did not complete (a failed or interrupted run's depth is
-// neither final nor the depth at end_time).
+// neither final nor the depth at end_time); "NOT CONVERGED" with the cause, the penetrator's cells
+// across its radius or a tunnel that runs on beyond the refined band.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -62,6 +63,35 @@ TEST(Headlines, AnUnfinishedRunMakesNoClaimAboutItsDepth) {
       EXPECT_EQ(lines_with(l, "STILL MOVING") + lines_with(l, "is final"), 0) << status << " spent " << spent;
       EXPECT_EQ(lines_with(l, "depth into"), 1) << status;
     }
+}
+
+TEST(Headlines, AnUnresolvedRunSaysWhy) {
+  JsonValue thin = summary("completed", true, true);
+  JsonValue& p = thin["penetration"];
+  p["cells_across_radius"] = 1.0;
+  p["resolved"] = false;
+  std::vector<std::string> l = headline_lines(thin);
+  EXPECT_EQ(lines_with(l, "NOT CONVERGED: the penetrator is 1 cells across its radius"), 1);
+  // Four cells across, but the tunnel ends beyond the band: the band is the cause, not the radius.
+  JsonValue past = summary("completed", true, true);
+  JsonValue& q = past["penetration"];
+  q["cells_across_radius"] = 4.0;
+  q["resolved"] = false;
+  JsonValue& c = q["path_cells"];
+  c = JsonValue::object();
+  c["finest"] = 0.25e-3;
+  c["coarsest"] = 1.0e-3;
+  c["coarser_from_depth"] = 0.130;
+  JsonValue& t = q["tunnel"];
+  t = JsonValue::object();
+  t["depth"] = 0.1567;
+  l = headline_lines(past);
+  EXPECT_EQ(lines_with(l, "end 130.0 mm deep and the tunnel runs on to 156.7 mm in cells up to 1.0 mm"), 1);
+  EXPECT_EQ(lines_with(l, "cells across its radius;"), 0);
+  // Resolved: nothing to say.
+  q["resolved"] = true;
+  c["coarser_from_depth"] = JsonValue();
+  EXPECT_EQ(lines_with(headline_lines(past), "NOT CONVERGED"), 0);
 }
 
 }  // namespace
