@@ -39,7 +39,9 @@ DECK = os.path.join(REPO, "examples", "jet_casing_sandstone_mpm.yaml")
 QUANTITIES = [
     ("depth", "depth into the rock", "mm"),
     ("casing_hole", "casing entrance hole diameter", "mm"),
+    ("casing_mean_hole", "casing hole diameter averaged through its thickness", "mm"),
     ("cement_hole", "cement entrance hole diameter", "mm"),
+    ("cement_mean_hole", "cement hole diameter averaged through its thickness", "mm"),
     ("tunnel_entrance", "rock tunnel entrance diameter", "mm"),
     ("cavity_depth", "cavity depth in the rock", "mm"),
     ("tunnel_depth", "depth the tunnel is as wide as the jet's tip", "mm"),
@@ -290,6 +292,10 @@ def extract(s, out, points):
         "tunnel_depth": mm(tunnel_depth(points, None if points is None else points["tip_radius"])),
         "casing_hole": mm(holes.get("casing", {}).get("entrance_diameter")),
         "cement_hole": mm(holes.get("cement", {}).get("entrance_diameter")),
+        # The entrance is one slice of the finest cell, thinner at each level; the mean through the
+        # layer is the same quantity at every level (summary holes.<layer>.mean_diameter).
+        "casing_mean_hole": mm(holes.get("casing", {}).get("mean_diameter")),
+        "cement_mean_hole": mm(holes.get("cement", {}).get("mean_diameter")),
         "tunnel_entrance": mm(tunnel_entrance(pen, out)),
         "tunnel_volume": tunnel_volume(out),
         # What the jet has left behind the casing and behind the cement, against the hydrodynamic
@@ -373,16 +379,22 @@ def main():
             est = {"observed_order": p, "richardson": fr}
             if fr:
                 est["finest_relative_gap"] = abs(f[2] - fr) / abs(fr)
+            elif None not in f and (f[0] - f[1]) * (f[1] - f[2]) < 0 and f[2]:
+                # Oscillatory convergence has no order; its uncertainty is half the range of the
+                # levels (Stern, Wilson, Coleman & Paterson, J. Fluids Eng. 123 (2001) 793, §"oscillatory").
+                est["oscillation"] = 0.5 * (max(f) - min(f)) / abs(f[2])
             result["estimates"][key] = est
     json.dump(result, open(os.path.join(a.out, "convergence.json"), "w"), indent=2)
     lines = ["| band cell (mm) | cells across the tip radius | particles | steps | wall time (s) | depth (mm) | "
-             "casing hole (mm) | cement hole (mm) | rock tunnel entrance (mm) | cavity depth (mm) | "
+             "casing hole (mm) | casing hole, mean (mm) | cement hole (mm) | cement hole, mean (mm) | "
+             "rock tunnel entrance (mm) | cavity depth (mm) | "
              "tunnel depth at the jet's tip radius (mm) | tunnel volume (cm³) | jet spent at (µs) |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     fmt = lambda v: "—" if v is None else f"{v:.3g}"
     for r in rows:
         lines.append(f"| {r['h'] * 1e3:g} | {fmt(r['cells_across_radius'])} | {r['particles']} | {r['steps']} | "
-                     f"{r['wall_time']:.0f} | {fmt(r['depth'])} | {fmt(r['casing_hole'])} | {fmt(r['cement_hole'])} | "
+                     f"{r['wall_time']:.0f} | {fmt(r['depth'])} | {fmt(r['casing_hole'])} | "
+                     f"{fmt(r.get('casing_mean_hole'))} | {fmt(r['cement_hole'])} | {fmt(r.get('cement_mean_hole'))} | "
                      f"{fmt(r['tunnel_entrance'])} | {fmt(r['cavity_depth'])} | {fmt(r['tunnel_depth'])} | "
                      f"{fmt(r['tunnel_volume'])} | "
                      f"{fmt(r.get('spent_time'))} |")
@@ -391,7 +403,11 @@ def main():
                           ("finest vs Richardson", "finest_relative_gap")):
             cells = []
             for q, _, _ in QUANTITIES:
-                v = result["estimates"][q].get(key)
+                e = result["estimates"][q]
+                v = e.get(key)
+                if v is None and key == "finest_relative_gap" and e.get("oscillation") is not None:
+                    cells.append(f"oscillates ±{100 * e['oscillation']:.1f} %")
+                    continue
                 cells.append("—" if v is None else (f"{100 * v:.1f} %" if key == "finest_relative_gap" else f"{v:.3g}"))
             lines.append(f"| {name} | | | | | " + " | ".join(cells) + " |")
     for r in rows:
@@ -433,10 +449,14 @@ def main():
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
-        fig, axes = plt.subplots(1, len(QUANTITIES), figsize=(4 * len(QUANTITIES), 3.4))
+        ncol = 3
+        nrow = -(-len(QUANTITIES) // ncol)
+        fig, axes = plt.subplots(nrow, ncol, figsize=(4.5 * ncol, 3.4 * nrow), squeeze=False)
         hs = [r["h"] * 1e3 for r in rows]
-        for ax, (key, what, unit) in zip(axes, QUANTITIES):
-            ax.plot(hs, [math.nan if r[key] is None else r[key] for r in rows], "o-", label="Ballista")
+        for ax in axes.flat[len(QUANTITIES):]:
+            ax.set_visible(False)
+        for ax, (key, what, unit) in zip(axes.flat, QUANTITIES):
+            ax.plot(hs, [math.nan if r.get(key) is None else r[key] for r in rows], "o-", label="Ballista")
             fr = result["estimates"].get(key, {}).get("richardson")
             if fr:
                 ax.axhline(fr, ls="--", color="gray", label="Richardson estimate")

@@ -411,13 +411,25 @@ JsonValue PenetrationProbe::layer_holes(const FieldStore& pts) const {
     const int bins = std::max(2, static_cast<int>(std::lround(layer_thickness_[k] / axial_cell_)));
     const std::vector<double> wall = wall_radii(lateral_points(pts, layers_[k], layer_face_[k], true), 0.0,
                                                 layer_thickness_[k], bins, lateral_geometry_, {lateral_cell_});
-    double narrowest = kInfinity;
-    for (double w : wall)
-      if (std::isfinite(w)) narrowest = std::min(narrowest, w);
+    double narrowest = kInfinity, sum = 0.0;
+    int walls = 0;
+    JsonValue profile = JsonValue::array();
+    for (double w : wall) {
+      profile.push_back(std::isfinite(w) ? JsonValue(2.0 * w) : JsonValue());
+      if (!std::isfinite(w)) continue;
+      narrowest = std::min(narrowest, w);
+      sum += w;
+      ++walls;
+    }
     JsonValue& h = holes[spec_.layers[k]];
     h = JsonValue::object();
     h["entrance_diameter"] = std::isfinite(wall.front()) ? JsonValue(2.0 * wall.front()) : JsonValue();
     h["min_diameter"] = std::isfinite(narrowest) ? JsonValue(2.0 * narrowest) : JsonValue();
+    // The hole's shape through the layer: the entrance and the narrowest are single slices, and on a
+    // finer grid the slices are thinner; the mean over the slices is the hole averaged through the
+    // thickness, the same quantity at every cell size.
+    h["mean_diameter"] = walls > 0 ? JsonValue(2.0 * sum / walls) : JsonValue();
+    h["diameters"] = profile;
     h["perforated"] = std::isfinite(narrowest) && narrowest > 0.0;
     h["thickness"] = layer_thickness_[k];
     h["face_depth"] = depth_of_coordinate(layer_face_[k]);  // m, negative: above the target's face

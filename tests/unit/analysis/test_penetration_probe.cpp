@@ -191,6 +191,10 @@ TEST(PenetrationProbe, HoleOfADisplacedPlateIsMeasuredInThePlate) {
   // Annuli of the 1 mm lateral cell; the hole's edge lies on one of their edges.
   EXPECT_NEAR(h.at("entrance_diameter").as_number(), 4e-3, 1e-12);
   EXPECT_NEAR(h.at("min_diameter").as_number(), 4e-3, 1e-12);
+  EXPECT_NEAR(h.at("mean_diameter").as_number(), 4e-3, 1e-12);
+  // One slice per 1 mm cell of the 2 mm plate, each through the straight hole.
+  ASSERT_EQ(h.at("diameters").size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) EXPECT_NEAR(h.at("diameters").at(k).as_number(), 4e-3, 1e-12);
   EXPECT_TRUE(h.at("perforated").as_bool());
 }
 
