@@ -296,6 +296,7 @@ def extract(s, out, points):
         # layer is the same quantity at every level (summary holes.<layer>.mean_diameter).
         "casing_mean_hole": mm(holes.get("casing", {}).get("mean_diameter")),
         "cement_mean_hole": mm(holes.get("cement", {}).get("mean_diameter")),
+        "hole_profiles": {layer: per_mm(holes.get(layer, {})) for layer in ("casing", "cement")},
         "tunnel_entrance": mm(tunnel_entrance(pen, out)),
         "tunnel_volume": tunnel_volume(out),
         # What the jet has left behind the casing and behind the cement, against the hydrodynamic
@@ -323,6 +324,30 @@ def extract(s, out, points):
         "distortion_remaps": s.get("solver_results", {}).get("distortion_remaps", 0),
         "jet_at_bottom": jet_at_bottom(points, pen.get("final_cavity_depth")),
     }
+
+
+def per_mm(hole):
+    """A layer's hole diameters (summary holes.<layer>.diameters, one per slice of the finest cell)
+    averaged over each millimetre of its thickness, struck face first, in mm: the same slices at
+    every level. None where a millimetre has no wall; [] without the profile."""
+    d, t = hole.get("diameters"), hole.get("thickness")
+    if not d or not t:
+        return []
+    n = max(1, round(len(d) / (t * 1e3)))  # slices per millimetre
+    out = []
+    for k in range(0, len(d), n):
+        walls = [v for v in d[k:k + n] if v is not None]
+        out.append(1e3 * sum(walls) / len(walls) if walls else None)
+    return out
+
+
+def oscillation(f1, f2, f3):
+    """Half the range of three levels over the finest, when they oscillate (the differences change
+    sign): oscillatory convergence has no order, and its uncertainty is half the range (Stern,
+    Wilson, Coleman & Paterson, J. Fluids Eng. 123 (2001) 793). None otherwise."""
+    if None in (f1, f2, f3) or not f3 or (f1 - f2) * (f2 - f3) >= 0:
+        return None
+    return 0.5 * (max(f1, f2, f3) - min(f1, f2, f3)) / abs(f3)
 
 
 def richardson(f1, f2, f3, ratio=2.0):
@@ -379,10 +404,8 @@ def main():
             est = {"observed_order": p, "richardson": fr}
             if fr:
                 est["finest_relative_gap"] = abs(f[2] - fr) / abs(fr)
-            elif None not in f and (f[0] - f[1]) * (f[1] - f[2]) < 0 and f[2]:
-                # Oscillatory convergence has no order; its uncertainty is half the range of the
-                # levels (Stern, Wilson, Coleman & Paterson, J. Fluids Eng. 123 (2001) 793, §"oscillatory").
-                est["oscillation"] = 0.5 * (max(f) - min(f)) / abs(f[2])
+            elif oscillation(*f) is not None:
+                est["oscillation"] = oscillation(*f)
             result["estimates"][key] = est
     json.dump(result, open(os.path.join(a.out, "convergence.json"), "w"), indent=2)
     lines = ["| band cell (mm) | cells across the tip radius | particles | steps | wall time (s) | depth (mm) | "
@@ -432,6 +455,14 @@ def main():
         share = r.get("jet_at_bottom")
         lines.append(f"| {r['h'] * 1e3:g} | " + " | ".join(cells) + f" | {ratio} | {r.get('distortion_remaps', 0)} | "
                      + ("—" if share is None else f"{100 * share:.0f} %") + " |")
+    # The holes' shape through the plates, in the same millimetre slices at every level.
+    for layer in ("casing", "cement"):
+        if any(r.get("hole_profiles", {}).get(layer) for r in rows):
+            lines += ["", f"| band cell (mm) | {layer} hole diameter in each millimetre of its thickness, struck face "
+                          "first (mm) |", "|---|---|"]
+            for r in rows:
+                lines.append(f"| {r['h'] * 1e3:g} | " + ", ".join(fmt(d) for d in r["hole_profiles"].get(layer, []))
+                             + " |")
     # How the depth is built: the depth when each segment has slowed to half its speed.
     if any(r["segment_depths"] for r in rows):
         lines += ["", "| band cell (mm) | depth when each segment has slowed to half its speed, tip first (mm) |",

@@ -16,6 +16,9 @@
 - Richardson: f(h) = f0 + c h^2 at h, h/2, h/4 gives the observed order 2 and the estimate f0 to
   round-off (Roache 1998, ch. 5); differences that grow give no estimate; a non-monotone sequence
   gives no order.
+- Oscillating levels (10, 12, 11): half the range over the finest, 1/11; monotone ones: none.
+- A hole's diameters averaged per millimetre of the layer: slices of 0.25 mm through 2 mm, one
+  millimetre with a slice gone (averaged over the rest) and one with none (None): exact sums.
 - A level is done only when its summary says "completed": a run stopped by a signal writes
   summary.json too (status "interrupted"), and `--reuse` must not take it for an answer nor
   `--resume` skip it."""
@@ -93,7 +96,8 @@ def write_tunnel(run_dir):
 
 def main():
     a = script_args.parse()
-    from perforation_convergence import final_points, jet_at_bottom, level_done, richardson, tunnel_depth
+    from perforation_convergence import (final_points, jet_at_bottom, level_done, oscillation, per_mm, richardson,
+                                         tunnel_depth)
     pen = {"penetrator": "jet", "target": "rock", "surface": SURFACE}
     failures = 0
 
@@ -132,6 +136,15 @@ def main():
     p, est = richardson(10.0, 12.0, 11.0)
     ok = p is None and est is None
     print(f"not monotone: no order: {'ok' if ok else 'FAIL'}")
+    failures += not ok
+    osc, mono = oscillation(10.0, 12.0, 11.0), oscillation(123.0, 153.0, 185.0)
+    ok = osc is not None and abs(osc - 1.0 / 11.0) < 1e-15 and mono is None
+    print(f"oscillating levels: half range {osc} (exact 1/11), monotone: {mono}: {'ok' if ok else 'FAIL'}")
+    failures += not ok
+    d = [0.010, 0.012, None, 0.014, None, None, None, None]
+    prof = per_mm({"diameters": d, "thickness": 0.002})
+    ok = len(prof) == 2 and abs(prof[0] - 12.0) < 1e-12 and prof[1] is None
+    print(f"hole per millimetre: {prof} (exact [12.0, None]): {'ok' if ok else 'FAIL'}")
     failures += not ok
     states = {}
     for status in ("completed", "interrupted", "failed", None):
