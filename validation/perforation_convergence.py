@@ -494,7 +494,7 @@ def main():
             ax.set_xscale("log", base=2)
             ax.invert_xaxis()
             ax.set_xlabel("cell size around the jet (mm)")
-            ax.set_ylabel(f"{what} ({unit})")
+            ax.set_ylabel(f"{what} ({unit})", fontsize=8)
             ax.legend(fontsize=8)
         fig.suptitle("Perforation demo under refinement around the jet")
         fig.tight_layout()
