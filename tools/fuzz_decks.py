@@ -860,22 +860,27 @@ UNCAUGHT = ["terminate called", "what():", "Assertion `", "assertion failed", "A
 NULL_OK = {"main_stage_start", "arrival_time", "stop_time", "steady_rate", "rate_over_hydrodynamic",
            "penetration_time", "min_dt_set_by", "entrance_diameter", "entrance_depth", "min_diameter", "mean_diameter",
            # holes.<layer>.jet_behind before the jet's front has passed the layer
-           "time", "consumed_length", "remaining_length", "tip_velocity", "tip_segment", "tip_initial_velocity"}
+           "time", "consumed_length", "remaining_length", "tip_velocity", "tip_segment", "tip_initial_velocity",
+           # penetration.path_cells: the band covers the whole tunnel (and on every uniform grid)
+           "coarser_from_depth"}
+# summary.json lists whose items are null when not applicable: holes.<layer>.diameters in a slice
+# the layer has gone from.
+NULL_OK_ITEMS = {"diameters"}
 
 
 class _Bad(Exception):
     pass
 
 
-def _json_bad(node, path, found):
+def _json_bad(node, path, found, null_items=False):
     if isinstance(node, dict):
         for k, v in node.items():
             if v is None and k not in NULL_OK:
                 found.append(f"{path}.{k} = null")
-            _json_bad(v, f"{path}.{k}", found)
+            _json_bad(v, f"{path}.{k}", found, k in NULL_OK_ITEMS)
     elif isinstance(node, list):
         for i, v in enumerate(node):
-            if v is None:
+            if v is None and not null_items:
                 found.append(f"{path}[{i}] = null")
             _json_bad(v, f"{path}[{i}]", found)
     elif isinstance(node, float) and not math.isfinite(node):
