@@ -402,10 +402,11 @@ def main():
             f = [r[key] for r in rows[-3:]]
             p, fr = richardson(*f)
             est = {"observed_order": p, "richardson": fr}
+            swing = oscillation(*f)
             if fr:
                 est["finest_relative_gap"] = abs(f[2] - fr) / abs(fr)
-            elif oscillation(*f) is not None:
-                est["oscillation"] = oscillation(*f)
+            elif swing is not None:
+                est["oscillation"] = swing
             result["estimates"][key] = est
     json.dump(result, open(os.path.join(a.out, "convergence.json"), "w"), indent=2)
     lines = ["| band cell (mm) | cells across the tip radius | particles | steps | wall time (s) | depth (mm) | "

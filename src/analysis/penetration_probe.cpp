@@ -269,16 +269,16 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   out["cells_across_radius"] = radius_cells_;
   // The radius's cells are the finest; a tunnel that runs on beyond the refined band ends in coarser
   // ones, and its depth is not the band's answer.
-  const double tunnel_end = std::max(out.at("final_cavity_depth").as_number(), max_depth);
+  const double channel_depth = std::max(out.at("final_cavity_depth").as_number(), max_depth);
   double entry = 0.0;
   for (double face : layer_face_) entry = std::min(entry, depth_of_coordinate(face));
-  const JsonValue cells = path_cells(entry, tunnel_end);
+  const JsonValue cells = path_cells(entry, channel_depth);
   const bool along = cells.at("coarser_from_depth").kind() == JsonValue::Kind::Null;
   if (!along)
     spdlog::warn("the tunnel reaches {:.4g} m deep, but the finest cells along the line of flight ({:.3g} m) end "
                  "at {:.4g} m deep (cells up to {:.3g} m beyond): its end is not at the resolution "
                  "cells_across_radius states; extend grid.refine along the flight",
-                 tunnel_end, axial_cell_, cells.at("coarser_from_depth").as_number(), cells.at("coarsest").as_number());
+                 channel_depth, axial_cell_, cells.at("coarser_from_depth").as_number(), cells.at("coarsest").as_number());
   out["path_cells"] = cells;
   out["resolved"] = radius_cells_ >= kResolvedRadiusCells && along;
   const double ph = have ? penetration::birkhoff_depth(length_, rho_p_, rho_t_) : kNotMeasured;
@@ -315,7 +315,6 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
     dd.push_back(depth_of(x[p]));
     rr.push_back(std::max(0.0, lateral_of(x[p]) - reach));
   }
-  const double channel_depth = tunnel_end;
   const int bins = spec_.channel_bins > 0 ? spec_.channel_bins
                                           : std::max(1, static_cast<int>(std::ceil(channel_depth / axial_cell_)));
   double max_radius = 0.0, wall_sum = 0.0;

@@ -153,14 +153,6 @@ double GridAxes::largest(int axis) const {
   return s;
 }
 
-double GridAxes::cell_at(int axis, double coordinate) const {
-  const std::vector<double>& n = node[axis];
-  if (n.size() < 2) return 0.0;
-  const auto above = std::upper_bound(n.begin(), n.end(), coordinate);
-  const std::size_t k = std::clamp<std::size_t>(static_cast<std::size_t>(above - n.begin()), 1, n.size() - 1);
-  return n[k] - n[k - 1];
-}
-
 GridAxes build_grid_axes(const GridSpec& g, int dim) {
   GridAxes axes;
   for (int a = 0; a < 3; ++a) {

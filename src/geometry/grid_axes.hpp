@@ -24,9 +24,6 @@ struct GridAxes {
   /// The smallest and largest cell along the axis, m.
   double smallest(int axis) const;
   double largest(int axis) const;
-  /// The size of the cell holding `coordinate` along the axis, m (a coordinate on a node: the
-  /// cell above it; outside the box: the end cell).
-  double cell_at(int axis, double coordinate) const;
 };
 
 /// Builds the axes of `grid` in `dim` dimensions. A uniform grid (no refine zones) has
