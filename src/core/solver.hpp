@@ -53,13 +53,16 @@ struct EnergyTotals {
   }
 };
 
-/// The point that sets the stable time step (largest c + |v|): for diagnosing a collapsing step.
+/// The point that sets the stable time step (largest c + |v|, over its cell where cells differ):
+/// for diagnosing a collapsing step.
 struct StepLimiter {
   std::int64_t id = -1;        ///< particle id (-1: none)
   int body = -1;               ///< body index in deck order
-  double wave_speed = 0.0;     ///< m/s, its dilatational wave speed
+  double wave_speed = 0.0;     ///< m/s, its signal speed: the dilatational wave speed, or the bulk viscosity's
   double speed = 0.0;          ///< m/s, |v|
   double J = 1.0;              ///< det F
+  double cell = 0.0;           ///< m, the cell length its signal crosses (MPM; 0 if not given)
+  bool viscous = false;        ///< wave_speed is the bulk viscosity's Q + sqrt(Q^2 + c^2) (MPM)
 };
 
 /// A table a solver adds to a run's results, written as `<name>.csv` in the results folder.

@@ -77,6 +77,7 @@ const std::vector<std::pair<std::string, std::string>>& unit_table() {
       {"statistics.min_dt_set_by.dt", "s"},
       {"statistics.min_dt_set_by.wave_speed", "m/s"},
       {"statistics.min_dt_set_by.speed", "m/s"},
+      {"statistics.min_dt_set_by.cell", "m"},
       {"statistics.min_dt_set_by.*", "1"},  // the particle's id, its J
       {"statistics.*", "1"},                // counts, the worst energy drift (over the scale)
       {"deleted.*.mass", "kg"},

@@ -54,9 +54,11 @@ BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, d
     if (E && eos_energy[mat[p]]) E[p] += w / vol0[p];  // per reference volume (eos.hpp)
     q[p] = q_new;
     o[0] += w;
-    // The Courant speed with q, + |v|, in place of c; points without q (expanding, or eroded to
-    // zero stress: debris that offers no resistance is squeezed at any rate) keep c.
-    c[p] = (q_new > 0.0 ? bulk_viscosity_signal_speed(bv, c[p], l, trD, c_linear) : c[p]) + norm(v[p]);
+    // The Courant speed with q, + |v|, in place of c; expanding points keep c. Points eroded to
+    // zero stress (debris that offers no resistance is squeezed at any rate) carry no wave: |v|
+    // alone, as in the step (PointSet::zero_wave_speeds_of_stress_free).
+    const double signal = stress_free ? 0.0 : q_new > 0.0 ? bulk_viscosity_signal_speed(bv, c[p], l, trD, c_linear) : c[p];
+    c[p] = signal + norm(v[p]);
   }, out);
   double vmax = 0.0, rmax = 0.0;
 #pragma omp parallel for reduction(max : vmax, rmax) schedule(static) if (n > kParallelThreshold)

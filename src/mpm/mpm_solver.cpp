@@ -142,57 +142,6 @@ double MpmSolver::reporting_scale() const {
   return dimension_ == Dimension::Axisymmetric ? 2.0 * std::numbers::pi : 1.0;
 }
 
-double MpmSolver::stable_dt() {
-  if (grid_.geom.graded) return graded_stable_dt();
-  // dt = CFL h / max_p (c_p + |v_p|)  (Courant condition with the dilatational wave speed).
-  // With the bulk viscosity, its signal speed (Q + sqrt(Q^2 + c^2) + |v|) of the last step's rates.
-  const double local_max = std::max(pts_.max_signal_speed(), viscous_speed_);
-  const double speed = comm_.max(local_max);
-  double dt = speed > 0.0 ? scenario_.simulation.cfl * grid_.geom.h / speed
-                          : scenario_.simulation.end_time;
-  if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
-  return dt;
-}
-
-void MpmSolver::update_cell_lengths() {
-  // The shortest edge of each point's cell: the length a signal crosses in the Courant condition
-  // and the viscous length of the bulk viscosity on a graded grid.
-  const GridGeometry& g = grid_.geom;
-  const auto* x = points_.view(kPosition);
-  cell_length_.resize(static_cast<std::size_t>(points_.size()));
-  for_each(0, points_.size(), [&](Index p) {
-    double l = g.cell_size(g.cell_of(x[p][0], 0), 0);
-    for (int a = 1; a < dim_; ++a) l = std::min(l, g.cell_size(g.cell_of(x[p][a], a), a));
-    cell_length_[p] = l;
-  });
-}
-
-double MpmSolver::graded_stable_dt() {
-  // dt = CFL min_p l_p / (c_p + |v_p|): each point's signal crosses its own cell (l_p its shortest
-  // edge) within the step; with the bulk viscosity, the last pass's signal rates.
-  update_cell_lengths();
-  const auto* v = points_.view(kVelocity);
-  wave_scratch_.resize(static_cast<std::size_t>(points_.size()));
-  const auto& groups = pts_.material_groups();
-  for (std::size_t m = 0; m < groups.size(); ++m)
-    if (!groups[m].empty())
-      pts_.materials()[m]->wave_speeds(points_, groups[m].data(), static_cast<Index>(groups[m].size()),
-                                       wave_scratch_.data());
-  double rate = viscous_rate_;
-  const Index n = points_.size();
-#pragma omp parallel for reduction(max : rate) schedule(static) if (n > kParallelThreshold)
-  for (Index p = 0; p < n; ++p) rate = std::max(rate, (wave_scratch_[p] + norm(v[p])) / cell_length_[p]);
-  double dt = rate > 0.0 ? scenario_.simulation.cfl / rate : scenario_.simulation.end_time;
-  if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
-  return dt;
-}
-
-StepLimiter MpmSolver::step_limiter() const {
-  // Per point through the virtual wave_speed: only for diagnostics (the run loop calls it when the
-  // stable step reaches a new low); collective on several ranks (PointSet::step_limiter).
-  return pts_.step_limiter();
-}
-
 void MpmSolver::activate_pending() {
   const bool added = pts_.activate(time_);
   if (added) sort_by_cell();

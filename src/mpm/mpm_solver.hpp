@@ -152,6 +152,8 @@ class MpmSolver final : public Solver {
   static GridLayout layout_graded_grid(const Scenario& sc, int ghost);
   /// Graded grids: the stable step from each point's own cell, and those cells' shortest edges.
   double graded_stable_dt();
+  /// wave_scratch_ = each point's dilatational wave speed, 0 for points failed to zero stress.
+  void fill_wave_speeds();
   void update_cell_lengths();
   std::vector<double> cell_length_;  ///< m, per point (graded grids)
   double viscous_rate_ = 0.0;        ///< graded grids: the last viscous pass's max signal speed / cell, 1/s

@@ -27,13 +27,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// "particle 12 of body 'bar' (wave speed 4000 m/s, speed 200 m/s, J 0.98)".
+/// "particle 12 of body 'bar' (wave speed 4000 m/s, speed 200 m/s, J 0.98[, cell 0.00025 m])".
 std::string describe_limiter(const Scenario& sc, const StepLimiter& l) {
   if (l.id < 0) return "no particle";
   const std::string body =
       l.body >= 0 && l.body < static_cast<int>(sc.bodies.size()) ? " of body '" + sc.bodies[l.body].name + "'" : "";
-  return fmt::format("particle {}{} (wave speed {:.4g} m/s, speed {:.4g} m/s, J {:.4g})", l.id, body, l.wave_speed,
-                     l.speed, l.J);
+  const std::string cell = l.cell > 0.0 ? fmt::format(", cell {:.4g} m", l.cell) : "";
+  return fmt::format("particle {}{} ({} {:.4g} m/s, speed {:.4g} m/s, J {:.4g}{})", l.id, body,
+                     l.viscous ? "bulk-viscosity signal" : "wave speed", l.wave_speed, l.speed, l.J, cell);
 }
 
 /// Refuses a run whose estimated step count (simulated time / first stable step) exceeds

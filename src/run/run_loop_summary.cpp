@@ -57,6 +57,8 @@ void write_statistics(JsonValue& st, const Scenario& sc, const RunState& rs, con
   lim["wave_speed"] = limiter.wave_speed;
   lim["speed"] = limiter.speed;
   lim["J"] = limiter.J;
+  if (limiter.cell > 0.0) lim["cell"] = limiter.cell;
+  lim["signal"] = limiter.viscous ? "bulk_viscosity" : "wave";
 }
 
 /// summary.json "energy": every term of the audit, the balance's reference and its residual.

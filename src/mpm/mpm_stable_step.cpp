@@ -1,0 +1,125 @@
+// MPM's stable time step: the Courant condition per point over its own cell (graded grids) or the
+// grid's, with the bulk viscosity's signal speed, and the diagnostic naming the point that sets it.
+#include <algorithm>
+#include <vector>
+
+#include "core/parallel.hpp"
+#include "core/point_fields.hpp"
+#include "mpm/bulk_viscosity.hpp"
+#include "mpm/mpm_solver.hpp"
+
+namespace ballista {
+
+void MpmSolver::fill_wave_speeds() {
+  wave_scratch_.resize(static_cast<std::size_t>(points_.size()));
+  const auto& groups = pts_.material_groups();
+  for (std::size_t m = 0; m < groups.size(); ++m)
+    if (!groups[m].empty())
+      pts_.materials()[m]->wave_speeds(points_, groups[m].data(), static_cast<Index>(groups[m].size()),
+                                       wave_scratch_.data());
+  pts_.zero_wave_speeds_of_stress_free(wave_scratch_.data());
+}
+
+double MpmSolver::stable_dt() {
+  if (grid_.geom.graded) return graded_stable_dt();
+  // dt = CFL h / max_p (c_p + |v_p|)  (Courant condition with the dilatational wave speed; a
+  // point failed to zero stress has no stiffness, c_p = 0: PointSet::zero_wave_speeds_of_stress_free).
+  // With the bulk viscosity, its signal speed (Q + sqrt(Q^2 + c^2) + |v|) of the last step's rates.
+  fill_wave_speeds();
+  const auto* v = points_.view(kVelocity);
+  double fastest = 0.0;
+  const Index n = points_.size();
+#pragma omp parallel for reduction(max : fastest) schedule(static) if (n > kParallelThreshold)
+  for (Index p = 0; p < n; ++p) fastest = std::max(fastest, wave_scratch_[p] + norm(v[p]));
+  const double local_max = std::max(fastest, viscous_speed_);
+  const double speed = comm_.max(local_max);
+  double dt = speed > 0.0 ? scenario_.simulation.cfl * grid_.geom.h / speed
+                          : scenario_.simulation.end_time;
+  if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
+  return dt;
+}
+
+void MpmSolver::update_cell_lengths() {
+  // The shortest edge of each point's cell: the length a signal crosses in the Courant condition
+  // and the viscous length of the bulk viscosity on a graded grid.
+  const GridGeometry& g = grid_.geom;
+  const auto* x = points_.view(kPosition);
+  cell_length_.resize(static_cast<std::size_t>(points_.size()));
+  for_each(0, points_.size(), [&](Index p) {
+    double l = g.cell_size(g.cell_of(x[p][0], 0), 0);
+    for (int a = 1; a < dim_; ++a) l = std::min(l, g.cell_size(g.cell_of(x[p][a], a), a));
+    cell_length_[p] = l;
+  });
+}
+
+double MpmSolver::graded_stable_dt() {
+  // dt = CFL min_p l_p / (c_p + |v_p|): each point's signal crosses its own cell (l_p its shortest
+  // edge) within the step; with the bulk viscosity, the last pass's signal rates.
+  update_cell_lengths();
+  const auto* v = points_.view(kVelocity);
+  fill_wave_speeds();
+  double rate = viscous_rate_;
+  const Index n = points_.size();
+#pragma omp parallel for reduction(max : rate) schedule(static) if (n > kParallelThreshold)
+  for (Index p = 0; p < n; ++p) rate = std::max(rate, (wave_scratch_[p] + norm(v[p])) / cell_length_[p]);
+  double dt = rate > 0.0 ? scenario_.simulation.cfl / rate : scenario_.simulation.end_time;
+  if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
+  return dt;
+}
+
+StepLimiter MpmSolver::step_limiter() const {
+  // Diagnostics only (the run loop calls it when the stable step reaches a new low): the point
+  // whose signal crosses its cell fastest, (s_p + |v_p|) / l_p, as stable_dt and the last
+  // bulk-viscosity pass bound the step. s_p is the point's wave speed (0 if failed to zero stress),
+  // or where the viscosity acts (q > 0) its Q + sqrt(Q^2 + c^2) from the point's L; l_p its cell's
+  // shortest edge (graded grids) or h. Collective on several ranks.
+  const Index n = points_.size();
+  std::vector<double> c(static_cast<std::size_t>(n), 0.0), c_ref;
+  std::vector<std::vector<Index>> groups(pts_.materials().size());  // the points of each material
+  const auto* mat = points_.ints(kMaterialIndex);
+  for (Index p = 0; p < n; ++p) groups[static_cast<std::size_t>(mat[p])].push_back(p);
+  const bool viscous = bulk_viscosity_.active();
+  if (viscous && bulk_viscosity_.reference_sound_speed) c_ref.assign(c.size(), 0.0);
+  for (std::size_t m = 0; m < groups.size(); ++m) {
+    if (groups[m].empty()) continue;
+    const Index count = static_cast<Index>(groups[m].size());
+    pts_.materials()[m]->wave_speeds(points_, groups[m].data(), count, c.data());
+    if (!c_ref.empty()) pts_.materials()[m]->reference_wave_speeds(points_, groups[m].data(), count, c_ref.data());
+  }
+  pts_.zero_wave_speeds_of_stress_free(c.data());
+  const GridGeometry& g = grid_.geom;
+  const auto* x = points_.view(kPosition);
+  const auto* v = points_.view(kVelocity);
+  const auto* F = points_.view(kDeformationGradient);
+  const auto* L = points_.view(kVelocityGradient);
+  const double* q = viscous ? points_.real(kBulkViscosity) : nullptr;
+  const auto* id = points_.ints(kId);
+  const auto* body = points_.ints(kBodyIndex);
+  StepLimiter out;
+  double best = -1.0;
+  for (Index p = 0; p < n; ++p) {
+    double l = g.h;
+    if (g.graded) {
+      l = g.cell_size(g.cell_of(x[p][0], 0), 0);
+      for (int a = 1; a < dim_; ++a) l = std::min(l, g.cell_size(g.cell_of(x[p][a], a), a));
+    }
+    double s = c[p];
+    bool by_q = false;
+    if (q && q[p] > 0.0 && c[p] > 0.0) {
+      const double trD = L[p](0, 0) + L[p](1, 1) + L[p](2, 2);
+      s = bulk_viscosity_signal_speed(bulk_viscosity_, c[p], l, trD, c_ref.empty() ? c[p] : c_ref[p]);
+      by_q = s > c[p];
+    }
+    const double speed = norm(v[p]);
+    const double rate = (s + speed) / l;
+    if (rate > best) {
+      best = rate;
+      out = {id[p], static_cast<int>(body[p]), s, speed, det(F[p]), g.graded ? l : 0.0, by_q};
+    }
+  }
+  if (!comm_.distributed()) return out;
+  comm_.broadcast(&out, sizeof out, comm_.rank_of_max(best));
+  return out;
+}
+
+}  // namespace ballista
