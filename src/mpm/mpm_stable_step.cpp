@@ -10,6 +10,17 @@
 
 namespace ballista {
 
+namespace {
+
+/// The shortest edge of the cell holding x: the length a signal crosses in the Courant condition.
+double shortest_cell_edge(const GridGeometry& g, const Vec3& x, int dim) {
+  double l = g.cell_size(g.cell_of(x[0], 0), 0);
+  for (int a = 1; a < dim; ++a) l = std::min(l, g.cell_size(g.cell_of(x[a], a), a));
+  return l;
+}
+
+}  // namespace
+
 void MpmSolver::fill_wave_speeds() {
   wave_scratch_.resize(static_cast<std::size_t>(points_.size()));
   const auto& groups = pts_.material_groups();
@@ -45,11 +56,7 @@ void MpmSolver::update_cell_lengths() {
   const GridGeometry& g = grid_.geom;
   const auto* x = points_.view(kPosition);
   cell_length_.resize(static_cast<std::size_t>(points_.size()));
-  for_each(0, points_.size(), [&](Index p) {
-    double l = g.cell_size(g.cell_of(x[p][0], 0), 0);
-    for (int a = 1; a < dim_; ++a) l = std::min(l, g.cell_size(g.cell_of(x[p][a], a), a));
-    cell_length_[p] = l;
-  });
+  for_each(0, points_.size(), [&](Index p) { cell_length_[p] = shortest_cell_edge(g, x[p], dim_); });
 }
 
 double MpmSolver::graded_stable_dt() {
@@ -98,11 +105,7 @@ StepLimiter MpmSolver::step_limiter() const {
   StepLimiter out;
   double best = -1.0;
   for (Index p = 0; p < n; ++p) {
-    double l = g.h;
-    if (g.graded) {
-      l = g.cell_size(g.cell_of(x[p][0], 0), 0);
-      for (int a = 1; a < dim_; ++a) l = std::min(l, g.cell_size(g.cell_of(x[p][a], a), a));
-    }
+    const double l = g.graded ? shortest_cell_edge(g, x[p], dim_) : g.h;
     double s = c[p];
     bool by_q = false;
     if (q && q[p] > 0.0 && c[p] > 0.0) {
