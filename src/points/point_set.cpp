@@ -222,17 +222,12 @@ double PointSet::max_signal_speed() {
   return local_max;
 }
 
-std::vector<char> PointSet::stress_free_materials() const {
-  std::vector<char> out(materials_.size(), 0);
-  bool any = false;
-  for (std::size_t m = 0; m < materials_.size(); ++m) any |= (out[m] = materials_[m]->failed_points_are_stress_free());
-  if (!any || !points_.has(kFailed)) out.clear();
-  return out;
-}
-
 void PointSet::zero_wave_speeds_of_stress_free(double* c) const {
-  const std::vector<char> stress_free = stress_free_materials();
-  if (stress_free.empty()) return;
+  if (!points_.has(kFailed)) return;
+  std::vector<char> stress_free(materials_.size(), 0);
+  bool any = false;
+  for (std::size_t m = 0; m < materials_.size(); ++m) any |= (stress_free[m] = materials_[m]->failed_points_are_stress_free());
+  if (!any) return;
   const auto* failed = points_.real(kFailed);
   const auto* mat = points_.ints(kMaterialIndex);
   const Index n = points_.size();
@@ -241,20 +236,17 @@ void PointSet::zero_wave_speeds_of_stress_free(double* c) const {
     if (failed[p] > 0.0 && stress_free[static_cast<std::size_t>(mat[p])]) c[p] = 0.0;
 }
 
-StepLimiter PointSet::step_limiter(bool stress_free_without_wave) const {
+StepLimiter PointSet::step_limiter() const {
   StepLimiter out;
   const auto* id = points_.ints(kId);
   const auto* bid = points_.ints(kBodyIndex);
   const auto* mat = points_.ints(kMaterialIndex);
   const auto* v = points_.view(kVelocity);
   const auto* F = points_.view(kDeformationGradient);
-  const std::vector<char> stress_free = stress_free_without_wave ? stress_free_materials() : std::vector<char>{};
-  const double* failed = stress_free.empty() ? nullptr : points_.real(kFailed);
   double best = -1.0;
   for (Index p = 0; p < points_.size(); ++p) {
     const double J = det(F[p]);
-    const bool no_wave = failed && failed[p] > 0.0 && stress_free[static_cast<std::size_t>(mat[p])];
-    const double c = no_wave ? 0.0 : materials_[mat[p]]->wave_speed(points_, p, J);
+    const double c = materials_[mat[p]]->wave_speed(points_, p, J);
     const double s = norm(v[p]);
     if (c + s > best) {
       best = c + s;

@@ -81,17 +81,12 @@ class PointSet {
   double max_signal_speed();
   /// The point with the largest c + |v| (per point through the virtual wave speed: diagnostics).
   /// Several ranks (collective): the rank with the fastest signal names its point to all.
-  /// `stress_free_without_wave`: failed stress-free points count with c = 0, as
-  /// zero_wave_speeds_of_stress_free makes them for MPM's step.
-  StepLimiter step_limiter(bool stress_free_without_wave = false) const;
+  StepLimiter step_limiter() const;
   /// Sets c[p] = 0 for every point that failed and whose material's failed points carry no stress
   /// (erosion zero_stress, thesis seed 000 eq. 6.13-6.14): such a point has no stiffness and its
   /// deformation is frozen, so no stress wave crosses it, and the sound speed of its frozen state
   /// (often hot and distended at failure) bounds nothing. A no-op without such a material.
   void zero_wave_speeds_of_stress_free(double* c) const;
-  /// Per material, whether its failed points carry no stress; empty if none does or no point has
-  /// a failed flag.
-  std::vector<char> stress_free_materials() const;
   /// Stress update of every point through its material, from F (already at t_{n+1}) and L over dt;
   /// stress power and plastic work accumulate in internal_energy and plastic_work. A non-finite
   /// stress stops the run with fail(). With `only` given, just the materials m with only[m] != 0
