@@ -80,6 +80,13 @@ const std::vector<std::pair<std::string, std::string>>& unit_table() {
       {"statistics.min_dt_set_by.cell", "m"},
       {"statistics.min_dt_set_by.*", "1"},  // the particle's id, its J
       {"statistics.*", "1"},                // counts, the worst energy drift (over the scale)
+      // Points beyond their material's cohesive limit (run/tension_watch.hpp), per material.
+      {"tension.*.cohesive_limit", "Pa"},
+      {"tension.*.most_tensile_pressure", "Pa"},
+      {"tension.*.most_tensile_time", "s"},
+      {"tension.*.most_points_beyond", "1"},
+      {"tension.*.most_points_beyond_time", "s"},
+      {"tension.*.first_beyond_time", "s"},
       {"deleted.*.mass", "kg"},
       {"deleted.*.energy", "J"},
       {"deleted.*.*", "1"},  // points, mass fraction

@@ -74,6 +74,21 @@ std::vector<std::string> headline_lines(const JsonValue& summary) {
   const bool completed = summary.contains("status") && summary.at("status").kind() == JsonValue::Kind::String &&
                          summary.at("status").as_string() == "completed";
   if (summary.contains("penetration")) penetration_lines(summary.at("penetration"), completed, out);
+  if (summary.contains("tension") && summary.at("tension").kind() == JsonValue::Kind::Object) {
+    // Points beyond their material's cohesive limit (run/tension_watch.hpp): the answer above
+    // includes a tension no solid of that material holds.
+    const JsonValue& t = summary.at("tension");
+    for (const std::string& material : t.keys()) {
+      const JsonValue& m = t.at(material);
+      const double n = number_at(m, "most_points_beyond");
+      if (!(n > 0)) continue;
+      out.push_back(fmt::format(
+          "UNPHYSICAL TENSION: up to {:.0f} points of '{}' beyond its cohesive limit of {:.3g} GPa (down to {:.3g} GPa "
+          "at {:.3g} us): the results near them are not physical (summary.json \"tension\"; eos.min_pressure caps it)",
+          n, material, number_at(m, "cohesive_limit") * 1e-9, number_at(m, "most_tensile_pressure") * 1e-9,
+          number_at(m, "most_tensile_time") * 1e6));
+    }
+  }
   if (summary.contains("fragments")) {
     const JsonValue& f = summary.at("fragments");
     const double n = number_at(f, "count");

@@ -108,6 +108,7 @@ RunLoop::RunLoop(const Scenario& sc, const RunOptions& opt)
     write_file_atomic((fs::path(opt.out_dir) / "resolved.yaml").string(), sc.resolved_yaml + derived);
   FieldStore& pts = solver_->points();
   probes_ = make_probes(sc);
+  tension_ = TensionWatch(sc);
   for (const auto& probe : probes_) probe->check(pts);
   writer_.emplace(opt.out_dir, output_fields(sc, pts), sc.output.domains,
                   sc.simulation.dimension == Dimension::ThreeD ? 3 : 2);
@@ -186,6 +187,7 @@ void RunLoop::start_clocks() {
   ws.xdmf_body = restart_->text("run.xdmf");
   writer_->restore(ws);  // removes the particle files written after the checkpoint (rank 0)
   if (penetration_) penetration_->load_state(*restart_);
+  tension_.load(*restart_);
   if (!tracker_->empty()) {  // rank 0's: it alone writes the tracks
     if (!restart_->has("tracks.open"))
       throw Error("the checkpoint was written without output.track.ids; tracks cannot start in the middle of a "

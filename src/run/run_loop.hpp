@@ -26,6 +26,7 @@
 #include "run/run_state.hpp"
 #include "run/simulation.hpp"
 #include "run/stage_criterion.hpp"
+#include "run/tension_watch.hpp"
 
 namespace ballista {
 
@@ -51,6 +52,7 @@ class RunLoop {
     std::size_t penetration_samples = 0;
     ParticleTracker::State tracks;
     std::size_t calls = 0;  ///< solver calls since the newest checkpoint at the mark
+    TensionWatch tension;
   };
   /// A solver call since the newest checkpoint, so that a failing step can be replayed up to the
   /// step before it (the run is deterministic): a step (stage < 0) or a stage start.
@@ -113,6 +115,7 @@ class RunLoop {
   std::int64_t seeded_ = 0;                 ///< particle ids run 0 .. seeded - 1 over every body
   std::size_t warning_mark_ = 0;            ///< warnings logged before this run (core/warning_log.hpp)
   std::optional<ParticleTracker> tracker_;
+  TensionWatch tension_;  ///< points beyond their material's cohesive limit (run/tension_watch.hpp)
   std::set<std::int64_t> tracked_ids_;
   RunState rs_;
   double interval_ = 0.0;  ///< s, between particle outputs

@@ -19,7 +19,8 @@ RunLoop::Marks RunLoop::marks_now() const {
                writer_->xdmf_body_end(),
                penetration_ ? penetration_->samples() : 0,
                tracker_->state(),
-               calls_since_checkpoint_.size()};
+               calls_since_checkpoint_.size(),
+               tension_};
 }
 
 void RunLoop::write_checkpoint(const Marks& m, const char* why) {
@@ -41,6 +42,7 @@ void RunLoop::write_checkpoint(const Marks& m, const char* why) {
   a.put_int("run.outputs", ws.count);
   a.put_text("run.xdmf", ws.xdmf_body);
   if (penetration_) penetration_->save_state(a, m.penetration_samples);
+  m.tension.save(a);
   if (!tracker_->empty() && root_) tracker_->save_state(a, m.tracks);
   const std::string path = checkpoint_path(opt_.out_dir, solver_->steps());
   if (root_) {  // several ranks: rank 0's archive holds every rank's state (Solver::save_state)

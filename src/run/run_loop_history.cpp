@@ -69,6 +69,7 @@ double RunLoop::history_row(double dt) {
 /// value that overflowed.
 void RunLoop::record_history(double step_dt) {
   const double drift = history_row(step_dt);
+  tension_.scan(solver_->points(), solver_->time(), comm_);
   rs_.worst_drift = std::max(rs_.worst_drift, drift);
   if (sc_.simulation.energy_drift_limit > 0 && drift > sc_.simulation.energy_drift_limit)
     throw PhysicsError(fmt::format("energy drift {:.6g} exceeds the limit {:.6g} at step {} (t = {:.6g} s): the "

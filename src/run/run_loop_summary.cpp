@@ -146,6 +146,7 @@ void RunLoop::write_summary(double wall) {
       spdlog::error("penetration analysis failed: {}", w.what());
     }
   }
+  if (!tension_.empty()) summary["tension"] = tension_.summary();
   // What the discretisation itself reports (peridynamics: fragments and broken bonds).
   try {
     if (const auto values = solver_->result_values(); !values.empty()) {

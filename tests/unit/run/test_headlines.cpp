@@ -2,7 +2,8 @@
 // because the penetrator was spent, "STILL MOVING" when it reached end_time with the penetration
 // not stopped, and neither when the run did not complete (a failed or interrupted run's depth is
 // neither final nor the depth at end_time); "NOT CONVERGED" with the cause, the penetrator's cells
-// across its radius or a tunnel that runs on beyond the refined band.
+// across its radius or a tunnel that runs on beyond the refined band; "UNPHYSICAL TENSION" for a
+// material whose points were pulled beyond its cohesive limit (run/tension_watch.hpp).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -95,5 +96,23 @@ TEST(Headlines, AnUnresolvedRunSaysWhy) {
 }
 
 }  // namespace
+
+TEST(Headlines, PointsBeyondTheCohesiveLimitAreNamed) {
+  JsonValue s = summary("completed", true, true);
+  JsonValue& t = s["tension"];
+  t = JsonValue::object();
+  for (const char* name : {"jet_copper", "casing_steel"}) {
+    JsonValue& m = t[name];
+    m = JsonValue::object();
+    m["cohesive_limit"] = -19.6e9;
+    m["most_tensile_pressure"] = -150e9;
+    m["most_tensile_time"] = 4.3e-5;
+    m["most_points_beyond"] = std::string(name) == "jet_copper" ? 484.0 : 0.0;
+  }
+  const std::vector<std::string> l = headline_lines(s);
+  EXPECT_EQ(lines_with(l, "UNPHYSICAL TENSION: up to 484 points of 'jet_copper'"), 1);
+  EXPECT_EQ(lines_with(l, "-150 GPa at 43 us"), 1);
+  EXPECT_EQ(lines_with(l, "casing_steel"), 0);  // within its limit: nothing to say
+}
 
 }  // namespace test_headlines
