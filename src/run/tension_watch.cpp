@@ -10,6 +10,12 @@
 
 namespace ballista {
 
+namespace {
+// A point counts as beyond the limit once it is 0.1 % past it: a cutoff (eos.min_pressure) set at
+// the limit as printed, to a few digits, holds its points at the limit, not beyond it.
+constexpr double kMargin = 1e-3;
+}  // namespace
+
 TensionWatch::TensionWatch(const Scenario& sc) {
   slot_of_material_.assign(sc.materials.size(), -1);
   for (std::size_t m = 0; m < sc.materials.size(); ++m) {
@@ -18,7 +24,7 @@ TensionWatch::TensionWatch(const Scenario& sc) {
     const Eos e = make_eos(v, 0.0, v.at("density"));
     const double limit = mie_gruneisen_cohesive_limit(e);
     // A cutoff at or above the limit keeps every point within it: nothing to watch.
-    if (!std::isfinite(limit) || e.p_min >= limit) continue;
+    if (!std::isfinite(limit) || e.p_min >= limit * (1.0 + kMargin)) continue;
     Watched w;
     w.material = static_cast<int>(m);
     w.name = sc.materials[m].name;
@@ -44,7 +50,7 @@ void TensionWatch::scan(const FieldStore& pts, double time, const Communicator& 
       if (k < 0) continue;
       const double pressure = -trace(stress[p]) / 3.0;  // tension negative
       if (pressure < lowest[k]) lowest[k] = pressure;
-      if (pressure < watched_[k].limit) ++beyond[k];
+      if (pressure < watched_[k].limit * (1.0 + kMargin)) ++beyond[k];
     }
   }
   if (comm.distributed()) {

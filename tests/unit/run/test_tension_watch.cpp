@@ -87,6 +87,19 @@ TEST(TensionWatch, ACutoffWithinTheLimitNeedsNoWatch) {
   EXPECT_FALSE(s["tension"]);
 }
 
+TEST(TensionWatch, ACutoffAtTheLimitAsPrintedIsWithinIt) {
+  // The limit to four digits, 0.002 % beyond the exact -19.6420 GPa: within the watch's 0.1 %,
+  // so the material is not watched. A cutoff 2 % beyond the limit is, and the points it holds
+  // there are beyond.
+  test::TempDir dir;
+  EXPECT_FALSE(run(deck(1000.0, ", eos: {min_pressure: -19.6424e9}"), dir)["tension"]);
+  test::TempDir beyond("tension_beyond");
+  const YAML::Node s = run(deck(1000.0, ", eos: {min_pressure: -20.0e9}"), beyond);
+  ASSERT_TRUE(s["tension"]["cu"]);
+  EXPECT_NEAR(s["tension"]["cu"]["most_tensile_pressure"].as<double>(), -20.0e9, 1e3);
+  EXPECT_GT(s["tension"]["cu"]["most_points_beyond"].as<double>(), 0.0);
+}
+
 TEST(TensionWatch, ARestartKeepsTheRecord) {
   // Restarted after the first points passed the limit (0.1 us): the record and the one warning
   // carry over, so the summary is the uninterrupted run's.
