@@ -1,8 +1,8 @@
 #pragma once
 // The most hydrostatic tension a solid can hold: the spinodal of the universal equation of state
-// of solids (P. Vinet, J. Ferrante, J.H. Rose, J.R. Smith, "Compressibility of solids",
-// J. Geophys. Res. 92 (1987) 9319, eq. 2; J.H. Rose, J.R. Smith, F. Guinea, J. Ferrante, Phys.
-// Rev. B 29 (1984) 2963 for the binding curve it integrates):
+// of solids (P. Vinet, J.R. Smith, J. Ferrante, J.H. Rose, "Temperature effects on the universal
+// equation of state of solids", Phys. Rev. B 35 (1987) 1945, eq. 4.1; J.H. Rose, J.R. Smith,
+// F. Guinea, J. Ferrante, Phys. Rev. B 29 (1984) 2963 for the binding curve it integrates):
 //   P(x) = 3 K0 (1 - x) / x^2 exp(eta (1 - x)),   x = (V/V0)^(1/3),   eta = 3 (K0' - 1) / 2.
 // In tension (x > 1) P falls to a minimum and rises again towards zero as the atoms part: the
 // minimum is the cohesive limit, where dP/dx = 0, i.e. eta x^2 + (1 - eta) x - 2 = 0. Copper
@@ -13,7 +13,7 @@
 // A Mie-Grüneisen EOS with a linear Us-up line continues its tension branch linearly,
 // p = rho0 c0^2 eta (eos.hpp), without such a minimum: a failed point that keeps its stress can be
 // pulled apart at any tension. The line's K0' is 4 s - 1 (A.L. Ruoff, J. Appl. Phys. 38 (1967)
-// 4976, eq. 11: the pressure derivative of the bulk modulus at zero pressure of a linear Us-up
+// 4976: the pressure derivative of the bulk modulus at zero pressure of a linear Us-up
 // Hugoniot).
 #include "materials/eos.hpp"
 

@@ -1,7 +1,7 @@
 // Points pulled beyond their material's cohesive limit (run/tension_watch.hpp): two copper blocks
-// in one velocity field fly apart at +-v, so the plane where they meet is pulled at about
-// rho0 c0 v (the reflected tension of a free-flying pair; Meyers, Dynamic Behavior of Materials,
-// 1994, §16.2 on spall). At 1000 m/s that is ~35 GPa, beyond copper's -19.6 GPa: the run says so
+// in one velocity field fly apart at +-v, so the plane where they meet is held back and pulled at
+// about rho0 c0 v (the momentum jump across a weak wave, sigma = rho0 Us du with Us ~ c0, that
+// brings each half from v to rest). At 1000 m/s that is ~35 GPa, beyond copper's -19.6 GPa: the run says so
 // in summary.json and its warnings; at 200 m/s (~7 GPa) it records the strongest tension and no
 // point beyond; with eos.min_pressure above the limit the material is not watched.
 #include <gtest/gtest.h>
