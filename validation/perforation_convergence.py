@@ -18,6 +18,7 @@ A level that takes hours can be checkpointed and continued after an interruption
 
   ... --set output.checkpoint_interval=5e-6            # first run, cut short
   ... --set output.checkpoint_interval=5e-6 --resume   # continues each level that has no completed summary
+                                                       # (and keeps the completed ones)
 
   /usr/bin/python3 validation/perforation_convergence.py --ballista build/ballista --out out/perfconv
 
@@ -69,7 +70,8 @@ def run_level(a, h):
     out = os.path.join(a.out, f"h_{h * 1e3:g}mm")
     summary = os.path.join(out, "summary.json")
     done = level_done(out)
-    if a.reuse and done:
+    # A resumed study keeps the levels it has completed: --resume alone must not run them again.
+    if (a.reuse or a.resume) and done:
         return json.load(open(summary)), None
     checkpoints = os.path.join(out, "checkpoints")
     if a.resume and not done and os.path.isdir(checkpoints) and os.listdir(checkpoints):
@@ -382,7 +384,7 @@ def main():
     ap.add_argument("--resume", action="store_true",
                     help="continue a level that has checkpoints but no summary from its newest checkpoint "
                          "(run the levels with --set output.checkpoint_interval=...); its wall time is then "
-                         "the last part's only")
+                         "the last part's only. Completed levels are kept, as with --reuse")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     rows, states = [], []

@@ -25,6 +25,7 @@
 import json
 import os
 import sys
+import types
 
 import h5py
 import numpy as np
@@ -159,6 +160,22 @@ def main():
         states[status] = level_done(level)
     ok = states == {"completed": True, "interrupted": False, "failed": False, None: False}
     print(f"a level is done only when completed: {states}: {'ok' if ok else 'FAIL'}")
+    failures += not ok
+    # --resume keeps a completed level: the run is not started again (a ballista that fails at
+    # once would stop the study).
+    from perforation_convergence import run_level
+    study = os.path.join(a.out, "resumed_study")
+    os.makedirs(os.path.join(study, "h_1mm", "checkpoints"), exist_ok=True)
+    open(os.path.join(study, "h_1mm", "checkpoints", "checkpoint_000000000010.h5"), "w").write("")
+    open(os.path.join(study, "h_1mm", "summary.json"), "w").write(json.dumps({"status": "completed", "depth": 1}))
+    args = types.SimpleNamespace(out=study, reuse=False, resume=True, ballista="/bin/false", threads=1,
+                                 deck="unused.yaml", far=1e-3, band=9e-3, path=[0.0, 0.1], set=[])
+    try:
+        kept, wall = run_level(args, 1e-3)
+        ok = kept.get("depth") == 1 and wall is None
+    except SystemExit:
+        ok = False
+    print(f"--resume keeps a completed level: {'ok' if ok else 'FAIL'}")
     failures += not ok
     sys.exit(1 if failures else 0)
 
