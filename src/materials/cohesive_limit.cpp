@@ -5,16 +5,22 @@
 
 namespace ballista {
 
+namespace {
+/// x = (V/V0)^(1/3) at the limit: the positive root of eta x^2 + (1 - eta) x - 2 = 0
+/// (cohesive_limit.hpp).
+double spinodal_x(double eta) {
+  return ((eta - 1.0) + std::sqrt((eta - 1.0) * (eta - 1.0) + 8.0 * eta)) / (2.0 * eta);
+}
+}  // namespace
+
 double vinet_cohesive_volume_ratio(double k0p) {
-  const double eta = 1.5 * (k0p - 1.0);
-  // The positive root of eta x^2 + (1 - eta) x - 2 = 0 (cohesive_limit.hpp).
-  const double x = ((eta - 1.0) + std::sqrt((eta - 1.0) * (eta - 1.0) + 8.0 * eta)) / (2.0 * eta);
+  const double x = spinodal_x(1.5 * (k0p - 1.0));
   return x * x * x;
 }
 
 double vinet_cohesive_limit(double k0, double k0p) {
   const double eta = 1.5 * (k0p - 1.0);
-  const double x = std::cbrt(vinet_cohesive_volume_ratio(k0p));
+  const double x = spinodal_x(eta);
   return 3.0 * k0 * (1.0 - x) / (x * x) * std::exp(eta * (1.0 - x));
 }
 

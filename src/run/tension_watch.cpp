@@ -26,7 +26,6 @@ TensionWatch::TensionWatch(const Scenario& sc) {
     // A cutoff at or above the limit keeps every point within it: nothing to watch.
     if (!std::isfinite(limit) || e.p_min >= limit * (1.0 + kMargin)) continue;
     Watched w;
-    w.material = static_cast<int>(m);
     w.name = sc.materials[m].name;
     w.limit = limit;
     w.bulk = e.rho0 * e.c0 * e.c0;

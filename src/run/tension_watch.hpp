@@ -30,8 +30,9 @@ class TensionWatch {
   /// Scans the points at time t (collective: every rank calls it with its own points).
   void scan(const FieldStore& pts, double time, const Communicator& comm);
 
-  /// summary.json "tension": {material: {cohesive_limit, most_tensile_pressure, at_time,
-  /// most_points_beyond, most_points_time, first_beyond_time}} (times null while none is beyond).
+  /// summary.json "tension": {material: {cohesive_limit, most_tensile_pressure, most_tensile_time,
+  /// most_points_beyond, most_points_beyond_time, first_beyond_time}} (times null while there is
+  /// nothing to date; docs/output.md).
   JsonValue summary() const;
 
   void save(StateArchive& a) const;
@@ -40,7 +41,6 @@ class TensionWatch {
 
  private:
   struct Watched {
-    int material = 0;        ///< index in Scenario::materials
     std::string name;
     double limit = 0.0;      ///< cohesive limit, Pa (negative)
     double bulk = 0.0;       ///< K0, Pa (for the message)
