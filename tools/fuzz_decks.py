@@ -864,7 +864,9 @@ NULL_OK = {"main_stage_start", "arrival_time", "stop_time", "steady_rate", "rate
            # penetration.path_cells: the band covers the whole tunnel (and on every uniform grid)
            "coarser_from_depth",
            # tension.<material>: no point in tension yet, or none beyond the cohesive limit
-           "most_tensile_time", "most_points_beyond_time", "first_beyond_time"}
+           "most_tensile_time", "most_points_beyond_time", "first_beyond_time",
+           # penetration.beyond_tunnel: no floor on the axis (perforated); no point beyond it
+           "beyond_tunnel", "deepest"}
 # summary.json lists whose items are null when not applicable: holes.<layer>.diameters in a slice
 # the layer has gone from.
 NULL_OK_ITEMS = {"diameters"}

@@ -1,7 +1,5 @@
 #include "analysis/penetration_probe.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -11,6 +9,7 @@
 #include <spdlog/spdlog.h>
 
 #include "analysis/axis_distance.hpp"
+#include "analysis/beyond_tunnel.hpp"
 #include "analysis/penetration_series.hpp"
 #include "core/error.hpp"
 #include "core/point_fields.hpp"
@@ -134,6 +133,11 @@ double PenetrationProbe::penetrator_front(const FieldStore& pts) const {
 }
 
 double PenetrationProbe::cavity_depth(const FieldStore& pts) const {
+  bool floor = false;
+  return cavity_depth(pts, floor);
+}
+
+double PenetrationProbe::cavity_depth(const FieldStore& pts, bool& floor) const {
   const auto* bid = pts.ints(kBodyIndex);
   const auto* x = pts.view(kPosition);
   const auto* F = pts.view(kDeformationGradient);
@@ -151,7 +155,8 @@ double PenetrationProbe::cavity_depth(const FieldStore& pts) const {
     // Material ejected above the face (d < 0) is not the cavity's floor.
     if (d >= 0.0 && lateral_of(x[p]) < spec_.axis_radius) tip = std::min(tip, std::max(0.0, d - reach));
   }
-  return std::isfinite(tip) ? tip : bottom;
+  floor = std::isfinite(tip);
+  return floor ? tip : bottom;
 }
 
 std::vector<double> PenetrationProbe::sample(const FieldStore& pts, bool fired, double t, double scale,
@@ -230,6 +235,9 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   double max_depth = 0.0;
   for (double d : depth_) max_depth = std::max(max_depth, d);
   out["max_depth"] = max_depth;
+  int strays = 0;
+  double front_within = 0.0;  // the deepest penetrator point not beyond the tunnel's end
+  out["beyond_tunnel"] = beyond_tunnel_of(pts, strays, front_within);
   // Arrival: the first sample with penetrator material below the target's face.
   JsonValue arrival;
   for (size_t i = 0; i < t_.size(); ++i)
@@ -269,7 +277,10 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   out["cells_across_radius"] = radius_cells_;
   // The radius's cells are the finest; a tunnel that runs on beyond the refined band ends in coarser
   // ones, and its depth is not the band's answer.
-  const double channel_depth = std::max(out.at("final_cavity_depth").as_number(), max_depth);
+  // Points far beyond the tunnel's end (beyond_tunnel) open no tunnel: the channel ends where the
+  // rest of the penetrator does.
+  const double channel_depth =
+      std::max(out.at("final_cavity_depth").as_number(), strays > 0 ? front_within : max_depth);
   double entry = 0.0;
   for (double face : layer_face_) entry = std::min(entry, depth_of_coordinate(face));
   const JsonValue cells = path_cells(entry, channel_depth);
@@ -349,6 +360,39 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   tunnel["depth"] = channel_depth;
   out["tunnel"] = tunnel;
   out["holes"] = layer_holes(pts);
+}
+
+JsonValue PenetrationProbe::beyond_tunnel_of(const FieldStore& pts, int& points_beyond, double& front_within) const {
+  points_beyond = 0;
+  bool floor = false;
+  const double tunnel_end = cavity_depth(pts, floor);
+  if (!floor) return JsonValue();  // perforated, or nothing on the axis: no tunnel's end to be beyond
+  const auto* bid = pts.ints(kBodyIndex);
+  const auto* x = pts.view(kPosition);
+  const auto* m = pts.real(kMass);
+  std::vector<double> depth, mass;
+  for (Index p = 0; p < pts.size(); ++p)
+    if (bid[p] == penetrator_) {
+      depth.push_back(depth_of(x[p]));
+      mass.push_back(m[p]);
+    }
+  const double margin = kBeyondTunnelCells * axial_cell_;
+  const BeyondTunnel b = beyond_tunnel(depth, mass, tunnel_end, margin);
+  points_beyond = b.points;
+  front_within = std::max(0.0, b.deepest_within);
+  if (b.points > 0)
+    spdlog::warn("points of '{}' beyond the tunnel's end ({:.4g} m deep) by more than {:g} cells, in rock nothing "
+                 "has opened: {} ({:.2g} % of its mass), the deepest at {:.4g} m. The deepest penetrator point (the "
+                 "summary's depth) is not the depth of penetration; the tunnel's end (its cavity depth) is "
+                 "(docs/penetration.md)",
+                 spec_.penetrator, tunnel_end, kBeyondTunnelCells, b.points, 100.0 * b.mass_share, b.deepest);
+  JsonValue out = JsonValue::object();
+  out["tunnel_end"] = tunnel_end;
+  out["margin"] = margin;
+  out["points"] = b.points;
+  out["mass_share"] = b.mass_share;
+  out["deepest"] = b.points > 0 ? JsonValue(b.deepest) : JsonValue();
+  return out;
 }
 
 std::vector<LateralPoint> PenetrationProbe::lateral_points(const FieldStore& pts, int body, double face,

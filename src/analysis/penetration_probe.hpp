@@ -65,6 +65,9 @@ class PenetrationProbe {
   /// within axis_radius of the line of flight and below the face; the full target depth once
   /// nothing is left there (perforation). The channel profile also skips failed (eroded) debris.
   double cavity_depth(const FieldStore& points) const;
+  /// The same; `floor`: whether intact target material was found on the axis (false: the
+  /// returned depth is the target's bottom).
+  double cavity_depth(const FieldStore& points, bool& floor) const;
 
  private:
   /// Points of `body` (not failed) for the wall measure, with their depth below `face`: where they
@@ -75,6 +78,10 @@ class PenetrationProbe {
   /// layers' faces to the tunnel's end) against the finest ones there, and the depth from which
   /// they are coarser (a graded grid whose band ends before the tunnel does).
   JsonValue path_cells(double from, double to) const;
+  /// summary.json "beyond_tunnel": penetrator points beyond the tunnel's end (analysis/beyond_tunnel.hpp),
+  /// null when the target has no floor on the axis. `points`: how many; `front_within`: the deepest
+  /// penetrator point not beyond it (m, 0 if none).
+  JsonValue beyond_tunnel_of(const FieldStore& points, int& points_beyond, double& front_within) const;
   /// summary.json "holes": the hole through each layer (entrance and smallest diameter).
   JsonValue layer_holes(const FieldStore& points) const;
   /// Records what is left of the jet when its front (penetrator_front) first passes the back face

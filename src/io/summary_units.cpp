@@ -48,6 +48,9 @@ const std::vector<std::pair<std::string, std::string>>& unit_table() {
       {"penetration.holes.*.jet_behind.*", "m"},  // the lengths consumed and remaining
       {"penetration.holes.*.*", "m"},             // diameters, thickness, face depth
       {"penetration.tunnel.*", "m"},
+      {"penetration.beyond_tunnel.points", "1"},
+      {"penetration.beyond_tunnel.mass_share", "1"},
+      {"penetration.beyond_tunnel.*", "m"},  // the tunnel's end, the margin, the deepest point
       {"penetration.path_cells.*", "m"},  // cell sizes and the depth they coarsen from
       {"penetration.*", "m"},  // depths, lengths, radii, the surface's coordinate
       // Fragments (the Mott fit N(>m) = N0 exp(-sqrt(m / mu))).

@@ -22,8 +22,18 @@ std::string mm(double metres) { return std::isfinite(metres) ? fmt::format("{:.1
 /// or known to be the depth at end_time.
 void penetration_lines(const JsonValue& p, bool completed, std::vector<std::string>& out) {
   const std::string target = p.contains("target") ? p.at("target").as_string() : "the target";
-  out.push_back(fmt::format("depth into '{}' = {} (cavity {})", target, mm(number_at(p, "final_depth")),
-                            mm(number_at(p, "final_cavity_depth"))));
+  // Penetrator points far beyond the tunnel's end (analysis/beyond_tunnel.hpp) make the deepest
+  // point no depth of penetration: the tunnel's end is then the depth, and the stray points are named.
+  const JsonValue* beyond = p.contains("beyond_tunnel") ? &p.at("beyond_tunnel") : nullptr;
+  const double strays = beyond ? number_at(*beyond, "points") : NAN;
+  if (std::isfinite(strays) && strays > 0)
+    out.push_back(fmt::format("depth into '{}' = {} (the tunnel's end; the deepest penetrator point, {}, is one of {:g} "
+                              "({:.2g} % of its mass) beyond it in rock nothing has opened)",
+                              target, mm(number_at(*beyond, "tunnel_end")), mm(number_at(p, "final_depth")), strays,
+                              100.0 * number_at(*beyond, "mass_share")));
+  else
+    out.push_back(fmt::format("depth into '{}' = {} (cavity {})", target, mm(number_at(p, "final_depth")),
+                              mm(number_at(p, "final_cavity_depth"))));
   if (p.contains("holes") && p.at("holes").kind() == JsonValue::Kind::Object) {
     const JsonValue& holes = p.at("holes");
     for (const std::string& plate : holes.keys()) {

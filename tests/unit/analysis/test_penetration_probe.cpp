@@ -1,5 +1,6 @@
 // Penetration probe on hand-placed particles: depth of the deepest penetrator particle, cavity
-// tip, kinetic energy per segment, and the summary's hydrodynamic values (thesis eq. 3.1-3.2).
+// tip, kinetic energy per segment, penetrator points beyond the tunnel's end, and the summary's
+// hydrodynamic values (thesis eq. 3.1-3.2).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -88,6 +89,50 @@ TEST(PenetrationProbe, DepthCavityAndSegmentEnergies) {
   // Channel: the cleared core (r < 1 mm, moved 4 mm out) leaves material from r = 1 mm (centre
   // 1.25 mm less the domain half-width) in the top 5 mm; below it the channel is closed.
   EXPECT_NEAR(out.at("max_channel_radius").as_number(), 1e-3, 1e-12);
+}
+
+TEST(PenetrationProbe, PenetratorPointsFarBeyondTheTunnelAreCounted) {
+  const Scenario sc = parse_deck(kDeck, "probe.yaml");
+  auto solver = make_solver(sc);
+  FieldStore& pts = solver->points();
+  auto* x = pts.view<Vec3>("x");
+  const auto* bid = pts.ints("body");
+  const auto* m = pts.real("mass");
+  // The tunnel open to 5 mm below the face (the core r < 1 mm moved aside), the rod above the face
+  // except one point.
+  for (Index p = 0; p < pts.size(); ++p)
+    if (bid[p] == 0 && x[p][0] < 1e-3 && x[p][1] > 0.02 - 0.005) x[p][0] += 0.004;
+  Index stray = -1;
+  double rod_mass = 0.0;
+  for (Index p = 0; p < pts.size(); ++p)
+    if (bid[p] == 1) {
+      rod_mass += m[p];
+      if (stray < 0) stray = p;
+    }
+  const auto beyond_with_stray_at = [&](double depth) {
+    x[stray][1] = 0.02 - depth;
+    PenetrationProbe probe(sc);
+    probe.sample(pts, true, 0.0, solver->reporting_scale());
+    test::TempDir dir;
+    JsonValue out;
+    probe.finish(pts, dir.path.string(), 1e-6, out);
+    return out.at("beyond_tunnel");
+  };
+  // 12 mm deep, 7 mm (7 cells) beyond the tunnel's end: counted, with its share of the rod's mass.
+  JsonValue b = beyond_with_stray_at(0.012);
+  EXPECT_NEAR(b.at("tunnel_end").as_number(), 0.005, 1e-12);
+  EXPECT_NEAR(b.at("margin").as_number(), 2e-3, 1e-15);  // kBeyondTunnelCells of 1 mm
+  EXPECT_EQ(b.at("points").as_int(), 1);
+  EXPECT_NEAR(b.at("deepest").as_number(), 0.012, 1e-15);
+  EXPECT_NEAR(b.at("mass_share").as_number(), m[stray] / rod_mass, 1e-15);
+  // 6.5 mm deep, 1.5 cells beyond: a point driving the floor, not counted.
+  b = beyond_with_stray_at(0.0065);
+  EXPECT_EQ(b.at("points").as_int(), 0);
+  EXPECT_EQ(b.at("deepest").kind(), JsonValue::Kind::Null);
+  // The whole core moved aside (perforated on the axis): no tunnel's end, nothing measured.
+  for (Index p = 0; p < pts.size(); ++p)
+    if (bid[p] == 0 && x[p][0] < 1e-3) x[p][0] += 0.004;
+  EXPECT_EQ(beyond_with_stray_at(0.012).kind(), JsonValue::Kind::Null);
 }
 
 // A 2 mm steel plate above the rock (y 22-24 mm) and the segmented tungsten rod (2 x 2 mm, 2 mm
@@ -251,8 +296,15 @@ TEST(PenetrationProbe, ATunnelBeyondTheRefinedBandIsNotResolved) {
   for (Index p = 0; p < pts.size() && lead < 0; ++p)
     if (bid[p] == 1) lead = p;
   ASSERT_GE(lead, 0);
+  // The tunnel: the target's core (r < 1 mm) moved aside down to the rod point's depth, so that
+  // the point drives the tunnel's end (a point far beyond it in intact rock opens no tunnel).
+  const auto open_to = [&](double y) {
+    for (Index p = 0; p < pts.size(); ++p)
+      if (bid[p] == 0 && x[p][0] < 1e-3 && x[p][1] > y) x[p][0] += 0.004;
+  };
   // A rod point 7 mm deep: the path to it lies in the band's cells.
   x[lead][1] = 0.013;
+  open_to(0.013);
   JsonValue in = summary_of_one_sample(sc, *solver);
   EXPECT_DOUBLE_EQ(in.at("cells_across_radius").as_number(), 4.0);
   // The band's cells are its length over their count, 0.25 mm to the round-off of the node sums.
@@ -264,6 +316,7 @@ TEST(PenetrationProbe, ATunnelBeyondTheRefinedBandIsNotResolved) {
   // band ends exactly on its node), growing to 1 mm by at most 1.2 per cell (at least 1.2 x 0.25 mm
   // in the first).
   x[lead][1] = 0.006;
+  open_to(0.006);
   JsonValue past = summary_of_one_sample(sc, *solver);
   EXPECT_NEAR(past.at("path_cells").at("coarser_from_depth").as_number(), 0.008, 1e-15);
   EXPECT_GT(past.at("path_cells").at("coarsest").as_number(), 0.3e-3);

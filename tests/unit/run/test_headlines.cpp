@@ -3,7 +3,8 @@
 // not stopped, and neither when the run did not complete (a failed or interrupted run's depth is
 // neither final nor the depth at end_time); "NOT CONVERGED" with the cause, the penetrator's cells
 // across its radius or a tunnel that runs on beyond the refined band; "UNPHYSICAL TENSION" for a
-// material whose points were pulled beyond its cohesive limit (run/tension_watch.hpp).
+// material whose points were pulled beyond its cohesive limit (run/tension_watch.hpp); the tunnel's
+// end as the depth when penetrator points lie far beyond it (analysis/beyond_tunnel.hpp).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -96,6 +97,25 @@ TEST(Headlines, AnUnresolvedRunSaysWhy) {
 }
 
 }  // namespace
+
+TEST(Headlines, PenetratorPointsBeyondTheTunnelDoNotSetTheDepth) {
+  // 0.5 % of the jet 15 mm beyond the tunnel's end: the depth is the tunnel's, the points named.
+  JsonValue s = summary("completed", true, true);
+  JsonValue& p = s["penetration"];
+  p["final_depth"] = 0.0634;
+  JsonValue& b = p["beyond_tunnel"];
+  b = JsonValue::object();
+  b["tunnel_end"] = 0.0484;
+  b["points"] = 3;
+  b["mass_share"] = 0.005;
+  std::vector<std::string> l = headline_lines(s);
+  EXPECT_EQ(lines_with(l, "depth into 'rock' = 48.4 mm (the tunnel's end; the deepest penetrator point, 63.4 mm, "
+                          "is one of 3 (0.5 % of its mass) beyond it"), 1);
+  // None beyond: the deepest point is the depth, as before.
+  b["points"] = 0;
+  l = headline_lines(s);
+  EXPECT_EQ(lines_with(l, "depth into 'rock' = 63.4 mm (cavity 48.4 mm)"), 1);
+}
 
 TEST(Headlines, PointsBeyondTheCohesiveLimitAreNamed) {
   JsonValue s = summary("completed", true, true);
