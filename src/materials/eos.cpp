@@ -1,5 +1,9 @@
 #include "materials/eos.hpp"
 
+#include <cmath>
+
+#include "materials/cohesive_limit.hpp"
+
 namespace ballista {
 
 std::vector<ParamSpec> eos_param_specs() {
@@ -8,8 +12,16 @@ std::vector<ParamSpec> eos_param_specs() {
   ParamSpec type{"eos.type", "", "pressure law: linear (hypoelastic, bulk modulus K) or mie_gruneisen", false};
   type.choices = {"linear", "mie_gruneisen"};
   type.default_choice = "linear";
+  ParamSpec cap{"eos.tension_cap", "",
+                "cohesive_limit: the pressure never drops below the material's cohesive limit, the minimum of the "
+                "universal EOS in tension for K0 = rho0 c0^2 and K0' = 4 s - 1 (Mie-Grüneisen only; "
+                "materials/cohesive_limit.hpp); none: no cap but eos.min_pressure's",
+                false};
+  cap.choices = {"none", "cohesive_limit"};
+  cap.default_choice = "none";
   return {
       type,
+      cap,
       {"eos.sound_speed", "m/s", "Mie-Grüneisen: bulk sound speed c0 (Us = c0 + s up)", false, nan,
        0.0, inf, true, false},
       {"eos.hugoniot_slope", "1", "Mie-Grüneisen: slope s of the Us-up Hugoniot", false, nan, 0.0, inf, false, false},
@@ -36,9 +48,16 @@ Eos make_eos(const ParamValues& v, double bulk, double density) {
   e.rho0 = density;
   e.p_min = v.number_or("eos.min_pressure", -std::numeric_limits<double>::infinity());
   const std::string type = v.choice("eos.type", "linear");
+  const bool cohesive_cap = v.choice("eos.tension_cap", "none") == "cohesive_limit";
+  if (cohesive_cap && v.given("eos.min_pressure"))
+    throw ParamError("eos.tension_cap", "eos.tension_cap and eos.min_pressure both set the tension cutoff: give one");
   if (type == "linear") {
     if (v.given("eos.max_particle_velocity"))
       throw ParamError("eos.max_particle_velocity", "eos.max_particle_velocity needs eos.type mie_gruneisen");
+    if (cohesive_cap)
+      throw ParamError("eos.tension_cap",
+                       "eos.tension_cap: cohesive_limit needs eos.type mie_gruneisen (the limit is built from its c0 "
+                       "and s); a linear EOS takes eos.min_pressure");
     return e;
   }
   if (type != "mie_gruneisen") throw ParamError("eos.type", "unknown eos.type '" + type + "'");
@@ -56,6 +75,12 @@ Eos make_eos(const ParamValues& v, double bulk, double density) {
     e.p_fit = eos_line_pressure(e, eta);
     e.dp_fit = eos_line_slope(e, eta);
     e.eta_fit = eta;
+  }
+  if (cohesive_cap) {
+    e.p_min = mie_gruneisen_cohesive_limit(e);
+    if (!std::isfinite(e.p_min))
+      throw ParamError("eos.tension_cap", "eos.tension_cap: cohesive_limit needs eos.hugoniot_slope > 1/2 (K0' = 4 s - 1 "
+                                          "> 1: below it the universal EOS has no minimum in tension)");
   }
   return e;
 }

@@ -30,7 +30,8 @@
 // bound. The pole is an artefact of extrapolating a straight Us-up line (the line's limiting
 // compression s/(s-1) is not a property of the material), and a point squeezed there by the
 // grid, not by a shock, would set the whole run's stable step.
-// eos.min_pressure (default -inf) caps tension (cavitation / spall cutoff): p >= p_min.
+// eos.min_pressure (default -inf) caps tension (cavitation / spall cutoff): p >= p_min;
+// eos.tension_cap: cohesive_limit sets p_min to the solid's cohesive limit (cohesive_limit.hpp).
 #include <cmath>
 #include <limits>
 #include <vector>

@@ -69,3 +69,49 @@ TEST(CohesiveLimit, NoLimitWithoutAnUsUpLine) {
 }
 
 }  // namespace test_cohesive_limit
+
+namespace test_cohesive_limit {
+
+// eos.tension_cap: cohesive_limit sets the cutoff to the limit of the EOS's own line, and refuses
+// what it cannot honour (a second cutoff, a linear EOS, a line without a minimum) instead of
+// ignoring it.
+ParamValues copper_line() {
+  ParamValues v{{"eos.sound_speed", 3940.0}, {"eos.hugoniot_slope", 1.489}, {"eos.gruneisen_gamma", 2.02}};
+  v.choices["eos.type"] = "mie_gruneisen";
+  v.choices["eos.tension_cap"] = "cohesive_limit";
+  return v;
+}
+
+std::string refusal(const ParamValues& v) {
+  try {
+    make_eos(v, 139e9, 8960.0);
+  } catch (const ParamError& e) {
+    return e.param() + ": " + e.what();
+  }
+  return "accepted";
+}
+
+TEST(CohesiveLimit, TensionCapIsTheLimitOfTheMaterialsOwnLine) {
+  const Eos e = make_eos(copper_line(), 139e9, 8960.0);
+  EXPECT_EQ(e.p_min, mie_gruneisen_cohesive_limit(e));
+  EXPECT_NEAR(e.p_min, -19.64e9, 0.01e9);
+  ParamValues none = copper_line();
+  none.choices["eos.tension_cap"] = "none";
+  EXPECT_EQ(make_eos(none, 139e9, 8960.0).p_min, -INFINITY);
+}
+
+TEST(CohesiveLimit, TensionCapRefusesWhatItCannotHonour) {
+  ParamValues both = copper_line();
+  both["eos.min_pressure"] = -1e9;
+  EXPECT_NE(refusal(both).find("eos.tension_cap: eos.tension_cap and eos.min_pressure both set"), std::string::npos)
+      << refusal(both);
+  ParamValues linear;
+  linear.choices["eos.type"] = "linear";
+  linear.choices["eos.tension_cap"] = "cohesive_limit";
+  EXPECT_NE(refusal(linear).find("needs eos.type mie_gruneisen"), std::string::npos) << refusal(linear);
+  ParamValues flat = copper_line();
+  flat["eos.hugoniot_slope"] = 0.4;
+  EXPECT_NE(refusal(flat).find("needs eos.hugoniot_slope > 1/2"), std::string::npos) << refusal(flat);
+}
+
+}  // namespace test_cohesive_limit
