@@ -41,7 +41,7 @@ OVERLAP_DECKS = {
     "exploding_cylinder_pd": {"grid.cell_size": "1.72e-3", "bodies.1.point_spacing": "1.72e-3",
                               "simulation.end_time": "1.0e-6"},
     "pd_kalthoff_winkler": {"grid.cell_size": "2.0e-3", "simulation.end_time": "2.0e-6"},
-    "jet_casing_sandstone_mpm": {"grid.cell_size": "2.0e-3", "simulation.end_time": "5.0e-6"},
+    "jet_casing_sandstone_mpm": {"grid.cell_size": "2.0e-3", "grid.refine": "[]", "simulation.end_time": "5.0e-6"},
     "rod_billet_4130_mpm": {"grid.cell_size": "1.0e-3", "simulation.end_time": "2.0e-6"},
     "elastic_disks": {"grid.cell_size": "0.05", "simulation.end_time": "0.05"},
     "taylor_bar_otm": {"grid.cell_size": "0.8e-3", "simulation.end_time": "2.0e-6"},

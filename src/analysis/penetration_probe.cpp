@@ -10,9 +10,11 @@
 
 #include "analysis/axis_distance.hpp"
 #include "analysis/beyond_tunnel.hpp"
+#include "analysis/convergence_statement.hpp"
 #include "analysis/penetration_series.hpp"
 #include "core/error.hpp"
 #include "core/point_fields.hpp"
+#include "deck/physics_fingerprint.hpp"
 #include "geometry/grid_axes.hpp"
 #include "geometry/shape.hpp"
 #include "io/history_writer.hpp"
@@ -50,6 +52,7 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
   axis_ = ps.axis;
   direction_ = ps.direction;
   surface_ = spec_.surface;
+  fingerprint_ = physics_fingerprint(sc.resolved_yaml);
   line_point_ = ps.nose;
   nd_ = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
   segments_ = std::max<int>(1, static_cast<int>(pb.segments.size()));
@@ -360,6 +363,9 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   tunnel["depth"] = channel_depth;
   out["tunnel"] = tunnel;
   out["holes"] = layer_holes(pts);
+  out["physics_fingerprint"] = fingerprint_;
+  if (!spec_.convergence.path.empty())
+    out["convergence"] = convergence_statement(spec_.convergence, fingerprint_, axial_cell_, out);
 }
 
 JsonValue PenetrationProbe::beyond_tunnel_of(const FieldStore& pts, int& points_beyond, double& front_within) const {

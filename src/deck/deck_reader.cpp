@@ -12,6 +12,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "deck/body_ref.hpp"
+#include "deck/convergence_record_reader.hpp"
 #include "deck/deck_node.hpp"
 #include "deck/deck_overrides.hpp"
 #include "deck/load_reader.hpp"
@@ -738,6 +739,7 @@ class Reader {
                              "' is the penetrator or the target; layers are the bodies perforated "
                              "before the target");
     }
+    pe.convergence = read_convergence_record(n);
     n.finish();
   }
 

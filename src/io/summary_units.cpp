@@ -48,6 +48,11 @@ const std::vector<std::pair<std::string, std::string>>& unit_table() {
       {"penetration.holes.*.jet_behind.*", "m"},  // the lengths consumed and remaining
       {"penetration.holes.*.*", "m"},             // diameters, thickness, face depth
       {"penetration.tunnel.*", "m"},
+      {"penetration.convergence.quantities.*.order", "1"},
+      {"penetration.convergence.quantities.*.level_gap", "1"},
+      {"penetration.convergence.quantities.*.*", "m"},  // the study's quantities are lengths
+      {"penetration.convergence.within", "1"},
+      {"penetration.convergence.level_cell", "m"},
       {"penetration.beyond_tunnel.points", "1"},
       {"penetration.beyond_tunnel.mass_share", "1"},
       {"penetration.beyond_tunnel.*", "m"},  // the tunnel's end, the margin, the deepest point

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/tensor.hpp"
@@ -241,6 +242,24 @@ struct StageSpec {
 
 /// Penetration measurements (thesis seed 000 ch. 5, §7.2): depth and rate against time,
 /// penetrator kinetic energy, channel profile.
+/// A grid study's record of a deck (validation/convergence_record.py writes it): per quantity the
+/// value at each level (by the band's cell) and the converged (Richardson) estimate, with the
+/// fingerprint of the physics the levels share (deck/physics_fingerprint.hpp).
+struct ConvergenceRecord {
+  struct Quantity {
+    std::string name;         ///< e.g. cavity_depth
+    std::string label;        ///< what it is, for the output ("tunnel depth")
+    std::string summary_key;  ///< where a run's summary.json penetration object holds it (dotted)
+    double richardson = 0.0;  ///< the converged estimate, SI
+    double order = 0.0;       ///< observed order of the three finest levels
+    std::vector<std::pair<double, double>> levels;  ///< (band cell m, value SI), coarsest first
+  };
+  std::string path;         ///< absolute path of the record file ("" when the deck names none)
+  std::string study;        ///< where the study is documented
+  std::string fingerprint;  ///< physics_fingerprint of the levels' resolved decks
+  std::vector<Quantity> quantities;
+};
+
 struct PenetrationSpec {
   bool enabled = false;
   std::string penetrator;      ///< a rod or jet body
@@ -256,6 +275,9 @@ struct PenetrationSpec {
   /// Bodies the penetrator perforates before the target (casing, cement): the hole in each is
   /// measured (entrance and smallest diameter). Default: every body but the penetrator and target.
   std::vector<std::string> layers;
+  /// `convergence_record`: the grid study of this deck; the run says which of its levels it is
+  /// and how far that level is from converged.
+  ConvergenceRecord convergence;
   DeckMark mark;
 };
 

@@ -81,13 +81,15 @@ def main():
     jet = next(b for b in deck["bodies"] if "jet" in b)
     del jet["jet"]["segments"]
     jet["jet"]["file"] = table
+    # Another jet: the demo's grid study is not of this deck (and its record lies beside the demo).
+    del deck["penetration"]["convergence_record"]
     deck_file = os.path.join(a.out, "perforation.yaml")
     yaml.safe_dump(deck, open(deck_file, "w"), sort_keys=False)
     perf = os.path.join(a.out, "perforation")
     # The box reaches 60 mm behind the casing: the tip piece of a jet formed at 0.5 mm is ~20 mm long
     # and is inserted whole, its leading face 5 mm in front of the casing.
     run([a.ballista, "run", deck_file, "-o", perf, "-q", "--no-plots", "--set", "grid.cell_size=2.0e-3",
-         "--set", "simulation.end_time=30.0e-6", "--set", "grid.upper=[0.04, 0.19]"])
+         "--set", "grid.refine=[]", "--set", "simulation.end_time=30.0e-6", "--set", "grid.upper=[0.04, 0.19]"])
     # Each piece inserted by the end (its free flight from the charge plane reached the insertion
     # plane) is seeded with the table's mass, to the 2 mm lattice's error.
     names = [b["name"] for b in deck["bodies"]]

@@ -4,7 +4,8 @@
 // neither final nor the depth at end_time); "NOT CONVERGED" with the cause, the penetrator's cells
 // across its radius or a tunnel that runs on beyond the refined band; "UNPHYSICAL TENSION" for a
 // material whose points were pulled beyond its cohesive limit (run/tension_watch.hpp); the tunnel's
-// end as the depth when penetrator points lie far beyond it (analysis/beyond_tunnel.hpp).
+// end as the depth when penetrator points lie far beyond it (analysis/beyond_tunnel.hpp); the level
+// of the deck's grid study and how far it is from converged (analysis/convergence_statement.hpp).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -115,6 +116,44 @@ TEST(Headlines, PenetratorPointsBeyondTheTunnelDoNotSetTheDepth) {
   b["points"] = 0;
   l = headline_lines(s);
   EXPECT_EQ(lines_with(l, "depth into 'rock' = 63.4 mm (cavity 48.4 mm)"), 1);
+}
+
+TEST(Headlines, TheGridStudySaysWhichLevelAndHowFar) {
+  // A 2-cell level that the deck's study found within 5 %: the study's line, not the rule of thumb.
+  JsonValue s = summary("completed", true, true);
+  JsonValue& p = s["penetration"];
+  p["cells_across_radius"] = 2.0;
+  p["resolved"] = false;
+  JsonValue& c = p["convergence"];
+  c = JsonValue::object();
+  c["record"] = "study.json";
+  c["fingerprint_matches"] = true;
+  c["level_cell"] = 0.5e-3;
+  c["within"] = 0.036;
+  JsonValue& q = c["quantities"];
+  q = JsonValue::object();
+  JsonValue depth = JsonValue::object();
+  depth["label"] = "tunnel depth";
+  depth["richardson"] = 0.1295;
+  depth["level_gap"] = -0.036;
+  q["cavity_depth"] = depth;
+  std::vector<std::string> l = headline_lines(s);
+  EXPECT_EQ(lines_with(l, "CONVERGED WITHIN 5 %: this is the 0.5 mm level of the deck's grid study, where it was "
+                          "tunnel depth -3.6 % (129.5 mm converged) (study.json)"), 1);
+  EXPECT_EQ(lines_with(l, "cells across its radius"), 0);
+  // 6 % from converged: not converged, by the study's measure.
+  c["within"] = 0.06;
+  c["quantities"]["cavity_depth"]["level_gap"] = -0.06;
+  l = headline_lines(s);
+  EXPECT_EQ(lines_with(l, "NOT CONVERGED: this is the 0.5 mm level"), 1);
+  // Not a level of the study, or other physics: not known, and the rule of thumb speaks too.
+  c["level_cell"] = JsonValue();
+  l = headline_lines(s);
+  EXPECT_EQ(lines_with(l, "are not a level of the deck's grid study (study.json)"), 1);
+  EXPECT_EQ(lines_with(l, "NOT CONVERGED: the penetrator is 2 cells across its radius"), 1);
+  c["fingerprint_matches"] = false;
+  l = headline_lines(s);
+  EXPECT_EQ(lines_with(l, "is of other physics than this run"), 1);
 }
 
 TEST(Headlines, PointsBeyondTheCohesiveLimitAreNamed) {

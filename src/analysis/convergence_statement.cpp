@@ -1,0 +1,76 @@
+#include "analysis/convergence_statement.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include <spdlog/spdlog.h>
+
+namespace ballista {
+
+namespace {
+
+/// The number at a dotted key ("holes.casing.mean_diameter") of an object; null if absent.
+JsonValue at_dotted(const JsonValue& obj, const std::string& key) {
+  const JsonValue* v = &obj;
+  std::istringstream parts(key);
+  std::string part;
+  while (std::getline(parts, part, '.')) {
+    if (v->kind() != JsonValue::Kind::Object || !v->contains(part)) return JsonValue();
+    v = &v->at(part);
+  }
+  if (v->kind() != JsonValue::Kind::Number && v->kind() != JsonValue::Kind::Int) return JsonValue();
+  return JsonValue(v->as_number());
+}
+
+}  // namespace
+
+JsonValue convergence_statement(const ConvergenceRecord& record, const std::string& fingerprint, double band_cell,
+                                const JsonValue& penetration) {
+  JsonValue out = JsonValue::object();
+  out["record"] = record.path;
+  out["study"] = record.study;
+  const bool matches = record.fingerprint == fingerprint;
+  out["fingerprint_matches"] = matches;
+  double level = NAN;
+  for (const ConvergenceRecord::Quantity& q : record.quantities)
+    for (const auto& [h, value] : q.levels)
+      if (std::abs(h - band_cell) <= 1e-6 * h) level = h;
+  if (!matches)
+    spdlog::warn("the grid study's record {} is of other physics than this run (fingerprint {} against {}): how far "
+                 "this run is from converged is not known (re-run validation/perforation_convergence.py for this deck)",
+                 record.path, fingerprint, record.fingerprint);
+  else if (!std::isfinite(level))
+    spdlog::warn("this run's cells along the line of flight ({:.3g} m) are not a level of its grid study ({}): how "
+                 "far it is from converged is not known",
+                 band_cell, record.path);
+  out["level_cell"] = matches && std::isfinite(level) ? JsonValue(level) : JsonValue();
+  JsonValue& qs = out["quantities"];
+  qs = JsonValue::object();
+  double within = 0.0;
+  bool measured = false;
+  for (const ConvergenceRecord::Quantity& q : record.quantities) {
+    JsonValue e = JsonValue::object();
+    e["label"] = q.label;
+    e["richardson"] = q.richardson;
+    e["order"] = std::isfinite(q.order) ? JsonValue(q.order) : JsonValue();
+    JsonValue value;
+    if (matches && std::isfinite(level))
+      for (const auto& [h, v] : q.levels)
+        if (h == level) value = JsonValue(v);
+    e["level_value"] = value;
+    if (value.kind() == JsonValue::Kind::Number) {
+      const double gap = value.as_number() / q.richardson - 1.0;
+      e["level_gap"] = gap;
+      within = std::max(within, std::abs(gap));
+      measured = true;
+    } else {
+      e["level_gap"] = JsonValue();
+    }
+    e["run_value"] = at_dotted(penetration, q.summary_key);
+    qs[q.name] = e;
+  }
+  out["within"] = measured ? JsonValue(within) : JsonValue();
+  return out;
+}
+
+}  // namespace ballista

@@ -1,0 +1,25 @@
+#pragma once
+// Which level of its deck's grid study a run is, and how far that level is from converged
+// (penetration.convergence_record): the study's value of each recorded quantity at the level whose
+// band cell is this run's finest cell along the line of flight, against the study's Richardson
+// estimate. Only when the run's physics are the study's (deck/physics_fingerprint.hpp): a deck
+// whose charge, target or models changed is not the deck the study converged.
+#include <string>
+
+#include "io/summary_writer.hpp"
+#include "scenario/scenario.hpp"
+
+namespace ballista {
+
+/// Distance from converged within which a level counts as converged (issue's design target: the
+/// finest level within 5 % of the Richardson estimate).
+inline constexpr double kConvergedWithin = 0.05;
+
+/// summary.json penetration.convergence: `record`, `study`, `fingerprint_matches`, `level_cell`
+/// (m, null when the run's cell is not a level), `quantities` (per name: label, richardson, order,
+/// level_value, level_gap = level_value / richardson - 1, run_value from `penetration` at the
+/// quantity's summary_key) and `within` (the largest |level_gap|, null without a level).
+JsonValue convergence_statement(const ConvergenceRecord& record, const std::string& fingerprint, double band_cell,
+                                const JsonValue& penetration);
+
+}  // namespace ballista

@@ -1,0 +1,108 @@
+#!/usr/bin/env python3
+"""The record of a deck's grid study that a run reads (penetration.convergence_record).
+
+From one or more studies of validation/perforation_convergence.py (each DIR with convergence.json
+and the levels' folders h_<h>mm/), takes the quantities named, each from its study: per level its
+value and, from the three finest, the observed order and the Richardson estimate the study
+computed. Every level must share one physics fingerprint (the hash of its resolved.yaml without
+what a study varies, src/deck/physics_fingerprint.hpp, computed here the same way); the record
+keeps it, and a run whose fingerprint differs is told the record is not of its physics.
+
+  /usr/bin/python3 validation/convergence_record.py --out examples/jet_casing_sandstone_mpm.convergence.json \\
+      --study "docs/validation.md, The perforation demo under refinement" \\
+      --quantity cavity_depth final_cavity_depth "tunnel depth" out/perfconv \\
+      --quantity casing_mean_hole holes.casing.mean_diameter "casing hole" out/hole45
+
+A quantity's study may stop its levels early (simulation.end_time is not part of the physics):
+the casing's hole is set 45 us after firing, long before the jet is spent.
+"""
+import argparse
+import json
+import os
+import sys
+
+SKIPPED_SECTIONS = {"grid", "output"}
+SKIPPED_KEYS = {"simulation": {"end_time", "threads"},
+                "penetration": {"axis_radius", "stop_tolerance", "convergence_record"}}
+
+
+def physics_fingerprint(resolved_yaml):
+    """FNV-1a (64 bits) of the resolved deck's lines but those physics_fingerprint.hpp leaves out."""
+    h = 14695981039346656037
+    section = ""
+    for line in resolved_yaml.split("\n"):
+        if line and line[0] not in " #":
+            section = line.split(":", 1)[0].strip()
+        t = line.strip(" \t\r")
+        if not t or t[0] == "#" or section in SKIPPED_SECTIONS:
+            continue
+        key, _, value = t.partition(":")
+        value = value.strip(" \t\r")
+        second_level = line.startswith("  ") and not line.startswith("   ")
+        if second_level and key in SKIPPED_KEYS.get(section, set()):
+            continue
+        if value in ("none", "~"):
+            continue
+        for c in (line + "\n").encode():
+            h ^= c
+            h = (h * 1099511628211) & 0xFFFFFFFFFFFFFFFF
+    return f"{h:016x}"
+
+
+def level_dir(study, h):
+    """The level's run folder, as perforation_convergence.py names it."""
+    d = os.path.join(study, f"h_{h * 1e3:g}mm")
+    if not os.path.isfile(os.path.join(d, "resolved.yaml")):
+        sys.exit(f"{study}: no resolved.yaml of the level h = {h} m in {d}")
+    return d
+
+
+def quantity(name, summary_key, label, study):
+    conv = json.load(open(os.path.join(study, "convergence.json")))
+    est = conv["estimates"].get(name)
+    if est is None or est.get("richardson") is None:
+        sys.exit(f"{study}: no Richardson estimate of '{name}' (the levels do not converge monotonically)")
+    levels, prints = [], set()
+    for lv in conv["levels"]:
+        if lv.get(name) is None:
+            sys.exit(f"{study}: level h = {lv['h']} has no '{name}'")
+        levels.append([lv["h"], lv[name] * 1e-3])  # the study's lengths are in mm
+        prints.add(physics_fingerprint(open(os.path.join(level_dir(study, lv["h"]), "resolved.yaml")).read()))
+    return {"label": label, "summary_key": summary_key, "unit": "m",
+            "richardson": est["richardson"] * 1e-3, "order": est.get("observed_order"),
+            "levels": sorted(levels, reverse=True)}, prints
+
+
+def dumps(record):
+    """The record as JSON, one line per level, so that a change of a value shows in a diff."""
+    text = json.dumps(record, indent=1)
+    for q in record["quantities"].values():
+        for lv in q["levels"]:
+            text = text.replace(json.dumps(lv, indent=1).replace("\n", "\n    "), json.dumps(lv), 1)
+    return text
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--study", default="", help="where the study is documented")
+    ap.add_argument("--quantity", nargs=4, action="append", required=True,
+                    metavar=("NAME", "SUMMARY_KEY", "LABEL", "STUDY_DIR"),
+                    help="a quantity of perforation_convergence.py, where a run's summary penetration object "
+                         "holds it, its label, and the study that measured it")
+    a = ap.parse_args()
+    record = {"study": a.study, "quantities": {}}
+    prints = set()
+    for name, key, label, study in a.quantity:
+        record["quantities"][name], p = quantity(name, key, label, study)
+        prints |= p
+    if len(prints) != 1:
+        sys.exit(f"the levels are not of one physics (fingerprints {sorted(prints)}): one record needs one deck")
+    record["physics_fingerprint"] = prints.pop()
+    with open(a.out, "w") as f:
+        f.write(dumps(record) + "\n")
+    print(f"wrote {a.out} (fingerprint {record['physics_fingerprint']})")
+
+
+if __name__ == "__main__":
+    main()
