@@ -20,6 +20,40 @@ double number_at(const JsonValue& obj, const std::string& key) {
 
 std::string mm(double metres) { return std::isfinite(metres) ? fmt::format("{:.1f} mm", metres * 1e3) : "n/a"; }
 
+/// The level of the deck's grid study this run is and how far that level is from converged
+/// (analysis/convergence_statement.hpp), or why that is not known; only for a completed run (an
+/// unfinished run's depth is no level's answer). Returns the level's cell (m), NaN if none.
+double study_lines(const JsonValue& p, bool completed, std::vector<std::string>& out) {
+  const JsonValue* study = p.contains("convergence") ? &p.at("convergence") : nullptr;
+  if (!study || !completed) return NAN;
+  const double level = number_at(*study, "level_cell");
+  if (std::isfinite(level)) {
+    const double within = number_at(*study, "within");
+    std::string gaps;
+    const JsonValue& qs = study->at("quantities");
+    for (const std::string& name : qs.keys()) {
+      const JsonValue& q = qs.at(name);
+      const double gap = number_at(q, "level_gap");
+      if (!std::isfinite(gap)) continue;
+      gaps += fmt::format("{}{} {:+.1f} % ({} converged)", gaps.empty() ? "" : ", ",
+                          q.at("label").as_string(), 100.0 * gap, mm(number_at(q, "richardson")));
+    }
+    out.push_back(fmt::format("{}: this is the {:g} mm level of the deck's grid study, where it was {} ({})",
+                              within <= kConvergedWithin ? fmt::format("CONVERGED WITHIN {:g} %", 100 * kConvergedWithin)
+                                                         : std::string("NOT CONVERGED"),
+                              level * 1e3, gaps, study->at("record").as_string()));
+  } else {
+    out.push_back(study->at("fingerprint_matches").as_bool()
+                      ? fmt::format("NOT CONVERGED?: this run's cells are not a level of the deck's grid study ({}): "
+                                    "how far it is from converged is not known",
+                                    study->at("record").as_string())
+                      : fmt::format("NOT CONVERGED?: the deck's grid study ({}) is of other physics than this run: "
+                                    "how far it is from converged is not known (validation/perforation_convergence.py)",
+                                    study->at("record").as_string()));
+  }
+  return level;
+}
+
 /// `completed`: the run reached its end (not failed, not interrupted): only then is a depth final
 /// or known to be the depth at end_time.
 void penetration_lines(const JsonValue& p, bool completed, std::vector<std::string>& out) {
@@ -63,34 +97,7 @@ void penetration_lines(const JsonValue& p, bool completed, std::vector<std::stri
         "STILL MOVING at the end of the run: the depth is the depth at end_time, not a final one (a longer "
         "simulation.end_time, with penetration.end_when_spent to stop once the penetrator is spent, or a longer "
         "target if it was perforated)");
-  // The deck's grid study (analysis/convergence_statement.hpp) says how far this level is from
-  // converged; without it, the cells across the penetrator's radius are the rule of thumb.
-  const JsonValue* study = p.contains("convergence") ? &p.at("convergence") : nullptr;
-  const double level = study ? number_at(*study, "level_cell") : NAN;
-  if (study && std::isfinite(level)) {
-    const double within = number_at(*study, "within");
-    std::string gaps;
-    const JsonValue& qs = study->at("quantities");
-    for (const std::string& name : qs.keys()) {
-      const JsonValue& q = qs.at(name);
-      const double gap = number_at(q, "level_gap");
-      if (!std::isfinite(gap)) continue;
-      gaps += fmt::format("{}{} {:+.1f} % ({} converged)", gaps.empty() ? "" : ", ",
-                          q.at("label").as_string(), 100.0 * gap, mm(number_at(q, "richardson")));
-    }
-    out.push_back(fmt::format("{}: this is the {:g} mm level of the deck's grid study, where it was {} ({})",
-                              within <= kConvergedWithin ? fmt::format("CONVERGED WITHIN {:g} %", 100 * kConvergedWithin)
-                                                         : std::string("NOT CONVERGED"),
-                              level * 1e3, gaps, study->at("record").as_string()));
-  } else if (study) {
-    out.push_back(study->at("fingerprint_matches").as_bool()
-                      ? fmt::format("NOT CONVERGED?: this run's cells are not a level of the deck's grid study ({}): "
-                                    "how far it is from converged is not known",
-                                    study->at("record").as_string())
-                      : fmt::format("NOT CONVERGED?: the deck's grid study ({}) is of other physics than this run: "
-                                    "how far it is from converged is not known (validation/perforation_convergence.py)",
-                                    study->at("record").as_string()));
-  }
+  const double level = study_lines(p, completed, out);
   const double cells = number_at(p, "cells_across_radius");
   const double coarser = p.contains("path_cells") ? number_at(p.at("path_cells"), "coarser_from_depth") : NAN;
   const bool unresolved = p.contains("resolved") && !p.at("resolved").as_bool();

@@ -141,6 +141,10 @@ TEST(Headlines, TheGridStudySaysWhichLevelAndHowFar) {
   EXPECT_EQ(lines_with(l, "CONVERGED WITHIN 5 %: this is the 0.5 mm level of the deck's grid study, where it was "
                           "tunnel depth -3.6 % (129.5 mm converged) (study.json)"), 1);
   EXPECT_EQ(lines_with(l, "cells across its radius"), 0);
+  // A failed run's depth is no level's answer: no claim.
+  s["status"] = "failed";
+  EXPECT_EQ(lines_with(headline_lines(s), "grid study"), 0);
+  s["status"] = "completed";
   // 6 % from converged: not converged, by the study's measure.
   c["within"] = 0.06;
   c["quantities"]["cavity_depth"]["level_gap"] = -0.06;
