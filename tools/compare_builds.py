@@ -12,6 +12,7 @@ once with --base and once with --new, and compares
 Exit status 1 if anything differs. Uses Debian's h5py (/usr/bin/python3).
 
   /usr/bin/python3 tools/compare_builds.py --base /tmp/base/ballista --new build/ballista --out /tmp/cmp
+  ... --base-source /tmp/base     # a change that edits an example: the base runs its own deck
 """
 import argparse
 import json
@@ -28,9 +29,9 @@ REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 VOLATILE = {"wall_time", "particle_steps_per_second", "timing", "deck", "restarted_from", "threads", "build"}
 
 
-def ci_overrides():
-    """{stem: [--set values]} from tests/examples/CMakeLists.txt."""
-    text = open(os.path.join(REPO, "tests", "examples", "CMakeLists.txt")).read()
+def ci_overrides(repo=REPO):
+    """{stem: [--set values]} from tests/examples/CMakeLists.txt of `repo`."""
+    text = open(os.path.join(repo, "tests", "examples", "CMakeLists.txt")).read()
     out = {}
     for m in re.finditer(r"set\(example_set_(\w+)((?:\s+\"[^\"]*\")+)\s*\)", text, re.S):
         out[m.group(1)] = re.findall(r"\"([^\"]*)\"", m.group(2))
@@ -102,8 +103,12 @@ def main():
     ap.add_argument("--new", required=True, help="ballista of the change")
     ap.add_argument("--out", required=True, help="folder for both runs of every example")
     ap.add_argument("--only", action="append", default=[], help="example stem (repeatable)")
+    ap.add_argument("--base-source", default=REPO,
+                    help="checkout of the base commit: the base runs its examples and CI sizes (for a change "
+                         "that edits a deck, or its CI size, without meaning to change the results there)")
     a = ap.parse_args()
     sets = ci_overrides()
+    base_sets = ci_overrides(a.base_source)
     decks = sorted(f for f in os.listdir(os.path.join(REPO, "examples"))
                    if f.endswith(".yaml") and not f.startswith("drive_"))
     failed = 0
@@ -111,11 +116,15 @@ def main():
         stem = d[:-5]
         if a.only and stem not in a.only:
             continue
-        deck = os.path.join(REPO, "examples", d)
+        base_deck = os.path.join(a.base_source, "examples", d)
+        if not os.path.isfile(base_deck):
+            print(f"{stem}: new (not in the base)")
+            continue
         results = []
-        for which, binary in (("base", a.base), ("new", a.new)):
+        for which, binary, deck, s in (("base", a.base, base_deck, base_sets), ("new", a.new,
+                                        os.path.join(REPO, "examples", d), sets)):
             out = os.path.join(a.out, stem, which)
-            results.append((out,) + run(binary, deck, out, sets.get(stem, [])))
+            results.append((out,) + run(binary, deck, out, s.get(stem, [])))
         (ob, cb, lb), (on, cn, ln) = results
         if cb != cn:
             print(f"{stem}: exit {cb} (base) != {cn} (new)\n  base: {lb[-300:]}\n  new: {ln[-300:]}")

@@ -873,7 +873,7 @@ NULL_OK = {"main_stage_start", "arrival_time", "stop_time", "steady_rate", "rate
            # penetration.beyond_tunnel: no floor on the axis (perforated); no point beyond it
            "beyond_tunnel", "deepest",
            # penetration.convergence: a run that is not a level of its grid study, or of other physics
-           "level_cell", "level_value", "level_gap", "run_value", "within", "order"}
+           "level_cell", "level_value", "level_gap", "run_value", "within", "order", "richardson"}
 # summary.json lists whose items are null when not applicable: holes.<layer>.diameters in a slice
 # the layer has gone from.
 NULL_OK_ITEMS = {"diameters"}

@@ -60,8 +60,10 @@ def level_dir(study, h):
 def quantity(name, summary_key, label, study):
     conv = json.load(open(os.path.join(study, "convergence.json")))
     est = conv["estimates"].get(name)
-    if est is None or est.get("richardson") is None:
-        sys.exit(f"{study}: no Richardson estimate of '{name}' (the levels do not converge monotonically)")
+    if est is None:
+        sys.exit(f"{study}: no estimate of '{name}'")
+    # No Richardson estimate (differences that grow, or levels that oscillate): the quantity is
+    # recorded as not converged, so that a run does not call its level converged on the others.
     levels, prints = [], set()
     for lv in conv["levels"]:
         if lv.get(name) is None:
@@ -69,7 +71,8 @@ def quantity(name, summary_key, label, study):
         levels.append([lv["h"], lv[name] * 1e-3])  # the study's lengths are in mm
         prints.add(physics_fingerprint(open(os.path.join(level_dir(study, lv["h"]), "resolved.yaml")).read()))
     return {"label": label, "summary_key": summary_key, "unit": "m",
-            "richardson": est["richardson"] * 1e-3, "order": est.get("observed_order"),
+            "richardson": est["richardson"] * 1e-3 if est.get("richardson") is not None else None,
+            "order": est.get("observed_order"),
             "levels": sorted(levels, reverse=True)}, prints
 
 

@@ -47,18 +47,21 @@ JsonValue convergence_statement(const ConvergenceRecord& record, const std::stri
   JsonValue& qs = out["quantities"];
   qs = JsonValue::object();
   double within = 0.0;
-  bool measured = false;
+  bool measured = false, all_converged = true;
   for (const ConvergenceRecord::Quantity& q : record.quantities) {
     JsonValue e = JsonValue::object();
     e["label"] = q.label;
-    e["richardson"] = q.richardson;
+    const bool converged = std::isfinite(q.richardson);
+    all_converged = all_converged && converged;
+    e["converged_in_study"] = converged;
+    e["richardson"] = converged ? JsonValue(q.richardson) : JsonValue();
     e["order"] = std::isfinite(q.order) ? JsonValue(q.order) : JsonValue();
     JsonValue value;
     if (matches && std::isfinite(level))
       for (const auto& [h, v] : q.levels)
         if (h == level) value = JsonValue(v);
     e["level_value"] = value;
-    if (value.kind() == JsonValue::Kind::Number) {
+    if (value.kind() == JsonValue::Kind::Number && converged) {
       const double gap = value.as_number() / q.richardson - 1.0;
       e["level_gap"] = gap;
       within = std::max(within, std::abs(gap));
@@ -70,6 +73,7 @@ JsonValue convergence_statement(const ConvergenceRecord& record, const std::stri
     qs[q.name] = e;
   }
   out["within"] = measured ? JsonValue(within) : JsonValue();
+  out["all_converged"] = all_converged;
   return out;
 }
 

@@ -18,7 +18,8 @@ inline constexpr double kConvergedWithin = 0.05;
 /// summary.json penetration.convergence: `record`, `study`, `fingerprint_matches`, `level_cell`
 /// (m, null when the run's cell is not a level), `quantities` (per name: label, richardson, order,
 /// level_value, level_gap = level_value / richardson - 1, run_value from `penetration` at the
-/// quantity's summary_key) and `within` (the largest |level_gap|, null without a level).
+/// quantity's summary_key; `converged_in_study` false and richardson null when the study found no
+/// estimate), `within` (the largest |level_gap|, null without a level) and `all_converged`.
 JsonValue convergence_statement(const ConvergenceRecord& record, const std::string& fingerprint, double band_cell,
                                 const JsonValue& penetration);
 

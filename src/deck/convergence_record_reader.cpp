@@ -51,8 +51,9 @@ ConvergenceRecord read_convergence_record(DeckNode& n) {
     out.label = v["label"] ? v["label"].as<std::string>() : out.name;
     out.summary_key = v["summary_key"].as<std::string>();
     try {
-      out.richardson = v["richardson"].as<double>();
-      out.order = v["order"] ? v["order"].as<double>() : NAN;
+      // null: the study found no estimate (the quantity did not converge).
+      out.richardson = v["richardson"].IsNull() ? NAN : v["richardson"].as<double>();
+      out.order = v["order"] && !v["order"].IsNull() ? v["order"].as<double>() : NAN;
       for (const auto& l : v["levels"]) {
         if (!l.IsSequence() || l.size() != 2) bad("quantity '" + out.name + "': a level is [cell, value]");
         out.levels.emplace_back(l[0].as<double>(), l[1].as<double>());
@@ -60,8 +61,8 @@ ConvergenceRecord read_convergence_record(DeckNode& n) {
     } catch (const YAML::Exception& e) {
       bad("quantity '" + out.name + "': " + e.what());
     }
-    if (!(std::isfinite(out.richardson) && out.richardson != 0.0))
-      bad("quantity '" + out.name + "': richardson must be a finite, non-zero number");
+    if (!v["richardson"].IsNull() && !(std::isfinite(out.richardson) && out.richardson != 0.0))
+      bad("quantity '" + out.name + "': richardson must be a finite, non-zero number, or null (not converged)");
     r.quantities.push_back(std::move(out));
   }
   return r;

@@ -29,17 +29,22 @@ double study_lines(const JsonValue& p, bool completed, std::vector<std::string>&
   const double level = number_at(*study, "level_cell");
   if (std::isfinite(level)) {
     const double within = number_at(*study, "within");
+    const bool all_converged = !study->contains("all_converged") || study->at("all_converged").as_bool();
     std::string gaps;
     const JsonValue& qs = study->at("quantities");
     for (const std::string& name : qs.keys()) {
       const JsonValue& q = qs.at(name);
       const double gap = number_at(q, "level_gap");
+      if (q.contains("converged_in_study") && !q.at("converged_in_study").as_bool()) {
+        gaps += fmt::format("{}{} not converged in the study", gaps.empty() ? "" : ", ", q.at("label").as_string());
+        continue;
+      }
       if (!std::isfinite(gap)) continue;
       gaps += fmt::format("{}{} {:+.1f} % ({} converged)", gaps.empty() ? "" : ", ",
                           q.at("label").as_string(), 100.0 * gap, mm(number_at(q, "richardson")));
     }
     out.push_back(fmt::format("{}: this is the {:g} mm level of the deck's grid study, where it was {} ({})",
-                              within <= kConvergedWithin ? fmt::format("CONVERGED WITHIN {:g} %", 100 * kConvergedWithin)
+                              within <= kConvergedWithin && all_converged ? fmt::format("CONVERGED WITHIN {:g} %", 100 * kConvergedWithin)
                                                          : std::string("NOT CONVERGED"),
                               level * 1e3, gaps, study->at("record").as_string()));
   } else {

@@ -8,7 +8,8 @@
   it, lengths in mm; each level's resolved.yaml from real runs), one quantity from each; the record
   holds the levels and the Richardson estimates in metres, exactly the study's values x 1e-3.
 - A run of the recorded physics at a recorded cell says which level it is and that level's gap
-  from the estimate (value / Richardson - 1, to round-off); at a cell the study did not run, or
+  from the estimate (value / Richardson - 1, to round-off), and not converged while a recorded
+  quantity found no estimate in its study; at a cell the study did not run, or
   with other physics, it says how far it is from converged is not known. Levels of two physics
   make no record.
 """
@@ -117,6 +118,22 @@ def main():
         fail("the run's own value is not its summary's")
     if "NOT CONVERGED: this is the 1 mm level of the deck's grid study" not in stdout:
         fail(f"the headline does not say which level and how far: {stdout}")
+    # A quantity whose study found no estimate (differences that grow) is recorded as such, and the
+    # level is not called converged on the others.
+    grows = write_study(a, "study_grows", [(1e-3, coarse), (0.5e-3, fine)], "casing_mean_hole", [13.0, 13.2], None, -0.2)
+    near = write_study(a, "study_near", [(1e-3, coarse), (0.5e-3, fine)], "cavity_depth", [40.0, 44.0], 40.5, 2.0)
+    record2 = os.path.join(a.out, "record2.json")
+    p = subprocess.run([sys.executable, tool, "--out", record2,
+                        "--quantity", "cavity_depth", "final_cavity_depth", "tunnel depth", near,
+                        "--quantity", "casing_mean_hole", "max_channel_radius", "hole", grows],
+                       capture_output=True, text=True)
+    if p.returncode != 0 or json.load(open(record2))["quantities"]["casing_mean_hole"]["richardson"] is not None:
+        fail(f"a quantity without an estimate: {p.stdout}{p.stderr}")
+    _, s, stdout = run(a, "unconverged_quantity", f"penetration.convergence_record={record2}")
+    c = s["penetration"]["convergence"]
+    if c["all_converged"] or c["quantities"]["casing_mean_hole"]["converged_in_study"] \
+            or "NOT CONVERGED: this is the 1 mm level" not in stdout or "hole not converged in the study" not in stdout:
+        fail(f"a level 1.2 % from converged in depth, its hole not converged, is called converged: {c}\n{stdout}")
     # A cell the study did not run, and other physics: not known.
     _, s, stdout = run(a, "off_level", f"penetration.convergence_record={record}", "grid.cell_size=0.8e-3")
     if s["penetration"]["convergence"]["level_cell"] is not None or "not a level of the deck's grid study" not in stdout:

@@ -145,6 +145,22 @@ TEST(Headlines, TheGridStudySaysWhichLevelAndHowFar) {
   s["status"] = "failed";
   EXPECT_EQ(lines_with(headline_lines(s), "grid study"), 0);
   s["status"] = "completed";
+  // A quantity the study could not converge (no Richardson estimate) keeps the level unconverged.
+  JsonValue hole = JsonValue::object();
+  hole["label"] = "casing hole";
+  hole["converged_in_study"] = false;
+  hole["richardson"] = JsonValue();
+  hole["level_gap"] = JsonValue();
+  c["quantities"]["casing_mean_hole"] = hole;
+  c["all_converged"] = false;
+  l = headline_lines(s);
+  EXPECT_EQ(lines_with(l, "NOT CONVERGED: this is the 0.5 mm level of the deck's grid study, where it was tunnel "
+                          "depth -3.6 % (129.5 mm converged), casing hole not converged in the study"), 1);
+  c["all_converged"] = true;
+  JsonValue& qq = c["quantities"];
+  JsonValue only_depth = JsonValue::object();
+  only_depth["cavity_depth"] = qq.at("cavity_depth");
+  qq = only_depth;
   // 6 % from converged: not converged, by the study's measure.
   c["within"] = 0.06;
   c["quantities"]["cavity_depth"]["level_gap"] = -0.06;
