@@ -1,10 +1,10 @@
 #include "deck/convergence_record_reader.hpp"
 
 #include <cmath>
-#include <filesystem>
 
 #include <yaml-cpp/yaml.h>
 
+#include "deck/shape_file.hpp"
 #include "deck/text_file.hpp"
 
 namespace ballista {
@@ -16,21 +16,13 @@ constexpr const char* kKey = "convergence_record";
 }  // namespace
 
 ConvergenceRecord read_convergence_record(DeckNode& n) {
-  namespace fs = std::filesystem;
   ConvergenceRecord r;
-  const YAML::Node raw = n.raw(kKey);
-  if (!raw.IsDefined() || raw.IsNull()) return r;
-  if (!raw.IsScalar()) n.fail(kKey, "expected the path of a grid study's record (a JSON file)");
-  fs::path path(raw.Scalar());
-  if (path.is_relative()) path = fs::path(n.file()).parent_path() / path;
-  path = fs::absolute(path).lexically_normal();
-  std::error_code ec;
-  if (!fs::exists(path, ec)) n.fail(kKey, "cannot open the grid study's record '" + path.string() + "'");
-  const std::string text = read_input_file(path.string(), n.child_path(kKey), "the grid study's record");
-  n.set_resolved(kKey, YAML::Node(path.string()));
-  r.path = path.string();
+  if (!n.has(kKey)) return r;
+  const std::string path = deck_file(n, kKey, "grid study's record");
+  const std::string text = read_input_file(path, n.child_path(kKey), "the grid study's record");
+  r.path = path;
   const auto bad = [&](const std::string& what) {
-    n.fail(kKey, "the grid study's record '" + path.string() + "': " + what);
+    n.fail(kKey, "the grid study's record '" + path + "': " + what);
   };
   YAML::Node doc;
   try {

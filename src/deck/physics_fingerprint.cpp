@@ -1,7 +1,6 @@
 #include "deck/physics_fingerprint.hpp"
 
 #include <cstdint>
-#include <set>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -21,8 +20,7 @@ std::string trimmed(const std::string& s) {
 bool skipped(const std::string& line, const std::string& section) {
   const std::string t = trimmed(line);
   if (t.empty() || t[0] == '#') return true;
-  static const std::set<std::string> sections = {"grid", "output"};
-  if (sections.count(section)) return true;
+  if (section == "grid" || section == "output") return true;
   const auto colon = t.find(':');
   const std::string key = colon == std::string::npos ? std::string() : t.substr(0, colon);
   const std::string value = colon == std::string::npos ? std::string() : trimmed(t.substr(colon + 1));

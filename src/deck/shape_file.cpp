@@ -4,16 +4,18 @@
 
 namespace ballista {
 
-std::string shape_file(DeckNode& s, const std::string& what) {
+std::string deck_file(DeckNode& n, const std::string& key, const std::string& what) {
   namespace fs = std::filesystem;
-  fs::path path(s.string("file"));
-  if (path.is_relative()) path = fs::path(s.file()).parent_path() / path;
+  fs::path path(n.string(key));
+  if (path.is_relative()) path = fs::path(n.file()).parent_path() / path;
   path = fs::absolute(path).lexically_normal();
   std::error_code ec;
-  if (!fs::exists(path, ec)) s.fail("file", "cannot open the " + what + " file '" + path.string() + "'");
-  s.set_resolved("file", YAML::Node(path.string()));
+  if (!fs::exists(path, ec)) n.fail(key, "cannot open the " + what + " file '" + path.string() + "'");
+  n.set_resolved(key, YAML::Node(path.string()));
   return path.string();
 }
+
+std::string shape_file(DeckNode& s, const std::string& what) { return deck_file(s, "file", what); }
 
 ShapePlacement shape_placement(DeckNode& s) {
   const std::string unit = s.choice("unit", "m", {"m", "cm", "mm", "in"});

@@ -1,6 +1,7 @@
 #pragma once
 // What the shapes read from files (`surface`, `mesh`) share: the file, found relative to the
-// deck's folder, and its placement (unit and offset).
+// deck's folder (as any file a deck names: a grid study's record), and its placement (unit and
+// offset).
 #include <memory>
 #include <string>
 
@@ -9,9 +10,11 @@
 
 namespace ballista {
 
-/// The absolute path of the file the shape map `s` names in `file` (relative to the deck's
-/// folder), which must exist; the resolved deck records that path. `what` names the file in
-/// errors ("surface", "mesh").
+/// The absolute path of the file the map `n` names in `key` (relative to the deck's folder), which
+/// must exist; the resolved deck records that path. `what` names the file in errors.
+std::string deck_file(DeckNode& n, const std::string& key, const std::string& what);
+
+/// deck_file of the shape map's `file` ("surface", "mesh").
 std::string shape_file(DeckNode& s, const std::string& what);
 
 /// How a file's coordinates become metres: x_m = scale x_file + offset.
