@@ -51,9 +51,10 @@ QUANTITIES = [
 
 
 def level_sets(h, far, band, path):
-    """--set overrides of one level: the bands at h (uniform when h is the far-field cell)."""
+    """--set overrides of one level: the bands at h (uniform when h is the far-field cell: the
+    deck's own bands, if it has any, are cleared)."""
     if abs(h - far) < 1e-12 * far:
-        return [f"grid.cell_size={far!r}"]
+        return [f"grid.cell_size={far!r}", "grid.refine=[]"]
     zones = (f"[{{axis: x, from: 0, to: {band!r}, cell_size: {h!r}}}, "
              f"{{axis: y, from: {path[0]!r}, to: {path[1]!r}, cell_size: {h!r}}}]")
     return [f"grid.cell_size={far!r}", f"grid.refine={zones}"]
