@@ -24,6 +24,14 @@ JsonValue at_dotted(const JsonValue& obj, const std::string& key) {
 
 }  // namespace
 
+bool converged_in_study(const ConvergenceRecord::Quantity& q) {
+  if (!(std::isfinite(q.richardson) && std::isfinite(q.order) && q.order >= kMinimumObservedOrder)) return false;
+  double finest_h = INFINITY, finest = NAN;
+  for (const auto& [h, v] : q.levels)
+    if (h < finest_h) finest_h = h, finest = v;
+  return std::abs(finest / q.richardson - 1.0) <= kConvergedWithin;
+}
+
 JsonValue convergence_statement(const ConvergenceRecord& record, const std::string& fingerprint, double band_cell,
                                 const JsonValue& penetration) {
   JsonValue out = JsonValue::object();
@@ -51,10 +59,10 @@ JsonValue convergence_statement(const ConvergenceRecord& record, const std::stri
   for (const ConvergenceRecord::Quantity& q : record.quantities) {
     JsonValue e = JsonValue::object();
     e["label"] = q.label;
-    const bool converged = std::isfinite(q.richardson);
+    const bool converged = converged_in_study(q);
     all_converged = all_converged && converged;
     e["converged_in_study"] = converged;
-    e["richardson"] = converged ? JsonValue(q.richardson) : JsonValue();
+    e["richardson"] = std::isfinite(q.richardson) ? JsonValue(q.richardson) : JsonValue();
     e["order"] = std::isfinite(q.order) ? JsonValue(q.order) : JsonValue();
     JsonValue value;
     if (matches && std::isfinite(level))

@@ -15,11 +15,20 @@ namespace ballista {
 /// finest level within 5 % of the Richardson estimate).
 inline constexpr double kConvergedWithin = 0.05;
 
+/// Smallest observed order from the three finest levels at which a study's Richardson estimate is
+/// trusted (the target: successive differences that shrink at least as fast as h; a lower
+/// order extrapolates far beyond the levels it was fitted to).
+inline constexpr double kMinimumObservedOrder = 1.0;
+
+/// Whether the study converged the quantity: an estimate, an observed order of at least
+/// kMinimumObservedOrder and its finest level within kConvergedWithin of the estimate.
+bool converged_in_study(const ConvergenceRecord::Quantity& q);
+
 /// summary.json penetration.convergence: `record`, `study`, `fingerprint_matches`, `level_cell`
 /// (m, null when the run's cell is not a level), `quantities` (per name: label, richardson, order,
 /// level_value, level_gap = level_value / richardson - 1, run_value from `penetration` at the
-/// quantity's summary_key; `converged_in_study` false and richardson null when the study found no
-/// estimate), `within` (the largest |level_gap|, null without a level) and `all_converged`.
+/// quantity's summary_key; richardson null when the study found no estimate; `converged_in_study`
+/// as converged_in_study() says; level_gap only for a converged quantity), `within` (the largest |level_gap|, null without a level) and `all_converged`.
 JsonValue convergence_statement(const ConvergenceRecord& record, const std::string& fingerprint, double band_cell,
                                 const JsonValue& penetration);
 

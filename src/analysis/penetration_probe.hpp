@@ -61,16 +61,19 @@ class PenetrationProbe {
   /// Depth of the foremost penetrator point, m (negative while it is above the target's face;
   /// -inf with no penetrator point).
   double penetrator_front(const FieldStore& points) const;
-  /// Depth of the cavity tip, m: the top of the shallowest intact (not failed) target material
-  /// within axis_radius of the line of flight and below the face; the full target depth once
-  /// nothing is left there (perforation). The channel profile also skips failed (eroded) debris.
+  /// Depth of the cavity tip, m: the top of the shallowest target material that is not debris
+  /// (debris: below) within axis_radius of the line of flight and below the face; the full target
+  /// depth once nothing is left there (perforation). The channel profile also skips debris.
   double cavity_depth(const FieldStore& points) const;
   /// The same; `floor`: whether intact target material was found on the axis (false: the
   /// returned depth is the target's bottom).
   double cavity_depth(const FieldStore& points, bool& floor) const;
 
  private:
-  /// Points of `body` (not failed) for the wall measure, with their depth below `face`: where they
+  /// Whether point p is debris: failed, of a material whose failure erodes its stress
+  /// (`failure.erosion` other than none). A failed point that keeps its stress is solid.
+  bool debris(const FieldStore& points, Index p) const;
+  /// Points of `body` (not debris) for the wall measure, with their depth below `face`: where they
   /// are now, or (seeded_axial) where they were seeded through the layer.
   std::vector<LateralPoint> lateral_points(const FieldStore& points, int body, double face,
                                            bool seeded_axial = false) const;
@@ -108,6 +111,7 @@ class PenetrationProbe {
   double lateral_cell_ = 0.0, axial_cell_ = 0.0;  ///< m: the finest cells across and along the flight
   GridAxes axes_;                                  ///< a graded grid's nodes (empty axes: uniform grid)
   int penetrator_ = -1, target_ = -1;  ///< body indices
+  std::vector<char> erodes_;           ///< per material index: its failed points are eroded (debris)
   int axis_ = 1, nd_ = 3;
   double direction_ = -1.0, surface_ = 0.0;
   Vec3 line_point_;                    ///< a point on the line of flight

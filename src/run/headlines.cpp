@@ -36,7 +36,9 @@ double study_lines(const JsonValue& p, bool completed, std::vector<std::string>&
       const JsonValue& q = qs.at(name);
       const double gap = number_at(q, "level_gap");
       if (q.contains("converged_in_study") && !q.at("converged_in_study").as_bool()) {
-        gaps += fmt::format("{}{} not converged in the study", gaps.empty() ? "" : ", ", q.at("label").as_string());
+        const double order = number_at(q, "order");
+        gaps += fmt::format("{}{} not converged in the study{}", gaps.empty() ? "" : ", ", q.at("label").as_string(),
+                            std::isfinite(order) ? fmt::format(" (observed order {:.2f})", order) : "");
         continue;
       }
       if (!std::isfinite(gap)) continue;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include "analysis/penetration_probe.hpp"
 #include "deck/deck_reader.hpp"
@@ -242,6 +243,36 @@ TEST(PenetrationProbe, HoleOfADisplacedPlateIsMeasuredInThePlate) {
   ASSERT_EQ(h.at("diameters").size(), 2u);
   for (std::size_t k = 0; k < 2; ++k) EXPECT_NEAR(h.at("diameters").at(k).as_number(), 4e-3, 1e-12);
   EXPECT_TRUE(h.at("perforated").as_bool());
+}
+
+TEST(PenetrationProbe, FailedPointsAreDebrisOnlyWhereTheirFailureErodesThem) {
+  // A 2 mm hole (radius) through the plate and a ring of failed points from 2 to 3 mm around it.
+  // Whether the ring is wall follows the plate's failure.erosion: with `none` a failed point keeps
+  // its model's stress and is solid (hole 4 mm across); with `zero_stress` it carries nothing and
+  // is debris (hole 6 mm across). Annuli of the 1 mm lateral cell: both edges lie on their edges.
+  for (const auto& [erosion, diameter] : {std::pair{"none", 4e-3}, std::pair{"zero_stress", 6e-3}}) {
+    std::string deck = kLayeredDeck;
+    const std::string steel = "poisson_ratio: 0.3}\n  w:";
+    deck.replace(deck.find(steel), steel.size(),
+                 std::string("poisson_ratio: 0.3, failure: {criterion: max_stress, max_stress: 1.0e9, erosion: ") +
+                     erosion + "}}\n  w:");
+    const Scenario sc = parse_deck(deck, "layers.yaml");
+    auto solver = make_solver(sc);
+    FieldStore& pts = solver->points();
+    auto* x = pts.view<Vec3>("x");
+    auto* failed = pts.view<double>("failed");
+    const auto* bid = pts.ints("body");
+    int ring = 0;
+    for (Index p = 0; p < pts.size(); ++p) {
+      if (bid[p] != 1) continue;
+      if (x[p][0] < 2e-3) x[p][0] += 0.02;  // the hole's material thrown far out
+      else if (x[p][0] < 3e-3) failed[p] = 1.0, ++ring;
+    }
+    ASSERT_GT(ring, 0);
+    const JsonValue h = summary_of_one_sample(sc, *solver).at("holes").at("plate");
+    EXPECT_NEAR(h.at("mean_diameter").as_number(), diameter, 1e-12) << "erosion " << erosion;
+    EXPECT_NEAR(h.at("entrance_diameter").as_number(), diameter, 1e-12) << "erosion " << erosion;
+  }
 }
 
 TEST(PenetrationProbe, TunnelEntranceIsWhereTheWallBeginsBelowACrushedFace) {

@@ -156,6 +156,10 @@ TEST(Headlines, TheGridStudySaysWhichLevelAndHowFar) {
   l = headline_lines(s);
   EXPECT_EQ(lines_with(l, "NOT CONVERGED: this is the 0.5 mm level of the deck's grid study, where it was tunnel "
                           "depth -3.6 % (129.5 mm converged), casing hole not converged in the study"), 1);
+  // One with an estimate from too low an order says the order.
+  c["quantities"]["casing_mean_hole"]["order"] = 0.42;
+  c["quantities"]["casing_mean_hole"]["richardson"] = 0.0143;
+  EXPECT_EQ(lines_with(headline_lines(s), "casing hole not converged in the study (observed order 0.42)"), 1);
   c["all_converged"] = true;
   JsonValue& qq = c["quantities"];
   JsonValue only_depth = JsonValue::object();
