@@ -87,8 +87,8 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
   layer_exit_.assign(layers_.size(), LayerExit{});
   // A failed point is debris only where its material's failure erodes its stress (docs/materials.md,
   // "Erosion"): with `failure.erosion: none` it keeps the full stress of its model and is as solid
-  // as its neighbours (the casing's steel as the demo runs it: counted as a hole, the ring of failed
-  // points at the lip of the hole widened it by a share that grew with each halving of the cell).
+  // as its neighbours (the casing's steel as the demo runs it: its failed points are the lip of the
+  // hole, and counted as a hole they widened it by 1-1.7 mm, an amount that jumped between levels).
   for (const MaterialSpec& m : sc.materials) erodes_.push_back(m.params.choice("failure.erosion", "none") != "none");
   // Each segment's speed along the flight and mass per unit length of the modelled section: the
   // full disk in axisymmetry (the reporting scale makes per-radian masses full ones), a disk (3D)
@@ -125,10 +125,14 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
 
 double PenetrationProbe::lateral_of(const Vec3& x) const { return distance_from_axis(x, line_point_, axis_, nd_); }
 
-bool PenetrationProbe::debris(const FieldStore& pts, Index p) const {
-  if (!pts.has(kFailed) || pts.real(kFailed)[p] <= 0.0) return false;
-  const auto m = static_cast<std::size_t>(pts.ints(kMaterialIndex)[p]);
-  return m < erodes_.size() && erodes_[m];
+PenetrationProbe::Debris PenetrationProbe::debris_of(const FieldStore& pts) const {
+  return {pts.has(kFailed) ? pts.real(kFailed) : nullptr, pts.ints(kMaterialIndex), &erodes_};
+}
+
+bool PenetrationProbe::Debris::operator()(Index p) const {
+  if (!failed || failed[p] <= 0.0) return false;
+  const auto m = static_cast<std::size_t>(material[p]);
+  return m < erodes->size() && (*erodes)[m];
 }
 
 std::vector<std::string> PenetrationProbe::columns() const {
@@ -156,11 +160,12 @@ double PenetrationProbe::cavity_depth(const FieldStore& pts, bool& floor) const 
   const auto* x = pts.view(kPosition);
   const auto* F = pts.view(kDeformationGradient);
   const auto* half = pts.view(kHalfSize);
+  const Debris debris = debris_of(pts);
   double tip = std::numeric_limits<double>::infinity(), bottom = 0.0;
   for (Index p = 0; p < pts.size(); ++p) {
     if (bid[p] != target_) continue;
     // Eroded (failed) material is debris in the channel, not its floor or wall.
-    if (debris(pts, p)) continue;
+    if (debris(p)) continue;
     // Extent of the deformed domain along the axis: |F_a,j| h_j summed (the domain is F times a box).
     const double reach = half_extent(F[p], half[p], axis_, nd_);
     const double d = depth_of(x[p]);
@@ -332,8 +337,9 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   const auto* half = pts.view(kHalfSize);
   std::vector<double> dd, rr;
   const int lat = axis_ == 1 ? 0 : 1;  // a lateral direction (exact in 2D; 3D uses the radial extent below)
+  const Debris debris = debris_of(pts);
   for (Index p = 0; p < pts.size(); ++p) {
-    if (bid[p] != target_ || debris(pts, p)) continue;
+    if (bid[p] != target_ || debris(p)) continue;
     const double reach = half_extent(F[p], half[p], lat, nd_);
     dd.push_back(depth_of(x[p]));
     rr.push_back(std::max(0.0, lateral_of(x[p]) - reach));
@@ -420,8 +426,9 @@ std::vector<LateralPoint> PenetrationProbe::lateral_points(const FieldStore& pts
   const auto* vol = pts.real(kVolume);
   const int lat = axis_ == 1 ? 0 : 1;
   std::vector<LateralPoint> out;
+  const Debris debris = debris_of(pts);
   for (Index p = 0; p < pts.size(); ++p) {
-    if (bid[p] != body || debris(pts, p)) continue;
+    if (bid[p] != body || debris(p)) continue;
     // The point's lateral half-extent in the current configuration (its domain is F times a box).
     const double reach = half_extent(F[p], half[p], lat, nd_);
     double volume = vol[p];

@@ -72,7 +72,13 @@ class PenetrationProbe {
  private:
   /// Whether point p is debris: failed, of a material whose failure erodes its stress
   /// (`failure.erosion` other than none). A failed point that keeps its stress is solid.
-  bool debris(const FieldStore& points, Index p) const;
+  struct Debris {
+    const double* failed;                ///< null: no point has a failure criterion
+    const std::int64_t* material;
+    const std::vector<char>* erodes;
+    bool operator()(Index p) const;
+  };
+  Debris debris_of(const FieldStore& points) const;
   /// Points of `body` (not debris) for the wall measure, with their depth below `face`: where they
   /// are now, or (seeded_axial) where they were seeded through the layer.
   std::vector<LateralPoint> lateral_points(const FieldStore& points, int body, double face,
