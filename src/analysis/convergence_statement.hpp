@@ -28,7 +28,8 @@ bool converged_in_study(const ConvergenceRecord::Quantity& q);
 /// (m, null when the run's cell is not a level), `quantities` (per name: label, richardson, order,
 /// level_value, level_gap = level_value / richardson - 1, run_value from `penetration` at the
 /// quantity's summary_key; richardson null when the study found no estimate; `converged_in_study`
-/// as converged_in_study() says; level_gap only for a converged quantity), `within` (the largest |level_gap|, null without a level) and `all_converged`.
+/// as converged_in_study() says; level_gap only for a converged quantity), `within` (the largest
+/// |level_gap|, null without a level) and `all_converged`.
 JsonValue convergence_statement(const ConvergenceRecord& record, const std::string& fingerprint, double band_cell,
                                 const JsonValue& penetration);
 

@@ -45,9 +45,10 @@ double study_lines(const JsonValue& p, bool completed, std::vector<std::string>&
       gaps += fmt::format("{}{} {:+.1f} % ({} converged)", gaps.empty() ? "" : ", ",
                           q.at("label").as_string(), 100.0 * gap, mm(number_at(q, "richardson")));
     }
+    const bool converged = within <= kConvergedWithin && all_converged;
     out.push_back(fmt::format("{}: this is the {:g} mm level of the deck's grid study, where it was {} ({})",
-                              within <= kConvergedWithin && all_converged ? fmt::format("CONVERGED WITHIN {:g} %", 100 * kConvergedWithin)
-                                                         : std::string("NOT CONVERGED"),
+                              converged ? fmt::format("CONVERGED WITHIN {:g} %", 100 * kConvergedWithin)
+                                        : std::string("NOT CONVERGED"),
                               level * 1e3, gaps, study->at("record").as_string()));
   } else {
     out.push_back(study->at("fingerprint_matches").as_bool()
