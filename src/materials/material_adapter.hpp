@@ -197,7 +197,10 @@ class MaterialAdapter final : public Material {
         for (int s = 0; s < nm; ++s) st_old[s] = st[s];
       PointResult res;
       if (b.tangent) res.tangent = b.tangent + 36 * p;
-      Model::update(prm, kin, sigma_bar, st, res);
+      // A point that failed in an earlier step under zero_stress keeps none of what the kernel
+      // would compute (stress, state, F and dissipation are all reset below), so the kernel is not
+      // run: debris torn far from its reference state is where a return mapping costs most.
+      if (!(kFailure && frozen_when_failed(fm, st[nm + 1]) && !b.tangent)) Model::update(prm, kin, sigma_bar, st, res);
       Mat3 sigma_new = rotate_sym(kin.R_new, sigma_bar);
       if constexpr (kFailure) {
         // Criterion on the kernel's stress at t_{n+1}; erosion (thesis eq. 6.11-6.14) once failed.

@@ -103,6 +103,9 @@ void update_in_lanes(const typename Model::Params& prm, const FailureModel& fm, 
       pk.dt = dt;
       pk.time = b.time;
       for (int l = 0; l < kLanes; ++l) {
+        // As MaterialAdapter's loop: a point failed under zero_stress keeps nothing of the kernel's.
+        if constexpr (kFailure)
+          if (frozen_when_failed(fm, st[nm + 1][l])) continue;
         pk.F_new = F_new.lane(l);
         pk.R_new = R_new.lane(l);
         pk.D_bar = kin.D_bar.lane(l);
