@@ -55,7 +55,7 @@ JsonValue convergence_statement(const ConvergenceRecord& record, const std::stri
   JsonValue& qs = out["quantities"];
   qs = JsonValue::object();
   double within = 0.0;
-  bool measured = false, all_converged = true;
+  bool measured = false, all_converged = true, all_at_level = true;
   for (const ConvergenceRecord::Quantity& q : record.quantities) {
     JsonValue e = JsonValue::object();
     e["label"] = q.label;
@@ -69,6 +69,7 @@ JsonValue convergence_statement(const ConvergenceRecord& record, const std::stri
       for (const auto& [h, v] : q.levels)
         if (h == level) value = JsonValue(v);
     e["level_value"] = value;
+    all_at_level = all_at_level && value.kind() == JsonValue::Kind::Number;
     if (value.kind() == JsonValue::Kind::Number && converged) {
       const double gap = value.as_number() / q.richardson - 1.0;
       e["level_gap"] = gap;
@@ -82,6 +83,7 @@ JsonValue convergence_statement(const ConvergenceRecord& record, const std::stri
   }
   out["within"] = measured ? JsonValue(within) : JsonValue();
   out["all_converged"] = all_converged;
+  out["all_at_level"] = matches && std::isfinite(level) && all_at_level;
   return out;
 }
 

@@ -31,6 +31,7 @@ double study_lines(const JsonValue& p, bool completed, std::vector<std::string>&
     const double within = number_at(*study, "within");
     const bool all_converged = !study->contains("all_converged") || study->at("all_converged").as_bool();
     std::string gaps;
+    bool unmeasured = false;  // a quantity the study did not run at this level: no claim for it
     const JsonValue& qs = study->at("quantities");
     for (const std::string& name : qs.keys()) {
       const JsonValue& q = qs.at(name);
@@ -41,11 +42,15 @@ double study_lines(const JsonValue& p, bool completed, std::vector<std::string>&
                             std::isfinite(order) ? fmt::format(" (observed order {:.2f})", order) : "");
         continue;
       }
-      if (!std::isfinite(gap)) continue;
+      if (!std::isfinite(gap)) {
+        gaps += fmt::format("{}{} not run at this level", gaps.empty() ? "" : ", ", q.at("label").as_string());
+        unmeasured = true;
+        continue;
+      }
       gaps += fmt::format("{}{} {:+.1f} % ({} converged)", gaps.empty() ? "" : ", ",
                           q.at("label").as_string(), 100.0 * gap, mm(number_at(q, "richardson")));
     }
-    const bool converged = within <= kConvergedWithin && all_converged;
+    const bool converged = within <= kConvergedWithin && all_converged && !unmeasured;
     out.push_back(fmt::format("{}: this is the {:g} mm level of the deck's grid study, where it was {} ({})",
                               converged ? fmt::format("CONVERGED WITHIN {:g} %", 100 * kConvergedWithin)
                                         : std::string("NOT CONVERGED"),

@@ -160,7 +160,22 @@ TEST(Headlines, TheGridStudySaysWhichLevelAndHowFar) {
   c["quantities"]["casing_mean_hole"]["order"] = 0.42;
   c["quantities"]["casing_mean_hole"]["richardson"] = 0.0143;
   EXPECT_EQ(lines_with(headline_lines(s), "casing hole not converged in the study (observed order 0.42)"), 1);
+  // A level the study ran for the hole alone (its finer levels, on the plates): the hole's gap is
+  // within 5 %, the depth was not run there, so the level is not called converged.
+  c["quantities"]["casing_mean_hole"]["converged_in_study"] = true;
+  c["quantities"]["casing_mean_hole"]["order"] = 1.19;
+  c["quantities"]["casing_mean_hole"]["richardson"] = 0.0133;
+  c["quantities"]["casing_mean_hole"]["level_gap"] = -0.027;
+  c["quantities"]["cavity_depth"]["level_gap"] = JsonValue();
   c["all_converged"] = true;
+  c["within"] = 0.027;
+  c["level_cell"] = 0.125e-3;
+  EXPECT_EQ(lines_with(headline_lines(s), "NOT CONVERGED: this is the 0.125 mm level of the deck's grid study, where "
+                                          "it was tunnel depth not run at this level, casing hole -2.7 % (13.3 mm "
+                                          "converged)"),
+            1);
+  c["level_cell"] = 0.5e-3;
+  c["quantities"]["cavity_depth"]["level_gap"] = -0.036;
   JsonValue& qq = c["quantities"];
   JsonValue only_depth = JsonValue::object();
   only_depth["cavity_depth"] = qq.at("cavity_depth");

@@ -1,0 +1,74 @@
+// Which level of its deck's grid study a run is, and how far that level is from converged
+// (src/analysis/convergence_statement.hpp), on the perforation demo's record: the depth studied at
+// 1, 0.5 and 0.25 mm, the casing's hole on to 0.125 and 0.0625 mm. A level run for one quantity
+// only says nothing of the other: all_at_level is false there, and the gap of the hole alone is
+// not a claim about the depth.
+#include <gtest/gtest.h>
+
+#include "analysis/convergence_statement.hpp"
+
+namespace test_convergence_statement {
+
+using namespace ballista;
+
+namespace {
+
+/// The demo's record (examples/jet_casing_sandstone_mpm.convergence.json), rounded.
+ConvergenceRecord demo_record() {
+  ConvergenceRecord r;
+  r.path = "demo.convergence.json";
+  r.study = "docs/validation.md";
+  r.fingerprint = "f";
+  ConvergenceRecord::Quantity depth{"cavity_depth", "tunnel depth", "final_cavity_depth", 0.12944, 3.07,
+                                    {{1e-3, 0.09146}, {5e-4, 0.12493}, {2.5e-4, 0.12891}}};
+  ConvergenceRecord::Quantity hole{"casing_mean_hole",
+                                   "casing hole",
+                                   "holes.casing.mean_diameter",
+                                   0.013296,
+                                   1.19,
+                                   {{1e-3, 0.011608}, {5e-4, 0.011834}, {2.5e-4, 0.012462}, {1.25e-4, 0.012932},
+                                    {6.25e-5, 0.013137}}};
+  r.quantities = {depth, hole};
+  return r;
+}
+
+JsonValue penetration() {
+  JsonValue p = JsonValue::object();
+  p["final_cavity_depth"] = 0.125;
+  return p;
+}
+
+}  // namespace
+
+TEST(ConvergenceStatement, ALevelOfEveryQuantityGivesEachGap) {
+  const JsonValue s = convergence_statement(demo_record(), "f", 5e-4, penetration());
+  EXPECT_EQ(s.at("level_cell").as_number(), 5e-4);
+  EXPECT_TRUE(s.at("all_at_level").as_bool());
+  EXPECT_TRUE(s.at("all_converged").as_bool());
+  // 0.12493 / 0.12944 - 1 = -3.48 %, 0.011834 / 0.013296 - 1 = -11.0 %: the hole's is the larger.
+  EXPECT_NEAR(s.at("quantities").at("cavity_depth").at("level_gap").as_number(), -0.0348, 1e-4);
+  EXPECT_NEAR(s.at("within").as_number(), 0.1100, 1e-4);
+  EXPECT_EQ(s.at("quantities").at("cavity_depth").at("run_value").as_number(), 0.125);
+}
+
+TEST(ConvergenceStatement, ALevelOfTheHoleAloneIsNotOneOfTheDepth) {
+  const JsonValue s = convergence_statement(demo_record(), "f", 1.25e-4, penetration());
+  EXPECT_EQ(s.at("level_cell").as_number(), 1.25e-4);
+  EXPECT_FALSE(s.at("all_at_level").as_bool());
+  EXPECT_EQ(s.at("quantities").at("cavity_depth").at("level_value").kind(), JsonValue::Kind::Null);
+  EXPECT_EQ(s.at("quantities").at("cavity_depth").at("level_gap").kind(), JsonValue::Kind::Null);
+  // 0.012932 / 0.013296 - 1 = -2.74 %: the hole's gap, the only one measured at this level.
+  EXPECT_NEAR(s.at("within").as_number(), 0.0274, 1e-4);
+}
+
+TEST(ConvergenceStatement, OtherPhysicsOrAnotherCellIsNoLevel) {
+  const JsonValue other = convergence_statement(demo_record(), "g", 5e-4, penetration());
+  EXPECT_FALSE(other.at("fingerprint_matches").as_bool());
+  EXPECT_EQ(other.at("level_cell").kind(), JsonValue::Kind::Null);
+  EXPECT_FALSE(other.at("all_at_level").as_bool());
+  const JsonValue between = convergence_statement(demo_record(), "f", 3e-4, penetration());
+  EXPECT_EQ(between.at("level_cell").kind(), JsonValue::Kind::Null);
+  EXPECT_EQ(between.at("within").kind(), JsonValue::Kind::Null);
+}
+
+}  // namespace test_convergence_statement
