@@ -67,7 +67,7 @@ JsonValue convergence_statement(const ConvergenceRecord& record, const std::stri
     JsonValue value;
     if (matches && std::isfinite(level))
       for (const auto& [h, v] : q.levels)
-        if (h == level) value = JsonValue(v);
+        if (std::abs(h - level) <= 1e-6 * level) value = JsonValue(v);  // as the level was found
     e["level_value"] = value;
     all_at_level = all_at_level && value.kind() == JsonValue::Kind::Number;
     if (value.kind() == JsonValue::Kind::Number && converged) {

@@ -28,7 +28,7 @@ bool converged_in_study(const ConvergenceRecord::Quantity& q);
 /// (m, null when the run's cell is not a level), `quantities` (per name: label, richardson, order,
 /// level_value, level_gap = level_value / richardson - 1, run_value from `penetration` at the
 /// quantity's summary_key; richardson null when the study found no estimate; `converged_in_study`
-/// as converged_in_study() says; level_gap only for a converged quantity), `within` (the largest
+/// as converged_in_study() says; level_gap only for a converged quantity run at the level), `within` (the largest
 /// |level_gap| of the quantities run at the level, null without a level), `all_converged` and
 /// `all_at_level` (every quantity has a value at the level: the study may have run a quantity's
 /// finer levels alone, e.g. the casing's hole to 35 us on the plates' band, so a level can be one

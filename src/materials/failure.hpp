@@ -180,8 +180,6 @@ inline bool failure_update(const FailureModel& m, const Mat3& sigma_old, const M
   return now;
 }
 
-/// Eroded stress sigma* of a failed point (eq. 6.11-6.13); the rule applies to the Cauchy stress
-/// in any frame (both results are isotropic). ZeroStress also freezes F (done by the adapter).
 /// True for a point already failed (`failed` flag of its state) whose erosion is zero_stress: its
 /// stress stays zero and its deformation and state are frozen at F_n, so nothing a material kernel
 /// computes for it is kept.
@@ -189,6 +187,8 @@ inline bool frozen_when_failed(const FailureModel& m, double failed) {
   return failed != 0.0 && m.erosion == ErosionRule::ZeroStress;
 }
 
+/// Eroded stress sigma* of a failed point (eq. 6.11-6.13); the rule applies to the Cauchy stress
+/// in any frame (both results are isotropic). ZeroStress also freezes F (done by the adapter).
 inline void erode(ErosionRule rule, Mat3& sigma) {
   switch (rule) {
     case ErosionRule::None:
