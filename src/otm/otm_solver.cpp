@@ -1057,6 +1057,7 @@ void OtmSolver::step_local(double dt) {
   const bool has_ext = !fext.empty();
   Mat3* extent = adapt_.enabled ? points_.view(otm::kExtent) : nullptr;
   std::atomic<Index> bad{n};
+  std::atomic<std::int64_t> discarded{0};
   double ew[1];
   deterministic_sum<1>(0, n, [&](Index p, double* o) {
     Vec3 xn, vp;
@@ -1080,12 +1081,22 @@ void OtmSolver::step_local(double dt) {
     // dF = I + dt sum_a v_a (x) grad N_a = sum_a x_a^k+1 (x) grad N_a (line 13, by the first-order
     // consistency of the shape functions); F and V (lines 14-15).
     const Mat3 dF = Mat3::identity() + dt * l;
-    F[p] = dF * F[p];
+    const Mat3 F_new = dF * F[p];
+    const double J = det(F_new);
+    if (!(J > 0.0 && all_finite(F_new)) && all_finite(xn) && pts_.failed_stress_free(p)) [[unlikely]] {
+      // As in MPM: a point eroded under zero_stress keeps F_n (thesis eq. 6.14), so an inverting
+      // increment of it, which nothing resists, is its nodes' and not its material's: discarded
+      // (the point moves; its F, shape, volume and state stay) and counted, not a stop.
+      L[p] = Mat3{};
+      vol[p] = vol0[p] * det(F[p]);
+      discarded.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+    F[p] = F_new;
     if (extent) {
       extent[p] = dF * extent[p];
       Fr_[p] = dF * Fr_[p];
     }
-    const double J = det(F[p]);
     vol[p] = vol0[p] * J;
     if (!(J > 0.0) || !all_finite(F[p]) || !all_finite(xn)) {
       Index cur = bad.load();
@@ -1101,6 +1112,7 @@ void OtmSolver::step_local(double dt) {
   dt_prev_ = dt;
   time_ += dt;
   ++steps_;
+  if (const std::int64_t d = discarded.load()) pts_.add_frozen_increments_discarded(d);
   if (const Index p = bad.load(); p < n)
     pts_.fail(p, "inverted or non-finite deformation gradient (J <= 0 or NaN)", steps_, time_);
   removed_ = delete_exits_ && remove_exits();
@@ -1259,7 +1271,7 @@ std::vector<std::pair<std::string, double>> OtmSolver::result_values() const {
   // What deleted points carried off is not a change of the momentum (on_particle_exit: delete).
   const Vec3 carried = delete_exits_ ? e.momentum + e.removed_momentum : e.momentum;
   const SupportTotals& t = support_totals_;
-  return {{"node_count", static_cast<double>(nodes_.size())},
+  std::vector<std::pair<std::string, double>> out{{"node_count", static_cast<double>(nodes_.size())},
           {"support_mean", t.mean},
           {"support_max", static_cast<double>(t.max_size)},
           {"lme_max_iterations", static_cast<double>(t.max_iterations)},
@@ -1273,6 +1285,10 @@ std::vector<std::pair<std::string, double>> OtmSolver::result_values() const {
           {"momentum_change_x", axisym_ ? 0.0 : carried[0] - p0[0]},
           {"momentum_change_y", carried[1] - p0[1]},
           {"momentum_change_z", carried[2] - p0[2]}};
+  // Inverting increments of stress-free eroded points, discarded (advance; absent: none).
+  const std::int64_t frozen = pts_.frozen_increments_discarded();
+  if (frozen > 0) out.emplace_back("frozen_increments_discarded", static_cast<double>(frozen));
+  return out;
 }
 
 std::vector<std::pair<std::string, double>> OtmSolver::timing_values() const {
