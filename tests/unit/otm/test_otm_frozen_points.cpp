@@ -16,6 +16,7 @@
 #include "deck/deck_reader.hpp"
 #include "otm/otm_solver.hpp"
 #include "run/simulation.hpp"
+#include "support/frozen_points.hpp"
 
 namespace ballista::test_otm_frozen_points {
 namespace {
@@ -26,21 +27,12 @@ constexpr double kYc = 0.04;    // m: the block's mid-height
 std::unique_ptr<OtmSolver> block(const std::string& erosion, bool failed) {
   const std::string deck =
       "simulation: {solver: otm, dimension: plane_strain, end_time: 1.0, cfl: 0.3}\n"
-      "materials:\n"
-      "  dust: {model: linear_elastic, density: 1000, youngs_modulus: 1.0e6, poisson_ratio: 0.25,\n"
-      "         failure: {criterion: max_stress, max_stress: 1.0e9, erosion: " + erosion + "}}\n"
+      + test::dust_material(erosion) +
       "grid: {lower: [0.0, 0.0], upper: [0.1, 0.1], cell_size: 0.005}\n"
       "bodies:\n  - {name: block, material: dust, shape: {type: box, lower: [0.03, 0.03], upper: [0.06, 0.05]}}\n";
   const Scenario sc = parse_deck(deck, "otm_frozen_points.yaml");
   auto s = std::make_unique<OtmSolver>(sc, make_materials(sc));
-  FieldStore& p = s->points();
-  auto* v = p.view<Vec3>("v");
-  const auto* x = p.view<Vec3>("x");
-  double* f = p.real("failed");
-  for (Index i = 0; i < p.size(); ++i) {
-    v[i] = Vec3{{0.0, -kA * (x[i][1] - kYc), 0.0}};
-    f[i] = failed ? 1.0 : 0.0;  // as if the criterion had been met in an earlier step
-  }
+  test::converge_points(s->points(), kA, kYc, failed);
   // The solver projected the bodies' (zero) velocity onto its nodes at construction; the test
   // gives them the converging field instead (the solver owns the nodes; nothing else writes them).
   auto& nodes = const_cast<otm::NodeCloud&>(s->nodes());
@@ -48,44 +40,13 @@ std::unique_ptr<OtmSolver> block(const std::string& erosion, bool failed) {
   return s;
 }
 
-double result(const OtmSolver& s, const std::string& name) {
-  for (const auto& [k, v] : s.result_values())
-    if (k == name) return v;
-  return 0.0;  // absent: none
-}
-
 TEST(OtmFrozenPoints, AnInvertingIncrementOfAZeroStressPointIsDiscarded) {
-  auto s = block("zero_stress", true);
-  const FieldStore& p = s->points();
-  const Index n = p.size();
-  ASSERT_GT(n, 10);
-  const double y_before = p.view<Vec3>("x")[0][1];
-  ASSERT_NO_THROW(s->step(2.0 / kA));
-  const auto* F = p.view<Mat3>("F");
-  const auto* L = p.view<Mat3>("L");
-  const auto* vol = p.real("volume");
-  const auto* vol0 = p.real("volume0");
-  for (Index i = 0; i < n; ++i) {
-    // F_n = I kept exactly, so J = 1 and the volume is V0; the material saw no increment.
-    for (int k = 0; k < 9; ++k) EXPECT_EQ(F[i].a[k], Mat3::identity().a[k]) << i;
-    EXPECT_EQ(vol[i], vol0[i]) << i;
-    for (double c : L[i].a) EXPECT_EQ(c, 0.0) << i;
-  }
-  // The points still move with their nodes: the lowest row, below the middle, to its mirror image
-  // above it (by 2 |y - y_c|, more than a cell).
-  EXPECT_GT(p.view<Vec3>("x")[0][1] - y_before, 0.005);
-  EXPECT_EQ(result(*s, "frozen_increments_discarded"), static_cast<double>(n));
+  // Point 0, in the lowest row below the middle, goes to its mirror image above it: more than a cell.
+  test::expect_inverting_step_discarded(block, 2.0 / kA, 0.005);
 }
 
-TEST(OtmFrozenPoints, APointThatHasNotFailedStillStopsTheRun) {
-  auto s = block("zero_stress", false);
-  EXPECT_THROW(s->step(2.0 / kA), ParticleError);
-}
-
-TEST(OtmFrozenPoints, AFailedPointThatKeepsAStressStillStopsTheRun) {
-  // allow_no_shear keeps the pressure (eq. 6.12), so the point's deformation is not frozen.
-  auto s = block("allow_no_shear", true);
-  EXPECT_THROW(s->step(2.0 / kA), ParticleError);
+TEST(OtmFrozenPoints, AnInvertedPointThatIsNotFrozenStillStopsTheRun) {
+  test::expect_unfrozen_inversions_stop(block, 2.0 / kA);
 }
 
 }  // namespace
