@@ -22,6 +22,10 @@ JsonValue at_dotted(const JsonValue& obj, const std::string& key) {
   return JsonValue(v->as_number());
 }
 
+/// Whether a study's level cell h is the cell `cell` (to 1e-6 of h: the record's cells are the
+/// study's --levels, written in decimal).
+bool same_level(double h, double cell) { return std::abs(h - cell) <= 1e-6 * h; }
+
 }  // namespace
 
 bool converged_in_study(const ConvergenceRecord::Quantity& q) {
@@ -42,7 +46,7 @@ JsonValue convergence_statement(const ConvergenceRecord& record, const std::stri
   double level = NAN;
   for (const ConvergenceRecord::Quantity& q : record.quantities)
     for (const auto& [h, value] : q.levels)
-      if (std::abs(h - band_cell) <= 1e-6 * h) level = h;
+      if (same_level(h, band_cell)) level = h;
   if (!matches)
     spdlog::warn("the grid study's record {} is of other physics than this run (fingerprint {} against {}): how far "
                  "this run is from converged is not known (re-run validation/perforation_convergence.py for this deck)",
@@ -67,7 +71,7 @@ JsonValue convergence_statement(const ConvergenceRecord& record, const std::stri
     JsonValue value;
     if (matches && std::isfinite(level))
       for (const auto& [h, v] : q.levels)
-        if (std::abs(h - level) <= 1e-6 * level) value = JsonValue(v);  // as the level was found
+        if (same_level(h, level)) value = JsonValue(v);
     e["level_value"] = value;
     all_at_level = all_at_level && value.kind() == JsonValue::Kind::Number;
     if (value.kind() == JsonValue::Kind::Number && converged) {
