@@ -18,6 +18,12 @@ double number_at(const JsonValue& obj, const std::string& key) {
   return v.as_number();
 }
 
+// A headline names the points holding the step when one body's points set at least this share of
+// the samples and are at most kFewStepPoints distinct points, one in kFewStepPointsPer of the run's.
+constexpr double kStepHeldShare = 0.5;
+constexpr double kFewStepPoints = 16;
+constexpr double kFewStepPointsPer = 1000;
+
 std::string mm(double metres) { return std::isfinite(metres) ? fmt::format("{:.1f} mm", metres * 1e3) : "n/a"; }
 
 /// The level of the deck's grid study this run is and how far that level is from converged
@@ -127,6 +133,30 @@ void penetration_lines(const JsonValue& p, bool completed, std::vector<std::stri
         cells));
 }
 
+/// A few points holding the stable step for most of the run (run/step_tally.hpp): the run's cost
+/// is theirs, and what they are (a body, a signal, J) is where to look.
+void step_lines(const JsonValue& summary, std::vector<std::string>& out) {
+  if (!summary.contains("statistics")) return;
+  const JsonValue& st = summary.at("statistics");
+  if (!st.contains("step_set_by")) return;
+  const JsonValue& entries = st.at("step_set_by").at("entries");
+  if (entries.size() == 0) return;
+  const JsonValue& top = entries.at(std::size_t{0});
+  const double share = number_at(top, "share"), points = number_at(top, "points");
+  const double particles = number_at(st, "particles");
+  const bool few = !top.at("points_at_least").as_bool() && points <= kFewStepPoints &&
+                   points * kFewStepPointsPer <= particles;
+  if (!(share >= kStepHeldShare) || !few) return;
+  const bool viscous = top.at("signal").as_string() == "bulk_viscosity";
+  out.push_back(fmt::format(
+      "STEP HELD BY {:.0f} POINT{}: {:.0f} % of the sampled steps were set by {:.0f} point{} of '{}' ({} up to {:.3g} m/s, "
+      "J {:.3g} to {:.3g}): the rest of the run's {:.0f} points could take larger steps (summary.json "
+      "statistics.step_set_by)",
+      points, points == 1 ? "" : "S", 100.0 * share, points, points == 1 ? "" : "s", top.at("body").as_string(),
+      viscous ? "bulk-viscosity signal" : "wave speed", number_at(top, "signal_speed_max"), number_at(top, "J_min"),
+      number_at(top, "J_max"), particles));
+}
+
 }  // namespace
 
 std::vector<std::string> headline_lines(const JsonValue& summary) {
@@ -149,6 +179,7 @@ std::vector<std::string> headline_lines(const JsonValue& summary) {
           number_at(m, "most_tensile_time") * 1e6));
     }
   }
+  step_lines(summary, out);
   if (summary.contains("fragments")) {
     const JsonValue& f = summary.at("fragments");
     const double n = number_at(f, "count");

@@ -337,6 +337,8 @@ double RunLoop::next_dt() {
     rs_.limiter_time = solver_->time();
   }
   rs_.min_dt = std::min(rs_.min_dt, dt);
+  // What holds the step over the run, not only at its low (run/step_tally.hpp).
+  if (solver_->steps() % kStepTallyInterval == 0) rs_.step_tally.add(solver_->step_limiter());
   dt = std::min({dt, rs_.end - solver_->time(), rs_.next_output - solver_->time()});
   if (rs_.stage < nstages_) {
     const StageSpec& st = sc_.stages[rs_.stage];

@@ -55,6 +55,8 @@ void RunState::save(StateArchive& a) const {
   std::string lines;
   for (const auto& w : warnings) lines += w + "\n";
   a.put_text("run.warnings", lines);
+  a.put("run.limiter_cell", std::vector<double>{limiter.cell, limiter.viscous ? 1.0 : 0.0});
+  step_tally.save(a);
 }
 
 void RunState::load(const StateArchive& a) {
@@ -62,6 +64,12 @@ void RunState::load(const StateArchive& a) {
                            &min_dt, &limiter_dt, &limiter_time, &particle_steps, &dt, &wall_before, &limiter.wave_speed,
                            &limiter.speed, &limiter.J});
   a.get_integers_into("run.counters", stage, limiter.id, limiter.body);
+  if (a.has("run.limiter_cell")) {  // absent from checkpoints written before it was kept
+    const auto& lc = a.reals("run.limiter_cell", 2);
+    limiter.cell = lc[0];
+    limiter.viscous = lc[1] != 0.0;
+  }
+  step_tally.load(a);
   const std::vector<std::string> names = split_lines(a.text("run.stage_log.names"));
   const std::vector<std::string> how = split_lines(a.text("run.stage_log.ended_by"));
   const auto& v = a.reals("run.stage_log.values", 5 * names.size());

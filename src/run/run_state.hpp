@@ -10,6 +10,7 @@
 #include "core/solver.hpp"
 #include "core/state_archive.hpp"
 #include "io/summary_writer.hpp"
+#include "run/step_tally.hpp"
 
 namespace ballista {
 
@@ -36,6 +37,7 @@ struct RunState {
   double min_dt = kInf;        ///< s, smallest stable step seen
   StepLimiter limiter;         ///< the point that set the smallest stable step (to within 10 %)
   double limiter_dt = kInf, limiter_time = 0.0;
+  StepTally step_tally;        ///< which points set the step, sampled over the run
   double particle_steps = 0.0;
   double dt = 0.0;             ///< s, the last step taken
   double wall_before = 0.0;    ///< wall seconds of the run's earlier segments (before restarts)

@@ -213,4 +213,43 @@ TEST(Headlines, PointsBeyondTheCohesiveLimitAreNamed) {
   EXPECT_EQ(lines_with(l, "casing_steel"), 0);  // within its limit: nothing to say
 }
 
+// A few points holding the stable step for most of the samples (run/step_tally.hpp) are named;
+// a step shared by many points, or held for less than half the samples, is not news.
+TEST(Headlines, AFewPointsHoldingTheStepAreNamed) {
+  JsonValue s = summary("completed", true, true);
+  JsonValue& st = s["statistics"];
+  st = JsonValue::object();
+  st["particles"] = 69293;
+  JsonValue& entries = st["step_set_by"]["entries"];
+  entries = JsonValue::array();
+  JsonValue e = JsonValue::object();
+  e["body"] = "jet";
+  e["signal"] = "bulk_viscosity";
+  e["share"] = 0.74;
+  e["points"] = 4;
+  e["points_at_least"] = false;
+  e["J_min"] = 1.61;
+  e["J_max"] = 1.83;
+  e["signal_speed_max"] = 1.55e4;
+  entries.push_back(e);
+  std::vector<std::string> l = headline_lines(s);
+  EXPECT_EQ(lines_with(l, "STEP HELD BY 4 POINTS: 74 % of the sampled steps were set by 4 points of 'jet' "
+                          "(bulk-viscosity signal up to 1.55e+04 m/s, J 1.61 to 1.83)"), 1);
+  s["statistics"]["particles"] = 3000;  // 4 of 3,000 points: more than one in a thousand
+  EXPECT_EQ(lines_with(headline_lines(s), "STEP HELD"), 0);
+  s["statistics"]["particles"] = 69293;
+  JsonValue& top = s["statistics"]["step_set_by"]["entries"];
+  JsonValue half = top.at(std::size_t{0});
+  half["share"] = 0.49;
+  top = JsonValue::array();
+  top.push_back(half);
+  EXPECT_EQ(lines_with(headline_lines(s), "STEP HELD"), 0);
+  half["share"] = 0.9;
+  half["points"] = 64;
+  half["points_at_least"] = true;  // at least 64 distinct points: not a few
+  top = JsonValue::array();
+  top.push_back(half);
+  EXPECT_EQ(lines_with(headline_lines(s), "STEP HELD"), 0);
+}
+
 }  // namespace test_headlines

@@ -1,14 +1,18 @@
 // The summary names the point that set the smallest stable time step (thesis ch. 6: collapsing
 // time steps must be traceable to a particle): two free-flying elastic blocks, the faster one
 // sets dt = CFL h / (c + |v|) with c the dilatational wave speed sqrt((K + 4G/3)/rho); on a
-// graded grid the one whose signal crosses its own cell fastest.
+// graded grid the one whose signal crosses its own cell fastest. The tally of the limiter sampled over
+// the run (run/step_tally.hpp): its counts, its checkpoint, and a run's statistics.step_set_by.
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "deck/deck_reader.hpp"
 #include "run/simulation.hpp"
+#include "run/step_tally.hpp"
+#include "scenario/scenario.hpp"
 #include "support/test_files.hpp"
 
 namespace test_step_limiter {
@@ -60,3 +64,107 @@ TEST(StepLimiter, OnAGradedGridTheFastestSignalPerCellIsNamed) {
 }
 
 }  // namespace test_step_limiter
+
+namespace test_step_tally {
+
+using namespace ballista;
+
+StepLimiter limiter(std::int64_t id, int body, bool viscous, double J, double signal) {
+  StepLimiter l;
+  l.id = id;
+  l.body = body;
+  l.viscous = viscous;
+  l.J = J;
+  l.wave_speed = signal;
+  return l;
+}
+
+// The tally counts samples per (body, signal), the distinct points up to its cap, and the range
+// of J and the largest signal; the summary lists the entries by samples, shares summing to 1.
+TEST(StepTally, CountsSamplesPointsAndRangesPerBodyAndSignal) {
+  StepTally t;
+  t.add(limiter(7, 1, false, 1.0, 5000.0));
+  for (int k = 0; k < 3; ++k) t.add(limiter(40 + k % 2, 0, true, 1.6 + 0.1 * k, 1.2e4 + k));
+  t.add(StepLimiter{});  // no particle: not a sample
+  ASSERT_EQ(t.samples, 4);
+  ASSERT_EQ(t.entries.size(), 2u);
+  Scenario sc;
+  sc.bodies.resize(2);
+  sc.bodies[0].name = "jet";
+  sc.bodies[1].name = "casing";
+  const JsonValue j = t.json(sc);
+  EXPECT_EQ(j.at("sample_interval").as_number(), static_cast<double>(kStepTallyInterval));
+  const JsonValue& first = j.at("entries").at(std::size_t{0});
+  EXPECT_EQ(first.at("body").as_string(), "jet");
+  EXPECT_EQ(first.at("signal").as_string(), "bulk_viscosity");
+  EXPECT_DOUBLE_EQ(first.at("share").as_number(), 0.75);
+  EXPECT_EQ(first.at("points").as_number(), 2.0);  // ids 40 and 41
+  EXPECT_DOUBLE_EQ(first.at("J_min").as_number(), 1.6);
+  EXPECT_DOUBLE_EQ(first.at("J_max").as_number(), 1.8);
+  EXPECT_DOUBLE_EQ(first.at("signal_speed_max").as_number(), 1.2e4 + 2);
+  const JsonValue& second = j.at("entries").at(std::size_t{1});
+  EXPECT_EQ(second.at("body").as_string(), "casing");
+  EXPECT_DOUBLE_EQ(second.at("share").as_number(), 0.25);
+}
+
+TEST(StepTally, CapsTheDistinctPointsAndSurvivesACheckpoint) {
+  StepTally t;
+  for (std::int64_t id = 0; id < static_cast<std::int64_t>(kStepTallyMaxIds) + 5; ++id)
+    t.add(limiter(1000 - id, 2, false, 0.9, 4000.0));
+  t.add(limiter(3, 1, true, 0.5, 9000.0));
+  ASSERT_EQ(t.entries[0].ids.size(), kStepTallyMaxIds);
+  EXPECT_TRUE(t.entries[0].ids_capped);
+  EXPECT_TRUE(std::is_sorted(t.entries[0].ids.begin(), t.entries[0].ids.end()));
+  StateArchive a;
+  t.save(a);
+  StepTally back;
+  back.load(a);
+  ASSERT_EQ(back.samples, t.samples);
+  ASSERT_EQ(back.entries.size(), t.entries.size());
+  for (std::size_t k = 0; k < t.entries.size(); ++k) {
+    EXPECT_EQ(back.entries[k].body, t.entries[k].body);
+    EXPECT_EQ(back.entries[k].viscous, t.entries[k].viscous);
+    EXPECT_EQ(back.entries[k].samples, t.entries[k].samples);
+    EXPECT_EQ(back.entries[k].ids, t.entries[k].ids);
+    EXPECT_EQ(back.entries[k].ids_capped, t.entries[k].ids_capped);
+    EXPECT_EQ(back.entries[k].J_min, t.entries[k].J_min);
+    EXPECT_EQ(back.entries[k].J_max, t.entries[k].J_max);
+    EXPECT_EQ(back.entries[k].signal_max, t.entries[k].signal_max);
+  }
+  StepTally old;  // a checkpoint written before the tally: empty
+  old.add(limiter(1, 0, false, 1.0, 1.0));
+  old.load(StateArchive{});
+  EXPECT_EQ(old.samples, 0);
+  EXPECT_TRUE(old.entries.empty());
+}
+
+// A run samples its limiter every kStepTallyInterval steps from step 0: in free flight the fast
+// block sets every sample.
+TEST(StepTally, TheFreeFlightRunSamplesTheFastBlock) {
+  const std::string deck = R"(simulation: {dimension: plane_strain, end_time: 2.0e-6}
+grid: {lower: [0, 0], upper: [0.03, 0.01], cell_size: 1.0e-3}
+materials:
+  al: {model: linear_elastic, density: 2700, bulk_modulus: 70e9, shear_modulus: 26e9}
+bodies:
+  - {name: slow, material: al, shape: {type: box, lower: [0.002, 0.002], upper: [0.006, 0.006]}, velocity: [10, 0]}
+  - {name: fast, material: al, shape: {type: box, lower: [0.020, 0.002], upper: [0.024, 0.006]}, velocity: [0, 300]}
+)";
+  test::TempDir dir;
+  RunOptions o;
+  o.out_dir = dir.path.string();
+  o.progress = false;
+  const RunResult r = run_simulation(parse_deck(deck, "tally.yaml"), o);
+  ASSERT_TRUE(r.ok) << r.error;
+  const YAML::Node st = YAML::LoadFile((dir.path / "summary.json").string())["statistics"];
+  const YAML::Node tally = st["step_set_by"];
+  ASSERT_TRUE(tally.IsMap());
+  // Steps 0, 64, ... below the run's step count.
+  const long steps = st["steps"].as<long>();
+  EXPECT_EQ(tally["samples"].as<long>(), (steps - 1) / kStepTallyInterval + 1);
+  ASSERT_EQ(tally["entries"].size(), 1u);
+  EXPECT_EQ(tally["entries"][0]["body"].as<std::string>(), "fast");
+  EXPECT_EQ(tally["entries"][0]["signal"].as<std::string>(), "wave");
+  EXPECT_DOUBLE_EQ(tally["entries"][0]["share"].as<double>(), 1.0);
+}
+
+}  // namespace test_step_tally
