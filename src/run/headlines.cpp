@@ -19,9 +19,9 @@ double number_at(const JsonValue& obj, const std::string& key) {
 }
 
 // A headline names the points holding the step when one body's points set at least this share of
-// the samples and are at most kFewStepPoints distinct points, one in kFewStepPointsPer of the run's.
+// the samples and are at most one in kFewStepPointsPer of the run's points (and all counted: the
+// tally remembers kStepTallyMaxIds).
 constexpr double kStepHeldShare = 0.5;
-constexpr double kFewStepPoints = 16;
 constexpr double kFewStepPointsPer = 1000;
 
 std::string mm(double metres) { return std::isfinite(metres) ? fmt::format("{:.1f} mm", metres * 1e3) : "n/a"; }
@@ -144,8 +144,7 @@ void step_lines(const JsonValue& summary, std::vector<std::string>& out) {
   const JsonValue& top = entries.at(std::size_t{0});
   const double share = number_at(top, "share"), points = number_at(top, "points");
   const double particles = number_at(st, "particles");
-  const bool few = !top.at("points_at_least").as_bool() && points <= kFewStepPoints &&
-                   points * kFewStepPointsPer <= particles;
+  const bool few = !top.at("points_at_least").as_bool() && points * kFewStepPointsPer <= particles;
   if (!(share >= kStepHeldShare) || !few) return;
   const bool viscous = top.at("signal").as_string() == "bulk_viscosity";
   out.push_back(fmt::format(

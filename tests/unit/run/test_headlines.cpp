@@ -246,10 +246,14 @@ TEST(Headlines, AFewPointsHoldingTheStepAreNamed) {
   EXPECT_EQ(lines_with(headline_lines(s), "STEP HELD"), 0);
   half["share"] = 0.9;
   half["points"] = 64;
-  half["points_at_least"] = true;  // at least 64 distinct points: not a few
+  half["points_at_least"] = true;  // more distinct points than the tally counts: not a few
   top = JsonValue::array();
   top.push_back(half);
   EXPECT_EQ(lines_with(headline_lines(s), "STEP HELD"), 0);
+  half["points_at_least"] = false;  // 64 of 69,293: a few
+  top = JsonValue::array();
+  top.push_back(half);
+  EXPECT_EQ(lines_with(headline_lines(s), "STEP HELD BY 64 POINTS: 90 %"), 1);
 }
 
 }  // namespace test_headlines
