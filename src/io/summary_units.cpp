@@ -88,8 +88,8 @@ const std::vector<std::pair<std::string, std::string>>& unit_table() {
       {"statistics.min_dt_set_by.cell", "m"},
       {"statistics.min_dt_set_by.*", "1"},  // the particle's id, its J
       {"statistics.step_set_by.entries[].signal_speed_max", "m/s"},
-      {"statistics.step_set_by.*", "1"},    // sample counts, shares, J, point counts
-      {"statistics.step_set_by.entries[].*", "1"},
+      {"statistics.step_set_by.*", "1"},    // the interval and the sample counts
+      {"statistics.step_set_by.entries[].*", "1"},  // shares, counts, J, the margin
       {"statistics.*", "1"},                // counts, the worst energy drift (over the scale)
       // Points beyond their material's cohesive limit (run/tension_watch.hpp), per material.
       {"tension.*.cohesive_limit", "Pa"},

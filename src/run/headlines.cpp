@@ -19,10 +19,14 @@ double number_at(const JsonValue& obj, const std::string& key) {
 }
 
 // A headline names the points holding the step when one body's points set at least this share of
-// the samples and are at most one in kFewStepPointsPer of the run's points (and all counted: the
-// tally remembers kStepTallyMaxIds).
+// at least kStepHeldSamples samples, are at most one in kFewStepPointsPer of the run's points (and
+// all counted: the tally remembers kStepTallyMaxIds), and the step without the fastest thousandth
+// of the points would have been at least kStepHeldMargin times larger on average at those samples
+// (StepLimiter::margin: MPM on one rank).
 constexpr double kStepHeldShare = 0.5;
+constexpr double kStepHeldSamples = 8;
 constexpr double kFewStepPointsPer = 1000;
+constexpr double kStepHeldMargin = 1.2;
 
 std::string mm(double metres) { return std::isfinite(metres) ? fmt::format("{:.1f} mm", metres * 1e3) : "n/a"; }
 
@@ -139,21 +143,23 @@ void step_lines(const JsonValue& summary, std::vector<std::string>& out) {
   if (!summary.contains("statistics")) return;
   const JsonValue& st = summary.at("statistics");
   if (!st.contains("step_set_by")) return;
-  const JsonValue& entries = st.at("step_set_by").at("entries");
-  if (entries.size() == 0) return;
-  const JsonValue& top = entries.at(std::size_t{0});
+  const JsonValue& tally = st.at("step_set_by");
+  if (!tally.contains("entries") || tally.at("entries").size() == 0) return;
+  const JsonValue& top = tally.at("entries").at(std::size_t{0});
   const double share = number_at(top, "share"), points = number_at(top, "points");
-  const double particles = number_at(st, "particles");
+  const double particles = number_at(st, "particles"), margin = number_at(top, "margin_mean");
   const bool few = !top.at("points_at_least").as_bool() && points * kFewStepPointsPer <= particles;
-  if (!(share >= kStepHeldShare) || !few) return;
+  if (!(share >= kStepHeldShare) || !(number_at(tally, "samples") >= kStepHeldSamples) || !few ||
+      !(margin >= kStepHeldMargin))
+    return;
   const bool viscous = top.at("signal").as_string() == "bulk_viscosity";
   out.push_back(fmt::format(
       "STEP HELD BY {:.0f} POINT{}: {:.0f} % of the sampled steps were set by {:.0f} point{} of '{}' ({} up to {:.3g} m/s, "
-      "J {:.3g} to {:.3g}): the rest of the run's {:.0f} points could take larger steps (summary.json "
-      "statistics.step_set_by)",
+      "J {:.3g} to {:.3g}); without the fastest thousandth of the points the step would have been {:.2g}x larger "
+      "there on average (summary.json statistics.step_set_by)",
       points, points == 1 ? "" : "S", 100.0 * share, points, points == 1 ? "" : "s", top.at("body").as_string(),
       viscous ? "bulk-viscosity signal" : "wave speed", number_at(top, "signal_speed_max"), number_at(top, "J_min"),
-      number_at(top, "J_max"), particles));
+      number_at(top, "J_max"), margin));
 }
 
 }  // namespace

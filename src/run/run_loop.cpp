@@ -330,15 +330,26 @@ double RunLoop::next_dt() {
         sc_.simulation.step_limit, solver_->time(), rs_.end, dt, describe_limiter(sc_, solver_->step_limiter())));
   // The smallest stable step is what a collapsing time step shows (thesis ch. 6), not the
   // slivers taken to land on output and end times.
-  if (dt < 0.9 * rs_.limiter_dt) {
+  const bool new_low = dt < 0.9 * rs_.limiter_dt;
+  // What holds the step over the run, not only at its low (run/step_tally.hpp); a step that
+  // simulation.max_dt set is no point's.
+  const bool sample = solver_->steps() % kStepTallyInterval == 0;
+  const bool by_max_dt = sc_.simulation.max_dt > 0.0 && dt >= sc_.simulation.max_dt;
+  StepLimiter limiter;
+  if (new_low || (sample && !by_max_dt)) limiter = solver_->step_limiter();
+  if (new_low) {
     // A new low of the stable step (by 10 %): remember which point sets it.
-    rs_.limiter = solver_->step_limiter();
+    rs_.limiter = limiter;
     rs_.limiter_dt = dt;
     rs_.limiter_time = solver_->time();
   }
   rs_.min_dt = std::min(rs_.min_dt, dt);
-  // What holds the step over the run, not only at its low (run/step_tally.hpp).
-  if (solver_->steps() % kStepTallyInterval == 0) rs_.step_tally.add(solver_->step_limiter());
+  if (sample) {
+    if (by_max_dt)
+      ++rs_.step_tally.max_dt_samples;
+    else
+      rs_.step_tally.add(limiter);
+  }
   dt = std::min({dt, rs_.end - solver_->time(), rs_.next_output - solver_->time()});
   if (rs_.stage < nstages_) {
     const StageSpec& st = sc_.stages[rs_.stage];

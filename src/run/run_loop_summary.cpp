@@ -45,7 +45,7 @@ void write_statistics(JsonValue& st, const Scenario& sc, const RunState& rs, con
   st["particle_steps_per_second"] = result.particle_steps_per_second;
   st["min_dt"] = std::isfinite(rs.min_dt) ? rs.min_dt : 0.0;
   st["worst_energy_drift"] = rs.worst_drift;
-  if (rs.step_tally.samples > 0) st["step_set_by"] = rs.step_tally.json(sc);
+  if (rs.step_tally.samples > 0 || rs.step_tally.max_dt_samples > 0) st["step_set_by"] = rs.step_tally.json(sc);
   const StepLimiter& limiter = rs.limiter;
   if (limiter.id < 0) return;
   JsonValue& lim = st["min_dt_set_by"];

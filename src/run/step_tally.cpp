@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "core/error.hpp"
 #include "scenario/scenario.hpp"
 
 namespace ballista {
@@ -25,6 +26,10 @@ void StepTally::add(const StepLimiter& l) {
   e.J_min = std::min(e.J_min, l.J);
   e.J_max = std::max(e.J_max, l.J);
   e.signal_max = std::max(e.signal_max, l.wave_speed);
+  if (l.margin > 0.0) {
+    e.margin_sum += l.margin;
+    ++e.margin_samples;
+  }
   const auto at = std::lower_bound(e.ids.begin(), e.ids.end(), l.id);
   if (at != e.ids.end() && *at == l.id) return;
   if (e.ids.size() < kStepTallyMaxIds)
@@ -37,6 +42,7 @@ JsonValue StepTally::json(const Scenario& sc) const {
   JsonValue out = JsonValue::object();
   out["sample_interval"] = kStepTallyInterval;
   out["samples"] = samples;
+  out["max_dt_samples"] = max_dt_samples;
   JsonValue& list = out["entries"];
   list = JsonValue::array();
   // Most samples first; ties keep the order of first appearance.
@@ -56,20 +62,22 @@ JsonValue StepTally::json(const Scenario& sc) const {
     j["J_min"] = e.J_min;
     j["J_max"] = e.J_max;
     j["signal_speed_max"] = e.signal_max;
+    if (e.margin_samples > 0) j["margin_mean"] = e.margin_sum / static_cast<double>(e.margin_samples);
     list.push_back(j);
   }
   return out;
 }
 
 void StepTally::save(StateArchive& a) const {
-  // Per entry: body, viscous, samples, ids_capped, the id count, the ids; and J_min, J_max, signal_max.
-  std::vector<std::int64_t> ints{samples, static_cast<std::int64_t>(entries.size())};
+  // Per entry: body, viscous, samples, ids_capped, margin_samples, the id count, the ids; and J_min,
+  // J_max, signal_max, margin_sum.
+  std::vector<std::int64_t> ints{samples, max_dt_samples, static_cast<std::int64_t>(entries.size())};
   std::vector<double> reals;
   for (const Entry& e : entries) {
-    ints.insert(ints.end(), {e.body, e.viscous ? 1 : 0, e.samples, e.ids_capped ? 1 : 0,
+    ints.insert(ints.end(), {e.body, e.viscous ? 1 : 0, e.samples, e.ids_capped ? 1 : 0, e.margin_samples,
                              static_cast<std::int64_t>(e.ids.size())});
     ints.insert(ints.end(), e.ids.begin(), e.ids.end());
-    reals.insert(reals.end(), {e.J_min, e.J_max, e.signal_max});
+    reals.insert(reals.end(), {e.J_min, e.J_max, e.signal_max, e.margin_sum});
   }
   a.put("run.step_tally.ints", ints);
   a.put("run.step_tally.reals", reals);
@@ -79,25 +87,33 @@ void StepTally::load(const StateArchive& a) {
   *this = StepTally{};
   if (!a.has("run.step_tally.ints")) return;
   const std::vector<std::int64_t>& v = a.ints("run.step_tally.ints");
-  const std::size_t n = static_cast<std::size_t>(v.at(1));
-  const std::vector<double>& r = a.reals("run.step_tally.reals", 3 * n);
-  samples = v.at(0);
-  std::size_t at = 2;
+  auto bad = [] { return Error("checkpoint: run.step_tally is malformed"); };
+  if (v.size() < 3 || v[2] < 0) throw bad();
+  const std::size_t n = static_cast<std::size_t>(v[2]);
+  const std::vector<double>& r = a.reals("run.step_tally.reals", 4 * n);
+  samples = v[0];
+  max_dt_samples = v[1];
+  std::size_t at = 3;
   for (std::size_t k = 0; k < n; ++k) {
+    if (at + 6 > v.size() || v[at + 5] < 0) throw bad();
     Entry e;
-    e.body = static_cast<int>(v.at(at));
-    e.viscous = v.at(at + 1) != 0;
-    e.samples = v.at(at + 2);
-    e.ids_capped = v.at(at + 3) != 0;
-    const std::size_t m = static_cast<std::size_t>(v.at(at + 4));
-    at += 5;
+    e.body = static_cast<int>(v[at]);
+    e.viscous = v[at + 1] != 0;
+    e.samples = v[at + 2];
+    e.ids_capped = v[at + 3] != 0;
+    e.margin_samples = v[at + 4];
+    const std::size_t m = static_cast<std::size_t>(v[at + 5]);
+    at += 6;
+    if (at + m > v.size()) throw bad();
     e.ids.assign(v.begin() + static_cast<std::ptrdiff_t>(at), v.begin() + static_cast<std::ptrdiff_t>(at + m));
     at += m;
-    e.J_min = r[3 * k];
-    e.J_max = r[3 * k + 1];
-    e.signal_max = r[3 * k + 2];
+    e.J_min = r[4 * k];
+    e.J_max = r[4 * k + 1];
+    e.signal_max = r[4 * k + 2];
+    e.margin_sum = r[4 * k + 3];
     entries.push_back(std::move(e));
   }
+  if (at != v.size()) throw bad();
 }
 
 }  // namespace ballista

@@ -34,9 +34,12 @@ struct StepTally {
     bool ids_capped = false;          ///< more distinct particles than kStepTallyMaxIds
     double J_min = 0.0, J_max = 0.0;  ///< det F of the sampled points
     double signal_max = 0.0;          ///< m/s, the largest signal speed sampled
+    double margin_sum = 0.0;          ///< sum of StepLimiter::margin over the samples that have one
+    std::int64_t margin_samples = 0;
   };
   std::vector<Entry> entries;  ///< in order of first appearance
-  std::int64_t samples = 0;
+  std::int64_t samples = 0;    ///< samples a point set (the entries' sum)
+  std::int64_t max_dt_samples = 0;  ///< samples at which simulation.max_dt set the step, no point
 
   /// Adds one sample (a limiter without a particle is not counted).
   void add(const StepLimiter& l);

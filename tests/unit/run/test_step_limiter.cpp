@@ -11,6 +11,7 @@
 
 #include "deck/deck_reader.hpp"
 #include "run/simulation.hpp"
+#include "core/error.hpp"
 #include "run/step_tally.hpp"
 #include "scenario/scenario.hpp"
 #include "support/test_files.hpp"
@@ -84,7 +85,11 @@ StepLimiter limiter(std::int64_t id, int body, bool viscous, double J, double si
 TEST(StepTally, CountsSamplesPointsAndRangesPerBodyAndSignal) {
   StepTally t;
   t.add(limiter(7, 1, false, 1.0, 5000.0));
-  for (int k = 0; k < 3; ++k) t.add(limiter(40 + k % 2, 0, true, 1.6 + 0.1 * k, 1.2e4 + k));
+  for (int k = 0; k < 3; ++k) {
+    StepLimiter l = limiter(40 + k % 2, 0, true, 1.6 + 0.1 * k, 1.2e4 + k);
+    l.margin = k == 0 ? 0.0 : 1.5 + k;  // the first without a margin (not computed)
+    t.add(l);
+  }
   t.add(StepLimiter{});  // no particle: not a sample
   ASSERT_EQ(t.samples, 4);
   ASSERT_EQ(t.entries.size(), 2u);
@@ -102,15 +107,21 @@ TEST(StepTally, CountsSamplesPointsAndRangesPerBodyAndSignal) {
   EXPECT_DOUBLE_EQ(first.at("J_min").as_number(), 1.6);
   EXPECT_DOUBLE_EQ(first.at("J_max").as_number(), 1.8);
   EXPECT_DOUBLE_EQ(first.at("signal_speed_max").as_number(), 1.2e4 + 2);
+  EXPECT_DOUBLE_EQ(first.at("margin_mean").as_number(), 3.0);  // (2.5 + 3.5) / 2: the samples that have one
   const JsonValue& second = j.at("entries").at(std::size_t{1});
+  EXPECT_FALSE(second.contains("margin_mean"));
   EXPECT_EQ(second.at("body").as_string(), "casing");
   EXPECT_DOUBLE_EQ(second.at("share").as_number(), 0.25);
 }
 
 TEST(StepTally, CapsTheDistinctPointsAndSurvivesACheckpoint) {
   StepTally t;
-  for (std::int64_t id = 0; id < static_cast<std::int64_t>(kStepTallyMaxIds) + 5; ++id)
-    t.add(limiter(1000 - id, 2, false, 0.9, 4000.0));
+  for (std::int64_t id = 0; id < static_cast<std::int64_t>(kStepTallyMaxIds) + 5; ++id) {
+    StepLimiter l = limiter(1000 - id, 2, false, 0.9, 4000.0);
+    l.margin = 1.0 + 0.01 * static_cast<double>(id);
+    t.add(l);
+  }
+  t.max_dt_samples = 3;
   t.add(limiter(3, 1, true, 0.5, 9000.0));
   ASSERT_EQ(t.entries[0].ids.size(), kStepTallyMaxIds);
   EXPECT_TRUE(t.entries[0].ids_capped);
@@ -120,6 +131,7 @@ TEST(StepTally, CapsTheDistinctPointsAndSurvivesACheckpoint) {
   StepTally back;
   back.load(a);
   ASSERT_EQ(back.samples, t.samples);
+  EXPECT_EQ(back.max_dt_samples, 3);
   ASSERT_EQ(back.entries.size(), t.entries.size());
   for (std::size_t k = 0; k < t.entries.size(); ++k) {
     EXPECT_EQ(back.entries[k].body, t.entries[k].body);
@@ -130,7 +142,13 @@ TEST(StepTally, CapsTheDistinctPointsAndSurvivesACheckpoint) {
     EXPECT_EQ(back.entries[k].J_min, t.entries[k].J_min);
     EXPECT_EQ(back.entries[k].J_max, t.entries[k].J_max);
     EXPECT_EQ(back.entries[k].signal_max, t.entries[k].signal_max);
+    EXPECT_EQ(back.entries[k].margin_sum, t.entries[k].margin_sum);
+    EXPECT_EQ(back.entries[k].margin_samples, t.entries[k].margin_samples);
   }
+  StateArchive torn;  // an id count beyond the array: a clear error, not a read past its end
+  torn.put("run.step_tally.ints", std::vector<std::int64_t>{1, 0, 1, 0, 0, 1, 0, 0, 5, 42});
+  torn.put("run.step_tally.reals", std::vector<double>{1, 1, 1, 0});
+  EXPECT_THROW(StepTally{}.load(torn), Error);
   StepTally old;  // a checkpoint written before the tally: empty
   old.add(limiter(1, 0, false, 1.0, 1.0));
   old.load(StateArchive{});
@@ -139,9 +157,10 @@ TEST(StepTally, CapsTheDistinctPointsAndSurvivesACheckpoint) {
 }
 
 // A run samples its limiter every kStepTallyInterval steps from step 0: in free flight the fast
-// block sets every sample.
-TEST(StepTally, TheFreeFlightRunSamplesTheFastBlock) {
-  const std::string deck = R"(simulation: {dimension: plane_strain, end_time: 2.0e-6}
+// block sets every sample, all its points alike (margin 1: no few points hold the step); with a
+// simulation.max_dt below the stable step no point sets it.
+YAML::Node tally_of_free_flight(const std::string& simulation, long& steps) {
+  const std::string deck = "simulation: " + simulation + R"(
 grid: {lower: [0, 0], upper: [0.03, 0.01], cell_size: 1.0e-3}
 materials:
   al: {model: linear_elastic, density: 2700, bulk_modulus: 70e9, shear_modulus: 26e9}
@@ -154,17 +173,36 @@ bodies:
   o.out_dir = dir.path.string();
   o.progress = false;
   const RunResult r = run_simulation(parse_deck(deck, "tally.yaml"), o);
-  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.ok) << r.error;
   const YAML::Node st = YAML::LoadFile((dir.path / "summary.json").string())["statistics"];
-  const YAML::Node tally = st["step_set_by"];
+  steps = st["steps"].as<long>();
+  return st["step_set_by"];
+}
+
+TEST(StepTally, TheFreeFlightRunSamplesTheFastBlock) {
+  long steps = 0;
+  const YAML::Node tally = tally_of_free_flight("{dimension: plane_strain, end_time: 2.0e-6}", steps);
   ASSERT_TRUE(tally.IsMap());
   // Steps 0, 64, ... below the run's step count.
-  const long steps = st["steps"].as<long>();
   EXPECT_EQ(tally["samples"].as<long>(), (steps - 1) / kStepTallyInterval + 1);
+  EXPECT_EQ(tally["max_dt_samples"].as<long>(), 0);
   ASSERT_EQ(tally["entries"].size(), 1u);
   EXPECT_EQ(tally["entries"][0]["body"].as<std::string>(), "fast");
   EXPECT_EQ(tally["entries"][0]["signal"].as<std::string>(), "wave");
   EXPECT_DOUBLE_EQ(tally["entries"][0]["share"].as<double>(), 1.0);
+  // Every point of the block alike to round-off (J = 1 in free flight).
+  EXPECT_NEAR(tally["entries"][0]["margin_mean"].as<double>(), 1.0, 1e-12);
+}
+
+TEST(StepTally, AStepSetByMaxDtIsNoPoints) {
+  long steps = 0;
+  const YAML::Node tally =
+      tally_of_free_flight("{dimension: plane_strain, end_time: 2.0e-6, max_dt: 1.0e-8}", steps);
+  ASSERT_TRUE(tally.IsMap());
+  EXPECT_EQ(steps, 200);
+  EXPECT_EQ(tally["samples"].as<long>(), 0);
+  EXPECT_EQ(tally["max_dt_samples"].as<long>(), (steps - 1) / kStepTallyInterval + 1);
+  EXPECT_EQ(tally["entries"].size(), 0u);
 }
 
 }  // namespace test_step_tally
