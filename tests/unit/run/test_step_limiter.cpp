@@ -20,10 +20,10 @@ namespace test_step_limiter {
 
 using namespace ballista;
 
-// Two aluminium blocks in free flight, `slow` at 10 m/s in x and `fast` at 300 m/s in y, on the
-// given grid: the run's summary.json min_dt_set_by.
-YAML::Node limiter_of_run(const std::string& grid) {
-  const std::string deck = "simulation: {dimension: plane_strain, end_time: 2.0e-7}\n" + grid + R"(
+// Two aluminium blocks in free flight, `slow` at 10 m/s in x and `fast` at 300 m/s in y, with the
+// given simulation and grid sections: the run's summary.json statistics.
+YAML::Node free_flight_statistics(const std::string& simulation, const std::string& grid) {
+  const std::string deck = "simulation: " + simulation + "\n" + grid + R"(
 materials:
   al: {model: linear_elastic, density: 2700, bulk_modulus: 70e9, shear_modulus: 26e9}
 bodies:
@@ -34,9 +34,14 @@ bodies:
   RunOptions o;
   o.out_dir = dir.path.string();
   o.progress = false;
-  const RunResult r = run_simulation(parse_deck(deck, "limiter.yaml"), o);
+  const RunResult r = run_simulation(parse_deck(deck, "free_flight.yaml"), o);
   EXPECT_TRUE(r.ok) << r.error;
-  return YAML::LoadFile((dir.path / "summary.json").string())["statistics"]["min_dt_set_by"];
+  return YAML::LoadFile((dir.path / "summary.json").string())["statistics"];
+}
+
+// The blocks on the given grid: the point named at the step's low.
+YAML::Node limiter_of_run(const std::string& grid) {
+  return free_flight_statistics("{dimension: plane_strain, end_time: 2.0e-7}", grid)["min_dt_set_by"];
 }
 
 TEST(StepLimiter, SummaryNamesTheFastestSignal) {
@@ -160,21 +165,8 @@ TEST(StepTally, CapsTheDistinctPointsAndSurvivesACheckpoint) {
 // block sets every sample, all its points alike (margin 1: no few points hold the step); with a
 // simulation.max_dt below the stable step no point sets it.
 YAML::Node tally_of_free_flight(const std::string& simulation, long& steps) {
-  const std::string deck = "simulation: " + simulation + R"(
-grid: {lower: [0, 0], upper: [0.03, 0.01], cell_size: 1.0e-3}
-materials:
-  al: {model: linear_elastic, density: 2700, bulk_modulus: 70e9, shear_modulus: 26e9}
-bodies:
-  - {name: slow, material: al, shape: {type: box, lower: [0.002, 0.002], upper: [0.006, 0.006]}, velocity: [10, 0]}
-  - {name: fast, material: al, shape: {type: box, lower: [0.020, 0.002], upper: [0.024, 0.006]}, velocity: [0, 300]}
-)";
-  test::TempDir dir;
-  RunOptions o;
-  o.out_dir = dir.path.string();
-  o.progress = false;
-  const RunResult r = run_simulation(parse_deck(deck, "tally.yaml"), o);
-  EXPECT_TRUE(r.ok) << r.error;
-  const YAML::Node st = YAML::LoadFile((dir.path / "summary.json").string())["statistics"];
+  const YAML::Node st = test_step_limiter::free_flight_statistics(
+      simulation, "grid: {lower: [0, 0], upper: [0.03, 0.01], cell_size: 1.0e-3}");
   steps = st["steps"].as<long>();
   return st["step_set_by"];
 }
