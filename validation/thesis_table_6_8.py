@@ -14,7 +14,12 @@ density (MaterialData/W.xml, 19,235 kg/m^3) carries the Drucker stability check 
 (Melting, eq. 6.6, never happens here: with Johnson-Cook thermal softening the flow stress, and
 so the plastic heating, vanishes as T approaches T_m.) The discrete-jet rows are not run: the
 thesis gives its jet's segments as plots only (Figs. 5.3-5.4). A run whose folder already holds a
-summary.json is not run again (--table-only: run nothing).
+summary.json is not run again (--table-only: run nothing). --set changes the deck of every run and
+--tag names its folders apart; --erosion picks the rows. The 0.5 mm level of the erosion-none row
+(docs/validation.md, 40 minutes on 2 cores):
+
+  /usr/bin/python3 validation/thesis_table_6_8.py --ballista build/ballista --out out/table_6_8 \
+      --erosion none --set grid.cell_size=0.5e-3 --tag h05
 """
 import os
 import sys
@@ -33,30 +38,47 @@ ZERO_STRESS = "materials.rod.failure={criterion: drucker_stability, erosion: zer
 EROSION = {"none": [], "zero_stress": ["--set", ZERO_STRESS]}
 
 
-def run(ballista, out, erosion):
+def folder(out, erosion, tag):
+    return os.path.join(out, erosion + (f"_{tag}" if tag else ""))
+
+
+def run(ballista, out, erosion, sets=(), tag=""):
     nose = TARGET_LENGTH + 2.0e-3
     top = nose + ROD["length"] + 6.5e-3
-    run_once(ballista, DECK, os.path.join(out, erosion), [
+    extra = [a for kv in sets for a in ("--set", kv)]
+    run_once(ballista, DECK, folder(out, erosion, tag), [
            "--set", f"bodies.0.shape.radius={RADIUS}", "--set", f"bodies.0.shape.length={TARGET_LENGTH}",
            "--set", f"grid.lower=[0,{-GRID_BELOW}]", "--set", f"grid.upper=[{RADIUS + 5e-3:.6g},{top:.6g}]", "--set", f"bodies.1.rod.nose=[0,{nose:.6g}]",
            "--set", f"bodies.1.rod.diameter={ROD['diameter']}", "--set", f"bodies.1.rod.length={ROD['length']}",
            "--set", f"bodies.1.rod.speed={ROD['speed']}", "--set", f"materials.rod.density={ROD['density']}",
-           "--set", "simulation.end_time=500e-6"] + EROSION[erosion])
+           "--set", "simulation.end_time=500e-6"] + EROSION[erosion] + extra)
 
 
 def main():
-    a = study_arguments(__doc__, "out/table_6_8").parse_args()
+    ap = study_arguments(__doc__, "out/table_6_8")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a deck change for every run (repeatable; needs --tag)")
+    ap.add_argument("--tag", default="", help="appended to the run folders' names")
+    ap.add_argument("--erosion", default=",".join(EROSION), help="the rows to run: none, zero_stress")
+    a = ap.parse_args()
+    if a.set and not a.tag:
+        ap.error("--set needs --tag, so that its runs do not mix with the deck's own")
+    rows = [e for e in a.erosion.split(",") if e]
+    for e in rows:
+        if e not in EROSION:
+            ap.error(f"--erosion: unknown row '{e}' (none, zero_stress)")
     if not a.table_only:
-        for erosion in EROSION:
-            run(a.ballista, a.out, erosion)
+        for erosion in rows:
+            run(a.ballista, a.out, erosion, a.set, a.tag)
     ph = ROD["length"] * (ROD["density"] / TARGET_DENSITY) ** 0.5
     print(f"P_h = {1000 * ph:.1f} mm")
     print("| penetrator erosion | Ballista P [mm] | P/P_h | thesis P [mm] | thesis P/P_h |")
     print("|---|---|---|---|---|")
-    for erosion, ref in THESIS.items():
-        s = summary(os.path.join(a.out, erosion))
+    for erosion in rows:
+        ref = THESIS[erosion]
+        s = summary(folder(a.out, erosion, a.tag))
         if s is None or s["status"] != "completed":
-            ours = f"{state(os.path.join(a.out, erosion))} | "
+            ours = f"{state(folder(a.out, erosion, a.tag))} | "
         elif s["penetration"]["max_depth"] > TARGET_LENGTH:  # the rod went through and off the grid
             ours = f"through the {TARGET_LENGTH:g} m target | "
         else:
