@@ -105,7 +105,8 @@ StepLimiter MpmSolver::step_limiter() const {
   const auto* body = points_.ints(kBodyIndex);
   StepLimiter out;
   double best = -1.0;
-  std::vector<double> rates(static_cast<std::size_t>(n));
+  // Every point's rate, for the margin (one rank only: see below).
+  std::vector<double> rates(comm_.distributed() ? 0 : static_cast<std::size_t>(n));
   for (Index p = 0; p < n; ++p) {
     const double l = g.graded ? shortest_cell_edge(g, x[p], dim_) : g.h;
     double s = c[p];
@@ -117,7 +118,7 @@ StepLimiter MpmSolver::step_limiter() const {
     }
     const double speed = norm(v[p]);
     const double rate = (s + speed) / l;
-    rates[static_cast<std::size_t>(p)] = rate;
+    if (!rates.empty()) rates[static_cast<std::size_t>(p)] = rate;
     if (rate > best) {
       best = rate;
       out = {id[p], static_cast<int>(body[p]), s, speed, det(F[p]), g.graded ? l : 0.0, by_q};

@@ -3,8 +3,8 @@
 //
 // The summary's min_dt_set_by names the point at the step's lowest; a run's cost is set by what
 // holds the step all along. In the perforation demo a handful of jet points on the axis, heated by
-// the bulk viscosity and expanded to J ~ 1.7, set three quarters of the steps at 0.4-0.5 of the
-// free jet's Courant step (docs/penetration.md, "What holds the step"). A user reading a slow run
+// the bulk viscosity and expanded to J ~ 1.7, set three quarters of the steps at about half the
+// free jet's Courant step (docs/penetration.md, "What holds the demo's step"). A user reading a slow run
 // needs that figure: summary.json statistics.step_set_by, and a headline when a few points hold it.
 #include <cstdint>
 #include <vector>
