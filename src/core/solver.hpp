@@ -66,7 +66,15 @@ struct StepLimiter {
   /// Its signal rate over that of the fastest point outside the fastest thousandth of the points:
   /// how much larger the step would be without those few (MPM on one rank; 0: not computed).
   double margin = 0.0;
+  /// The point updates of one step over those of the same interval with every point stepped at
+  /// its own stable step, rounded down to a power-of-two multiple of this one (at most
+  /// 2^kMultirateLevels): what a per-point (multi-rate) step would save in point updates, grid
+  /// work not counted (MPM on one rank; 0: not computed).
+  double multirate = 0.0;
 };
+
+/// The coarsest class of StepLimiter::multirate: 64 times the stable step.
+inline constexpr int kMultirateLevels = 6;
 
 /// A table a solver adds to a run's results, written as `<name>.csv` in the results folder.
 struct ResultTable {

@@ -1,6 +1,7 @@
 // MPM's stable time step: the Courant condition per point over its own cell (graded grids) or the
 // grid's, with the bulk viscosity's signal speed, and the diagnostic naming the point that sets it.
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -125,6 +126,14 @@ StepLimiter MpmSolver::step_limiter() const {
     }
   }
   if (!comm_.distributed()) {
+    // Each point in the class of its own step, best / rate rounded down to a power of two: 2^-k of
+    // the updates (a point without a signal, at rest and stress-free, in the coarsest class).
+    if (best > 0.0) {
+      double updates = 0.0;
+      for (const double r : rates)
+        updates += std::ldexp(1.0, -(r > 0.0 ? std::min(kMultirateLevels, std::ilogb(best / r)) : kMultirateLevels));
+      out.multirate = static_cast<double>(n) / updates;
+    }
     // The rate of the fastest point beyond the fastest thousandth (n / 1000 points, at least one):
     // the step those few hold the run to, against the one the rest would allow.
     const std::size_t k = static_cast<std::size_t>(std::max<Index>(1, n / 1000));

@@ -11,6 +11,10 @@ namespace ballista {
 void StepTally::add(const StepLimiter& l) {
   if (l.id < 0) return;
   ++samples;
+  if (l.multirate > 0.0) {
+    multirate_sum += l.multirate;
+    ++multirate_samples;
+  }
   auto it = std::find_if(entries.begin(), entries.end(),
                          [&](const Entry& e) { return e.body == l.body && e.viscous == l.viscous; });
   if (it == entries.end()) {
@@ -43,6 +47,7 @@ JsonValue StepTally::json(const Scenario& sc) const {
   out["sample_interval"] = kStepTallyInterval;
   out["samples"] = samples;
   out["max_dt_samples"] = max_dt_samples;
+  if (multirate_samples > 0) out["multirate_mean"] = multirate_sum / static_cast<double>(multirate_samples);
   JsonValue& list = out["entries"];
   list = JsonValue::array();
   // Most samples first; ties keep the order of first appearance.
@@ -81,6 +86,8 @@ void StepTally::save(StateArchive& a) const {
   }
   a.put("run.step_tally.ints", ints);
   a.put("run.step_tally.reals", reals);
+  a.put("run.step_tally.multirate_samples", std::vector<std::int64_t>{multirate_samples});
+  a.put("run.step_tally.multirate_sum", std::vector<double>{multirate_sum});
 }
 
 void StepTally::load(const StateArchive& a) {
@@ -114,6 +121,13 @@ void StepTally::load(const StateArchive& a) {
     entries.push_back(std::move(e));
   }
   if (at != v.size()) throw bad();
+  // A checkpoint written before the multi-rate figure existed has none: the mean is then over the
+  // samples taken after the restart.
+  if (a.has("run.step_tally.multirate_samples")) {
+    multirate_samples = a.ints("run.step_tally.multirate_samples", 1)[0];
+    if (multirate_samples < 0) throw bad();
+    multirate_sum = a.reals("run.step_tally.multirate_sum", 1)[0];
+  }
 }
 
 }  // namespace ballista

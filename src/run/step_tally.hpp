@@ -40,6 +40,8 @@ struct StepTally {
   std::vector<Entry> entries;  ///< in order of first appearance
   std::int64_t samples = 0;    ///< samples a point set (the entries' sum)
   std::int64_t max_dt_samples = 0;  ///< samples at which simulation.max_dt set the step, no point
+  double multirate_sum = 0.0;       ///< sum of StepLimiter::multirate over the samples that have one
+  std::int64_t multirate_samples = 0;
 
   /// Adds one sample (a limiter without a particle is not counted).
   void add(const StepLimiter& l);

@@ -93,6 +93,7 @@ TEST(StepTally, CountsSamplesPointsAndRangesPerBodyAndSignal) {
   for (int k = 0; k < 3; ++k) {
     StepLimiter l = limiter(40 + k % 2, 0, true, 1.6 + 0.1 * k, 1.2e4 + k);
     l.margin = k == 0 ? 0.0 : 1.5 + k;  // the first without a margin (not computed)
+    l.multirate = k == 0 ? 0.0 : 2.0 * k;  // nor a multi-rate figure
     t.add(l);
   }
   t.add(StepLimiter{});  // no particle: not a sample
@@ -104,6 +105,7 @@ TEST(StepTally, CountsSamplesPointsAndRangesPerBodyAndSignal) {
   sc.bodies[1].name = "casing";
   const JsonValue j = t.json(sc);
   EXPECT_EQ(j.at("sample_interval").as_number(), static_cast<double>(kStepTallyInterval));
+  EXPECT_DOUBLE_EQ(j.at("multirate_mean").as_number(), 3.0);  // (2 + 4) / 2: the samples that have one
   const JsonValue& first = j.at("entries").at(std::size_t{0});
   EXPECT_EQ(first.at("body").as_string(), "jet");
   EXPECT_EQ(first.at("signal").as_string(), "bulk_viscosity");
@@ -124,6 +126,7 @@ TEST(StepTally, CapsTheDistinctPointsAndSurvivesACheckpoint) {
   for (std::int64_t id = 0; id < static_cast<std::int64_t>(kStepTallyMaxIds) + 5; ++id) {
     StepLimiter l = limiter(1000 - id, 2, false, 0.9, 4000.0);
     l.margin = 1.0 + 0.01 * static_cast<double>(id);
+    l.multirate = 1.0 + 0.03 * static_cast<double>(id);
     t.add(l);
   }
   t.max_dt_samples = 3;
@@ -137,6 +140,8 @@ TEST(StepTally, CapsTheDistinctPointsAndSurvivesACheckpoint) {
   back.load(a);
   ASSERT_EQ(back.samples, t.samples);
   EXPECT_EQ(back.max_dt_samples, 3);
+  EXPECT_EQ(back.multirate_sum, t.multirate_sum);
+  EXPECT_EQ(back.multirate_samples, t.multirate_samples);
   ASSERT_EQ(back.entries.size(), t.entries.size());
   for (std::size_t k = 0; k < t.entries.size(); ++k) {
     EXPECT_EQ(back.entries[k].body, t.entries[k].body);
@@ -184,6 +189,21 @@ TEST(StepTally, TheFreeFlightRunSamplesTheFastBlock) {
   EXPECT_DOUBLE_EQ(tally["entries"][0]["share"].as<double>(), 1.0);
   // Every point of the block alike to round-off (J = 1 in free flight).
   EXPECT_NEAR(tally["entries"][0]["margin_mean"].as<double>(), 1.0, 1e-12);
+  // Both blocks' rates within 5 % of each other ((c + 300) / (c + 10), c = 6.2 km/s): one class,
+  // nothing a per-point step would save.
+  EXPECT_DOUBLE_EQ(tally["multirate_mean"].as<double>(), 1.0);
+}
+
+// On a graded grid the slow block's 256 points in 0.25 mm cells hold the step; the fast block's 64
+// in 1 mm cells could take 4 (c + 10) / (c + 300) = 3.8 times it, rounded down to 2: a per-point
+// step would update 256 + 64 / 2 points where one step for all updates 320, 10/9 as many.
+TEST(StepTally, TheMultirateFigureCountsEachPointInTheClassOfItsOwnStep) {
+  const YAML::Node st = test_step_limiter::free_flight_statistics(
+      "{dimension: plane_strain, end_time: 2.0e-6}",
+      "grid: {lower: [0, 0], upper: [0.03, 0.01], cell_size: 1.0e-3,"
+      " refine: [{axis: x, from: 0.0, to: 0.008, cell_size: 0.25e-3}]}");
+  ASSERT_EQ(st["particles"].as<long>(), 320);
+  EXPECT_NEAR(st["step_set_by"]["multirate_mean"].as<double>(), 320.0 / 288.0, 1e-12);
 }
 
 TEST(StepTally, AStepSetByMaxDtIsNoPoints) {
