@@ -106,7 +106,7 @@ StepLimiter MpmSolver::step_limiter() const {
   const auto* body = points_.ints(kBodyIndex);
   StepLimiter out;
   double best = -1.0;
-  // Every point's rate, for the margin (one rank only: see below).
+  // Every point's rate, for the multi-rate figure and the margin (one rank only: see below).
   std::vector<double> rates(comm_.distributed() ? 0 : static_cast<std::size_t>(n));
   for (Index p = 0; p < n; ++p) {
     const double l = g.graded ? shortest_cell_edge(g, x[p], dim_) : g.h;
