@@ -56,6 +56,26 @@ Index light_explosives(const Scenario& sc, FieldStore& points, int ppc_override)
   const auto* x0 = points.view(kReferencePosition);
   std::vector<char> explosive(static_cast<size_t>(n), 0);
   for (Index p = 0; p < n; ++p) explosive[p] = is_explosive_material[static_cast<size_t>(mat[p])];
+  // On a graded grid the points are as fine as the cells they start in (twice their half-size):
+  // the charge is one lattice only inside cells of one size.
+  if (sc.grid.graded() && points.has(kHalfSize)) {
+    const int dim = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
+    const auto* half = points.view(kHalfSize);
+    double local = 0.0;
+    for (Index p = 0; p < n; ++p) {
+      if (!explosive[p]) continue;
+      for (int a = 0; a < dim; ++a) {
+        const double s = 2.0 * half[p][a];
+        if (local == 0.0) local = s;
+        if (std::abs(s / local - 1.0) > 1e-9)
+          deck_error("", fmt::format("the explosive lies in cells of different sizes on the graded grid (point "
+                                     "spacings {:.6g} and {:.6g} m near ({:.6g}, {:.6g}) m): the program burn needs "
+                                     "one lattice; put the charge inside one band of grid.refine",
+                                     local, s, x0[p][0], x0[p][1]));
+      }
+    }
+    if (local > 0.0) spacing = local;
+  }
   std::vector<Detonator> detonators;
   for (const DetonatorSpec& d : det.points) detonators.push_back({d.position, d.time});
   ProgramBurnOptions opt;
