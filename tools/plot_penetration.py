@@ -118,6 +118,8 @@ def convergence_note(p):
     if cells is not None:
         return (f"NOT CONVERGED: the penetrator is {cells:.2g} cells across its radius "
                 "(depth and rate converge from about 4; docs/validation.md)")
+    if p.get("formed_jet"):
+        return "CONVERGENCE NOT KNOWN: the jet formed in the run; only a grid study of the deck says"
     return ""
 
 

@@ -48,7 +48,7 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
   penetrator_ = body_index(sc, spec_.penetrator);
   target_ = body_index(sc, spec_.target);
   const BodySpec& pb = sc.bodies.at(penetrator_);
-  const PenetratorSpec& ps = pb.penetrator;
+  const PenetratorSpec& ps = spec_.flight;
   axis_ = ps.axis;
   direction_ = ps.direction;
   surface_ = spec_.surface;
@@ -58,8 +58,9 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
   segments_ = std::max<int>(1, static_cast<int>(pb.segments.size()));
   rho_p_ = density_of(sc, pb.material);
   rho_t_ = density_of(sc, sc.bodies.at(target_).material);
-  length_ = ps.length;
-  speed_ = ps.speed;
+  // A formed jet's speed and length are not known before the run (reported as null).
+  length_ = spec_.formed_jet ? kNotMeasured : ps.length;
+  speed_ = spec_.formed_jet ? kNotMeasured : ps.speed;
   cell_ = sc.grid.cell_size;
   // A graded grid's finest cells across and along the line of flight, where the jet is.
   lateral_cell_ = axial_cell_ = cell_;
@@ -104,6 +105,10 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
         lateral_geometry_ == LateralGeometry::PlaneStrain ? 2.0 * radius : std::numbers::pi * radius * radius;
     return JetSegmentLine{direction_ * velocity[axis_], rho_p_ * section * section_fraction, length};
   };
+  if (spec_.formed_jet) {  // no segments to follow behind the layers, no radius known in advance
+    radius_cells_ = kNotMeasured;
+    return;
+  }
   if (pb.segments.empty()) {  // a rod: one piece at the penetrator's speed
     Vec3 v{};
     v[axis_] = direction_ * ps.speed;
@@ -227,10 +232,13 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   out = JsonValue::object();
   out["penetrator"] = spec_.penetrator;
   out["target"] = spec_.target;
-  out["impact_velocity"] = speed_;
+  // A formed jet's speed, length and radius are the run's to find, not the deck's: null.
+  const auto known = [](double v) { return std::isfinite(v) ? JsonValue(v) : JsonValue(); };
+  if (spec_.formed_jet) out["formed_jet"] = true;
+  out["impact_velocity"] = known(speed_);
   out["penetrator_density"] = rho_p_;
   out["target_density"] = rho_t_;
-  out["penetrator_length"] = length_;
+  out["penetrator_length"] = known(length_);
   out["segments"] = segments_;
   out["surface"] = surface_;
 
@@ -288,11 +296,11 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   }
   // Hydrodynamic theory (thesis eq. 3.1-3.4): U_h and the Birkhoff depth L sqrt(rho_p/rho_t);
   // a segmented penetrator also gets the fully particulated bound (lambda = 2, eq. 3.4).
-  const bool have = rho_p_ > 0 && rho_t_ > 0;
+  const bool have = rho_p_ > 0 && rho_t_ > 0 && !spec_.formed_jet;
   const double uh = have ? penetration::hydrodynamic_penetration_velocity(speed_, rho_p_, rho_t_) : kNotMeasured;
-  out["hydrodynamic_rate"] = uh;
+  out["hydrodynamic_rate"] = known(uh);
   out["rate_over_hydrodynamic"] = fit.ok && uh > 0 ? JsonValue(fit.slope / uh) : JsonValue();
-  out["cells_across_radius"] = radius_cells_;
+  out["cells_across_radius"] = known(radius_cells_);
   // The radius's cells are the finest; a tunnel that runs on beyond the refined band ends in coarser
   // ones, and its depth is not the band's answer.
   // Points far beyond the tunnel's end (beyond_tunnel) open no tunnel: the channel ends where the
@@ -311,7 +319,7 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   out["path_cells"] = cells;
   out["resolved"] = radius_cells_ >= kResolvedRadiusCells && along;
   const double ph = have ? penetration::birkhoff_depth(length_, rho_p_, rho_t_) : kNotMeasured;
-  out["hydrodynamic_depth"] = ph;
+  out["hydrodynamic_depth"] = known(ph);
   JsonValue& an = out["analytic"];
   an = JsonValue::array();
   if (have) {
@@ -505,7 +513,7 @@ JsonValue PenetrationProbe::layer_holes(const FieldStore& pts) const {
 void PenetrationProbe::record_layer_exits(const FieldStore& pts, double front, double time, double scale) {
   for (std::size_t k = 0; k < layers_.size(); ++k) {
     LayerExit& e = layer_exit_[k];
-    if (e.reached || front < depth_of_coordinate(layer_face_[k]) + layer_thickness_[k]) continue;
+    if (e.reached || jet_lines_.empty() || front < depth_of_coordinate(layer_face_[k]) + layer_thickness_[k]) continue;
     e.reached = true;
     e.sample = t_.size();
     e.time = time;
@@ -522,6 +530,7 @@ JsonValue PenetrationProbe::jet_behind(std::size_t k) const {
     if (depth_of_coordinate(layer_face_[j]) <= depth_of_coordinate(layer_face_[k]) && rho_p_ > 0 &&
         layer_density_[j] > 0)
       hydro += layer_thickness_[j] * std::sqrt(layer_density_[j] / rho_p_);
+  if (spec_.formed_jet) return JsonValue();  // no segments whose consumption could be followed
   JsonValue j = JsonValue::object();
   const LayerExit& e = layer_exit_[k];
   j["reached"] = e.reached;

@@ -691,7 +691,8 @@ class Reader {
     }
   }
 
-  /// Penetration measurements (thesis seed 000 ch. 5, §7.2): the penetrator must be a rod or jet.
+  /// Penetration measurements (thesis seed 000 ch. 5, §7.2): the penetrator must be a rod or jet,
+  /// or a shaped charge's liner whose jet forms in the run.
   void penetration() {
     if (!root_.has("penetration")) return;  // (an empty map would re-read as a section to fill)
     DeckNode n = root_.map("penetration", true);
@@ -701,10 +702,20 @@ class Reader {
     pe.penetrator = n.string("penetrator");
     const BodySpec* pb = find_body(pe.penetrator);
     if (!pb) n.fail("penetrator", "unknown body '" + pe.penetrator + "'" + suggest(pe.penetrator, body_names()));
-    if (pb->penetrator.kind.empty())
+    pe.formed_jet = pb->penetrator.kind.empty() && pb->shape.type == "liner";
+    if (pb->penetrator.kind.empty() && !pe.formed_jet)
       n.fail("penetrator",
              "body '" + pe.penetrator +
-                 "' is not a rod or jet (give it `rod:` or `jet:` instead of `shape:`)");
+                 "' is not a rod, a jet or a liner (give it `rod:` or `jet:` instead of `shape:`, or a `liner` "
+                 "shape whose jet forms in the run)");
+    pe.flight = pb->penetrator;
+    if (pe.formed_jet) {  // the jet leaves the liner along its axis, from the apex towards the mouth
+      pe.flight = PenetratorSpec{};
+      pe.flight.kind = "liner";
+      pe.flight.axis = pb->shape.axis;
+      pe.flight.direction = 1.0;
+      pe.flight.nose = pb->shape.center;
+    }
     pe.target = n.string("target");
     const BodySpec* tb = find_body(pe.target);
     if (!tb) n.fail("target", "unknown body '" + pe.target + "'" + suggest(pe.target, body_names()));
@@ -712,7 +723,7 @@ class Reader {
     // Default surface: the target's face towards the incoming penetrator.
     Vec3 lo, hi;
     shape_bounds(tb->shape, ndim(), lo, hi);
-    const PenetratorSpec& ps = pb->penetrator;
+    const PenetratorSpec& ps = pe.flight;
     const double face = ps.direction < 0 ? hi[ps.axis] : lo[ps.axis];
     pe.surface = n.number("surface", face, NumberRange::any("m"));
     // "One cell": on a graded grid the finest across the line of flight, where the jet is.

@@ -135,6 +135,11 @@ void penetration_lines(const JsonValue& p, bool completed, std::vector<std::stri
         "NOT CONVERGED: the penetrator is {:.3g} cells across its radius; depth and rate are not converged "
         "at this resolution (docs/validation.md)",
         cells));
+  else if (p.contains("formed_jet") && !std::isfinite(level))
+    out.push_back(
+        "CONVERGENCE NOT KNOWN: the jet formed in this run, so its cells across the radius were not known before "
+        "it; only a grid study of this deck says how far its depth and holes are from converged "
+        "(docs/penetration.md, \"A jet formed in the run\")");
 }
 
 /// A few points holding the stable step for most of the run (run/step_tally.hpp): the run's cost

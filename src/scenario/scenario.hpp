@@ -262,7 +262,13 @@ struct ConvergenceRecord {
 
 struct PenetrationSpec {
   bool enabled = false;
-  std::string penetrator;      ///< a rod or jet body
+  std::string penetrator;      ///< a rod or jet body, or a shaped charge's `liner` (formed_jet)
+  /// The penetrator is a `liner` body: its jet forms in the run (the charge fired at the target in
+  /// one deck), so its speed, length and radius are not known before the run.
+  bool formed_jet = false;
+  /// The line of flight: the rod's or jet's own; for a formed jet the liner's axis, from its apex
+  /// towards its mouth (geometry/revolution.hpp), through the apex (`nose`); lengths and speed 0.
+  PenetratorSpec flight;
   std::string target;          ///< body whose struck face is the depth origin
   double surface = 0.0;        ///< m: axial coordinate of the target's struck face
   double axis_radius = 0.0;    ///< m: radius around the axis used to find the cavity tip (0: one cell)

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "analysis/penetration_probe.hpp"
 #include "deck/deck_reader.hpp"
@@ -217,6 +218,62 @@ TEST(PenetrationProbe, JetRemainderBehindALayer) {
   earlier.finish(pts, dir.path.string(), 1e-6, out3);
   EXPECT_EQ(out2.at("holes").at("plate").at("jet_behind").at("consumed_length").as_number(), 0.5e-3);
   EXPECT_FALSE(out3.at("holes").at("plate").at("jet_behind").at("reached").as_bool());
+}
+
+// A shaped charge's liner as the penetrator: its jet forms in the run and flies along the liner's
+// axis from the apex (y = 2 mm) towards the mouth (+y), through a plate into a target above it.
+const char* kFormedJetDeck = R"(simulation: {dimension: axisymmetric, end_time: 1.0e-6}
+grid: {lower: [0, 0], upper: [0.02, 0.06], cell_size: 1.0e-3}
+materials:
+  rock: {model: linear_elastic, density: 2300, youngs_modulus: 20e9, poisson_ratio: 0.2}
+  steel: {model: linear_elastic, density: 7850, youngs_modulus: 200e9, poisson_ratio: 0.3}
+  cu: {model: linear_elastic, density: 8930, youngs_modulus: 120e9, poisson_ratio: 0.34}
+bodies:
+  - {name: liner, material: cu, shape: {type: liner, center: [0, 0.002], axis: y, angle: 60, thickness: 1.5e-3, diameter: 0.016}}
+  - {name: plate, material: steel, shape: {type: cylinder, center: [0, 0.03], axis: y, radius: 0.009, length: 0.002}}
+  - {name: target, material: rock, shape: {type: cylinder, center: [0, 0.034], axis: y, radius: 0.009, length: 0.02}}
+penetration: {penetrator: liner, target: target}
+)";
+
+TEST(PenetrationProbe, AJetFormedInTheRunFliesAlongItsLinersAxisAndReportsNoTheory) {
+  const Scenario sc = parse_deck(kFormedJetDeck, "formed.yaml");
+  ASSERT_TRUE(sc.penetration.formed_jet);
+  EXPECT_EQ(sc.penetration.flight.axis, 1);
+  EXPECT_EQ(sc.penetration.flight.direction, 1.0);    // from the apex towards the mouth
+  EXPECT_EQ(sc.penetration.surface, 0.034);           // the target's face towards the liner
+  EXPECT_EQ(sc.penetration.layers, std::vector<std::string>{"plate"});
+  auto solver = make_solver(sc);
+  FieldStore& pts = solver->points();
+  PenetrationProbe probe(sc);
+  auto* x = pts.view<Vec3>("x");
+  const auto* bid = pts.ints("body");
+  // One liner point 5 mm into the target (its centre): the depth is +y below the face.
+  for (Index p = 0; p < pts.size(); ++p)
+    if (bid[p] == 0) {
+      x[p] = Vec3{{0.0005, 0.039, 0}};
+      break;
+    }
+  const auto row = probe.sample(pts, true, 1e-6, solver->reporting_scale());
+  EXPECT_NEAR(row[1], 0.005, 1e-15);
+  EXPECT_NEAR(probe.depth_of(Vec3{{0, 0.030, 0}}), -0.004, 1e-15);
+
+  test::TempDir dir;
+  JsonValue out;
+  probe.finish(pts, dir.path.string(), 1e-6, out);
+  EXPECT_TRUE(out.at("formed_jet").as_bool());
+  EXPECT_NEAR(out.at("final_depth").as_number(), 0.005, 1e-15);
+  // What only the deck of a rod or a jet table states is not known: null, not a number.
+  for (const char* key : {"impact_velocity", "penetrator_length", "hydrodynamic_rate", "hydrodynamic_depth",
+                          "cells_across_radius", "rate_over_hydrodynamic"})
+    EXPECT_EQ(out.at(key).kind(), JsonValue::Kind::Null) << key;
+  EXPECT_FALSE(out.at("resolved").as_bool());
+  EXPECT_EQ(out.at("analytic").size(), 0u);
+  EXPECT_EQ(out.at("holes").at("plate").at("jet_behind").kind(), JsonValue::Kind::Null);
+  // A rod's summary has no formed_jet key (its summary is what it was).
+  const Scenario rod = parse_deck(kLayeredDeck, "layers.yaml");
+  EXPECT_FALSE(rod.penetration.formed_jet);
+  auto rod_solver = make_solver(rod);
+  EXPECT_FALSE(summary_of_one_sample(rod, *rod_solver).contains("formed_jet"));
 }
 
 TEST(PenetrationProbe, HoleOfADisplacedPlateIsMeasuredInThePlate) {

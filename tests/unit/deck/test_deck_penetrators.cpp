@@ -167,7 +167,7 @@ TEST(DeckPenetrators, StageErrorsAreNamed) {
             std::string::npos);
   EXPECT_NE(error_of(deck("    rod: {nose: [0, 0.052], diameter: 4e-3, length: 0.05, speed: 1700}\n",
                           "penetration: {penetrator: target, target: pen}\n"))
-                .find("is not a rod or jet"),
+                .find("is not a rod, a jet or a liner"),
             std::string::npos);
 }
 
