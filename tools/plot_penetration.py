@@ -119,7 +119,7 @@ def convergence_note(p):
         return (f"NOT CONVERGED: the penetrator is {cells:.2g} cells across its radius "
                 "(depth and rate converge from about 4; docs/validation.md)")
     if p.get("formed_jet"):
-        return "CONVERGENCE NOT KNOWN: the jet formed in the run; only a grid study of the deck says"
+        return "CONVERGENCE NOT KNOWN: the jet formed in the run; a grid study of the deck would say how far"
     return ""
 
 
