@@ -10,7 +10,7 @@ the charge plane). This script does the second from the first: it takes the one 
 --time (formed and in free flight, before its tip reaches the casing), fires it as a table at the
 demo's 0.5 mm cells along the flight (the one run's), and prints the two runs' depth and holes side
 by side. What the table leaves out is what the comparison measures: the products behind the jet,
-the slug and the liner slower than --min-speed, and the velocity spread inside each piece.
+the slug and the liner slower than 2 km/s, and the velocity spread inside each piece.
 
   /usr/bin/python3 validation/charge_handoff.py --ballista build/ballista --out out/handoff \\
       [--one-run DIR] [--time 20e-6] [--segments 10] [--threads 2]
@@ -71,7 +71,7 @@ def main():
     ap.add_argument("--one-run", help="a finished run of examples/shaped_charge_perforation.yaml")
     ap.add_argument("--time", type=float, default=20.0e-6,
                     help="when the jet is written as a table, s after the detonator (its tip reaches the casing "
-                         "at about 25 us)")
+                         "at about 27 us)")
     ap.add_argument("--segments", type=int, default=10, help="pieces of equal mass in the table")
     ap.add_argument("--threads", type=int, default=2)
     a = ap.parse_args()

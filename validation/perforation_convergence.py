@@ -304,7 +304,8 @@ def extract(s, out, points):
         "tunnel_volume": tunnel_volume(out),
         # What the jet has left behind the casing and behind the cement, against the hydrodynamic
         # erosion T sqrt(rho_layer / rho_jet) (thesis eq. 3.2 inverted; docs/penetration.md).
-        "jet_behind": {layer: {k: holes.get(layer, {}).get("jet_behind", {}).get(k)
+        # (null for a jet formed in the run: it has no segments to follow)
+        "jet_behind": {layer: {k: (holes.get(layer, {}).get("jet_behind") or {}).get(k)
                                for k in ("time", "consumed_length", "remaining_length", "tip_velocity",
                                          "tip_initial_velocity", "hydrodynamic_consumed_length")}
                        for layer in ("casing", "cement")},

@@ -221,8 +221,9 @@ void PenetrationProbe::check_spent(bool all_entered) {
   if (entered_sample_ < 0 && all_entered) entered_sample_ = newest;
   if (!(spec_.end_when_spent > 0.0) || spent_sample_ >= 0 || entered_sample_ < 0) return;
   // Fallen since the last segment came in, so that a slow last segment, whose own energy may be
-  // below the share of the early peak, is not taken for a spent jet the moment it enters.
-  const double at_entry = kinetic_[static_cast<std::size_t>(entered_sample_)];
+  // below the share of the early peak, is not taken for a spent jet the moment it enters. A formed
+  // jet is all in at t = 0, at rest: its energy must have fallen from its peak instead.
+  const double at_entry = spec_.formed_jet ? peak_kinetic_ : kinetic_[static_cast<std::size_t>(entered_sample_)];
   const double now = kinetic_.back();
   if (peak_kinetic_ > 0.0 && now < at_entry && now <= spec_.end_when_spent * peak_kinetic_) spent_sample_ = newest;
 }
@@ -522,6 +523,7 @@ void PenetrationProbe::record_layer_exits(const FieldStore& pts, double front, d
 }
 
 JsonValue PenetrationProbe::jet_behind(std::size_t k) const {
+  if (spec_.formed_jet) return JsonValue();  // no segments whose consumption could be followed
   // Hydrodynamic erosion (thesis eq. 3.1-3.2, P = L sqrt(rho_p / rho_t)): a layer of thickness T
   // consumes T sqrt(rho_layer / rho_p) of jet, summed over the layers the jet has gone through
   // (those whose struck face is not below this one's).
@@ -530,7 +532,6 @@ JsonValue PenetrationProbe::jet_behind(std::size_t k) const {
     if (depth_of_coordinate(layer_face_[j]) <= depth_of_coordinate(layer_face_[k]) && rho_p_ > 0 &&
         layer_density_[j] > 0)
       hydro += layer_thickness_[j] * std::sqrt(layer_density_[j] / rho_p_);
-  if (spec_.formed_jet) return JsonValue();  // no segments whose consumption could be followed
   JsonValue j = JsonValue::object();
   const LayerExit& e = layer_exit_[k];
   j["reached"] = e.reached;

@@ -739,9 +739,15 @@ class Reader {
     pe.end_when_spent = n.number("end_when_spent", 0.0, NumberRange::between(0.0, 1.0, false, true, "1"));
     pe.rate_half_window = static_cast<int>(n.integer("rate_half_window", 3, 1, 1000));
     pe.channel_bins = static_cast<int>(n.integer("channel_bins", 0, 0, 100000));
+    // Default layers: every other body but a charge (explosive), which drives the penetrator and is
+    // not perforated by it.
     std::vector<std::string> others;
-    for (const BodySpec& b : sc_.bodies)
-      if (b.name != pe.penetrator && b.name != pe.target) others.push_back(b.name);
+    for (const BodySpec& b : sc_.bodies) {
+      bool charge = false;
+      for (const MaterialSpec& m : sc_.materials)
+        if (m.name == b.material && m.model == "explosive") charge = true;
+      if (b.name != pe.penetrator && b.name != pe.target && !charge) others.push_back(b.name);
+    }
     pe.layers = n.strings("layers", others);
     for (const std::string& l : pe.layers) {
       if (!find_body(l)) n.fail("layers", "unknown body '" + l + "'" + suggest(l, body_names()));

@@ -2,10 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/error.hpp"
 #include "core/point_fields.hpp"
+#include "geometry/grid_axes.hpp"
 #include "geometry/seeding.hpp"
 #include "materials/explosive_eos.hpp"
 #include "points/program_burn.hpp"
@@ -56,22 +59,30 @@ Index light_explosives(const Scenario& sc, FieldStore& points, int ppc_override)
   const auto* x0 = points.view(kReferencePosition);
   std::vector<char> explosive(static_cast<size_t>(n), 0);
   for (Index p = 0; p < n; ++p) explosive[p] = is_explosive_material[static_cast<size_t>(mat[p])];
-  // On a graded grid the points are as fine as the cells they start in (twice their half-size):
-  // the charge is one lattice only inside cells of one size.
-  if (sc.grid.graded() && points.has(kHalfSize)) {
+  // On a graded grid the points are as fine as the cells they were seeded in (particles_per_cell
+  // per cell and axis): the charge is one lattice only if those cells are all squares of one size.
+  // (The cells, not the points' half-sizes: a cut_lattice point at the surface is smaller.)
+  if (sc.grid.graded()) {
     const int dim = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
-    const auto* half = points.view(kHalfSize);
+    const GridAxes axes = build_grid_axes(sc.grid, dim);
+    const auto* body = points.ints(kBodyIndex);
     double local = 0.0;
     for (Index p = 0; p < n; ++p) {
       if (!explosive[p]) continue;
+      const BodySpec& b = sc.bodies[static_cast<size_t>(body[p])];
+      const int ppc = ppc_override > 0 ? ppc_override : b.particles_per_cell;
       for (int a = 0; a < dim; ++a) {
-        const double s = 2.0 * half[p][a];
+        const std::vector<double>& node = axes.node[a];
+        const auto hi = std::upper_bound(node.begin(), node.end(), x0[p][a]);
+        const auto c = std::clamp<std::ptrdiff_t>(hi - node.begin() - 1, 0, static_cast<std::ptrdiff_t>(node.size()) - 2);
+        const double s = (node[static_cast<size_t>(c) + 1] - node[static_cast<size_t>(c)]) / ppc;
         if (local == 0.0) local = s;
         if (std::abs(s / local - 1.0) > 1e-9)
-          deck_error("", fmt::format("the explosive lies in cells of different sizes on the graded grid (point "
-                                     "spacings {:.6g} and {:.6g} m near ({:.6g}, {:.6g}) m): the program burn needs "
-                                     "one lattice; put the charge inside one band of grid.refine",
-                                     local, s, x0[p][0], x0[p][1]));
+          deck_error("", fmt::format("the explosive lies in cells of different sizes or shapes on the graded grid "
+                                     "(point spacings {:.6g} and {:.6g} m near ({:.6g}, {:.6g}, {:.6g}) m): the program "
+                                     "burn needs one lattice; put the charge inside one band of grid.refine along "
+                                     "every axis",
+                                     local, s, x0[p][0], x0[p][1], x0[p][2]));
       }
     }
     if (local > 0.0) spacing = local;

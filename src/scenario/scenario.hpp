@@ -279,7 +279,8 @@ struct PenetrationSpec {
   int rate_half_window = 3;    ///< samples each side of the local-polynomial derivative
   int channel_bins = 0;        ///< bins of the channel profile (0: one per cell of the final depth)
   /// Bodies the penetrator perforates before the target (casing, cement): the hole in each is
-  /// measured (entrance and smallest diameter). Default: every body but the penetrator and target.
+  /// measured (entrance and smallest diameter). Default: every body but the penetrator, the target
+  /// and any explosive charge.
   std::vector<std::string> layers;
   /// `convergence_record`: the grid study of this deck; the run says which of its levels it is
   /// and how far that level is from converged.

@@ -221,18 +221,22 @@ TEST(PenetrationProbe, JetRemainderBehindALayer) {
 }
 
 // A shaped charge's liner as the penetrator: its jet forms in the run and flies along the liner's
-// axis from the apex (y = 2 mm) towards the mouth (+y), through a plate into a target above it.
+// axis from the apex (y = 2 mm) towards the mouth (+y), through a plate into a target above it; the
+// charge behind the apex is not a layer.
 const char* kFormedJetDeck = R"(simulation: {dimension: axisymmetric, end_time: 1.0e-6}
 grid: {lower: [0, 0], upper: [0.02, 0.06], cell_size: 1.0e-3}
 materials:
   rock: {model: linear_elastic, density: 2300, youngs_modulus: 20e9, poisson_ratio: 0.2}
   steel: {model: linear_elastic, density: 7850, youngs_modulus: 200e9, poisson_ratio: 0.3}
   cu: {model: linear_elastic, density: 8930, youngs_modulus: 120e9, poisson_ratio: 0.34}
+  tnt: {preset: tnt}
 bodies:
   - {name: liner, material: cu, shape: {type: liner, center: [0, 0.002], axis: y, angle: 60, thickness: 1.5e-3, diameter: 0.016}}
+  - {name: charge, material: tnt, shape: {type: cylinder, center: [0, 0], axis: y, radius: 0.009, length: 0.002}}
   - {name: plate, material: steel, shape: {type: cylinder, center: [0, 0.03], axis: y, radius: 0.009, length: 0.002}}
   - {name: target, material: rock, shape: {type: cylinder, center: [0, 0.034], axis: y, radius: 0.009, length: 0.02}}
-penetration: {penetrator: liner, target: target}
+detonation: {points: [{position: [0, 0.0005], time: 0}]}
+penetration: {penetrator: liner, target: target, end_when_spent: 0.01}
 )";
 
 TEST(PenetrationProbe, AJetFormedInTheRunFliesAlongItsLinersAxisAndReportsNoTheory) {
@@ -241,7 +245,7 @@ TEST(PenetrationProbe, AJetFormedInTheRunFliesAlongItsLinersAxisAndReportsNoTheo
   EXPECT_EQ(sc.penetration.flight.axis, 1);
   EXPECT_EQ(sc.penetration.flight.direction, 1.0);    // from the apex towards the mouth
   EXPECT_EQ(sc.penetration.surface, 0.034);           // the target's face towards the liner
-  EXPECT_EQ(sc.penetration.layers, std::vector<std::string>{"plate"});
+  EXPECT_EQ(sc.penetration.layers, std::vector<std::string>{"plate"});  // not the charge
   auto solver = make_solver(sc);
   FieldStore& pts = solver->points();
   PenetrationProbe probe(sc);
@@ -269,6 +273,26 @@ TEST(PenetrationProbe, AJetFormedInTheRunFliesAlongItsLinersAxisAndReportsNoTheo
   EXPECT_FALSE(out.at("resolved").as_bool());
   EXPECT_EQ(out.at("analytic").size(), 0u);
   EXPECT_EQ(out.at("holes").at("plate").at("jet_behind").kind(), JsonValue::Kind::Null);
+
+  // end_when_spent: the liner is all in and at rest at t = 0, so its energy must fall from its peak
+  // (not from its energy when it came in, which is 0) to the share of it.
+  PenetrationProbe spent(sc);
+  auto* v = pts.view<Vec3>("v");
+  const auto set_speed = [&](double s) {
+    for (Index p = 0; p < pts.size(); ++p)
+      if (bid[p] == 0) v[p] = Vec3{{0, s, 0}};
+  };
+  set_speed(0.0);
+  spent.sample(pts, true, 0.0, solver->reporting_scale());
+  set_speed(1000.0);
+  spent.sample(pts, true, 1e-6, solver->reporting_scale());
+  EXPECT_FALSE(spent.spent());
+  set_speed(150.0);  // 2.25 % of the peak energy: above the 1 % share
+  spent.sample(pts, true, 2e-6, solver->reporting_scale());
+  EXPECT_FALSE(spent.spent());
+  set_speed(90.0);  // 0.81 %
+  spent.sample(pts, true, 3e-6, solver->reporting_scale());
+  EXPECT_TRUE(spent.spent());
   // A rod's summary has no formed_jet key (its summary is what it was).
   const Scenario rod = parse_deck(kLayeredDeck, "layers.yaml");
   EXPECT_FALSE(rod.penetration.formed_jet);

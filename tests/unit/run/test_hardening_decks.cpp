@@ -183,6 +183,10 @@ TEST(HardeningDecks, AChargeOnAGradedGridIsLitOnTheLatticeOfItsCells) {
     ++checked;
   }
   EXPECT_EQ(checked, 48 * 64);  // 6 mm x 8 mm at 0.125 mm (two points per 0.25 mm cell and axis)
+  // The burn takes burn_cells (2) lattice spacings of the points' own lattice at D.
+  const auto* burn = pts.real("burn_time");
+  for (Index p = 0; p < pts.size(); ++p)
+    if (bid[p] == 0) EXPECT_NEAR(burn[p], 2.0 * 0.125e-3 / D, 1e-12 * (0.25e-3 / D)) << p;
   // A charge across cells of two sizes is not one lattice: refused, saying what to do.
   const std::string across = refusal(sandwich("mpm"), {"grid.refine=[{axis: x, from: -0.002, to: 0.005, cell_size: "
                                                        "0.25e-3}, {axis: y, from: -0.005, to: 0.005, cell_size: 0.25e-3}]"});

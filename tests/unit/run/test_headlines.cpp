@@ -97,6 +97,23 @@ TEST(Headlines, AnUnresolvedRunSaysWhy) {
   EXPECT_EQ(lines_with(headline_lines(past), "NOT CONVERGED"), 0);
 }
 
+TEST(Headlines, AJetFormedInTheRunSaysItsConvergenceIsNotKnown) {
+  // Its cells across the radius are not known before the run (null): no claim either way.
+  JsonValue formed = summary("completed", false, false);
+  JsonValue& p = formed["penetration"];
+  p["formed_jet"] = true;
+  p["cells_across_radius"] = JsonValue();
+  p["resolved"] = false;
+  std::vector<std::string> l = headline_lines(formed);
+  EXPECT_EQ(lines_with(l, "CONVERGENCE NOT KNOWN: the jet formed in this run"), 1);
+  EXPECT_EQ(lines_with(l, "NOT CONVERGED"), 0);
+  // Without the key (a rod or a jet table) it says nothing of the kind.
+  JsonValue rod = summary("completed", false, false);
+  rod["penetration"]["cells_across_radius"] = JsonValue();
+  rod["penetration"]["resolved"] = false;
+  EXPECT_EQ(lines_with(headline_lines(rod), "CONVERGENCE NOT KNOWN"), 0);
+}
+
 }  // namespace
 
 TEST(Headlines, PenetratorPointsBeyondTheTunnelDoNotSetTheDepth) {
