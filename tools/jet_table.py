@@ -113,6 +113,14 @@ def jet_table(run, time=None, segments=10, min_speed=2000.0, plane=None, body=No
     return rows, report
 
 
+def write_csv(rows, path):
+    """The table as a deck's `jet: {file: ...}` reads it, every number at full precision."""
+    with open(path, "w") as f:
+        f.write("radius,length,velocity,insert_time\n")
+        for r in rows:
+            f.write(",".join(repr(x) for x in r) + "\n")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("run")

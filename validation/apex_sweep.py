@@ -38,7 +38,7 @@ from case_runs import run_once, summary
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(REPO, "tools"))
-from jet_table import jet_table  # noqa: E402
+from jet_table import jet_table, write_csv  # noqa: E402
 from perforation_convergence import level_sets  # noqa: E402
 
 FORMATION = os.path.join(REPO, "examples", "shaped_charge_jet_formation.yaml")
@@ -92,10 +92,7 @@ def one_angle(a, angle):
         ["--threads", str(a.threads), "--set", f"grid.cell_size={a.formation_cell!r}"] + formation_sets(angle))
     rows, rep = jet_table(form, segments=a.segments)
     table = os.path.join(folder, "jet.csv")
-    with open(table, "w") as f:
-        f.write("radius,length,velocity,insert_time\n")
-        for r in rows:
-            f.write(",".join(repr(x) for x in r) + "\n")
+    write_csv(rows, table)
     sets = ["--threads", str(a.threads)]
     far = float(yaml.safe_load(open(PERFORATION))["grid"]["cell_size"])
     for s in (level_sets(a.band_cell, far, BAND, PATH) if a.band_cell else []) + a.set:

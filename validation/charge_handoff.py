@@ -15,7 +15,8 @@ the slug and the liner slower than 2 km/s, and the velocity spread inside each p
   /usr/bin/python3 validation/charge_handoff.py --ballista build/ballista --out out/handoff \\
       [--one-run DIR] [--time 20e-6] [--segments 10] [--threads 2]
 
---one-run reads a finished run of the example (else the script runs it into OUT/one_run). Writes
+--one-run reads a run of the example (the script runs it into that folder, or OUT/one_run, if it has
+not run). Writes
 handoff.json and handoff.md in --out; a run whose folder holds a summary.json is not run again.
 """
 import argparse
@@ -23,22 +24,14 @@ import json
 import os
 import sys
 
-from apex_sweep import perforation_deck
-from case_runs import run_once, summary
+from apex_sweep import perforation_deck, run
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(REPO, "tools"))
-from jet_table import jet_table  # noqa: E402
+from jet_table import jet_table, write_csv  # noqa: E402
 
 ONE_RUN = os.path.join(REPO, "examples", "shaped_charge_perforation.yaml")
-
-
-def finished(folder, what):
-    s = summary(folder)
-    if s is None or s.get("status") != "completed":
-        raise SystemExit(f"{what} in {folder} did not complete (its summary.json, if any, says why)")
-    return s
 
 
 def readings(s):
@@ -68,7 +61,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--ballista", default=os.path.join(REPO, "build", "ballista"))
     ap.add_argument("--out", required=True)
-    ap.add_argument("--one-run", help="a finished run of examples/shaped_charge_perforation.yaml")
+    ap.add_argument("--one-run", help="a run of examples/shaped_charge_perforation.yaml (run into it if it has not run)")
     ap.add_argument("--time", type=float, default=20.0e-6,
                     help="when the jet is written as a table, s after the detonator (its tip reaches the casing "
                          "at about 27 us)")
@@ -77,20 +70,14 @@ def main():
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     one = a.one_run or os.path.join(a.out, "one_run")
-    if not a.one_run:
-        run_once(a.ballista, ONE_RUN, one, ["--threads", str(a.threads)])
-    s_one = finished(one, "the one run")
+    s_one = run(a.ballista, ONE_RUN, one, ["--threads", str(a.threads)])
     # The charge plane is the liner's mouth (jet_table's default), 120 mm in front of the casing as
     # in the demo's table (its standoff).
     rows, rep = jet_table(one, time=a.time, segments=a.segments)
     table = os.path.join(a.out, "jet.csv")
-    with open(table, "w") as f:
-        f.write("radius,length,velocity,insert_time\n")
-        for r in rows:
-            f.write(",".join(repr(x) for x in r) + "\n")
+    write_csv(rows, table)
     folder = os.path.join(a.out, "table_run")
-    run_once(a.ballista, perforation_deck(table, a.out), folder, ["--threads", str(a.threads)])
-    s_tab = finished(folder, "the table's run")
+    s_tab = run(a.ballista, perforation_deck(table, a.out), folder, ["--threads", str(a.threads)])
     one_r, tab_r = readings(s_one), readings(s_tab)
     result = {"time": a.time, "jet_mass": rep["mass"], "pieces": len(rows), "tip_velocity": rows[0][2],
               "tip_radius": rows[0][0], "one_run": one_r, "table": tab_r}

@@ -508,8 +508,7 @@ class Reader {
     // What lights is a body of an explosive material; an explosive material no body uses is inert.
     std::string charge;
     for (const BodySpec& b : sc_.bodies)
-      for (const MaterialSpec& m : sc_.materials)
-        if (charge.empty() && m.name == b.material && m.model == "explosive") charge = b.name;
+      if (charge.empty() && body_of_model(sc_, b, "explosive")) charge = b.name;
     const MaterialSpec* unused = first_material_of_model(sc_, "explosive");
     if (!charge.empty() && ds.points.empty())
       d.fail("points", "body '" + charge + "' is an explosive: give at least one detonator, e.g. "
@@ -742,12 +741,9 @@ class Reader {
     // Default layers: every other body but a charge (explosive), which drives the penetrator and is
     // not perforated by it.
     std::vector<std::string> others;
-    for (const BodySpec& b : sc_.bodies) {
-      bool charge = false;
-      for (const MaterialSpec& m : sc_.materials)
-        if (m.name == b.material && m.model == "explosive") charge = true;
-      if (b.name != pe.penetrator && b.name != pe.target && !charge) others.push_back(b.name);
-    }
+    for (const BodySpec& b : sc_.bodies)
+      if (b.name != pe.penetrator && b.name != pe.target && !body_of_model(sc_, b, "explosive"))
+        others.push_back(b.name);
     pe.layers = n.strings("layers", others);
     for (const std::string& l : pe.layers) {
       if (!find_body(l)) n.fail("layers", "unknown body '" + l + "'" + suggest(l, body_names()));

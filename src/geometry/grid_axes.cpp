@@ -153,6 +153,13 @@ double GridAxes::largest(int axis) const {
   return s;
 }
 
+double GridAxes::cell_size_at(int axis, double x) const {
+  const std::vector<double>& n = node[axis];
+  const auto c = std::clamp<std::ptrdiff_t>(std::upper_bound(n.begin(), n.end(), x) - n.begin() - 1, 0,
+                                            static_cast<std::ptrdiff_t>(n.size()) - 2);
+  return n[static_cast<std::size_t>(c) + 1] - n[static_cast<std::size_t>(c)];
+}
+
 GridAxes build_grid_axes(const GridSpec& g, int dim) {
   GridAxes axes;
   for (int a = 0; a < 3; ++a) {

@@ -24,6 +24,8 @@ struct GridAxes {
   /// The smallest and largest cell along the axis, m.
   double smallest(int axis) const;
   double largest(int axis) const;
+  /// The size of the cell holding coordinate x along the axis, m (beyond the box, the end cell's).
+  double cell_size_at(int axis, double x) const;
 };
 
 /// Builds the axes of `grid` in `dim` dimensions. A uniform grid (no refine zones) has

@@ -2,9 +2,7 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
-#include <vector>
 
 #include "core/error.hpp"
 #include "core/point_fields.hpp"
@@ -72,10 +70,7 @@ Index light_explosives(const Scenario& sc, FieldStore& points, int ppc_override)
       const BodySpec& b = sc.bodies[static_cast<size_t>(body[p])];
       const int ppc = ppc_override > 0 ? ppc_override : b.particles_per_cell;
       for (int a = 0; a < dim; ++a) {
-        const std::vector<double>& node = axes.node[a];
-        const auto hi = std::upper_bound(node.begin(), node.end(), x0[p][a]);
-        const auto c = std::clamp<std::ptrdiff_t>(hi - node.begin() - 1, 0, static_cast<std::ptrdiff_t>(node.size()) - 2);
-        const double s = (node[static_cast<size_t>(c) + 1] - node[static_cast<size_t>(c)]) / ppc;
+        const double s = axes.cell_size_at(a, x0[p][a]) / ppc;
         if (local == 0.0) local = s;
         if (std::abs(s / local - 1.0) > 1e-9)
           deck_error("", fmt::format("the explosive lies in cells of different sizes or shapes on the graded grid "

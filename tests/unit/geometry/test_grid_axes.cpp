@@ -92,6 +92,20 @@ TEST(GridAxes, AZoneHasItsCellsAndTheGapsAreGradedWithinTheRatio) {
   EXPECT_LT(a.cells(0), 60);
 }
 
+TEST(GridAxes, TheCellHoldingACoordinateGivesItsSize) {
+  GridSpec g = grid(1.0e-3);
+  g.refine = {zone(0, 0.0, 4.0e-3, 0.25e-3)};
+  const GridAxes a = build_grid_axes(g, 2);
+  EXPECT_NEAR(a.cell_size_at(0, 0.1e-3), 0.25e-3, 1e-15);   // inside the zone
+  EXPECT_NEAR(a.cell_size_at(0, 3.99e-3), 0.25e-3, 1e-15);
+  const auto& n = a.node[0];
+  const double last = n[n.size() - 1] - n[n.size() - 2];
+  EXPECT_EQ(a.cell_size_at(0, 0.5 * (n[n.size() - 2] + n.back())), last);  // the outermost cell
+  EXPECT_EQ(a.cell_size_at(0, 1.0), last);                                  // beyond the box: the end cell's
+  EXPECT_NEAR(a.cell_size_at(0, -1.0), 0.25e-3, 1e-15);
+  EXPECT_NEAR(a.cell_size_at(1, 0.07), 1.0e-3, 1e-15);                      // an axis without zones
+}
+
 TEST(GridAxes, AZoneNotAWholeNumberOfItsCellsGetsSlightlySmallerOnes) {
   GridSpec g = grid(1.0e-3);
   g.refine = {zone(0, 0.0, 3.9e-3, 0.25e-3)};
