@@ -37,7 +37,7 @@ bool converged_in_study(const ConvergenceRecord::Quantity& q) {
 }
 
 JsonValue convergence_statement(const ConvergenceRecord& record, const std::string& fingerprint, double band_cell,
-                                const JsonValue& penetration) {
+                                const JsonValue& penetration, bool patched) {
   JsonValue out = JsonValue::object();
   out["record"] = record.path;
   out["study"] = record.study;
@@ -46,11 +46,15 @@ JsonValue convergence_statement(const ConvergenceRecord& record, const std::stri
   double level = NAN;
   for (const ConvergenceRecord::Quantity& q : record.quantities)
     for (const auto& [h, value] : q.levels)
-      if (same_level(h, band_cell)) level = h;
+      if (!patched && same_level(h, band_cell)) level = h;
   if (!matches)
     spdlog::warn("the grid study's record {} is of other physics than this run (fingerprint {} against {}): how far "
                  "this run is from converged is not known (re-run validation/perforation_convergence.py for this deck)",
                  record.path, fingerprint, record.fingerprint);
+  else if (patched)
+    spdlog::warn("this run's grid has patches of finer cells (grid.patches), which its grid study ({}) did not "
+                 "run: how far it is from converged is not known",
+                 record.path);
   else if (!std::isfinite(level))
     spdlog::warn("this run's cells along the line of flight ({:.3g} m) are not a level of its grid study ({}): how "
                  "far it is from converged is not known",

@@ -32,8 +32,10 @@ bool converged_in_study(const ConvergenceRecord::Quantity& q);
 /// |level_gap| of the quantities run at the level, null without a level), `all_converged` and
 /// `all_at_level` (every quantity has a value at the level: the study may have run a quantity's
 /// finer levels alone, e.g. the casing's hole to 35 us on the plates' band, so a level can be one
-/// quantity's and not another's; without that value nothing is known of the other).
+/// quantity's and not another's; without that value nothing is known of the other). A run with
+/// `patched` grid (grid.patches) is no level: the study refines bands, and a patch changes the
+/// cells where the answer is made without changing the band's.
 JsonValue convergence_statement(const ConvergenceRecord& record, const std::string& fingerprint, double band_cell,
-                                const JsonValue& penetration);
+                                const JsonValue& penetration, bool patched = false);
 
 }  // namespace ballista

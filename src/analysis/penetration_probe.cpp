@@ -67,10 +67,15 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
   if (sc.grid.graded()) {
     axes_ = build_grid_axes(sc.grid, nd_);
     lateral_cell_ = axial_cell_ = kInfinity;
+    // The cells of the grid's bands: a patch refines a box, not the whole path, and the jet is as
+    // resolved as the coarsest cells it crosses.
+    GridAxes bands;
+    bands.node = axes_.base;
     for (int a = 0; a < nd_; ++a) {
       double& finest = a == axis_ ? axial_cell_ : lateral_cell_;
-      finest = std::min(finest, axes_.smallest(a));
+      finest = std::min(finest, bands.smallest(a));
     }
+    patched_ = !sc.grid.patches.empty();
     cell_ = lateral_cell_;
   }
   lateral_geometry_ = sc.simulation.dimension == Dimension::Axisymmetric ? LateralGeometry::Axisymmetric
@@ -389,7 +394,7 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   out["holes"] = layer_holes(pts);
   out["physics_fingerprint"] = fingerprint_;
   if (!spec_.convergence.path.empty())
-    out["convergence"] = convergence_statement(spec_.convergence, fingerprint_, axial_cell_, out);
+    out["convergence"] = convergence_statement(spec_.convergence, fingerprint_, axial_cell_, out, patched_);
 }
 
 JsonValue PenetrationProbe::beyond_tunnel_of(const FieldStore& pts, int& points_beyond, double& front_within) const {

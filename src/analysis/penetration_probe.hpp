@@ -115,6 +115,7 @@ class PenetrationProbe {
   std::vector<JetSegmentLine> jet_lines_;             ///< the penetrator's segments, tip first
   LateralGeometry lateral_geometry_ = LateralGeometry::ThreeD;
   double lateral_cell_ = 0.0, axial_cell_ = 0.0;  ///< m: the finest cells across and along the flight
+  bool patched_ = false;  ///< the grid has patches (grid.patches): no level of a grid study
   GridAxes axes_;                                  ///< a graded grid's nodes (empty axes: uniform grid)
   int penetrator_ = -1, target_ = -1;  ///< body indices
   std::vector<char> erodes_;           ///< per material index: its failed points are eroded (debris)

@@ -184,7 +184,35 @@ class Reader {
       g.fail("lower", "expected x (the radius) >= 0 in an axisymmetric deck, got " + format_number(gr.lower[0]));
     b.finish();
     refine(g, solver);
+    patches(g, solver);
     g.finish();
+  }
+
+  /// grid.patches: boxes of finer cells with hanging nodes around them (geometry/grid_axes.hpp,
+  /// mpm/patch_constraints.hpp), validated by building the axes.
+  void patches(DeckNode& g, const SolverFactory& solver) {
+    GridSpec& gr = sc_.grid;
+    DeckNode ps = g.list("patches", false);
+    if (ps.size() > 0 && !solver.graded_grid)
+      ps.fail("solver '" + solver.name + "' runs on a uniform lattice: patches are an MPM grid's");
+    for (size_t i = 0; i < ps.size(); ++i) {
+      DeckNode p = ps.element(i);
+      GridPatch patch;
+      patch.mark = p.mark();
+      patch.lower = p.vector("lower", vmin());
+      patch.upper = p.vector("upper", vmin());
+      patch.cell_size = p.number("cell_size", NumberRange::positive("m"));
+      p.finish();
+      gr.patches.push_back(patch);
+    }
+    if (!gr.patches.empty()) {
+      const GridAxes axes_built = build_grid_axes(gr, ndim());
+      double cells = 1.0;
+      for (int d = 0; d < ndim(); ++d) cells *= axes_built.cells(d);
+      if (cells > 2.0e9)
+        ps.fail("the grid with its patches would have " + format_number(cells) +
+                " cells; check that lengths are in metres");
+    }
   }
 
   /// grid.refine and grid.grading: bands of finer cells (a graded grid, geometry/grid_axes.hpp),
@@ -210,7 +238,7 @@ class Reader {
       z.finish();
       gr.refine.push_back(zone);
     }
-    if (gr.graded()) {
+    if (!gr.refine.empty()) {
       const GridAxes axes_built = build_grid_axes(gr, ndim());
       double cells = 1.0;
       for (int d = 0; d < ndim(); ++d) cells *= axes_built.cells(d);

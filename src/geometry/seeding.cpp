@@ -105,26 +105,56 @@ struct GraduatedSites {
   std::array<std::vector<double>, 3> at, spacing;
 };
 
-GraduatedSites graded_sites(const GridSpec& grid, int nd, int n, const Vec3& lo, const Vec3& hi) {
-  const GridAxes axes = build_grid_axes(grid, nd);
-  GraduatedSites s;
-  for (int a = 0; a < 3; ++a) {
-    if (a >= nd) {
-      s.at[a] = {0.0};
-      s.spacing[a] = {0.0};
-      continue;
+/// The sites of `nodes`' cells overlapping [lo, hi] (one cell beyond), n per cell and axis.
+void sites_of_cells(const std::vector<double>& node, int n, double lo, double hi, std::vector<double>& at,
+                    std::vector<double>& spacing) {
+  for (std::size_t c = 0; c + 1 < node.size(); ++c) {
+    const double h = node[c + 1] - node[c];
+    if (node[c + 1] < lo - h || node[c] > hi + h) continue;
+    for (int k = 0; k < n; ++k) {
+      at.push_back(node[c] + (k + 0.5) * (h / n));
+      spacing.push_back(h / n);
     }
-    const std::vector<double>& node = axes.node[a];
-    for (std::size_t c = 0; c + 1 < node.size(); ++c) {
-      const double h = node[c + 1] - node[c];
-      if (node[c + 1] < lo[a] - h || node[c] > hi[a] + h) continue;
-      for (int k = 0; k < n; ++k) {
-        s.at[a].push_back(node[c] + (k + 0.5) * (h / n));
-        s.spacing[a].push_back(h / n);
+  }
+}
+
+/// The lattice of a graded grid over [lo, hi] as blocks of sites: the first on the cells without
+/// the patches' splits, whose sites inside a patch are not seeded (`patch` -1), then one per patch
+/// on its own cells, whose sites outside it or inside a patch nested in it are not seeded. Without
+/// patches, the one block.
+struct SiteBlock {
+  GraduatedSites sites;
+  int patch = -1;
+};
+
+std::vector<SiteBlock> graded_site_blocks(const GridSpec& grid, int nd, int n, const Vec3& lo, const Vec3& hi,
+                                          GridAxes& axes) {
+  axes = build_grid_axes(grid, nd);
+  std::vector<SiteBlock> blocks(1 + axes.patches.size());
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    blocks[b].patch = static_cast<int>(b) - 1;
+    for (int a = 0; a < 3; ++a) {
+      if (a >= nd) {
+        blocks[b].sites.at[a] = {0.0};
+        blocks[b].sites.spacing[a] = {0.0};
+        continue;
+      }
+      if (b == 0) {
+        sites_of_cells(axes.base[a], n, lo[a], hi[a], blocks[b].sites.at[a], blocks[b].sites.spacing[a]);
+      } else {
+        const PatchBox& p = axes.patches[b - 1];
+        sites_of_cells(p.lattice[a], n, std::max(lo[a], p.lower[a]), std::min(hi[a], p.upper[a]),
+                       blocks[b].sites.at[a], blocks[b].sites.spacing[a]);
       }
     }
   }
-  return s;
+  return blocks;
+}
+
+/// Whether block `b`'s site x is seeded: a patch's where it is the deepest patch holding x, the
+/// grid's outside every patch.
+bool block_keeps(const GridAxes& axes, const SiteBlock& b, const Vec3& x, int nd) {
+  return axes.innermost_holding(x, nd) == b.patch;
 }
 
 }  // namespace
@@ -169,12 +199,20 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
   std::vector<Vec3> spacing;  // graded grids: each point's lattice spacing per axis
   std::vector<CutLatticePoint> cut;  // seeding: cut_lattice: each point's measure and half size
   if (body.seeding == "cut_lattice") {
-    LatticeSites sites;
     if (grid.graded()) {
-      GraduatedSites g = graded_sites(grid, nd, body.particles_per_cell, lo, hi);
-      sites.at = std::move(g.at);
-      sites.spacing = std::move(g.spacing);
+      GridAxes axes;
+      for (SiteBlock& b : graded_site_blocks(grid, nd, body.particles_per_cell, lo, hi, axes)) {
+        LatticeSites sites;
+        sites.at = std::move(b.sites.at);
+        sites.spacing = std::move(b.sites.spacing);
+        const std::vector<CutLatticePoint> part =
+            cut_lattice_points(sites, nd, dim == Dimension::Axisymmetric, [&](const Vec3& x) {
+              return block_keeps(axes, b, x, nd) && in_box(x) && shape_contains(body.shape, x, nd) && !in_cutout(x);
+            });
+        cut.insert(cut.end(), part.begin(), part.end());
+      }
     } else {
+      LatticeSites sites;
       for (int a = 0; a < 3; ++a) {
         if (a >= nd) {
           sites.at[a] = {0.0};
@@ -186,10 +224,10 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
           sites.spacing[a].push_back(dx);
         }
       }
+      cut = cut_lattice_points(sites, nd, dim == Dimension::Axisymmetric, [&](const Vec3& x) {
+        return in_box(x) && shape_contains(body.shape, x, nd) && !in_cutout(x);
+      });
     }
-    cut = cut_lattice_points(sites, nd, dim == Dimension::Axisymmetric, [&](const Vec3& x) {
-      return in_box(x) && shape_contains(body.shape, x, nd) && !in_cutout(x);
-    });
     for (const CutLatticePoint& c : cut) pos.push_back(c.at);
   } else if (!grid.graded()) {
     for (int k = from[2]; k <= to[2]; ++k)
@@ -201,18 +239,22 @@ Index seed_body(const BodySpec& body, int body_index, int material_index, const 
         }
   } else {
     // Graded grid: particles_per_cell sites per axis in every cell, at its sub-cell centres, so
-    // the particles are as fine as the cells they start in.
-    const GraduatedSites sites = graded_sites(grid, nd, body.particles_per_cell, lo, hi);
-    for (std::size_t k = 0; k < sites.at[2].size(); ++k)
-      for (std::size_t j = 0; j < sites.at[1].size(); ++j)
-        for (std::size_t i = 0; i < sites.at[0].size(); ++i) {
-          const Vec3 x{{sites.at[0][i], sites.at[1][j], nd == 3 ? sites.at[2][k] : 0.0}};
-          if (dim == Dimension::Axisymmetric && !(x[0] > 0.0)) continue;
-          if (in_box(x) && shape_contains(body.shape, x, nd) && !in_cutout(x)) {
-            pos.push_back(x);
-            spacing.push_back(Vec3{{sites.spacing[0][i], sites.spacing[1][j], nd == 3 ? sites.spacing[2][k] : 0.0}});
+    // the particles are as fine as the cells they start in (a patch's split cells inside it).
+    GridAxes axes;
+    for (const SiteBlock& b : graded_site_blocks(grid, nd, body.particles_per_cell, lo, hi, axes)) {
+      const GraduatedSites& sites = b.sites;
+      for (std::size_t k = 0; k < sites.at[2].size(); ++k)
+        for (std::size_t j = 0; j < sites.at[1].size(); ++j)
+          for (std::size_t i = 0; i < sites.at[0].size(); ++i) {
+            const Vec3 x{{sites.at[0][i], sites.at[1][j], nd == 3 ? sites.at[2][k] : 0.0}};
+            if (dim == Dimension::Axisymmetric && !(x[0] > 0.0)) continue;
+            if (block_keeps(axes, b, x, nd) && in_box(x) && shape_contains(body.shape, x, nd) && !in_cutout(x)) {
+              pos.push_back(x);
+              spacing.push_back(
+                  Vec3{{sites.spacing[0][i], sites.spacing[1][j], nd == 3 ? sites.spacing[2][k] : 0.0}});
+            }
           }
-        }
+    }
   }
   // Clipping: lattice points of the shape outside the box. Every one is visited while
   // the bounding box has at most kExhaustive lattice points; beyond that a regular sample with
@@ -317,9 +359,14 @@ double lattice_point_bound(const BodySpec& body, const GridSpec& grid, Dimension
     Vec3 lo, hi;
     shape_bounds(shape, nd, lo, hi);
     double n = 1.0;
-    if (grid.graded()) {  // the graded lattice's sites over the bounding box
-      const GraduatedSites sites = graded_sites(grid, nd, body.particles_per_cell, lo, hi);
-      for (int a = 0; a < nd; ++a) n *= static_cast<double>(sites.at[a].size());
+    if (grid.graded()) {  // the graded lattice's sites over the bounding box, every block's
+      GridAxes axes;
+      n = 0.0;
+      for (const SiteBlock& b : graded_site_blocks(grid, nd, body.particles_per_cell, lo, hi, axes)) {
+        double m = 1.0;
+        for (int a = 0; a < nd; ++a) m *= static_cast<double>(b.sites.at[a].size());
+        n += m;
+      }
       return n;
     }
     for (int a = 0; a < nd; ++a) {

@@ -37,6 +37,9 @@ void MpmSolver::sort_by_cell() {
 }
 
 int MpmSolver::stencil_reach_now() const {
+  // Patches: a point's weights on a coarser level's cells reach a coarse cell beyond its own, up
+  // to twice as many of the grid's nodes as a hanging node lies from its masters.
+  if (!level_geom_.empty()) return std::max(stencil_reach(shape_), 2 * patch_.reach());
   if (shape_ != ShapeKind::Cpdi) return stencil_reach(shape_);
   // CPDI: the corners x_p +- r1 +- r2 +- r3 reach as far as the summed |r_j| components.
   const auto* F = points_.view(kDeformationGradient);
@@ -58,7 +61,8 @@ void MpmSolver::mark_active_blocks() {
   // from where it starts the step, CFL < 1) across the ranks sharing it: one more cell of reach
   // keeps that cell's corner node in the blocks the ranks exchange.
   const bool fbar_halo = comm_.distributed() && anti_locking_ == AntiLocking::FBar;
-  blocks_.mark(x_, points_.size(), reach_ + (fbar_halo ? 1 : 0));
+  // A hanging node's masters lie up to patch_.reach() nodes from it (patch_constraints.hpp).
+  blocks_.mark(x_, points_.size(), reach_ + (fbar_halo ? 1 : 0) + patch_.reach());
   const auto& surface = loads_.surface_forces();
   if (!surface.empty()) {
     std::vector<Vec3> at(surface.size());
@@ -95,6 +99,21 @@ void MpmSolver::mark_active_blocks() {
       if (multi) grid_.grad[i] = Vec3{};
       if (grid_.with_volume) grid_.volume[i] = 0.0;
     });
+}
+
+bool MpmSolver::clear_of_patches(const Vec3& x, const Vec3& half, int depth) const {
+  if (dimension_ == Dimension::Axisymmetric && !(x[0] - half[0] > 0.0)) return false;
+  for (const PatchBox& b : patch_axes_->patches) {
+    if (b.depth < depth) continue;
+    bool overlap = true;
+    for (int a = 0; a < dim_ && overlap; ++a) {
+      const bool below = !b.open_lower[static_cast<std::size_t>(a)] && !(x[a] + half[a] > b.lower[a]);
+      const bool above = !b.open_upper[static_cast<std::size_t>(a)] && !(x[a] - half[a] < b.upper[a]);
+      overlap = !(below || above);
+    }
+    if (overlap) return false;
+  }
+  return true;
 }
 
 void MpmSolver::build_slabs() {

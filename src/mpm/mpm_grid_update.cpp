@@ -136,6 +136,10 @@ void MpmSolver::update_grid(double dt) {
     const Vec3& v0 = kept ? grid_.accel[i] : grid_.velocity[i];
     grid_.accel[i] = (1.0 / dt) * (grid_.velocity_new[i] - v0);
   });
+  if (!patch_.empty()) {  // the hanging nodes follow their masters
+    fill_patch_nodes(grid_.velocity_new.data());
+    fill_patch_nodes(grid_.accel.data());
+  }
   if (!mirror_faces_.empty()) {  // cubic B-spline: the ghosts beyond a mirror face read the image
     fill_mirror_ghosts(grid_.velocity_new.data());
     fill_mirror_ghosts(grid_.accel.data());

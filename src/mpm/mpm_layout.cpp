@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "core/error.hpp"
 #include "geometry/grid_axes.hpp"
@@ -160,10 +161,91 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     throw_solver_param_error(sc, "mpm", "shape_function",
                              "bspline3 does not run on a graded grid (grid.refine) yet: its basis on unequal cells "
                              "(non-uniform knots) is not implemented; use gimp, linear or cpdi");
-  if (grid_.geom.graded && comm_.distributed())
-    throw DeckError(sc.grid.refine_mark.file, sc.grid.refine_mark.line, sc.grid.refine_mark.column, "grid.refine",
+  if (grid_.geom.graded && comm_.distributed()) {
+    const bool bands = !sc.grid.refine.empty();
+    const DeckMark& m = bands ? sc.grid.refine_mark : sc.grid.patches.front().mark;
+    throw DeckError(m.file, m.line, m.column, bands ? "grid.refine" : "grid.patches",
                     "a graded grid runs on one MPI rank only so far (" + std::to_string(comm_.size()) +
                         " ranks were started; docs/parallel.md)");
+  }
+  if (!sc.grid.patches.empty()) {
+    const DeckMark& m = sc.grid.patches.front().mark;
+    auto refuse = [&](const std::string& why) { throw DeckError(m.file, m.line, m.column, "grid.patches", why); };
+    if (anti_locking_ == AntiLocking::FBar)
+      refuse("the F-bar averages over the grid's cells, which a patch's hanging nodes do not bound: patches run "
+             "without mpm.anti_locking: fbar so far");
+    if (xpic_active())
+      refuse("XPIC smooths over the grid's nodes, hanging ones included: patches run without mpm.xpic_order > 1 so far");
+    patch_axes_ = std::make_shared<const GridAxes>(build_grid_axes(sc.grid, dim_));
+    patch_ = PatchConstraints(grid_.geom, *patch_axes_, kGhostLayers);
+    if (shape_ == ShapeKind::Gimp)
+      for (std::size_t i = 0; i < patch_axes_->patches.size(); ++i)
+        if (patch_axes_->patches[i].ratio > 2) {
+          const DeckMark& pm = sc.grid.patches[i].mark;
+          throw DeckError(pm.file, pm.line, pm.column, fmt::format("{}.cell_size", pm.key_path),
+                          fmt::format("splits its parent's cells into {} along an axis: with uGIMP a patch splits "
+                                      "cells in two at most (a coarse point crossing its face would take a domain "
+                                      "clamped to the split cells and leave a static imbalance); nest patches for "
+                                      "finer cells, each in two",
+                                      patch_axes_->patches[i].ratio));
+        }
+    if (shape_ == ShapeKind::Linear)
+      for (std::size_t i = 0; i < patch_axes_->patches.size(); ++i)
+        if (patch_axes_->patches[i].depth > 1) {
+          spdlog::warn("{} is a nested patch and the shape functions are linear: points that flow into it from "
+                       "coarser cells are further apart than its cells, which then go empty, and they can invert "
+                       "(the B2 vortex with nested patches stops at its 276th step; docs/deck.md); gimp does not",
+                       sc.grid.patches[i].mark.key_path);
+          break;
+        }
+    // Each coarser level's grid, laid out as layout_graded_grid lays out the grid, and where its
+    // nodes are in the grid: the box's nodes are the grid's (a split only adds nodes); a ghost
+    // layer matches where the grid's end cell is not split further.
+    const int levels = static_cast<int>(patch_axes_->level.size()) - 1;
+    for (int lv = 0; lv < levels; ++lv) {
+      GridGeometry geom = grid_.geom;
+      auto level_axes = std::make_shared<std::array<GradedAxis, 3>>();
+      std::array<std::vector<int>, 3> to_grid;
+      for (int a = 0; a < 3; ++a) {
+        if (a >= dim_) {
+          to_grid[a] = {0};
+          continue;
+        }
+        const std::vector<double>& box = patch_axes_->level[static_cast<std::size_t>(lv)][a];
+        const double first = box[1] - box[0], last = box.back() - box[box.size() - 2];
+        std::vector<double> nodes;
+        for (int k = kGhostLayers; k > 0; --k) nodes.push_back(box.front() - k * first);
+        nodes.insert(nodes.end(), box.begin(), box.end());
+        for (int k = 1; k <= kGhostLayers; ++k) nodes.push_back(box.back() + k * last);
+        (*level_axes)[a] = GradedAxis(nodes);
+        geom.nodes[a] = static_cast<int>(nodes.size());
+        const GradedAxis& grid_axis = (*grid_.geom.graded)[a];
+        int from = 0;
+        for (const double xn : nodes) {
+          int found = -1;
+          for (int i = from; i < grid_.geom.nodes[a]; ++i)
+            if (std::abs(grid_axis.at(i) - xn) <= 1e-9 * first) {
+              found = i;
+              from = i + 1;
+              break;
+            }
+          to_grid[a].push_back(found);
+        }
+      }
+      geom.graded = std::move(level_axes);
+      std::vector<Index> map(static_cast<std::size_t>(geom.node_count()), -1);
+      for (int k = 0; k < geom.nodes[2]; ++k)
+        for (int j = 0; j < geom.nodes[1]; ++j)
+          for (int i = 0; i < geom.nodes[0]; ++i) {
+            const int gi = to_grid[0][static_cast<std::size_t>(i)], gj = to_grid[1][static_cast<std::size_t>(j)],
+                      gk = to_grid[2][static_cast<std::size_t>(k)];
+            if (gi >= 0 && gj >= 0 && gk >= 0)
+              map[static_cast<std::size_t>(geom.node_index(i, j, k))] = grid_.geom.node_index(gi, gj, gk);
+          }
+      level_geom_.push_back(std::move(geom));
+      level_to_grid_.push_back(std::move(map));
+    }
+  }
   if (P.fbar_patch > 1 && anti_locking_ != AntiLocking::FBar)
     throw_solver_param_error(sc, "mpm", "fbar_patch",
                              "is the F-bar's patch and does nothing without anti_locking: fbar (set it, or remove "

@@ -154,6 +154,38 @@ inline void MpmSolver::point_stencil(Index p, const Vec3& x, const Vec3& half, S
   if constexpr (K == ShapeKind::Gimp) {
     // uGIMP: reference half-size (Bardenhagen & Kober 2004).
     GimpWindows<Dim>& w = gimp_windows_of_points<Dim>()[p];
+    if constexpr (G) {
+      if (!level_geom_.empty()) {
+        // Patches: a domain clear of the patches deeper than level k takes its weights on level
+        // k's cells (level_geom_), the coarsest such level; the rest the grid's own.
+        const int grid_level = static_cast<int>(level_geom_.size());
+        char& level = stencil_level_[static_cast<std::size_t>(p)];
+        if (!windows_current_) {
+          level = static_cast<char>(grid_level);
+          for (int k = 0; k < grid_level; ++k) {
+            if (!clear_of_patches(x, half, k + 1)) continue;
+            graded_gimp_windows<Dim>(level_geom_[static_cast<std::size_t>(k)], x, half, w);
+            stencil_from_windows<Dim>(level_geom_[static_cast<std::size_t>(k)], w, st);
+            bool mapped = true;
+            const std::vector<Index>& to_grid = level_to_grid_[static_cast<std::size_t>(k)];
+            for (int q = 0; q < st.count && mapped; ++q) mapped = to_grid[static_cast<std::size_t>(st.node[q])] >= 0;
+            if (mapped) {
+              level = static_cast<char>(k);
+              break;
+            }
+          }
+          if (level == grid_level) graded_gimp_windows<Dim>(grid_.geom, x, half, w);
+        }
+        if (level < grid_level) {
+          stencil_from_windows<Dim>(level_geom_[static_cast<std::size_t>(level)], w, st);
+          const std::vector<Index>& to_grid = level_to_grid_[static_cast<std::size_t>(level)];
+          for (int q = 0; q < st.count; ++q) st.node[q] = to_grid[static_cast<std::size_t>(st.node[q])];
+          return;
+        }
+        stencil_from_windows<Dim>(grid_.geom, w, st);
+        return;
+      }
+    }
     if (!windows_current_) {
       if constexpr (G) graded_gimp_windows<Dim>(grid_.geom, x, half, w);
       else gimp_windows<Dim>(grid_.geom, x, half, w);
@@ -322,6 +354,7 @@ void MpmSolver::particles_to_grid(P2gPart part, const Vec3* v_source) {
     halo_messages_ += static_cast<double>(exchange_.last_messages());
     if (part != P2gPart::Momentum) halo_steps_ += 1.0;
   }
+  if (!patch_.empty()) fold_patch_nodes(part);
   if (!mirror_faces_.empty()) fold_mirror_faces(part);
 }
 
@@ -435,6 +468,7 @@ void MpmSolver::grid_to_particles(double dt) {
   [[maybe_unused]] const bool has_trac = !ftrac.empty();
   const double flip = flip_;
   const bool xpic = xpic_active();
+  const bool pic_by_cell = patch_axes_ && flip < 1.0 && step_cell_ > 0.0;
   const Vec3* vx = xpic ? xpic_.target.data() : nullptr;
   const Index n = points_.size();
   if (defer) displacement_.resize(n);
@@ -473,6 +507,13 @@ void MpmSolver::grid_to_particles(double dt) {
       Vec3 vpic;
       for (int k = 0; k < st.count; ++k) vpic += st.w[k] * vx[fo + st.node[k]];
       v[p] = flip * (v_old + dt * acc) + (1.0 - flip) * vpic;
+    } else if (pic_by_cell) {
+      // With patches the step is the fine cells', and the PIC share damps once per step (its
+      // rate (1 - flip) / dt): a point in coarse cells takes the share that gives it the rate it
+      // would have at its own cells' step, (1 - flip) l_step / l_p, so that the fine cells
+      // elsewhere do not damp it more than the coarse grid would.
+      const double pic = (1.0 - flip) * std::min(1.0, step_cell_ / cell_edge(xp));
+      v[p] = (1.0 - pic) * (v_old + dt * acc) + pic * vg;
     } else {
       v[p] = flip * (v_old + dt * acc) + (1.0 - flip) * vg;
     }
@@ -617,6 +658,7 @@ void MpmSolver::step_impl(double dt) {
   // The first mapping computes each point's GIMP windows; the step's later passes reuse them.
   windows_current_ = false;
   if constexpr (K == ShapeKind::Gimp) gimp_windows_of_points<Dim>().resize(points_.size());
+  if (!level_geom_.empty()) stencil_level_.resize(static_cast<std::size_t>(points_.size()));
   // USAVG's first half update reads the mass and momentum; the forces come from its stress (the
   // weights must not follow F within the step: p2g_part.hpp).
   particles_to_grid<Dim, K, G>(usavg_ ? P2gPart::Kinematics : P2gPart::All);
@@ -643,6 +685,7 @@ void MpmSolver::step_impl(double dt) {
       apply_contact(grid_.velocity_new.data(), false);
       apply_velocity_bcs(grid_.velocity_new.data());
     }
+    if (!patch_.empty()) fill_patch_nodes(grid_.velocity_new.data());
     if (!mirror_faces_.empty()) fill_mirror_ghosts(grid_.velocity_new.data());
     velocity_gradient_from_grid<Dim, K, G>(dt, true);
   }
@@ -704,8 +747,10 @@ void MpmSolver::first_half_stress_update(double dt) {
   boundary_impulses_.clear();
   apply_velocity_bcs(usavg_start_.data(), &boundary_impulses_);
   book_impulses(grid_.accel.data(), usavg_start_.data());
+  if (!patch_.empty()) fill_patch_nodes(usavg_start_.data());  // hanging nodes: G2P reads them too
   if (!mirror_faces_.empty()) fill_mirror_ghosts(usavg_start_.data());  // G2P reads it there too
   for_each_active_node([&](Index i) { grid_.velocity_new[i] = usavg_start_[i]; });
+  if (!patch_.empty()) fill_patch_nodes(grid_.velocity_new.data());
   if (!mirror_faces_.empty()) fill_mirror_ghosts(grid_.velocity_new.data());
   velocity_gradient_from_grid<Dim, K, G>(0.5 * dt, false);
   if (first_bad_ < points_.size())  // named as the step it happens in (steps_ counts completed ones)

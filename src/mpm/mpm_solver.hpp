@@ -17,6 +17,7 @@
 #include "mpm/grid_exchange.hpp"
 #include "mpm/grid_geometry.hpp"
 #include "mpm/p2g_part.hpp"
+#include "mpm/patch_constraints.hpp"
 #include "mpm/shape_functions.hpp"
 #include "points/point_loads.hpp"
 #include "points/point_set.hpp"
@@ -131,6 +132,28 @@ class MpmSolver final : public Solver {
   void fold_mirror_faces(P2gPart part);
   /// ... and sets the ghost nodes of every field to the mirror image of the inside values.
   void fill_mirror_ghosts(Vec3* v);
+  /// Patches (grid.patches): moves the hanging nodes' sums of the pass's part to their masters
+  /// (mpm/patch_constraints.hpp) ...
+  void fold_patch_nodes(P2gPart part);
+  /// ... and sets every field's hanging nodes of `v` from their masters.
+  void fill_patch_nodes(Vec3* v) const;
+  PatchConstraints patch_;                      ///< the hanging nodes (empty without patches)
+  /// Patches: level k's grid (the splits of the patches of depth <= k only; ghost layers included)
+  /// and each of its nodes' index in the grid (-1: a ghost node the grid does not have), for k
+  /// below the deepest. A point whose uGIMP domain is clear of every patch deeper than k takes its
+  /// weights on level k's cells, the coarsest such, as on a grid without those patches: on cells
+  /// split further its domain would be clamped to half a split cell (gimp_1d), and such domains,
+  /// which no longer tile the body, leave a static imbalance beside a patch.
+  std::vector<GridGeometry> level_geom_;
+  std::vector<std::vector<Index>> level_to_grid_;
+  std::vector<char> stencil_level_;  ///< per point, this step: the level its weights are on
+  /// The domain [x - half, x + half] clear of every patch of depth >= `depth` (and,
+  /// axisymmetric, of the axis).
+  bool clear_of_patches(const Vec3& x, const Vec3& half, int depth) const;
+  std::shared_ptr<const GridAxes> patch_axes_;  ///< the grid's axes and patches (null without patches)
+  /// The shortest edge of the cell a point at x lies in (graded grids; a patch's or, outside the
+  /// patches, the coarse cell its hanging nodes follow): the length its signal crosses in a step.
+  double cell_edge(const Vec3& x) const;
   /// Multi-field contact on `vel` (every field); with `book` its impulses go to grid_.impulse and
   /// grid_.friction_impulse for book_impulses.
   void apply_contact(Vec3* vel, bool book);
@@ -156,6 +179,8 @@ class MpmSolver final : public Solver {
   void fill_wave_speeds();
   void update_cell_lengths();
   std::vector<double> cell_length_;  ///< m, per point (graded grids)
+  /// Patches: the cell of the point that set this step's stable step, m (0: not known).
+  double step_cell_ = 0.0;
   double viscous_rate_ = 0.0;        ///< graded grids: the last viscous pass's max signal speed / cell, 1/s
   static constexpr int kGhostLayers = 3;  ///< ghost node layers beyond the box on each side
 

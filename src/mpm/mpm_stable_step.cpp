@@ -52,13 +52,19 @@ double MpmSolver::stable_dt() {
   return dt;
 }
 
+double MpmSolver::cell_edge(const Vec3& x) const {
+  if (!patch_axes_) return shortest_cell_edge(grid_.geom, x, dim_);
+  double l = patch_axes_->effective_cell_size(0, x, dim_);
+  for (int a = 1; a < dim_; ++a) l = std::min(l, patch_axes_->effective_cell_size(a, x, dim_));
+  return l;
+}
+
 void MpmSolver::update_cell_lengths() {
   // The shortest edge of each point's cell: the length a signal crosses in the Courant condition
   // and the viscous length of the bulk viscosity on a graded grid.
-  const GridGeometry& g = grid_.geom;
   const auto* x = points_.view(kPosition);
   cell_length_.resize(static_cast<std::size_t>(points_.size()));
-  for_each(0, points_.size(), [&](Index p) { cell_length_[p] = shortest_cell_edge(g, x[p], dim_); });
+  for_each(0, points_.size(), [&](Index p) { cell_length_[p] = cell_edge(x[p]); });
 }
 
 double MpmSolver::graded_stable_dt() {
@@ -71,6 +77,18 @@ double MpmSolver::graded_stable_dt() {
   const Index n = points_.size();
 #pragma omp parallel for reduction(max : rate) schedule(static) if (n > kParallelThreshold)
   for (Index p = 0; p < n; ++p) rate = std::max(rate, (wave_scratch_[p] + norm(v[p])) / cell_length_[p]);
+  if (patch_axes_) {
+    // The cell of the point that sets the step (grid_to_particles scales the PIC share by it).
+    double best = -1.0;
+    step_cell_ = 0.0;
+    for (Index p = 0; p < n; ++p) {
+      const double r = (wave_scratch_[p] + norm(v[p])) / cell_length_[p];
+      if (r > best) {
+        best = r;
+        step_cell_ = cell_length_[p];
+      }
+    }
+  }
   double dt = rate > 0.0 ? scenario_.simulation.cfl / rate : scenario_.simulation.end_time;
   if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
   return dt;
@@ -109,7 +127,7 @@ StepLimiter MpmSolver::step_limiter() const {
   // Every point's rate, for the multi-rate figure and the margin (one rank only: see below).
   std::vector<double> rates(comm_.distributed() ? 0 : static_cast<std::size_t>(n));
   for (Index p = 0; p < n; ++p) {
-    const double l = g.graded ? shortest_cell_edge(g, x[p], dim_) : g.h;
+    const double l = g.graded ? cell_edge(x[p]) : g.h;
     double s = c[p];
     bool by_q = false;
     if (q && q[p] > 0.0 && c[p] > 0.0) {

@@ -70,13 +70,13 @@ Index light_explosives(const Scenario& sc, FieldStore& points, int ppc_override)
       const BodySpec& b = sc.bodies[static_cast<size_t>(body[p])];
       const int ppc = ppc_override > 0 ? ppc_override : b.particles_per_cell;
       for (int a = 0; a < dim; ++a) {
-        const double s = axes.cell_size_at(a, x0[p][a]) / ppc;
+        const double s = axes.effective_cell_size(a, x0[p], dim) / ppc;
         if (local == 0.0) local = s;
         if (std::abs(s / local - 1.0) > 1e-9)
           deck_error("", fmt::format("the explosive lies in cells of different sizes or shapes on the graded grid "
                                      "(point spacings {:.6g} and {:.6g} m near ({:.6g}, {:.6g}, {:.6g}) m): the program "
                                      "burn needs one lattice; put the charge inside one band of grid.refine along "
-                                     "every axis",
+                                     "every axis, and inside or outside each patch",
                                      local, s, x0[p][0], x0[p][1], x0[p][2]));
       }
     }

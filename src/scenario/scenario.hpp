@@ -68,6 +68,16 @@ struct RefineZone {
   DeckMark mark;
 };
 
+/// A box of finer cells (grid.patches): each of the grid's cells inside it is split into equal
+/// cells of at most `cell_size`, and outside it the grid keeps its own cells, the split lines'
+/// nodes there being tied to the coarse cells' (hanging nodes; mpm/patch_constraints.hpp).
+struct GridPatch {
+  Vec3 lower;              ///< m, on nodes of the grid without patches
+  Vec3 upper;              ///< m
+  double cell_size = 0.0;  ///< m
+  DeckMark mark;
+};
+
 struct GridSpec {
   Vec3 lower;               ///< m; z ignored in 2D
   Vec3 upper;               ///< m
@@ -77,7 +87,10 @@ struct GridSpec {
   std::vector<RefineZone> refine;
   double grading = 1.2;     ///< largest ratio of neighbouring cell sizes of a graded grid
   DeckMark refine_mark;
-  bool graded() const { return !refine.empty(); }
+  /// Boxes of finer cells with hanging nodes around them; empty: none.
+  std::vector<GridPatch> patches;
+  /// Non-uniform node coordinates along some axis (bands or patches): the graded path.
+  bool graded() const { return !refine.empty() || !patches.empty(); }
   /// Per face: x_min, x_max, y_min, y_max, z_min, z_max.
   std::array<FaceBC, 6> faces{FaceBC::Free, FaceBC::Free, FaceBC::Free,
                               FaceBC::Free, FaceBC::Free, FaceBC::Free};

@@ -71,4 +71,13 @@ TEST(ConvergenceStatement, OtherPhysicsOrAnotherCellIsNoLevel) {
   EXPECT_EQ(between.at("within").kind(), JsonValue::Kind::Null);
 }
 
+TEST(ConvergenceStatement, APatchedGridIsNoLevel) {
+  // The study's 0.5 mm band with patches of finer cells on the casing: its hole is not the level's.
+  const JsonValue patched = convergence_statement(demo_record(), "f", 5e-4, penetration(), true);
+  EXPECT_TRUE(patched.at("fingerprint_matches").as_bool());
+  EXPECT_EQ(patched.at("level_cell").kind(), JsonValue::Kind::Null);
+  EXPECT_EQ(patched.at("within").kind(), JsonValue::Kind::Null);
+  EXPECT_FALSE(patched.at("all_at_level").as_bool());
+}
+
 }  // namespace test_convergence_statement
