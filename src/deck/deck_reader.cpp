@@ -205,14 +205,15 @@ class Reader {
       p.finish();
       gr.patches.push_back(patch);
     }
-    if (!gr.patches.empty()) {
-      const GridAxes axes_built = build_grid_axes(gr, ndim());
-      double cells = 1.0;
-      for (int d = 0; d < ndim(); ++d) cells *= axes_built.cells(d);
-      if (cells > 2.0e9)
-        ps.fail("the grid with its patches would have " + format_number(cells) +
-                " cells; check that lengths are in metres");
-    }
+    if (!gr.patches.empty()) fail_if_too_many_cells(ps, "the grid with its patches");
+  }
+
+  /// Builds the axes (their deck errors name the zone or patch) and fails at `at` beyond 2e9 cells.
+  void fail_if_too_many_cells(DeckNode& at, const std::string& what) {
+    const GridAxes axes_built = build_grid_axes(sc_.grid, ndim());
+    double cells = 1.0;
+    for (int d = 0; d < ndim(); ++d) cells *= axes_built.cells(d);
+    if (cells > 2.0e9) at.fail(what + " would have " + format_number(cells) + " cells; check that lengths are in metres");
   }
 
   /// grid.refine and grid.grading: bands of finer cells (a graded grid, geometry/grid_axes.hpp),
@@ -238,13 +239,7 @@ class Reader {
       z.finish();
       gr.refine.push_back(zone);
     }
-    if (!gr.refine.empty()) {
-      const GridAxes axes_built = build_grid_axes(gr, ndim());
-      double cells = 1.0;
-      for (int d = 0; d < ndim(); ++d) cells *= axes_built.cells(d);
-      if (cells > 2.0e9)
-        zs.fail("the graded grid would have " + format_number(cells) + " cells; check that lengths are in metres");
-    }
+    if (!gr.refine.empty()) fail_if_too_many_cells(zs, "the graded grid");
   }
 
   void materials() {

@@ -112,14 +112,8 @@ double region_hat(const GridAxes& axes, const Vec3& x, double xn, double yn) {
   return w;
 }
 
-}  // namespace
-
-TEST(PatchConstraints, MastersAreFreeNodesOfTheCoarseCellAndWeightsSumToOne) {
-  const GridAxes axes = build_grid_axes(spec(), 2);
-  const GridGeometry g = geometry(axes);
-  const PatchConstraints pc(g, axes, kGhost);
-  ASSERT_FALSE(pc.empty());
-  EXPECT_EQ(pc.reach(), 4);  // 0.25 / 0.0625: a hanging node's masters span 4 of the grid's cells
+/// Every hanging node's masters are free and its weights sum to one; returns which nodes hang.
+std::vector<char> expect_free_masters_weighing_one(const PatchConstraints& pc, const GridGeometry& g) {
   std::vector<char> hanging(static_cast<std::size_t>(g.node_count()), 0);
   for (const auto& h : pc.hanging()) hanging[static_cast<std::size_t>(h.node)] = 1;
   for (const auto& h : pc.hanging()) {
@@ -130,6 +124,18 @@ TEST(PatchConstraints, MastersAreFreeNodesOfTheCoarseCellAndWeightsSumToOne) {
     }
     EXPECT_NEAR(sum, 1.0, 1e-12) << "node " << h.node;
   }
+  return hanging;
+}
+
+}  // namespace
+
+TEST(PatchConstraints, MastersAreFreeNodesOfTheCoarseCellAndWeightsSumToOne) {
+  const GridAxes axes = build_grid_axes(spec(), 2);
+  const GridGeometry g = geometry(axes);
+  const PatchConstraints pc(g, axes, kGhost);
+  ASSERT_FALSE(pc.empty());
+  EXPECT_EQ(pc.reach(), 4);  // 0.25 / 0.0625: a hanging node's masters span 4 of the grid's cells
+  const std::vector<char> hanging = expect_free_masters_weighing_one(pc, g);
   // Inside the patch (strictly) no node hangs: its split cells are whole.
   const Vec3 mid{{0.75, 1.0, 0.0}};
   int ci, cj;
@@ -209,16 +215,7 @@ TEST(PatchConstraints, NestedPatchesHangOnFreeMasters) {
   // A node of the inner patch's lines outside the outer patch hangs on the 0.25 m cell's corners,
   // which span four of the grid's cells (each 0.125 m split split again).
   EXPECT_EQ(pc.reach(), 4);
-  std::vector<char> hanging(static_cast<std::size_t>(g.node_count()), 0);
-  for (const auto& h : pc.hanging()) hanging[static_cast<std::size_t>(h.node)] = 1;
-  for (const auto& h : pc.hanging()) {
-    double sum = 0.0;
-    for (int m = 0; m < h.count; ++m) {
-      EXPECT_FALSE(hanging[static_cast<std::size_t>(pc.master(h, m))]) << "node " << h.node;
-      sum += pc.weight(h, m);
-    }
-    EXPECT_NEAR(sum, 1.0, 1e-12) << "node " << h.node;
-  }
+  expect_free_masters_weighing_one(pc, g);
 }
 
 class Filling : public ::testing::TestWithParam<bool> {};
