@@ -178,6 +178,23 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
       refuse("XPIC smooths over the grid's nodes, hanging ones included: patches run without mpm.xpic_order > 1 so far");
     patch_axes_ = std::make_shared<const GridAxes>(build_grid_axes(sc.grid, dim_));
     patch_ = PatchConstraints(grid_.geom, *patch_axes_, kGhostLayers);
+    {
+      // A patch's faces lie on the grid's nodes, so each grid cell lies in one region.
+      const GridGeometry& g = grid_.geom;
+      const int cells[3] = {g.nodes[0] - 1, g.nodes[1] - 1, dim_ == 3 ? g.nodes[2] - 1 : 1};
+      patch_cell_edge_.resize(static_cast<std::size_t>(cells[0]) * cells[1] * cells[2]);
+      std::size_t at = 0;
+      for (int k = 0; k < cells[2]; ++k)
+        for (int j = 0; j < cells[1]; ++j)
+          for (int i = 0; i < cells[0]; ++i) {
+            const int ijk[3] = {i, j, k};
+            Vec3 centre{};
+            for (int a = 0; a < dim_; ++a) centre[a] = 0.5 * ((*g.graded)[a].at(ijk[a]) + (*g.graded)[a].at(ijk[a] + 1));
+            double l = patch_axes_->effective_cell_size(0, centre, dim_);
+            for (int a = 1; a < dim_; ++a) l = std::min(l, patch_axes_->effective_cell_size(a, centre, dim_));
+            patch_cell_edge_[at++] = l;
+          }
+    }
     if (shape_ == ShapeKind::Gimp)
       for (std::size_t i = 0; i < patch_axes_->patches.size(); ++i)
         if (patch_axes_->patches[i].ratio > 2) {

@@ -154,6 +154,9 @@ class MpmSolver final : public Solver {
   /// The shortest edge of the cell a point at x lies in (graded grids; a patch's or, outside the
   /// patches, the coarse cell its hanging nodes follow): the length its signal crosses in a step.
   double cell_edge(const Vec3& x) const;
+  /// Patches: each of the grid's cells' shortest edge as its region sees it (the cell of the patch
+  /// or coarse grid holding it: GridAxes::effective_cell_size), x fastest; cell_edge looks it up.
+  std::vector<double> patch_cell_edge_;
   /// Multi-field contact on `vel` (every field); with `book` its impulses go to grid_.impulse and
   /// grid_.friction_impulse for book_impulses.
   void apply_contact(Vec3* vel, bool book);

@@ -54,9 +54,11 @@ double MpmSolver::stable_dt() {
 
 double MpmSolver::cell_edge(const Vec3& x) const {
   if (!patch_axes_) return shortest_cell_edge(grid_.geom, x, dim_);
-  double l = patch_axes_->effective_cell_size(0, x, dim_);
-  for (int a = 1; a < dim_; ++a) l = std::min(l, patch_axes_->effective_cell_size(a, x, dim_));
-  return l;
+  const GridGeometry& g = grid_.geom;
+  Index c = 0;
+  for (int a = dim_ - 1; a >= 0; --a)
+    c = c * (g.nodes[a] - 1) + std::clamp(g.cell_of(x[a], a), 0, g.nodes[a] - 2);
+  return patch_cell_edge_[static_cast<std::size_t>(c)];
 }
 
 void MpmSolver::update_cell_lengths() {
