@@ -154,12 +154,18 @@ double GridAxes::largest(int axis) const {
   return s;
 }
 
-double GridAxes::cell_size_at(int axis, double x) const {
-  const std::vector<double>& n = node[axis];
+namespace {
+
+/// The size of the cell of `n` holding x (beyond the ends, the end cell's).
+double cell_of(const std::vector<double>& n, double x) {
   const auto c = std::clamp<std::ptrdiff_t>(std::upper_bound(n.begin(), n.end(), x) - n.begin() - 1, 0,
                                             static_cast<std::ptrdiff_t>(n.size()) - 2);
   return n[static_cast<std::size_t>(c) + 1] - n[static_cast<std::size_t>(c)];
 }
+
+}  // namespace
+
+double GridAxes::cell_size_at(int axis, double x) const { return cell_of(node[axis], x); }
 
 bool PatchBox::strictly_contains(const Vec3& x, int dim) const {
   for (int a = 0; a < dim; ++a) {
@@ -176,17 +182,6 @@ bool PatchBox::holds(const Vec3& x, int dim) const {
   }
   return true;
 }
-
-namespace {
-
-/// The size of the cell of `n` holding x (beyond the ends, the end cell's).
-double cell_of(const std::vector<double>& n, double x) {
-  const auto c = std::clamp<std::ptrdiff_t>(std::upper_bound(n.begin(), n.end(), x) - n.begin() - 1, 0,
-                                            static_cast<std::ptrdiff_t>(n.size()) - 2);
-  return n[static_cast<std::size_t>(c) + 1] - n[static_cast<std::size_t>(c)];
-}
-
-}  // namespace
 
 int GridAxes::innermost_holding(const Vec3& x, int dim) const {
   int best = -1;

@@ -75,4 +75,15 @@ struct GradedAxis {
   }
 };
 
+/// A box's node coordinates continued by `ghost` cells of its end cells' size on either side: how
+/// the MPM grid lays out a graded axis.
+inline std::vector<double> with_ghost_layers(const std::vector<double>& box, int ghost) {
+  const double first = box[1] - box[0], last = box.back() - box[box.size() - 2];
+  std::vector<double> nodes;
+  for (int k = ghost; k > 0; --k) nodes.push_back(box.front() - k * first);
+  nodes.insert(nodes.end(), box.begin(), box.end());
+  for (int k = 1; k <= ghost; ++k) nodes.push_back(box.back() + k * last);
+  return nodes;
+}
+
 }  // namespace ballista

@@ -85,20 +85,6 @@ void MpmSolver::fold_mirror_faces(P2gPart part) {
   }
 }
 
-void MpmSolver::fold_patch_nodes(P2gPart part) {
-  const Index nn = grid_.geom.node_count();
-  const int nf = grid_.fields;
-  if (maps_mass(part)) {
-    patch_.fold(grid_.mass.data(), nn, nf);
-    if (nf > 1) patch_.fold(grid_.grad.data(), nn, nf);
-  }
-  if (maps_momentum(part)) patch_.fold(grid_.velocity.data(), nn, nf);
-  if (maps_forces(part)) patch_.fold(grid_.force.data(), nn, nf);
-  if (maps_volume(part) && grid_.with_volume) patch_.fold(grid_.volume.data(), nn, nf);
-}
-
-void MpmSolver::fill_patch_nodes(Vec3* v) const { patch_.fill(v, grid_.geom.node_count(), grid_.fields); }
-
 void MpmSolver::fill_mirror_ghosts(Vec3* v) {
   const GridGeometry& g = grid_.geom;
   const Index nn = g.node_count();

@@ -101,21 +101,6 @@ void MpmSolver::mark_active_blocks() {
     });
 }
 
-bool MpmSolver::clear_of_patches(const Vec3& x, const Vec3& half, int depth) const {
-  if (dimension_ == Dimension::Axisymmetric && !(x[0] - half[0] > 0.0)) return false;
-  for (const PatchBox& b : patch_axes_->patches) {
-    if (b.depth < depth) continue;
-    bool overlap = true;
-    for (int a = 0; a < dim_ && overlap; ++a) {
-      const bool below = !b.open_lower[static_cast<std::size_t>(a)] && !(x[a] + half[a] > b.lower[a]);
-      const bool above = !b.open_upper[static_cast<std::size_t>(a)] && !(x[a] - half[a] < b.upper[a]);
-      overlap = !(below || above);
-    }
-    if (overlap) return false;
-  }
-  return true;
-}
-
 void MpmSolver::build_slabs() {
   // Lock-free scatter: points are bucketed into slabs of slab_width_ cells along the slab axis.
   // Slabs two apart touch disjoint nodes when width >= 2 * reach, so even slabs are scattered in

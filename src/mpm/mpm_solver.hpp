@@ -132,7 +132,10 @@ class MpmSolver final : public Solver {
   void fold_mirror_faces(P2gPart part);
   /// ... and sets the ghost nodes of every field to the mirror image of the inside values.
   void fill_mirror_ghosts(Vec3* v);
-  /// Patches (grid.patches): moves the hanging nodes' sums of the pass's part to their masters
+  /// Patches (grid.patches; mpm_patches.cpp): the refusals, the cell-edge table and the coarser
+  /// levels' grids, set up once.
+  void setup_patches(const Scenario& sc);
+  /// Patches: moves the hanging nodes' sums of the pass's part to their masters
   /// (mpm/patch_constraints.hpp) ...
   void fold_patch_nodes(P2gPart part);
   /// ... and sets every field's hanging nodes of `v` from their masters.

@@ -79,7 +79,7 @@ double MpmSolver::graded_stable_dt() {
   const Index n = points_.size();
 #pragma omp parallel for reduction(max : rate) schedule(static) if (n > kParallelThreshold)
   for (Index p = 0; p < n; ++p) rate = std::max(rate, (wave_scratch_[p] + norm(v[p])) / cell_length_[p]);
-  if (patch_axes_) {
+  if (patch_axes_ && flip_ < 1.0) {
     // The cell of the point that sets the step (grid_to_particles scales the PIC share by it).
     double best = -1.0;
     step_cell_ = 0.0;
