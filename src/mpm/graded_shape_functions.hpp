@@ -83,7 +83,7 @@ inline void gimp_1d(const GradedAxis& ax, double x, double lp, shape_detail::Axi
 }  // namespace graded_detail
 
 template <int Dim>
-inline void graded_linear_stencil(const GridGeometry& g, const Vec3& x, Stencil<Dim>& s) {
+[[gnu::always_inline]] inline void graded_linear_stencil(const GridGeometry& g, const Vec3& x, Stencil<Dim>& s) {
   shape_detail::Axis1D<2> ax[Dim];
   for (int d = 0; d < Dim; ++d) graded_detail::linear_1d((*g.graded)[d], x[d], ax[d]);
   s.count = 0;
@@ -92,7 +92,7 @@ inline void graded_linear_stencil(const GridGeometry& g, const Vec3& x, Stencil<
 
 /// The trimmed uGIMP windows on a graded grid (GimpWindows).
 template <int Dim>
-inline void graded_gimp_windows(const GridGeometry& g, const Vec3& x, const Vec3& lp, GimpWindows<Dim>& w) {
+[[gnu::always_inline]] inline void graded_gimp_windows(const GridGeometry& g, const Vec3& x, const Vec3& lp, GimpWindows<Dim>& w) {
   for (int d = 0; d < Dim; ++d) {
     graded_detail::gimp_1d((*g.graded)[d], x[d], lp[d], w.ax[d]);
     w.n.n[d] = shape_detail::trim_gimp_window(w.ax[d]);

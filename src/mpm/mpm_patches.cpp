@@ -11,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "geometry/grid_axes.hpp"
+#include "mpm/graded_shape_functions.hpp"
 #include "mpm/mpm_solver.hpp"
 
 namespace ballista {
@@ -140,6 +141,41 @@ bool MpmSolver::clear_of_patches(const Vec3& x, const Vec3& half, int depth) con
   }
   return true;
 }
+
+template <int Dim>
+void MpmSolver::patch_point_stencil(Index p, const Vec3& x, const Vec3& half, GimpWindows<Dim>& w,
+                                    Stencil<Dim>& st) {
+  // A domain clear of the patches deeper than level k takes its weights on level k's cells
+  // (level_geom_), the coarsest such level; the rest the grid's own.
+  const int grid_level = static_cast<int>(level_geom_.size());
+  char& level = stencil_level_[static_cast<std::size_t>(p)];
+  if (!windows_current_) {
+    level = static_cast<char>(grid_level);
+    for (int k = 0; k < grid_level; ++k) {
+      if (!clear_of_patches(x, half, k + 1)) continue;
+      graded_gimp_windows<Dim>(level_geom_[static_cast<std::size_t>(k)], x, half, w);
+      stencil_from_windows<Dim>(level_geom_[static_cast<std::size_t>(k)], w, st);
+      bool mapped = true;
+      const std::vector<Index>& to_grid = level_to_grid_[static_cast<std::size_t>(k)];
+      for (int q = 0; q < st.count && mapped; ++q) mapped = to_grid[static_cast<std::size_t>(st.node[q])] >= 0;
+      if (mapped) {
+        level = static_cast<char>(k);
+        break;
+      }
+    }
+    if (level == grid_level) graded_gimp_windows<Dim>(grid_.geom, x, half, w);
+  }
+  if (level < grid_level) {
+    stencil_from_windows<Dim>(level_geom_[static_cast<std::size_t>(level)], w, st);
+    const std::vector<Index>& to_grid = level_to_grid_[static_cast<std::size_t>(level)];
+    for (int q = 0; q < st.count; ++q) st.node[q] = to_grid[static_cast<std::size_t>(st.node[q])];
+    return;
+  }
+  stencil_from_windows<Dim>(grid_.geom, w, st);
+}
+
+template void MpmSolver::patch_point_stencil<2>(Index, const Vec3&, const Vec3&, GimpWindows<2>&, Stencil<2>&);
+template void MpmSolver::patch_point_stencil<3>(Index, const Vec3&, const Vec3&, GimpWindows<3>&, Stencil<3>&);
 
 void MpmSolver::fold_patch_nodes(P2gPart part) {
   const Index nn = grid_.geom.node_count();

@@ -150,39 +150,16 @@ void MpmSolver::activate_pending() {
 }
 
 template <int Dim, ShapeKind K, bool G>
-inline void MpmSolver::point_stencil(Index p, const Vec3& x, const Vec3& half, Stencil<Dim>& st) {
+[[gnu::always_inline]] inline void MpmSolver::point_stencil(Index p, const Vec3& x, const Vec3& half,
+                                                            Stencil<Dim>& st) {
+  // Inlined always: it runs per point in every transfer loop. Patches take their own,
+  // out-of-line path, which keeps this one small.
   if constexpr (K == ShapeKind::Gimp) {
     // uGIMP: reference half-size (Bardenhagen & Kober 2004).
     GimpWindows<Dim>& w = gimp_windows_of_points<Dim>()[p];
     if constexpr (G) {
       if (!level_geom_.empty()) {
-        // Patches: a domain clear of the patches deeper than level k takes its weights on level
-        // k's cells (level_geom_), the coarsest such level; the rest the grid's own.
-        const int grid_level = static_cast<int>(level_geom_.size());
-        char& level = stencil_level_[static_cast<std::size_t>(p)];
-        if (!windows_current_) {
-          level = static_cast<char>(grid_level);
-          for (int k = 0; k < grid_level; ++k) {
-            if (!clear_of_patches(x, half, k + 1)) continue;
-            graded_gimp_windows<Dim>(level_geom_[static_cast<std::size_t>(k)], x, half, w);
-            stencil_from_windows<Dim>(level_geom_[static_cast<std::size_t>(k)], w, st);
-            bool mapped = true;
-            const std::vector<Index>& to_grid = level_to_grid_[static_cast<std::size_t>(k)];
-            for (int q = 0; q < st.count && mapped; ++q) mapped = to_grid[static_cast<std::size_t>(st.node[q])] >= 0;
-            if (mapped) {
-              level = static_cast<char>(k);
-              break;
-            }
-          }
-          if (level == grid_level) graded_gimp_windows<Dim>(grid_.geom, x, half, w);
-        }
-        if (level < grid_level) {
-          stencil_from_windows<Dim>(level_geom_[static_cast<std::size_t>(level)], w, st);
-          const std::vector<Index>& to_grid = level_to_grid_[static_cast<std::size_t>(level)];
-          for (int q = 0; q < st.count; ++q) st.node[q] = to_grid[static_cast<std::size_t>(st.node[q])];
-          return;
-        }
-        stencil_from_windows<Dim>(grid_.geom, w, st);
+        patch_point_stencil<Dim>(p, x, half, w, st);
         return;
       }
     }
@@ -469,7 +446,7 @@ void MpmSolver::grid_to_particles(double dt) {
   const double flip = flip_;
   const bool xpic = xpic_active();
   // Patches imply a graded grid: on a uniform one (G false) the PIC share's cell look-up below is
-  // compiled out, which keeps it off the hot loop (it slowed the uniform block bench by 8-13 %).
+  // compiled out of the loop.
   const bool pic_by_cell = G && patch_axes_ && flip < 1.0 && step_cell_ > 0.0;
   const Vec3* vx = xpic ? xpic_.target.data() : nullptr;
   const Index n = points_.size();

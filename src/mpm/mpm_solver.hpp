@@ -264,6 +264,10 @@ class MpmSolver final : public Solver {
   /// Point p's stencil for this step (from its kept GIMP windows once they are current).
   template <int Dim, ShapeKind K, bool G>
   void point_stencil(Index p, const Vec3& x, const Vec3& half, Stencil<Dim>& st);
+  /// The same for a uGIMP point on a grid with patches (mpm_patches.cpp): its weights on the
+  /// coarsest nesting level its domain allows (level_geom_).
+  template <int Dim>
+  void patch_point_stencil(Index p, const Vec3& x, const Vec3& half, GimpWindows<Dim>& w, Stencil<Dim>& st);
   Index first_bad_ = 0, first_out_ = 0;  ///< lowest inverted / escaped point of the step (or n)
   // Field pointers bound at the start of each step (valid until points are reordered).
   Vec3* x_ = nullptr;
