@@ -665,6 +665,9 @@ struct Geomodel {
     sigma(2, 2) += iso;
   }
 
+  /// wave_speed reads eqps and evp only (MaterialAdapter fetches no other state for it).
+  static int wave_speed_state_count(const Params&) { return 2; }
+
   /// Dilatational wave speed with the stiffest moduli the state allows: K = B0 + B1 (saturated by
   /// Biot-Gassmann at the current porosity with a pore fluid), G at its largest.
   static double wave_speed(const Params& p, const double* state, double J) {

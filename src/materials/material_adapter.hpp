@@ -103,8 +103,7 @@ class MaterialAdapter final : public Material {
   class PointWaveSpeed {
    public:
     PointWaveSpeed(const MaterialAdapter& m, const FieldStore& store, int zero_slot = -1)
-        : params_(m.params_), ns_(static_cast<int>(m.state_.size())), zero_slot_(zero_slot),
-          F_(store.view(kDeformationGradient)) {
+        : params_(m.params_), ns_(read_slots(m)), zero_slot_(zero_slot), F_(store.view(kDeformationGradient)) {
       for (int s = 0; s < ns_; ++s) sptr_[s] = store.real(m.state_[s].name);
     }
     double operator()(Index p) const {
@@ -115,6 +114,17 @@ class MaterialAdapter final : public Material {
     }
 
    private:
+    /// The state slots the model's wave_speed reads: the leading `wave_speed_state_count` of them
+    /// where the model says so (the rest are not fetched: this runs for every point every step),
+    /// else all.
+    static int read_slots(const MaterialAdapter& m) {
+      const int all = static_cast<int>(m.state_.size());
+      if constexpr (requires { Model::wave_speed_state_count(m.params_); })
+        return std::min(all, Model::wave_speed_state_count(m.params_));
+      else
+        return all;
+    }
+
     const Params& params_;
     int ns_;
     int zero_slot_;
