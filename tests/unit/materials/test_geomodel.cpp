@@ -522,5 +522,36 @@ TEST(GeomodelParams, InconsistentParametersAreRejected) {
   rejects(v, "poisson_ratio_gain");
 }
 
+// The batch's wave speeds (MaterialAdapter::wave_speeds, which fetches only the state slots the
+// model's wave_speed declares it reads) are each point's speed from its whole state
+// (Material::wave_speed), bitwise. Saturated, the speed depends on the plastic volume through
+// the porosity (Biot-Gassmann), so the points differ and a slot read wrong would show; the stored
+// porosity and cap are set to values no state could hold, so a speed that read them would differ.
+TEST(GeomodelWaveSpeed, BatchSpeedsAreThePointSpeedsFromTheWholeState) {
+  ParamValues wet = hydrostat_params();
+  wet["fluid_bulk_modulus"] = 2.2e9;
+  wet["matrix_bulk_modulus"] = 37e9;
+  const auto m = test::make_material("geomodel", wet);
+  FieldStore st;
+  st.declare(kDeformationGradient, "1");
+  m->declare_fields(st);
+  st.resize(3);
+  const double J[3] = {0.9, 1.0, 1.2}, evp[3] = {-0.05, 0.0, 0.02};
+  for (int p = 0; p < 3; ++p) {
+    st.view(kDeformationGradient)[p] = Mat3::diag(J[p], 1.0, 1.0);
+    st.real("plastic_volumetric_strain")[p] = evp[p];
+    st.real("porosity")[p] = -7.0;
+    st.real("cap_i1")[p] = 1e30;
+  }
+  const Index all[3] = {0, 1, 2};
+  double c[3];
+  m->wave_speeds(st, all, 3, c);
+  for (int p = 0; p < 3; ++p) EXPECT_EQ(c[p], m->wave_speed(st, p, J[p])) << p;
+  // The plastic volume moves the speed at equal J (porosity 0.21 -> 0.17 stiffens the fluid share).
+  st.view(kDeformationGradient)[0] = st.view(kDeformationGradient)[1];
+  m->wave_speeds(st, all, 3, c);
+  EXPECT_GT(c[0], c[1] * (1.0 + 1e-6));
+}
+
 }  // namespace
 }  // namespace ballista::test_geomodel
