@@ -7,11 +7,14 @@
 //   compaction steps    - hydrostatic compression past the cap: every step crushes pores and moves
 //                         the cap (consistency iteration), with pore fluid in the saturated set;
 //   confined shear      - confined at 5 ksi (the perforation demo's rock), sheared at 1e4 1/s in a
-//                         fixed deviatoric direction per point: every step is a hardening return
-//                         (its profile is the cap's: the kappa solve and the coupled cap return),
-//                         as for the demo's yielding rock (40 % of its intact points plastic in a
-//                         step at 60 us). Each timed block of 10 steps starts from the same
-//                         state, reached by 40 untimed steps and restored untimed.
+//                         fixed deviatoric direction per point: every step is a hardening return.
+//                         The strain is prescribed, so the dilatancy, held at a fixed volume,
+//                         compresses the point towards the cap, and the returns are mostly the
+//                         cap's (under prescribed confining stress the same shear stays on the
+//                         limit surface). The demo's yielding rock has both: 40 % of its intact
+//                         points plastic in a step at 60 us, I1 from -0.76 to -0.06 GPa. Each
+//                         timed block of 10 steps starts from the same state, reached by 40
+//                         untimed steps and restored untimed.
 //   ./build/bench/geomodel_update_bench
 #include <benchmark/benchmark.h>
 
