@@ -48,11 +48,17 @@ void BM_Geomodel(benchmark::State& state, std::string preset_name, Load load) {
   std::uniform_real_distribution<double> u(-1, 1);
   const double dt = 1e-7;
   // Strain rates: 1e2 1/s keeps every step elastic (1e-5 strain per step, alternating sign);
-  // 1e5 1/s shears 1 % per step; compaction 2e3 1/s volumetric (2e-4 per step).
-  const double rate = load == Load::Elastic ? 1e2 : load == Load::Shear ? 1e5 : load == Load::ConfinedShear ? 1e4 : 2e3;
+  // 1e5 1/s shears 1 % per step, the confined shear 0.1 %; compaction 2e3 1/s volumetric (2e-4
+  // per step).
+  const double rate = load == Load::Elastic         ? 1e2
+                      : load == Load::Shear         ? 1e5
+                      : load == Load::ConfinedShear ? 1e4
+                                                    : 2e3;
   // Start confined at a mean stress of -50 MPa (compaction: at the cap, I1 = P0, so every step is
-  // plastic from the first).
-  const double mean = load == Load::Compaction ? -1.14e9 / 3.0 : load == Load::ConfinedShear ? -34.48e6 : -50e6;
+  // plastic from the first; the confined shear: at the demo's 5 ksi, -34.48 MPa).
+  const double mean = load == Load::Compaction      ? -1.14e9 / 3.0
+                      : load == Load::ConfinedShear ? -34.48e6
+                                                    : -50e6;
   for (Index p = 0; p < n; ++p) {
     Mat3 L;
     if (load == Load::Compaction) {

@@ -157,7 +157,7 @@ double GridAxes::largest(int axis) const {
 namespace {
 
 /// The size of the cell of `n` holding x (beyond the ends, the end cell's).
-double cell_of(const std::vector<double>& n, double x) {
+double size_of_cell_holding(const std::vector<double>& n, double x) {
   const auto c = std::clamp<std::ptrdiff_t>(std::upper_bound(n.begin(), n.end(), x) - n.begin() - 1, 0,
                                             static_cast<std::ptrdiff_t>(n.size()) - 2);
   return n[static_cast<std::size_t>(c) + 1] - n[static_cast<std::size_t>(c)];
@@ -165,7 +165,7 @@ double cell_of(const std::vector<double>& n, double x) {
 
 }  // namespace
 
-double GridAxes::cell_size_at(int axis, double x) const { return cell_of(node[axis], x); }
+double GridAxes::cell_size_at(int axis, double x) const { return size_of_cell_holding(node[axis], x); }
 
 bool PatchBox::strictly_contains(const Vec3& x, int dim) const {
   for (int a = 0; a < dim; ++a) {
@@ -205,7 +205,7 @@ const std::vector<double>& GridAxes::lattice_of(int patch, int axis) const {
 }
 
 double GridAxes::effective_cell_size(int axis, const Vec3& x, int dim) const {
-  return cell_of(lattice_of(innermost_holding(x, dim), axis), x[axis]);
+  return size_of_cell_holding(lattice_of(innermost_holding(x, dim), axis), x[axis]);
 }
 
 namespace {

@@ -92,7 +92,8 @@ template <int Dim>
 
 /// The trimmed uGIMP windows on a graded grid (GimpWindows).
 template <int Dim>
-[[gnu::always_inline]] inline void graded_gimp_windows(const GridGeometry& g, const Vec3& x, const Vec3& lp, GimpWindows<Dim>& w) {
+[[gnu::always_inline]] inline void graded_gimp_windows(const GridGeometry& g, const Vec3& x, const Vec3& lp,
+                                                       GimpWindows<Dim>& w) {
   for (int d = 0; d < Dim; ++d) {
     graded_detail::gimp_1d((*g.graded)[d], x[d], lp[d], w.ax[d]);
     w.n.n[d] = shape_detail::trim_gimp_window(w.ax[d]);

@@ -18,18 +18,13 @@ namespace ballista {
 
 void MpmSolver::setup_patches(const Scenario& sc) {
   const DeckMark& m = sc.grid.patches.front().mark;
-  auto refuse = [&](const std::string& why) {
-    throw DeckError(m.file, m.line, m.column, "grid.patches", why);
-  };
+  auto refuse = [&](const std::string& why) { throw DeckError(m.file, m.line, m.column, "grid.patches", why); };
   if (anti_locking_ == AntiLocking::FBar)
-    refuse(
-        "the F-bar averages over the grid's cells, which a patch's hanging nodes do not bound: "
-        "patches run "
-        "without mpm.anti_locking: fbar so far");
+    refuse("the F-bar averages over the grid's cells, which a patch's hanging nodes do not bound: "
+           "patches run without mpm.anti_locking: fbar so far");
   if (xpic_active())
-    refuse(
-        "XPIC smooths over the grid's nodes, hanging ones included: patches run without "
-        "mpm.xpic_order > 1 so far");
+    refuse("XPIC smooths over the grid's nodes, hanging ones included: patches run without "
+           "mpm.xpic_order > 1 so far");
   patch_axes_ = std::make_shared<const GridAxes>(build_grid_axes(sc.grid, dim_));
   patch_ = PatchConstraints(grid_.geom, *patch_axes_, kGhostLayers);
   {
@@ -68,12 +63,9 @@ void MpmSolver::setup_patches(const Scenario& sc) {
     for (std::size_t i = 0; i < patch_axes_->patches.size(); ++i)
       if (patch_axes_->patches[i].depth > 1) {
         spdlog::warn(
-            "{} is a nested patch and the shape functions are linear: points that flow into it "
-            "from "
-            "coarser cells are further apart than its cells, which then go empty, and they can "
-            "invert "
-            "(the B2 vortex with nested patches stops at its 276th step; docs/deck.md); gimp does "
-            "not",
+            "{} is a nested patch and the shape functions are linear: points that flow into it from "
+            "coarser cells are further apart than its cells, which then go empty, and they can invert "
+            "(the B2 vortex with nested patches stops at its 276th step; docs/deck.md); gimp does not",
             sc.grid.patches[i].mark.key_path);
         break;
       }
