@@ -11,9 +11,10 @@ namespace ballista {
 
 BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, double cell, double dt, bool book_new,
                                        std::vector<double>& c, std::vector<double>& c_reference,
-                                       const double* cells) {
+                                       const double* cells, Index begin, Index end) {
   FieldStore& s = pts.store();
   const Index n = s.size();
+  if (end < 0) end = n;
   c.resize(static_cast<std::size_t>(n));
   if (bv.reference_sound_speed) c_reference.resize(static_cast<std::size_t>(n));
   // The sound speed of each point at its current J, and whether its model keeps an EOS energy.
@@ -22,10 +23,14 @@ BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, d
   std::vector<std::uint8_t> eos_energy(materials.size(), 0), stress_free_failed(materials.size(), 0);
   for (std::size_t m = 0; m < materials.size(); ++m) {
     if (groups[m].empty()) continue;
-    materials[m]->wave_speeds(s, groups[m].data(), static_cast<Index>(groups[m].size()), c.data());
-    if (bv.reference_sound_speed)
-      materials[m]->reference_wave_speeds(s, groups[m].data(), static_cast<Index>(groups[m].size()),
-                                          c_reference.data());
+    // The group's points within [begin, end) (groups list their points in order).
+    const Index* first = std::lower_bound(groups[m].data(), groups[m].data() + groups[m].size(), begin);
+    const Index* last = std::lower_bound(first, groups[m].data() + groups[m].size(), end);
+    if (last > first) {
+      materials[m]->wave_speeds(s, first, static_cast<Index>(last - first), c.data());
+      if (bv.reference_sound_speed)
+        materials[m]->reference_wave_speeds(s, first, static_cast<Index>(last - first), c_reference.data());
+    }
     eos_energy[m] = materials[m]->has_state(kEosEnergyField) ? 1 : 0;
     stress_free_failed[m] = materials[m]->failed_points_are_stress_free() ? 1 : 0;
   }
@@ -40,7 +45,7 @@ BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, d
   const auto* L = s.view(kVelocityGradient);
   const auto* v = s.view(kVelocity);
   double out[1];
-  deterministic_sum<1>(0, n, [&](Index p, double* o) {
+  deterministic_sum<1>(begin, end, [&](Index p, double* o) {
     const double trD = L[p](0, 0) + L[p](1, 1) + L[p](2, 2);
     // Eroded to zero stress (thesis eq. 6.13-6.14): the point carries no pressure, viscous or not.
     const bool stress_free = failed && stress_free_failed[mat[p]] && failed[p] > 0.0;
@@ -61,8 +66,8 @@ BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, d
     c[p] = signal + norm(v[p]);
   }, out);
   double vmax = 0.0, rmax = 0.0;
-#pragma omp parallel for reduction(max : vmax, rmax) schedule(static) if (n > kParallelThreshold)
-  for (Index p = 0; p < n; ++p) {
+#pragma omp parallel for reduction(max : vmax, rmax) schedule(static) if (end - begin > kParallelThreshold)
+  for (Index p = begin; p < end; ++p) {
     vmax = std::max(vmax, c[p]);
     rmax = std::max(rmax, c[p] / (cells ? cells[p] : cell));
   }

@@ -70,9 +70,10 @@ struct BulkViscosityPass {
 /// the q stored before the pass (usl and musl; USAVG's second half), or the q of this L
 /// (`book_new`: USAVG's first half, whose q the step's forces use). `c` and `c_reference` are
 /// scratch (one per point; the second used with bv.reference_sound_speed only).
-/// l is `cell`, or on a graded grid each point's own cell length `cells[p]`.
+/// l is `cell`, or on a graded grid each point's own cell length `cells[p]`. The points [begin,
+/// end) only (end < 0: to the last), the rest of `c` left as it was.
 BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, double cell, double dt, bool book_new,
                                        std::vector<double>& c, std::vector<double>& c_reference,
-                                       const double* cells = nullptr);
+                                       const double* cells = nullptr, Index begin = 0, Index end = -1);
 
 }  // namespace ballista

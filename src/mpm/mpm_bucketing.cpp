@@ -34,6 +34,13 @@ void MpmSolver::sort_by_cell() {
   for (Index p = 0; p < n; ++p) order[start[key[p]]++] = p;
   points_.permute(order);
   pts_.mark_reordered();
+  if (!point_step_.empty()) {
+    // Multi-rate: the own steps follow their points (points activated since: unknown, 0).
+    point_step_.resize(static_cast<std::size_t>(n), 0.0);
+    std::vector<double> moved(point_step_.size());
+    for (Index p = 0; p < n; ++p) moved[p] = point_step_[order[p]];
+    point_step_.swap(moved);
+  }
 }
 
 int MpmSolver::stencil_reach_now() const {
@@ -101,7 +108,7 @@ void MpmSolver::mark_active_blocks() {
     });
 }
 
-void MpmSolver::build_slabs() {
+void MpmSolver::build_slabs(Index begin, Index end) {
   // Lock-free scatter: points are bucketed into slabs of slab_width_ cells along the slab axis.
   // Slabs two apart touch disjoint nodes when width >= 2 * reach, so even slabs are scattered in
   // parallel, then odd ones. Each node thus receives its contributions in an order fixed by the
@@ -124,20 +131,22 @@ void MpmSolver::build_slabs() {
   slab_width_ = std::max(2 * reach, 1);
   const GridGeometry& g = grid_.geom;
   const int nslab = (g.nodes[slab_axis_] + slab_width_ - 1) / slab_width_;
+  // The points [begin, end) only (multi-rate stepping maps its two classes apart).
   const Index n = points_.size();
+  if (end < 0) end = n;
   const auto* x = points_.view(kPosition);
   std::vector<int>& slab = slab_of_point_;  // member scratch: no allocation per step
   slab.resize(n);
-  for_each(0, n, [&](Index p) {
+  for_each(begin, end, [&](Index p) {
     const int c = std::clamp(g.cell_of(x[p][slab_axis_], slab_axis_), 0, g.nodes[slab_axis_] - 1);
     slab[p] = c / slab_width_;
   });
   slab_start_.assign(nslab + 1, 0);
-  for (Index p = 0; p < n; ++p) ++slab_start_[slab[p] + 1];
+  for (Index p = begin; p < end; ++p) ++slab_start_[slab[p] + 1];
   for (int s = 0; s < nslab; ++s) slab_start_[s + 1] += slab_start_[s];
-  slab_points_.resize(n);
+  slab_points_.resize(end - begin);
   slab_fill_.assign(slab_start_.begin(), slab_start_.end() - 1);
-  for (Index p = 0; p < n; ++p) slab_points_[slab_fill_[slab[p]]++] = p;
+  for (Index p = begin; p < end; ++p) slab_points_[slab_fill_[slab[p]]++] = p;
 }
 
 }  // namespace ballista

@@ -14,6 +14,11 @@ void MpmSolver::save_state(StateArchive& a) const {
   // Collective (as pts_.save_state): the total heat and the largest speed of every rank.
   a.put("mpm.bulk_viscosity", std::vector<double>{comm_.sum(viscous_work_), comm_.max(viscous_speed_)});
   if (grid_.geom.graded) a.put_real("mpm.viscous_rate", viscous_rate_);  // one rank (graded grids)
+  if (multirate_max_ > 1) {
+    const MultirateTally& t = multirate_tally_;
+    a.put("mpm.multirate_tally",
+          std::vector<double>{t.steps, t.substeps, t.fast_point_steps, t.slow_point_steps, t.single_rate_point_steps});
+  }
   if (comm_.distributed()) {
     // The decomposition: the region boxes (a restart on as many ranks migrates exactly as the
     // uninterrupted run) and rank 0's statistics.
@@ -50,6 +55,11 @@ void MpmSolver::load_state(const StateArchive& a) {
   a.get_into("mpm.bulk_viscosity", {&viscous_work_total, &viscous_speed_});
   viscous_work_ = comm_.rank() == 0 ? viscous_work_total : 0.0;  // held by rank 0 (energies() sums)
   if (grid_.geom.graded) viscous_rate_ = a.real("mpm.viscous_rate");
+  if (multirate_max_ > 1 && a.has("mpm.multirate_tally")) {
+    MultirateTally& t = multirate_tally_;
+    a.get_into("mpm.multirate_tally",
+               {&t.steps, &t.substeps, &t.fast_point_steps, &t.slow_point_steps, &t.single_rate_point_steps});
+  }
 }
 
 }  // namespace ballista

@@ -180,6 +180,17 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
     throw_solver_param_error(sc, "mpm", "update",
                              "usavg does not work with shape_function: cpdi yet (its weights follow F, which the "
                              "first half of the stress update changes within the step); use gimp or bspline3");
+  multirate_max_ = P.multirate_max_ratio;
+  if (multirate_max_ > 1) {
+    // What the multi-rate step does not do yet (mpm_multirate.cpp): it is USAVG's scheme, on one
+    // rank, without the F-bar's cell sums or XPIC's grid passes.
+    const char* why = !usavg_                              ? "works with update: usavg only so far"
+                      : comm_.distributed()                ? "runs on one MPI rank only so far"
+                      : anti_locking_ == AntiLocking::FBar ? "does not work with anti_locking: fbar yet"
+                      : xpic_order_ > 1 && flip_ < 1.0     ? "does not work with xpic_order > 1 yet"
+                                                           : nullptr;
+    if (why) throw_solver_param_error(sc, "mpm", "multirate_max_ratio", std::string("multi-rate stepping ") + why);
+  }
   if (comm_.distributed()) {
     // Every rank seeded every body: keep a share, then the first partition moves each particle to
     // the rank owning its region.

@@ -58,7 +58,15 @@ std::vector<ParamSpec> mpm_params() {
                        "history, which such models do not read, dropped): material flowing like a fluid otherwise "
                        "stretches until det F and the polar decomposition are lost to round-off. 0 = never",
                        false, 1000.0, 0.0, 1e12};
-  return {shape, update, flip, sort, locking, patch, rebalance, xpic, bv_linear, bv_quadratic, bv_speed, distortion};
+  ParamSpec multirate{"multirate_max_ratio", "1",
+                      "multi-rate stepping: the most substeps the fastest points take per step of the others (1 = "
+                      "one step for every point; 2, 4 or 8 let points whose own stable step is that many times the "
+                      "fastest point's, and not within two cells of a faster point, step that much longer; "
+                      "update: usavg only; docs/deck.md)",
+                      false, 1, 1, 64};
+  multirate.integer = true;
+  return {shape,        update,   flip, sort, locking, patch, rebalance, xpic, bv_linear, bv_quadratic, bv_speed,
+          distortion, multirate};
 }
 
 MpmParams read_mpm_params(const ParamValues& P) {
@@ -77,6 +85,7 @@ MpmParams read_mpm_params(const ParamValues& P) {
   m.bulk_viscosity = {P.at("bulk_viscosity_linear"), P.at("bulk_viscosity_quadratic"),
                       P.choices.at("bulk_viscosity_sound_speed") == "reference"};
   m.distortion_limit = P.at("distortion_limit");
+  m.multirate_max_ratio = static_cast<int>(P.at("multirate_max_ratio"));
   return m;
 }
 

@@ -26,12 +26,16 @@ struct MpmParams {
   int xpic_order = 1;                ///< 1 = PIC for the PIC share
   BulkViscosity bulk_viscosity;      ///< C_L and C_Q (0: off)
   double distortion_limit = 1000.0;  ///< RMS isochoric stretch beyond which F is reset (0 = never)
+  int multirate_max_ratio = 1;       ///< most substeps of the fast points per step (1: one step for all)
 
   /// XPIC needs its two extra node arrays (order > 1 with a PIC share).
   bool xpic_arrays() const { return xpic_order > 1 && flip < 1.0; }
   /// Extra node arrays as a count of Vec3 per node and field: XPIC's prev and target, USAVG's
   /// constrained first-half velocity.
-  int extra_node_arrays() const { return (xpic_arrays() ? 2 : 0) + (update == Update::Usavg ? 1 : 0); }
+  /// Multi-rate stepping's held share (mass, force, u, u0, path, v_n; its contact sums).
+  int extra_node_arrays() const {
+    return (xpic_arrays() ? 2 : 0) + (update == Update::Usavg ? 1 : 0) + (multirate_max_ratio > 1 ? 7 : 0);
+  }
 };
 
 /// Reads the section (Scenario::solver_params of an mpm deck: every key present, the deck reader

@@ -174,7 +174,7 @@ template <int Dim, ShapeKind K, bool G>
 }
 
 template <int Dim, ShapeKind K, bool G>
-void MpmSolver::particles_to_grid(P2gPart part, const Vec3* v_source) {
+void MpmSolver::particles_to_grid(P2gPart part, const Vec3* v_source, Index begin, Index end) {
   const GridGeometry& g = grid_.geom;
   const auto* x = points_.view(kPosition);
   const auto* v = v_source ? v_source : points_.view(kVelocity);
@@ -223,6 +223,7 @@ void MpmSolver::particles_to_grid(P2gPart part, const Vec3* v_source) {
     // Tractions at the surface points, with the kernel's weights there (serial: few points).
     Stencil<Dim> st;
     for (const PointLoads::SurfaceForce& sf : loads_.surface_forces()) {
+      if (sf.index < begin || (end >= 0 && sf.index >= end)) continue;  // another range's point
       surface_point_stencil<Dim, K, G>(g, spline_faces_, sf.point, st);
       const Index fo = field_offset(sf.index);
       for (int k = 0; k < st.count; ++k) gf[fo + st.node[k]] += st.w[k] * sf.force;
@@ -424,7 +425,7 @@ inline void MpmSolver::finish_point(Index p, const Mat3& l, const Vec3& disp, do
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 template <int Dim, ShapeKind K, bool G, bool Usavg>
-void MpmSolver::grid_to_particles(double dt) {
+void MpmSolver::grid_to_particles(double dt, Index begin, Index end) {
   // One pass per point: grid velocity, acceleration and velocity gradient at the point; FLIP/PIC
   // velocity update; position, F and volume update (USL); failure and exit detection. USAVG's
   // bookkeeping is compiled into its own instance (Usavg), so the USL/MUSL pass stays as lean as
@@ -454,7 +455,7 @@ void MpmSolver::grid_to_particles(double dt) {
   const auto* mass = points_.real(kMass);
   std::atomic<Index> bad{n}, out{n};
   double pw[2];
-  deterministic_sum<2>(0, n, [&](Index p, double* o) {
+  deterministic_sum<2>(begin, end < 0 ? n : end, [&](Index p, double* o) {
     Stencil<Dim> st;
     const Vec3 xp = x_[p];
     point_stencil<Dim, K, G>(p, xp, half[p], st);
@@ -543,6 +544,7 @@ void MpmSolver::grid_to_particles(double dt) {
       // Tractions are spread from their surface points (particles_to_grid); serial, few points.
       Stencil<Dim> st;
       for (const PointLoads::SurfaceForce& sf : loads_.surface_forces()) {
+        if (sf.index < begin || (end >= 0 && sf.index >= end)) continue;  // another range's point
         surface_point_stencil<Dim, K, G>(g, spline_faces_, sf.point, st);
         const Index fo = field_offset(sf.index);
         Vec3 vm;
@@ -561,7 +563,80 @@ void MpmSolver::grid_to_particles(double dt) {
 #pragma GCC diagnostic pop
 
 template <int Dim, ShapeKind K, bool G>
-void MpmSolver::velocity_gradient_from_grid(double dt, bool move) {
+void MpmSolver::slow_grid_to_particles(double dt, int substeps, Index begin, Index end) {
+  // Multi-rate stepping: the slow points' USAVG update at the end of their step, from the grid
+  // share they held over its substeps (MultirateGrid, mpm_multirate.cpp). They have not moved
+  // since the step began, so their weights are those their sums were mapped with. Where no fast
+  // point shares a node, the substeps' velocities are one USAVG step's (constant force): u - u0
+  // = dt a, disp = dt (v_n + v_end) / 2 and w = v_end, so the update below is grid_to_particles's.
+  //   velocity: FLIP v + S (u - u0), PIC S v_end (the node's last velocity), blended with the
+  //   PIC share of as many steps as the substeps, 1 - flip^substeps: the PIC share damps what
+  //   the grid cannot carry at (1 - flip) per step, and a slow point is damped as much per unit
+  //   time as if it had taken every substep;
+  //   position: x + S disp, disp the nodes' path over the substeps;
+  //   second stress half: L from w = 2 disp / dt - v_n over dt / 2, so that the two halves'
+  //   strain, dt/2 (L(v_n) + L(w)) = L(disp), is the one the positions took (USAVG's consistency).
+  const GridGeometry& g = grid_.geom;
+  auto* v = points_.view(kVelocity);
+  const auto* half = points_.view(kHalfSize);
+  const auto* mass = points_.real(kMass);
+  const Vec3* u = multirate_.u.data();
+  const Vec3* u0 = multirate_.u0.data();
+  const Vec3* disp = multirate_.disp.data();
+  const Vec3* w = multirate_.vn0.data();  // holds w (step_multirate)
+  const Vec3* vend = grid_.velocity_new.data();
+  const bool axisym = dimension_ == Dimension::Axisymmetric;
+  const bool has_ext = !multirate_.fext.empty();
+  const double flip = std::pow(flip_, substeps);
+  const Index n = points_.size();
+  std::atomic<Index> bad{n}, out{n};
+  double pw[2];
+  deterministic_sum<2>(begin, end, [&](Index p, double* o) {
+    Stencil<Dim> st;
+    const Vec3 xp = x_[p];
+    point_stencil<Dim, K, G>(p, xp, half[p], st);
+    const Index fo = field_offset(p);
+    Vec3 du, upic, d;
+    Mat3 l;
+    for (int k = 0; k < st.count; ++k) {
+      const Index I = fo + st.node[k];
+      const double wk = st.w[k];
+      du += wk * (u[I] - u0[I]);
+      upic += wk * vend[I];
+      d += wk * disp[I];
+      const Vec3& dN = st.grad[k];
+      for (int i = 0; i < Dim; ++i)
+        for (int j = 0; j < Dim; ++j) l(i, j) += w[I][i] * dN[j];
+    }
+    if (axisym) {
+      double rate, wr = 0.0;
+      for (int k = 0; k < st.count; ++k) wr += st.w[k] * w[fo + st.node[k]][0];
+      l(2, 2) = hoop_rate_near_axis<Dim, K>(g, xp, half[p], st, w + fo, rate) ? rate : wr / xp[0];
+    }
+    const Vec3 v_old = v[p];
+    v[p] = flip * (v_old + du) + (1.0 - flip) * upic;
+    // The point loads work over the nodes' path (USAVG books them at the grid's velocity).
+    if (has_ext) o[0] += dot(multirate_.fext[static_cast<std::size_t>(p - begin)], d);
+    o[1] += 0.5 * mass[p] * (dot(v[p], v[p]) - dot(v_old, v_old));
+    finish_point(p, l, d, 0.5 * dt, bad, out);
+  }, pw);
+  // Their surface tractions, at their own points (serial: few).
+  Stencil<Dim> st;
+  for (const PointLoads::SurfaceForce& sf : multirate_.surface) {
+    surface_point_stencil<Dim, K, G>(g, spline_faces_, sf.point, st);
+    const Index fo = field_offset(sf.index);
+    Vec3 d;
+    for (int k = 0; k < st.count; ++k) d += st.w[k] * disp[fo + st.node[k]];
+    pw[0] += dot(sf.force, d);
+  }
+  external_work_ += pw[0];
+  transfer_work_ += pw[1];
+  first_bad_ = bad.load();
+  first_out_ = out.load();
+}
+
+template <int Dim, ShapeKind K, bool G>
+void MpmSolver::velocity_gradient_from_grid(double dt, bool move, Index begin, Index end) {
   // L, F and the volume from the grid velocity in velocity_new, with the shape functions of this
   // step: for MUSL (Sulsky, Zhou & Schreyer, CPC 87 (1995) 236) the velocity the updated particle
   // momenta map back to, with the points moved by `displacement_`; for USAVG's first half the
@@ -571,16 +646,17 @@ void MpmSolver::velocity_gradient_from_grid(double dt, bool move) {
   const Vec3* vg = grid_.velocity_new.data();
   const bool axisym = dimension_ == Dimension::Axisymmetric;
   const Index n = points_.size();
+  if (end < 0) end = n;
   std::atomic<Index> bad{n}, out{n};
   if constexpr (K == ShapeKind::Linear && Dim == 3 && !G) {
     if (grid_.fields == 1) {
       // Eight points per vector (mpm/gradient_linear_3d.hpp): the loop below's sums to round-off.
       constexpr Index kChunk = kPointChunk;
-      for_each_point_chunk((n + kChunk - 1) / kChunk, [&](Index c) {
-        const Index end = std::min(n, (c + 1) * kChunk);
+      for_each_point_chunk((end - begin + kChunk - 1) / kChunk, [&](Index c) {
+        const Index last = std::min(end, begin + (c + 1) * kChunk);
         Mat3 l[kGradientGroup];
-        for (Index p0 = c * kChunk; p0 < end; p0 += kGradientGroup) {
-          const int m = static_cast<int>(std::min<Index>(kGradientGroup, end - p0));
+        for (Index p0 = begin + c * kChunk; p0 < last; p0 += kGradientGroup) {
+          const int m = static_cast<int>(std::min<Index>(kGradientGroup, last - p0));
           linear_3d_gradients(g, vg, x_ + p0, m, l);
           for (int j = 0; j < m; ++j) finish_point(p0 + j, l[j], move ? displacement_[p0 + j] : Vec3{}, dt, bad, out);
         }
@@ -590,7 +666,7 @@ void MpmSolver::velocity_gradient_from_grid(double dt, bool move) {
       return;
     }
   }
-  for_each(0, n, [&](Index p) {
+  for_each(begin, end, [&](Index p) {
     Stencil<Dim> st;
     const Vec3 xp = x_[p];
     point_stencil<Dim, K, G>(p, xp, half[p], st);
@@ -683,11 +759,21 @@ void MpmSolver::step_impl(double dt) {
   if (bulk_viscosity_.active()) bulk_viscosity_pass(sdt, false);
 }
 
-void MpmSolver::bulk_viscosity_pass(double dt, bool book_new) {
-  if (grid_.geom.graded) update_cell_lengths();  // the viscous length is each point's cell
+template <int Dim, ShapeKind K, bool G>
+void MpmSolver::step_any(double dt) {
+  // Multi-rate: as many substeps as the fastest point's step needs (stable_dt chose dt).
+  const int substeps = multirate_max_ > 1 && fine_dt_ > 0.0
+                           ? std::max(1, static_cast<int>(std::ceil(dt / fine_dt_ * (1.0 - 1e-12))))
+                           : 1;
+  if (substeps > 1) step_multirate<Dim, K, G>(dt, substeps);
+  else step_impl<Dim, K, G>(dt);
+}
+
+void MpmSolver::bulk_viscosity_pass(double dt, bool book_new, Index begin, Index end) {
+  if (grid_.geom.graded) update_cell_lengths(begin, end);  // the viscous length is each point's cell
   const BulkViscosityPass r = apply_bulk_viscosity(pts_, bulk_viscosity_, grid_.geom.h, dt, book_new, wave_scratch_,
                                                    reference_wave_scratch_,
-                                                   grid_.geom.graded ? cell_length_.data() : nullptr);
+                                                   grid_.geom.graded ? cell_length_.data() : nullptr, begin, end);
   // This rank's share only: a collective here would not match a rank that failed in the step
   // (rethrow_agreed); energies() and save_state() sum it.
   viscous_work_ += r.work;
@@ -707,6 +793,11 @@ void MpmSolver::first_half_stress_update(double dt) {
   // since each step starts from the velocity mapped from the particles, not from the grid's
   // updated one (MpmSolver.TemporalOrderOfTheUpdateSchemes). The particles' velocities do not
   // change here; they receive the constraints' impulses with the grid update (update_grid).
+  usavg_start_velocity();
+  first_half_points<Dim, K, G>(dt, 0, points_.size());
+}
+
+void MpmSolver::usavg_start_velocity() {
   const bool multi = grid_.fields > 1;
   const Index nall = grid_.geom.node_count() * grid_.fields;
   usavg_start_.resize(nall);
@@ -731,15 +822,19 @@ void MpmSolver::first_half_stress_update(double dt) {
   for_each_active_node([&](Index i) { grid_.velocity_new[i] = usavg_start_[i]; });
   if (!patch_.empty()) fill_patch_nodes(grid_.velocity_new.data());
   if (!mirror_faces_.empty()) fill_mirror_ghosts(grid_.velocity_new.data());
-  velocity_gradient_from_grid<Dim, K, G>(0.5 * dt, false);
+}
+
+template <int Dim, ShapeKind K, bool G>
+void MpmSolver::first_half_points(double dt, Index begin, Index end) {
+  velocity_gradient_from_grid<Dim, K, G>(0.5 * dt, false, begin, end);
   if (first_bad_ < points_.size())  // named as the step it happens in (steps_ counts completed ones)
     pts_.fail(first_bad_,
               "inverted or non-finite deformation gradient (J <= 0, NaN or infinite) in the first half of the step",
               steps_ + 1, time_);
   if (anti_locking_ == AntiLocking::FBar)
     fbar_.apply(grid_.geom, dimension_, 0.5 * dt, fbar_points(), fbar_across_ranks());
-  pts_.update_stress(0.5 * dt, steps_, time_);
-  if (bulk_viscosity_.active()) bulk_viscosity_pass(0.5 * dt, true);  // the q the step's forces use
+  pts_.update_stress(0.5 * dt, steps_, time_, {}, begin, end);
+  if (bulk_viscosity_.active()) bulk_viscosity_pass(0.5 * dt, true, begin, end);  // the q the step's forces use
 }
 
 FBarPoints MpmSolver::fbar_points() {
@@ -784,29 +879,29 @@ void MpmSolver::step_local(double dt) {
   if (grid_.geom.graded) {  // no cubic B-spline on a graded grid (refused in the constructor)
     switch (shape_) {
       case ShapeKind::Linear:
-        three ? step_impl<3, ShapeKind::Linear, true>(dt) : step_impl<2, ShapeKind::Linear, true>(dt);
+        three ? step_any<3, ShapeKind::Linear, true>(dt) : step_any<2, ShapeKind::Linear, true>(dt);
         break;
       case ShapeKind::Gimp:
-        three ? step_impl<3, ShapeKind::Gimp, true>(dt) : step_impl<2, ShapeKind::Gimp, true>(dt);
+        three ? step_any<3, ShapeKind::Gimp, true>(dt) : step_any<2, ShapeKind::Gimp, true>(dt);
         break;
       case ShapeKind::Cpdi:
-        three ? step_impl<3, ShapeKind::Cpdi, true>(dt) : step_impl<2, ShapeKind::Cpdi, true>(dt);
+        three ? step_any<3, ShapeKind::Cpdi, true>(dt) : step_any<2, ShapeKind::Cpdi, true>(dt);
         break;
       case ShapeKind::BSpline3: break;
     }
   } else {
     switch (shape_) {
       case ShapeKind::Linear:
-        three ? step_impl<3, ShapeKind::Linear, false>(dt) : step_impl<2, ShapeKind::Linear, false>(dt);
+        three ? step_any<3, ShapeKind::Linear, false>(dt) : step_any<2, ShapeKind::Linear, false>(dt);
         break;
       case ShapeKind::Gimp:
-        three ? step_impl<3, ShapeKind::Gimp, false>(dt) : step_impl<2, ShapeKind::Gimp, false>(dt);
+        three ? step_any<3, ShapeKind::Gimp, false>(dt) : step_any<2, ShapeKind::Gimp, false>(dt);
         break;
       case ShapeKind::Cpdi:
-        three ? step_impl<3, ShapeKind::Cpdi, false>(dt) : step_impl<2, ShapeKind::Cpdi, false>(dt);
+        three ? step_any<3, ShapeKind::Cpdi, false>(dt) : step_any<2, ShapeKind::Cpdi, false>(dt);
         break;
       case ShapeKind::BSpline3:
-        three ? step_impl<3, ShapeKind::BSpline3, false>(dt) : step_impl<2, ShapeKind::BSpline3, false>(dt);
+        three ? step_any<3, ShapeKind::BSpline3, false>(dt) : step_any<2, ShapeKind::BSpline3, false>(dt);
         break;
     }
   }
@@ -827,6 +922,15 @@ std::vector<std::pair<std::string, double>> MpmSolver::result_values() const {
   // Inverting increments of stress-free eroded points, discarded (finish_point; absent: none).
   const std::int64_t frozen = pts_.frozen_increments_discarded();
   if (frozen > 0) out.emplace_back("frozen_increments_discarded", static_cast<double>(frozen));
+  if (multirate_tally_.steps > 0.0) {
+    // Multi-rate stepping (one rank): its steps, their substeps, and the point updates one step
+    // for all at the substeps' length would have made over those it made.
+    const MultirateTally& t = multirate_tally_;
+    out.emplace_back("multirate_steps", t.steps);
+    out.emplace_back("multirate_substeps", t.substeps);
+    const double made = t.fast_point_steps + t.slow_point_steps;
+    if (made > 0.0) out.emplace_back("multirate_update_ratio", t.single_rate_point_steps / made);
+  }
   if (!comm_.distributed()) return out;
   const double steps = std::max(halo_steps_, 1.0);
   const double n = static_cast<double>(points_.size());
@@ -865,6 +969,29 @@ std::unique_ptr<Solver> make_mpm(const Scenario& sc, std::vector<std::unique_ptr
 }
 
 }  // namespace
+
+// What the multi-rate step (mpm_multirate.cpp) calls from here.
+#define BALLISTA_MULTIRATE_PARTS(Dim, K, G)                                                   \
+  template void MpmSolver::particles_to_grid<Dim, K, G>(P2gPart, const Vec3*, Index, Index);  \
+  template void MpmSolver::grid_to_particles<Dim, K, G, true>(double, Index, Index);          \
+  template void MpmSolver::first_half_points<Dim, K, G>(double, Index, Index);                \
+  template void MpmSolver::slow_grid_to_particles<Dim, K, G>(double, int, Index, Index);         \
+  template void MpmSolver::step_impl<Dim, K, G>(double);
+BALLISTA_MULTIRATE_PARTS(2, ShapeKind::Linear, false)
+BALLISTA_MULTIRATE_PARTS(3, ShapeKind::Linear, false)
+BALLISTA_MULTIRATE_PARTS(2, ShapeKind::Gimp, false)
+BALLISTA_MULTIRATE_PARTS(3, ShapeKind::Gimp, false)
+BALLISTA_MULTIRATE_PARTS(2, ShapeKind::Cpdi, false)
+BALLISTA_MULTIRATE_PARTS(3, ShapeKind::Cpdi, false)
+BALLISTA_MULTIRATE_PARTS(2, ShapeKind::BSpline3, false)
+BALLISTA_MULTIRATE_PARTS(3, ShapeKind::BSpline3, false)
+BALLISTA_MULTIRATE_PARTS(2, ShapeKind::Linear, true)
+BALLISTA_MULTIRATE_PARTS(3, ShapeKind::Linear, true)
+BALLISTA_MULTIRATE_PARTS(2, ShapeKind::Gimp, true)
+BALLISTA_MULTIRATE_PARTS(3, ShapeKind::Gimp, true)
+BALLISTA_MULTIRATE_PARTS(2, ShapeKind::Cpdi, true)
+BALLISTA_MULTIRATE_PARTS(3, ShapeKind::Cpdi, true)
+#undef BALLISTA_MULTIRATE_PARTS
 
 }  // namespace ballista
 

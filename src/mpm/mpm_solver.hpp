@@ -94,15 +94,26 @@ class MpmSolver final : public Solver {
   Index cut_and_migrate();
   void step_local(double dt);
   void sort_by_cell();
-  void build_slabs();
+  /// The slabs of the points [begin, end) (end < 0: to the last), which the P2G passes scatter.
+  void build_slabs(Index begin = 0, Index end = -1);
   template <int Dim, ShapeKind K, bool G> void step_impl(double dt);
-  /// P2G of the sums of `part` (p2g_part.hpp); the momenta m_p v_p are those of `v_source` if given.
-  template <int Dim, ShapeKind K, bool G> void particles_to_grid(P2gPart part, const Vec3* v_source = nullptr);
+  /// P2G of the sums of `part` (p2g_part.hpp) from the points of the last build_slabs; the momenta
+  /// m_p v_p are those of `v_source` if given. [begin, end) selects the surface tractions mapped
+  /// with them (their points' range).
+  template <int Dim, ShapeKind K, bool G>
+  void particles_to_grid(P2gPart part, const Vec3* v_source = nullptr, Index begin = 0, Index end = -1);
   /// XPIC(m): the grid velocity the PIC share of the update reads, into xpic_.target.
   template <int Dim, ShapeKind K, bool G> void xpic_velocity(double dt);
-  template <int Dim, ShapeKind K, bool G, bool Usavg> void grid_to_particles(double dt);
-  template <int Dim, ShapeKind K, bool G> void velocity_gradient_from_grid(double dt, bool move);
+  /// G2P of the points [begin, end) (end < 0: to the last).
+  template <int Dim, ShapeKind K, bool G, bool Usavg> void grid_to_particles(double dt, Index begin = 0, Index end = -1);
+  template <int Dim, ShapeKind K, bool G>
+  void velocity_gradient_from_grid(double dt, bool move, Index begin = 0, Index end = -1);
   template <int Dim, ShapeKind K, bool G> void first_half_stress_update(double dt);
+  /// USAVG's first half on the grid: v0 from the momenta (into accel), the constrained v_n into
+  /// usavg_start_ and velocity_new, the constraints' impulses booked.
+  void usavg_start_velocity();
+  /// ... and on the points [begin, end): L from v_n, half the stress update over dt, its q.
+  template <int Dim, ShapeKind K, bool G> void first_half_points(double dt, Index begin, Index end);
   void velocity_from_momentum();  // velocity_new = momentum / mass at the active nodes
   double grid_kinetic_energy_change(double dt);  // over the step, after update_grid
   void finish_point(Index p, const Mat3& l, const Vec3& disp, double dt, std::atomic<Index>& bad,
@@ -181,9 +192,10 @@ class MpmSolver final : public Solver {
   static GridLayout layout_graded_grid(const Scenario& sc, int ghost);
   /// Graded grids: the stable step from each point's own cell, and those cells' shortest edges.
   double graded_stable_dt();
+  double uniform_stable_dt();
   /// wave_scratch_ = each point's dilatational wave speed, 0 for points failed to zero stress.
   void fill_wave_speeds();
-  void update_cell_lengths();
+  void update_cell_lengths(Index begin = 0, Index end = -1);
   std::vector<double> cell_length_;  ///< m, per point (graded grids)
   /// Patches: the cell of the point that set this step's stable step, m (0: not known).
   double step_cell_ = 0.0;
@@ -214,8 +226,9 @@ class MpmSolver final : public Solver {
   double viscous_speed_ = 0.0;    ///< the last pass's signal speed with q, m/s (stable_dt)
   std::vector<double> wave_scratch_;
   std::vector<double> reference_wave_scratch_;  ///< mpm.bulk_viscosity_sound_speed: reference
-  /// After a stress update over dt: books the viscous heating, sets q (apply_bulk_viscosity).
-  void bulk_viscosity_pass(double dt, bool book_new);
+  /// After a stress update over dt: books the viscous heating, sets q (apply_bulk_viscosity) of
+  /// the points [begin, end).
+  void bulk_viscosity_pass(double dt, bool book_new, Index begin = 0, Index end = -1);
   double flip_;
   int xpic_order_ = 1;  ///< mpm.xpic_order (1: the PIC share is plain PIC)
   /// XPIC runs only where it acts: order > 1 and a PIC share (flip < 1).
@@ -290,6 +303,37 @@ class MpmSolver final : public Solver {
   double transfer_work_ = 0.0;
   double boundary_work_ = 0.0;
   double viscous_work_ = 0.0;
+  // Multi-rate stepping (mpm.multirate_max_ratio > 1; mpm_multirate.cpp).
+  int multirate_max_ = 1;     ///< largest substeps per step (1: one step for every point)
+  double fine_dt_ = 0.0;      ///< the fastest point's stable step at the last stable_dt, s
+  std::vector<double> point_step_;  ///< each point's own stable step at the last stable_dt, s
+  /// The slow points' share of the grid, held over the step's substeps: their mass, contact
+  /// normal and volume sums (as each of USAVG's two passes maps them), their forces; the velocity they see (u), at the start (u0), the
+  /// displacement it makes (disp), and the first half's constrained velocity (vn0).
+  struct MultirateGrid {
+    std::vector<double> mass, volume, volume_forces;
+    std::vector<Vec3> grad, force, u, u0, disp, vn0;
+    std::vector<Vec3> fext;                      ///< the slow points' point loads at the step's start
+    std::vector<PointLoads::SurfaceForce> surface;  ///< and their surface tractions
+  } multirate_;
+  /// Over the steps that took substeps: their count and their substeps' (fast), the point updates
+  /// made by fast and slow points, and those every point at every substep would have made.
+  struct MultirateTally {
+    double steps = 0.0, substeps = 0.0, fast_point_steps = 0.0, slow_point_steps = 0.0;
+    double single_rate_point_steps = 0.0;
+  } multirate_tally_;
+  /// stable_dt with multi-rate stepping: the step of the slow points (a power-of-two multiple of
+  /// the fastest point's, chosen for the fewest point updates), point_step_ and fine_dt_ set.
+  double multirate_stable_dt(double single_dt);
+  /// Puts the points that step at the fine step first (returns their count): those whose own
+  /// step is shorter than dt, and every point within kMultirateBuffer cells of one.
+  Index partition_by_rate(double dt);
+  template <int Dim, ShapeKind K, bool G> void step_multirate(double dt, int substeps);
+  /// The step: multi-rate when the fastest points need substeps of it, else step_impl.
+  template <int Dim, ShapeKind K, bool G> void step_any(double dt);
+  /// The slow points' update at the end of the step, from MultirateGrid.
+  template <int Dim, ShapeKind K, bool G>
+  void slow_grid_to_particles(double dt, int substeps, Index begin, Index end);
   // Last: placed among the members the step reads every time, this scratch shifted their layout
   // and cost the 3D block-impact bench ~3 % (docs/performance.md).
   std::vector<double> force_pressure_;  ///< per point: isotropic stress the F-bar's forces take off sigma, Pa

@@ -34,7 +34,11 @@ void MpmSolver::fill_wave_speeds() {
 }
 
 double MpmSolver::stable_dt() {
-  if (grid_.geom.graded) return graded_stable_dt();
+  const double dt = grid_.geom.graded ? graded_stable_dt() : uniform_stable_dt();
+  return multirate_max_ > 1 ? multirate_stable_dt(dt) : dt;
+}
+
+double MpmSolver::uniform_stable_dt() {
   // dt = CFL h / max_p (c_p + |v_p|)  (Courant condition with the dilatational wave speed; a
   // point failed to zero stress has no stiffness, c_p = 0: PointSet::zero_wave_speeds_of_stress_free).
   // With the bulk viscosity, its signal speed (Q + sqrt(Q^2 + c^2) + |v|) of the last step's rates.
@@ -61,12 +65,12 @@ double MpmSolver::cell_edge(const Vec3& x) const {
   return patch_cell_edge_[static_cast<std::size_t>(c)];
 }
 
-void MpmSolver::update_cell_lengths() {
+void MpmSolver::update_cell_lengths(Index begin, Index end) {
   // The shortest edge of each point's cell: the length a signal crosses in the Courant condition
   // and the viscous length of the bulk viscosity on a graded grid.
   const auto* x = points_.view(kPosition);
   cell_length_.resize(static_cast<std::size_t>(points_.size()));
-  for_each(0, points_.size(), [&](Index p) { cell_length_[p] = cell_edge(x[p]); });
+  for_each(begin, end < 0 ? points_.size() : end, [&](Index p) { cell_length_[p] = cell_edge(x[p]); });
 }
 
 double MpmSolver::graded_stable_dt() {

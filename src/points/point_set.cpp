@@ -259,14 +259,20 @@ StepLimiter PointSet::step_limiter() const {
   return out;
 }
 
-void PointSet::update_stress(double dt, long step, double time, const std::vector<std::uint8_t>& only) {
+void PointSet::update_stress(double dt, long step, double time, const std::vector<std::uint8_t>& only, Index begin,
+                             Index end) {
   const Index n = points_.size();
+  if (end < 0) end = n;
   const auto& groups = material_groups();
   std::atomic<Index> bad_stress{n};
   std::atomic<Index> remaps{0};
   for (size_t m = 0; m < materials_.size(); ++m) {
     if (groups[m].empty() || (!only.empty() && !only[m])) continue;
-    MaterialBatch b = make_batch(points_, groups[m].data(), static_cast<Index>(groups[m].size()), dt, true);
+    // The group's points within [begin, end) (a group lists its points in order).
+    const Index* first = std::lower_bound(groups[m].data(), groups[m].data() + groups[m].size(), begin);
+    const Index* last = std::lower_bound(first, groups[m].data() + groups[m].size(), end);
+    if (last == first) continue;
+    MaterialBatch b = make_batch(points_, first, static_cast<Index>(last - first), dt, true);
     b.first_bad = &bad_stress;
     b.time = time;
     b.distortion_limit = distortion_limit_;

@@ -90,8 +90,10 @@ class PointSet {
   /// Stress update of every point through its material, from F (already at t_{n+1}) and L over dt;
   /// stress power and plastic work accumulate in internal_energy and plastic_work. A non-finite
   /// stress stops the run with fail(). With `only` given, just the materials m with only[m] != 0
-  /// (peridynamics: its gas; the solids' stress is their bonds').
-  void update_stress(double dt, long step, double time, const std::vector<std::uint8_t>& only = {});
+  /// (peridynamics: its gas; the solids' stress is their bonds'); the points [begin, end) only
+  /// (end < 0: to the last; MPM's multi-rate stepping updates its two classes apart).
+  void update_stress(double dt, long step, double time, const std::vector<std::uint8_t>& only = {}, Index begin = 0,
+                     Index end = -1);
   /// The stress update remaps F of points beyond this RMS isochoric stretch (MaterialBatch::
   /// distortion_limit, materials/distortion.hpp); 0: never (the default).
   void set_distortion_limit(double limit) { distortion_limit_ = limit; }
