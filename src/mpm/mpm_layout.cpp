@@ -189,7 +189,7 @@ MpmSolver::MpmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
                       : anti_locking_ == AntiLocking::FBar ? "does not work with anti_locking: fbar yet"
                       : xpic_order_ > 1 && flip_ < 1.0     ? "does not work with xpic_order > 1 yet"
                                                            : nullptr;
-    if (why) throw_solver_param_error(sc, "mpm", "multirate_max_ratio", std::string("multi-rate stepping ") + why);
+    if (why) throw_solver_param_error(sc, "mpm", "multirate", std::string("multi-rate stepping ") + why);
   }
   if (comm_.distributed()) {
     // Every rank seeded every body: keep a share, then the first partition moves each particle to

@@ -1,4 +1,4 @@
-// Multi-rate stepping for MPM (mpm.multirate_max_ratio): points whose own stable step is several
+// Multi-rate stepping for MPM (mpm.multirate): points whose own stable step is several
 // times the fastest point's take one step while the fast ones take several substeps.
 //
 // The scheme is element-partitioned subcycling (Belytschko, Yen & Mullen, "Mixed methods for time

@@ -58,13 +58,15 @@ std::vector<ParamSpec> mpm_params() {
                        "history, which such models do not read, dropped): material flowing like a fluid otherwise "
                        "stretches until det F and the polar decomposition are lost to round-off. 0 = never",
                        false, 1000.0, 0.0, 1e12};
-  ParamSpec multirate{"multirate_max_ratio", "1",
-                      "multi-rate stepping: the most substeps the fastest points take per step of the others (1 = "
-                      "one step for every point; 2, 4 or 8 let points whose own stable step is that many times the "
+  // A word, so that its default (none) keeps the physics fingerprint of decks written before it.
+  ParamSpec multirate{"multirate", "-",
+                      "multi-rate stepping: the most substeps the fastest points take per step of the others (none = "
+                      "one step for every point; 2 to 64: points whose own stable step is that many times the "
                       "fastest point's, and not within two cells of a faster point, step that much longer; "
                       "update: usavg only; docs/deck.md)",
-                      false, 1, 1, 64};
-  multirate.integer = true;
+                      false, 0};
+  multirate.choices = {"none", "2", "4", "8", "16", "32", "64"};
+  multirate.default_choice = "none";
   return {shape,        update,   flip, sort, locking, patch, rebalance, xpic, bv_linear, bv_quadratic, bv_speed,
           distortion, multirate};
 }
@@ -85,7 +87,8 @@ MpmParams read_mpm_params(const ParamValues& P) {
   m.bulk_viscosity = {P.at("bulk_viscosity_linear"), P.at("bulk_viscosity_quadratic"),
                       P.choices.at("bulk_viscosity_sound_speed") == "reference"};
   m.distortion_limit = P.at("distortion_limit");
-  m.multirate_max_ratio = static_cast<int>(P.at("multirate_max_ratio"));
+  const std::string& multirate = P.choices.at("multirate");
+  m.multirate_max_ratio = multirate == "none" ? 1 : std::stoi(multirate);
   return m;
 }
 

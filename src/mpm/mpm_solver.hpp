@@ -303,7 +303,7 @@ class MpmSolver final : public Solver {
   double transfer_work_ = 0.0;
   double boundary_work_ = 0.0;
   double viscous_work_ = 0.0;
-  // Multi-rate stepping (mpm.multirate_max_ratio > 1; mpm_multirate.cpp).
+  // Multi-rate stepping (mpm.multirate; mpm_multirate.cpp).
   int multirate_max_ = 1;     ///< largest substeps per step (1: one step for every point)
   double fine_dt_ = 0.0;      ///< the fastest point's stable step at the last stable_dt, s
   std::vector<double> point_step_;  ///< each point's own stable step at the last stable_dt, s

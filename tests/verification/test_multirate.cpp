@@ -1,4 +1,4 @@
-// Verification of MPM's multi-rate stepping (mpm.multirate_max_ratio, mpm/mpm_multirate.cpp): on
+// Verification of MPM's multi-rate stepping (mpm.multirate, mpm/mpm_multirate.cpp): on
 // a graded bar whose coarse cells allow four times the fine cells' step, two pulses run out of
 // the fine band into the coarse cells, where their points step at four times the fine step.
 //  - the points do step at several rates (the update count falls), and the scheme conserves
@@ -44,8 +44,8 @@ std::string bar_deck(int ratio) {
   const double layer = 1.0 / 80.0;
   std::string d = "simulation: {solver: mpm, dimension: plane_strain, end_time: " + fmt_number(kEnd) +
                   ", cfl: 0.3}\n"
-                  "mpm: {shape_function: gimp, update: usavg, flip: 1.0, multirate_max_ratio: " +
-                  std::to_string(ratio) +
+                  "mpm: {shape_function: gimp, update: usavg, flip: 1.0, multirate: " +
+                  (ratio > 1 ? std::to_string(ratio) : std::string("none")) +
                   "}\n"
                   "materials:\n  m: {model: linear_elastic, density: 1, youngs_modulus: 1, poisson_ratio: 0}\n"
                   "grid: {lower: [-2.0, 0.0], upper: [2.0, 0.05], cell_size: 0.05, boundary: {y_min: symmetry, "
@@ -151,7 +151,7 @@ TEST(MultirateStep, WhatItDoesNotDoYetIsADeckError) {
       make_solver(parse_deck(deck, "multirate_bar.yaml"));
       ADD_FAILURE() << other << " was accepted";
     } catch (const DeckError& e) {
-      EXPECT_EQ(e.key_path(), "mpm.multirate_max_ratio") << other;
+      EXPECT_EQ(e.key_path(), "mpm.multirate") << other;
       EXPECT_NE(std::string(e.what()).find("multi-rate stepping"), std::string::npos) << e.what();
     }
   }
