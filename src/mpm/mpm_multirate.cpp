@@ -34,7 +34,6 @@ double MpmSolver::multirate_stable_dt(double single_dt) {
   // Each point's own stable step, CFL l_p / (s_p + |v_p|) as stable_dt takes it (s_p the wave
   // speed, or the bulk viscosity's signal speed from the point's last L where q acts).
   const Index n = points_.size();
-  const auto* x = points_.view(kPosition);
   const auto* v = points_.view(kVelocity);
   const auto* L = points_.view(kVelocityGradient);
   const double* q = bulk_viscosity_.active() ? points_.real(kBulkViscosity) : nullptr;
@@ -62,7 +61,6 @@ double MpmSolver::multirate_stable_dt(double single_dt) {
     fastest = std::max(fastest, rate);
     point_step_[p] = rate > 0.0 ? cfl / rate : std::numeric_limits<double>::infinity();
   }
-  (void)x;
   double fine = fastest > 0.0 ? cfl / fastest : single_dt;
   fine = std::min(fine, single_dt);
   fine_dt_ = fine;
