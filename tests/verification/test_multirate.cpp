@@ -139,6 +139,52 @@ TEST(MultirateStep, PulsesIntoCoarseCellsMatchOneStepForAll) {
   EXPECT_LT(multi.error, 1.1 * one.error);
 }
 
+TEST(MultirateStep, FastPointsLeavingWithinAStepLeaveTheSlowOnesAsTheyWere) {
+  // A pellet (c = 1 m/s, moving out at 0.5 m/s in cells of 1/80) leaves the grid across its
+  // x_max face, most of its points between two of the slow points' steps; an unstressed block
+  // gliding at 0.01 m/s in cells of 1/20 far from it steps slow (own step 6 times the pellet's).
+  // The deleted points take their mass away as booked; the slow points, whose index range moves
+  // down each time, glide on exactly (a uniform motion is reproduced to round-off; a point that
+  // missed its slow update, took another's weights, or was stepped twice would not).
+  const std::string deck =
+      "simulation: {solver: mpm, dimension: plane_strain, end_time: 0.4, cfl: 0.3, on_particle_exit: delete}\n"
+      "mpm: {shape_function: gimp, update: usavg, flip: 1.0, multirate: 8}\n"
+      "materials:\n  m: {model: linear_elastic, density: 1, youngs_modulus: 1, poisson_ratio: 0}\n"
+      "grid: {lower: [0.0, 0.0], upper: [1.0, 0.1], cell_size: 0.05, boundary: {y_min: symmetry, y_max: symmetry}, "
+      "refine: [{axis: x, from: 0.75, to: 1.0, cell_size: 0.0125}], grading: 1.2}\n"
+      "bodies:\n"
+      "  - {name: block, material: m, velocity: [0.01, 0], shape: {type: box, lower: [0.0, 0.0], upper: [0.4, 0.1]}}\n"
+      "  - {name: pellet, material: m, velocity: [0.5, 0], shape: {type: box, lower: [0.85, 0.0], upper: [0.95, 0.1]}}\n";
+  const Scenario sc = parse_deck(deck, "multirate_exit.yaml");
+  auto solver = make_solver(sc);
+  const double mass0 = solver->energies().mass;
+  const Index n0 = solver->points().size();
+  advance(*solver, sc.simulation.end_time);
+  const EnergyTotals e = solver->energies();
+  const FieldStore& pts = solver->points();
+  const auto* x0 = pts.view<Vec3>("x0");
+  const auto* x = pts.view<Vec3>("x");
+  const auto* v = pts.view<Vec3>("v");
+  Index block = 0;
+  double moved = 0.0;  // the largest departure from the glide, m or m/s
+  const Vec3 glide{{0.01, 0.0, 0.0}};
+  const double t = solver->time();
+  for (Index i = 0; i < pts.size(); ++i) {
+    if (x0[i][0] > 0.5) continue;
+    ++block;
+    moved = std::max({moved, norm(x[i] - x0[i] - t * glide), norm(v[i] - glide)});
+  }
+  double steps = 0.0;
+  for (const auto& [key, value] : solver->result_values())
+    if (key == "multirate_steps") steps = value;
+  std::printf("points %ld -> %ld, block %ld, largest departure from the glide %.3g, multi-rate steps %.0f\n",
+              static_cast<long>(n0), static_cast<long>(pts.size()), static_cast<long>(block), moved, steps);
+  EXPECT_GT(steps, 0.0);
+  EXPECT_LT(pts.size(), n0);                    // the pellet left
+  EXPECT_LT(moved, 1e-13);  // the slow block glides on (measured 3.6e-16: round-off on 0.4 m)
+  EXPECT_NEAR(e.mass + e.removed_mass, mass0, 1e-12 * mass0);  // what left is booked
+}
+
 TEST(MultirateStep, WhatItDoesNotDoYetIsADeckError) {
   // USL and MUSL, the F-bar and XPIC are refused with the key named (the scheme is USAVG's).
   const std::string usavg = "update: usavg";
