@@ -9,7 +9,8 @@
 // sum. The velocity the slow share sees, u, changes at each substep by the node's whole change
 // (force, contact and constraints), so momentum is conserved node by node; where only slow points
 // reach a node the substeps with a constant force add up to one step of the slow points' length
-// exactly. At the step's end the slow points take their velocity change, path and strain from u
+// exactly. At the step's end the slow points take their FLIP change from u, and their path and
+// strain from the node's velocity over the substeps, on which their held forces did their work
 // (slow_grid_to_particles). A slow point's own stable step covers the whole step (each point's
 // Courant condition over its own cell, as stable_dt), and the points within kMultirateBuffer
 // cells of a fast one step fast too, so that no fast point reaches a slow one's cells within a
