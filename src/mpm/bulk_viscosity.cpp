@@ -23,13 +23,11 @@ BulkViscosityPass apply_bulk_viscosity(PointSet& pts, const BulkViscosity& bv, d
   std::vector<std::uint8_t> eos_energy(materials.size(), 0), stress_free_failed(materials.size(), 0);
   for (std::size_t m = 0; m < materials.size(); ++m) {
     if (groups[m].empty()) continue;
-    // The group's points within [begin, end) (groups list their points in order).
-    const Index* first = std::lower_bound(groups[m].data(), groups[m].data() + groups[m].size(), begin);
-    const Index* last = std::lower_bound(first, groups[m].data() + groups[m].size(), end);
-    if (last > first) {
-      materials[m]->wave_speeds(s, first, static_cast<Index>(last - first), c.data());
+    const std::span<const Index> in = pts.material_points_in(m, begin, end);
+    if (!in.empty()) {
+      materials[m]->wave_speeds(s, in.data(), static_cast<Index>(in.size()), c.data());
       if (bv.reference_sound_speed)
-        materials[m]->reference_wave_speeds(s, first, static_cast<Index>(last - first), c_reference.data());
+        materials[m]->reference_wave_speeds(s, in.data(), static_cast<Index>(in.size()), c_reference.data());
     }
     eos_energy[m] = materials[m]->has_state(kEosEnergyField) ? 1 : 0;
     stress_free_failed[m] = materials[m]->failed_points_are_stress_free() ? 1 : 0;

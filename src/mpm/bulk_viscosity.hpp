@@ -51,6 +51,13 @@ inline double bulk_viscosity_signal_speed(const BulkViscosity& bv, double c, dou
 inline double bulk_viscosity_signal_speed(const BulkViscosity& bv, double c, double l, double trD) {
   return bulk_viscosity_signal_speed(bv, c, l, trD, c);
 }
+/// A point's signal speed in the Courant condition: its sound speed c, or where its viscous
+/// pressure q acts (and it has a sound speed: not failed to zero stress) the one above from its L.
+inline double point_signal_speed(const BulkViscosity& bv, double q, double c, double l, const Mat3& L,
+                                 double c_linear) {
+  if (!(q > 0.0 && c > 0.0)) return c;
+  return bulk_viscosity_signal_speed(bv, c, l, L(0, 0) + L(1, 1) + L(2, 2), c_linear);
+}
 
 /// The point field holding q (Pa): the forces use stress - q I (MpmSolver::particles_to_grid).
 inline constexpr FieldKey<double> kBulkViscosity{"bulk_viscosity"};

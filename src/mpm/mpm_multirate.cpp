@@ -16,9 +16,9 @@
 // cells of a fast one step fast too, so that no fast point reaches a slow one's cells within a
 // step at the 8 substeps a step may hold.
 #include <algorithm>
+#include <array>
 #include <cmath>
 
-#include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/point_fields.hpp"
 #include "mpm/bulk_viscosity.hpp"
@@ -53,11 +53,8 @@ double MpmSolver::multirate_stable_dt(double single_dt) {
   // wave_scratch_ holds the wave speeds stable_dt has just filled.
   for (Index p = 0; p < n; ++p) {
     const double l = grid_.geom.graded ? cell_length_[p] : grid_.geom.h;
-    double s = wave_scratch_[p];
-    if (q && q[p] > 0.0 && s > 0.0) {
-      const double trD = L[p](0, 0) + L[p](1, 1) + L[p](2, 2);
-      s = bulk_viscosity_signal_speed(bulk_viscosity_, s, l, trD, c_ref.empty() ? s : c_ref[p]);
-    }
+    const double c = wave_scratch_[p];
+    const double s = q ? point_signal_speed(bulk_viscosity_, q[p], c, l, L[p], c_ref.empty() ? c : c_ref[p]) : c;
     const double rate = (s + norm(v[p])) / l;
     fastest = std::max(fastest, rate);
     point_step_[p] = rate > 0.0 ? cfl / rate : std::numeric_limits<double>::infinity();
@@ -100,15 +97,16 @@ Index MpmSolver::partition_by_rate(double dt) {
   for (Index p = 0; p < n; ++p) fast[p] = p >= known || point_step_[p] < dt * (1.0 - 1e-12);
   int cells[3] = {1, 1, 1};
   for (int a = 0; a < dim_; ++a) cells[a] = g.nodes[a] - 1;
-  auto cell_of = [&](const Vec3& xp, int* c) {
-    for (int a = 0; a < 3; ++a) c[a] = a < dim_ ? std::clamp(g.cell_of(xp[a], a), 0, cells[a] - 1) : 0;
-  };
+  auto flat = [&](const int* c) { return (static_cast<std::size_t>(c[2]) * cells[1] + c[1]) * cells[0] + c[0]; };
+  std::vector<std::array<int, 3>> cell(static_cast<std::size_t>(n));
+  for_each(0, n, [&](Index p) {
+    for (int a = 0; a < 3; ++a) cell[p][a] = a < dim_ ? std::clamp(g.cell_of(x[p][a], a), 0, cells[a] - 1) : 0;
+  });
   std::vector<char> near(static_cast<std::size_t>(cells[0]) * cells[1] * cells[2], 0);
   const int b = kMultirateBuffer;
   for (Index p = 0; p < n; ++p) {
     if (!fast[p]) continue;
-    int c[3];
-    cell_of(x[p], c);
+    const int* c = cell[p].data();
     int lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
       lo[a] = a < dim_ ? std::max(0, c[a] - b) : 0;
@@ -116,17 +114,17 @@ Index MpmSolver::partition_by_rate(double dt) {
     }
     for (int k = lo[2]; k <= hi[2]; ++k)
       for (int j = lo[1]; j <= hi[1]; ++j)
-        for (int i = lo[0]; i <= hi[0]; ++i)
-          near[(static_cast<std::size_t>(k) * cells[1] + j) * cells[0] + i] = 1;
+        for (int i = lo[0]; i <= hi[0]; ++i) {
+          const int ci[3] = {i, j, k};
+          near[flat(ci)] = 1;
+        }
   }
   std::vector<Index>& order = sort_order_;
   order.clear();
   order.reserve(static_cast<std::size_t>(n));
   std::vector<Index> slow;
   for (Index p = 0; p < n; ++p) {
-    int c[3];
-    cell_of(x[p], c);
-    if (fast[p] || near[(static_cast<std::size_t>(c[2]) * cells[1] + c[1]) * cells[0] + c[0]])
+    if (fast[p] || near[flat(cell[p].data())])
       order.push_back(p);
     else
       slow.push_back(p);
@@ -179,6 +177,12 @@ void MpmSolver::step_multirate(double dt, int substeps) {
   }
   build_slabs(nf, n);
   mark_active_blocks();
+  // The slow points' slabs are kept for their forces' mapping below (the slabs of the fast points
+  // are built in their place).
+  auto swap_slabs = [&] {
+    slab_start_.swap(mg.slab_start);
+    slab_points_.swap(mg.slab_points);
+  };
   const Index nall = grid_.geom.node_count() * grid_.fields;
   const bool multi = grid_.fields > 1;
   // The slow share: mass and momentum (and the contact's sums) ...
@@ -196,15 +200,12 @@ void MpmSolver::step_multirate(double dt, int substeps) {
   if (!mirror_faces_.empty()) fill_mirror_ghosts(mg.u.data());
   mg.u0 = mg.u;
   mg.disp.assign(static_cast<std::size_t>(nall), Vec3{});
+  swap_slabs();
   for (int k = 0; k < substeps; ++k) {
     const double t = time_ + k * h;
-    if (k > 0) {
-      loads_.compute(scenario_, points_, t);
-      build_slabs(0, nf);
-      mark_active_blocks();
-    } else {
-      build_slabs(0, nf);
-    }
+    if (k > 0) loads_.compute(scenario_, points_, t);
+    build_slabs(0, nf);
+    if (k > 0) mark_active_blocks();
     // The fast points' sums, then the slow share added. The GIMP windows of the fast points are
     // computed anew (they moved), then kept for the substep's passes; the slow points' stay
     // those of the step's start (they have not moved).
@@ -225,11 +226,11 @@ void MpmSolver::step_multirate(double dt, int substeps) {
       // The slow points' first half over the whole step from the same v_n, then their forces.
       first_half_points<Dim, K, G>(dt, nf, n);
       mg.vn0 = usavg_start_;
-      build_slabs(nf, n);
+      swap_slabs();
       particles_to_grid<Dim, K, G>(P2gPart::Forces, nullptr, nf, n);
+      swap_slabs();
       mg.force = grid_.force;
       if (grid_.with_volume) mg.volume_forces = grid_.volume;  // the half-updated volumes
-      build_slabs(0, nf);
     }
     particles_to_grid<Dim, K, G>(P2gPart::Forces, nullptr, 0, nf);
     for_each_active_node([&](Index i) {

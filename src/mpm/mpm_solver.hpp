@@ -315,6 +315,7 @@ class MpmSolver final : public Solver {
     std::vector<Vec3> grad, force, u, u0, disp, vn0;
     std::vector<Vec3> fext;                      ///< the slow points' point loads at the step's start
     std::vector<PointLoads::SurfaceForce> surface;  ///< and their surface tractions
+    std::vector<Index> slab_start, slab_points;     ///< their slabs (build_slabs), for their forces' P2G
   } multirate_;
   /// Over the steps that took substeps: their count and their substeps' (fast), the point updates
   /// made by fast and slow points, and those every point at every substep would have made.

@@ -134,13 +134,8 @@ StepLimiter MpmSolver::step_limiter() const {
   std::vector<double> rates(comm_.distributed() ? 0 : static_cast<std::size_t>(n));
   for (Index p = 0; p < n; ++p) {
     const double l = g.graded ? cell_edge(x[p]) : g.h;
-    double s = c[p];
-    bool by_q = false;
-    if (q && q[p] > 0.0 && c[p] > 0.0) {
-      const double trD = L[p](0, 0) + L[p](1, 1) + L[p](2, 2);
-      s = bulk_viscosity_signal_speed(bulk_viscosity_, c[p], l, trD, c_ref.empty() ? c[p] : c_ref[p]);
-      by_q = s > c[p];
-    }
+    const double s = q ? point_signal_speed(bulk_viscosity_, q[p], c[p], l, L[p], c_ref.empty() ? c[p] : c_ref[p]) : c[p];
+    const bool by_q = s > c[p];
     const double speed = norm(v[p]);
     const double rate = (s + speed) / l;
     if (!rates.empty()) rates[static_cast<std::size_t>(p)] = rate;

@@ -268,11 +268,9 @@ void PointSet::update_stress(double dt, long step, double time, const std::vecto
   std::atomic<Index> remaps{0};
   for (size_t m = 0; m < materials_.size(); ++m) {
     if (groups[m].empty() || (!only.empty() && !only[m])) continue;
-    // The group's points within [begin, end) (a group lists its points in order).
-    const Index* first = std::lower_bound(groups[m].data(), groups[m].data() + groups[m].size(), begin);
-    const Index* last = std::lower_bound(first, groups[m].data() + groups[m].size(), end);
-    if (last == first) continue;
-    MaterialBatch b = make_batch(points_, first, static_cast<Index>(last - first), dt, true);
+    const std::span<const Index> in = material_points_in(m, begin, end);
+    if (in.empty()) continue;
+    MaterialBatch b = make_batch(points_, in.data(), static_cast<Index>(in.size()), dt, true);
     b.first_bad = &bad_stress;
     b.time = time;
     b.distortion_limit = distortion_limit_;

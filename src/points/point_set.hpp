@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <algorithm>
+#include <span>
 #include <vector>
 
 #include "core/communicator.hpp"
@@ -77,6 +79,12 @@ class PointSet {
   void mark_reordered() { groups_dirty_ = true; }
   /// Indices of the points of each material, in point order.
   const std::vector<std::vector<Index>>& material_groups();
+  /// The points of material m's group that lie in [begin, end) (a group lists its points in order).
+  std::span<const Index> material_points_in(std::size_t m, Index begin, Index end) {
+    const std::vector<Index>& g = material_groups()[m];
+    const Index* first = std::lower_bound(g.data(), g.data() + g.size(), begin);
+    return {first, std::lower_bound(first, g.data() + g.size(), end)};
+  }
   /// Largest c + |v| over this rank's points (c the dilatational wave speed of each material).
   double max_signal_speed();
   /// The point with the largest c + |v| (per point through the virtual wave speed: diagnostics).
