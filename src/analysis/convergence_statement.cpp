@@ -36,18 +36,24 @@ bool converged_in_study(const ConvergenceRecord::Quantity& q) {
   return std::abs(finest / q.richardson - 1.0) <= kConvergedWithin;
 }
 
-JsonValue convergence_statement(const ConvergenceRecord& record, const std::string& fingerprint, double band_cell,
-                                const JsonValue& penetration, bool patched) {
+JsonValue convergence_statement(const ConvergenceRecord& record, const std::string& fingerprint,
+                                const std::string& configuration, double band_cell, const JsonValue& penetration,
+                                bool patched) {
   JsonValue out = JsonValue::object();
   out["record"] = record.path;
   out["study"] = record.study;
   const bool matches = record.fingerprint == fingerprint;
   out["fingerprint_matches"] = matches;
+  const ConvergenceRecord::Checked* checked = nullptr;
+  for (const ConvergenceRecord::Checked& c : record.checked)
+    if (c.fingerprint == configuration) checked = &c;
   double level = NAN;
   for (const ConvergenceRecord::Quantity& q : record.quantities)
     for (const auto& [h, value] : q.levels)
       if (!patched && same_level(h, band_cell)) level = h;
-  if (!matches)
+  if (checked)
+    ;  // the study ran this very configuration: nothing is unknown
+  else if (!matches)
     spdlog::warn("the grid study's record {} is of other physics than this run (fingerprint {} against {}): how far "
                  "this run is from converged is not known (re-run validation/perforation_convergence.py for this deck)",
                  record.path, fingerprint, record.fingerprint);
@@ -59,7 +65,16 @@ JsonValue convergence_statement(const ConvergenceRecord& record, const std::stri
     spdlog::warn("this run's cells along the line of flight ({:.3g} m) are not a level of its grid study ({}): how "
                  "far it is from converged is not known",
                  band_cell, record.path);
-  out["level_cell"] = matches && std::isfinite(level) ? JsonValue(level) : JsonValue();
+  const bool at_level = !checked && matches && std::isfinite(level);
+  out["level_cell"] = at_level ? JsonValue(level) : JsonValue();
+  if (checked) {
+    JsonValue c = JsonValue::object();
+    c["name"] = checked->name;
+    c["label"] = checked->label;
+    out["checked"] = c;
+  } else {
+    out["checked"] = JsonValue();
+  }
   JsonValue& qs = out["quantities"];
   qs = JsonValue::object();
   double within = 0.0;
@@ -73,9 +88,12 @@ JsonValue convergence_statement(const ConvergenceRecord& record, const std::stri
     e["richardson"] = std::isfinite(q.richardson) ? JsonValue(q.richardson) : JsonValue();
     e["order"] = std::isfinite(q.order) ? JsonValue(q.order) : JsonValue();
     JsonValue value;
-    if (matches && std::isfinite(level))
+    if (at_level)
       for (const auto& [h, v] : q.levels)
         if (same_level(h, level)) value = JsonValue(v);
+    if (checked)
+      for (const auto& [name, v] : checked->values)
+        if (name == q.name) value = JsonValue(v);
     e["level_value"] = value;
     all_at_level = all_at_level && value.kind() == JsonValue::Kind::Number;
     if (value.kind() == JsonValue::Kind::Number && converged) {
@@ -91,7 +109,7 @@ JsonValue convergence_statement(const ConvergenceRecord& record, const std::stri
   }
   out["within"] = measured ? JsonValue(within) : JsonValue();
   out["all_converged"] = all_converged;
-  out["all_at_level"] = matches && std::isfinite(level) && all_at_level;
+  out["all_at_level"] = (at_level || checked) && all_at_level;
   return out;
 }
 

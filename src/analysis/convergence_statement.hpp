@@ -35,7 +35,12 @@ bool converged_in_study(const ConvergenceRecord::Quantity& q);
 /// quantity's and not another's; without that value nothing is known of the other). A run with
 /// `patched` grid (grid.patches) is no level: the study refines bands, and a patch changes the
 /// cells where the answer is made without changing the band's.
-JsonValue convergence_statement(const ConvergenceRecord& record, const std::string& fingerprint, double band_cell,
-                                const JsonValue& penetration, bool patched = false);
+/// A run whose `configuration` fingerprint (deck/physics_fingerprint.hpp: physics and cells) is one
+/// of the record's checked configurations is that configuration: `checked` {name, label}, and each
+/// quantity's level_value and level_gap are the configuration's (null where it measured none);
+/// level_cell stays null. Without a match `checked` is null.
+JsonValue convergence_statement(const ConvergenceRecord& record, const std::string& fingerprint,
+                                const std::string& configuration, double band_cell, const JsonValue& penetration,
+                                bool patched = false);
 
 }  // namespace ballista

@@ -53,6 +53,7 @@ PenetrationProbe::PenetrationProbe(const Scenario& sc) : spec_(sc.penetration) {
   direction_ = ps.direction;
   surface_ = spec_.surface;
   fingerprint_ = physics_fingerprint(sc.resolved_yaml);
+  configuration_ = configuration_fingerprint(sc.resolved_yaml);
   line_point_ = ps.nose;
   nd_ = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
   segments_ = std::max<int>(1, static_cast<int>(pb.segments.size()));
@@ -393,8 +394,10 @@ void PenetrationProbe::finish(const FieldStore& pts, const std::string& out_dir,
   out["tunnel"] = tunnel;
   out["holes"] = layer_holes(pts);
   out["physics_fingerprint"] = fingerprint_;
+  out["configuration_fingerprint"] = configuration_;
   if (!spec_.convergence.path.empty())
-    out["convergence"] = convergence_statement(spec_.convergence, fingerprint_, axial_cell_, out, patched_);
+    out["convergence"] = convergence_statement(spec_.convergence, fingerprint_, configuration_, axial_cell_, out,
+                                              patched_);
 }
 
 JsonValue PenetrationProbe::beyond_tunnel_of(const FieldStore& pts, int& points_beyond, double& front_within) const {

@@ -127,6 +127,7 @@ class PenetrationProbe {
   double radius_cells_ = 0.0;  ///< the thinnest segment radius over the cell size
   static constexpr double kResolvedRadiusCells = 4.0;  ///< cells across the radius for a resolved rate
   std::string fingerprint_;    ///< physics_fingerprint of the run's resolved deck
+  std::string configuration_;  ///< configuration_fingerprint of it (physics and cells)
   std::vector<double> t_, depth_, cavity_;
   std::vector<double> kinetic_;      ///< J: the penetrator's kinetic energy per sample
   double peak_kinetic_ = 0.0;        ///< J: the largest of kinetic_

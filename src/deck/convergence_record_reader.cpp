@@ -57,6 +57,30 @@ ConvergenceRecord read_convergence_record(DeckNode& n) {
       bad("quantity '" + out.name + "': richardson must be a finite, non-zero number, or null (not converged)");
     r.quantities.push_back(std::move(out));
   }
+  if (const YAML::Node& checked = doc["checked"]) {
+    if (!checked.IsMap()) bad("'checked' is an object of configurations by name");
+    for (const auto& c : checked) {
+      ConvergenceRecord::Checked out;
+      out.name = c.first.as<std::string>();
+      const YAML::Node& v = c.second;
+      if (!v.IsMap() || !v["configuration_fingerprint"] || !v["values"] || !v["values"].IsMap())
+        bad("checked configuration '" + out.name + "' needs configuration_fingerprint and values");
+      out.label = v["label"] ? v["label"].as<std::string>() : out.name;
+      out.fingerprint = v["configuration_fingerprint"].as<std::string>();
+      for (const auto& q : v["values"]) {
+        const std::string name = q.first.as<std::string>();
+        bool known = false;
+        for (const ConvergenceRecord::Quantity& rq : r.quantities) known = known || rq.name == name;
+        if (!known) bad("checked configuration '" + out.name + "': '" + name + "' is not a quantity of the record");
+        try {
+          out.values.emplace_back(name, q.second.as<double>());
+        } catch (const YAML::Exception& e) {
+          bad("checked configuration '" + out.name + "': '" + name + "': " + e.what());
+        }
+      }
+      r.checked.push_back(std::move(out));
+    }
+  }
   return r;
 }
 

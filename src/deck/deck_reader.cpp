@@ -748,12 +748,15 @@ class Reader {
     const PenetratorSpec& ps = pe.flight;
     const double face = ps.direction < 0 ? hi[ps.axis] : lo[ps.axis];
     pe.surface = n.number("surface", face, NumberRange::any("m"));
-    // "One cell": on a graded grid the finest across the line of flight, where the jet is.
+    // "One cell": on a graded grid the finest of its bands across the line of flight, where the jet
+    // is; a patch refines a box, not the path (the probe reads the jet's cells the same way).
     double cell = sc_.grid.cell_size;
     if (sc_.grid.graded()) {
-      const GridAxes axes = build_grid_axes(sc_.grid, ndim());
+      GridAxes bands;
+      bands.node = build_grid_axes(sc_.grid, ndim()).base;
+      cell = INFINITY;
       for (int a = 0; a < ndim(); ++a)
-        if (a != ps.axis) cell = std::min(cell, axes.smallest(a));
+        if (a != ps.axis) cell = std::min(cell, bands.smallest(a));
     }
     pe.axis_radius = n.number("axis_radius", cell, NumberRange::positive("m"));
     pe.stop_tolerance = n.number("stop_tolerance", cell, NumberRange::positive("m"));

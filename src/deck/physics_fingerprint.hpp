@@ -19,4 +19,9 @@ namespace ballista {
 /// 16 lower-case hex digits.
 std::string physics_fingerprint(const std::string& resolved_yaml);
 
+/// The same hash with the `grid` section kept: the physics and the cells together, so that a record
+/// can name one whole configuration a study checked against its converged estimate (a grid with
+/// patches, a step per region) that is no level of the study.
+std::string configuration_fingerprint(const std::string& resolved_yaml);
+
 }  // namespace ballista

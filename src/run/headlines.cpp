@@ -30,50 +30,63 @@ constexpr double kStepHeldMargin = 1.2;
 
 std::string mm(double metres) { return std::isfinite(metres) ? fmt::format("{:.1f} mm", metres * 1e3) : "n/a"; }
 
-/// The level of the deck's grid study this run is and how far that level is from converged
-/// (analysis/convergence_statement.hpp), or why that is not known; only for a completed run (an
-/// unfinished run's depth is no level's answer). Returns the level's cell (m), NaN if none.
+/// Each recorded quantity's gap from converged at a level or checked configuration, for a headline
+/// ("tunnel depth -3.5 % (129.4 mm converged), casing hole not run at this level"); `where` names
+/// the level or configuration for a quantity it did not measure. Sets `unmeasured` if one was not.
+std::string quantity_gaps(const JsonValue& qs, const std::string& where, bool& unmeasured) {
+  std::string gaps;
+  for (const std::string& name : qs.keys()) {
+    const JsonValue& q = qs.at(name);
+    const double gap = number_at(q, "level_gap");
+    const std::string sep = gaps.empty() ? "" : ", ";
+    if (q.contains("converged_in_study") && !q.at("converged_in_study").as_bool()) {
+      const double order = number_at(q, "order");
+      gaps += fmt::format("{}{} not converged in the study{}", sep, q.at("label").as_string(),
+                          std::isfinite(order) ? fmt::format(" (observed order {:.2f})", order) : "");
+    } else if (!std::isfinite(gap)) {
+      gaps += fmt::format("{}{} not run {}", sep, q.at("label").as_string(), where);
+      unmeasured = true;
+    } else {
+      gaps += fmt::format("{}{} {:+.1f} % ({} converged)", sep, q.at("label").as_string(), 100.0 * gap,
+                          mm(number_at(q, "richardson")));
+    }
+  }
+  return gaps;
+}
+
+/// The level of the deck's grid study this run is, or the configuration the study checked, and how
+/// far it is from converged (analysis/convergence_statement.hpp), or why that is not known; only for
+/// a completed run (an unfinished run's depth is no level's answer). Returns the level's cell (m),
+/// NaN if none (0 for a checked configuration: the study has said how far it is).
 double study_lines(const JsonValue& p, bool completed, std::vector<std::string>& out) {
   const JsonValue* study = p.contains("convergence") ? &p.at("convergence") : nullptr;
   if (!study || !completed) return NAN;
   const double level = number_at(*study, "level_cell");
-  if (std::isfinite(level)) {
+  const bool checked = study->contains("checked") && study->at("checked").kind() == JsonValue::Kind::Object;
+  if (std::isfinite(level) || checked) {
     const double within = number_at(*study, "within");
     const bool all_converged = !study->contains("all_converged") || study->at("all_converged").as_bool();
-    std::string gaps;
     bool unmeasured = false;  // a quantity the study did not run at this level: no claim for it
-    const JsonValue& qs = study->at("quantities");
-    for (const std::string& name : qs.keys()) {
-      const JsonValue& q = qs.at(name);
-      const double gap = number_at(q, "level_gap");
-      if (q.contains("converged_in_study") && !q.at("converged_in_study").as_bool()) {
-        const double order = number_at(q, "order");
-        gaps += fmt::format("{}{} not converged in the study{}", gaps.empty() ? "" : ", ", q.at("label").as_string(),
-                            std::isfinite(order) ? fmt::format(" (observed order {:.2f})", order) : "");
-        continue;
-      }
-      if (!std::isfinite(gap)) {
-        gaps += fmt::format("{}{} not run at this level", gaps.empty() ? "" : ", ", q.at("label").as_string());
-        unmeasured = true;
-        continue;
-      }
-      gaps += fmt::format("{}{} {:+.1f} % ({} converged)", gaps.empty() ? "" : ", ",
-                          q.at("label").as_string(), 100.0 * gap, mm(number_at(q, "richardson")));
-    }
+    const std::string gaps = quantity_gaps(study->at("quantities"),
+                                           checked ? "in this configuration" : "at this level", unmeasured);
     const bool converged = within <= kConvergedWithin && all_converged && !unmeasured;
-    out.push_back(fmt::format("{}: this is the {:g} mm level of the deck's grid study, where it was {} ({})",
+    const std::string what =
+        checked ? fmt::format("the configuration '{}' its grid study checked",
+                              study->at("checked").at("label").as_string())
+                : fmt::format("the {:g} mm level of the deck's grid study", level * 1e3);
+    out.push_back(fmt::format("{}: this is {}, where it was {} ({})",
                               converged ? fmt::format("CONVERGED WITHIN {:g} %", 100 * kConvergedWithin)
                                         : std::string("NOT CONVERGED"),
-                              level * 1e3, gaps, study->at("record").as_string()));
-  } else {
-    out.push_back(study->at("fingerprint_matches").as_bool()
-                      ? fmt::format("NOT CONVERGED?: this run's cells are not a level of the deck's grid study ({}): "
-                                    "how far it is from converged is not known",
-                                    study->at("record").as_string())
-                      : fmt::format("NOT CONVERGED?: the deck's grid study ({}) is of other physics than this run: "
-                                    "how far it is from converged is not known (validation/perforation_convergence.py)",
-                                    study->at("record").as_string()));
+                              what, gaps, study->at("record").as_string()));
+    return checked ? 0.0 : level;
   }
+  out.push_back(study->at("fingerprint_matches").as_bool()
+                    ? fmt::format("NOT CONVERGED?: this run's cells are not a level of the deck's grid study ({}): "
+                                  "how far it is from converged is not known",
+                                  study->at("record").as_string())
+                    : fmt::format("NOT CONVERGED?: the deck's grid study ({}) is of other physics than this run: "
+                                  "how far it is from converged is not known (validation/perforation_convergence.py)",
+                                  study->at("record").as_string()));
   return level;
 }
 

@@ -267,10 +267,19 @@ struct ConvergenceRecord {
     double order = 0.0;       ///< observed order of the three finest levels
     std::vector<std::pair<double, double>> levels;  ///< (band cell m, value SI), coarsest first
   };
+  /// A whole configuration (cells and steps included) the study ran once and set against its
+  /// converged estimates, being no level of it: e.g. patches of fine cells on the casing.
+  struct Checked {
+    std::string name;
+    std::string label;                                    ///< what it is, for the output
+    std::string fingerprint;                              ///< configuration_fingerprint of its resolved deck
+    std::vector<std::pair<std::string, double>> values;  ///< (quantity name, value SI): those it measured
+  };
   std::string path;         ///< absolute path of the record file ("" when the deck names none)
   std::string study;        ///< where the study is documented
   std::string fingerprint;  ///< physics_fingerprint of the levels' resolved decks
   std::vector<Quantity> quantities;
+  std::vector<Checked> checked;
 };
 
 struct PenetrationSpec {

@@ -12,6 +12,9 @@
   quantity found no estimate in its study; at a cell the study did not run, or
   with other physics, it says how far it is from converged is not known. Levels of two physics
   make no record.
+- A configuration checked against the estimates (`--checked`, added `--into` a record): a run of
+  that very configuration (physics and grid) names it and gives its own gap, nothing for a quantity
+  it did not measure; the same physics on another grid is not it.
 """
 import json
 import os
@@ -161,6 +164,36 @@ def main():
     c = s["penetration"]["convergence"]
     if c["fingerprint_matches"] or c["level_cell"] is not None or "of other physics" not in stdout:
         fail(f"other physics is read as the study's: {c}")
+    # A configuration that is no level (a 0.8 mm grid here, with its own physics: a denser rod),
+    # checked against the estimates: its run names it and gives its own gaps; the same physics on
+    # another grid is not it.
+    checked_dir, s_checked, _ = run(a, "checked_run", "grid.cell_size=0.8e-3", "materials.w.density=18000")
+    want = s_checked["penetration"]["final_cavity_depth"]
+    record3 = os.path.join(a.out, "record3.json")
+    shutil.copy(record, record3)
+    p = subprocess.run([sys.executable, tool, "--into", record3,
+                        "--checked", "coarser", "0.8 mm cells", checked_dir, "cavity_depth"],
+                       capture_output=True, text=True)
+    if p.returncode != 0:
+        fail(f"the record tool did not add a checked configuration: {p.stdout}{p.stderr}")
+    r3 = json.load(open(record3))
+    if r3["quantities"] != r["quantities"] or r3["checked"]["coarser"]["values"] != {"cavity_depth": want} \
+            or r3["checked"]["coarser"]["configuration_fingerprint"] \
+            != s_checked["penetration"]["configuration_fingerprint"]:
+        fail(f"checked configuration: {r3}")
+    _, s, stdout = run(a, "checked_again", f"penetration.convergence_record={record3}", "grid.cell_size=0.8e-3",
+                       "materials.w.density=18000")
+    c = s["penetration"]["convergence"]
+    gap = c["quantities"]["cavity_depth"]["level_gap"]
+    if (c["checked"] or {}).get("name") != "coarser" or gap is None or abs(gap - (want / 45.5e-3 - 1.0)) > 1e-12 \
+            or c["quantities"]["casing_mean_hole"]["level_value"] is not None \
+            or "this is the configuration '0.8 mm cells' its grid study checked" not in stdout \
+            or "hole not run in this configuration" not in stdout or "NOT CONVERGED:" not in stdout:
+        fail(f"the checked configuration's run does not say what it is: {c}\n{stdout}")
+    _, s, stdout = run(a, "checked_other_grid", f"penetration.convergence_record={record3}", "grid.cell_size=0.9e-3",
+                       "materials.w.density=18000")
+    if s["penetration"]["convergence"]["checked"] is not None or "of other physics" not in stdout:
+        fail(f"another grid is read as the checked configuration: {s['penetration']['convergence']}")
     # Levels of two physics make no record.
     mixed = write_study(a, "study_mixed", [(1e-3, coarse), (0.5e-3, other)], "cavity_depth", [40.0, 44.0], 45.5, 2.0)
     p = subprocess.run([sys.executable, tool, "--out", os.path.join(a.out, "mixed.json"),

@@ -2,7 +2,8 @@
 // (src/analysis/convergence_statement.hpp), on the perforation demo's record: the depth studied at
 // 1, 0.5 and 0.25 mm, the casing's hole on to 0.125 and 0.0625 mm. A level run for one quantity
 // only says nothing of the other: all_at_level is false there, and the gap of the hole alone is
-// not a claim about the depth.
+// not a claim about the depth. A configuration the study checked against its estimates (patches on
+// the casing, a step per region) is named by its whole fingerprint and gives its own gaps.
 #include <gtest/gtest.h>
 
 #include "analysis/convergence_statement.hpp"
@@ -41,7 +42,7 @@ JsonValue penetration() {
 }  // namespace
 
 TEST(ConvergenceStatement, ALevelOfEveryQuantityGivesEachGap) {
-  const JsonValue s = convergence_statement(demo_record(), "f", 5e-4, penetration());
+  const JsonValue s = convergence_statement(demo_record(), "f", "c", 5e-4, penetration());
   EXPECT_EQ(s.at("level_cell").as_number(), 5e-4);
   EXPECT_TRUE(s.at("all_at_level").as_bool());
   EXPECT_TRUE(s.at("all_converged").as_bool());
@@ -52,7 +53,7 @@ TEST(ConvergenceStatement, ALevelOfEveryQuantityGivesEachGap) {
 }
 
 TEST(ConvergenceStatement, ALevelOfTheHoleAloneIsNotOneOfTheDepth) {
-  const JsonValue s = convergence_statement(demo_record(), "f", 1.25e-4, penetration());
+  const JsonValue s = convergence_statement(demo_record(), "f", "c", 1.25e-4, penetration());
   EXPECT_EQ(s.at("level_cell").as_number(), 1.25e-4);
   EXPECT_FALSE(s.at("all_at_level").as_bool());
   EXPECT_EQ(s.at("quantities").at("cavity_depth").at("level_value").kind(), JsonValue::Kind::Null);
@@ -62,22 +63,45 @@ TEST(ConvergenceStatement, ALevelOfTheHoleAloneIsNotOneOfTheDepth) {
 }
 
 TEST(ConvergenceStatement, OtherPhysicsOrAnotherCellIsNoLevel) {
-  const JsonValue other = convergence_statement(demo_record(), "g", 5e-4, penetration());
+  const JsonValue other = convergence_statement(demo_record(), "g", "c", 5e-4, penetration());
   EXPECT_FALSE(other.at("fingerprint_matches").as_bool());
   EXPECT_EQ(other.at("level_cell").kind(), JsonValue::Kind::Null);
   EXPECT_FALSE(other.at("all_at_level").as_bool());
-  const JsonValue between = convergence_statement(demo_record(), "f", 3e-4, penetration());
+  const JsonValue between = convergence_statement(demo_record(), "f", "c", 3e-4, penetration());
   EXPECT_EQ(between.at("level_cell").kind(), JsonValue::Kind::Null);
   EXPECT_EQ(between.at("within").kind(), JsonValue::Kind::Null);
 }
 
 TEST(ConvergenceStatement, APatchedGridIsNoLevel) {
   // The study's 0.5 mm band with patches of finer cells on the casing: its hole is not the level's.
-  const JsonValue patched = convergence_statement(demo_record(), "f", 5e-4, penetration(), true);
+  const JsonValue patched = convergence_statement(demo_record(), "f", "c", 5e-4, penetration(), true);
   EXPECT_TRUE(patched.at("fingerprint_matches").as_bool());
   EXPECT_EQ(patched.at("level_cell").kind(), JsonValue::Kind::Null);
   EXPECT_EQ(patched.at("within").kind(), JsonValue::Kind::Null);
   EXPECT_FALSE(patched.at("all_at_level").as_bool());
+}
+
+TEST(ConvergenceStatement, ACheckedConfigurationGivesItsOwnGaps) {
+  ConvergenceRecord r = demo_record();
+  r.checked = {{"depth_run", "multi-rate", "m1", {{"cavity_depth", 0.1241}}},
+               {"hole_run", "patches on the casing", "p1", {{"casing_mean_hole", 0.0127}}}};
+  // Its own physics fingerprint differs from the study's (the step per region is physics to it),
+  // and its band is a level's: the configuration, not the level, is what it is.
+  const JsonValue s = convergence_statement(r, "g", "p1", 5e-4, penetration(), true);
+  EXPECT_EQ(s.at("checked").at("name").as_string(), "hole_run");
+  EXPECT_EQ(s.at("level_cell").kind(), JsonValue::Kind::Null);
+  // 0.0127 / 0.013296 - 1 = -4.48 %; the depth was not measured in this configuration.
+  EXPECT_NEAR(s.at("quantities").at("casing_mean_hole").at("level_gap").as_number(), -0.0448, 1e-4);
+  EXPECT_EQ(s.at("quantities").at("cavity_depth").at("level_value").kind(), JsonValue::Kind::Null);
+  EXPECT_NEAR(s.at("within").as_number(), 0.0448, 1e-4);
+  EXPECT_FALSE(s.at("all_at_level").as_bool());
+  const JsonValue d = convergence_statement(r, "g", "m1", 5e-4, penetration());
+  EXPECT_EQ(d.at("checked").at("name").as_string(), "depth_run");
+  EXPECT_NEAR(d.at("quantities").at("cavity_depth").at("level_gap").as_number(), 0.1241 / 0.12944 - 1, 1e-12);
+  // Another configuration of the same physics at a level is that level, as without checked ones.
+  const JsonValue level = convergence_statement(r, "f", "x", 5e-4, penetration());
+  EXPECT_EQ(level.at("checked").kind(), JsonValue::Kind::Null);
+  EXPECT_EQ(level.at("level_cell").as_number(), 5e-4);
 }
 
 }  // namespace test_convergence_statement

@@ -154,6 +154,22 @@ TEST(DeckPenetrators, StagesAndPenetrationSection) {
   EXPECT_TRUE(again.penetration.enabled);
 }
 
+TEST(DeckPenetrators, TheAxisRadiusIsOneCellOfTheBandsNotOfAPatch) {
+  // A patch refines a box (here the target's top), not the path: the cavity's axis radius and the
+  // stop tolerance keep the band's cell across the flight (0.5 mm), as the probe reads the jet's.
+  std::string text = deck("    rod: {nose: [0, 0.052], diameter: 4e-3, length: 0.05, speed: 1700}\n",
+                          "penetration: {penetrator: pen, target: target}\n");
+  const std::string grid = "grid: {lower: [0, 0, 0], upper: [0.02, 0.2, 0], cell_size: 1.0e-3}";
+  text.replace(text.find(grid), grid.size(),
+               "grid: {lower: [0, 0, 0], upper: [0.02, 0.2, 0], cell_size: 1.0e-3, refine: [{axis: x, from: 0, to: "
+               "0.004, cell_size: 0.5e-3}, {axis: y, from: 0.03, to: 0.06, cell_size: 0.5e-3}], patches: [{lower: "
+               "[0, 0.04], upper: [0.004, 0.05], cell_size: 0.25e-3}]}");
+  const Scenario sc = parse_deck(text, "p.yaml");
+  ASSERT_EQ(sc.grid.patches.size(), 1u);
+  EXPECT_DOUBLE_EQ(sc.penetration.axis_radius, 0.5e-3);
+  EXPECT_DOUBLE_EQ(sc.penetration.stop_tolerance, 0.5e-3);
+}
+
 TEST(DeckPenetrators, StageErrorsAreNamed) {
   std::string bad = kStages;
   bad.replace(bad.find("body: target"), 12, "body: tagret");
