@@ -572,7 +572,9 @@ void MpmSolver::slow_grid_to_particles(double dt, int substeps, Index begin, Ind
   //   velocity: FLIP v + S (u - u0), PIC S v_end (the node's last velocity), blended with the
   //   PIC share of as many steps as the substeps, 1 - flip^substeps: the PIC share damps what
   //   the grid cannot carry at (1 - flip) per step, and a slow point is damped as much per unit
-  //   time as if it had taken every substep;
+  //   time as if it had taken every substep; with patches, every substep's share scaled as
+  //   grid_to_particles scales it for a point in coarser cells than the step's, so that a slow
+  //   point is damped as in a run of one step for all;
   //   position: x + S disp, disp the nodes' path over the substeps;
   //   second stress half: L from w = 2 disp / dt - v_n over dt / 2, so that the two halves'
   //   strain, dt/2 (L(v_n) + L(w)) = L(disp), is the one the positions took (USAVG's consistency).
@@ -587,7 +589,8 @@ void MpmSolver::slow_grid_to_particles(double dt, int substeps, Index begin, Ind
   const Vec3* vend = grid_.velocity_new.data();
   const bool axisym = dimension_ == Dimension::Axisymmetric;
   const bool has_ext = !multirate_.fext.empty();
-  const double flip = std::pow(flip_, substeps);
+  const bool pic_by_cell = G && patch_axes_ && flip_ < 1.0 && step_cell_ > 0.0;
+  const double steps_flip = std::pow(flip_, substeps);
   const Index n = points_.size();
   std::atomic<Index> bad{n}, out{n};
   double pw[2];
@@ -596,6 +599,8 @@ void MpmSolver::slow_grid_to_particles(double dt, int substeps, Index begin, Ind
     const Vec3 xp = x_[p];
     point_stencil<Dim, K, G>(p, xp, half[p], st);
     const Index fo = field_offset(p);
+    const double flip =
+        pic_by_cell ? std::pow(1.0 - (1.0 - flip_) * std::min(1.0, step_cell_ / cell_edge(xp)), substeps) : steps_flip;
     Vec3 du, upic, d;
     Mat3 l;
     for (int k = 0; k < st.count; ++k) {
