@@ -874,8 +874,9 @@ NULL_OK = {"main_stage_start", "arrival_time", "stop_time", "steady_rate", "rate
            "most_tensile_time", "most_points_beyond_time", "first_beyond_time",
            # penetration.beyond_tunnel: no floor on the axis (perforated); no point beyond it
            "beyond_tunnel", "deepest",
-           # penetration.convergence: a run that is not a level of its grid study, or of other physics
-           "level_cell", "level_value", "level_gap", "run_value", "within", "order", "richardson"}
+           # penetration.convergence: a run that is not a level of its grid study, or of other physics,
+           # nor a configuration it checked
+           "checked", "level_cell", "level_value", "level_gap", "run_value", "within", "order", "richardson"}
 # Also null in a penetration object with formed_jet true (a jet formed in the run): what only a rod's
 # or a jet table's deck states is not known.
 NULL_OK_FORMED_JET = {"impact_velocity", "penetrator_length", "hydrodynamic_rate", "hydrodynamic_depth",

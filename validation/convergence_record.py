@@ -21,7 +21,9 @@ the study's converged estimates: `--checked NAME LABEL RUN_DIR QUANTITY[,QUANTIT
 run's value of each quantity named (from its summary.json, at the quantity's summary key) and the
 configuration fingerprint of its resolved.yaml (the physics fingerprint with the grid kept). A run
 of that very configuration then says how far from converged it is. With `--into RECORD` instead
-of studies, the checked configurations are added to an existing record (its levels unchanged):
+of studies, the checked configurations are added to an existing record (its levels unchanged; a
+record written anew with --out keeps none of an earlier one's). A run counts as a checked
+configuration only while it reproduces the recorded values (src/analysis/convergence_statement.hpp):
 
   /usr/bin/python3 validation/convergence_record.py --into examples/jet_casing_sandstone_mpm.convergence.json \\
       --checked hole_patches "casing patches" out/demo-converged/hole casing_mean_hole
@@ -105,6 +107,8 @@ def at_dotted(obj, key):
 def checked(name, label, run_dir, names, quantities):
     """A configuration's values of the named quantities, from its run folder."""
     summary = json.load(open(os.path.join(run_dir, "summary.json")))
+    if summary.get("status") != "completed":
+        sys.exit(f"{run_dir}: the run did not complete (status {summary.get('status')}): its values are no answer")
     p = summary.get("penetration") or {}
     values = {}
     for q in names.split(","):
@@ -166,6 +170,12 @@ def main():
             record["checked"] = {}
     for name, label, run_dir, names in a.checked:
         record["checked"][name] = checked(name, label, run_dir, names, record["quantities"])
+    prints = {}
+    for name, c in record.get("checked", {}).items():
+        other = prints.setdefault(c["configuration_fingerprint"], name)
+        if other != name:
+            sys.exit(f"checked configurations '{other}' and '{name}' are one configuration (fingerprint "
+                     f"{c['configuration_fingerprint']}): one run is one configuration")
     path = a.out or a.into
     with open(path, "w") as f:
         f.write(dumps(record) + "\n")

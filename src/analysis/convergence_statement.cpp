@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 namespace ballista {
@@ -21,6 +22,11 @@ JsonValue at_dotted(const JsonValue& obj, const std::string& key) {
   if (v->kind() != JsonValue::Kind::Number && v->kind() != JsonValue::Kind::Int) return JsonValue();
   return JsonValue(v->as_number());
 }
+
+/// Relative difference within which a run reproduces a checked configuration's recorded value: the
+/// runs are deterministic (thread counts included), so only another build or compiler, another
+/// end time or a changed code path move it, and then the record no longer describes the run.
+constexpr double kReproduced = 1e-6;
 
 /// Whether a study's level cell h is the cell `cell` (to 1e-6 of h: the record's cells are the
 /// study's --levels, written in decimal).
@@ -46,13 +52,36 @@ JsonValue convergence_statement(const ConvergenceRecord& record, const std::stri
   out["fingerprint_matches"] = matches;
   const ConvergenceRecord::Checked* checked = nullptr;
   for (const ConvergenceRecord::Checked& c : record.checked)
-    if (c.fingerprint == configuration) checked = &c;
+    if (c.fingerprint == configuration) {
+      checked = &c;
+      break;
+    }
+  // The configuration is the run only if the run reproduced what the record holds for it (the
+  // fingerprint leaves out the end time and the build).
+  for (std::size_t i = 0; checked && i < checked->values.size(); ++i) {
+    const auto& [name, recorded] = checked->values[i];
+    for (const ConvergenceRecord::Quantity& q : record.quantities) {
+      if (q.name != name) continue;
+      const JsonValue own = at_dotted(penetration, q.summary_key);
+      if (own.kind() != JsonValue::Kind::Number ||
+          !(std::abs(own.as_number() - recorded) <= kReproduced * std::abs(recorded))) {
+        spdlog::warn("this run is the configuration '{}' of its grid study's record {} but did not reproduce its {} "
+                     "({} against the recorded {}: another build, end time or code path): how far it is from "
+                     "converged is not known",
+                     checked->name, record.path, q.label,
+                     own.kind() == JsonValue::Kind::Number ? fmt::format("{:.9g}", own.as_number()) : "none",
+                     recorded);
+        checked = nullptr;
+      }
+      break;
+    }
+  }
   double level = NAN;
   for (const ConvergenceRecord::Quantity& q : record.quantities)
     for (const auto& [h, value] : q.levels)
       if (!patched && same_level(h, band_cell)) level = h;
   if (checked)
-    ;  // the study ran this very configuration: nothing is unknown
+    ;  // the study ran this very configuration and the run reproduced it: nothing is unknown
   else if (!matches)
     spdlog::warn("the grid study's record {} is of other physics than this run (fingerprint {} against {}): how far "
                  "this run is from converged is not known (re-run validation/perforation_convergence.py for this deck)",

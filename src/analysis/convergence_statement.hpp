@@ -36,7 +36,9 @@ bool converged_in_study(const ConvergenceRecord::Quantity& q);
 /// `patched` grid (grid.patches) is no level: the study refines bands, and a patch changes the
 /// cells where the answer is made without changing the band's.
 /// A run whose `configuration` fingerprint (deck/physics_fingerprint.hpp: physics and cells) is one
-/// of the record's checked configurations is that configuration: `checked` {name, label}, and each
+/// of the record's checked configurations, and whose own values of the quantities it recorded are
+/// those values (to 1e-6: runs are deterministic; the fingerprint leaves out the end time and the
+/// build), is that configuration: `checked` {name, label}, and each
 /// quantity's level_value and level_gap are the configuration's (null where it measured none);
 /// level_cell stays null. Without a match `checked` is null.
 JsonValue convergence_statement(const ConvergenceRecord& record, const std::string& fingerprint,

@@ -65,8 +65,16 @@ ConvergenceRecord read_convergence_record(DeckNode& n) {
       const YAML::Node& v = c.second;
       if (!v.IsMap() || !v["configuration_fingerprint"] || !v["values"] || !v["values"].IsMap())
         bad("checked configuration '" + out.name + "' needs configuration_fingerprint and values");
-      out.label = v["label"] ? v["label"].as<std::string>() : out.name;
-      out.fingerprint = v["configuration_fingerprint"].as<std::string>();
+      try {
+        out.label = v["label"] ? v["label"].as<std::string>() : out.name;
+        out.fingerprint = v["configuration_fingerprint"].as<std::string>();
+      } catch (const YAML::Exception& e) {
+        bad("checked configuration '" + out.name + "': " + e.what());
+      }
+      for (const ConvergenceRecord::Checked& other : r.checked)
+        if (other.fingerprint == out.fingerprint)
+          bad("checked configurations '" + other.name + "' and '" + out.name +
+              "' have one fingerprint: one run is one configuration");
       for (const auto& q : v["values"]) {
         const std::string name = q.first.as<std::string>();
         bool known = false;

@@ -752,8 +752,7 @@ class Reader {
     // is; a patch refines a box, not the path (the probe reads the jet's cells the same way).
     double cell = sc_.grid.cell_size;
     if (sc_.grid.graded()) {
-      GridAxes bands;
-      bands.node = build_grid_axes(sc_.grid, ndim()).base;
+      const GridAxes bands = build_base_axes(sc_.grid, ndim());
       cell = INFINITY;
       for (int a = 0; a < ndim(); ++a)
         if (a != ps.axis) cell = std::min(cell, bands.smallest(a));

@@ -56,11 +56,11 @@ std::string quantity_gaps(const JsonValue& qs, const std::string& where, bool& u
 
 /// The level of the deck's grid study this run is, or the configuration the study checked, and how
 /// far it is from converged (analysis/convergence_statement.hpp), or why that is not known; only for
-/// a completed run (an unfinished run's depth is no level's answer). Returns the level's cell (m),
-/// NaN if none (0 for a checked configuration: the study has said how far it is).
-double study_lines(const JsonValue& p, bool completed, std::vector<std::string>& out) {
+/// a completed run (an unfinished run's depth is no level's answer). Returns whether the study has
+/// said how far this run is (a level or a checked configuration).
+bool study_lines(const JsonValue& p, bool completed, std::vector<std::string>& out) {
   const JsonValue* study = p.contains("convergence") ? &p.at("convergence") : nullptr;
-  if (!study || !completed) return NAN;
+  if (!study || !completed) return false;
   const double level = number_at(*study, "level_cell");
   const bool checked = study->contains("checked") && study->at("checked").kind() == JsonValue::Kind::Object;
   if (std::isfinite(level) || checked) {
@@ -78,7 +78,7 @@ double study_lines(const JsonValue& p, bool completed, std::vector<std::string>&
                               converged ? fmt::format("CONVERGED WITHIN {:g} %", 100 * kConvergedWithin)
                                         : std::string("NOT CONVERGED"),
                               what, gaps, study->at("record").as_string()));
-    return checked ? 0.0 : level;
+    return true;
   }
   out.push_back(study->at("fingerprint_matches").as_bool()
                     ? fmt::format("NOT CONVERGED?: this run's cells are not a level of the deck's grid study ({}): "
@@ -87,7 +87,7 @@ double study_lines(const JsonValue& p, bool completed, std::vector<std::string>&
                     : fmt::format("NOT CONVERGED?: the deck's grid study ({}) is of other physics than this run: "
                                   "how far it is from converged is not known (validation/perforation_convergence.py)",
                                   study->at("record").as_string()));
-  return level;
+  return false;
 }
 
 /// `completed`: the run reached its end (not failed, not interrupted): only then is a depth final
@@ -133,7 +133,7 @@ void penetration_lines(const JsonValue& p, bool completed, std::vector<std::stri
         "STILL MOVING at the end of the run: the depth is the depth at end_time, not a final one (a longer "
         "simulation.end_time, with penetration.end_when_spent to stop once the penetrator is spent, or a longer "
         "target if it was perforated)");
-  const double level = study_lines(p, completed, out);
+  const bool study_said = study_lines(p, completed, out);
   const double cells = number_at(p, "cells_across_radius");
   const double coarser = p.contains("path_cells") ? number_at(p.at("path_cells"), "coarser_from_depth") : NAN;
   const bool unresolved = p.contains("resolved") && !p.at("resolved").as_bool();
@@ -143,12 +143,12 @@ void penetration_lines(const JsonValue& p, bool completed, std::vector<std::stri
         "cells up to {}: its end is not at the resolution of the cells across the penetrator (extend grid.refine "
         "along the flight)",
         mm(coarser), mm(number_at(p.at("tunnel"), "depth")), mm(number_at(p.at("path_cells"), "coarsest"))));
-  else if (unresolved && std::isfinite(cells) && !std::isfinite(level))  // the study has said how far
+  else if (unresolved && std::isfinite(cells) && !study_said)  // else the study has said how far
     out.push_back(fmt::format(
         "NOT CONVERGED: the penetrator is {:.3g} cells across its radius; depth and rate are not converged "
         "at this resolution (docs/validation.md)",
         cells));
-  else if (p.contains("formed_jet") && !std::isfinite(level))
+  else if (p.contains("formed_jet") && !study_said)
     out.push_back(
         "CONVERGENCE NOT KNOWN: the jet formed in this run, so its cells across the radius were not known before "
         "it; only a grid study of this deck says how far its depth and holes are from converged "

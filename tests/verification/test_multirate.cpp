@@ -191,8 +191,8 @@ TEST(MultirateStep, WithPatchesASlowPointIsDampedAsWithOneStepForAll) {
   // cells, and a PIC share of 10 %: one step for all damps a point in coarser cells than the step's
   // by (1 - flip) l_step / l_p per step, the rate its own cells' step would give. A slow point of
   // the multi-rate step must be damped as much per unit time: the PIC share's work over the run
-  // (the audit's transfer term) is then one step's. Taken as R plain steps' share, 1 - flip^R,
-  // the slow points in 1/20 cells were damped four times as much.
+  // (the audit's transfer term) is then one step's. R plain steps' share, 1 - flip^R, unscaled,
+  // would damp the slow points in 1/20 cells at the fine step's rate, four times their own.
   auto patched = [](int ratio) {
     std::string d = bar_deck(ratio);
     const std::string band = ", refine: [{axis: x, from: -0.5, to: 0.5, cell_size: 0.0125}], grading: 1.2";

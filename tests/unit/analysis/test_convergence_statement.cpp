@@ -85,9 +85,14 @@ TEST(ConvergenceStatement, ACheckedConfigurationGivesItsOwnGaps) {
   ConvergenceRecord r = demo_record();
   r.checked = {{"depth_run", "multi-rate", "m1", {{"cavity_depth", 0.1241}}},
                {"hole_run", "patches on the casing", "p1", {{"casing_mean_hole", 0.0127}}}};
+  // The hole run's own summary: its hole is the recorded one.
+  JsonValue hole_run = penetration();
+  hole_run["holes"] = JsonValue::object();
+  hole_run["holes"]["casing"] = JsonValue::object();
+  hole_run["holes"]["casing"]["mean_diameter"] = 0.0127;
   // Its own physics fingerprint differs from the study's (the step per region is physics to it),
   // and its band is a level's: the configuration, not the level, is what it is.
-  const JsonValue s = convergence_statement(r, "g", "p1", 5e-4, penetration(), true);
+  const JsonValue s = convergence_statement(r, "g", "p1", 5e-4, hole_run, true);
   EXPECT_EQ(s.at("checked").at("name").as_string(), "hole_run");
   EXPECT_EQ(s.at("level_cell").kind(), JsonValue::Kind::Null);
   // 0.0127 / 0.013296 - 1 = -4.48 %; the depth was not measured in this configuration.
@@ -95,13 +100,28 @@ TEST(ConvergenceStatement, ACheckedConfigurationGivesItsOwnGaps) {
   EXPECT_EQ(s.at("quantities").at("cavity_depth").at("level_value").kind(), JsonValue::Kind::Null);
   EXPECT_NEAR(s.at("within").as_number(), 0.0448, 1e-4);
   EXPECT_FALSE(s.at("all_at_level").as_bool());
-  const JsonValue d = convergence_statement(r, "g", "m1", 5e-4, penetration());
+  JsonValue depth_run = penetration();
+  depth_run["final_cavity_depth"] = 0.1241;
+  const JsonValue d = convergence_statement(r, "g", "m1", 5e-4, depth_run);
   EXPECT_EQ(d.at("checked").at("name").as_string(), "depth_run");
   EXPECT_NEAR(d.at("quantities").at("cavity_depth").at("level_gap").as_number(), 0.1241 / 0.12944 - 1, 1e-12);
   // Another configuration of the same physics at a level is that level, as without checked ones.
   const JsonValue level = convergence_statement(r, "f", "x", 5e-4, penetration());
   EXPECT_EQ(level.at("checked").kind(), JsonValue::Kind::Null);
   EXPECT_EQ(level.at("level_cell").as_number(), 5e-4);
+}
+
+TEST(ConvergenceStatement, ARunThatDoesNotReproduceACheckedConfigurationIsNotIt) {
+  // The fingerprint leaves out the end time and the build: a run of the depth configuration
+  // stopped early, or made by another build, reads another depth, and the record's gap is not its.
+  ConvergenceRecord r = demo_record();
+  r.checked = {{"depth_run", "multi-rate", "m1", {{"cavity_depth", 0.1241}}}};
+  JsonValue p = penetration();  // 0.125 m
+  const JsonValue s = convergence_statement(r, "g", "m1", 5e-4, p);
+  EXPECT_EQ(s.at("checked").kind(), JsonValue::Kind::Null);
+  EXPECT_EQ(s.at("within").kind(), JsonValue::Kind::Null);
+  p["final_cavity_depth"] = 0.1241 * (1 + 1e-8);  // round-off of another machine's same build
+  EXPECT_EQ(convergence_statement(r, "g", "m1", 5e-4, p).at("checked").at("name").as_string(), "depth_run");
 }
 
 }  // namespace test_convergence_statement
