@@ -448,7 +448,7 @@ void MpmSolver::grid_to_particles(double dt, Index begin, Index end) {
   const bool xpic = xpic_active();
   // Patches imply a graded grid: on a uniform one (G false) the PIC share's cell look-up below is
   // compiled out of the loop.
-  const bool pic_by_cell = G && patch_axes_ && flip < 1.0 && step_cell_ > 0.0;
+  const bool by_cell = G && pic_by_cell();
   const Vec3* vx = xpic ? xpic_.target.data() : nullptr;
   const Index n = points_.size();
   if (defer) displacement_.resize(n);
@@ -487,12 +487,8 @@ void MpmSolver::grid_to_particles(double dt, Index begin, Index end) {
       Vec3 vpic;
       for (int k = 0; k < st.count; ++k) vpic += st.w[k] * vx[fo + st.node[k]];
       v[p] = flip * (v_old + dt * acc) + (1.0 - flip) * vpic;
-    } else if (pic_by_cell) {
-      // With patches the step is the fine cells', and the PIC share damps once per step (its
-      // rate (1 - flip) / dt): a point in coarse cells takes the share that gives it the rate it
-      // would have at its own cells' step, (1 - flip) l_step / l_p, so that the fine cells
-      // elsewhere do not damp it more than the coarse grid would.
-      const double pic = (1.0 - flip) * std::min(1.0, step_cell_ / cell_edge(xp));
+    } else if (by_cell) {
+      const double pic = pic_share_by_cell(xp);
       v[p] = (1.0 - pic) * (v_old + dt * acc) + pic * vg;
     } else {
       v[p] = flip * (v_old + dt * acc) + (1.0 - flip) * vg;
@@ -589,7 +585,7 @@ void MpmSolver::slow_grid_to_particles(double dt, int substeps, Index begin, Ind
   const Vec3* vend = grid_.velocity_new.data();
   const bool axisym = dimension_ == Dimension::Axisymmetric;
   const bool has_ext = !multirate_.fext.empty();
-  const bool pic_by_cell = G && patch_axes_ && flip_ < 1.0 && step_cell_ > 0.0;
+  const bool by_cell = G && pic_by_cell();
   const double steps_flip = std::pow(flip_, substeps);
   const Index n = points_.size();
   std::atomic<Index> bad{n}, out{n};
@@ -600,7 +596,7 @@ void MpmSolver::slow_grid_to_particles(double dt, int substeps, Index begin, Ind
     point_stencil<Dim, K, G>(p, xp, half[p], st);
     const Index fo = field_offset(p);
     const double flip =
-        pic_by_cell ? std::pow(1.0 - (1.0 - flip_) * std::min(1.0, step_cell_ / cell_edge(xp)), substeps) : steps_flip;
+        by_cell ? std::pow(1.0 - pic_share_by_cell(xp), substeps) : steps_flip;
     Vec3 du, upic, d;
     Mat3 l;
     for (int k = 0; k < st.count; ++k) {

@@ -168,6 +168,12 @@ class MpmSolver final : public Solver {
   /// The shortest edge of the cell a point at x lies in (graded grids; a patch's or, outside the
   /// patches, the coarse cell its hanging nodes follow): the length its signal crosses in a step.
   double cell_edge(const Vec3& x) const;
+  /// With patches the step is the fine cells', and the PIC share damps once per step (its rate
+  /// (1 - flip) / dt): a point in coarser cells takes (1 - flip) l_step / l_p per step, the rate
+  /// its own cells' step would give, so that the fine cells elsewhere do not damp it more than the
+  /// coarse grid would (grid_to_particles; each substep's for a multi-rate step's slow points).
+  bool pic_by_cell() const { return patch_axes_ && flip_ < 1.0 && step_cell_ > 0.0; }
+  double pic_share_by_cell(const Vec3& x) const { return (1.0 - flip_) * std::min(1.0, step_cell_ / cell_edge(x)); }
   /// Patches: each of the grid's cells' shortest edge as its region sees it (the cell of the patch
   /// or coarse grid holding it: GridAxes::effective_cell_size), x fastest; cell_edge looks it up.
   std::vector<double> patch_cell_edge_;

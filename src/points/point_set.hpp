@@ -4,11 +4,11 @@
 // bodies and segments on a lattice, activation by time and stage, material groups and the stress
 // update through the material library, removal with its mass, momentum and energy booked,
 // failure diagnostics naming the point, and the energy totals.
+#include <algorithm>
 #include <cstdint>
 #include <memory>
-#include <string>
-#include <algorithm>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/communicator.hpp"
