@@ -7,6 +7,7 @@
 
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "deck/deck_reader.hpp"
 #include "deck/physics_fingerprint.hpp"
@@ -85,6 +86,27 @@ TEST(ConvergenceRecord, AMissingOrMalformedRecordIsADeckErrorAtItsKey) {
   EXPECT_EQ(r.quantities[0].levels.size(), 2u);
   EXPECT_EQ(r.quantities[0].levels[1], std::make_pair(0.0005, 0.095));
   EXPECT_EQ(physics_fingerprint(sc.resolved_yaml), fingerprint());  // naming the record is not physics
+}
+
+TEST(ConvergenceRecord, AMalformedCheckedConfigurationIsADeckErrorAtItsKey) {
+  // A checked configuration names quantities of the record, and one fingerprint is one configuration.
+  const std::string head = R"({"physics_fingerprint": "0123456789abcdef", "quantities":
+    {"depth": {"summary_key": "final_cavity_depth", "richardson": 0.1, "levels": [[0.001, 0.08]]}}, "checked": )";
+  const std::pair<std::string, std::string> cases[] = {
+      {R"({"a": {"configuration_fingerprint": "f1", "values": {"hole": 0.01}}})", "'hole' is not a quantity"},
+      {R"({"a": {"values": {"depth": 0.09}}})", "needs configuration_fingerprint and values"},
+      {R"({"a": {"configuration_fingerprint": "f1", "values": {"depth": 0.09}},
+           "b": {"configuration_fingerprint": "f1", "values": {"depth": 0.091}}})",
+       "have one fingerprint"},
+      {R"([1, 2])", "'checked' is an object"}};
+  test::TempDir dir;
+  for (const auto& [checked, expected] : cases) {
+    const std::string path = (dir.path / "record.json").string();
+    std::ofstream(path) << head << checked << "}";
+    const DeckError e = test::parse_error(kDeck, {"penetration.convergence_record=" + path});
+    EXPECT_EQ(e.key_path(), "penetration.convergence_record") << checked;
+    EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace test_physics_fingerprint
