@@ -15,9 +15,14 @@
 // Courant condition over its own cell, as stable_dt), and the points within kMultirateBuffer
 // cells of a fast one step fast too, so that no fast point reaches a slow one's cells within a
 // step at the 8 substeps a step may hold.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
 
 #include "core/parallel.hpp"
 #include "core/point_fields.hpp"
@@ -50,8 +55,15 @@ double MpmSolver::multirate_stable_dt(double single_dt) {
   const double cfl = scenario_.simulation.cfl;
   point_step_.resize(static_cast<std::size_t>(n));
   double fastest = 0.0;
+  // Points at rest out of every moving point's reach this step take any step unchanged
+  // (multirate_idle.cpp): slow, and not the fastest.
+  const std::vector<char> idle = idle_points();
   // wave_scratch_ holds the wave speeds stable_dt has just filled.
   for (Index p = 0; p < n; ++p) {
+    if (!idle.empty() && idle[static_cast<std::size_t>(p)]) {
+      point_step_[p] = std::numeric_limits<double>::infinity();
+      continue;
+    }
     const double l = grid_.geom.graded ? cell_length_[p] : grid_.geom.h;
     const double c = wave_scratch_[p];
     const double s = q ? point_signal_speed(bulk_viscosity_, q[p], c, l, L[p], c_ref.empty() ? c : c_ref[p]) : c;
@@ -60,7 +72,24 @@ double MpmSolver::multirate_stable_dt(double single_dt) {
     point_step_[p] = rate > 0.0 ? cfl / rate : std::numeric_limits<double>::infinity();
   }
   double fine = fastest > 0.0 ? cfl / fastest : single_dt;
-  fine = std::min(fine, single_dt);
+  if (idle.empty()) {
+    fine = std::min(fine, single_dt);
+  } else {
+    // single_dt holds the idle points to their Courant step too: the cap is the limit alone, and
+    // the PIC share's reference cell the fastest moving point's (graded_stable_dt's measure).
+    if (scenario_.simulation.max_dt > 0.0) fine = std::min(fine, scenario_.simulation.max_dt);
+    if (patch_axes_ && flip_ < 1.0) {
+      double best = -1.0;
+      for (Index p = 0; p < n; ++p) {
+        if (idle[static_cast<std::size_t>(p)]) continue;
+        const double r = (wave_scratch_[p] + norm(v[p])) / cell_length_[p];
+        if (r > best) {
+          best = r;
+          step_cell_ = cell_length_[p];
+        }
+      }
+    }
+  }
   fine_dt_ = fine;
   // The ratio with the fewest point updates per unit time: R = 2^j makes the points whose step
   // is below R fine_dt step R times, the rest once.
@@ -83,6 +112,12 @@ double MpmSolver::multirate_stable_dt(double single_dt) {
   }
   double dt = best_ratio * fine;
   if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
+  // Points waiting for activation (a jet's segments at their arrival) enter at the start of the
+  // step that begins at or after their time: the step lands on it, a hair past so that the sum of
+  // the steps is not an ulp short. The slow points' step, idle points left out, can be many times
+  // the step they would wait in otherwise, and a segment entering that late would arrive late.
+  const double gap = pts_.next_activation(time_) - time_;
+  if (gap < dt) dt = std::min(dt, gap * (1.0 + 1e-12) + 1e-12 * dt);
   return dt;
 }
 
@@ -130,6 +165,9 @@ Index MpmSolver::partition_by_rate(double dt) {
       slow.push_back(p);
   }
   const Index nfast = static_cast<Index>(order.size());
+  // Which slow points are idle (multirate_idle.cpp), in the slow range's order.
+  multirate_.idle.clear();
+  for (const Index p : slow) multirate_.idle.push_back(std::isinf(point_step_[p]) ? 1 : 0);
   if (!slow.empty()) {
     // Fast points first, each class in its order (the cell sort's, which the scatter's cache
     // locality wants).
@@ -280,6 +318,29 @@ void MpmSolver::step_multirate(double dt, int substeps) {
     fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0, NaN or infinite)");
   pts_.update_stress(0.5 * dt, steps_, time_, {}, nf, n);
   if (bulk_viscosity_.active()) bulk_viscosity_pass(0.5 * dt, false, nf, n);
+  check_idle_points_rest(nf, n);
+}
+
+void MpmSolver::check_idle_points_rest(Index nf, Index n) const {
+  // An idle point took its step at once on the promise that nothing reaches it within the step
+  // (multirate_idle.cpp): it must end it at rest and stress-free. One that does not shows the
+  // reach bound wrong; the run stops rather than carry a point stepped past its stable step.
+  const auto* v = points_.view(kVelocity);
+  const auto* sigma = points_.view(kStress);
+  const auto* id = points_.ints(kId);
+  for (Index p = nf; p < n; ++p) {
+    if (!multirate_.idle[static_cast<std::size_t>(p - nf)]) continue;
+    bool rest = true;
+    for (int a = 0; a < 3 && rest; ++a) rest = v[p][a] == 0.0;
+    for (int a = 0; a < 3 && rest; ++a)
+      for (int b = 0; b < 3 && rest; ++b) rest = sigma[p](a, b) == 0.0;
+    if (!rest)
+      throw std::logic_error(fmt::format(
+          "multi-rate step {} (t = {:.6g} s): particle {} was idle (at rest, out of every moving point's reach "
+          "within the step) and was moved or stressed in it: the reach bound of mpm/multirate_idle.cpp does not "
+          "hold here; run without mpm.multirate and report the deck",
+          steps_, time_, id[p]));
+  }
 }
 
 #define BALLISTA_MULTIRATE(Dim, K, G) template void MpmSolver::step_multirate<Dim, K, G>(double, int);

@@ -203,6 +203,15 @@ bool PointSet::activate(double time) {
   return true;
 }
 
+double PointSet::next_activation(double time) const {
+  double next = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < pending_activation_.size(); ++p) {
+    const double t = stage_start_[static_cast<std::size_t>(pending_stage_[p])] + pending_activation_[p];
+    if (t > time) next = std::min(next, t);
+  }
+  return next;
+}
+
 const std::vector<std::vector<Index>>& PointSet::material_groups() {
   if (!groups_dirty_) return material_points_;
   material_points_.resize(materials_.size());

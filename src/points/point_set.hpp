@@ -73,6 +73,9 @@ class PointSet {
   /// Moves pending points whose activation time has come into the store (appended at the end),
   /// booking their kinetic and internal energy as inserted. True if any point was added.
   bool activate(double time);
+  /// The earliest activation time of a pending point later than `time` (infinite if none is
+  /// known: no pending points, or their stages have not begun).
+  double next_activation(double time) const;
 
   // ---- material groups and the stress update -----------------------------------------------
   /// The points have been reordered or removed: material groups are rebuilt before next use.
