@@ -91,6 +91,10 @@ class Solver {
   virtual double stable_dt() = 0;
   /// Advances the state by dt; throws PhysicsError on NaN, inverted points or lost particles.
   virtual void step(double dt) = 0;
+  /// A step of up to dt (the stable step, already counted in the run's statistics), shortened to
+  /// end on an event of the solver's own it would otherwise cross (MPM multi-rate: a pending
+  /// activation time); dt itself if none.
+  virtual double land_step(double dt) const { return dt; }
   virtual double time() const = 0;
   virtual long steps() const = 0;
   /// The points of this rank (fields named as the output datasets).

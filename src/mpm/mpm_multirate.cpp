@@ -112,13 +112,18 @@ double MpmSolver::multirate_stable_dt(double single_dt) {
   }
   double dt = best_ratio * fine;
   if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
-  // Points waiting for activation (a jet's segments at their arrival) enter at the start of the
-  // step that begins at or after their time: the step lands on it, a hair past so that the sum of
-  // the steps is not an ulp short. The slow points' step, idle points left out, can be many times
-  // the step they would wait in otherwise, and a segment entering that late would arrive late.
-  const double gap = pts_.next_activation(time_) - time_;
-  if (gap < dt) dt = std::min(dt, gap * (1.0 + 1e-12) + 1e-12 * dt);
   return dt;
+}
+
+double MpmSolver::land_step(double dt) const {
+  // Points waiting for activation (a jet's segments at their arrival) enter at the start of the
+  // step that begins at or after their time: with multi-rate steps the step lands on it, a hair
+  // past so that the sum of the steps is not an ulp short. The slow points' step, idle points left
+  // out, can be many times the step they would wait in otherwise, and a segment entering that late
+  // would arrive late. One step for all is left as it was.
+  if (multirate_max_ <= 1) return dt;
+  const double gap = pts_.next_activation(time_) - time_;
+  return gap < dt ? std::min(dt, gap * (1.0 + 1e-12) + 1e-12 * dt) : dt;
 }
 
 Index MpmSolver::partition_by_rate(double dt) {

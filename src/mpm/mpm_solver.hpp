@@ -62,6 +62,7 @@ class MpmSolver final : public Solver {
   const char* name() const override { return "mpm"; }
   double stable_dt() override;
   void step(double dt) override;
+  double land_step(double dt) const override;  ///< multi-rate: on pending activations (mpm_multirate.cpp)
   double time() const override { return time_; }
   long steps() const override { return steps_; }
   FieldStore& points() override { return points_; }

@@ -350,7 +350,7 @@ double RunLoop::next_dt() {
     else
       rs_.step_tally.add(limiter);
   }
-  dt = std::min({dt, rs_.end - solver_->time(), rs_.next_output - solver_->time()});
+  dt = std::min({solver_->land_step(dt), rs_.end - solver_->time(), rs_.next_output - solver_->time()});
   if (rs_.stage < nstages_) {
     const StageSpec& st = sc_.stages[rs_.stage];
     const double stage_end = rs_.stage_start + (st.until.empty() ? st.duration : st.max_duration);
