@@ -35,6 +35,8 @@ namespace ballista {
 
 struct Explosive {
   static constexpr const char* kName = "explosive";
+  /// Lit at its program-burn time whatever its neighbours do (Material::changes_at_rest).
+  static constexpr bool kChangesAtRest = true;
   struct Params {
     double density = 0.0;  ///< kg/m^3, unreacted
     ProductsEos eos;

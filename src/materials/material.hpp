@@ -215,6 +215,9 @@ class Material {
   /// True if the material's failed points carry no stress at all (erosion zero_stress): they
   /// must not resist compression through anything else either (artificial viscosity).
   virtual bool failed_points_are_stress_free() const { return false; }
+  /// True if a point at rest and stress-free can change by its own clock (an explosive lit by the
+  /// program burn): the multi-rate step never leaves such a point idle (mpm/multirate_idle.cpp).
+  virtual bool changes_at_rest() const { return false; }
 };
 
 /// The batch every caller of Material::update builds: `count` points of `store` with the common

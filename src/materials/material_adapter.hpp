@@ -48,6 +48,10 @@ class MaterialAdapter final : public Material {
   bool failed_points_are_stress_free() const override {
     return failure_.active() && failure_.erosion == ErosionRule::ZeroStress;
   }
+  bool changes_at_rest() const override {
+    if constexpr (requires { Model::kChangesAtRest; }) return Model::kChangesAtRest;
+    return false;
+  }
 
   Mat3 initial_stress(const Mat3& F) const override {
     Mat3 R, U;

@@ -58,6 +58,13 @@ double MpmSolver::multirate_stable_dt(double single_dt) {
   // Points at rest out of every moving point's reach this step take any step unchanged
   // (multirate_idle.cpp): slow, and not the fastest.
   const std::vector<char> idle = idle_points();
+  idle_ids_.clear();
+  if (!idle.empty()) {
+    const auto* id = points_.ints(kId);
+    for (Index p = 0; p < n; ++p)
+      if (idle[static_cast<std::size_t>(p)]) idle_ids_.push_back(id[p]);
+    std::sort(idle_ids_.begin(), idle_ids_.end());
+  }
   // wave_scratch_ holds the wave speeds stable_dt has just filled.
   for (Index p = 0; p < n; ++p) {
     if (!idle.empty() && idle[static_cast<std::size_t>(p)]) {
@@ -170,9 +177,6 @@ Index MpmSolver::partition_by_rate(double dt) {
       slow.push_back(p);
   }
   const Index nfast = static_cast<Index>(order.size());
-  // Which slow points are idle (multirate_idle.cpp), in the slow range's order.
-  multirate_.idle.clear();
-  for (const Index p : slow) multirate_.idle.push_back(std::isinf(point_step_[p]) ? 1 : 0);
   if (!slow.empty()) {
     // Fast points first, each class in its order (the cell sort's, which the scatter's cache
     // locality wants).
@@ -323,19 +327,20 @@ void MpmSolver::step_multirate(double dt, int substeps) {
     fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0, NaN or infinite)");
   pts_.update_stress(0.5 * dt, steps_, time_, {}, nf, n);
   if (bulk_viscosity_.active()) bulk_viscosity_pass(0.5 * dt, false, nf, n);
-  check_idle_points_rest(nf, n);
 }
 
-void MpmSolver::check_idle_points_rest(Index nf, Index n) const {
-  // An idle point took its step at once on the promise that nothing reaches it within the step
-  // (multirate_idle.cpp): it must end it at rest and stress-free. One that does not shows the
-  // reach bound wrong; the run stops rather than carry a point stepped past its stable step.
+void MpmSolver::check_idle_points_rest() const {
+  // An idle point took its step, whatever its length, on the promise that nothing reaches it
+  // within it (multirate_idle.cpp): it must end it at rest and stress-free. One that does not
+  // shows the reach bound wrong; the run stops rather than carry a point stepped past its stable
+  // step.
   const auto* v = points_.view(kVelocity);
   const auto* sigma = points_.view(kStress);
   const auto* id = points_.ints(kId);
-  for (Index p = nf; p < n; ++p) {
-    if (!multirate_.idle[static_cast<std::size_t>(p - nf)]) continue;
-    bool rest = true;
+  const double* q = bulk_viscosity_.active() ? points_.real(kBulkViscosity) : nullptr;
+  for (Index p = 0; p < points_.size(); ++p) {
+    if (!std::binary_search(idle_ids_.begin(), idle_ids_.end(), id[p])) continue;
+    bool rest = !q || q[p] == 0.0;
     for (int a = 0; a < 3 && rest; ++a) rest = v[p][a] == 0.0;
     for (int a = 0; a < 3 && rest; ++a)
       for (int b = 0; b < 3 && rest; ++b) rest = sigma[p](a, b) == 0.0;

@@ -768,6 +768,7 @@ void MpmSolver::step_any(double dt) {
                            : 1;
   if (substeps > 1) step_multirate<Dim, K, G>(dt, substeps);
   else step_impl<Dim, K, G>(dt);
+  if (!idle_ids_.empty()) check_idle_points_rest();
 }
 
 void MpmSolver::bulk_viscosity_pass(double dt, bool book_new, Index begin, Index end) {

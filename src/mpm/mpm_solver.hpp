@@ -323,7 +323,6 @@ class MpmSolver final : public Solver {
     std::vector<Vec3> fext;                      ///< the slow points' point loads at the step's start
     std::vector<PointLoads::SurfaceForce> surface;  ///< and their surface tractions
     std::vector<Index> slab_start, slab_points;     ///< their slabs (build_slabs), for their forces' P2G
-    std::vector<char> idle;                         ///< 1 for each idle slow point, in the slow range's order
   } multirate_;
   /// Over the steps that took substeps: their count and their substeps' (fast), the point updates
   /// made by fast and slow points, and those every point at every substep would have made.
@@ -337,8 +336,10 @@ class MpmSolver final : public Solver {
   /// The points at rest (v = 0, stress-free, unloaded) that no moving point can reach within a
   /// step of multirate_max_ substeps: 1 for each (multirate_idle.cpp), or empty if there are none.
   std::vector<char> idle_points() const;
-  /// Stops the run if an idle point of the slow range [nf, n) ended its step moved or stressed.
-  void check_idle_points_rest(Index nf, Index n) const;
+  /// The ids of the points idle_points() left idle at the last stable_dt, ascending.
+  std::vector<std::int64_t> idle_ids_;
+  /// Stops the run if a point left idle for the step ended it moved or stressed.
+  void check_idle_points_rest() const;
   /// Puts the points that step at the fine step first (returns their count): those whose own
   /// step is shorter than dt, and every point within kMultirateBuffer cells of one.
   Index partition_by_rate(double dt);

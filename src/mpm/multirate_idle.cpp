@@ -17,6 +17,8 @@
 // per step) and does not enter the fastest point's step; once a moving point comes within that
 // reach it is held to its own Courant step again, a step before anything can arrive.
 #include <algorithm>
+#include <cmath>
+#include <map>
 #include <vector>
 
 #include "core/point_fields.hpp"
@@ -61,20 +63,27 @@ void dilate(std::vector<char>& mask, const int* cells, int dim, int radius) {
 std::vector<char> MpmSolver::idle_points() const {
   const Index n = points_.size();
   if (n == 0) return {};
-  // Loaded bodies' points are never idle: a load may act on them within the step.
+  // Points that enter at this step's start are not in the store yet: their reach is not known.
+  if (pts_.activation_due(time_)) return {};
+  // Loaded bodies' points are never idle (a load may act on them within the step), nor are points
+  // whose material changes by its own clock (an explosive lit by the program burn).
   std::vector<char> loaded(scenario_.bodies.size(), 0);
   for (const LoadSpec& load : scenario_.loads)
     for (std::size_t b = 0; b < scenario_.bodies.size(); ++b)
       if (load.body.empty() || load.body == scenario_.bodies[b].name) loaded[b] = 1;
+  std::vector<char> self_changing;
+  for (const auto& m : pts_.materials()) self_changing.push_back(m->changes_at_rest() ? 1 : 0);
   const auto* x = points_.view(kPosition);
   const auto* v = points_.view(kVelocity);
   const auto* sigma = points_.view(kStress);
   const auto* body = points_.ints(kBodyIndex);
+  const auto* mat = points_.ints(kMaterialIndex);
   const double* q = bulk_viscosity_.active() ? points_.real(kBulkViscosity) : nullptr;
   std::vector<char> resting(static_cast<std::size_t>(n), 0);
   bool any_resting = false, any_moving = false;
   for (Index p = 0; p < n; ++p) {
-    bool rest = !loaded[static_cast<std::size_t>(body[p])] && (!q || q[p] == 0.0);
+    bool rest = !loaded[static_cast<std::size_t>(body[p])] && !self_changing[static_cast<std::size_t>(mat[p])] &&
+                (!q || q[p] == 0.0);
     for (int a = 0; a < 3 && rest; ++a) rest = v[p][a] == 0.0;
     for (int a = 0; a < 3 && rest; ++a)
       for (int b = 0; b < 3 && rest; ++b) rest = sigma[p](a, b) == 0.0;
@@ -94,25 +103,44 @@ std::vector<char> MpmSolver::idle_points() const {
       c = c * static_cast<std::size_t>(cells[a]) + static_cast<std::size_t>(std::clamp(g.cell_of(at[a], a), 0, cells[a] - 1));
     return c;
   };
-  std::vector<char> occupied(static_cast<std::size_t>(cells[0]) * cells[1] * cells[2], 0);
-  std::vector<char> reached(occupied.size(), 0);
+  const std::size_t ncells = static_cast<std::size_t>(cells[0]) * cells[1] * cells[2];
+  std::vector<char> occupied(ncells, 0), reached(ncells, 0);
   std::vector<std::size_t> cell(static_cast<std::size_t>(n));
+  // A moving point carries a change along its path, through cells empty at the step's start. Each
+  // substep moves it less than cfl l_p |v| / (c + |v|) (its own Courant step bounds the substep),
+  // under that many of the coarsest cells; over R substeps, twice that at its speed at the step's
+  // start, a margin for its speed changing within the step (check_idle_points_rest stops a run
+  // whose point outran it). The path's cells count as reached and occupied.
+  const double cfl = scenario_.simulation.cfl;
+  std::map<int, std::vector<char>> paths;  // by the path's length in cells: the cells it starts from
   for (Index p = 0; p < n; ++p) {
     const std::size_t c = cell_of(x[p]);
     cell[static_cast<std::size_t>(p)] = c;
     occupied[c] = 1;
-    if (!resting[static_cast<std::size_t>(p)]) reached[c] = 1;
+    if (resting[static_cast<std::size_t>(p)]) continue;
+    reached[c] = 1;
+    const double speed = norm(v[p]), c_p = wave_scratch_.size() > static_cast<std::size_t>(p) ? wave_scratch_[p] : 0.0;
+    const double share = speed > 0.0 ? speed / (c_p + speed) : 0.0;
+    const int path = static_cast<int>(std::ceil(2.0 * multirate_max_ * cfl * share));
+    if (path <= 0) continue;
+    std::vector<char>& from = paths[path];
+    if (from.empty()) from.assign(ncells, 0);
+    from[c] = 1;
+  }
+  for (auto& [path, from] : paths) {
+    dilate(from, cells, dim_, path);
+    for (std::size_t c = 0; c < ncells; ++c)
+      if (from[c]) reached[c] = occupied[c] = 1;
   }
   // Two hops per substep, each to the occupied cells within reach: the points a point shares nodes
-  // with (2 stencil_reach cells), a hanging node's masters (1), and the path of the point that carries
-  // the change within its substep (1: a point moves under a cell per substep, CFL < 1), so that a
-  // cell empty at the step's start that a moving point enters counts from where the point was.
+  // with (2 stencil_reach cells), a hanging node's masters (1), and the path within its substep of
+  // a point set moving by the change (1: under a cell per substep, CFL < 1).
   const int hop = 2 * stencil_reach(shape_) + 2;
   std::vector<char> before;
   for (int k = 0; k < 2 * multirate_max_; ++k) {
     before = reached;
     dilate(reached, cells, dim_, hop);
-    for (std::size_t c = 0; c < reached.size(); ++c) reached[c] = reached[c] && occupied[c];
+    for (std::size_t c = 0; c < ncells; ++c) reached[c] = reached[c] && occupied[c];
     if (reached == before) break;
   }
   std::vector<char> idle(static_cast<std::size_t>(n), 0);

@@ -212,6 +212,12 @@ double PointSet::next_activation(double time) const {
   return next;
 }
 
+bool PointSet::activation_due(double time) const {
+  for (std::size_t p = 0; p < pending_activation_.size(); ++p)
+    if (stage_start_[static_cast<std::size_t>(pending_stage_[p])] + pending_activation_[p] <= time) return true;
+  return false;
+}
+
 const std::vector<std::vector<Index>>& PointSet::material_groups() {
   if (!groups_dirty_) return material_points_;
   material_points_.resize(materials_.size());

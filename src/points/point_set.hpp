@@ -76,6 +76,8 @@ class PointSet {
   /// The earliest activation time of a pending point later than `time` (infinite if none is
   /// known: no pending points, or their stages have not begun).
   double next_activation(double time) const;
+  /// True if a pending point's activation time is `time` or earlier (it enters at the next step).
+  bool activation_due(double time) const;
 
   // ---- material groups and the stress update -----------------------------------------------
   /// The points have been reordered or removed: material groups are rebuilt before next use.
