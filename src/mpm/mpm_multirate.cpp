@@ -15,13 +15,10 @@
 // Courant condition over its own cell, as stable_dt), and the points within kMultirateBuffer
 // cells of a fast one step fast too, so that no fast point reaches a slow one's cells within a
 // step at the 8 substeps a step may hold.
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
 #include <vector>
 
 #include "core/parallel.hpp"
@@ -83,19 +80,9 @@ double MpmSolver::multirate_stable_dt(double single_dt) {
     fine = std::min(fine, single_dt);
   } else {
     // single_dt holds the idle points to their Courant step too: the cap is the limit alone, and
-    // the PIC share's reference cell the fastest moving point's (graded_stable_dt's measure).
+    // the PIC share's reference cell the fastest moving point's.
     if (scenario_.simulation.max_dt > 0.0) fine = std::min(fine, scenario_.simulation.max_dt);
-    if (patch_axes_ && flip_ < 1.0) {
-      double best = -1.0;
-      for (Index p = 0; p < n; ++p) {
-        if (idle[static_cast<std::size_t>(p)]) continue;
-        const double r = (wave_scratch_[p] + norm(v[p])) / cell_length_[p];
-        if (r > best) {
-          best = r;
-          step_cell_ = cell_length_[p];
-        }
-      }
-    }
+    if (patch_axes_ && flip_ < 1.0) set_step_cell(idle);
   }
   fine_dt_ = fine;
   // The ratio with the fewest point updates per unit time: R = 2^j makes the points whose step
@@ -327,30 +314,6 @@ void MpmSolver::step_multirate(double dt, int substeps) {
     fail(first_bad_, "inverted or non-finite deformation gradient (J <= 0, NaN or infinite)");
   pts_.update_stress(0.5 * dt, steps_, time_, {}, nf, n);
   if (bulk_viscosity_.active()) bulk_viscosity_pass(0.5 * dt, false, nf, n);
-}
-
-void MpmSolver::check_idle_points_rest() const {
-  // An idle point took its step, whatever its length, on the promise that nothing reaches it
-  // within it (multirate_idle.cpp): it must end it at rest and stress-free. One that does not
-  // shows the reach bound wrong; the run stops rather than carry a point stepped past its stable
-  // step.
-  const auto* v = points_.view(kVelocity);
-  const auto* sigma = points_.view(kStress);
-  const auto* id = points_.ints(kId);
-  const double* q = bulk_viscosity_.active() ? points_.real(kBulkViscosity) : nullptr;
-  for (Index p = 0; p < points_.size(); ++p) {
-    if (!std::binary_search(idle_ids_.begin(), idle_ids_.end(), id[p])) continue;
-    bool rest = !q || q[p] == 0.0;
-    for (int a = 0; a < 3 && rest; ++a) rest = v[p][a] == 0.0;
-    for (int a = 0; a < 3 && rest; ++a)
-      for (int b = 0; b < 3 && rest; ++b) rest = sigma[p](a, b) == 0.0;
-    if (!rest)
-      throw std::logic_error(fmt::format(
-          "multi-rate step {} (t = {:.6g} s): particle {} was idle (at rest, out of every moving point's reach "
-          "within the step) and was moved or stressed in it: the reach bound of mpm/multirate_idle.cpp does not "
-          "hold here; run without mpm.multirate and report the deck",
-          steps_, time_, id[p]));
-  }
 }
 
 #define BALLISTA_MULTIRATE(Dim, K, G) template void MpmSolver::step_multirate<Dim, K, G>(double, int);

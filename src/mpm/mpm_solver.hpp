@@ -333,6 +333,9 @@ class MpmSolver final : public Solver {
   /// stable_dt with multi-rate stepping: the step of the slow points (a power-of-two multiple of
   /// the fastest point's, chosen for the fewest point updates), point_step_ and fine_dt_ set.
   double multirate_stable_dt(double single_dt);
+  /// step_cell_: the cell of the point with the highest (c + |v|) / l, points with skip[p] set
+  /// left out (skip empty: none).
+  void set_step_cell(const std::vector<char>& skip);
   /// The points at rest (v = 0, stress-free, unloaded) that no moving point can reach within a
   /// step of multirate_max_ substeps: 1 for each (multirate_idle.cpp), or empty if there are none.
   std::vector<char> idle_points() const;

@@ -83,21 +83,25 @@ double MpmSolver::graded_stable_dt() {
   const Index n = points_.size();
 #pragma omp parallel for reduction(max : rate) schedule(static) if (n > kParallelThreshold)
   for (Index p = 0; p < n; ++p) rate = std::max(rate, (wave_scratch_[p] + norm(v[p])) / cell_length_[p]);
-  if (patch_axes_ && flip_ < 1.0) {
-    // The cell of the point that sets the step (grid_to_particles scales the PIC share by it).
-    double best = -1.0;
-    step_cell_ = 0.0;
-    for (Index p = 0; p < n; ++p) {
-      const double r = (wave_scratch_[p] + norm(v[p])) / cell_length_[p];
-      if (r > best) {
-        best = r;
-        step_cell_ = cell_length_[p];
-      }
-    }
-  }
+  if (patch_axes_ && flip_ < 1.0) set_step_cell({});
   double dt = rate > 0.0 ? scenario_.simulation.cfl / rate : scenario_.simulation.end_time;
   if (scenario_.simulation.max_dt > 0.0) dt = std::min(dt, scenario_.simulation.max_dt);
   return dt;
+}
+
+void MpmSolver::set_step_cell(const std::vector<char>& skip) {
+  // The cell of the point that sets the step (grid_to_particles scales the PIC share by it).
+  const auto* v = points_.view(kVelocity);
+  double best = -1.0;
+  step_cell_ = 0.0;
+  for (Index p = 0; p < points_.size(); ++p) {
+    if (!skip.empty() && skip[static_cast<std::size_t>(p)]) continue;
+    const double r = (wave_scratch_[p] + norm(v[p])) / cell_length_[p];
+    if (r > best) {
+      best = r;
+      step_cell_ = cell_length_[p];
+    }
+  }
 }
 
 StepLimiter MpmSolver::step_limiter() const {

@@ -16,9 +16,12 @@
 // it was, as one step for all with any dt would. It joins the slow points (its update costs one
 // per step) and does not enter the fastest point's step; once a moving point comes within that
 // reach it is held to its own Courant step again, a step before anything can arrive.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 #include <vector>
 
 #include "core/point_fields.hpp"
@@ -58,6 +61,15 @@ void dilate(std::vector<char>& mask, const int* cells, int dim, int radius) {
   }
 }
 
+/// Point p exactly at rest: no velocity, no stress, no viscous pressure (q null: none kept).
+bool at_rest(const Vec3* v, const Mat3* sigma, const double* q, Index p) {
+  bool rest = !q || q[p] == 0.0;
+  for (int a = 0; a < 3 && rest; ++a) rest = v[p][a] == 0.0;
+  for (int a = 0; a < 3 && rest; ++a)
+    for (int b = 0; b < 3 && rest; ++b) rest = sigma[p](a, b) == 0.0;
+  return rest;
+}
+
 }  // namespace
 
 std::vector<char> MpmSolver::idle_points() const {
@@ -82,11 +94,8 @@ std::vector<char> MpmSolver::idle_points() const {
   std::vector<char> resting(static_cast<std::size_t>(n), 0);
   bool any_resting = false, any_moving = false;
   for (Index p = 0; p < n; ++p) {
-    bool rest = !loaded[static_cast<std::size_t>(body[p])] && !self_changing[static_cast<std::size_t>(mat[p])] &&
-                (!q || q[p] == 0.0);
-    for (int a = 0; a < 3 && rest; ++a) rest = v[p][a] == 0.0;
-    for (int a = 0; a < 3 && rest; ++a)
-      for (int b = 0; b < 3 && rest; ++b) rest = sigma[p](a, b) == 0.0;
+    const bool rest = !loaded[static_cast<std::size_t>(body[p])] &&
+                      !self_changing[static_cast<std::size_t>(mat[p])] && at_rest(v, sigma, q, p);
     resting[static_cast<std::size_t>(p)] = rest;
     any_resting = any_resting || rest;
     any_moving = any_moving || !rest;
@@ -152,6 +161,23 @@ std::vector<char> MpmSolver::idle_points() const {
   }
   if (!any_idle) return {};
   return idle;
+}
+
+void MpmSolver::check_idle_points_rest() const {
+  // An idle point took its step, whatever its length, on the promise that nothing reaches it
+  // within it: it must end it at rest and stress-free. One that does not shows the reach bound
+  // wrong; the run stops rather than carry a point stepped past its stable step.
+  const auto* v = points_.view(kVelocity);
+  const auto* sigma = points_.view(kStress);
+  const auto* id = points_.ints(kId);
+  const double* q = bulk_viscosity_.active() ? points_.real(kBulkViscosity) : nullptr;
+  for (Index p = 0; p < points_.size(); ++p)
+    if (std::binary_search(idle_ids_.begin(), idle_ids_.end(), id[p]) && !at_rest(v, sigma, q, p))
+      throw std::logic_error(fmt::format(
+          "multi-rate step {} (t = {:.6g} s): particle {} was idle (at rest, out of every moving point's reach "
+          "within the step) and was moved or stressed in it: the reach bound of mpm/multirate_idle.cpp does not "
+          "hold here; run without mpm.multirate and report the deck",
+          steps_, time_, id[p]));
 }
 
 }  // namespace ballista

@@ -178,7 +178,7 @@ bool PointSet::activate(double time) {
   std::vector<int> still_stage;
   for (Index p = 0; p < pending_.size(); ++p) {
     // Activation times count from the start of the body's activation stage (infinite until then).
-    if (stage_start_[pending_stage_[p]] + pending_activation_[p] <= time) {
+    if (activation_time(p) <= time) {
       now.push_back(p);
       keep[p] = 0;
     } else {
@@ -205,16 +205,16 @@ bool PointSet::activate(double time) {
 
 double PointSet::next_activation(double time) const {
   double next = std::numeric_limits<double>::infinity();
-  for (std::size_t p = 0; p < pending_activation_.size(); ++p) {
-    const double t = stage_start_[static_cast<std::size_t>(pending_stage_[p])] + pending_activation_[p];
+  for (Index p = 0; p < pending_.size(); ++p) {
+    const double t = activation_time(p);
     if (t > time) next = std::min(next, t);
   }
   return next;
 }
 
 bool PointSet::activation_due(double time) const {
-  for (std::size_t p = 0; p < pending_activation_.size(); ++p)
-    if (stage_start_[static_cast<std::size_t>(pending_stage_[p])] + pending_activation_[p] <= time) return true;
+  for (Index p = 0; p < pending_.size(); ++p)
+    if (activation_time(p) <= time) return true;
   return false;
 }
 

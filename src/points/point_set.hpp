@@ -169,6 +169,11 @@ class PointSet {
   FieldStore pending_;                      ///< seeded points of bodies not yet active
   std::vector<double> pending_activation_;  ///< activation time of each pending point (from its stage start)
   std::vector<int> pending_stage_;          ///< stage whose start begins each pending point's clock
+  /// s: when pending point p enters (infinite while its stage has not begun).
+  double activation_time(Index p) const {
+    return stage_start_[static_cast<std::size_t>(pending_stage_[static_cast<std::size_t>(p)])] +
+           pending_activation_[static_cast<std::size_t>(p)];
+  }
   std::vector<double> stage_start_;         ///< s: start time of each stage (infinite until it begins)
   std::vector<std::vector<Index>> material_points_;  ///< indices per material
   bool groups_dirty_ = true;
