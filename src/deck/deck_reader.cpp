@@ -202,6 +202,13 @@ class Reader {
       patch.lower = p.vector("lower", vmin());
       patch.upper = p.vector("upper", vmin());
       patch.cell_size = p.number("cell_size", NumberRange::positive("m"));
+      const std::optional<double> until = p.optional_number("until", NumberRange::positive("s"));
+      if (until) patch.until = *until;
+      // The grid drops its patches at once: a nested patch kept alone would split its parent's
+      // coarse cells in four, which uGIMP refuses (mpm_patches.cpp).
+      if (i > 0 && patch.until != gr.patches.front().until)
+        p.fail("until", "differs from the first patch's: the grid drops its patches together, so every patch "
+                        "gives the same until (or none)");
       p.finish();
       gr.patches.push_back(patch);
     }

@@ -13,7 +13,7 @@ void MpmSolver::save_state(StateArchive& a) const {
   a.put_real("mpm.boundary_work", boundary_work_);
   // Collective (as pts_.save_state): the total heat and the largest speed of every rank.
   a.put("mpm.bulk_viscosity", std::vector<double>{comm_.sum(viscous_work_), comm_.max(viscous_speed_)});
-  if (grid_.geom.graded) a.put_real("mpm.viscous_rate", viscous_rate_);  // one rank (graded grids)
+  if (scenario_.grid.graded()) a.put_real("mpm.viscous_rate", viscous_rate_);  // one rank (graded grids)
   if (multirate_max_ > 1) {
     const MultirateTally& t = multirate_tally_;
     a.put("mpm.multirate_tally",
@@ -54,7 +54,7 @@ void MpmSolver::load_state(const StateArchive& a) {
   double viscous_work_total = 0.0;
   a.get_into("mpm.bulk_viscosity", {&viscous_work_total, &viscous_speed_});
   viscous_work_ = comm_.rank() == 0 ? viscous_work_total : 0.0;  // held by rank 0 (energies() sums)
-  if (grid_.geom.graded) viscous_rate_ = a.real("mpm.viscous_rate");
+  if (scenario_.grid.graded()) viscous_rate_ = a.real("mpm.viscous_rate");
   if (multirate_max_ > 1 && a.has("mpm.multirate_tally")) {
     MultirateTally& t = multirate_tally_;
     a.get_into("mpm.multirate_tally",

@@ -117,6 +117,43 @@ void MpmSolver::setup_patches(const Scenario& sc) {
   }
 }
 
+void MpmSolver::drop_patches_if_due() {
+  // Patches serve a phase of the run (the casing's hole opening under the jet); after it their
+  // fine cells would keep setting their points' short steps. MPM carries its state on the points,
+  // so the grid may change between steps (as an AMR MPM code regrids): each point keeps its
+  // state, mass, volume and uGIMP domain and maps from now on to the grid without the patches,
+  // whose cells then set its step. Only the grid's own arrays and tables are rebuilt; the points
+  // are not re-sorted, so that a run restarted from a checkpoint written after the drop (whose
+  // solver drops again at its first step) proceeds bitwise as the run that was not stopped.
+  if (!patch_axes_ || patches_dropped_) return;
+  const double until = scenario_.grid.patches.front().until;
+  if (!(time_ >= pts_.main_stage_start() + until)) return;
+  Scenario coarse = scenario_;
+  coarse.grid.patches.clear();
+  layout_ = layout_grid(coarse, kGhostLayers);
+  const int fields = grid_.fields;
+  const bool with_volume = grid_.with_volume;
+  grid_ = GridData{};
+  grid_.geom = layout_.geom;
+  grid_.fields = fields;
+  grid_.with_volume = with_volume;
+  grid_.resize(grid_.geom.node_count() * grid_.fields);
+  blocks_.reset(grid_.geom);
+  patch_ = PatchConstraints{};
+  patch_axes_.reset();
+  patch_cell_edge_.clear();
+  level_geom_.clear();
+  level_to_grid_.clear();
+  stencil_level_.clear();
+  windows_current_ = false;
+  usavg_start_.clear();
+  multirate_ = MultirateGrid{};
+  step_cell_ = 0.0;
+  patches_dropped_ = true;
+  spdlog::info("grid.patches dropped at t = {:.6g} s ({:g} s into the main stage, their until): {} grid nodes now",
+               time_, until, grid_.geom.node_count());
+}
+
 bool MpmSolver::clear_of_patches(const Vec3& x, const Vec3& half, int depth) const {
   if (dimension_ == Dimension::Axisymmetric && !(x[0] - half[0] > 0.0)) return false;
   for (const PatchBox& b : patch_axes_->patches) {

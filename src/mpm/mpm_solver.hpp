@@ -147,6 +147,10 @@ class MpmSolver final : public Solver {
   /// Patches (grid.patches; mpm_patches.cpp): the refusals, the cell-edge table and the coarser
   /// levels' grids, set up once.
   void setup_patches(const Scenario& sc);
+  /// Patches with an end (grid.patches[].until): from the first step that starts at or after it,
+  /// the grid without them (mpm_patches.cpp). Called before each step's stable step.
+  void drop_patches_if_due();
+  bool patches_dropped_ = false;
   /// Patches: moves the hanging nodes' sums of the pass's part to their masters
   /// (mpm/patch_constraints.hpp) ...
   void fold_patch_nodes(P2gPart part);

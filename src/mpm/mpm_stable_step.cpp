@@ -34,6 +34,7 @@ void MpmSolver::fill_wave_speeds() {
 }
 
 double MpmSolver::stable_dt() {
+  drop_patches_if_due();
   const double dt = grid_.geom.graded ? graded_stable_dt() : uniform_stable_dt();
   return multirate_max_ > 1 ? multirate_stable_dt(dt) : dt;
 }

@@ -76,6 +76,8 @@ class PointSet {
   /// The earliest activation time of a pending point later than `time` (infinite if none is
   /// known: no pending points, or their stages have not begun).
   double next_activation(double time) const;
+  /// s: when the main stage began (infinite before it).
+  double main_stage_start() const { return stage_start_.back(); }
   /// True if a pending point's activation time is `time` or earlier (it enters at the next step).
   bool activation_due(double time) const;
 

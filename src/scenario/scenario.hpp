@@ -3,6 +3,7 @@
 // solvers, probes and writers consume. Every length is in m, time in s, velocity in m/s,
 // pressure and moduli in Pa, density in kg/m^3 (docs/deck.md).
 #include <array>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -75,6 +76,9 @@ struct GridPatch {
   Vec3 lower;              ///< m, on nodes of the grid without patches
   Vec3 upper;              ///< m
   double cell_size = 0.0;  ///< m
+  /// s after the main stage begins: from the first step that starts then, the grid is the one
+  /// without the patches (every patch shares it; infinite: kept for the whole run).
+  double until = std::numeric_limits<double>::infinity();
   DeckMark mark;
 };
 
