@@ -23,7 +23,7 @@ build: configure
 demo: build
 	@./scripts/run-demo $(BUILD_DIR)
 
-# The demo's depth and casing hole each within 5 % of converged: two runs side by side, about 8 minutes on 2 cores.
+# The demo's depth and casing hole each within 5 % of converged: the deck as written, about 9 minutes on 2 cores.
 demo-converged: build
 	@./scripts/run-converged-demo $(BUILD_DIR)
 

@@ -79,6 +79,10 @@ def perforation_deck(table, out):
     # The demo's grid study is of its own jet; a table's jet is other physics (and the record's path
     # is relative to the demo's folder, not this deck's).
     deck.get("penetration", {}).pop("convergence_record", None)
+    # The demo's patches sit where its own jet makes the hole, and its step per region was checked
+    # with them: a table's jet runs on the study's plain levels.
+    deck["grid"].pop("patches", None)
+    deck["mpm"].pop("multirate", None)
     path = os.path.join(out, "perforation.yaml")
     yaml.safe_dump(deck, open(path, "w"), sort_keys=False)
     return path

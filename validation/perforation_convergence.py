@@ -52,12 +52,14 @@ QUANTITIES = [
 
 def level_sets(h, far, band, path):
     """--set overrides of one level: the bands at h (uniform when h is the far-field cell: the
-    deck's own bands, if it has any, are cleared)."""
+    deck's own bands, if it has any, are cleared), one step for all and no patches (the deck's
+    patches and step per region are a configuration the study checks, not one of its levels)."""
+    plain = ["grid.patches=[]", "mpm.multirate=none"]
     if abs(h - far) < 1e-12 * far:
-        return [f"grid.cell_size={far!r}", "grid.refine=[]"]
+        return [f"grid.cell_size={far!r}", "grid.refine=[]"] + plain
     zones = (f"[{{axis: x, from: 0, to: {band!r}, cell_size: {h!r}}}, "
              f"{{axis: y, from: {path[0]!r}, to: {path[1]!r}, cell_size: {h!r}}}]")
-    return [f"grid.cell_size={far!r}", f"grid.refine={zones}"]
+    return [f"grid.cell_size={far!r}", f"grid.refine={zones}"] + plain
 
 
 def level_done(out):

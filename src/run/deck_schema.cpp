@@ -164,7 +164,17 @@ JsonValue leaf(const SchemaKey& k) {
       break;
     case SchemaKey::Kind::Boolean: j["type"] = "boolean"; break;
     case SchemaKey::Kind::String: j["type"] = "string"; break;
-    case SchemaKey::Kind::Choice: j["enum"] = JsonValue(k.choices); break;
+    case SchemaKey::Kind::Choice: {
+      // A choice spelled as a whole number (mpm.multirate: 8) is read by YAML as one; the deck
+      // reader takes it as the name, so the schema takes both spellings.
+      JsonValue e = JsonValue::array();
+      for (const std::string& c : k.choices) e.push_back(JsonValue(c));
+      for (const std::string& c : k.choices)
+        if (!c.empty() && c.find_first_not_of("0123456789") == std::string::npos && c.size() < 10)
+          e.push_back(JsonValue(std::stol(c)));
+      j["enum"] = e;
+      break;
+    }
     case SchemaKey::Kind::Vector:
       j["type"] = "array";
       j["items"]["type"] = "number";
