@@ -207,14 +207,7 @@ TEST(GridPatches, DroppedPatchesHandTheirPointsToTheCoarseGrid) {
   // no loss of its own.
   const Scenario sc = parse_deck(bar_deck(true, false, ", until: 0.3"), "dropped_bar.yaml");
   auto solver = make_solver(sc);
-  auto momentum = [&] {
-    const FieldStore& pts = solver->points();
-    const auto* v = pts.view<Vec3>("v");
-    const auto* m = pts.real("mass");
-    double px = 0.0;
-    for (Index p = 0; p < pts.size(); ++p) px += m[p] * v[p][0];
-    return px;
-  };
+  auto momentum = [&] { return total_momentum(solver->points()); };
   const double e0 = solver->energies().total(), p0 = momentum();
   const double fine_dt = solver->stable_dt();
   advance(*solver, 0.3);

@@ -80,14 +80,7 @@ BarRun run_bar(int ratio) {
   const Scenario sc = parse_deck(bar_deck(ratio), "multirate_bar.yaml");
   auto solver = make_solver(sc);
   BarRun r;
-  auto momentum = [&] {
-    const FieldStore& pts = solver->points();
-    const auto* v = pts.view<Vec3>("v");
-    const auto* m = pts.real("mass");
-    double p = 0.0;
-    for (Index i = 0; i < pts.size(); ++i) p += m[i] * v[i][0];
-    return p;
-  };
+  auto momentum = [&] { return total_momentum(solver->points()); };
   r.momentum0 = momentum();
   r.energy0 = solver->energies().total();
   advance(*solver, sc.simulation.end_time);

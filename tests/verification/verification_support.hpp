@@ -49,6 +49,15 @@ inline std::string set_number(const std::string& key, double value) {
 /// dt = stable_dt(), shortened to land exactly on every multiple of `interval` (the deck's
 /// output.interval; 0 = none) and on `end`. Landing on the same times as `ballista run` makes the
 /// numbers below reproducible with the command line.
+/// The points' total momentum along axis `a`, sum m_p v_p[a] (kg m/s; per radian in axisymmetry).
+inline double total_momentum(const FieldStore& pts, int a = 0) {
+  const auto* v = pts.view<Vec3>("v");
+  const auto* m = pts.real("mass");
+  double sum = 0.0;
+  for (Index p = 0; p < pts.size(); ++p) sum += m[p] * v[p][a];
+  return sum;
+}
+
 inline void advance(Solver& solver, double end, double interval = 0.0) {
   const double iv = interval > 0 ? interval : end;
   double next = iv;
