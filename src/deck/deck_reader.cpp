@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 
+#include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
 #include "deck/body_ref.hpp"
@@ -190,6 +191,11 @@ class Reader {
 
   /// grid.patches: boxes of finer cells with hanging nodes around them (geometry/grid_axes.hpp,
   /// mpm/patch_constraints.hpp), validated by building the axes.
+  /// A patch's end as the deck error about it names it.
+  static std::string until_text(double until) {
+    return std::isfinite(until) ? fmt::format("{:g} s", until) : std::string("not given");
+  }
+
   void patches(DeckNode& g, const SolverFactory& solver) {
     GridSpec& gr = sc_.grid;
     DeckNode ps = g.list("patches", false);
@@ -207,8 +213,10 @@ class Reader {
       // The grid drops its patches at once: a nested patch kept alone would split its parent's
       // coarse cells in four, which uGIMP refuses (mpm_patches.cpp).
       if (i > 0 && patch.until != gr.patches.front().until)
-        p.fail("until", "differs from the first patch's: the grid drops its patches together, so every patch "
-                        "gives the same until (or none)");
+        p.fail("until", "is " + until_text(patch.until) + " and the first patch's " +
+                            until_text(gr.patches.front().until) +
+                            ": the grid drops its patches together, so every patch gives the same until (or "
+                            "none at all)");
       p.finish();
       gr.patches.push_back(patch);
     }

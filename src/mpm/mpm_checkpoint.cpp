@@ -48,6 +48,7 @@ void MpmSolver::load_state(const StateArchive& a) {
   }
   time_ = a.real("mpm.time");
   steps_ = static_cast<long>(a.integer("mpm.steps"));
+  restore_patches_if_due();
   a.get_into("mpm.work",
              {&external_work_, &damping_work_, &contact_work_, &friction_work_, &transfer_work_, &damping_});
   boundary_work_ = a.real("mpm.boundary_work");

@@ -130,7 +130,24 @@ void MpmSolver::drop_patches_if_due() {
   if (!(time_ >= pts_.main_stage_start() + until)) return;
   Scenario coarse = scenario_;
   coarse.grid.patches.clear();
-  layout_ = layout_grid(coarse, kGhostLayers);
+  rebuild_grid(coarse);
+  patches_dropped_ = true;
+  spdlog::info("grid.patches dropped at t = {:.6g} s ({:g} s into the main stage, their until): {} grid nodes now",
+               time_, until, grid_.geom.node_count());
+}
+
+void MpmSolver::restore_patches_if_due() {
+  // A state loaded into this solver from before the patches' end (the replay of the steps before
+  // a failure starts from the newest checkpoint) runs on the patched grid again.
+  if (!patches_dropped_) return;
+  if (time_ >= pts_.main_stage_start() + scenario_.grid.patches.front().until) return;
+  rebuild_grid(scenario_);
+  setup_patches(scenario_);
+  patches_dropped_ = false;
+}
+
+void MpmSolver::rebuild_grid(const Scenario& sc) {
+  layout_ = layout_grid(sc, kGhostLayers);
   const int fields = grid_.fields;
   const bool with_volume = grid_.with_volume;
   grid_ = GridData{};
@@ -149,9 +166,6 @@ void MpmSolver::drop_patches_if_due() {
   usavg_start_.clear();
   multirate_ = MultirateGrid{};
   step_cell_ = 0.0;
-  patches_dropped_ = true;
-  spdlog::info("grid.patches dropped at t = {:.6g} s ({:g} s into the main stage, their until): {} grid nodes now",
-               time_, until, grid_.geom.node_count());
 }
 
 bool MpmSolver::clear_of_patches(const Vec3& x, const Vec3& half, int depth) const {

@@ -150,6 +150,10 @@ class MpmSolver final : public Solver {
   /// Patches with an end (grid.patches[].until): from the first step that starts at or after it,
   /// the grid without them (mpm_patches.cpp). Called before each step's stable step.
   void drop_patches_if_due();
+  /// ... and the patched grid again for a state loaded from before their end (load_state).
+  void restore_patches_if_due();
+  /// The grid of `sc` (its layout, arrays and blocks), without patch tables (setup_patches adds them).
+  void rebuild_grid(const Scenario& sc);
   bool patches_dropped_ = false;
   /// Patches: moves the hanging nodes' sums of the pass's part to their masters
   /// (mpm/patch_constraints.hpp) ...
