@@ -109,9 +109,7 @@ def run(a, v, cell, seed, ring):
                "--set", f"peridynamics.scatter_seed={seed}"]
         subprocess.run(cmd, check=True)
     series = counts_by_time(os.path.join(out, "fragments.csv"), a.min_mass)
-    t_unit = ring["R"] / v  # the time at which the nominal strain is 1
-    at_unit = min(series, key=lambda tc: abs(tc[0] - t_unit))[1]
-    return {"velocity": v, "cell": cell, "seed": seed, "count_at_strain_1": at_unit, "count_end": series[-1][1],
+    return {"velocity": v, "cell": cell, "seed": seed, "count_end": series[-1][1],
             "settled": len(series) > 1 and series[-1][1] == series[-2][1], "series": [(t, n) for t, n in series]}
 
 
@@ -151,8 +149,7 @@ def main():
         for cell in sorted(a.cells, reverse=True):
             got = [x for x in rows if x["velocity"] == v and x["cell"] == cell]
             ends = [x["count_end"] for x in got]
-            r[f"h{cell:g}"] = {"count_end_mean": sum(ends) / len(ends), "count_end": ends,
-                               "count_at_strain_1": [x["count_at_strain_1"] for x in got]}
+            r[f"h{cell:g}"] = {"count_end_mean": sum(ends) / len(ends), "count_end": ends}
         table.append(r)
     exponents = {f"h{cell:g}": fit_exponent(a.velocities, [r[f"h{cell:g}"]["count_end_mean"] for r in table])
                  for cell in a.cells}

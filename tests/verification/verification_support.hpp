@@ -45,10 +45,6 @@ inline std::string set_number(const std::string& key, double value) {
   return key + "=" + buf;
 }
 
-/// Advances the solver to `end` with the time-step choice of run_simulation (src/run/simulation.cpp):
-/// dt = stable_dt(), shortened to land exactly on every multiple of `interval` (the deck's
-/// output.interval; 0 = none) and on `end`. Landing on the same times as `ballista run` makes the
-/// numbers below reproducible with the command line.
 /// The points' total momentum along axis `a`, sum m_p v_p[a] (kg m/s; per radian in axisymmetry).
 inline double total_momentum(const FieldStore& pts, int a = 0) {
   const auto* v = pts.view<Vec3>("v");
@@ -58,6 +54,10 @@ inline double total_momentum(const FieldStore& pts, int a = 0) {
   return sum;
 }
 
+/// Advances the solver to `end` with the time-step choice of run_simulation (src/run/simulation.cpp):
+/// dt = stable_dt(), shortened to land exactly on every multiple of `interval` (the deck's
+/// output.interval; 0 = none) and on `end`. Landing on the same times as `ballista run` makes the
+/// numbers below reproducible with the command line.
 inline void advance(Solver& solver, double end, double interval = 0.0) {
   const double iv = interval > 0 ? interval : end;
   double next = iv;
