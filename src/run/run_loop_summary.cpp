@@ -37,6 +37,7 @@ void write_statistics(JsonValue& st, const Scenario& sc, const RunState& rs, con
   st["end_time"] = result.time;
   st["wall_time"] = result.wall_seconds;
   st["threads"] = max_threads();
+  st["cpu"] = host_cpu();
   st["ranks"] = ranks;
   st["particles"] = particles;  // active at the end
   st["particles_seeded"] = seeded;
@@ -125,6 +126,7 @@ void RunLoop::write_summary(double wall) {
   build = JsonValue::object();
   build["version"] = BALLISTA_VERSION;
   build["commit"] = build_commit();
+  build["cpu_target"] = build_cpu_target();
   JsonValue& probes = summary["probes"];
   probes = JsonValue::object();
   for (size_t k = 0; k < sc_.probes.size(); ++k) {

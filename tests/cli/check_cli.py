@@ -177,9 +177,21 @@ def check_provenance(b, out):
     elif commit != "unknown":
         fail(f"outside git the commit should read 'unknown', got {commit}")
     with open(os.path.join(out, "threads_1", "summary.json")) as f:
-        build = json.load(f).get("build")
-    if build != {"version": version, "commit": commit}:
+        summary = json.load(f)
+    build = summary.get("build", {})
+    if {k: build.get(k) for k in ("version", "commit")} != {"version": version, "commit": commit}:
         fail(f"summary.json build {build}, --version says {version} ({commit})")
+    # The instruction set: the compiler's generic target, or -march=native as resolved at build time.
+    if not re.fullmatch(r"default|native \([\w.-]+\)", str(build.get("cpu_target"))):
+        fail(f"summary.json build.cpu_target reads {build.get('cpu_target')!r}")
+    # The processor the run ran on, as the kernel names it.
+    cpu = "unknown"
+    if os.path.exists("/proc/cpuinfo"):
+        with open("/proc/cpuinfo") as f:
+            names = [ln.split(":", 1)[1].strip() for ln in f if ln.startswith("model name")]
+        cpu = names[0] if names else "unknown"
+    if summary.get("statistics", {}).get("cpu") != cpu:
+        fail(f"summary.json statistics.cpu reads {summary.get('statistics', {}).get('cpu')!r}, /proc/cpuinfo {cpu!r}")
 
 
 def main():
