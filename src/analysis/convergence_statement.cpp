@@ -23,10 +23,14 @@ JsonValue at_dotted(const JsonValue& obj, const std::string& key) {
   return JsonValue(v->as_number());
 }
 
-/// Relative difference within which a run reproduces a checked configuration's recorded value: the
-/// runs are deterministic (thread counts included), so only another build or compiler, another
-/// end time or a changed code path move it, and then the record no longer describes the run.
-constexpr double kReproduced = 1e-6;
+/// Relative difference within which a run reproduces a checked configuration's recorded value. The
+/// runs are deterministic for any thread count, but not across processors: the Release build is
+/// compiled for the machine it is built on, and a build of one commit for another instruction set
+/// reads the deck as written's tunnel depth 0.47 % and its casing hole 0.12 % away from the record
+/// (AVX-512 against AVX2, docs/validation.md, "The perforation demo under refinement"). Four times
+/// that is round-off carried through the run; beyond it another end time or code path made the
+/// number, and the record no longer describes the run.
+constexpr double kReproduced = 0.02;
 
 /// Whether a study's level cell h is the cell `cell` (to 1e-6 of h: the record's cells are the
 /// study's --levels, written in decimal).
@@ -66,8 +70,8 @@ JsonValue convergence_statement(const ConvergenceRecord& record, const std::stri
       if (own.kind() != JsonValue::Kind::Number ||
           !(std::abs(own.as_number() - recorded) <= kReproduced * std::abs(recorded))) {
         spdlog::warn("this run is the configuration '{}' of its grid study's record {} but did not reproduce its {} "
-                     "({} against the recorded {}: another build, end time or code path): how far it is from "
-                     "converged is not known",
+                     "({} against the recorded {}, beyond a build for another processor's 2 %: another end "
+                     "time or code path): how far it is from converged is not known",
                      checked->name, record.path, q.label,
                      own.kind() == JsonValue::Kind::Number ? fmt::format("{:.9g}", own.as_number()) : "none",
                      recorded);
