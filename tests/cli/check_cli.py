@@ -181,8 +181,9 @@ def check_provenance(b, out):
     build = summary.get("build", {})
     if {k: build.get(k) for k in ("version", "commit")} != {"version": version, "commit": commit}:
         fail(f"summary.json build {build}, --version says {version} ({commit})")
-    # The instruction set: the compiler's generic target, or -march=native as resolved at build time.
-    if not re.fullmatch(r"default|native \([\w.-]+\)", str(build.get("cpu_target"))):
+    # The instruction set: the compiler's generic target, -march=native as resolved at build time,
+    # or the -march of the build's own flags.
+    if not re.fullmatch(r"default|native \([\w.-]+\)|[\w.-]+", str(build.get("cpu_target"))):
         fail(f"summary.json build.cpu_target reads {build.get('cpu_target')!r}")
     # The processor the run ran on, as the kernel names it.
     cpu = "unknown"
