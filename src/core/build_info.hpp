@@ -2,8 +2,6 @@
 // What built this binary, for the provenance of results: `ballista --version` and summary.json
 // name it, so a figure in docs/ or a user's report can be traced to the code that made it.
 
-#include <string>
-
 namespace ballista {
 
 /// `git describe --always --dirty` of the source tree at build time ("-dirty": uncommitted
@@ -16,8 +14,5 @@ const char* build_commit();
 /// -march of CMAKE_CXX_FLAGS (e.g. "x86-64-v3"), else "default" (the compiler's generic x86-64). Two builds of one commit for different processors
 /// agree to round-off, not bit for bit.
 const char* build_cpu_target();
-
-/// The processor this process runs on (the "model name" of /proc/cpuinfo), or "unknown".
-std::string host_cpu();
 
 }  // namespace ballista

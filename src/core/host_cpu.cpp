@@ -1,9 +1,7 @@
-// The processor a run ran on (core/build_info.hpp), for summary.json: with build_cpu_target() it
-// says which instructions produced a result's last bits.
+#include "core/host_cpu.hpp"
+
 #include <fstream>
 #include <string>
-
-#include "core/build_info.hpp"
 
 namespace ballista {
 

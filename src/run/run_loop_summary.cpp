@@ -12,6 +12,7 @@
 #include "analysis/penetration_probe.hpp"
 #include "core/build_info.hpp"
 #include "core/energy_terms.hpp"
+#include "core/host_cpu.hpp"
 #include "core/parallel.hpp"
 #include "core/warning_log.hpp"
 #include "io/summary_units.hpp"

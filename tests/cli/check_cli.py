@@ -183,7 +183,7 @@ def check_provenance(b, out):
         fail(f"summary.json build {build}, --version says {version} ({commit})")
     # The instruction set: the compiler's generic target, -march=native as resolved at build time,
     # or the -march of the build's own flags.
-    if not re.fullmatch(r"default|native \([\w.-]+\)|[\w.-]+", str(build.get("cpu_target"))):
+    if not re.fullmatch(r"native \([\w.-]+\)|[\w.-]+", str(build.get("cpu_target"))):
         fail(f"summary.json build.cpu_target reads {build.get('cpu_target')!r}")
     # The processor the run ran on, as the kernel names it.
     cpu = "unknown"
