@@ -29,7 +29,7 @@ than --min-mass, and the mass-weighted mean sum(m^2)/sum(m).
 Usage: validation/exploding_cylinders.py --ballista build/ballista --out DIR
            [--configs 4340_HT1,...] [--spacing 0.86e-3] [--seeds 0,1,2,3,4] [--threads 2]
            [--end-time 100e-6] [--min-mass 0.3e-3] [--set KEY=VALUE ...] [--plot] [--tube seed_timing]
-           [--fracture-energy 6.676e5]
+           [--fracture-energy 6.676e5] [--strength flow]
 A finished run (its summary.json present) is not run again: the table can be rebuilt, or a study
 continued, by calling the script again with the same OUT.
 """
@@ -85,8 +85,24 @@ def tube(name, geometry):
                            f"bodies.0.shape.inner_radius={bore:.6g}", f"bodies.1.shape.radius={bore:.6g}"]
 
 
+EXAMPLE_YIELD = 750e6  # Pa, the example's peridynamics.yield_stress (4340 HT1)
+
+
+def strength(name, mode):
+    """The configuration's overrides with its steel's yield stress given as the bonds' first yield
+    (peridynamics.yield_stress, as the example) or as the uniaxial flow stress (peridynamics.flow_stress:
+    the plateau of a tensile test, 1.83 times the first yield of the same bonds; bond_constants.hpp)."""
+    sets = CONFIGS[name][0]
+    if mode == "first_yield":
+        return sets
+    given = [s for s in sets if s.startswith("peridynamics.yield_stress=")]
+    stress = float(given[0].split("=")[1]) if given else EXAMPLE_YIELD
+    return [s for s in sets if s not in given] + ["peridynamics.yield_stress=~", f"peridynamics.flow_stress={stress:g}"]
+
+
 def run_dir(args, name, spacing, seed):
     tag = ("" if args.tube == "example" else "_timing") + (f"_G{args.fracture_energy:g}" if args.fracture_energy else "")
+    tag += "_flow" if args.strength == "flow" else ""
     return os.path.join(args.out, f"{name}{tag}_h{spacing * 1e3:.3g}mm_seed{seed}")
 
 
@@ -109,7 +125,7 @@ def run(args, name, spacing, seed):
     out = run_dir(args, name, spacing, seed)
     if os.path.exists(os.path.join(out, "summary.json")):
         return out
-    sets = CONFIGS[name][0] + tube(name, args.tube)[1] + [
+    sets = strength(name, args.strength) + tube(name, args.tube)[1] + [
         f"simulation.end_time={args.end_time}", f"output.interval={args.end_time}",
         f"peridynamics.fragment_interval={args.end_time}", "peridynamics.fragment_damage_threshold=1",
         "output.fields=[v,body]", f"grid.cell_size={spacing}", f"bodies.1.point_spacing={2 * spacing}",
@@ -197,6 +213,9 @@ def main():
                     "not at the example's critical stretch; 6.676e5 is the example's at 0.86 mm")
     ap.add_argument("--tube", choices=("example", "seed_timing"), default="example",
                     help="the tube's length and bore (see TIMING_LENGTH)")
+    ap.add_argument("--strength", choices=("first_yield", "flow"), default="first_yield",
+                    help="each steel's yield stress as the bonds' first yield (the example's yield_stress) or as "
+                    "their uniaxial flow stress (flow_stress)")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     table = defaultdict(list)

@@ -87,6 +87,18 @@ double yield_stretch(double yield_stress, const std::vector<double>& kd, const s
   return yield_stress / e_min;
 }
 
+double micro_plastic_flow_factor(int dim) {
+  if (dim == 3) {
+    const double a = 2.0 * std::cos(4.0 * std::numbers::pi / 9.0);
+    return 2.0 * (1.0 - 2.0 * a * a * a);
+  }
+  // phi0 - sin(2 phi0)/2 = pi/4 by Newton from 1.15 (the left side grows monotonically on
+  // (0, pi/2), its slope 1 - cos(2 phi0) = 2 sin^2 phi0 > 0; converged in four iterations).
+  double phi = 1.15;
+  for (int it = 0; it < 8; ++it) phi -= (phi - 0.5 * std::sin(2.0 * phi) - 0.25 * std::numbers::pi) / (1.0 - std::cos(2.0 * phi));
+  return 6.0 / std::numbers::pi * (phi - 0.25 * std::numbers::pi + 0.5 * std::sin(2.0 * phi));
+}
+
 PairConstants pair_constants(const std::vector<double>& c, const std::vector<double>& s00,
                              const std::vector<std::uint8_t>& gas) {
   const size_t nmat = c.size();

@@ -69,6 +69,20 @@ double critical_stretch(std::optional<double> given, std::optional<double> fract
 double yield_stretch(double yield_stress, const std::vector<double>& kd, const std::vector<std::uint8_t>& gas,
                      int dim);
 
+/// Uniaxial flow stress of micro-plastic bonds over their first-yield stress sigma_y = E_PD s_y.
+/// Pulled on far beyond s_y, every bond of a family flows at +-c s_y (the sign of its stretch
+/// rate), and the stress is then sigma_ij = K0 s_y <sign(s) n_i n_j> over the directions n of the
+/// horizon, where the elastic state gives E_PD = K0/6 in 3D (<n n n n> = 3 sym(delta delta)/15).
+/// Under uniaxial stress along z the bonds within cos(theta) > a stretch and the rest shorten;
+/// zero lateral stress, <sign(s) sin^2 theta> = 0, is a^3 - 3a + 1 = 0, a = 2 cos(4 pi/9), so the
+/// plateau is sigma_zz = K0 s_y (1 - 2a^3)/3 = 2 (1 - 2a^3) sigma_y = 1.8324 sigma_y, reached with
+/// a lateral contraction of a^2/(1 - a^2) = 0.137 of the axial strain (the flow is not
+/// isochoric). In 2D (E_PD = K0'/3, <n n n n> = sym(delta delta)/8 over the circle) the plateau is
+/// (6/pi)(phi0 - pi/4 + sin(2 phi0)/2) sigma_y = 1.4115 sigma_y, phi0 - sin(2 phi0)/2 = pi/4. A
+/// steel's yield stress from a tensile test is this plateau, not the first bond's yield (derived
+/// here; tests/unit/peridynamics/test_pd_solver.cpp measures it on the lattice family).
+double micro_plastic_flow_factor(int dim);
+
 /// The constants of every material pair (a, b), at a * nmat + b.
 struct PairConstants {
   std::vector<double> c;          ///< micromodulus, N/m^6

@@ -11,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "geometry/shape.hpp"
+#include "peridynamics/bond_constants.hpp"
 #include "peridynamics/bond_family.hpp"
 #include "points/solver_registry.hpp"
 
@@ -145,6 +146,11 @@ std::vector<ParamSpec> pd_params() {
                   "with formulation lps, the von Mises yield stress of the state-based plasticity (Mitchell 2011); "
                   "absent: elastic",
                   false, nan, 0.0, kInf, true};
+  ParamSpec flow{"flow_stress", "Pa",
+                 "micro-plastic bonds: uniaxial flow stress, the plateau of a tensile test (a steel's yield "
+                 "stress); s_y = flow_stress / (k E_PD), k = 1.8324 in 3D and 1.4115 in 2D (the bonds' first "
+                 "yield is then at flow_stress / k); instead of yield_stress",
+                 false, nan, 0.0, kInf, true};
   const ParamSpec cal = word_param(
       "calibration",
       "bond constants from the continuum integrals (S&A 2005) or from the lattice family (exact K and G0 "
@@ -174,7 +180,7 @@ std::vector<ParamSpec> pd_params() {
                    false, 0.0, 0.0, 1.0e6};
   ParamSpec skin{"contact_skin", "1", "contact list skin over the lattice spacing (rebuilt after skin/2 of motion)",
                  false, 0.5, 0.0, 10.0, true};
-  return {form, m,       horizon, vc,   thick, cal,     surf,  yield, s0,   g0,   gwork, alpha,
+  return {form, m,       horizon, vc,   thick, cal,     surf,  yield, flow, s0,   g0,   gwork, alpha,
           scatter, seed,    safety, fint, fthr, contact, pairs, rule, skin,  refam};
 }
 
@@ -207,6 +213,16 @@ PdParams read_pd_params(const Scenario& sc) {
   p.lps = P.choices.at("formulation") == "lps";
   p.surface_correction = P.choices.at("surface_correction") == "energy";
   if (P.given("yield_stress")) p.yield_stress = P.at("yield_stress");
+  if (P.given("flow_stress")) {
+    if (p.yield_stress)
+      pd_section_error(sc, "flow_stress", "give yield_stress (the bonds' first yield) or flow_stress, not both");
+    if (p.lps)
+      pd_section_error(sc, "flow_stress",
+                       "flow_stress calibrates micro-plastic bonds; with formulation lps, yield_stress is already "
+                       "the von Mises yield stress");
+    // The bonds' first yield that puts the uniaxial plateau at the given stress (bond_constants.hpp).
+    p.yield_stress = P.at("flow_stress") / pd::micro_plastic_flow_factor(sc.simulation.dimension == Dimension::ThreeD ? 3 : 2);
+  }
   if (P.given("critical_stretch") && P.given("fracture_energy"))
     pd_section_error(sc, "fracture_energy", "give critical_stretch or fracture_energy, not both");
   if (P.given("critical_stretch")) p.critical_stretch = P.at("critical_stretch");
@@ -215,7 +231,7 @@ PdParams read_pd_params(const Scenario& sc) {
   if (p.bond_law_fracture_work && !(p.fracture_energy && p.yield_stress))
     pd_section_error(sc, "fracture_work",
                      "bond_law sets the critical stretch of micro-plastic bonds from the fracture energy: give "
-                     "fracture_energy and yield_stress");
+                     "fracture_energy and yield_stress (or flow_stress)");
   p.stretch_alpha = P.at("stretch_alpha");
   p.stretch_scatter = P.at("stretch_scatter");
   if (P.given("scatter_seed")) {

@@ -91,6 +91,8 @@ class PdSolver final : public Solver {
   double horizon() const { return delta_; }
   /// Micromodulus c of the bond between points of materials a and b, N/m^6.
   double micromodulus(int a, int b) const { return c_[a * nmat_ + b]; }
+  /// s_y of the micro-plastic bonds (infinite: elastic bonds).
+  double yield_stretch() const { return yield_stretch_; }
   /// Critical stretch s00 of the bond between materials a and b (infinite: no failure).
   double critical_stretch(int a, int b) const { return s00_[a * nmat_ + b]; }
   /// s00 of point p (the smallest over its family's material pairs, times its stretch_scatter factor).
