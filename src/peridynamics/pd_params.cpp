@@ -142,7 +142,8 @@ std::vector<ParamSpec> pd_params() {
   ParamSpec thick{"thickness", "m", "2D runs: the plate thickness (totals are per this thickness; default 1 m)", false,
                   nan, 0.0, 1.0e3, true};
   ParamSpec yield{"yield_stress", "Pa",
-                  "micro-plastic bonds: uniaxial yield stress (bond yield stretch s_y = yield_stress / E_PD); "
+                  "micro-plastic bonds: first yield under uniaxial stress (bond yield stretch s_y = yield_stress / "
+                  "E_PD; the solid then flows at 1.83 times it in 3D, 1.41 in 2D: flow_stress gives that plateau); "
                   "with formulation lps, the von Mises yield stress of the state-based plasticity (Mitchell 2011); "
                   "absent: elastic",
                   false, nan, 0.0, kInf, true};
