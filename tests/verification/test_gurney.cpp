@@ -24,6 +24,7 @@
 #include "deck/deck_reader.hpp"
 #include "materials/explosive_eos.hpp"
 #include "run/simulation.hpp"
+#include "verification/gurney_cylinder_support.hpp"
 #include "verification/verification_support.hpp"
 
 namespace ballista::test_gurney {
@@ -167,25 +168,7 @@ TEST(GurneySandwich, DecksWhereTheChargeWouldActOnNothingAreRefused) {
 // at these 0.5 mm cells (20 across the charge), within 5 % at 1 and 0.25 mm.
 TEST(GurneyCylinder, CaseReachesTheGurneyVelocity) {
   for (double mc : {1.0, 2.0}) {
-    const double a = 10.0e-3;
-    const double b = a * std::sqrt(1.0 + mc * kRhoC / kRhoM);  // case mass M = mc C per unit length
-    char buf[2048];
-    std::snprintf(buf, sizeof buf, R"(
-simulation: {solver: mpm, dimension: axisymmetric, end_time: 20.0e-6, cfl: 0.3, on_particle_exit: delete}
-materials:
-  tnt: {preset: tnt}
-  steel: {model: j2_plasticity, density: 7850, youngs_modulus: 200.0e9, poisson_ratio: 0.29, yield_stress: 1.0e6,
-          hardening_modulus: 0.0}
-mpm: {shape_function: gimp, update: musl, flip: 0.99}
-grid: {lower: [0, 0], upper: [0.08, 1.0e-3], cell_size: 0.5e-3,
-       boundary: {x_min: symmetry, y_min: symmetry, y_max: symmetry}}
-bodies:
-  - {name: charge, material: tnt, shape: {type: box, lower: [0, 0], upper: [%.9g, 1.0e-3]}, particles_per_cell: 2}
-  - {name: case, material: steel, shape: {type: box, lower: [%.9g, 0], upper: [%.9g, 1.0e-3]}, particles_per_cell: 2}
-detonation: {points: [{position: [0, 0.5e-3], time: 0}]}
-)",
-                  a, a, b);
-    const Scenario sc = parse_deck(buf, "gurney_cylinder.yaml");
+    const Scenario sc = parse_deck(gurney::mpm_cylinder_deck(mc, 0.5e-3), "gurney_cylinder.yaml");
     auto solver = make_solver(sc);
     const double worst = verification::run_worst_energy_residual(*solver, sc.simulation.end_time);
     const EnergyTotals e = solver->energies();

@@ -14,6 +14,7 @@
 #include "peridynamics/gas_pass.hpp"
 #include "peridynamics/pd_solver.hpp"
 #include "run/simulation.hpp"
+#include "verification/gurney_cylinder_support.hpp"
 #include "verification/verification_support.hpp"
 
 namespace ballista::test_pd_gas {
@@ -167,26 +168,9 @@ TEST(PdGas, GurneyCylinder) {
   }
 }
 
-/// The same cylinder in axisymmetric MPM (continuum products; the deck of test_gurney.cpp's
-/// cylinder): a slab of the infinite tube, 2 particles per cell.
+/// The same cylinder in axisymmetric MPM (continuum products; gurney_cylinder_support.hpp).
 double mpm_cylinder_velocity(double mc, double h) {
-  const double a = 10.0e-3, b = a * std::sqrt(1.0 + mc * kRhoC / kRhoM);
-  char buf[1024];
-  std::snprintf(buf, sizeof buf, R"(
-simulation: {solver: mpm, dimension: axisymmetric, end_time: 20.0e-6, cfl: 0.3, on_particle_exit: delete}
-materials:
-  tnt: {preset: tnt}
-  steel: {model: j2_plasticity, density: 7850, youngs_modulus: 200.0e9, poisson_ratio: 0.29, yield_stress: 1.0e6,
-          hardening_modulus: 0.0}
-mpm: {shape_function: gimp, update: musl, flip: 0.99}
-grid: {lower: [0, 0], upper: [0.08, 1.0e-3], cell_size: %g, boundary: {x_min: symmetry, y_min: symmetry, y_max: symmetry}}
-bodies:
-  - {name: charge, material: tnt, shape: {type: box, lower: [0, 0], upper: [%.9g, 1.0e-3]}, particles_per_cell: 2}
-  - {name: case, material: steel, shape: {type: box, lower: [%.9g, 0], upper: [%.9g, 1.0e-3]}, particles_per_cell: 2}
-detonation: {points: [{position: [0, 0.5e-3], time: 0}]}
-)",
-                h, a, a, b);
-  const Scenario sc = parse_deck(buf, "mpm_gurney_cylinder.yaml");
+  const Scenario sc = parse_deck(gurney::mpm_cylinder_deck(mc, h), "mpm_gurney_cylinder.yaml");
   auto solver = make_solver(sc);
   verification::run_worst_energy_residual(*solver, sc.simulation.end_time);
   const auto* body = solver->points().ints("body");
