@@ -16,8 +16,11 @@ eps_dot = v / R (R the mean radius), N = 2 pi R / s:
   own centre, rho A eps_dot^2 s^3 / 24, pays for one crack, G0 A:
       s = (24 G0 / (rho eps_dot^2))^(1/3),  so  N grows as v^(2/3);
   energy with the elastic energy (after Glenn & Chudnovsky, J. Appl. Phys. 59 (1986) 1379): the
-  ring flows at its yield stress Y, and a fragment that breaks free unloads, giving up
-  Y^2 / (2 E) per unit volume (E the bonds' uniaxial modulus) to the crack as well:
+  ring flows at its flow stress Y, and a fragment that breaks free unloads, giving up
+  Y^2 / (2 E) per unit volume (E the bonds' uniaxial modulus) to the crack as well. Y is the
+  plateau the micro-plastic bonds flow at in uniaxial stress, 1.4115 times their first yield
+  (`yield_stress`) in 2D (src/peridynamics/bond_constants.hpp, micro_plastic_flow_factor), or the
+  deck's `flow_stress`:
       rho eps_dot^2 s^3 / 24 + Y^2 s / (2 E) = G0,  the real root of the cubic; at low rates s tends
       to 2 E G0 / Y^2, a ceiling on the fragment length that the kinetic term alone does not have;
   Mott (Proc. R. Soc. A 189 (1947) 300): release waves from each break unload a length that grows
@@ -49,12 +52,22 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 DECK = os.path.join(HERE, "..", "examples", "pd_expanding_ring.yaml")
 
 
+def flow_factor_2d():
+    """The 2D micro-plastic plateau over the first yield, (6/pi)(phi0 - pi/4 + sin(2 phi0)/2) with
+    phi0 - sin(2 phi0)/2 = pi/4 (bond_constants.hpp, micro_plastic_flow_factor): 1.4115."""
+    phi = 1.15
+    for _ in range(8):
+        phi -= (phi - 0.5 * math.sin(2 * phi) - 0.25 * math.pi) / (1.0 - math.cos(2 * phi))
+    return 6.0 / math.pi * (phi - 0.25 * math.pi + 0.5 * math.sin(2 * phi))
+
+
 def ring_data(deck_path):
-    """Density, fracture energy, yield stress, mean radius and circumference of the example's ring."""
+    """Density, fracture energy, flow stress, mean radius and circumference of the example's ring."""
     with open(deck_path) as f:
         d = yaml.safe_load(f)
     body = d["bodies"][0]
     mat = d["materials"][body["material"]]
+    pd = d["peridynamics"]
     r_mean = 0.5 * (body["shape"]["radius"] + body["shape"]["inner_radius"])
     # The bonds' uniaxial modulus in plane stress: 4/3 of the dilatational modulus E / (2 (1 - nu))
     # they are calibrated to (src/peridynamics/bond_constants.cpp, dilatational_modulus, yield_stretch).
@@ -62,7 +75,8 @@ def ring_data(deck_path):
     e = 9.0 * k * g / (3.0 * k + g)
     nu = (3.0 * k - 2.0 * g) / (2.0 * (3.0 * k + g))
     return {"density": float(mat["density"]), "G0": float(d["peridynamics"]["fracture_energy"]),
-            "yield_stress": float(d["peridynamics"]["yield_stress"]), "R": r_mean,
+            "yield_stress": float(pd["yield_stress"]) if "yield_stress" in pd else None, "R": r_mean,
+            "flow_stress": float(pd["flow_stress"]) if "flow_stress" in pd else flow_factor_2d() * float(pd["yield_stress"]),
             "E_bonds": 4.0 / 3.0 * e / (2.0 * (1.0 - nu))}
 
 
@@ -78,7 +92,7 @@ def elastic_energy_count(ring, v):
     a s^3 + b s = G0, a = rho eps_dot^2 / 24, b = Y^2 / (2 E), by bisection (the left side grows with s)."""
     rate = v / ring["R"]
     a = ring["density"] * rate * rate / 24.0
-    b = ring["yield_stress"] ** 2 / (2.0 * ring["E_bonds"])
+    b = ring["flow_stress"] ** 2 / (2.0 * ring["E_bonds"])
     lo, hi = 0.0, ring["G0"] / b
     for _ in range(200):
         mid = 0.5 * (lo + hi)
@@ -156,7 +170,7 @@ def main():
     # Mott's gamma fitted to the finest lattice's counts: N = 2 pi R eps_dot / sqrt(2 Y / (rho gamma)).
     fine = f"h{min(a.cells):g}"
     gammas = [(r[fine]["count_end_mean"] / (2 * math.pi * ring["R"] * r["strain_rate"])) ** 2
-              * 2 * ring["yield_stress"] / ring["density"] for r in table]
+              * 2 * ring["flow_stress"] / ring["density"] for r in table]
     result = {"ring": ring, "min_mass": a.min_mass, "strain": a.strain, "table": table,
               "exponents": exponents, "grady_exponent": 2.0 / 3.0, "mott_exponent": 1.0,
               "mott_gamma_fitted": gammas, "runs": rows}
