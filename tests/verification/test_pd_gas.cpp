@@ -182,8 +182,8 @@ double mpm_cylinder_velocity(double mc, double h) {
 // cylinder in axisymmetric MPM at 0.25 mm, itself converged: 1893, 2011, 2058 and 2068 m/s at
 // 1, 0.5, 0.25 and 0.125 mm for M/C 1 (+3.9 % over Gurney's 1992 m/s, whose linear velocity
 // profile is an approximation). The renewed family (runs of the deck with output every 5 us,
-// docs/validation.md), M/C 1: 1834, 1978 and 2063 m/s at 0.5, 0.25 and 0.125 mm, -11.3 %, -4.4 %
-// and -0.2 % of MPM's 0.125 mm (M/C 2: -4.4 %, -2.0 %, +0.8 %); its kinetic energy 0.79 of the
+// validation/gas_family_convergence.py), M/C 1: 1834, 1978 and 2062 m/s at 0.5, 0.25 and 0.125 mm,
+// -11.3 %, -4.3 % and -0.3 % of MPM's 0.125 mm (M/C 2: -4.4 %, -2.0 %, +0.8 %); kinetic energy 0.79 of the
 // chemical, the continuum's 0.76. Here, stepped without output stops: 1810 and 1985 m/s, -12.0 %
 // and -3.5 % of MPM's 0.25 mm. Bound: within 5 % at 0.25 mm, the error at least halved from 0.5 mm
 // (measured 3.4x smaller), the residual under 2 % (the issue's; measured 0.3-0.4 %). M/C 1 only:
