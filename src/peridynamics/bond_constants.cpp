@@ -95,7 +95,8 @@ double micro_plastic_flow_factor(int dim) {
   // phi0 - sin(2 phi0)/2 = pi/4 by Newton from 1.15 (the left side grows monotonically on
   // (0, pi/2), its slope 1 - cos(2 phi0) = 2 sin^2 phi0 > 0; converged in four iterations).
   double phi = 1.15;
-  for (int it = 0; it < 8; ++it) phi -= (phi - 0.5 * std::sin(2.0 * phi) - 0.25 * std::numbers::pi) / (1.0 - std::cos(2.0 * phi));
+  for (int it = 0; it < 8; ++it)
+    phi -= (phi - 0.5 * std::sin(2.0 * phi) - 0.25 * std::numbers::pi) / (1.0 - std::cos(2.0 * phi));
   return 6.0 / std::numbers::pi * (phi - 0.25 * std::numbers::pi + 0.5 * std::sin(2.0 * phi));
 }
 

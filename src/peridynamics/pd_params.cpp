@@ -222,7 +222,8 @@ PdParams read_pd_params(const Scenario& sc) {
                        "flow_stress calibrates micro-plastic bonds; with formulation lps, yield_stress is already "
                        "the von Mises yield stress");
     // The bonds' first yield that puts the uniaxial plateau at the given stress (bond_constants.hpp).
-    p.yield_stress = P.at("flow_stress") / pd::micro_plastic_flow_factor(sc.simulation.dimension == Dimension::ThreeD ? 3 : 2);
+    const int dim = sc.simulation.dimension == Dimension::ThreeD ? 3 : 2;
+    p.yield_stress = P.at("flow_stress") / pd::micro_plastic_flow_factor(dim);
   }
   if (P.given("critical_stretch") && P.given("fracture_energy"))
     pd_section_error(sc, "fracture_energy", "give critical_stretch or fracture_energy, not both");

@@ -23,7 +23,8 @@ struct PdParams {
   double thickness = 1.0;                  ///< m, 2D: totals are per this thickness (3D: 1)
   bool lattice_calibration = true;         ///< calibration: lattice (else continuum)
   bool surface_correction = false;         ///< surface_correction: energy (else none)
-  std::optional<double> yield_stress;      ///< Pa, micro-plastic bonds' first yield (from flow_stress if given; absent: micro-elastic)
+  /// Pa, micro-plastic bonds' first yield (from flow_stress if given; absent: micro-elastic)
+  std::optional<double> yield_stress;
   std::optional<double> critical_stretch;  ///< s00 as given (at most one of it and fracture_energy)
   std::optional<double> fracture_energy;   ///< J/m^2, G0 (neither given: bonds never fail)
   bool bond_law_fracture_work = false;     ///< fracture_work: bond_law (G0 is the bond law's work; else elastic)

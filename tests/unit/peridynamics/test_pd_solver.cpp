@@ -534,7 +534,8 @@ TEST(PdSolver, MicroPlasticPlateauUnderUniaxialStressIsTheFlowStress) {
         "simulation: {solver: peridynamics, dimension: plane_stress, end_time: 1e-5}\n"
         "peridynamics: {m: 3, flow_stress: 50e6}\n"
         "grid: {lower: [-0.05, -0.05], upper: [0.05, 0.05], cell_size: 0.001}\n"
-        "materials:\n  glass: {model: linear_elastic, density: 2200, youngs_modulus: 72e9, poisson_ratio: 0.3333333333333333}\n"
+        "materials:\n  glass: {model: linear_elastic, density: 2200, youngs_modulus: 72e9,\n"
+        "    poisson_ratio: 0.3333333333333333}\n"
         "bodies:\n  - {name: b, material: glass, shape: {type: box, lower: [0, 0], upper: [0.011, 0.011]}}\n");
     FieldStore& q = p2->points();
     const Index c2 = point_at(q, Vec3{{5.5e-3, 5.5e-3, 0.0}}, true);
@@ -556,7 +557,8 @@ TEST(PdSolver, MicroPlasticPlateauUnderUniaxialStressIsTheFlowStress) {
     EXPECT_NEAR(plateau2 / flow, 1.0, 0.03);
   }
   // Given as yield_stress instead, the same bonds (first yield flow / k) and the same plateau.
-  const auto y = solver_for(cube_deck(11, "m: 3, yield_stress: " + std::to_string(flow / pd::micro_plastic_flow_factor(3))));
+  const double first_yield = flow / pd::micro_plastic_flow_factor(3);
+  const auto y = solver_for(cube_deck(11, "m: 3, yield_stress: " + std::to_string(first_yield)));
   EXPECT_NEAR(y->yield_stretch() / sy, 1.0, 1e-6);
   EXPECT_THROW(solver_for(cube_deck(11, "m: 3, flow_stress: 50e6, yield_stress: 30e6")), DeckError);
 }
