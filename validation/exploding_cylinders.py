@@ -42,6 +42,7 @@ import sys
 from collections import defaultdict
 
 import numpy as np
+import yaml
 
 from case_velocity_thirds import case_thirds, seed_flight_velocity
 
@@ -85,7 +86,7 @@ def tube(name, geometry):
                            f"bodies.0.shape.inner_radius={bore:.6g}", f"bodies.1.shape.radius={bore:.6g}"]
 
 
-EXAMPLE_YIELD = 750e6  # Pa, the example's peridynamics.yield_stress (4340 HT1)
+EXAMPLE_YIELD = float(yaml.safe_load(open(DECK))["peridynamics"]["yield_stress"])  # Pa, 4340 HT1
 
 
 def strength(name, mode):

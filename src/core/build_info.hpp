@@ -11,8 +11,8 @@ const char* build_commit();
 
 /// The instruction set the build was compiled for: "native (ARCH)" when the Release build used
 /// -march=native (ARCH as the compiler resolved it on the build machine, e.g. znver3), else the
-/// -march of CMAKE_CXX_FLAGS (e.g. "x86-64-v3"), else "default" (the compiler's generic x86-64). Two builds of one commit for different processors
-/// agree to round-off, not bit for bit.
+/// -march of CMAKE_CXX_FLAGS (e.g. "x86-64-v3"), else "default" (the compiler's generic x86-64).
+/// Two builds of one commit for different processors agree to round-off, not bit for bit.
 const char* build_cpu_target();
 
 }  // namespace ballista

@@ -12,6 +12,8 @@
 #include <numbers>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/parallel.hpp"
 #include "deck/deck_reader.hpp"
@@ -482,6 +484,27 @@ TEST(PdSolver, MicroPlasticBondsYieldAndKeepTheirPlasticStretch) {
   EXPECT_EQ(s->broken_bonds(), 0);
 }
 
+/// Pulls the solver's points along x = diag(1 - nu e, 1 - nu e, 1 + e) X (in 2D diag(1 - nu e, 1 + e)),
+/// e = 30 s_y in 300 increments, and returns the axial stress of point `centre` at 15 and 30 s_y as
+/// its work rate dW/de (the lateral stress is zero on the path).
+std::pair<double, double> uniaxial_flow_stress(PdSolver& s, Index centre, double nu, double sy, bool planar) {
+  FieldStore& pts = s.points();
+  constexpr int n = 300;
+  const double de = 30.0 * sy / n;
+  std::vector<double> w(n + 1, 0.0);
+  for (int i = 1; i <= n; ++i) {
+    auto* x = pts.view<Vec3>("x");
+    const auto* x0 = pts.view<Vec3>("x0");
+    const double e = i * de;
+    for (Index p = 0; p < pts.size(); ++p)
+      x[p] = planar ? Vec3{{(1 - nu * e) * x0[p][0], (1 + e) * x0[p][1], x0[p][2]}}
+                    : Vec3{{(1 - nu * e) * x0[p][0], (1 - nu * e) * x0[p][1], (1 + e) * x0[p][2]}};
+    s.refresh();
+    w[i] = energy_density(pts, centre);
+  }
+  return {(w[n / 2] - w[n / 2 - 1]) / de, (w[n] - w[n - 1]) / de};
+}
+
 // flow_stress: pulled far beyond yield under uniaxial stress, every bond of a family flows at
 // +-c s_y and the stress reaches the plateau k sigma_y, k = 2 (1 - 2a^3) = 1.8324 in 3D
 // (bond_constants.hpp, micro_plastic_flow_factor, derived over the continuum's directions), with a
@@ -497,27 +520,10 @@ TEST(PdSolver, MicroPlasticPlateauUnderUniaxialStressIsTheFlowStress) {
   EXPECT_NEAR(pd::micro_plastic_flow_factor(2), 1.4115486, 1e-7);
   const double flow = 50e6, sy = flow / pd::micro_plastic_flow_factor(3) / (1.5 * kK);
   const auto s = solver_for(cube_deck(11, "m: 3, flow_stress: 50e6"));
-  FieldStore& pts = s->points();
-  const Index centre = point_at(pts, Vec3{{5.5e-3, 5.5e-3, 5.5e-3}});
+  const Index centre = point_at(s->points(), Vec3{{5.5e-3, 5.5e-3, 5.5e-3}});
   ASSERT_GE(centre, 0);
-  auto pull = [&](double e) {
-    auto* x = pts.view<Vec3>("x");
-    const auto* x0 = pts.view<Vec3>("x0");
-    for (Index p = 0; p < pts.size(); ++p)
-      x[p] = Vec3{{(1 - nu_p * e) * x0[p][0], (1 - nu_p * e) * x0[p][1], (1 + e) * x0[p][2]}};
-    s->refresh();
-    return energy_density(pts, centre);
-  };
-  const int n = 300;
-  const double de = 30.0 * sy / n;
-  double w_last = 0.0, w_before = 0.0, w_mid = 0.0, w_mid_before = 0.0;
-  for (int i = 1; i <= n; ++i) {
-    w_before = w_last;
-    w_last = pull(i * de);
-    if (i == n / 2 - 1) w_mid_before = w_last;
-    if (i == n / 2) w_mid = w_last;
-  }
-  const double at30 = (w_last - w_before) / de, at15 = (w_mid - w_mid_before) / de, plateau = 2.0 * at30 - at15;
+  const auto [at15, at30] = uniaxial_flow_stress(*s, centre, nu_p, sy, false);
+  const double plateau = 2.0 * at30 - at15;
   std::printf("micro-plastic stress under uniaxial stress: %.5g Pa at 15 s_y, %.5g Pa at 30 s_y, plateau %.5g Pa; "
               "flow_stress %.5g Pa (%+.2f %%)\n", at15, at30, plateau, flow, 100.0 * (plateau / flow - 1.0));
   EXPECT_NEAR(plateau / flow, 1.0, 0.01);
@@ -537,20 +543,9 @@ TEST(PdSolver, MicroPlasticPlateauUnderUniaxialStressIsTheFlowStress) {
         "materials:\n  glass: {model: linear_elastic, density: 2200, youngs_modulus: 72e9,\n"
         "    poisson_ratio: 0.3333333333333333}\n"
         "bodies:\n  - {name: b, material: glass, shape: {type: box, lower: [0, 0], upper: [0.011, 0.011]}}\n");
-    FieldStore& q = p2->points();
-    const Index c2 = point_at(q, Vec3{{5.5e-3, 5.5e-3, 0.0}}, true);
+    const Index c2 = point_at(p2->points(), Vec3{{5.5e-3, 5.5e-3, 0.0}}, true);
     ASSERT_GE(c2, 0);
-    const double de2 = 30.0 * sy2 / n;
-    double w2[n + 1] = {0.0};
-    for (int i = 1; i <= n; ++i) {
-      auto* x = q.view<Vec3>("x");
-      const auto* x0 = q.view<Vec3>("x0");
-      const double e = i * de2;
-      for (Index p = 0; p < q.size(); ++p) x[p] = Vec3{{(1 - nu2 * e) * x0[p][0], (1 + e) * x0[p][1], x0[p][2]}};
-      p2->refresh();
-      w2[i] = energy_density(q, c2);
-    }
-    const double a30 = (w2[n] - w2[n - 1]) / de2, a15 = (w2[n / 2] - w2[n / 2 - 1]) / de2;
+    const auto [a15, a30] = uniaxial_flow_stress(*p2, c2, nu2, sy2, true);
     const double plateau2 = 2.0 * a30 - a15;
     std::printf("2D: %.5g Pa at 15 s_y, %.5g Pa at 30 s_y, plateau %.5g Pa (%+.2f %%)\n", a15, a30, plateau2,
                 100.0 * (plateau2 / flow - 1.0));
