@@ -200,6 +200,10 @@ class Material {
   virtual double max_signal_speed(const FieldStore& store, const Index* points, Index count) const = 0;
   /// The dilatational wave speed of each of the points, m/s, into c[p] (indexed by point, not by k).
   virtual void wave_speeds(const FieldStore& store, const Index* points, Index count, double* c) const = 0;
+  /// wave_speed(store, points[k], J[k]) into c[k] (indexed by k), the state fields looked up once
+  /// for all the points (wave_speed looks them up by name at each call).
+  virtual void wave_speeds_at(const FieldStore& store, const Index* points, Index count, const double* J,
+                              double* c) const = 0;
   /// The same with each point's EOS energy density (kEosEnergyField) at its reference value, zero:
   /// the wave speed the point would have at its J and state had nothing heated it. Models without
   /// that field give wave_speeds. The linear term of the artificial bulk viscosity reads it under

@@ -86,6 +86,13 @@ class MaterialAdapter final : public Material {
     for (Index k = 0; k < count; ++k) c[points[k]] = speed(points[k]);
   }
 
+  void wave_speeds_at(const FieldStore& store, const Index* points, Index count, const double* J,
+                      double* c) const override {
+    const PointWaveSpeed speed(*this, store, -1, false);
+#pragma omp parallel for schedule(static) if (count > kParallelThreshold)
+    for (Index k = 0; k < count; ++k) c[k] = speed(points[k], J[k]);
+  }
+
   void reference_wave_speeds(const FieldStore& store, const Index* points, Index count, double* c) const override {
     const PointWaveSpeed speed(*this, store, eos_energy_slot());
 #pragma omp parallel for schedule(static) if (count > kParallelThreshold)
@@ -106,15 +113,21 @@ class MaterialAdapter final : public Material {
   /// `zero_slot` >= 0: that state slot is read as zero (reference_wave_speeds).
   class PointWaveSpeed {
    public:
-    PointWaveSpeed(const MaterialAdapter& m, const FieldStore& store, int zero_slot = -1)
-        : params_(m.params_), ns_(read_slots(m)), zero_slot_(zero_slot), F_(store.view(kDeformationGradient)) {
+    /// with_F false: only operator()(p, J) is called (F is not read, and need not exist).
+    PointWaveSpeed(const MaterialAdapter& m, const FieldStore& store, int zero_slot = -1, bool with_F = true)
+        : params_(m.params_),
+          ns_(read_slots(m)),
+          zero_slot_(zero_slot),
+          F_(with_F ? store.view(kDeformationGradient) : nullptr) {
       for (int s = 0; s < ns_; ++s) sptr_[s] = store.real(m.state_[s].name);
     }
-    double operator()(Index p) const {
+    double operator()(Index p) const { return (*this)(p, det(F_[p])); }
+    /// The same at a given J.
+    double operator()(Index p, double J) const {
       double st[kMaxState];
       for (int s = 0; s < ns_; ++s) st[s] = sptr_[s][p];
       if (zero_slot_ >= 0) st[zero_slot_] = 0.0;
-      return Model::wave_speed(params_, st, det(F_[p]));
+      return Model::wave_speed(params_, st, J);
     }
 
    private:

@@ -204,42 +204,61 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
       if (solid_bins.near(xp, reach)) solid_bins.visit_within(xp, cut, solid, reach);
       return;
     }
-    if (solid_bins.near(xp)) solid_bins.visit_within(xp, cutoff, solid);
-    if (gas_bins.near(xp))
-      gas_bins.visit_within(xp, cutoff_gas, [&](Index i) {
-        const Index q = gas_ids[i];
-        consider(q, x[q], x0[q], body[q], reach_to_solid(scale_of(q)));
+    // Each pair is searched for once (the rule is symmetric): a solid pair from its lower end, a
+    // gas-solid pair from its gas end. Both rows then get it (below).
+    if (solid_bins.near(xp))
+      solid_bins.visit_within(xp, cutoff, [&](Index i) {
+        if (packed[i].id > p) solid(i);
       });
   };
   // One search per point (the list is rebuilt often: a point driven at 100 m/s crosses the half-skin
   // in a dozen steps): the pairs go to per-chunk buffers (fixed chunks, so the result does not
-  // depend on the thread count), then into the rows. Pairs are rare (most neighbours are bonded),
-  // so the buffers stay small.
+  // depend on the thread count). Pairs are rare (most neighbours are bonded), so the buffers stay
+  // small.
   constexpr Index kChunk = 4096;
   ChunkedRows& rows = list.scratch;
   chunked_rows(n, kChunk, [&](Index p, auto& buf) {
-    const size_t first = buf.size();
     visit(p, [&](Index q, double d) { buf.emplace_back(static_cast<std::int32_t>(q), d); });
-    // Increasing neighbour index (or key): the force sums run in a fixed order (thread-count and,
-    // by id, decomposition independent).
-    if (key)
-      std::sort(buf.begin() + static_cast<std::ptrdiff_t>(first), buf.end(),
-                [&](const auto& a, const auto& b) { return key[a.first] < key[b.first]; });
-    else
-      std::sort(buf.begin() + static_cast<std::ptrdiff_t>(first), buf.end());
   }, rows);
+  // Each pair found once goes to both rows: p's own finds first, then (a serial pass in chunk order,
+  // O(pairs)) those that found p. Each row is then sorted by increasing neighbour index (or key),
+  // so the force sums run in a fixed order (thread-count and, by id, decomposition independent) and
+  // the rows are those of a search from every point.
   const Index nchunk = static_cast<Index>(rows.found.size());
   const auto& found = rows.found;
   const auto& count = rows.count;
-  for (Index p = 0; p < n; ++p) list.offset[p + 1] = list.offset[p] + count[p];
-  list.other.resize(static_cast<size_t>(list.offset[n]));
-  list.reach.resize(list.other.size());
+  std::vector<Index>& fill = list.fill;
+  fill.assign(static_cast<size_t>(n), 0);
+  for (Index c = 0; c < nchunk; ++c)
+    for (const auto& [q, d] : found[c]) ++fill[q];
+  for (Index p = 0; p < n; ++p) list.offset[p + 1] = list.offset[p] + count[p] + fill[p];
+  auto& entries = list.entries;
+  entries.resize(static_cast<size_t>(list.offset[n]));
   for_each_chunk(nchunk, [&](Index c) {
-    Index k = list.offset[c * kChunk];
-    for (const auto& [q, d] : found[c]) {
-      list.other[k] = q;
-      list.reach[k] = d;
-      ++k;
+    const auto* e = found[c].data();
+    for (Index p = c * kChunk; p < std::min(n, (c + 1) * kChunk); ++p)
+      for (Index j = 0; j < count[p]; ++j) entries[static_cast<size_t>(list.offset[p] + j)] = *e++;
+  });
+  for (Index p = 0; p < n; ++p) fill[p] = list.offset[p] + count[p];
+  for (Index c = 0; c < nchunk; ++c) {
+    const auto* e = found[c].data();
+    for (Index p = c * kChunk; p < std::min(n, (c + 1) * kChunk); ++p)
+      for (Index j = 0; j < count[p]; ++j, ++e)
+        entries[static_cast<size_t>(fill[e->first]++)] = {static_cast<std::int32_t>(p), e->second};
+  }
+  list.other.resize(entries.size());
+  list.reach.resize(entries.size());
+  for_each_chunk(nchunk, [&](Index c) {
+    for (Index p = c * kChunk; p < std::min(n, (c + 1) * kChunk); ++p) {
+      const auto first = entries.begin() + list.offset[p], last = entries.begin() + list.offset[p + 1];
+      if (key)
+        std::sort(first, last, [&](const auto& a, const auto& b) { return key[a.first] < key[b.first]; });
+      else
+        std::sort(first, last);
+      for (Index k = list.offset[p]; k < list.offset[p + 1]; ++k) {
+        list.other[k] = entries[static_cast<size_t>(k)].first;
+        list.reach[k] = entries[static_cast<size_t>(k)].second;
+      }
     }
   });
 }

@@ -30,6 +30,7 @@
 // solids' motion; the forces are those of any other list holding every pair within reach, in the
 // same order, so fewer rebuilds do not change the answer.
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/parallel.hpp"
@@ -48,6 +49,8 @@ struct ContactList {
   double max_reach = 0.0;           ///< the largest contact distance a pair can have, m (1.35 dx, more with coarse gas)
   long builds = 0;                  ///< number of builds so far
   ChunkedRows scratch;              ///< the search's per-chunk buffers, kept between builds (no new pages)
+  std::vector<Index> fill;          ///< the rows' fill positions, kept between builds
+  std::vector<std::pair<std::int32_t, double>> entries;  ///< the rows before the split into other and reach
   /// A solid as the search reads it, stored in bin order so that a bin's solids are contiguous.
   struct PackedSolid {
     Vec3 x, x0;

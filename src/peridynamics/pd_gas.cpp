@@ -154,14 +154,29 @@ double PdSolver::gas_stable_dt() const {
   const double coef = dim_ == 3 ? 18.0 : 8.0;
   const Index* own = local_.own.data();
   double dt = std::numeric_limits<double>::infinity();
-#pragma omp parallel for schedule(static) reduction(min : dt) if (n > kParallelThreshold)
-  for (Index p = 0; p < n; ++p) {
-    const Index l = own[p];
-    if (!gas_[p] || vented_[l] || !(gas_inv_len_[l] > 0.0)) continue;
-    const double X = gas_x_[l], c = mats[mat[p]]->wave_speed(points_, p, X);
-    // rho0 / (coef rho0 c^2 / (X m1) * sum) = X m1 / (coef c^2 sum)
-    const double m1 = m1_ * std::pow(gas_scale_[l], dim_ + 1);
-    if (c > 0.0) dt = std::min(dt, std::sqrt(2.0 * X * m1 / (coef * c * c * gas_inv_len_[l])));
+  // The wave speeds a material at a time, at J = X (its fields looked up once, not per point).
+  GasStepScratch& w = gas_step_scratch_;
+  for (size_t m = 0; m < mats.size(); ++m) {
+    w.points.clear();
+    w.X.clear();
+    for (Index p = 0; p < n; ++p) {
+      const Index l = own[p];
+      if (!gas_[p] || vented_[l] || !(gas_inv_len_[l] > 0.0) || mat[p] != static_cast<std::int64_t>(m)) continue;
+      w.points.push_back(p);
+      w.X.push_back(gas_x_[l]);
+    }
+    const Index count = static_cast<Index>(w.points.size());
+    if (count == 0) continue;
+    w.c.resize(static_cast<size_t>(count));
+    mats[m]->wave_speeds_at(points_, w.points.data(), count, w.X.data(), w.c.data());
+#pragma omp parallel for schedule(static) reduction(min : dt) if (count > kParallelThreshold)
+    for (Index k = 0; k < count; ++k) {
+      const Index l = own[w.points[k]];
+      const double X = w.X[k], c = w.c[k];
+      // rho0 / (coef rho0 c^2 / (X m1) * sum) = X m1 / (coef c^2 sum)
+      const double m1 = m1_ * std::pow(gas_scale_[l], dim_ + 1);
+      if (c > 0.0) dt = std::min(dt, std::sqrt(2.0 * X * m1 / (coef * c * c * gas_inv_len_[l])));
+    }
   }
   return comm_.min(params_.dt_safety * dt);
 }

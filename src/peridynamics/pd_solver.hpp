@@ -287,6 +287,11 @@ class PdSolver final : public Solver {
   // Per local point (own points' values; a ghost's G and vented flag come from its owner).
   std::vector<double> gas_volume_;    ///< V_i = sum_j beta dV_j of each gas point, m^3
   std::vector<double> gas_inv_len_;   ///< sum_j beta dV_j / |xi| of each gas point, 1/m^2
+  struct GasStepScratch {  ///< gas_stable_dt's per-material lists, kept between steps
+    std::vector<Index> points;
+    std::vector<double> X, c;
+  };
+  mutable GasStepScratch gas_step_scratch_;
   std::vector<double> gas_x_;         ///< X of each gas point (1 elsewhere)
   std::vector<double> gas_g_;         ///< G_i of each gas point, Pa
   std::vector<std::uint8_t> vented_;  ///< gas vented (left the box); empty without gas

@@ -366,3 +366,84 @@ TEST(PdContactList, RelativeTestWithCoarseAndVentedGasIn2DAnd3D) {
 
 }  // namespace
 }  // namespace ballista::test_contact_list
+
+namespace ballista::test_contact_list {
+namespace {
+
+// The rows against a search from every point, by brute force: each pair is searched for once (a
+// solid pair from its lower end, a gas-solid pair from its gas end) and given to both rows, so each
+// row must be exactly the never-bonded points within reach + skin (gas-gas aside), in increasing
+// index (or key), with the pair's reach min(0.9 |xi|, reach) the same in both rows to the bit. Three bodies of solids (two lattices that interpenetrate
+// and a scattered one, bonded within delta inside each body) and gas, in 2D and 3D, with and
+// without a key.
+TEST(PdContactList, RowsAreTheSearchFromEveryPoint) {
+  const double dx = 1e-3, skin = 0.5 * dx, delta = 3.0 * dx, range = 1.35 * dx;
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int dim : {2, 3})
+    for (bool with_key : {false, true}) {
+      std::vector<Vec3> x, x0;
+      std::vector<std::int64_t> body, key;
+      std::vector<std::uint8_t> gas;
+      auto add = [&](const Vec3& ref, const Vec3& now, std::int64_t b, bool g) {
+        x0.push_back(ref);
+        x.push_back(now);
+        body.push_back(b);
+        gas.push_back(g ? 1 : 0);
+      };
+      const int nz = dim == 3 ? 6 : 1;
+      for (int i = 0; i < 12; ++i)
+        for (int j = 0; j < 12; ++j)
+          for (int k = 0; k < nz; ++k) {
+            const Vec3 a{{i * dx, j * dx, k * dx}};
+            // Body 0 stretched and sheared so that points once beyond delta come near each other.
+            add(a, Vec3{{0.55 * a[0] + 0.3 * a[1], 1.4 * a[1], a[2]}} + 0.2 * dx * Vec3{{u(rng), u(rng), 0.0}}, 0,
+                false);
+            add(a + Vec3{{0.5 * dx, 0.5 * dx, 0.0}}, a + Vec3{{0.5 * dx, 0.5 * dx, 0.0}}, 1, false);
+          }
+      for (int k = 0; k < 150; ++k) {
+        const Vec3 p{{12 * dx * 0.5 * (u(rng) + 1), 12 * dx * 0.5 * (u(rng) + 1), dim == 3 ? 3 * dx * u(rng) : 0.0}};
+        add(p, p + 0.5 * dx * Vec3{{u(rng), u(rng), dim == 3 ? u(rng) : 0.0}}, 2, false);
+        add(p, p + Vec3{{0.3 * dx, 0.0, 0.0}}, 3, true);
+      }
+      const Index n = static_cast<Index>(x.size());
+      for (Index p = 0; p < n; ++p) key.push_back((p * 7919) % n);  // a permutation: n is not a multiple of 7919
+      pd::ContactList list;
+      pd::build_contact_list(list, x.data(), x0.data(), body.data(), n, delta, dx, skin, dim, nullptr, gas.data(),
+                             with_key ? key.data() : nullptr);
+      long pairs = 0;
+      for (Index p = 0; p < n; ++p) {
+        std::vector<std::pair<Index, double>> want;
+        for (Index q = 0; q < n; ++q) {
+          if (q == p || (gas[p] && gas[q])) continue;
+          Vec3 d = x[q] - x[p], d0 = x0[q] - x0[p];
+          if (dim == 2) d[2] = d0[2] = 0.0;
+          const double cut = range + skin, r02 = dot(d0, d0);
+          if (dot(d, d) > cut * cut) continue;
+          if (body[q] == body[p] && r02 <= delta * delta * (1.0 + 2e-9)) continue;
+          want.push_back({q, std::min(0.9 * std::sqrt(r02), range)});
+        }
+        std::sort(want.begin(), want.end(), [&](const auto& a, const auto& b) {
+          return with_key ? key[a.first] < key[b.first] : a.first < b.first;
+        });
+        ASSERT_EQ(list.offset[p + 1] - list.offset[p], static_cast<Index>(want.size())) << "dim " << dim << " p " << p;
+        for (size_t j = 0; j < want.size(); ++j) {
+          const Index k = list.offset[p] + static_cast<Index>(j);
+          ASSERT_EQ(list.other[k], want[j].first) << "dim " << dim << " p " << p;
+          // Brute force's arithmetic may round differently (FMA contraction where dot() is
+          // inlined): 1e-14 of the reach. The two rows' copies of a pair must agree exactly.
+          ASSERT_NEAR(list.reach[k], want[j].second, 1e-14 * range) << "dim " << dim << " p " << p;
+          const Index q = want[j].first;
+          const auto* back = std::find(list.other.data() + list.offset[q], list.other.data() + list.offset[q + 1],
+                                       static_cast<std::int32_t>(p));
+          ASSERT_NE(back, list.other.data() + list.offset[q + 1]) << "dim " << dim << " p " << p << " q " << q;
+          ASSERT_EQ(list.reach[back - list.other.data()], list.reach[k]) << "dim " << dim << " p " << p;
+        }
+        pairs += static_cast<long>(want.size());
+      }
+      EXPECT_GT(pairs, 200) << "dim " << dim;  // the check saw solid-solid, gas-solid and cross-body pairs
+    }
+}
+
+}  // namespace
+}  // namespace ballista::test_contact_list
