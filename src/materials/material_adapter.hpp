@@ -100,9 +100,7 @@ class MaterialAdapter final : public Material {
   }
 
   double wave_speed(const FieldStore& store, Index p, double J) const override {
-    double st[kMaxState];
-    for (size_t s = 0; s < state_.size(); ++s) st[s] = store.real(state_[s].name)[p];
-    return Model::wave_speed(params_, st, J);
+    return PointWaveSpeed(*this, store, -1, false)(p, J);
   }
 
  private:

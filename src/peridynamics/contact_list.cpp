@@ -117,13 +117,12 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
   if (scale && gas)
     for (Index p = 0; p < n; ++p)
       if (gas[p] && !(skip && skip[p])) top = std::max(top, scale[p]);
-  // Solid-solid pairs search within range + skin; gas-solid pairs within their own reach + skin
-  // (at most cutoff_gas): a coarse gas lattice does not widen the solids' search among themselves.
+  // Solid-solid pairs search within range + skin; gas-solid pairs within their own reach + skin:
+  // a coarse gas lattice does not widen the solids' search among themselves.
   list.max_reach = reach_to_solid(top);
-  const double cutoff = range + skin, cutoff_gas = list.max_reach + skin;
-  // Bins a hair wider than the cutoff (no pair at the cutoff lost to round-off), over the points
-  // that take part (vented gas flying far off would stretch the bins over its whole cloud), in two
-  // sets when there is gas: a gas point looks only among the solids (gas-gas pairs are never
+  const double cutoff = range + skin;
+  // Bins of the solids a hair wider than the cutoff (no pair at the cutoff lost to round-off), over
+  // the solids that take part: a gas point looks only among the solids (gas-gas pairs are never
   // pairs), which keeps the search of a charge's many gas points short.
   std::vector<Index> solid_ids, gas_ids;
   std::vector<Vec3> solid_x, gas_x;
@@ -155,7 +154,6 @@ void build_contact_list(ContactList& list, const Vec3* x, const Vec3* x0, const 
   }
   // Stable binning of points already in bin order: order() is the identity.
   const CellBins solid_bins(packed_x.data(), ns, cutoff * (1.0 + 1e-6), dim);
-  const CellBins gas_bins(gas_x.data(), static_cast<Index>(gas_ids.size()), cutoff_gas * (1.0 + 1e-6), dim);
   // Gas allowances: the skin, or for a gas point whose bin is d >= 2 bins (chessboard) from every
   // solid's bin, or which lies outside the solids' bounding box, its clearance less the contact
   // distance (every solid is at least (d - 1) bin sizes away along one axis, and at least the

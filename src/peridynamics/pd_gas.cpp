@@ -156,23 +156,26 @@ double PdSolver::gas_stable_dt() const {
   double dt = std::numeric_limits<double>::infinity();
   // The wave speeds a material at a time, at J = X (its fields looked up once, not per point).
   GasStepScratch& w = gas_step_scratch_;
+  w.points.resize(mats.size());
+  w.X.resize(mats.size());
+  for (size_t m = 0; m < mats.size(); ++m) w.points[m].clear(), w.X[m].clear();
+  for (Index p = 0; p < n; ++p) {
+    const Index l = own[p];
+    if (!gas_[p] || vented_[l] || !(gas_inv_len_[l] > 0.0)) continue;
+    w.points[static_cast<size_t>(mat[p])].push_back(p);
+    w.X[static_cast<size_t>(mat[p])].push_back(gas_x_[l]);
+  }
   for (size_t m = 0; m < mats.size(); ++m) {
-    w.points.clear();
-    w.X.clear();
-    for (Index p = 0; p < n; ++p) {
-      const Index l = own[p];
-      if (!gas_[p] || vented_[l] || !(gas_inv_len_[l] > 0.0) || mat[p] != static_cast<std::int64_t>(m)) continue;
-      w.points.push_back(p);
-      w.X.push_back(gas_x_[l]);
-    }
-    const Index count = static_cast<Index>(w.points.size());
+    const Index count = static_cast<Index>(w.points[m].size());
     if (count == 0) continue;
+    const Index* pts = w.points[m].data();
+    const double* Xm = w.X[m].data();
     w.c.resize(static_cast<size_t>(count));
-    mats[m]->wave_speeds_at(points_, w.points.data(), count, w.X.data(), w.c.data());
+    mats[m]->wave_speeds_at(points_, pts, count, Xm, w.c.data());
 #pragma omp parallel for schedule(static) reduction(min : dt) if (count > kParallelThreshold)
     for (Index k = 0; k < count; ++k) {
-      const Index l = own[w.points[k]];
-      const double X = w.X[k], c = w.c[k];
+      const Index l = own[pts[k]];
+      const double X = Xm[k], c = w.c[k];
       // rho0 / (coef rho0 c^2 / (X m1) * sum) = X m1 / (coef c^2 sum)
       const double m1 = m1_ * std::pow(gas_scale_[l], dim_ + 1);
       if (c > 0.0) dt = std::min(dt, std::sqrt(2.0 * X * m1 / (coef * c * c * gas_inv_len_[l])));

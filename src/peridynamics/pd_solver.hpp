@@ -287,9 +287,10 @@ class PdSolver final : public Solver {
   // Per local point (own points' values; a ghost's G and vented flag come from its owner).
   std::vector<double> gas_volume_;    ///< V_i = sum_j beta dV_j of each gas point, m^3
   std::vector<double> gas_inv_len_;   ///< sum_j beta dV_j / |xi| of each gas point, 1/m^2
-  struct GasStepScratch {  ///< gas_stable_dt's per-material lists, kept between steps
-    std::vector<Index> points;
-    std::vector<double> X, c;
+  struct GasStepScratch {  ///< gas_stable_dt's lists, per material, kept between steps
+    std::vector<std::vector<Index>> points;
+    std::vector<std::vector<double>> X;
+    std::vector<double> c;
   };
   mutable GasStepScratch gas_step_scratch_;
   std::vector<double> gas_x_;         ///< X of each gas point (1 elsewhere)
