@@ -296,6 +296,19 @@ struct Geomodel {
     return rj2 - ff * std::sqrt(std::max(0.0, 1.0 - u * u));
   }
 
+  /// True only where yield_value(p, X, i1e, rj2) > 0 is certainly false, decided without the
+  /// limit surface's exponential (GeoLimit::bounds): I1' within [X, PEAKI1], sqrt(J2) at most the
+  /// lower bound of Ff, and I1' - X at least CR times its upper bound (so yield_value takes its
+  /// sqrt(J2) - Ff branch, outside the cap region). False for NaN. A point inside the surface by
+  /// more than the bounds' gap passes; the others are for yield_value to decide.
+  static bool certainly_elastic(const Params& p, double X, double i1e, double rj2) {
+    if (!(i1e >= X && i1e <= p.limit.peak_i1)) return false;
+    double lo, hi;
+    p.limit.bounds(i1e, lo, hi);
+    // rj2 <= lo <= max(0, Ff) = ff gives rj2 - ff <= 0; ff <= max(0, hi), so CR ff <= CR hi.
+    return rj2 <= lo && (!std::isfinite(X) || i1e - X >= p.cap_ratio * std::max(0.0, hi));
+  }
+
   /// Size of the yield surface against which a trial-stress increment is measured for substepping.
   /// Half its extent along the hydrostat, or where that is unbounded, the larger of |PEAKI1| and
   /// twice the shear strength at the current I1 (von Mises: twice sqrt(J2) at yield).
@@ -567,6 +580,12 @@ struct Geomodel {
 
   /// The kinematics kLanes points at a time (material_lanes.hpp), this kernel lane by lane.
   static bool lanes_apply(const Params&) { return true; }
+  /// The elastic steps kLanes points at a time (geomodel_elastic_lanes.hpp): where this parameter
+  /// set allows it, update_lanes_elastic takes the points of `want` that are certainly elastic at
+  /// every substep, updates their stress and state exactly as update() would, and returns them.
+  static bool elastic_lanes_apply(const Params& p);
+  static LaneMask update_lanes_elastic(const Params& p, const LaneKinematics& k, LaneMask want, Mat3L& sigma,
+                                       Lane* st);
 
   static void update(const Params& p, const PointKinematics& k, Mat3& sigma, double* st, PointResult& res) {
     const Mat3 eps = k.dt * k.D_bar;
@@ -682,3 +701,5 @@ struct Geomodel {
 };
 
 }  // namespace ballista
+
+#include "materials/geomodel_elastic_lanes.hpp"

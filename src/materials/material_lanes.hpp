@@ -15,6 +15,13 @@
 // doing for kLanes points what its update() does for one, else its update() runs lane by lane on
 // the kinematics computed kLanes at a time (always with a failure criterion, which reads the
 // kernel's PointResult). The per-point loop stays for tangents, models that read F_n, and dt = 0.
+// A model whose update() runs lane by lane may first offer the lanes to
+//   static bool elastic_lanes_apply(const Params&);
+//   static LaneMask update_lanes_elastic(const Params&, const LaneKinematics&, LaneMask want,
+//                                        Mat3L& sigma_bar, Lane* state);
+// which takes the lanes it can update kLanes at a time bitwise as update() would (the geomodel's
+// certainly elastic steps), a choice per point that is safe only because it is bitwise; update()
+// runs the lanes it leaves.
 #include <algorithm>
 #include <atomic>
 #include <vector>
@@ -99,10 +106,34 @@ void update_in_lanes(const typename Model::Params& prm, const FailureModel& fm, 
     } else {
       // A model without a lane kernel (Johnson-Cook: its return needs pow and log per iteration)
       // runs its scalar kernel lane by lane on the kinematics computed kLanes at a time.
+      // A model may first take the lanes whose step it can do kLanes at a time bitwise as its
+      // update() (the geomodel's elastic steps: update_lanes_elastic); the rest run update().
+      LaneMask done{};
+      if constexpr (requires { Model::update_lanes_elastic(prm, kin, done, sigma_bar, st); }) {
+        if (Model::elastic_lanes_apply(prm)) {
+          LaneMask want{};
+          for (int l = 0; l < kLanes; ++l) {
+            want[l] = -1;
+            if constexpr (kFailure)
+              if (frozen_when_failed(fm, st[nm + 1][l])) want[l] = 0;
+          }
+          done = Model::update_lanes_elastic(prm, kin, want, sigma_bar, st);
+          for (int l = 0; l < kLanes; ++l) {
+            if (!done[l]) continue;
+            // What update() reports for an elastic step.
+            res[l].eqps = st[0][l];
+            res[l].delta_eqps = 0.0;
+            res[l].plastic_work_density = 0.0;
+            res[l].drucker_product = 0.0;
+            plastic_work[l] = 0.0;
+          }
+        }
+      }
       PointKinematics pk;
       pk.dt = dt;
       pk.time = b.time;
       for (int l = 0; l < kLanes; ++l) {
+        if (done[l]) continue;
         // As MaterialAdapter's loop: a point failed under zero_stress keeps nothing of the kernel's.
         if constexpr (kFailure)
           if (frozen_when_failed(fm, st[nm + 1][l])) continue;
