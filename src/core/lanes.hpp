@@ -146,6 +146,14 @@ inline Lane ddot(const Mat3L& A, const Mat3L& B) {
   return s;
 }
 inline Mat3L sym(const Mat3L& A) { return 0.5 * (A + transpose(A)); }
+inline Mat3L deviator(const Mat3L& A) {
+  Mat3L D = A;
+  const Lane m = trace(A) / 3.0;
+  D.a[0] -= m;
+  D.a[4] -= m;
+  D.a[8] -= m;
+  return D;
+}
 inline Lane det(const Mat3L& A) {
   return A.a[0] * (A.a[4] * A.a[8] - A.a[5] * A.a[7]) - A.a[1] * (A.a[3] * A.a[8] - A.a[5] * A.a[6]) +
          A.a[2] * (A.a[3] * A.a[7] - A.a[4] * A.a[6]);

@@ -30,13 +30,7 @@ inline LaneMask Geomodel::update_lanes_elastic(const Params& p, const LaneKinema
   const Mat3L eps = k.dt * k.D_bar;
   const double K = p.B0 + p.B1 * 0.0, G = p.G0;
   const Lane tr_e = trace(eps);
-  Mat3L dev = eps;
-  {
-    const Lane m = trace(eps) / 3.0;
-    dev.a[0] -= m;
-    dev.a[4] -= m;
-    dev.a[8] -= m;
-  }
+  const Mat3L dev = deviator(eps);
   const Lane dsig = lane_sqrt(9.0 * K * K * tr_e * tr_e / 3.0 + 4.0 * G * G * ddot(dev, dev));
   // Per point, as update(): the cap and the substep count.
   double X[kLanes];
@@ -75,13 +69,7 @@ inline LaneMask Geomodel::update_lanes_elastic(const Params& p, const LaneKinema
     sig_t.a[4] += iso;
     sig_t.a[8] += iso;
     const Lane I1_t = trace(sig_t);
-    Mat3L s_t = sig_t;
-    {
-      const Lane m = trace(sig_t) / 3.0;
-      s_t.a[0] -= m;
-      s_t.a[4] -= m;
-      s_t.a[8] -= m;
-    }
+    const Mat3L s_t = deviator(sig_t);
     const Lane rj2_t = lane_sqrt(0.5 * ddot(s_t, s_t));
     LaneMask step = live;
     for (int l = 0; l < kLanes; ++l) {

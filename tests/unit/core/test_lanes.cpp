@@ -57,7 +57,7 @@ TEST(Lanes, TensorAlgebraIsTheScalarsLaneByLane) {
       BL.set_lane(l, B[l]);
     }
     const Mat3L prod = AL * BL, tt = transpose_times(AL, BL), rot = rotate_sym(AL, BL), unrot = unrotate_sym(AL, BL);
-    const Mat3L inv = inverse(AL), mid = midpoint_strain_increment(0.1 * BL), s = sym(AL);
+    const Mat3L inv = inverse(AL), mid = midpoint_strain_increment(0.1 * BL), s = sym(AL), dev = deviator(AL);
     const Lane d = det(AL), dd = ddot(AL, BL), tr = trace(AL);
     for (int l = 0; l < kLanes; ++l) {
       const double ab = 3.0 * scale(A[l]) * scale(B[l]), a = scale(A[l]);
@@ -68,6 +68,7 @@ TEST(Lanes, TensorAlgebraIsTheScalarsLaneByLane) {
       EXPECT_TRUE(agree(inv.lane(l), inverse(A[l])));
       EXPECT_TRUE(agree(mid.lane(l), midpoint_strain_increment(0.1 * B[l])));
       EXPECT_TRUE(agree(s.lane(l), sym(A[l])));
+      EXPECT_TRUE(agree(dev.lane(l), deviator(A[l]), a));
       EXPECT_TRUE(agree(d[l], det(A[l]), 6.0 * a * a * a));
       EXPECT_TRUE(agree(dd[l], ddot(A[l], B[l]), 3.0 * ab));
       EXPECT_TRUE(agree(tr[l], trace(A[l]), 3.0 * a));
