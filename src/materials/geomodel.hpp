@@ -582,10 +582,11 @@ struct Geomodel {
   static bool lanes_apply(const Params&) { return true; }
   /// The elastic steps kLanes points at a time (geomodel_elastic_lanes.hpp): where this parameter
   /// set allows it, update_lanes_elastic takes the points of `want` that are certainly elastic at
-  /// every substep, updates their stress and state exactly as update() would, and returns them.
+  /// every substep, updates their stress, state, result (res[l]) and plastic work exactly as
+  /// update() would, and returns them.
   static bool elastic_lanes_apply(const Params& p);
   static LaneMask update_lanes_elastic(const Params& p, const LaneKinematics& k, LaneMask want, Mat3L& sigma,
-                                       Lane* st);
+                                       Lane* st, PointResult* res, Lane& plastic_work);
 
   static void update(const Params& p, const PointKinematics& k, Mat3& sigma, double* st, PointResult& res) {
     const Mat3 eps = k.dt * k.D_bar;

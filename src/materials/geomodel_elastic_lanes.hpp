@@ -25,7 +25,7 @@ inline bool Geomodel::elastic_lanes_apply(const Params& p) {
 }
 
 inline LaneMask Geomodel::update_lanes_elastic(const Params& p, const LaneKinematics& k, LaneMask want, Mat3L& sigma,
-                                               Lane* st) {
+                                               Lane* st, PointResult* res, Lane& plastic_work) {
   // As update(): eps = D_bar dt, the moduli of the step (moduli() with B1 = 0: K = B0 + B1 0, G = G0).
   const Mat3L eps = k.dt * k.D_bar;
   const double K = p.B0 + p.B1 * 0.0, G = p.G0;
@@ -33,25 +33,24 @@ inline LaneMask Geomodel::update_lanes_elastic(const Params& p, const LaneKinema
   const Mat3L dev = deviator(eps);
   const Lane dsig = lane_sqrt(9.0 * K * K * tr_e * tr_e / 3.0 + 4.0 * G * G * ddot(dev, dev));
   // Per point, as update(): the cap and the substep count.
-  double X[kLanes];
+  // A point whose rock has crushed or dilated (evp != 0) is left to update(): its cap costs a log
+  // or a pow, and such points, at the edge of a crater, are mostly yielding. So every point taken
+  // has the uncrushed cap X = cap_at(p, 0).
+  const double X = cap_at(p, 0.0);
+  const Lane I1_n = trace(sigma);
   int n[kLanes];
   int n_max = 0;
   Lane inv_n;
   LaneMask live = want;
   for (int l = 0; l < kLanes; ++l) {
-    // A point whose rock has crushed or dilated (evp != 0) is left to update(): its cap costs a
-    // log or a pow, and such points, at the edge of a crater, are mostly yielding.
     if (!want[l] || st[1][l] != 0.0) {
       live[l] = 0;
       n[l] = 0;
       inv_n[l] = 0.0;
-      X[l] = 0.0;
       continue;
     }
-    const double evp = st[1][l];
-    const double i1e = trace(sigma.lane(l)) + 3.0 * 0.0;  // pf_n = 0: drained
-    X[l] = cap_at(p, evp);
-    const double n_need = std::ceil(dsig[l] / surface_size(p, X[l], i1e));
+    const double i1e = I1_n[l] + 3.0 * 0.0;  // pf_n = 0: drained
+    const double n_need = std::ceil(dsig[l] / surface_size(p, X, i1e));
     n[l] = std::isfinite(n_need) ? static_cast<int>(std::clamp(n_need, 1.0, double(p.max_substeps))) : p.max_substeps;
     inv_n[l] = 1.0 / n[l];
     n_max = std::max(n_max, n[l]);
@@ -79,7 +78,7 @@ inline LaneMask Geomodel::update_lanes_elastic(const Params& p, const LaneKinema
       }
       // substep(): a deviator at the round-off level of the stress counts as zero.
       const double rj2 = rj2_t[l] <= 1e-13 * std::abs(I1_t[l]) ? 0.0 : rj2_t[l];
-      if (!certainly_elastic(p, X[l], I1_t[l] + 3.0 * 0.0, rj2)) {
+      if (!certainly_elastic(p, X, I1_t[l] + 3.0 * 0.0, rj2)) {
         live[l] = 0;
         step[l] = 0;
       }
@@ -91,6 +90,15 @@ inline LaneMask Geomodel::update_lanes_elastic(const Params& p, const LaneKinema
   for (int l = 0; l < kLanes; ++l) n_lane[l] = n[l];
   st[2] = select(live, n_lane, st[2]);           // update() stores the count,
   st[0] = select(live, st[0] + 0.0, st[0]);       // and eqps + 0 (its increment), evp as it was
+  for (int l = 0; l < kLanes; ++l) {
+    if (!live[l]) continue;
+    // What update() reports for an elastic step (its drucker_product, ddot(sigma - sigma_n, 0), is +0).
+    res[l].eqps = st[0][l];
+    res[l].delta_eqps = 0.0;
+    res[l].plastic_work_density = 0.0;
+    res[l].drucker_product = 0.0;
+    plastic_work[l] = 0.0;
+  }
   return live;
 }
 

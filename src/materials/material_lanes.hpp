@@ -18,7 +18,8 @@
 // A model whose update() runs lane by lane may first offer the lanes to
 //   static bool elastic_lanes_apply(const Params&);
 //   static LaneMask update_lanes_elastic(const Params&, const LaneKinematics&, LaneMask want,
-//                                        Mat3L& sigma_bar, Lane* state);
+//                                        Mat3L& sigma_bar, Lane* state, PointResult* res,
+//                                        Lane& plastic_work_density);
 // which takes the lanes it can update kLanes at a time bitwise as update() would (the geomodel's
 // certainly elastic steps), a choice per point that is safe only because it is bitwise; update()
 // runs the lanes it leaves.
@@ -109,7 +110,7 @@ void update_in_lanes(const typename Model::Params& prm, const FailureModel& fm, 
       // A model may first take the lanes whose step it can do kLanes at a time bitwise as its
       // update() (the geomodel's elastic steps: update_lanes_elastic); the rest run update().
       LaneMask done{};
-      if constexpr (requires { Model::update_lanes_elastic(prm, kin, done, sigma_bar, st); }) {
+      if constexpr (requires { Model::update_lanes_elastic(prm, kin, done, sigma_bar, st, res, plastic_work); }) {
         if (Model::elastic_lanes_apply(prm)) {
           LaneMask want{};
           for (int l = 0; l < kLanes; ++l) {
@@ -117,16 +118,7 @@ void update_in_lanes(const typename Model::Params& prm, const FailureModel& fm, 
             if constexpr (kFailure)
               if (frozen_when_failed(fm, st[nm + 1][l])) want[l] = 0;
           }
-          done = Model::update_lanes_elastic(prm, kin, want, sigma_bar, st);
-          for (int l = 0; l < kLanes; ++l) {
-            if (!done[l]) continue;
-            // What update() reports for an elastic step.
-            res[l].eqps = st[0][l];
-            res[l].delta_eqps = 0.0;
-            res[l].plastic_work_density = 0.0;
-            res[l].drucker_product = 0.0;
-            plastic_work[l] = 0.0;
-          }
+          done = Model::update_lanes_elastic(prm, kin, want, sigma_bar, st, res, plastic_work);
         }
       }
       PointKinematics pk;
