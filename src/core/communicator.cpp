@@ -84,34 +84,6 @@ void Communicator::sum(double* values, int n) const {
   check(MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_SUM, comm_of(handle_)), "MPI_Allreduce");
 }
 
-void Communicator::sum_in_rank_order(double* values, std::size_t n) const {
-  if (!distributed() || n == 0) return;
-  const MPI_Comm c = comm_of(handle_);
-  // Rank r adds up chunk r of the array from every rank's partial values, then every rank
-  // gathers the chunks.
-  std::vector<int> count(size_), displ(size_);
-  for (int r = 0; r < size_; ++r) {
-    const std::size_t lo = n * static_cast<std::size_t>(r) / static_cast<std::size_t>(size_);
-    const std::size_t hi = n * static_cast<std::size_t>(r + 1) / static_cast<std::size_t>(size_);
-    displ[r] = static_cast<int>(lo);
-    count[r] = static_cast<int>(hi - lo);
-  }
-  const int mine = count[rank_];
-  std::vector<double> parts(static_cast<std::size_t>(mine) * static_cast<std::size_t>(size_));
-  std::vector<int> rcount(size_, mine), rdispl(size_);
-  for (int r = 0; r < size_; ++r) rdispl[r] = r * mine;
-  check(MPI_Alltoallv(values, count.data(), displ.data(), MPI_DOUBLE, parts.data(), rcount.data(), rdispl.data(),
-                      MPI_DOUBLE, c),
-        "MPI_Alltoallv");
-  for (int i = 0; i < mine; ++i) {
-    double s = parts[static_cast<std::size_t>(i)];
-    for (int r = 1; r < size_; ++r) s += parts[static_cast<std::size_t>(r) * static_cast<std::size_t>(mine) + i];
-    values[static_cast<std::size_t>(displ[rank_] + i)] = s;
-  }
-  check(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, values, count.data(), displ.data(), MPI_DOUBLE, c),
-        "MPI_Allgatherv");
-}
-
 void Communicator::sum(std::int64_t* values, int n) const {
   if (!distributed() || n == 0) return;
   check(MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_INT64_T, MPI_SUM, comm_of(handle_)), "MPI_Allreduce");
@@ -127,6 +99,11 @@ double Communicator::max(double local) const {
 
 std::int64_t Communicator::sum(std::int64_t local) const {
   return distributed() ? all_reduce(local, MPI_INT64_T, MPI_SUM, handle_) : local;
+}
+
+void Communicator::max(std::int64_t* values, int n) const {
+  if (!distributed() || n == 0) return;
+  check(MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_INT64_T, MPI_MAX, comm_of(handle_)), "MPI_Allreduce");
 }
 
 std::int64_t Communicator::max(std::int64_t local) const {
@@ -202,8 +179,15 @@ std::vector<double> Communicator::all_gather_reals(const std::vector<double>& mi
 }
 
 std::vector<std::vector<char>> Communicator::all_to_all(const std::vector<std::vector<char>>& send) const {
-  std::vector<std::vector<char>> recv(size_);
-  if (!distributed()) return recv;
+  std::vector<std::vector<char>> recv;
+  all_to_all(send, recv);
+  return recv;
+}
+
+void Communicator::all_to_all(const std::vector<std::vector<char>>& send, std::vector<std::vector<char>>& recv) const {
+  recv.resize(static_cast<std::size_t>(size_));
+  for (auto& r : recv) r.clear();
+  if (!distributed()) return;
   const MPI_Comm c = comm_of(handle_);
   // Message sizes first, then the payloads (counts in bytes; a rank's share stays below 2 GiB
   // per peer and step: migration moves the few particles that crossed a cut).
@@ -216,16 +200,18 @@ std::vector<std::vector<char>> Communicator::all_to_all(const std::vector<std::v
     sdispl[r] = sdispl[r - 1] + scount[r - 1];
     rdispl[r] = rdispl[r - 1] + rcount[r - 1];
   }
-  std::vector<char> sbuf(static_cast<std::size_t>(sdispl[size_ - 1] + scount[size_ - 1]));
+  // The staging buffers keep their pages from call to call (a fresh large allocation costs a page
+  // fault per page; the OTM node sums exchange megabytes every step).
+  static thread_local std::vector<char> sbuf, rbuf;
+  sbuf.resize(static_cast<std::size_t>(sdispl[size_ - 1] + scount[size_ - 1]));
   for (int r = 0; r < size_; ++r)
     if (scount[r] > 0) std::memcpy(sbuf.data() + sdispl[r], send[r].data(), static_cast<std::size_t>(scount[r]));
-  std::vector<char> rbuf(static_cast<std::size_t>(rdispl[size_ - 1] + rcount[size_ - 1]));
+  rbuf.resize(static_cast<std::size_t>(rdispl[size_ - 1] + rcount[size_ - 1]));
   check(MPI_Alltoallv(sbuf.data(), scount.data(), sdispl.data(), MPI_BYTE, rbuf.data(), rcount.data(),
                       rdispl.data(), MPI_BYTE, c),
         "MPI_Alltoallv");
   for (int r = 0; r < size_; ++r)
     recv[r].assign(rbuf.begin() + rdispl[r], rbuf.begin() + rdispl[r] + rcount[r]);
-  return recv;
 }
 
 std::vector<std::vector<char>> Communicator::gather(const std::vector<char>& mine, int root) const {

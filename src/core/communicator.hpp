@@ -33,10 +33,8 @@ class Communicator {
   /// Element-wise sum of n values in place.
   void sum(double* values, int n) const;
   void sum(std::int64_t* values, int n) const;
-  /// Element-wise sum of n values in place, the ranks' values added in rank order, so that every
-  /// rank holds bitwise the same total whatever algorithm the MPI library reduces with (replicated
-  /// arrays that every rank then updates alike: the OTM nodes). One all-to-all and one all-gather.
-  void sum_in_rank_order(double* values, std::size_t n) const;
+  /// Element-wise maximum of n values in place.
+  void max(std::int64_t* values, int n) const;
   double min(double local) const;
   double max(double local) const;
   std::int64_t sum(std::int64_t local) const;
@@ -55,6 +53,8 @@ class Communicator {
   std::vector<double> all_gather_reals(const std::vector<double>& mine, std::vector<int>& counts) const;
   /// send[r]: bytes for rank r (send[rank()] is ignored); returns what each rank sent here.
   std::vector<std::vector<char>> all_to_all(const std::vector<std::vector<char>>& send) const;
+  /// The same into recv, whose vectors keep their capacity (a caller exchanging every step).
+  void all_to_all(const std::vector<std::vector<char>>& send, std::vector<std::vector<char>>& recv) const;
   /// Everything to `root` (rank order); other ranks get an empty result.
   std::vector<std::vector<char>> gather(const std::vector<char>& mine, int root) const;
   /// Point-to-point with known sizes: sends send[k] to peers[k] and receives recv[k] (already

@@ -40,7 +40,7 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
                                 const std::vector<double>& spacing, int dim, bool axisymmetric, const Vec3& lower,
                                 const Vec3& upper, const AdaptivityOptions& opt, const SplitStateSpec& state,
                                 const std::string& failed, std::int64_t& next_id,
-                                const FieldStore* neighbourhood) {
+                                const Neighbourhood* neighbourhood) {
   const Index n = pts.size();
   // Fields by name here, not by typed key (core/field_key.hpp): the keys change how GCC optimises
   // this file's split arithmetic (FMA contraction with -march=native) and with it the last bits of
@@ -85,8 +85,11 @@ std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>&
   // Before anything moves: the children's state from the parent's neighbourhood (split_state.hpp).
   // Computed and applied outside the split arithmetic below, whose last bits (GCC's FMA contraction
   // of this function) the 750 m/s bar with the copied state keeps.
-  const std::vector<SplitIncrement> increments =
-      split_increments(neighbourhood ? *neighbourhood : pts, which, half, half0, axisymmetric, state, dim, failed);
+  std::vector<Index> among = which;
+  if (neighbourhood)
+    for (Index& p : among) p = neighbourhood->own_at[static_cast<size_t>(p)];
+  const std::vector<SplitIncrement> increments = split_increments(neighbourhood ? neighbourhood->points : pts, among,
+                                                                  half, half0, axisymmetric, state, dim, failed);
   FieldStore kids = pts.empty_like();
   kids.append_from(pts, which);
   // Second children are appended; the parents become the first children.

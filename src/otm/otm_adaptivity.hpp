@@ -64,13 +64,20 @@ Vec3 largest_eigenvector(const Mat3& A, int dim, double hi);
 /// The children get ids next_id, next_id + 1, ... (advanced); the parent becomes the first child
 /// and the second is appended. Returns the parents in increasing index (the second child of
 /// parents[i] is point n + i, n the count before). Serial and in point order: deterministic.
-/// `neighbourhood`, if given, is pts's points followed by other ones (other MPI ranks'), among
-/// which the children's state finds the parents' neighbours; else pts alone.
+/// Points among which the children's state finds the parents' neighbours: pts's and other ones
+/// (other MPI ranks'), in the serial run's order; own_at[p] is pts's point p among them.
+struct Neighbourhood {
+  FieldStore points;
+  std::vector<Index> own_at;
+};
+
+/// `neighbourhood`, if given, is where the children's state finds the parents' neighbours; else
+/// pts alone.
 std::vector<Index> split_points(FieldStore& pts, const std::vector<std::string>& extensive,
                                 const std::vector<double>& spacing, int dim, bool axisymmetric, const Vec3& lower,
                                 const Vec3& upper, const AdaptivityOptions& opt, const SplitStateSpec& state,
                                 const std::string& failed, std::int64_t& next_id,
-                                const FieldStore* neighbourhood = nullptr);
+                                const Neighbourhood* neighbourhood = nullptr);
 
 /// The first child's share of a split point's reference volume, the child at r0 + d0_r: 1/2, or in
 /// axisymmetric runs its half-ring's, (r0 + d0_r) / (2 r0) (Pappus: a half-cell's volume per radian

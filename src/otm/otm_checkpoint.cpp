@@ -4,7 +4,9 @@
 // On several ranks the per-point state (supports, multipliers, stretch scales) is gathered to
 // rank 0 in the points' order of the checkpoint (rank order), so the checkpoint is the one a
 // serial run writes and restarts on any rank count: each rank's points are a contiguous run of
-// that order (PointSet::load_state), and it takes their rows. The nodes are every rank's alike.
+// that order (PointSet::load_state), and it takes their rows, sorted by id if they are not (the
+// node sums' order). The nodes are every rank's alike.
+#include <algorithm>
 #include <cstring>
 
 #include "core/error.hpp"
@@ -52,15 +54,28 @@ otm::Supports gather_supports(const Communicator& comm, const otm::Supports& s) 
 }
 
 /// Rows [first, first + n) of a checkpoint's supports (empty stays empty: no previous build).
-otm::Supports rows_of(const otm::Supports& all, Index first, Index n) {
+/// Rows rows[0], rows[1], ... of `all` (a point's supports).
+otm::Supports rows_of(const otm::Supports& all, const std::vector<Index>& rows) {
   if (all.offset.empty()) return all;
   otm::Supports s;
-  const Index k0 = all.offset[first], k1 = all.offset[first + n];
-  for (Index p = first; p <= first + n; ++p) s.offset.push_back(all.offset[p] - k0);
-  s.node.assign(all.node.begin() + k0, all.node.begin() + k1);
-  s.N.assign(all.N.begin() + k0, all.N.begin() + k1);
-  s.dN.assign(all.dN.begin() + k0, all.dN.begin() + k1);
+  s.offset.push_back(0);
+  for (const Index p : rows) {
+    const Index k0 = all.offset[p], k1 = all.offset[p + 1];
+    s.node.insert(s.node.end(), all.node.begin() + k0, all.node.begin() + k1);
+    s.N.insert(s.N.end(), all.N.begin() + k0, all.N.begin() + k1);
+    s.dN.insert(s.dN.end(), all.dN.begin() + k0, all.dN.begin() + k1);
+    s.offset.push_back(static_cast<Index>(s.node.size()));
+  }
   return s;
+}
+
+template <class T>
+std::vector<T> pick(const std::vector<T>& all, const std::vector<Index>& rows) {
+  std::vector<T> out;
+  if (all.empty()) return out;
+  out.reserve(rows.size());
+  for (const Index p : rows) out.push_back(all[static_cast<std::size_t>(p)]);
+  return out;
 }
 
 /// Several ranks: every rank's records on rank 0, in rank order.
@@ -146,18 +161,33 @@ void OtmSolver::load_state(const StateArchive& a) {
     throw Error("the checkpoint holds the OTM supports of " + std::to_string(cur.size()) + " points, fewer than its " +
                 std::to_string(first + n) + " points");
   get_supports(a, "otm.previous_supports.", prev);
-  sup_ = rows_of(cur, first, n);
-  prev_sup_ = rows_of(prev, first, n);
+  // This rank's rows, in id order: the serial run's point order, in which the node sums fold a
+  // node's points (otm/node_sums.hpp). Its own rows on as many ranks are in that order already; a
+  // share of a checkpoint written on another rank count after splits (each rank's children after
+  // its own points) is sorted here.
+  std::vector<Index> order(static_cast<std::size_t>(n));
+  for (Index k = 0; k < n; ++k) order[k] = k;
+  const auto* id = points_.ints(kId);
+  if (!std::is_sorted(id, id + n)) {
+    std::sort(order.begin(), order.end(), [&](Index x, Index y) { return id[x] < id[y]; });
+    points_.permute(order);
+    pts_.mark_reordered();
+  }
+  std::vector<Index> rows(order);
+  for (Index& r : rows) r += first;
+  sup_ = rows_of(cur, rows);
+  // Right after a split the last step's supports lack the children's rows; the next build then
+  // does not read them (otm::build_supports takes previous supports only for every point).
+  prev_sup_ = prev.size() == cur.size() ? rows_of(prev, rows) : otm::Supports{};
   std::vector<Vec3> lambda;
   a.get_records("otm.lambda", lambda);
-  lambda_.assign(lambda.begin() + first, lambda.begin() + first + n);
-  const std::vector<double>& scale = a.reals("otm.scale");
-  scale_.assign(scale.begin() + first, scale.begin() + first + n);
+  lambda_ = pick(lambda, rows);
+  scale_ = pick(a.reals("otm.scale"), rows);
   std::vector<Mat3> Fr;
   a.get_records("otm.Fr", Fr);
-  Fr_ = Fr.empty() ? Fr : std::vector<Mat3>(Fr.begin() + first, Fr.begin() + first + n);
+  Fr_ = pick(Fr, rows);
   a.get_integers("otm.interpolated", interpolated_);
-  otm::build_influences(sup_, nodes_.size(), inf_);
+  rebuild_influences();
   reduce_support_statistics();
 }
 

@@ -24,7 +24,7 @@ void scale(Mat3& A, double s, bool plane) {
 }  // namespace
 
 void NodalFBar::apply(const Supports& sup, Index node_count, bool plane, double dt, const FBarFields& f,
-                      const Communicator& comm) {
+                      const NodeFoldScope* nodes) {
   const Index n = f.count;
   dj_.resize(static_cast<std::size_t>(n));
   vn_.resize(static_cast<std::size_t>(n));
@@ -32,24 +32,38 @@ void NodalFBar::apply(const Supports& sup, Index node_count, bool plane, double 
     dj_[p] = volume_ratio(Mat3::identity() + dt * f.L[p], plane);
     vn_[p] = f.volume[p] / dj_[p];
   });
-  w_.assign(static_cast<std::size_t>(node_count), 0.0);
-  theta_.assign(static_cast<std::size_t>(node_count), 0.0);
-  for (Index p = 0; p < n; ++p)
-    for (Index k = sup.offset[p]; k < sup.offset[p + 1]; ++k) {
-      const Index a = sup.node[k];
-      const double wv = sup.N[k] * vn_[p];
-      w_[a] += wv;
-      theta_[a] += wv * dj_[p];
-    }
-  if (comm.distributed()) {
-    std::vector<double> both(w_);
-    both.insert(both.end(), theta_.begin(), theta_.end());
-    comm.sum_in_rank_order(both.data(), both.size());
-    std::copy(both.begin(), both.begin() + node_count, w_.begin());
-    std::copy(both.begin() + node_count, both.end(), theta_.begin());
+  // The nodal sums, folded over each node's points in point order (bitwise on any rank count).
+  NodeFoldScope scope;
+  if (nodes) {
+    scope = *nodes;
+  } else {
+    build_influences(sup, node_count, inf_);
+    scope.inf = &inf_;
+    scope.nodes = node_count;
   }
+  const Influences& inf = *scope.inf;
+  struct In {
+    double N, vn, dj;
+  };
+  struct Acc {
+    double w, theta;
+  };
+  std::vector<Acc> sums;
+  fold_nodes<Acc, In>(
+      scope, sums, [](Index) { return true; },
+      [&](Index i, In& in) {
+        const Index p = inf.owner[i];
+        in = In{sup.N[inf.entry[i]], vn_[p], dj_[p]};
+        return true;
+      },
+      [](Acc& acc, const In& in) {
+        add_product(acc.w, in.N, in.vn);
+        add_product(acc.theta, in.N * in.vn, in.dj);
+      });
+  theta_.resize(static_cast<std::size_t>(node_count));
   for_each(0, node_count, [&](Index a) {
-    if (w_[a] > 0.0) theta_[a] /= w_[a];
+    const Acc& s = sums[static_cast<std::size_t>(a)];
+    theta_[a] = s.w > 0.0 ? s.theta / s.w : s.theta;
   });
   const double m = plane ? 2.0 : 3.0;
   for_each(0, n, [&](Index p) {

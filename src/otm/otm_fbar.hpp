@@ -17,13 +17,13 @@
 // partition of unity sum_p V_p^n dJbar_p = sum_p V_p^n dJ_p: the body's volume change is exactly
 // the standard update's. N are the step's shape functions (at x_p^k, those that moved the points).
 //
-// Thread determinism: the nodal sums are accumulated in point order by one thread; the passes
-// before and after are independent per point. On several ranks each rank adds its own points'
-// share and the ranks' shares are added in rank order (the nodes are every rank's).
+// Thread and rank determinism: the nodal sums are folds over each node's points in point order
+// (otm/node_sums.hpp: bitwise the serial run's on any rank count); the passes before and after are
+// independent per point.
 #include <vector>
 
-#include "core/communicator.hpp"
 #include "core/tensor.hpp"
+#include "otm/node_sums.hpp"
 #include "otm/otm_support.hpp"
 
 namespace ballista::otm {
@@ -42,12 +42,14 @@ struct FBarFields {
 /// Node-averaged F-bar over one step (header comment). `plane`: plane strain (m = 2, in-plane block).
 class NodalFBar {
  public:
+  /// `nodes`: the solver's influence domains of `sup` (and its ranks); null: built here, one rank.
   void apply(const Supports& sup, Index node_count, bool plane, double dt, const FBarFields& f,
-             const Communicator& comm = {});
+             const NodeFoldScope* nodes = nullptr);
 
  private:
   std::vector<double> dj_, vn_;        ///< per point: dJ_p, V_p^n
-  std::vector<double> w_, theta_;      ///< per node: sum N V^n, then theta_a
+  std::vector<double> theta_;          ///< per node: theta_a
+  Influences inf_;                     ///< sup seen from the nodes (when the caller has none)
 };
 
 }  // namespace ballista::otm

@@ -18,6 +18,7 @@
 #include "materials/failure.hpp"
 #include "otm/otm_contact.hpp"
 #include "points/cell_bins.hpp"
+#include "points/rcb_partition.hpp"
 #include "points/solver_registry.hpp"
 #include "scenario/material_model.hpp"
 
@@ -148,7 +149,7 @@ OtmSolver::OtmSolver(const Scenario& sc, std::vector<std::unique_ptr<Material>> 
   // points (several ranks).
   nodes_ = initial_nodes(sc, P);
   seeded_points_ = n;
-  pts_.keep_share(comm_);
+  keep_region_share();
   const Index own = points_.size();
   if (adapt_.enabled) Fr_.resize(static_cast<size_t>(own));
   lambda_.assign(static_cast<size_t>(own), Vec3{});
@@ -192,21 +193,32 @@ void OtmSolver::project_node_velocities(Index p0, Index p1, Index a0) {
   // shape functions are a partition of unity); the momentum counts as initial (momentum_change).
   const auto* v = points_.view(kVelocity);
   const auto* mass = points_.real(kMass);
-  const Index count = nodes_.size() - a0;
-  std::vector<Vec3> mom(static_cast<size_t>(count));
-  std::vector<double> m(static_cast<size_t>(count), 0.0);
-  for (Index p = p0; p < p1; ++p)
-    for (Index k = sup_.offset[p]; k < sup_.offset[p + 1]; ++k) {
-      const Index a = sup_.node[k] - a0;
-      if (a < 0) continue;
-      m[a] += sup_.N[k] * mass[p];
-      mom[a] += (sup_.N[k] * mass[p]) * v[p];
-    }
-  sum_over_ranks(m, mom);
-  for (Index a = 0; a < count; ++a) {
-    nodes_.mass[a0 + a] = m[a];
-    nodes_.v[a0 + a] = m[a] > kTinyMass ? (1.0 / m[a]) * mom[a] : Vec3{};
-    momentum0_ += m[a] * nodes_.v[a0 + a];
+  struct In {
+    double N, m;
+    Vec3 v;
+  };
+  struct Acc {
+    double m;
+    Vec3 mom;
+  };
+  std::vector<Acc> sums;
+  otm::fold_nodes<Acc, In>(
+      node_fold_scope(), sums, [&](Index a) { return a >= a0; },
+      [&](Index i, In& in) {
+        const Index p = inf_.owner[i];
+        if (p < p0 || p >= p1) return false;
+        in = In{sup_.N[inf_.entry[i]], mass[p], v[p]};
+        return true;
+      },
+      [](Acc& acc, const In& in) {
+        otm::add_product(acc.m, in.N, in.m);
+        otm::add_product(acc.mom, in.N * in.m, in.v);
+      });
+  for (Index a = a0; a < nodes_.size(); ++a) {
+    const Acc& s = sums[static_cast<size_t>(a)];
+    nodes_.mass[a] = s.m;
+    nodes_.v[a] = s.m > kTinyMass ? (1.0 / s.m) * s.mom : Vec3{};
+    momentum0_ += s.m * nodes_.v[a];
   }
 }
 
@@ -348,7 +360,7 @@ bool OtmSolver::build_current_supports() {
   otm::build_supports(points_.view(kPosition), points_.ints(kNodeGroup), n, nodes_.x.data(), nodes_.body.data(),
                       nodes_.size(), sopt_, scale_.data(), prev_sup_.offset.empty() ? nullptr : &prev_sup_,
                       lambda_.data(), sup_, &candidates_);
-  otm::build_influences(sup_, nodes_.size(), inf_);
+  rebuild_influences();
   retries_ += sup_.retries;
   mean_support_ = sup_.mean_size;
   max_support_ = std::max(max_support_, sup_.max_size);
@@ -407,7 +419,7 @@ void OtmSolver::adapt() {
     if (scenario_.grid.faces[2 * ax + 1] == FaceBC::Free) held_upper[ax] = kInf;
   }
   // Several ranks: a parent's neighbours may be another rank's points (the children's state).
-  const std::optional<FieldStore> around = comm_.distributed() ? neighbourhood_for_splits() : std::nullopt;
+  const std::optional<otm::Neighbourhood> around = comm_.distributed() ? neighbourhood_for_splits() : std::nullopt;
   const Index n_before = points_.size();
   std::int64_t next_id = next_id_;
   const std::vector<Index> parents =
@@ -500,15 +512,31 @@ void OtmSolver::regenerate_nodes() {
   const auto* mass = points_.real(kMass);
   const auto* pbody = points_.ints(kNodeGroup);
   const size_t nb = scenario_.bodies.size();  // groups are numbered below the body count
-  std::vector<Vec3> p_points(nb);  // sum_p m_p v_p per body: the old nodes' momentum, exactly
-  for (Index p = 0; p < n; ++p) {
-    p_points[static_cast<size_t>(pbody[p])] += mass[p] * v[p];
-    for (Index k = sup_.offset[p]; k < sup_.offset[p + 1]; ++k) {
-      const Index a = sup_.node[k];
-      nodes_.mass[a] += sup_.N[k] * mass[p];
-    }
+  // sum_p m_p v_p per body (the old nodes' momentum, exactly), over every rank's points in id order.
+  std::vector<Vec3> p_points(nb);
+  {
+    std::vector<double> ms(mass, mass + n);
+    std::vector<Vec3> vs(v, v + n);
+    std::vector<std::int64_t> gs(pbody, pbody + n);
+    std::vector<Vec3> xs;
+    if (comm_.distributed()) points_in_id_order(xs, vs, gs, &ms);
+    for (size_t q = 0; q < ms.size(); ++q) p_points[static_cast<size_t>(gs[q])] += ms[q] * vs[q];
   }
-  sum_over_ranks(nodes_.mass, p_points);
+  struct In {
+    double N, m;
+  };
+  struct Acc {
+    double m;
+  };
+  std::vector<Acc> lumped;
+  otm::fold_nodes<Acc, In>(
+      node_fold_scope(), lumped, [](Index) { return true; },
+      [&](Index i, In& in) {
+        in = In{sup_.N[inf_.entry[i]], mass[inf_.owner[i]]};
+        return true;
+      },
+      [](Acc& acc, const In& in) { otm::add_product(acc.m, in.N, in.m); });
+  for (Index a = 0; a < nn; ++a) nodes_.mass[a] = lumped[static_cast<size_t>(a)].m;
   // A node outside the old nodes' hull (a lattice vertex beyond the old edge of the material)
   // takes the velocity of its nearest point, v_p = sum N_b v_b: an extrapolation, not an average.
   {
@@ -582,7 +610,7 @@ void OtmSolver::regenerate_nodes() {
   if (!solved) report_failed_solve();
 }
 
-std::optional<FieldStore> OtmSolver::neighbourhood_for_splits() {
+std::optional<otm::Neighbourhood> OtmSolver::neighbourhood_for_splits() {
   // Only when some rank has a point stretched enough to split (split_points' test before its face
   // rules) and the children interpolate their state: then every rank sends every other its points.
   if (!split_state_.interpolate) return std::nullopt;
@@ -600,9 +628,19 @@ std::optional<FieldStore> OtmSolver::neighbourhood_for_splits() {
   for (Index p = 0; p < n; ++p) all[p] = p;
   const std::vector<std::vector<char>> received =
       comm_.all_to_all(std::vector<std::vector<char>>(static_cast<size_t>(comm_.size()), points_.pack(all)));
-  FieldStore around = points_;
+  FieldStore gathered = points_;
   for (int r = 0; r < comm_.size(); ++r)
-    if (r != comm_.rank()) around.append_packed(received[r].data(), received[r].size());
+    if (r != comm_.rank()) gathered.append_packed(received[r].data(), received[r].size());
+  // In id order, the serial run's point order: a parent visits its neighbours in the order the
+  // serial run does, and its children's state is the serial run's to the bit.
+  const auto* id = gathered.ints(kId);
+  std::vector<Index> order(static_cast<size_t>(gathered.size()));
+  for (Index q = 0; q < gathered.size(); ++q) order[q] = q;
+  std::sort(order.begin(), order.end(), [&](Index a, Index b) { return id[a] < id[b]; });
+  otm::Neighbourhood around{gathered.empty_like(), std::vector<Index>(static_cast<size_t>(n))};
+  around.points.append_from(gathered, order);
+  for (Index k = 0; k < gathered.size(); ++k)
+    if (order[k] < n) around.own_at[static_cast<size_t>(order[k])] = k;
   return around;
 }
 
@@ -624,16 +662,18 @@ Index OtmSolver::number_children(const std::vector<Index>& parents, Index first_
   return static_cast<Index>(every.size());
 }
 
-void OtmSolver::points_in_id_order(std::vector<Vec3>& x, std::vector<Vec3>& v, std::vector<std::int64_t>& group) const {
+void OtmSolver::points_in_id_order(std::vector<Vec3>& x, std::vector<Vec3>& v, std::vector<std::int64_t>& group,
+                                   std::vector<double>* mass) const {
   const Index n = points_.size();
   const auto* xp = points_.view(kPosition);
   const auto* vp = points_.view(kVelocity);
+  const auto* mp = points_.real(kMass);
   const auto* gp = points_.ints(kNodeGroup);
   const auto* id = points_.ints(kId);
   std::vector<double> xv;
   std::vector<std::int64_t> ig;
   for (Index p = 0; p < n; ++p) {
-    xv.insert(xv.end(), {xp[p][0], xp[p][1], xp[p][2], vp[p][0], vp[p][1], vp[p][2]});
+    xv.insert(xv.end(), {xp[p][0], xp[p][1], xp[p][2], vp[p][0], vp[p][1], vp[p][2], mp[p]});
     ig.insert(ig.end(), {id[p], gp[p]});
   }
   std::vector<int> counts;
@@ -646,21 +686,20 @@ void OtmSolver::points_in_id_order(std::vector<Vec3>& x, std::vector<Vec3>& v, s
   x.resize(m);
   v.resize(m);
   group.resize(m);
+  if (mass) mass->resize(m);
   for (std::size_t k = 0; k < m; ++k) {
     const std::size_t i = order[k];
-    x[k] = Vec3{{xv[6 * i], xv[6 * i + 1], xv[6 * i + 2]}};
-    v[k] = Vec3{{xv[6 * i + 3], xv[6 * i + 4], xv[6 * i + 5]}};
+    x[k] = Vec3{{xv[7 * i], xv[7 * i + 1], xv[7 * i + 2]}};
+    v[k] = Vec3{{xv[7 * i + 3], xv[7 * i + 4], xv[7 * i + 5]}};
+    if (mass) (*mass)[k] = xv[7 * i + 6];
     group[k] = ig[2 * i + 1];
   }
 }
 
 void OtmSolver::assemble() {
-  // Node-wise gathers over the influence domains: deterministic for any thread count.
+  // Node-wise folds over the influence domains: the same bits for any thread or rank count.
   const ScopedPhase timer(seconds_.assemble);
   const Index nn = nodes_.size();
-  const std::vector<Index>& start = inf_.start;
-  const std::vector<Index>& entry = inf_.entry;
-  const std::vector<Index>& owner = inf_.owner;
   const auto* mass = points_.real(kMass);
   const auto* vol = points_.real(kVolume);
   const auto* stress = points_.view(kStress);
@@ -668,25 +707,46 @@ void OtmSolver::assemble() {
   const std::vector<Vec3>& fext = loads_.total();
   const bool has_ext = !fext.empty();
   const bool axisym = axisym_;
-  for_each_heavy(0, nn, [&](Index a) {
-    double m = 0.0;
+  struct In {
+    double N;
+    Vec3 g;
+    double m, V;
+    Mat3 s;
+    double r;  // x_p[0]: the radius (axisymmetric)
+    Vec3 fext;
+  };
+  struct Acc {
+    double m;
     Vec3 f;
-    for (Index i = start[a]; i < start[a + 1]; ++i) {
-      const Index k = entry[i], p = owner[i];
-      const double N = sup_.N[k];
-      const Vec3& g = sup_.dN[k];
-      m += N * mass[p];
-      // f_a = -V_p sigma_p grad N_a + N_a f_ext,p (seed 003 Algorithm 1 line 9, the weak form 2.7).
-      const Mat3& s = stress[p];
-      const double V = vol[p];
-      for (int r = 0; r < 3; ++r) f[r] -= V * (s(r, 0) * g[0] + s(r, 1) * g[1] + s(r, 2) * g[2]);
-      if (axisym) f[0] -= V * s(2, 2) * N / x[p][0];  // hoop term (per-radian volume)
-      if (has_ext) f += N * fext[p];
-    }
-    nodes_.mass[a] = m;
-    nodes_.f[a] = f;
+  };
+  std::vector<Acc> sums;
+  otm::fold_nodes<Acc, In>(
+      node_fold_scope(), sums, [](Index) { return true; },
+      [&](Index i, In& in) {
+        const Index k = inf_.entry[i], p = inf_.owner[i];
+        in.N = sup_.N[k];
+        in.g = sup_.dN[k];
+        in.m = mass[p];
+        in.V = vol[p];
+        in.s = stress[p];
+        in.r = x[p][0];
+        in.fext = has_ext ? fext[p] : Vec3{};
+        return true;
+      },
+      [axisym, has_ext](Acc& acc, const In& in) {
+        otm::add_product(acc.m, in.N, in.m);
+        // f_a = -V_p sigma_p grad N_a + N_a f_ext,p (seed 003 Algorithm 1 line 9, the weak form 2.7).
+        const Mat3& s = in.s;
+        const Vec3& g = in.g;
+        for (int r = 0; r < 3; ++r)
+          otm::add_product(acc.f[r], -in.V, std::fma(s(r, 2), g[2], std::fma(s(r, 1), g[1], s(r, 0) * g[0])));
+        if (axisym) acc.f[0] -= in.V * s(2, 2) * in.N / in.r;  // hoop term (per-radian volume)
+        if (has_ext) otm::add_product(acc.f, in.N, in.fext);
+      });
+  for_each(0, nn, [&](Index a) {
+    nodes_.mass[a] = sums[static_cast<size_t>(a)].m;
+    nodes_.f[a] = sums[static_cast<size_t>(a)].f;
   });
-  sum_over_ranks(nodes_.mass, nodes_.f);  // several ranks: the sums above are this rank's share
 }
 
 std::vector<std::pair<Index, Vec3>> OtmSolver::light_nodes() const {
@@ -710,17 +770,25 @@ std::vector<std::pair<Index, Vec3>> OtmSolver::light_nodes() const {
     if (nodes_.mass[a] > kTinyMass && nodes_.mass[a] < bar) light.emplace_back(a, Vec3{});
   if (light.empty()) return light;  // the same on every rank: the masses are the ranks' totals
   const auto* v = points_.view(kVelocity);
-  std::vector<Vec3> momentum(light.size());
-  for (size_t i = 0; i < light.size(); ++i) {
-    const Index a = light[i].first;
-    for (Index j = inf_.start[a]; j < inf_.start[a + 1]; ++j) {
-      const Index k = inf_.entry[j], p = inf_.owner[j];
-      momentum[i] += (sup_.N[k] * mass[p]) * v[p];
-    }
-  }
-  std::vector<double> none;
-  sum_over_ranks(none, momentum);
-  for (size_t i = 0; i < light.size(); ++i) light[i].second = (1.0 / nodes_.mass[light[i].first]) * momentum[i];
+  std::vector<char> is_light(static_cast<size_t>(nn), 0);
+  for (const auto& l : light) is_light[static_cast<size_t>(l.first)] = 1;
+  struct In {
+    double N, m;
+    Vec3 v;
+  };
+  struct Acc {
+    Vec3 l;
+  };
+  std::vector<Acc> momentum;
+  otm::fold_nodes<Acc, In>(
+      node_fold_scope(), momentum, [&](Index a) { return is_light[static_cast<size_t>(a)] != 0; },
+      [&](Index i, In& in) {
+        const Index p = inf_.owner[i];
+        in = In{sup_.N[inf_.entry[i]], mass[p], v[p]};
+        return true;
+      },
+      [](Acc& acc, const In& in) { otm::add_product(acc.l, in.N * in.m, in.v); });
+  for (auto& [a, va] : light) va = (1.0 / nodes_.mass[a]) * momentum[static_cast<size_t>(a)].l;
   return light;
 }
 
@@ -742,39 +810,61 @@ std::vector<Vec3> OtmSolver::contact_node_forces() {
     contact_pairs_ = otm::pinball_forces(points_.view(kPosition), points_.real(kVolume), points_.ints(kNodeGroup),
                                          stiff.data(), n, contact_penalty_, {dim_, axisym_}, fp);
   } else {
-    // Several ranks: every rank's balls, gathered in rank order; this rank keeps its points' forces.
+    // Several ranks: every rank's balls, gathered in id order (the serial run's point order, which
+    // each point's sum over its partners follows); this rank keeps its points' forces.
     const auto* xp = points_.view(kPosition);
     const auto* vol = points_.real(kVolume);
     const auto* group = points_.ints(kNodeGroup);
-    std::vector<Vec3> x(xp, xp + n);
-    std::vector<std::int64_t> g(group, group + n);
+    const auto* id = points_.ints(kId);
     std::vector<double> vs;
-    for (Index p = 0; p < n; ++p) vs.insert(vs.end(), {vol[p], stiff[p]});
-    gather_points(comm_, x, g);
+    std::vector<std::int64_t> ig;
+    for (Index p = 0; p < n; ++p) {
+      vs.insert(vs.end(), {xp[p][0], xp[p][1], xp[p][2], vol[p], stiff[p]});
+      ig.insert(ig.end(), {id[p], group[p]});
+    }
     std::vector<int> counts;
     vs = comm_.all_gather_reals(vs, counts);
-    const Index all = static_cast<Index>(x.size());
+    ig = comm_.all_gather(ig, counts);
+    const Index all = static_cast<Index>(ig.size() / 2);
+    std::vector<Index> order(static_cast<size_t>(all));
+    for (Index q = 0; q < all; ++q) order[q] = q;
+    std::sort(order.begin(), order.end(), [&](Index a, Index b) { return ig[2 * a] < ig[2 * b]; });
+    std::vector<Vec3> x(static_cast<size_t>(all));
+    std::vector<std::int64_t> g(static_cast<size_t>(all)), ids(static_cast<size_t>(all));
     std::vector<double> va(static_cast<size_t>(all)), sa(static_cast<size_t>(all));
-    for (Index q = 0; q < all; ++q) {
-      va[q] = vs[static_cast<size_t>(2 * q)];
-      sa[q] = vs[static_cast<size_t>(2 * q + 1)];
+    for (Index k = 0; k < all; ++k) {
+      const size_t q = static_cast<size_t>(order[k]);
+      x[k] = Vec3{{vs[5 * q], vs[5 * q + 1], vs[5 * q + 2]}};
+      va[k] = vs[5 * q + 3];
+      sa[k] = vs[5 * q + 4];
+      ids[k] = ig[2 * q];
+      g[k] = ig[2 * q + 1];
     }
-    Index first = 0;
-    for (int r = 0; r < comm_.rank(); ++r) first += counts[r] / 2;
     std::vector<Vec3> fall;
     contact_pairs_ = otm::pinball_forces(x.data(), va.data(), g.data(), sa.data(), all, contact_penalty_,
                                          {dim_, axisym_}, fall);
-    fp.assign(fall.begin() + first, fall.begin() + first + n);
+    fp.resize(static_cast<size_t>(n));
+    for (Index p = 0; p < n; ++p)
+      fp[p] = fall[static_cast<size_t>(std::lower_bound(ids.begin(), ids.end(), id[p]) - ids.begin())];
   }
   std::vector<Vec3> f(static_cast<size_t>(nn), Vec3{});
   if (contact_pairs_ == 0) return f;
-  for_each(0, nn, [&](Index a) {
-    Vec3 s;
-    for (Index i = inf_.start[a]; i < inf_.start[a + 1]; ++i) s += sup_.N[inf_.entry[i]] * fp[inf_.owner[i]];
-    f[a] = s;
-  });
-  std::vector<double> no_scalars;
-  sum_over_ranks(no_scalars, f);  // several ranks: this rank's points' share
+  struct In {
+    double N;
+    Vec3 f;
+  };
+  struct Acc {
+    Vec3 f;
+  };
+  std::vector<Acc> sums;
+  otm::fold_nodes<Acc, In>(
+      node_fold_scope(), sums, [](Index) { return true; },
+      [&](Index i, In& in) {
+        in = In{sup_.N[inf_.entry[i]], fp[inf_.owner[i]]};
+        return true;
+      },
+      [](Acc& acc, const In& in) { otm::add_product(acc.f, in.N, in.f); });
+  for (Index a = 0; a < nn; ++a) f[a] = sums[static_cast<size_t>(a)].f;
   return f;
 }
 
@@ -867,30 +957,29 @@ void OtmSolver::row_sum_node_bounds(double c) {
     for (Index kk = sup_.offset[p]; kk < sup_.offset[p + 1]; ++kk) s += g(p, kk);
     G[p] = s;
   });
-  omega2_.assign(static_cast<size_t>(nn), 0.0);
   // The node's sums: m_a and sum_p m_p G_p g_a,p.
-  auto node_sums = [&](Index a, double& k, double& m) {
-    for (Index i = inf_.start[a]; i < inf_.start[a + 1]; ++i) {
-      const Index kk = inf_.entry[i], p = inf_.owner[i];
-      k += mass[p] * G[p] * g(p, kk);
-      m += sup_.N[kk] * mass[p];
-    }
+  struct In {
+    double m, G, g, N;
   };
-  if (!comm_.distributed()) {
-    for_each_heavy(0, nn, [&](Index a) {
-      double k = 0.0, m = 0.0;
-      node_sums(a, k, m);
-      if (m > kTinyMass) omega2_[a] = k / m * c * c;
-    });
-    return;
-  }
-  // Several ranks: this rank's points' share of the sums, added over the ranks.
-  std::vector<double> km(static_cast<size_t>(2 * nn));
-  for_each_heavy(0, nn, [&](Index a) { node_sums(a, km[static_cast<size_t>(2 * a)], km[static_cast<size_t>(2 * a + 1)]); });
-  sum_over_ranks(km);
+  struct Acc {
+    double k, m;
+  };
+  std::vector<Acc> sums;
+  otm::fold_nodes<Acc, In>(
+      node_fold_scope(), sums, [](Index) { return true; },
+      [&](Index i, In& in) {
+        const Index kk = inf_.entry[i], p = inf_.owner[i];
+        in = In{mass[p], G[p], g(p, kk), sup_.N[kk]};
+        return true;
+      },
+      [](Acc& acc, const In& in) {
+        otm::add_product(acc.k, in.m * in.G, in.g);
+        otm::add_product(acc.m, in.N, in.m);
+      });
+  omega2_.assign(static_cast<size_t>(nn), 0.0);
   for_each(0, nn, [&](Index a) {
-    const double k = km[static_cast<size_t>(2 * a)], m = km[static_cast<size_t>(2 * a + 1)];
-    if (m > kTinyMass) omega2_[a] = k / m * c * c;
+    const Acc& s = sums[static_cast<size_t>(a)];
+    if (s.m > kTinyMass) omega2_[a] = s.k / s.m * c * c;
   });
 }
 
@@ -920,14 +1009,22 @@ void OtmSolver::symmetric_node_bounds(double c) {
         hoop[p] = 0;
   }
   auto g = [&](Index p, Index kk) { return coupling(sup_, kk, x[p], hoop[p] != 0); };
-  omega2_.assign(static_cast<size_t>(nn), 0.0);
-  std::vector<double> m(static_cast<size_t>(nn), 0.0);
-  for_each_heavy(0, nn, [&](Index a) {
-    double s = 0.0;
-    for (Index i = inf_.start[a]; i < inf_.start[a + 1]; ++i) s += sup_.N[inf_.entry[i]] * mass[inf_.owner[i]];
-    m[a] = s;
-  });
-  sum_over_ranks(m);
+  struct MassIn {
+    double N, m;
+  };
+  struct Sum {
+    double s;
+  };
+  std::vector<Sum> msum;
+  otm::fold_nodes<Sum, MassIn>(
+      node_fold_scope(), msum, [](Index) { return true; },
+      [&](Index i, MassIn& in) {
+        in = MassIn{sup_.N[inf_.entry[i]], mass[inf_.owner[i]]};
+        return true;
+      },
+      [](Sum& acc, const MassIn& in) { otm::add_product(acc.s, in.N, in.m); });
+  std::vector<double> m(static_cast<size_t>(nn));
+  for (Index a = 0; a < nn; ++a) m[a] = msum[static_cast<size_t>(a)].s;
   std::vector<double> H(static_cast<size_t>(n), 0.0);
   for_each_heavy(0, n, [&](Index p) {
     double s = 0.0;
@@ -935,30 +1032,22 @@ void OtmSolver::symmetric_node_bounds(double c) {
       if (const Index b = sup_.node[kk]; m[b] > kTinyMass) s += g(p, kk) / std::sqrt(m[b]);
     H[p] = s;
   });
-  std::vector<double> k(static_cast<size_t>(nn), 0.0);
-  for_each_heavy(0, nn, [&](Index a) {
-    double s = 0.0;
-    for (Index i = inf_.start[a]; i < inf_.start[a + 1]; ++i) {
-      const Index kk = inf_.entry[i], p = inf_.owner[i];
-      s += mass[p] * g(p, kk) * H[p];
-    }
-    k[a] = s;
-  });
-  sum_over_ranks(k);
+  struct RowIn {
+    double m, g, H;
+  };
+  std::vector<Sum> k;
+  otm::fold_nodes<Sum, RowIn>(
+      node_fold_scope(), k, [](Index) { return true; },
+      [&](Index i, RowIn& in) {
+        const Index kk = inf_.entry[i], p = inf_.owner[i];
+        in = RowIn{mass[p], g(p, kk), H[p]};
+        return true;
+      },
+      [](Sum& acc, const RowIn& in) { otm::add_product(acc.s, in.m * in.g, in.H); });
+  omega2_.assign(static_cast<size_t>(nn), 0.0);
   for_each(0, nn, [&](Index a) {
-    if (m[a] > kTinyMass) omega2_[a] = k[a] / std::sqrt(m[a]) * c * c;
+    if (m[a] > kTinyMass) omega2_[a] = k[static_cast<size_t>(a)].s / std::sqrt(m[a]) * c * c;
   });
-}
-
-void OtmSolver::sum_over_ranks(std::vector<double>& scalars, std::vector<Vec3>& vectors) const {
-  if (!comm_.distributed()) return;
-  std::vector<double> packed(scalars);
-  packed.reserve(scalars.size() + 3 * vectors.size());
-  for (const Vec3& v : vectors) packed.insert(packed.end(), {v[0], v[1], v[2]});
-  sum_over_ranks(packed);
-  std::copy(packed.begin(), packed.begin() + static_cast<std::ptrdiff_t>(scalars.size()), scalars.begin());
-  const double* q = packed.data() + scalars.size();
-  for (std::size_t i = 0; i < vectors.size(); ++i) vectors[i] = Vec3{{q[3 * i], q[3 * i + 1], q[3 * i + 2]}};
 }
 
 void OtmSolver::step(double dt) {
@@ -1106,9 +1195,11 @@ void OtmSolver::step_local(double dt) {
   }, ew);
   external_work_ += comm_.sum(ew[0]);
   // Every rank averages (its nodal sums are collective), unless a point failed on any rank.
-  if (fbar_on_ && !comm_.any(bad.load() < n))
+  if (fbar_on_ && !comm_.any(bad.load() < n)) {
+    const otm::NodeFoldScope scope = node_fold_scope();
     fbar_.apply(sup_, nn, dim_ == 2 && !axisym_, dt,
-                {n, L, F, vol, vol0, extent, adapt_.enabled ? Fr_.data() : nullptr}, comm_);
+                {n, L, F, vol, vol0, extent, adapt_.enabled ? Fr_.data() : nullptr}, &scope);
+  }
   dt_prev_ = dt;
   time_ += dt;
   ++steps_;
@@ -1185,7 +1276,35 @@ void OtmSolver::drop_orphan_nodes() {
   compact(nodes_.body);
   for (std::int32_t& a : sup_.node) a = renumber[a];
   prev_sup_ = otm::Supports{};
+  rebuild_influences();
+}
+
+void OtmSolver::keep_region_share() {
+  // Several ranks: each keeps the points of its region of a recursive coordinate bisection
+  // (points/rcb_partition.hpp), in their seeded order. Any share is correct (a point finds its nodes
+  // on its own rank); a compact one keeps the nodes whose sums cross the ranks (reached by several
+  // ranks' points, otm/node_sums.hpp) to a thin layer at the cuts.
+  if (!comm_.distributed()) return;
+  const Index n = points_.size();
+  const int me = comm_.rank(), ranks = comm_.size();
+  const Index lo = n * me / ranks, hi = n * (me + 1) / ranks;
+  RcbPartition rcb(comm_, dim_);
+  const std::vector<int> dest = rcb.partition(points_.view(kPosition) + lo, points_.ints(kId) + lo, hi - lo);
+  std::vector<int> counts;
+  const std::vector<std::int64_t> owner =
+      comm_.all_gather(std::vector<std::int64_t>(dest.begin(), dest.end()), counts);
+  std::vector<char> keep(static_cast<size_t>(n), 0);
+  for (Index p = 0; p < n; ++p) keep[p] = owner[static_cast<size_t>(p)] == me ? 1 : 0;
+  pts_.keep_share(comm_, keep);
+}
+
+void OtmSolver::rebuild_influences() {
   otm::build_influences(sup_, nodes_.size(), inf_);
+  sharing_.update(comm_, inf_, nodes_.size());
+}
+
+otm::NodeFoldScope OtmSolver::node_fold_scope() const {
+  return otm::NodeFoldScope{&comm_, &inf_, points_.ints(kId), &sharing_, nodes_.size()};
 }
 
 EnergyTotals OtmSolver::energies() const {

@@ -22,13 +22,16 @@
 // the solver reports that drift (docs/validation.md).
 //
 // Several MPI ranks: every rank holds every node (the nodes are few beside the points' supports),
-// and a contiguous share of the points, which never migrate (any share works, since a point finds
-// its nodes on its own rank). The node sums (lumped masses, forces, the stable step's bounds, the
-// F-bar's averages, the projections) add each rank's points' share, and the ranks' shares are added
-// in rank order (Communicator::sum_in_rank_order), so every rank updates bitwise the same nodes;
-// the point updates, the supports and the material are each rank's own. Pinball contact gathers
-// every point's ball; adaptivity gathers every point where one may split (the children's state
-// reads the parent's neighbours) and re-generates the nodes from every rank's points.
+// and a share of the points (its region of a coordinate bisection of the seeding), which never
+// migrate (any share works, since a point finds its nodes on its own rank). The node sums (lumped
+// masses, forces, the stable step's bounds, the F-bar's averages, the projections) are folds over
+// each node's points in the serial run's order: a node reached by one rank's points is folded
+// there, a node reached by several ranks' points is folded by one rank from every rank's inputs
+// merged in id order (otm/node_sums.hpp), so every rank updates the same nodes, bitwise the serial
+// run's; the point updates, the supports and the material are each rank's own. Pinball contact
+// gathers every point's ball in id order; adaptivity gathers every point where one may split (the
+// children's state reads the parent's neighbours, in id order) and re-generates the nodes from
+// every rank's points.
 //
 // Rigid walls (seed 003 ch. 4) at the grid box faces marked `wall`: `constraint` (a node that would
 // cross the wall is stopped on it: zero normal displacement into it) or `penalty` (a spring
@@ -45,6 +48,7 @@
 #include "otm/otm_fbar.hpp"
 #include "otm/otm_nodes.hpp"
 #include "otm/otm_params.hpp"
+#include "otm/node_sums.hpp"
 #include "otm/otm_support.hpp"
 #include "points/point_loads.hpp"
 #include "points/point_set.hpp"
@@ -124,22 +128,26 @@ class OtmSolver final : public Solver {
 
   /// The step on this rank; step() makes the ranks agree on a failure, then drops orphan nodes.
   void step_local(double dt);
-  /// Several ranks: this rank's nodal partial sums (packed, every node) become the totals.
-  void sum_over_ranks(std::vector<double>& packed) const { comm_.sum_in_rank_order(packed.data(), packed.size()); }
-  /// The same for per-node scalars and vectors together (one message).
-  void sum_over_ranks(std::vector<double>& scalars, std::vector<Vec3>& vectors) const;
+  /// Several ranks: keeps this rank's region of the seeded points (at the start).
+  void keep_region_share();
+  /// The influence domains of the current supports, and which ranks' points reach each node.
+  void rebuild_influences();
+  /// What the node sums (otm/node_sums.hpp) read: bitwise the serial run's on any rank count.
+  otm::NodeFoldScope node_fold_scope() const;
   /// True if a body still waits for its activation on any rank.
   bool pending_anywhere() const;
   /// Several ranks: the support statistics of every rank's points (summary), after a step.
   void reduce_support_statistics();
-  /// Several ranks, adaptivity: this rank's points followed by every other rank's, if a point
-  /// anywhere may split (a parent's neighbours for its children's state); else none.
-  std::optional<FieldStore> neighbourhood_for_splits();
+  /// Several ranks, adaptivity: every rank's points in id order, if a point anywhere may split (a
+  /// parent's neighbours for its children's state); else none.
+  std::optional<otm::Neighbourhood> neighbourhood_for_splits();
   /// Several ranks: ids for the second children (points first_child, ...) of `parents`, numbered
   /// over every rank's parents in their ids' order as a serial run numbers them; the count of all.
   Index number_children(const std::vector<Index>& parents, Index first_child);
-  /// Several ranks: every rank's points' positions, velocities and node sets, in id order.
-  void points_in_id_order(std::vector<Vec3>& x, std::vector<Vec3>& v, std::vector<std::int64_t>& group) const;
+  /// Several ranks: every rank's points' positions, velocities, node sets and (if asked) masses, in
+  /// id order.
+  void points_in_id_order(std::vector<Vec3>& x, std::vector<Vec3>& v, std::vector<std::int64_t>& group,
+                          std::vector<double>* mass = nullptr) const;
   /// omega2_ per node (stable_dt; c the largest signal speed): from the rows of M^-1 K
   /// (otm.step_bound: gershgorin) or of M^-1/2 K M^-1/2 (symmetric).
   void row_sum_node_bounds(double c);
@@ -200,6 +208,7 @@ class OtmSolver final : public Solver {
   double wall_force_ = 0.0;    ///< N, last step's normal wall reaction
   Vec3 momentum0_;             ///< initial nodal momentum (per radian / per metre)
   otm::Influences inf_;          ///< influence domains of sup_ (node-wise gathers)
+  otm::NodeSharing sharing_;     ///< several ranks: which ranks' points reach each node
   /// s, wall time per phase of the step (timing_values; bench/otm_taylor_bench).
   struct PhaseSeconds {
     double supports = 0, assemble = 0, nodes = 0, points = 0, material = 0, adapt = 0, stable_dt = 0;

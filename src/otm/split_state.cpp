@@ -75,8 +75,15 @@ std::vector<SplitIncrement> split_increments(const FieldStore& pts, const std::v
       if (dim == 2) dx[2] = 0.0;
       if (dot(dx, dx) > r2) return;
       nb.push_back(q);
-      dxs.push_back(dx);
     });
+    // In point order, not the bins' (whose width is the largest radius among the parents at hand, so
+    // their order depends on which points split together: on several ranks, each rank's own).
+    std::sort(nb.begin(), nb.end());
+    for (const Index q : nb) {
+      Vec3 dx = x[q] - x[p];
+      if (dim == 2) dx[2] = 0.0;
+      dxs.push_back(dx);
+    }
     // Weighted least squares: G = M^-1 sum w dx df with M = sum w dx dx^T, so that G . d =
     // sum c_q df_q with c_q = w_q dx_q . (M^-1 d): one solve per parent.
     Mat3 M = dim == 2 ? Mat3::diag(0.0, 0.0, 1.0) : Mat3{};

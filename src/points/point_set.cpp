@@ -151,9 +151,19 @@ void PointSet::keep(const std::vector<char>& keep) {
   groups_dirty_ = true;
 }
 
+void PointSet::keep_share(const Communicator& comm, const std::vector<char>& keep) {
+  if (!comm.distributed()) return;
+  const Index np = pending_.size();
+  keep_with_pending(keep, np * comm.rank() / comm.size(), np * (comm.rank() + 1) / comm.size());
+}
+
 void PointSet::keep_ranges(Index first, Index last, Index first_pending, Index last_pending) {
   std::vector<char> keep(static_cast<std::size_t>(points_.size()), 0);
   std::fill(keep.begin() + first, keep.begin() + last, 1);
+  keep_with_pending(std::move(keep), first_pending, last_pending);
+}
+
+void PointSet::keep_with_pending(std::vector<char> keep, Index first_pending, Index last_pending) {
   points_.compact(keep);
   keep.assign(static_cast<std::size_t>(pending_.size()), 0);
   std::fill(keep.begin() + first_pending, keep.begin() + last_pending, 1);

@@ -63,6 +63,9 @@ class PointSet {
   /// Several ranks: keeps the active points with keep[p] != 0 (a solver's own partition of every
   /// rank's full seeding: peridynamics), without booking anything as removed. No pending points.
   void keep(const std::vector<char>& keep);
+  /// Several ranks: keeps the active points with keep[p] != 0, in their order, and the contiguous
+  /// share of the pending points (as keep_share).
+  void keep_share(const Communicator& comm, const std::vector<char>& keep);
   const Communicator& communicator() const { return comm_; }
 
   // ---- activation --------------------------------------------------------------------------
@@ -158,6 +161,7 @@ class PointSet {
  private:
   /// Keeps active points [first, last) and pending points [first_pending, last_pending).
   void keep_ranges(Index first, Index last, Index first_pending, Index last_pending);
+  void keep_with_pending(std::vector<char> keep, Index first_pending, Index last_pending);
   /// Several ranks: the checkpoint was written on this many ranks (each rank's share is in it).
   bool written_on_as_many_ranks(const StateArchive& archive) const;
   /// The removal and insertion bookkeeping from a checkpoint: this rank's own (`own`), else the

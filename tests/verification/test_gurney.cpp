@@ -33,8 +33,9 @@ namespace {
 constexpr double kCharge = 10.0e-3;  // m, explosive thickness
 constexpr double kRhoC = 1630.0, kRhoM = 7850.0;
 
-/// The sandwich deck: MPM at 0.5 mm cells, or OTM (one node set over both bodies, adaptivity) at 1 mm.
-std::string deck(double plate, bool otm = false) {
+/// The sandwich deck at 0.5 mm cells: MPM, or OTM (one node set over both bodies, adaptivity).
+/// `lit`: the detonation time, s (a shift of 1e-13 s draws another round-off of the same run).
+std::string deck(double plate, bool otm = false, double lit = 0.0) {
   const char* solver = otm ? "solver: otm, dimension: plane_strain, end_time: 30.0e-6, cfl: 0.3"
                            : "solver: mpm, dimension: plane_strain, end_time: 30.0e-6, cfl: 0.3, on_particle_exit: delete";
   const char* section = otm ? "otm: {nodes: shared, adaptivity: on}" : "mpm: {shape_function: gimp, update: musl, flip: 0.99}";
@@ -49,9 +50,9 @@ grid: {lower: [-0.06, 0], upper: [0.08, 1.0e-3], cell_size: %g, boundary: {y_min
 bodies:
   - {name: charge, material: tnt, shape: {type: box, lower: [0, 0], upper: [%.9g, 1.0e-3]}, particles_per_cell: 2}
   - {name: plate, material: steel, shape: {type: box, lower: [%.9g, 0], upper: [%.9g, 1.0e-3]}, particles_per_cell: 2}
-detonation: {points: [{position: [0, 0.5e-3], time: 0}]}
+detonation: {points: [{position: [0, 0.5e-3], time: %g}]}
 )",
-                solver, section, otm ? 1.0e-3 : 0.5e-3, kCharge, kCharge, kCharge + plate);
+                solver, section, 0.5e-3, kCharge, kCharge, kCharge + plate, lit);
   return buf;
 }
 
@@ -75,9 +76,9 @@ struct PlateResult {
   double lighting_error = 0.0;  // m, worst |t D - distance from the detonator|
 };
 
-PlateResult drive(double m_over_c, bool otm = false) {
+PlateResult drive(double m_over_c, bool otm = false, double lit = 0.0) {
   const double plate = m_over_c * kRhoC * kCharge / kRhoM;
-  const Scenario sc = parse_deck(deck(plate, otm), "gurney_sandwich.yaml");
+  const Scenario sc = parse_deck(deck(plate, otm, lit), "gurney_sandwich.yaml");
   auto solver = make_solver(sc);
   PlateResult r;
   {
@@ -123,19 +124,26 @@ TEST(GurneySandwich, PlateReachesTheGurneyVelocity) {
 // The same sandwich with the OTM solver (the shared material library and program burn): the two
 // bodies share one node set (otm.nodes: shared; with a node set each they would not interact)
 // and adaptivity keeps the expanding products resolved (without it their LME solves fail at
-// ~4 us, the gas stretched 12x). M/C = 1 at 1 mm cells: measured +7.2 % here (+3.7 % by
-// `ballista run`, whose steps land on the output times: the node re-generations make the coarse
-// run sensitive to the step sequence; +8.8 % at 0.5 mm, +0.7 % at 0.25 mm; docs/validation.md).
-// Energy: the worst residual over the run is 3.4 % of the chemical energy (1.5 % at the end);
-// what the re-generations leave unbooked (the momentum form's re-lumping, as in the 750 m/s
-// Taylor bar) is first order in h, so the bound is 5 % at this coarse size, the velocity's 10 %.
+// ~4 us, the gas stretched 12x). M/C = 1 at 0.5 mm cells. The node re-generations make a coarse
+// run sensitive to round-off: the detonation time shifted by 1e-13 s, five draws, gave +3.4 to
+// +8.1 % at 0.5 mm and +3.4 to +15.1 % at 1 mm (so 1 mm cannot carry a 10 % bound); +0.7 % at
+// 0.25 mm (docs/validation.md). Asserted: the mean of three such draws at 0.5 mm within the
+// issue's 10 % (their spread, 1.9 % standard deviation, leaves the mean 4 deviations inside).
+// Energy: what the re-generations leave unbooked (the momentum form's re-lumping, as in the 750 m/s
+// Taylor bar) is first order in h: the worst residual over the run is asserted below 5 % of the
+// chemical energy.
 TEST(GurneySandwich, OtmPlateReachesTheGurneyVelocity) {
-  const PlateResult r = drive(1.0, true);
   const double gurney = gurney_open_sandwich(2440.0, 1.0);
-  std::printf("OTM open-faced sandwich, M/C = 1: plate %.0f m/s, Gurney %.0f m/s (%.1f %%), energy residual %.4f\n",
-              r.velocity, gurney, 100.0 * (r.velocity / gurney - 1.0), r.residual);
-  EXPECT_NEAR(r.velocity / gurney, 1.0, 0.10);
-  EXPECT_LT(r.residual, 0.05);
+  double mean = 0.0;
+  for (const double lit : {0.0, 1e-13, 2e-13}) {
+    const PlateResult r = drive(1.0, true, lit);
+    std::printf("OTM open-faced sandwich, M/C = 1, lit at %g s: plate %.0f m/s, Gurney %.0f m/s (%.1f %%), energy "
+                "residual %.4f\n",
+                lit, r.velocity, gurney, 100.0 * (r.velocity / gurney - 1.0), r.residual);
+    mean += r.velocity / 3.0;
+    EXPECT_LT(r.residual, 0.05);
+  }
+  EXPECT_NEAR(mean / gurney, 1.0, 0.10);
 }
 
 // Decks that would run without the explosive doing what they say are refused: under OTM with a
