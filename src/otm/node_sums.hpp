@@ -8,10 +8,10 @@
 // (what an MPI reduction does) gives other bits than the serial fold. Here instead:
 //   - a node whose points are all on one rank (most nodes) is folded there, entry by entry, as the
 //     serial run folds it;
-//   - a node reached by the points of several ranks ("shared") gets the inputs of every entry from
-//     every rank, merged in the points' id order (the serial run's point order: ids follow the
-//     points' places while bodies arriving later come after the others in the deck), and one rank
-//     folds them with the same fold;
+//   - a node reached by the points of several ranks ("shared") is folded by the lowest of them,
+//     from every such rank's entries merged in the points' id order (the serial run's point order:
+//     ids follow the points' places while bodies arriving later come after the others in the
+//     deck), with the same fold;
 //   - each node's result goes from the rank that folded it to every rank (every rank holds every
 //     node: docs/parallel.md).
 // The fold is one function for both paths, fed the same inputs, and it writes each multiply-add

@@ -522,21 +522,7 @@ void OtmSolver::regenerate_nodes() {
     if (comm_.distributed()) points_in_id_order(xs, vs, gs, &ms);
     for (size_t q = 0; q < ms.size(); ++q) p_points[static_cast<size_t>(gs[q])] += ms[q] * vs[q];
   }
-  struct In {
-    double N, m;
-  };
-  struct Acc {
-    double m;
-  };
-  std::vector<Acc> lumped;
-  otm::fold_nodes<Acc, In>(
-      node_fold_scope(), lumped, [](Index) { return true; },
-      [&](Index i, In& in) {
-        in = In{sup_.N[inf_.entry[i]], mass[inf_.owner[i]]};
-        return true;
-      },
-      [](Acc& acc, const In& in) { otm::add_product(acc.m, in.N, in.m); });
-  for (Index a = 0; a < nn; ++a) nodes_.mass[a] = lumped[static_cast<size_t>(a)].m;
+  nodes_.mass = lumped_masses();
   // A node outside the old nodes' hull (a lattice vertex beyond the old edge of the material)
   // takes the velocity of its nearest point, v_p = sum N_b v_b: an extrapolation, not an average.
   {
@@ -1009,22 +995,7 @@ void OtmSolver::symmetric_node_bounds(double c) {
         hoop[p] = 0;
   }
   auto g = [&](Index p, Index kk) { return coupling(sup_, kk, x[p], hoop[p] != 0); };
-  struct MassIn {
-    double N, m;
-  };
-  struct Sum {
-    double s;
-  };
-  std::vector<Sum> msum;
-  otm::fold_nodes<Sum, MassIn>(
-      node_fold_scope(), msum, [](Index) { return true; },
-      [&](Index i, MassIn& in) {
-        in = MassIn{sup_.N[inf_.entry[i]], mass[inf_.owner[i]]};
-        return true;
-      },
-      [](Sum& acc, const MassIn& in) { otm::add_product(acc.s, in.N, in.m); });
-  std::vector<double> m(static_cast<size_t>(nn));
-  for (Index a = 0; a < nn; ++a) m[a] = msum[static_cast<size_t>(a)].s;
+  const std::vector<double> m = lumped_masses();
   std::vector<double> H(static_cast<size_t>(n), 0.0);
   for_each_heavy(0, n, [&](Index p) {
     double s = 0.0;
@@ -1034,6 +1005,9 @@ void OtmSolver::symmetric_node_bounds(double c) {
   });
   struct RowIn {
     double m, g, H;
+  };
+  struct Sum {
+    double s;
   };
   std::vector<Sum> k;
   otm::fold_nodes<Sum, RowIn>(
@@ -1277,6 +1251,28 @@ void OtmSolver::drop_orphan_nodes() {
   for (std::int32_t& a : sup_.node) a = renumber[a];
   prev_sup_ = otm::Supports{};
   rebuild_influences();
+}
+
+std::vector<double> OtmSolver::lumped_masses() const {
+  // m_a = sum_p N_a(x_p) m_p (seed 003 eq. 2.13).
+  const auto* mass = points_.real(kMass);
+  struct In {
+    double N, m;
+  };
+  struct Acc {
+    double m;
+  };
+  std::vector<Acc> sums;
+  otm::fold_nodes<Acc, In>(
+      node_fold_scope(), sums, [](Index) { return true; },
+      [&](Index i, In& in) {
+        in = In{sup_.N[inf_.entry[i]], mass[inf_.owner[i]]};
+        return true;
+      },
+      [](Acc& acc, const In& in) { otm::add_product(acc.m, in.N, in.m); });
+  std::vector<double> m(sums.size());
+  for (std::size_t a = 0; a < sums.size(); ++a) m[a] = sums[a].m;
+  return m;
 }
 
 void OtmSolver::keep_region_share() {

@@ -154,6 +154,8 @@ class OtmSolver final : public Solver {
   void symmetric_node_bounds(double c);
   /// Lumped masses and residual forces from the current supports.
   void assemble();
+  /// Each node's lumped mass from the current supports (the fold assemble() also makes).
+  std::vector<double> lumped_masses() const;
   /// Nodes whose lumped mass is a negligible share of any point's (outside the body, reached only
   /// by the tails of the shape functions), with the velocity the points give them: the
   /// mass-weighted projection of Li, Habbal & Ortiz (2010). Empty if there are none.
