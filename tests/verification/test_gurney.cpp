@@ -25,88 +25,16 @@
 #include "materials/explosive_eos.hpp"
 #include "run/simulation.hpp"
 #include "verification/gurney_cylinder_support.hpp"
+#include "verification/gurney_sandwich_support.hpp"
 #include "verification/verification_support.hpp"
 
 namespace ballista::test_gurney {
 namespace {
 
-constexpr double kCharge = 10.0e-3;  // m, explosive thickness
-constexpr double kRhoC = 1630.0, kRhoM = 7850.0;
-
-/// The sandwich deck at 0.5 mm cells: MPM, or OTM (one node set over both bodies, adaptivity).
-/// `lit`: the detonation time, s (a shift of 1e-13 s draws another round-off of the same run).
-std::string deck(double plate, bool otm = false, double lit = 0.0) {
-  const char* solver = otm ? "solver: otm, dimension: plane_strain, end_time: 30.0e-6, cfl: 0.3"
-                           : "solver: mpm, dimension: plane_strain, end_time: 30.0e-6, cfl: 0.3, on_particle_exit: delete";
-  const char* section = otm ? "otm: {nodes: shared, adaptivity: on}" : "mpm: {shape_function: gimp, update: musl, flip: 0.99}";
-  char buf[2048];
-  std::snprintf(buf, sizeof buf, R"(
-simulation: {%s}
-materials:
-  tnt: {preset: tnt}
-  steel: {model: linear_elastic, density: 7850, bulk_modulus: 160.0e9, shear_modulus: 79.0e9}
-%s
-grid: {lower: [-0.06, 0], upper: [0.08, 1.0e-3], cell_size: %g, boundary: {y_min: symmetry, y_max: symmetry}}
-bodies:
-  - {name: charge, material: tnt, shape: {type: box, lower: [0, 0], upper: [%.9g, 1.0e-3]}, particles_per_cell: 2}
-  - {name: plate, material: steel, shape: {type: box, lower: [%.9g, 0], upper: [%.9g, 1.0e-3]}, particles_per_cell: 2}
-detonation: {points: [{position: [0, 0.5e-3], time: %g}]}
-)",
-                solver, section, 0.5e-3, kCharge, kCharge, kCharge + plate, lit);
-  return buf;
-}
-
-/// Centre-of-mass velocity along x of body `b` (the plate, the case), m/s.
-double mean_x_velocity(const FieldStore& pts, int b) {
-  const auto* v = pts.view<Vec3>("v");
-  const auto* m = pts.real("mass");
-  const auto* body = pts.ints("body");
-  double mv = 0.0, mm = 0.0;
-  for (Index p = 0; p < pts.size(); ++p)
-    if (body[p] == b) {
-      mv += m[p] * v[p][0];
-      mm += m[p];
-    }
-  return mv / mm;
-}
-
-struct PlateResult {
-  double velocity = 0.0;   // m/s, the plate's mean x velocity at the end
-  double residual = 0.0;   // largest energy residual of the run over the chemical energy released
-  double lighting_error = 0.0;  // m, worst |t D - distance from the detonator|
-};
-
-PlateResult drive(double m_over_c, bool otm = false, double lit = 0.0) {
-  const double plate = m_over_c * kRhoC * kCharge / kRhoM;
-  const Scenario sc = parse_deck(deck(plate, otm, lit), "gurney_sandwich.yaml");
-  auto solver = make_solver(sc);
-  PlateResult r;
-  {
-    const FieldStore& pts = solver->points();
-    const auto* t = pts.real("lighting_time");
-    const auto* x = pts.view<Vec3>("x");
-    const auto* body = pts.ints("body");
-    for (Index p = 0; p < pts.size(); ++p)
-      if (body[p] == 0) {
-        const double d = std::hypot(x[p][0], x[p][1] - 0.5e-3);
-        r.lighting_error = std::max(r.lighting_error, std::abs(t[p] * 6930.0 - d));
-      }
-  }
-  const EnergyTotals e0 = solver->energies();
-  double worst = 0.0, chemical = 0.0;
-  while (solver->time() < sc.simulation.end_time) {
-    solver->step(std::min(solver->stable_dt(), sc.simulation.end_time - solver->time() + 1e-15));
-    const EnergyTotals e = solver->energies();
-    chemical = e.chemical;
-    worst = std::max(worst, std::abs(e.total() - e0.total()));
-  }
-  // Every point has burnt: the chemical energy is Q V0 of the whole charge (per metre of depth),
-  // Q the CJ state's detonation energy, 0.13 % above the handbook's E0 = 7.0 GPa (material_data.md).
-  EXPECT_NEAR(chemical / (kCharge * 1.0e-3), 7.0e9, 0.002 * 7.0e9);
-  r.residual = worst / chemical;
-  r.velocity = mean_x_velocity(solver->points(), 1);
-  return r;
-}
+using gurney_sandwich::deck;
+using gurney_sandwich::drive;
+using gurney_sandwich::mean_x_velocity;
+using gurney_sandwich::PlateResult;
 
 TEST(GurneySandwich, PlateReachesTheGurneyVelocity) {
   for (double mc : {0.5, 1.0}) {
@@ -124,31 +52,28 @@ TEST(GurneySandwich, PlateReachesTheGurneyVelocity) {
 // The same sandwich with the OTM solver (the shared material library and program burn): the two
 // bodies share one node set (otm.nodes: shared; with a node set each they would not interact)
 // and adaptivity keeps the expanding products resolved (without it their LME solves fail at
-// ~4 us, the gas stretched 12x). M/C = 1 at 0.5 mm cells. The node re-generations make a coarse
-// run sensitive to round-off: the detonation time shifted by 1e-13 s, five draws, gave +3.4 to
-// +8.1 % at 0.5 mm and +3.4 to +15.1 % at 1 mm (so 1 mm cannot carry a 10 % bound); +0.7 % at
-// 0.25 mm (docs/validation.md). Asserted: the mean of three such draws at 0.5 mm within the
-// issue's 10 % (their spread, 1.9 % standard deviation, leaves the mean 4 deviations inside).
-// Energy: what the re-generations leave unbooked (the momentum form's re-lumping, as in the 750 m/s
-// Taylor bar) is first order in h: the worst residual over the run is asserted below 5 % of the
-// chemical energy.
-TEST(GurneySandwich, OtmPlateReachesTheGurneyVelocity) {
+// ~4 us, the gas stretched 12x). M/C = 1. The node re-generations make a coarse run sensitive to
+// round-off: the detonation time shifted by 1e-13 s, five draws, gave +3.4 to +15.1 % at 1 mm
+// (two builds), +3.4 to +8.1 % at 0.5 mm and +0.7 % at 0.25 mm (docs/validation.md). So here, at
+// 1 mm within make test's time: the mean of three draws within 20 % (every draw measured so far is
+// within 15.1 %; a plate the products did not drive, or drove twice, is far outside), and each
+// run's worst energy residual below 7.5 % of the chemical energy (seven draws: 1.1 to 4.8 %; what
+// the re-generations leave unbooked, the momentum form's re-lumping, is first order in h: 0.4 to
+// 2.0 % at 0.5 mm). The issue's 10 % at 0.5 mm is slow_gurney_otm.cpp (label slow).
+TEST(GurneySandwich, OtmPlateIsDrivenNearTheGurneyVelocity) {
   const double gurney = gurney_open_sandwich(2440.0, 1.0);
   double mean = 0.0;
   for (const double lit : {0.0, 1e-13, 2e-13}) {
-    const PlateResult r = drive(1.0, true, lit);
-    std::printf("OTM open-faced sandwich, M/C = 1, lit at %g s: plate %.0f m/s, Gurney %.0f m/s (%.1f %%), energy "
-                "residual %.4f\n",
+    const PlateResult r = drive(1.0, true, lit, 1.0e-3);
+    std::printf("OTM open-faced sandwich, M/C = 1, 1 mm, lit at %g s: plate %.0f m/s, Gurney %.0f m/s (%.1f %%), "
+                "energy residual %.4f\n",
                 lit, r.velocity, gurney, 100.0 * (r.velocity / gurney - 1.0), r.residual);
     mean += r.velocity / 3.0;
-    EXPECT_LT(r.residual, 0.05);
+    EXPECT_LT(r.residual, 0.075);
   }
-  EXPECT_NEAR(mean / gurney, 1.0, 0.10);
+  EXPECT_NEAR(mean / gurney, 1.0, 0.20);
 }
 
-// Decks that would run without the explosive doing what they say are refused: under OTM with a
-// node set per body (the products would push nothing), and with preparation stages (the lighting
-// times count from t = 0, so the charge would go off during the stage).
 TEST(GurneySandwich, DecksWhereTheChargeWouldActOnNothingAreRefused) {
   std::string otm = deck(1.0e-3, true);
   otm.replace(otm.find("nodes: shared, "), 15, "");
