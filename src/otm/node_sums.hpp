@@ -46,7 +46,6 @@ class NodeSharing {
   int holder(Index a) const { return holder_[static_cast<std::size_t>(a)]; }
   /// The rank that folds node a: the lowest rank whose points reach it.
   int reducer(Index a) const { return reducer_[static_cast<std::size_t>(a)]; }
-  Index size() const { return static_cast<Index>(holder_.size()); }
 
  private:
   std::vector<int> holder_, reducer_;
@@ -68,21 +67,6 @@ inline void add_product(Vec3& acc, double a, const Vec3& b) {
 }
 
 namespace detail {
-
-template <class T>
-void put(std::vector<char>& buf, const T& v) {
-  const std::size_t at = buf.size();
-  buf.resize(at + sizeof(T));
-  std::memcpy(buf.data() + at, &v, sizeof(T));
-}
-
-template <class T>
-T take(const char*& p) {
-  T v;
-  std::memcpy(&v, p, sizeof(T));
-  p += sizeof(T);
-  return v;
-}
 
 /// Every rank's results, (node, record of `bytes`) as doubles in `mine`, into records[node].
 void gather_results(const Communicator& comm, const std::vector<double>& mine, std::size_t bytes, void* records);

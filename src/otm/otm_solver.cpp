@@ -55,6 +55,38 @@ double support_bytes_per_point(const Scenario& sc) {
   return 2.0 * 44.0 * std::max({nodes, static_cast<double>(P.min_support), three_d ? 5.0 : 4.0});
 }
 
+/// Several ranks: every rank's points, `width` reals each (rows), with their ids and node groups,
+/// in id order (the serial run's point order, which sums over points follow).
+struct IdOrdered {
+  std::vector<double> rows;
+  std::vector<std::int64_t> id, group;
+};
+IdOrdered gather_in_id_order(const Communicator& comm, const std::vector<double>& rows, std::size_t width,
+                             const std::int64_t* id, const std::int64_t* group, Index n) {
+  std::vector<std::int64_t> ig;
+  for (Index p = 0; p < n; ++p) ig.insert(ig.end(), {id[p], group[p]});
+  std::vector<int> counts;
+  const std::vector<double> all = comm.all_gather_reals(rows, counts);
+  ig = comm.all_gather(ig, counts);
+  const std::size_t m = ig.size() / 2;
+  std::vector<std::size_t> order(m);
+  for (std::size_t i = 0; i < m; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return ig[2 * a] < ig[2 * b]; });
+  IdOrdered out;
+  out.rows.resize(m * width);
+  out.id.resize(m);
+  out.group.resize(m);
+  for (std::size_t k = 0; k < m; ++k) {
+    const std::size_t i = order[k];
+    std::copy(all.begin() + static_cast<std::ptrdiff_t>(width * i),
+              all.begin() + static_cast<std::ptrdiff_t>(width * (i + 1)),
+              out.rows.begin() + static_cast<std::ptrdiff_t>(width * k));
+    out.id[k] = ig[2 * i];
+    out.group[k] = ig[2 * i + 1];
+  }
+  return out;
+}
+
 /// Several ranks: every rank's points' positions and node groups, in rank order (the nodes a
 /// set of points makes do not depend on their order: otm::seed_nodes sorts them).
 void gather_points(const Communicator& comm, std::vector<Vec3>& x, std::vector<std::int64_t>& group) {
@@ -654,32 +686,20 @@ void OtmSolver::points_in_id_order(std::vector<Vec3>& x, std::vector<Vec3>& v, s
   const auto* xp = points_.view(kPosition);
   const auto* vp = points_.view(kVelocity);
   const auto* mp = points_.real(kMass);
-  const auto* gp = points_.ints(kNodeGroup);
-  const auto* id = points_.ints(kId);
-  std::vector<double> xv;
-  std::vector<std::int64_t> ig;
-  for (Index p = 0; p < n; ++p) {
-    xv.insert(xv.end(), {xp[p][0], xp[p][1], xp[p][2], vp[p][0], vp[p][1], vp[p][2], mp[p]});
-    ig.insert(ig.end(), {id[p], gp[p]});
-  }
-  std::vector<int> counts;
-  xv = comm_.all_gather_reals(xv, counts);
-  ig = comm_.all_gather(ig, counts);
-  const std::size_t m = ig.size() / 2;
-  std::vector<std::size_t> order(m);
-  for (std::size_t i = 0; i < m; ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return ig[2 * a] < ig[2 * b]; });
+  std::vector<double> rows;
+  for (Index p = 0; p < n; ++p) rows.insert(rows.end(), {xp[p][0], xp[p][1], xp[p][2], vp[p][0], vp[p][1], vp[p][2], mp[p]});
+  IdOrdered all = gather_in_id_order(comm_, rows, 7, points_.ints(kId), points_.ints(kNodeGroup), n);
+  const std::size_t m = all.id.size();
   x.resize(m);
   v.resize(m);
-  group.resize(m);
   if (mass) mass->resize(m);
   for (std::size_t k = 0; k < m; ++k) {
-    const std::size_t i = order[k];
-    x[k] = Vec3{{xv[7 * i], xv[7 * i + 1], xv[7 * i + 2]}};
-    v[k] = Vec3{{xv[7 * i + 3], xv[7 * i + 4], xv[7 * i + 5]}};
-    if (mass) (*mass)[k] = xv[7 * i + 6];
-    group[k] = ig[2 * i + 1];
+    const double* r = all.rows.data() + 7 * k;
+    x[k] = Vec3{{r[0], r[1], r[2]}};
+    v[k] = Vec3{{r[3], r[4], r[5]}};
+    if (mass) (*mass)[k] = r[6];
   }
+  group = std::move(all.group);
 }
 
 void OtmSolver::assemble() {
@@ -800,34 +820,22 @@ std::vector<Vec3> OtmSolver::contact_node_forces() {
     // each point's sum over its partners follows); this rank keeps its points' forces.
     const auto* xp = points_.view(kPosition);
     const auto* vol = points_.real(kVolume);
-    const auto* group = points_.ints(kNodeGroup);
     const auto* id = points_.ints(kId);
-    std::vector<double> vs;
-    std::vector<std::int64_t> ig;
-    for (Index p = 0; p < n; ++p) {
-      vs.insert(vs.end(), {xp[p][0], xp[p][1], xp[p][2], vol[p], stiff[p]});
-      ig.insert(ig.end(), {id[p], group[p]});
-    }
-    std::vector<int> counts;
-    vs = comm_.all_gather_reals(vs, counts);
-    ig = comm_.all_gather(ig, counts);
-    const Index all = static_cast<Index>(ig.size() / 2);
-    std::vector<Index> order(static_cast<size_t>(all));
-    for (Index q = 0; q < all; ++q) order[q] = q;
-    std::sort(order.begin(), order.end(), [&](Index a, Index b) { return ig[2 * a] < ig[2 * b]; });
+    std::vector<double> rows;
+    for (Index p = 0; p < n; ++p) rows.insert(rows.end(), {xp[p][0], xp[p][1], xp[p][2], vol[p], stiff[p]});
+    const IdOrdered all_points = gather_in_id_order(comm_, rows, 5, id, points_.ints(kNodeGroup), n);
+    const std::vector<std::int64_t>& ids = all_points.id;
+    const Index all = static_cast<Index>(ids.size());
     std::vector<Vec3> x(static_cast<size_t>(all));
-    std::vector<std::int64_t> g(static_cast<size_t>(all)), ids(static_cast<size_t>(all));
     std::vector<double> va(static_cast<size_t>(all)), sa(static_cast<size_t>(all));
     for (Index k = 0; k < all; ++k) {
-      const size_t q = static_cast<size_t>(order[k]);
-      x[k] = Vec3{{vs[5 * q], vs[5 * q + 1], vs[5 * q + 2]}};
-      va[k] = vs[5 * q + 3];
-      sa[k] = vs[5 * q + 4];
-      ids[k] = ig[2 * q];
-      g[k] = ig[2 * q + 1];
+      const double* r = all_points.rows.data() + 5 * k;
+      x[k] = Vec3{{r[0], r[1], r[2]}};
+      va[k] = r[3];
+      sa[k] = r[4];
     }
     std::vector<Vec3> fall;
-    contact_pairs_ = otm::pinball_forces(x.data(), va.data(), g.data(), sa.data(), all, contact_penalty_,
+    contact_pairs_ = otm::pinball_forces(x.data(), va.data(), all_points.group.data(), sa.data(), all, contact_penalty_,
                                          {dim_, axisym_}, fall);
     fp.resize(static_cast<size_t>(n));
     for (Index p = 0; p < n; ++p)
