@@ -353,6 +353,9 @@ class Reader {
       const std::string what = "a list of at least 3 vertices [r, a] (m): radius from the axis and distance along it "
                                "from center";
       if (!v.IsSequence() || v.size() < 3) s.fail("outline", "expected " + what);
+      // Its resolved form, written back: the resolved deck a run keeps (and restarts compare)
+      // must carry the section, or it would neither re-read nor tell two outlines apart.
+      YAML::Node out(YAML::NodeType::Sequence);
       for (size_t i = 0; i < v.size(); ++i) {
         const std::string path = s.child_path("outline") + "." + std::to_string(i);
         const YAML::Node r = v[i];
@@ -361,7 +364,13 @@ class Reader {
         for (int k = 0; k < 2; ++k)
           if (!scalar_number(r[k], x[k])) deck_fail(s.context(), path + "." + std::to_string(k), r[k].Mark(), "expected a number");
         sh.outline.push_back({x[0], x[1]});
+        YAML::Node pair(YAML::NodeType::Sequence);
+        pair.SetStyle(YAML::EmitterStyle::Flow);
+        pair.push_back(DeckNode::number_node(x[0]));
+        pair.push_back(DeckNode::number_node(x[1]));
+        out.push_back(pair);
       }
+      s.set_resolved("outline", out);
     }
     if (const auto problem = outline_problem(sh.outline))
       s.fail(sh.type == "revolution" ? "outline" : "type", "the " + sh.type + "'s section: " + *problem);

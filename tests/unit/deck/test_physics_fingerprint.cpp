@@ -53,6 +53,30 @@ TEST(PhysicsFingerprint, APhysicsChangeChangesIt) {
   EXPECT_NE(fingerprint({"penetration.end_when_spent=1e-3"}), base);
 }
 
+// A body of revolution is its outline: the resolved deck carries it (it re-reads to itself), so a
+// changed vertex is a changed physics (a restart onto another section is refused by the same
+// fingerprint), and the same outline written with other spellings of its numbers is the same.
+TEST(PhysicsFingerprint, ABodyOfRevolutionIsItsOutline) {
+  const std::string deck = R"(simulation: {dimension: axisymmetric, end_time: 1.0e-6}
+grid: {lower: [0, 0], upper: [0.01, 0.04], cell_size: 1.0e-3}
+materials:
+  s: {model: linear_elastic, density: 7800, youngs_modulus: 200e9, poisson_ratio: 0.3}
+bodies:
+  - name: wall
+    material: s
+    shape: {type: revolution, center: [0, 0.01], axis: y, outline: [[0, 0], [0.008, 0], [0.008, 0.004], [0.003, 0.004], [0.003, 0.002], [0, 0.002]]}
+)";
+  const Scenario a = parse_deck(deck, "deck.yaml");
+  EXPECT_NE(a.resolved_yaml.find("outline"), std::string::npos);
+  EXPECT_EQ(parse_deck(a.resolved_yaml, "deck.yaml").resolved_yaml, a.resolved_yaml);
+  const std::string base = physics_fingerprint(a.resolved_yaml);
+  EXPECT_NE(physics_fingerprint(parse_deck(deck, "deck.yaml", {"bodies.0.shape.outline.4=[0.003, 0.0025]"}).resolved_yaml),
+            base);
+  std::string spelled = deck;
+  spelled.replace(spelled.find("[0.008, 0.004]"), 14, "[8e-3, 4.0e-3]");
+  EXPECT_EQ(physics_fingerprint(parse_deck(spelled, "deck.yaml").resolved_yaml), base);
+}
+
 TEST(PhysicsFingerprint, KeysAtNoneOrNullAreLeftOut) {
   // A key a newer build adds with a `none` or null default does not change what an older build ran.
   const std::string a = "simulation:\n  cfl: 0.5\nmaterials:\n  m:\n    eos:\n      min_pressure: -1\n";
