@@ -129,6 +129,26 @@ TEST(Water, CavitationCutoff) {
   }
 }
 
+// The wave speed of a cavitated point (its pressure held at the cutoff) is the speed at rest, c0
+// (K(1) = rho0 c0^2 exactly), not the tension branch's sqrt(K J / rho0), which for a spray point
+// expanded 1,000-fold would be 41 km/s and set the run's step. Closed again (J <= 1) the speed is
+// the isentrope's (test_eos.cpp), and an expanded point that is hot enough to stay above the cutoff
+// keeps its own. Exact comparisons: c0 is sqrt(rho0 c0^2 / rho0) in both.
+TEST(Water, CavitatedPointKeepsTheSpeedAtRest) {
+  const auto w = make_material("water", {});
+  FieldStore st;
+  w->declare_fields(st);
+  st.resize(1);
+  const double rest = w->wave_speed(st, 0, 1.0);
+  EXPECT_NEAR(rest, 1647.0, 1e-12 * 1647.0);
+  for (double J : {1.001, 10.0, 1240.0}) EXPECT_EQ(w->wave_speed(st, 0, J), rest) << "J = " << J;
+  EXPECT_GT(w->wave_speed(st, 0, 0.9), rest);  // compressed: stiffer than at rest
+  // Hot enough that the Mie-Grüneisen pressure at J = 1.001 is positive: not cavitated, so the
+  // tension branch's own estimate (sqrt(K J / rho0) with K >= rho0 c0^2 / 2) applies.
+  st.real(kEosEnergyField)[0] = 1e9;
+  EXPECT_NE(w->wave_speed(st, 0, 1.001), rest);
+}
+
 // eos.type linear: an acoustic fluid with K = rho0 c0^2, p_{n+1} = p_n - K tr(D) dt. One step of
 // spherical compression F = c I from I gives tr(D) dt = 3 (c - 1) (1e-12 relative).
 TEST(Water, LinearEosIsAnAcousticFluid) {
