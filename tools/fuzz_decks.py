@@ -117,6 +117,7 @@ RUN_REDUCTIONS = {
     "pd_disk_indent": {"bodies.0.shape.radius": "0.0050001", "simulation.end_time": "1.0e-6"},
     # The charge and the well in one run: 85k points and a program burn at the deck's cells.
     "shaped_charge_perforation": {"grid.cell_size": "1.0e-3", "grid.refine": "[]", "simulation.end_time": "1.0e-6"},
+    "perforating_gun_shot": {"grid.cell_size": "1.0e-3", "grid.refine": "[]", "simulation.end_time": "1.0e-6"},
 }
 DEFAULT_RUN_REDUCTION = {"simulation.end_time": "1.0e-6"}
 MAX_STEPS = 30
