@@ -90,8 +90,9 @@ struct Water {
   /// Cavitated (expanded, its Mie-Grüneisen pressure at or below the cutoff eos.min_pressure) the
   /// pressure no longer depends on J: the parted fluid has no stiffness of its own, while the
   /// tension branch's sqrt(K J / rho0) grows without bound with J (a spray point expanded
-  /// 1,000-fold gave 41 km/s and held a perforation run's step 3x small). There the estimate is
-  /// the speed at rest, the speed the point has again when it closes to J = 1.
+  /// 1,240-fold gave 41 km/s and held a perforation run's step 3x small). There the estimate is
+  /// the speed at rest, the speed the point has again when it closes to J = 1. Water's estimate
+  /// only: the solids' Mie-Grüneisen speed (eos_bulk_modulus) is left as it was, and with it their runs.
   static double wave_speed(const Params& p, const double* state, double J) {
     const bool cavitated = p.eos.kind == Eos::Kind::MieGruneisen && J > 1.0 &&
                            eos_mg_pressure(p.eos, J, state[0]) <= p.eos.p_min;

@@ -65,6 +65,9 @@ TEST(GurneySandwich, OtmPlateIsDrivenNearTheGurneyVelocity) {
   EXPECT_NEAR(mean / gurney_open_sandwich(2440.0, 1.0), 1.0, 0.20);
 }
 
+// Decks that would run without the explosive doing what they say are refused: under OTM with a
+// node set per body (the products would push nothing), and with preparation stages (the lighting
+// times count from t = 0, so the charge would go off during the stage).
 TEST(GurneySandwich, DecksWhereTheChargeWouldActOnNothingAreRefused) {
   std::string otm = deck(1.0e-3, true);
   otm.replace(otm.find("nodes: shared, "), 15, "");
