@@ -285,11 +285,14 @@ struct Geomodel {
   /// The yield function sqrt(J2) - Ff Fc at effective I1 `i1e` for cap position X, as
   /// GeoSurface::f, without solving for kappa unless the point is under the cap: since
   /// k - X - CR Ff(k) increases with k, I1' >= kappa exactly when I1' - X >= CR Ff(I1').
-  static double yield_value(const Params& p, double X, double i1e, double rj2) {
+  /// `ff_out`, if given, receives p.limit.value(i1e) where it was evaluated (else it is left as is).
+  static double yield_value(const Params& p, double X, double i1e, double rj2, double* ff_out = nullptr) {
     const double peak = p.limit.peak_i1;
     if (i1e > peak) return rj2 + (i1e - peak);
     if (i1e < X) return rj2 + (X - i1e);
-    const double ff = std::max(0.0, p.limit.value(i1e));
+    const double ff_raw = p.limit.value(i1e);
+    if (ff_out) *ff_out = ff_raw;
+    const double ff = std::max(0.0, ff_raw);
     if (!std::isfinite(X) || i1e - X >= p.cap_ratio * ff) return rj2 - ff;
     const double kappa = geo_cap_kappa(p.limit, p.cap_ratio, X);
     const double u = (kappa - i1e) / (kappa - X);
@@ -328,12 +331,23 @@ struct Geomodel {
   static double cap_at(const Params& p, double evp) {
     return p.crush.active() ? p.crush.cap(evp) : -std::numeric_limits<double>::infinity();
   }
+  /// cap_at(p, evp) of a state st (st[1] = evp), to the bit, without its pow or log where the
+  /// state holds it: update() writes cap_i1 = crush.cap(evp) whenever evp changes, and its initial
+  /// value is P0 = crush.cap(0). Full crush's marker (-DBL_MAX) is not the cap: computed then.
+  static double cap_of_state(const Params& p, const double* st) {
+    if (p.slot_cap >= 0 && st[p.slot_cap] > -std::numeric_limits<double>::max()) return st[p.slot_cap];
+    return cap_at(p, st[1]);
+  }
 
   struct Substep {
     Mat3 dep;            ///< plastic strain increment
     double work = 0.0;   ///< effective stress : plastic strain increment, J/m^3
     double d_eqps = 0.0;
     double pf = -1.0;    ///< pore pressure at the updated evp (plastic substeps; a guess for later solves)
+    /// cap_at(p, cap_evp) when the return evaluated it (NaN otherwise): the cap at the updated evp,
+    /// if cap_evp is that evp, so that the next substep and the stored state need not recompute it.
+    double cap_evp = std::numeric_limits<double>::quiet_NaN();
+    double cap_X = std::numeric_limits<double>::quiet_NaN();
   };
 
   /// Plastic volumetric strain increment of the non-hardening return from trial (I1_t, s_t) onto
@@ -386,7 +400,9 @@ struct Geomodel {
       rj2_t = 0.0;
       s_t = Mat3{};
     }
-    if (!(yield_value(p, X_n, I1_t + 3.0 * pf_n, rj2_t) > 0.0) && !std::isnan(I1_t)) {
+    // Ff at the trial, if the yield check evaluates it: the return needs it again (an exponential).
+    double ff_t = std::numeric_limits<double>::quiet_NaN();
+    if (!(yield_value(p, X_n, I1_t + 3.0 * pf_n, rj2_t, &ff_t) > 0.0) && !std::isnan(I1_t)) {
       sigma = sig_t;
       return false;
     }
@@ -394,13 +410,13 @@ struct Geomodel {
     GeoPoint pt;
     double pf = pf_n;  // guess for the pore-pressure solves
     double d;
-    if (!piece_return(p, evp, pf_n, c, K, I1_t, rj2_t, pt, pf, d)) {
+    if (!piece_return(p, evp, pf_n, c, K, I1_t, rj2_t, pt, pf, d, X_n, &out, ff_t)) {
       GeoReturnHint hint;
       const double d0 = return_at(p, evp, c, K, I1_t, rj2_t, pt, pf, hint);
       // With hardening the surface moves with evp: solve for the consistent increment, and return
       // onto the surface of the final state, so that the stress always lies on the surface of its
       // own internal state (pt, pf are those of that return).
-      d = (p.hardening() && d0 != 0.0 && !on_unmoved_limit_surface(p, evp, evp + d0, pt))
+      d = (p.hardening() && d0 != 0.0 && !on_unmoved_limit_surface(p, evp, evp + d0, pt, X_n, &out))
               ? hardening_increment(p, evp, c, K, I1_t, rj2_t, d0, pt, pf, hint)
               : d0;
     }
@@ -439,10 +455,21 @@ struct Geomodel {
   /// point of a convex set is the global one) and the non-hardening increment is consistent.
   /// I1' > kappa exactly when I1' - X > CR Ff(I1') (k - X - CR Ff(k) increases with k and is zero
   /// at kappa), which needs no solve for kappa.
-  static bool on_unmoved_limit_surface(const Params& p, double evp_old, double evp_new, const GeoPoint& pt) {
+  /// `X_old`, if not NaN, is cap_at(p, evp_old), known to the caller; `cap_new`, if given,
+  /// receives cap_at(p, evp_new) when it is evaluated (Substep::cap_evp, cap_X).
+  static bool on_unmoved_limit_surface(const Params& p, double evp_old, double evp_new, const GeoPoint& pt,
+                                       double X_old = std::numeric_limits<double>::quiet_NaN(),
+                                       Substep* cap_new = nullptr) {
     if (p.fluid()) return false;  // the pore pressure moves the whole surface
     const double cr_ff = p.cap_ratio * p.limit.value(pt.i1);
-    return pt.i1 - cap_at(p, evp_old) > cr_ff && pt.i1 - cap_at(p, evp_new) > cr_ff;
+    if (std::isnan(X_old)) X_old = cap_at(p, evp_old);
+    if (!(pt.i1 - X_old > cr_ff)) return false;
+    const double X_new = cap_at(p, evp_new);
+    if (cap_new) {
+      cap_new->cap_evp = evp_new;
+      cap_new->cap_X = X_new;
+    }
+    return pt.i1 - X_new > cr_ff;
   }
 
   /// The coupled-return problem (geomodel_coupled_return.hpp) of a trial at evp.
@@ -464,24 +491,29 @@ struct Geomodel {
   ///    cap (the projection lies at an I1 below the trial's, geomodel_projection.hpp): Newton on
   ///    the cap angle and the increment together (geo_cap_coupled_return), from the angle of the
   ///    trial (or of that projection) in the unit-scaled ellipse.
+  /// `X_n`, if not NaN, is the cap at evp (the caller's); `cap_new` as on_unmoved_limit_surface's;
+  /// `ff_t`, if not NaN, is Ff at the effective trial I1_t + 3 pf_n (the yield check's).
   static bool piece_return(const Params& p, double evp, double pf_n, double c, double K, double I1_t, double rj2_t,
-                           GeoPoint& pt, double& pf, double& d) {
+                           GeoPoint& pt, double& pf, double& d,
+                           double X_n = std::numeric_limits<double>::quiet_NaN(), Substep* cap_new = nullptr,
+                           double ff_t = std::numeric_limits<double>::quiet_NaN()) {
     if (!p.hardening() || !p.crush.active() || !(rj2_t > 0.0)) return false;
-    const double X = p.crush.cap(evp);
+    const double X = std::isnan(X_n) ? p.crush.cap(evp) : X_n;
     if (!std::isfinite(X)) return false;
     const auto P = coupled_problem(p, evp, c, K, I1_t, rj2_t, pf_n);
     auto tol = [&](double di) { return increment_tol(di, evp); };
     GeoCoupledResult r;
     const double i1e_t = I1_t + 3.0 * pf_n;
     double i1_start = i1e_t;
-    if (i1e_t - X >= p.cap_ratio * p.limit.value(i1e_t)) {
+    if (std::isnan(ff_t)) ff_t = p.limit.value(i1e_t);
+    if (i1e_t - X >= p.cap_ratio * ff_t) {
       GeoPoint q;
       const double z_tol = geo_projection_tol(p.limit, c, i1e_t, rj2_t);
-      if (!geo_project_on_limit(p.limit, c, i1e_t, rj2_t, z_tol, q)) return false;
+      if (!geo_project_on_limit(p.limit, c, i1e_t, rj2_t, z_tol, q, ff_t)) return false;
       if (q.i1 - X >= p.cap_ratio * q.rootj2) {  // outside the cap region (rootj2 = Ff there)
         if (!p.fluid()) {
           const double d0 = (I1_t - q.i1) / (3.0 * K);
-          if (!on_unmoved_limit_surface(p, evp, evp + d0, q)) return false;
+          if (!on_unmoved_limit_surface(p, evp, evp + d0, q, X, cap_new)) return false;
           pt = q;
           pf = 0.0;
           d = d0;
@@ -603,7 +635,7 @@ struct Geomodel {
     moduli(p, i1e, evp, K, G);
     const double tr_e = trace(eps);
     const double dsig = std::sqrt(9.0 * K * K * tr_e * tr_e / 3.0 + 4.0 * G * G * ddot(deviator(eps), deviator(eps)));
-    const double X_n = cap_at(p, evp);
+    const double X_n = cap_of_state(p, st);
     double n_need = std::ceil(dsig / surface_size(p, X_n, i1e));
     if (p.B1 > 0.0) {
       double K2, G2;
@@ -624,11 +656,15 @@ struct Geomodel {
     Mat3 dep_sum{};
     double work = 0.0, d_eqps = 0.0;
     double pf_last = pf_n;  // the latest pore pressure known: a start for the final solve
+    // The cap at the current evp while it is known (NaN: substep() computes it): each cap costs a
+    // pow or a log, and a point at the tensile vertex returns at every step.
+    double X_cur = X_n;
     for (int i = 0; i < n; ++i) {
       Substep sub;
       if (w == 1.0) {
-        const bool plastic = n == 1 ? substep(p, sigma, evp, deps, sub, pf_n, X_n) : substep(p, sigma, evp, deps, sub);
+        const bool plastic = substep(p, sigma, evp, deps, sub, n == 1 ? pf_n : -1.0, X_cur);
         if (plastic) {
+          X_cur = sub.cap_evp == evp ? sub.cap_X : std::numeric_limits<double>::quiet_NaN();
           pf_last = sub.pf;
           dep_sum += sub.dep;
           work += sub.work;
@@ -639,6 +675,7 @@ struct Geomodel {
       // Rate dependent: blend the elastic trial and the inviscid update (Simo & Hughes §2.7.3).
       const Mat3 sig0 = sigma;
       const double evp0 = evp;
+      X_cur = std::numeric_limits<double>::quiet_NaN();
       Mat3 sig_inv = sigma;
       if (!substep(p, sig_inv, evp, deps, sub)) {
         sigma = sig_inv;
@@ -662,7 +699,9 @@ struct Geomodel {
       if (p.slot_porosity >= 0) {
         st[p.slot_porosity] = p.crush.porosity(evp);
         // After full crush there is no cap (X = -inf); the field keeps a finite marker, -DBL_MAX.
-        st[p.slot_cap] = std::max(p.crush.cap(evp), -std::numeric_limits<double>::max());
+        // (X_cur, when known, is the cap at this evp: cap_at is crush.cap with a crush curve.)
+        const double X = std::isnan(X_cur) ? p.crush.cap(evp) : X_cur;
+        st[p.slot_cap] = std::max(X, -std::numeric_limits<double>::max());
       }
       if (p.slot_pore_pressure >= 0) st[p.slot_pore_pressure] = pore_pressure(p, evp, pf_last);
     }

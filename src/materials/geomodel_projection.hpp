@@ -73,13 +73,15 @@ bool bracketed_newton(Eval&& eval, double lo, double hi, double t, double tol, d
 /// Projection of the trial (effective I1 `i1_t`, sqrt(J2) `rj2_t` > 0) onto the limit surface
 /// alone, in the space scaled by c (see above). Returns false if the trial lies inside the limit
 /// surface (then it is outside only because of the cap) or Newton failed; `tol` is in z.
-inline bool geo_project_on_limit(const GeoLimit& f, double c, double i1_t, double rj2_t, double tol, GeoPoint& q) {
+/// `ff_t`, if not NaN, is f.value(i1_t), known to the caller (its exponential saved).
+inline bool geo_project_on_limit(const GeoLimit& f, double c, double i1_t, double rj2_t, double tol, GeoPoint& q,
+                                 double ff_t = std::numeric_limits<double>::quiet_NaN()) {
   const double s3 = std::sqrt(3.0), k = c * std::sqrt(2.0);  // r' = k sqrt(J2)
   const double zt = i1_t / s3, rt = k * rj2_t;
   const double zhi = f.peak_i1 / s3;  // +inf without a vertex
   double d0;                          // distance to a known point of the surface
   if (zt <= zhi) {
-    const double ht = k * f.value(i1_t);
+    const double ht = k * (std::isnan(ff_t) ? f.value(i1_t) : ff_t);
     if (!(rt > ht)) return false;  // inside the limit surface
     d0 = rt - ht;
   } else {

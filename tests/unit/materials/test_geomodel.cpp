@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <limits>
 #include <random>
 
 #include "material_driver.hpp"
@@ -370,6 +372,71 @@ TEST(GeomodelPath, HydrostaticTensionDilatesAtTheVertex) {
   EXPECT_NEAR(d.state("plastic_volumetric_strain"), 0.02 - ev_el, 1e-5);  // midpoint vs log strain: O(1e-7)
   EXPECT_GT(d.state("cap_i1"), -300e6);
   EXPECT_GT(d.state("porosity"), 1.0 - std::exp(-0.2));
+}
+
+// update() reads the cap of its state from the stored cap_i1 instead of recomputing it from evp
+// (a pow or a log per update), which is exact only while cap_i1 = crush.cap(evp) to the bit. Along
+// paths that crush, shear and dilate the rock (drained Berea, the same saturated, the example rock),
+// the stored cap is checked against crush.cap(evp) after every step, and every step is re-run with
+// the stored cap hidden behind the full-crush marker (which makes update() compute it): stress,
+// state and result must be the same bits.
+TEST(GeomodelPath, StoredCapIsTheCapOfTheStoredStrain) {
+  ParamValues berea{{"density", 2094.0}, {"bulk_modulus", 6.6e9}, {"shear_modulus", 5.6e9},
+                    {"peak_i1", 33e6},   {"fslope", 0.40},        {"stren", 320e6},
+                    {"cap_ratio", 3.4},  {"crush_p0", -1.14e9},   {"crush_p1", 5e-10},
+                    {"crush_p3", 0.2357}};
+  ParamValues saturated = berea;
+  saturated["fluid_bulk_modulus"] = 2.2e9;
+  saturated["initial_pore_pressure"] = 10e6;
+  saturated["matrix_bulk_modulus"] = 37e9;
+  auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const ParamValues& v : {berea, saturated, Geomodel::example_params()}) {
+    const Geomodel::Params p = Geomodel::make(v);
+    ASSERT_GE(p.slot_cap, 0);
+    const auto fields = Geomodel::state_fields(p);
+    std::vector<double> st;
+    for (const auto& f : fields) st.push_back(f.initial);
+    Mat3 sigma{};
+    int crushed = 0, dilated = 0, cached_steps = 0;
+    // 150 steps of compression (beyond the cap: crush), 150 of shear, 200 of tension (the vertex:
+    // dilatation), each with a random deviatoric part; strain increments of 1e-3.
+    for (int step = 0; step < 500; ++step) {
+      const double vol = step < 150 ? -0.3 : step < 300 ? 0.0 : 0.6;
+      Mat3 D;
+      for (double& x : D.a) x = 0.3 * u(rng);
+      D = sym(D) + vol * Mat3::identity();
+      PointKinematics k;
+      k.dt = 1e-6;
+      k.D_bar = (1e-3 / k.dt) * D;
+      Mat3 s_ref = sigma;
+      std::vector<double> st_ref = st;
+      st_ref[p.slot_cap] = -std::numeric_limits<double>::max();  // update() must compute the cap
+      PointResult res, res_ref;
+      if (st[p.slot_cap] > -std::numeric_limits<double>::max()) ++cached_steps;
+      Geomodel::update(p, k, sigma, st.data(), res);
+      Geomodel::update(p, k, s_ref, st_ref.data(), res_ref);
+      for (int e = 0; e < 9; ++e) ASSERT_TRUE(same(sigma.a[e], s_ref.a[e])) << "step " << step;
+      for (std::size_t i = 0; i < st.size(); ++i) {
+        // The reference's cap_i1 keeps the marker where evp did not move (nothing rewrote it).
+        const bool marker_kept = static_cast<int>(i) == p.slot_cap && st[1] == st_ref[1] &&
+                                 st_ref[i] == -std::numeric_limits<double>::max();
+        if (!marker_kept) {
+          ASSERT_TRUE(same(st[i], st_ref[i])) << "step " << step << " field " << fields[i].name;
+        }
+      }
+      ASSERT_TRUE(same(res.plastic_work_density, res_ref.plastic_work_density)) << "step " << step;
+      ASSERT_TRUE(same(st[p.slot_cap], std::max(p.crush.cap(st[1]), -std::numeric_limits<double>::max())))
+          << "step " << step;
+      crushed += st[1] < -1e-3;
+      dilated += st[1] > 1e-3;
+    }
+    // The paths must have visited what they are for (else the test checks nothing).
+    EXPECT_GT(crushed, 10);
+    EXPECT_GT(dilated, 10);
+    EXPECT_GT(cached_steps, 400);
+  }
 }
 
 // Saturated pores stiffen hydrostatic compaction (thesis Fig. 4.13): more pressure, less
