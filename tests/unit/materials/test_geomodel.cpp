@@ -246,6 +246,21 @@ ParamValues hydrostat_params() {
           {"crush_p3", 0.2}};
 }
 
+// The Berea preset's elasticity, surface and crush curve (data/materials.yaml), drained; and the
+// same rock saturated with water at 10 MPa.
+ParamValues berea_params() {
+  return {{"density", 2094.0}, {"bulk_modulus", 6.6e9}, {"shear_modulus", 5.6e9}, {"peak_i1", 33e6},
+          {"fslope", 0.40},    {"stren", 320e6},        {"cap_ratio", 3.4},     {"crush_p0", -1.14e9},
+          {"crush_p1", 5e-10}, {"crush_p3", 0.2357}};
+}
+ParamValues saturated_berea_params() {
+  ParamValues v = berea_params();
+  v["fluid_bulk_modulus"] = 2.2e9;
+  v["initial_pore_pressure"] = 10e6;
+  v["matrix_bulk_modulus"] = 37e9;
+  return v;
+}
+
 // Hydrostatic compaction (CATALOGUE A4 with cap evolution): with constant K the exact state at
 // total volumetric strain ev is the root of ev = evp + X(evp)/(3K) (the stress sits at the cap
 // tip), whatever the step size; one large step and 200 small ones must both land on it.
@@ -259,14 +274,7 @@ ParamValues hydrostat_params() {
 // each, measured differently; a different root would differ by O(1)) and the same returned point
 // to 1e-8 of the trial's distance. The general path must remain the exception.
 TEST(GeomodelReturn, PieceReturnIsTheConsistencyIterationsAnswer) {
-  ParamValues berea{{"density", 2094.0}, {"bulk_modulus", 6.6e9}, {"shear_modulus", 5.6e9},
-                    {"peak_i1", 33e6},   {"fslope", 0.40},        {"stren", 320e6},
-                    {"cap_ratio", 3.4},  {"crush_p0", -1.14e9},   {"crush_p1", 5e-10},
-                    {"crush_p3", 0.2357}};
-  ParamValues saturated = berea;
-  saturated["fluid_bulk_modulus"] = 2.2e9;
-  saturated["initial_pore_pressure"] = 10e6;
-  saturated["matrix_bulk_modulus"] = 37e9;
+  const ParamValues berea = berea_params(), saturated = saturated_berea_params();
   std::mt19937 rng(23);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   int tested = 0, handled = 0;
@@ -381,14 +389,7 @@ TEST(GeomodelPath, HydrostaticTensionDilatesAtTheVertex) {
 // the stored cap hidden behind the full-crush marker (which makes update() compute it): stress,
 // state and result must be the same bits.
 TEST(GeomodelPath, StoredCapIsTheCapOfTheStoredStrain) {
-  ParamValues berea{{"density", 2094.0}, {"bulk_modulus", 6.6e9}, {"shear_modulus", 5.6e9},
-                    {"peak_i1", 33e6},   {"fslope", 0.40},        {"stren", 320e6},
-                    {"cap_ratio", 3.4},  {"crush_p0", -1.14e9},   {"crush_p1", 5e-10},
-                    {"crush_p3", 0.2357}};
-  ParamValues saturated = berea;
-  saturated["fluid_bulk_modulus"] = 2.2e9;
-  saturated["initial_pore_pressure"] = 10e6;
-  saturated["matrix_bulk_modulus"] = 37e9;
+  const ParamValues berea = berea_params(), saturated = saturated_berea_params();
   auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
