@@ -39,7 +39,9 @@ TEST(GeomodelSurface, BoundsEncloseTheLimitSurface) {
       ASSERT_GE(hi, v) << i1;
       // Tight where the surface is used: the gap is ~4 (a2 I1/8)^2 of a3 exp(a2 I1) for |a2 I1| <= 0.2,
       // plus the 1e-12 rounding margin; 1 % of a3 is ample and still makes the check useful.
-      if (std::abs(f.a2 * i1) <= 0.2) EXPECT_LE(hi - lo, 0.01 * f.a3 + 1e-9 * (std::abs(f.a1) + std::abs(f.a4 * i1)));
+      if (std::abs(f.a2 * i1) <= 0.2) {
+        EXPECT_LE(hi - lo, 0.01 * f.a3 + 1e-9 * (std::abs(f.a1) + std::abs(f.a4 * i1)));
+      }
     }
   }
 }
