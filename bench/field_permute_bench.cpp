@@ -1,7 +1,7 @@
 // Reordering the points' fields (FieldStore::permute): what MPM's multi-rate step does at every step
 // (fast points first, then slow; mpm_multirate.cpp) and the cell sort every few steps. The store
 // holds the field shapes of a geomodel point set (6 vectors, 6 tensors, 12 scalars, 3 integers:
-// 672 bytes a point) and is permuted as a multi-rate partition: every fifth run of 64 points
+// 696 bytes a point) and is permuted as a multi-rate partition: every fifth run of 64 points
 // first, the rest after, both in order. Reports points permuted per second; bytes moved are
 // read and written twice (gather into scratch, copy back).
 //   build/bench/field_permute_bench [--benchmark_filter=...]
