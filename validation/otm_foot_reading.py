@@ -16,6 +16,10 @@ a quarter bar; a whole bar or a half is recognised from the points' signs). Per 
 - outermost centre: the largest centre radius among those points.
 - corner radius: what the probe reads, the largest distance from the axis of the corners
   x + F (+-h) of the same points.
+- corner radius by angle: the same largest corner distance within each 10 degree sector of the
+  points' centres (sectors of [-180, 180) degrees about the axis, from the x axis towards z),
+  averaged over the sectors that hold points: a round foot's radius whatever its ripple, where the
+  largest over all angles reads the ripple's crest.
 
   /usr/bin/python3 validation/otm_foot_reading.py out/otm_mesh_lattice/mesh out/otm_mesh_lattice/cut_lattice
 """
@@ -73,11 +77,14 @@ def foot_measures(p, band):
     order = np.argsort(r, kind="stable")
     cumulative = np.cumsum(vol[order]) / vol.sum()
     quantile = {q: float(r[order][np.searchsorted(cumulative, q)]) for q in (0.5, 0.9)}
-    corners = 0.0
+    point_corner = np.zeros(len(x))  # each point's farthest corner from the axis
     for s in itertools.product((-1.0, 1.0), repeat=3):
         c = x + np.einsum("pij,pj->pi", p["F"][near], p["half"][near] * np.array(s))
-        corners = max(corners, float(np.hypot(c[:, 0], c[:, 2]).max()))
-    return {"r50": quantile[0.5], "r90": quantile[0.9], "outermost_centre": float(r.max()), "corner": corners}
+        point_corner = np.maximum(point_corner, np.hypot(c[:, 0], c[:, 2]))
+    sector = np.floor((np.degrees(np.arctan2(x[:, 2], x[:, 0])) + 180.0) / 10.0).astype(int)
+    by_sector = [point_corner[sector == k].max() for k in np.unique(sector)]
+    return {"r50": quantile[0.5], "r90": quantile[0.9], "outermost_centre": float(r.max()),
+            "corner": float(point_corner.max()), "corner_by_angle": float(np.mean(by_sector))}
 
 
 def main():

@@ -14,7 +14,11 @@ domains tile y exactly). So:
 - r50 and r90 among the points centred within 0.5 mm fall inside rings 12 and 22 (cumulative
   volume 0.48-0.52 and 0.88-0.92: not at a ring's edge), so they are those rings' radii exactly;
 - the outermost centre is ring 24's radius, and the corner radius is the largest of
-  |(r cos t + a, r sin t + a)| over the points (a = h_x = h_z), written out here independently."""
+  |(r cos t + a, r sin t + a)| over the points (a = h_x = h_z), written out here independently;
+- the corner radius by angle: the 9 angles sit at the centres of the 10 degree sectors from 0 to
+  90 degrees, one per sector, so it is the mean over the angles of ring 24's largest corner
+  |(r cos t + a, r sin t + a)| (a sector's points mixed with its neighbour's, or the mean taken over
+  empty sectors, moves it by far more than 1e-12)."""
 import math
 import os
 import sys
@@ -70,7 +74,10 @@ def main():
     theta = (np.arange(N_ANGLE) + 0.5) * (math.pi / 2) / N_ANGLE
     corner = max(math.hypot(ring_radius(k) * math.cos(t) + A, ring_radius(k) * math.sin(t) + A)
                  for k in range(N_RING) for t in theta)
-    expected = {"r50": ring_radius(12), "r90": ring_radius(22), "outermost_centre": ring_radius(24), "corner": corner}
+    by_angle = np.mean([max(math.hypot(ring_radius(k) * math.cos(t) + A, ring_radius(k) * math.sin(t) + A)
+                            for k in range(N_RING)) for t in theta])
+    expected = {"r50": ring_radius(12), "r90": ring_radius(22), "outermost_centre": ring_radius(24), "corner": corner,
+                "corner_by_angle": by_angle}
     for key, value in expected.items():
         ok = abs(m[key] / value - 1) < 1e-12
         print(f"{key}: {m[key] * 1e3:.6f} mm (expected {value * 1e3:.6f}): {'ok' if ok else 'FAIL'}")
