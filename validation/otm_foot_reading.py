@@ -20,6 +20,12 @@ a quarter bar; a whole bar or a half is recognised from the points' signs). Per 
   points' centres (sectors of [-180, 180) degrees about the axis, from the x axis towards z),
   averaged over the sectors that hold points: a round foot's radius whatever its ripple, where the
   largest over all angles reads the ripple's crest.
+- surface carried (with --radius R, the bar's radius at the start): where the bar's initial surface
+  went, x + F (R - |X|) e_r from each point of the band that started within 0.5 mm of the surface
+  (X its position in the first particle file, e_r the radial direction there; first order in the
+  distance), the largest over those points; the points must be the same in both files (no
+  adaptivity, no deletion). It tells a rim that lies further out because the points were placed
+  nearer the surface from one whose material moved further.
 
   /usr/bin/python3 validation/otm_foot_reading.py out/otm_mesh_lattice/mesh out/otm_mesh_lattice/cut_lattice
 """
@@ -87,18 +93,39 @@ def foot_measures(p, band):
             "corner": float(point_corner.max()), "corner_by_angle": float(np.mean(by_sector))}
 
 
+def first_particle_file(run_dir):
+    return sorted(glob.glob(os.path.join(run_dir, "particles_*.h5")))[0]
+
+
+def surface_carried(p0, p, band, radius, start_within=0.5e-3):
+    """The largest radius (m) the initial surface r = radius reaches, carried by F from the points
+    centred within `band` of the anvil now that started within `start_within` of the surface."""
+    if len(p0["x"]) != len(p["x"]):
+        raise SystemExit("surface carried: the first and last particle files hold different points")
+    X, x = p0["x"], p["x"]
+    r0 = np.hypot(X[:, 0], X[:, 2])
+    use = (x[:, 1] < band) & (r0 > radius - start_within) & (r0 > 0)
+    e = np.c_[X[use, 0] / r0[use], np.zeros(use.sum()), X[use, 2] / r0[use]]
+    s = x[use] + np.einsum("pij,pj->pi", p["F"][use], (radius - r0[use])[:, None] * e)
+    return float(np.hypot(s[:, 0], s[:, 2]).max())
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("runs", nargs="+", help="run folders (their last particles_*.h5 is read); the first is the reference")
     ap.add_argument("--slab", type=float, default=1.0, help="slab height, mm (default 1)")
     ap.add_argument("--slabs", type=int, default=8, help="number of slabs from the anvil (default 8)")
     ap.add_argument("--band", type=float, default=0.5, help="the foot's band above the anvil, mm (default 0.5, the probe's)")
+    ap.add_argument("--radius", type=float, help="the bar's radius at the start, mm: also read where its surface went")
     a = ap.parse_args()
     edges = np.arange(a.slabs + 1) * a.slab * 1e-3
     rows = []
     for run in a.runs:
         p = load(final_particle_file(run))
-        rows.append((run, p["time"], slab_radii(p, edges, sector_of(p["x"])), foot_measures(p, a.band * 1e-3)))
+        measures = foot_measures(p, a.band * 1e-3)
+        if a.radius:
+            measures["surface_carried"] = surface_carried(load(first_particle_file(run)), p, a.band * 1e-3, a.radius * 1e-3)
+        rows.append((run, p["time"], slab_radii(p, edges, sector_of(p["x"])), measures))
     ref = rows[0]
 
     def vs(value, reference):

@@ -18,7 +18,11 @@ domains tile y exactly). So:
 - the corner radius by angle: the 9 angles sit at the centres of the 10 degree sectors from 0 to
   90 degrees, one per sector, so it is the mean over the angles of ring 24's largest corner
   |(r cos t + a, r sin t + a)| (a sector's points mixed with its neighbour's, or the mean taken over
-  empty sectors, moves it by far more than 1e-12)."""
+  empty sectors, moves it by far more than 1e-12);
+- the surface carried: the same quarter bar written again at t = 0 and stretched radially by
+  lambda = 2.3 at the end (x = lambda X across, F = diag(lambda, 1, lambda)), so that every point
+  carries the initial surface r = R to exactly lambda R (x + F (R - r) e_r = lambda R e_r); a wrong
+  file for the start, a missing F or the distance taken from the wrong radius moves it by far more."""
 import math
 import os
 import sys
@@ -57,7 +61,8 @@ def write_bar(run_dir, half_bar):
 
 def main():
     a = script_args.parse()
-    from otm_foot_reading import final_particle_file, foot_measures, load, sector_of, slab_radii
+    from otm_foot_reading import (final_particle_file, first_particle_file, foot_measures, load, sector_of,
+                                  slab_radii, surface_carried)
     failures = []
     edges = np.arange(9) * 1e-3
     for half_bar in (False, True):
@@ -78,6 +83,22 @@ def main():
                             for k in range(N_RING)) for t in theta])
     expected = {"r50": ring_radius(12), "r90": ring_radius(22), "outermost_centre": ring_radius(24), "corner": corner,
                 "corner_by_angle": by_angle}
+    # The surface carried by a homogeneous radial stretch.
+    stretched = os.path.join(a.out, "stretched_bar")
+    os.makedirs(stretched, exist_ok=True)
+    write_bar(stretched, False)
+    lam = 2.3
+    with h5py.File(os.path.join(stretched, "particles_000001.h5"), "r") as f:
+        X, volume, half = f["x"][:], f["volume"][:], f["half_size"][:]
+    with h5py.File(os.path.join(stretched, "particles_000000.h5"), "w") as f:
+        f["x"], f["volume"], f["F"], f["half_size"], f["time"] = X, volume, np.tile(np.eye(3).ravel(), (len(X), 1)), half, 0.0
+    with h5py.File(os.path.join(stretched, "particles_000001.h5"), "w") as f:
+        f["x"] = X * np.array([lam, 1.0, lam])
+        f["volume"], f["half_size"], f["time"] = volume * lam * lam, half, 80e-6
+        f["F"] = np.tile(np.diag([lam, 1.0, lam]).ravel(), (len(X), 1))
+    m["surface_carried"] = surface_carried(load(first_particle_file(stretched)), load(final_particle_file(stretched)),
+                                           0.5e-3, R)
+    expected["surface_carried"] = lam * R
     for key, value in expected.items():
         ok = abs(m[key] / value - 1) < 1e-12
         print(f"{key}: {m[key] * 1e3:.6f} mm (expected {value * 1e3:.6f}): {'ok' if ok else 'FAIL'}")
