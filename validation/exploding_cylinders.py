@@ -164,6 +164,7 @@ def statistics(out, min_mass, length):
     n = np.array([f[1] for f in frag])
     big = m[m >= min_mass]
     s = json.load(open(os.path.join(out, "summary.json")))
+    flight, _, flight_velocity = seed_flight_velocity(out, length)
     return {
         "time_us": last * 1e6,
         "count": int(len(m)),
@@ -175,8 +176,8 @@ def statistics(out, min_mass, length):
         "mass_weighted_mean_g": float(np.sum(m * m) / np.sum(m) * 1e3),
         "single_points": int(np.sum(n == 1)),
         "velocity_middle_third": case_thirds(out, length)[3][1][1],
-        "velocity_flight": seed_flight_velocity(out, length)[2],
-        "flight_mm": seed_flight_velocity(out, length)[0] * 1e3,
+        "velocity_flight": flight_velocity,
+        "flight_mm": flight * 1e3,
         "energy_residual": s["energy"]["residual_over_scale"],
         "wall_s": s["statistics"]["wall_time"],
     }
@@ -257,11 +258,12 @@ def main():
             x = np.array([r[key] for r in rows if r[key] is not None], dtype=float)
             return (fmt % x.mean()) + (f" ± {fmt % x.std(ddof=1)}" if len(x) > 1 else "")
         _, largest, mean, vel, *_ = CONFIGS[name]
+        emu = emu_flight_mm(name)
         print(f"| {name} | {spacing * 1e3:g} mm | {len(rows)} | {ms('count', '%.0f')} | {ms('largest_g', '%.1f')} g "
               f"({largest} g) | {ms('mean_mg', '%.1f')} mg ({mean} mg) | {ms('count_heavy', '%.0f')}, "
               f"{ms('mean_heavy_mg', '%.0f')} mg | {ms('mass_weighted_mean_g', '%.2f')} g | "
               f"{ms('velocity_middle_third', '%.0f')} m/s | {ms('velocity_flight', '%.0f')} m/s ({vel or '-'}) | "
-              f"{ms('flight_mm', '%.1f')} mm ({'%.1f mm' % emu_flight_mm(name) if emu_flight_mm(name) else '-'}) |")
+              f"{ms('flight_mm', '%.1f')} mm ({'%.1f mm' % emu if emu else '-'}) |")
 
 
 if __name__ == "__main__":

@@ -39,11 +39,19 @@ import h5py
 import numpy as np
 
 
-def final_particle_file(run_dir):
+def particle_files(run_dir):
     files = sorted(glob.glob(os.path.join(run_dir, "particles_*.h5")))
     if not files:
         raise SystemExit(f"{run_dir}: no particles_*.h5 (not a run folder, or no output written)")
-    return files[-1]
+    return files
+
+
+def final_particle_file(run_dir):
+    return particle_files(run_dir)[-1]
+
+
+def first_particle_file(run_dir):
+    return particle_files(run_dir)[0]
 
 
 def load(path):
@@ -91,10 +99,6 @@ def foot_measures(p, band):
     by_sector = [point_corner[sector == k].max() for k in np.unique(sector)]
     return {"r50": quantile[0.5], "r90": quantile[0.9], "outermost_centre": float(r.max()),
             "corner": float(point_corner.max()), "corner_by_angle": float(np.mean(by_sector))}
-
-
-def first_particle_file(run_dir):
-    return sorted(glob.glob(os.path.join(run_dir, "particles_*.h5")))[0]
 
 
 def surface_carried(p0, p, band, radius, start_within=0.5e-3):
