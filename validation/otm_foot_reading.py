@@ -26,6 +26,11 @@ a quarter bar; a whole bar or a half is recognised from the points' signs). Per 
   distance), the largest over those points; the points must be the same in both files (no
   adaptivity, no deletion). It tells a rim that lies further out because the points were placed
   nearer the surface from one whose material moved further.
+- hoop consistency (with --radius): in an axisymmetric motion a point's hoop line element
+  stretches by exactly r / R (its distance from the axis now over at the start), so
+  q = (r / R) / |F E_theta| is 1 for every point whose position and F agree; the median of q over
+  the band's points in bands of R (fractions 0.1-0.3-0.6-0.8-0.95-1 of the largest R) tells points
+  that spread further (or less) than their own F says.
 
   /usr/bin/python3 validation/otm_foot_reading.py out/otm_mesh_lattice/mesh out/otm_mesh_lattice/cut_lattice
 """
@@ -114,6 +119,29 @@ def surface_carried(p0, p, band, radius, start_within=0.5e-3):
     return float(np.hypot(s[:, 0], s[:, 2]).max())
 
 
+HOOP_BANDS = (0.1, 0.3, 0.6, 0.8, 0.95, 1.0)
+
+
+def hoop_consistency(p0, p, band):
+    """The median of q = (r / R) / |F E_theta| over the points centred within `band` of the anvil,
+    per band of their start radius R (HOOP_BANDS, fractions of the largest R); None for an empty band."""
+    if len(p0["x"]) != len(p["x"]):
+        raise SystemExit("hoop consistency: the first and last particle files hold different points")
+    X, x = p0["x"], p["x"]
+    R = np.hypot(X[:, 0], X[:, 2])
+    r = np.hypot(x[:, 0], x[:, 2])
+    edges = np.array(HOOP_BANDS) * R.max()
+    use = (x[:, 1] < band) & (R >= edges[0])
+    e_theta = np.c_[-X[use, 2] / R[use], np.zeros(use.sum()), X[use, 0] / R[use]]
+    q = (r[use] / R[use]) / np.linalg.norm(np.einsum("pij,pj->pi", p["F"][use], e_theta), axis=1)
+    medians = []
+    for k, (lo, hi) in enumerate(zip(edges[:-1], edges[1:])):
+        last = k == len(edges) - 2
+        inside = (R[use] >= lo) & ((R[use] <= hi) if last else (R[use] < hi))
+        medians.append(float(np.median(q[inside])) if inside.any() else None)
+    return medians
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("runs", nargs="+", help="run folders (their last particles_*.h5 is read); the first is the reference")
@@ -127,21 +155,29 @@ def main():
     for run in a.runs:
         p = load(final_particle_file(run))
         measures = foot_measures(p, a.band * 1e-3)
+        hoop = None
         if a.radius:
-            measures["surface_carried"] = surface_carried(load(first_particle_file(run)), p, a.band * 1e-3, a.radius * 1e-3)
-        rows.append((run, p["time"], slab_radii(p, edges, sector_of(p["x"])), measures))
+            p0 = load(first_particle_file(run))
+            measures["surface_carried"] = surface_carried(p0, p, a.band * 1e-3, a.radius * 1e-3)
+            hoop = hoop_consistency(p0, p, a.band * 1e-3)
+        rows.append((run, p["time"], slab_radii(p, edges, sector_of(p["x"])), measures, hoop))
     ref = rows[0]
 
     def vs(value, reference):
         return f" ({100 * (value / reference - 1):+.1f} %)" if reference > 0 and value is not reference else ""
 
     print(f"slab radius, mm (slabs of {a.slab:g} mm from the anvil; in brackets against {ref[0]}):")
-    for run, t, radii, _ in rows:
+    for run, t, radii, _, _ in rows:
         cells = "  ".join(f"{r * 1e3:.3f}{vs(r, r0)}" for r, r0 in zip(radii, ref[2]))
         print(f"  {run} (t = {t * 1e6:.2f} us): {cells}")
     print(f"points centred within {a.band:g} mm of the anvil, mm:")
-    for run, _, _, m in rows:
+    for run, _, _, m, _ in rows:
         print(f"  {run}: " + "  ".join(f"{k} {v * 1e3:.3f}{vs(v, ref[3][k])}" for k, v in m.items()))
+    if a.radius:
+        bands = ", ".join(f"{lo:g}-{hi:g}" for lo, hi in zip(HOOP_BANDS[:-1], HOOP_BANDS[1:]))
+        print(f"hoop consistency (r/R over |F E_theta|, median per band of R as a fraction of the largest: {bands}):")
+        for run, _, _, _, hoop in rows:
+            print(f"  {run}: " + "  ".join("-" if q is None else f"{q:.3f}" for q in hoop))
 
 
 if __name__ == "__main__":

@@ -5,7 +5,7 @@ docs/validation.md, "3D from a tetrahedral mesh": examples/taylor_bar_otm_3d_mes
 bar meshed at cell H (examples/geometry/make_quarter_bar_tets.py --cell H, a point per
 tetrahedron, the nodes at its vertices), and the same deck with the analytic cylinder and 2 x 2 x 2
 points per lattice cell (--lattice: `cut_lattice`, the surface's sub-cells cut to the cylinder, the
-default; or `lattice`, the staircase); grid.cell_size = H for both. The two runs go side by side,
+default; or `lattice`, the staircase); grid.cell_size = H and any `--set` for both. The two runs go side by side,
 one thread each, with checkpoints every 10 minutes (an interrupted run is resumed by running this
 again). Prints the final length and foot radius of each and their difference, then the foot read
 from the final particle files in the ways of validation/otm_foot_reading.py (the body's slab radii
@@ -25,7 +25,7 @@ LATTICE_BODY = ("bodies=[{{name: bar, material: copper, shape: {{type: cylinder,
                 "radius: 3.2e-3, length: 32.4e-3}}, particles_per_cell: 2, seeding: {}, velocity: [0, -227.0, 0]}}]")
 
 
-def command(ballista, out, run, cell_mm):
+def command(ballista, out, run, cell_mm, overrides):
     folder = os.path.join(out, run)
     base = [ballista, "run"]
     opts = ["-q", "--no-plots", "--threads", "1", "--checkpoint-every-minutes", "10"]
@@ -34,6 +34,8 @@ def command(ballista, out, run, cell_mm):
         return base + ["--restart", folder] + opts
     args = base + [os.path.join(out, "deck.yaml"), "-o", folder, "--overwrite"] + opts
     args += ["--set", f"grid.cell_size={cell_mm * 1e-3!r}"]
+    for o in overrides:
+        args += ["--set", o]
     if run != "mesh":
         args += ["--set", LATTICE_BODY.format(run)]
     return args
@@ -46,6 +48,9 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--lattice", choices=["cut_lattice", "lattice"], default="cut_lattice",
                     help="the lattice bar's seeding (default: cut_lattice)")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a deck override for both bars (e.g. otm.anti_locking=fbar)")
+    ap.add_argument("--result", help="also write the numbers as JSON to this file in --out (ballista validate)")
     a = ap.parse_args()
     os.makedirs(os.path.join(a.out, "geometry"), exist_ok=True)
     shutil.copy(os.path.join(ROOT, "examples", "taylor_bar_otm_3d_mesh.yaml"), os.path.join(a.out, "deck.yaml"))
@@ -59,7 +64,7 @@ def main():
                 json.load(open(os.path.join(a.out, run, "summary.json"))).get("status") == "completed":
             continue
         log = open(os.path.join(a.out, run + ".log"), "w")
-        runs[run] = subprocess.Popen(command(a.ballista, a.out, run, a.cell), stdout=log, stderr=subprocess.STDOUT, env=env)
+        runs[run] = subprocess.Popen(command(a.ballista, a.out, run, a.cell, a.set), stdout=log, stderr=subprocess.STDOUT, env=env)
     for run, p in runs.items():
         if p.wait() != 0:
             print(f"{run}: stopped (see {os.path.join(a.out, run + '.log')})")
@@ -74,10 +79,16 @@ def main():
         st = s["statistics"]
         print(f"{run}: {st['particles_seeded']} points, {st['steps']} steps, L_f = {s['probes']['final_length'] * 1e3:.3f} mm, "
               f"R_f = {s['probes']['foot_radius'] * 1e3:.3f} mm, light node-steps {s['solver_results']['light_node_steps']:.0f}")
+    result = {"cell_mm": a.cell, "lattice": a.lattice, "overrides": a.set,
+              "bars": {run: {k: probes[run][k] for k in ("final_length", "foot_radius")} for run in probes}}
     if len(probes) == 2:
         for key, name in (("final_length", "L_f"), ("foot_radius", "R_f")):
             d = probes["mesh"][key] / probes[a.lattice][key] - 1.0
+            result[key + "_difference_pct"] = 100 * d
             print(f"{name}: mesh against {a.lattice} {100 * d:+.2f} %")
+    if a.result:
+        json.dump(result, open(os.path.join(a.out, a.result), "w"), indent=2)
+    if len(probes) == 2:
         subprocess.run([sys.executable, os.path.join(ROOT, "validation", "otm_foot_reading.py")] +
                        [os.path.join(a.out, run) for run in pair], check=True)
 

@@ -22,7 +22,11 @@ domains tile y exactly). So:
 - the surface carried: the same quarter bar written again at t = 0 and stretched radially by
   lambda = 2.3 at the end (x = lambda X across, F = diag(lambda, 1, lambda)), so that every point
   carries the initial surface r = R to exactly lambda R (x + F (R - r) e_r = lambda R e_r); a wrong
-  file for the start, a missing F or the distance taken from the wrong radius moves it by far more."""
+  file for the start, a missing F or the distance taken from the wrong radius moves it by far more;
+- the hoop consistency of the same stretched bar: r / R = |F E_theta| = lambda for every point, so
+  q = 1 in every band of R (to round-off); and with the positions spread a further 10 % radially
+  while F stays (x = 1.1 lambda X across), q = 1.1 in every band: the axial stretch (1) read in
+  place of the hoop's (lambda), or the two files swapped, moves it off by a factor of lambda or more."""
 import math
 import os
 import sys
@@ -61,8 +65,8 @@ def write_bar(run_dir, half_bar):
 
 def main():
     a = script_args.parse()
-    from otm_foot_reading import (final_particle_file, first_particle_file, foot_measures, load, sector_of,
-                                  slab_radii, surface_carried)
+    from otm_foot_reading import (final_particle_file, first_particle_file, foot_measures, hoop_consistency, load,
+                                  sector_of, slab_radii, surface_carried)
     failures = []
     edges = np.arange(9) * 1e-3
     for half_bar in (False, True):
@@ -99,6 +103,14 @@ def main():
     m["surface_carried"] = surface_carried(load(first_particle_file(stretched)), load(final_particle_file(stretched)),
                                            0.5e-3, R)
     expected["surface_carried"] = lam * R
+    p0, p1 = load(first_particle_file(stretched)), load(final_particle_file(stretched))
+    for spread in (1.0, 1.1):
+        p1_spread = dict(p1, x=p1["x"] * np.array([spread, 1.0, spread]))
+        hoop = hoop_consistency(p0, p1_spread, 0.5e-3)
+        ok = all(q is not None and abs(q / spread - 1) < 1e-12 for q in hoop)
+        print(f"hoop consistency, positions spread {spread:g}: {hoop}: {'ok' if ok else 'FAIL'}")
+        if not ok:
+            failures.append(f"hoop consistency at spread {spread}")
     for key, value in expected.items():
         ok = abs(m[key] / value - 1) < 1e-12
         print(f"{key}: {m[key] * 1e3:.6f} mm (expected {value * 1e3:.6f}): {'ok' if ok else 'FAIL'}")
