@@ -7,7 +7,7 @@ tetrahedron, the nodes at its vertices), and the same deck with the analytic cyl
 points per lattice cell (--lattice: `cut_lattice`, the surface's sub-cells cut to the cylinder, the
 default; or `lattice`, the staircase); grid.cell_size = H and any `--set` for both. The two runs go side by side,
 one thread each, with checkpoints every 10 minutes (an interrupted run is resumed by running this
-again). Prints the final length and foot radius of each and their difference, then the foot read
+again; `--fresh` starts them anew). Prints the final length and foot radius of each and their difference, then the foot read
 from the final particle files in the ways of validation/otm_foot_reading.py (the body's slab radii
 against its rim).
 
@@ -29,8 +29,9 @@ def command(ballista, out, run, cell_mm, overrides):
     folder = os.path.join(out, run)
     base = [ballista, "run"]
     opts = ["-q", "--no-plots", "--threads", "1", "--checkpoint-every-minutes", "10"]
-    summary = os.path.join(folder, "summary.json")
-    if os.path.isdir(os.path.join(folder, "checkpoints")) and not os.path.exists(summary):
+    # A run stopped by a signal writes its checkpoint and a summary with status "interrupted";
+    # one killed outright leaves no summary. Either way it goes on from its checkpoints.
+    if os.path.isdir(os.path.join(folder, "checkpoints")) and os.listdir(os.path.join(folder, "checkpoints")):
         return base + ["--restart", folder] + opts
     args = base + [os.path.join(out, "deck.yaml"), "-o", folder, "--overwrite"] + opts
     args += ["--set", f"grid.cell_size={cell_mm * 1e-3!r}"]
@@ -51,6 +52,8 @@ def main():
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="a deck override for both bars (e.g. otm.anti_locking=fbar)")
     ap.add_argument("--result", help="also write the numbers as JSON to this file in --out (ballista validate)")
+    ap.add_argument("--fresh", action="store_true",
+                    help="start both runs anew (their folders removed), not from earlier runs or checkpoints in --out")
     a = ap.parse_args()
     os.makedirs(os.path.join(a.out, "geometry"), exist_ok=True)
     shutil.copy(os.path.join(ROOT, "examples", "taylor_bar_otm_3d_mesh.yaml"), os.path.join(a.out, "deck.yaml"))
@@ -59,6 +62,9 @@ def main():
     env = dict(os.environ, OMP_WAIT_POLICY="passive")
     runs = {}
     pair = ("mesh", a.lattice)
+    if a.fresh:
+        for run in pair:
+            shutil.rmtree(os.path.join(a.out, run), ignore_errors=True)
     for run in pair:
         if os.path.exists(os.path.join(a.out, run, "summary.json")) and \
                 json.load(open(os.path.join(a.out, run, "summary.json"))).get("status") == "completed":
