@@ -106,12 +106,18 @@ def foot_measures(p, band):
             "corner": float(point_corner.max()), "corner_by_angle": float(np.mean(by_sector))}
 
 
+def same_points(p0, p, reading):
+    """The start and end positions, refused when the two files hold different points (adaptivity,
+    deletion): readings that follow each point from the first file to the last."""
+    if len(p0["x"]) != len(p["x"]):
+        raise SystemExit(f"{reading}: the first and last particle files hold different points")
+    return p0["x"], p["x"]
+
+
 def surface_carried(p0, p, band, radius, start_within=0.5e-3):
     """The largest radius (m) the initial surface r = radius reaches, carried by F from the points
     centred within `band` of the anvil now that started within `start_within` of the surface."""
-    if len(p0["x"]) != len(p["x"]):
-        raise SystemExit("surface carried: the first and last particle files hold different points")
-    X, x = p0["x"], p["x"]
+    X, x = same_points(p0, p, "surface carried")
     r0 = np.hypot(X[:, 0], X[:, 2])
     use = (x[:, 1] < band) & (r0 > radius - start_within) & (r0 > 0)
     e = np.c_[X[use, 0] / r0[use], np.zeros(use.sum()), X[use, 2] / r0[use]]
@@ -125,9 +131,7 @@ HOOP_BANDS = (0.1, 0.3, 0.6, 0.8, 0.95, 1.0)
 def hoop_consistency(p0, p, band):
     """The median of q = (r / R) / |F E_theta| over the points centred within `band` of the anvil,
     per band of their start radius R (HOOP_BANDS, fractions of the largest R); None for an empty band."""
-    if len(p0["x"]) != len(p["x"]):
-        raise SystemExit("hoop consistency: the first and last particle files hold different points")
-    X, x = p0["x"], p["x"]
+    X, x = same_points(p0, p, "hoop consistency")
     R = np.hypot(X[:, 0], X[:, 2])
     r = np.hypot(x[:, 0], x[:, 2])
     edges = np.array(HOOP_BANDS) * R.max()

@@ -100,10 +100,9 @@ def main():
         f["x"] = X * np.array([lam, 1.0, lam])
         f["volume"], f["half_size"], f["time"] = volume * lam * lam, half, 80e-6
         f["F"] = np.tile(np.diag([lam, 1.0, lam]).ravel(), (len(X), 1))
-    m["surface_carried"] = surface_carried(load(first_particle_file(stretched)), load(final_particle_file(stretched)),
-                                           0.5e-3, R)
-    expected["surface_carried"] = lam * R
     p0, p1 = load(first_particle_file(stretched)), load(final_particle_file(stretched))
+    m["surface_carried"] = surface_carried(p0, p1, 0.5e-3, R)
+    expected["surface_carried"] = lam * R
     for spread in (1.0, 1.1):
         p1_spread = dict(p1, x=p1["x"] * np.array([spread, 1.0, spread]))
         hoop = hoop_consistency(p0, p1_spread, 0.5e-3)
