@@ -31,6 +31,13 @@ a quarter bar; a whole bar or a half is recognised from the points' signs). Per 
   q = (r / R) / |F E_theta| is 1 for every point whose position and F agree; the median of q over
   the band's points in bands of R (fractions 0.1-0.3-0.6-0.8-0.95-1 of the largest R) tells points
   that spread further (or less) than their own F says.
+- angular drift (with --radius): how far about the axis the rim's points moved, theta - Theta in
+  degrees (their angle now minus that in the first file), the median over the band's points that
+  started beyond 0.6 of the largest R, per 10 degree sector of the start angle folded into
+  [0, 90) (a lattice's axes repeat every 90 degrees). An axisymmetric motion moves no point about
+  the axis: a drift tells material gathering at some angles, as a ring does where it necks.
+- corner at the start (with --radius): the corner radius of the same band in the first file, and
+  the final one over it: the probe's spread, free of where each seeding's domains reach at the start.
 
   /usr/bin/python3 validation/otm_foot_reading.py out/otm_mesh_lattice/mesh out/otm_mesh_lattice/cut_lattice
 """
@@ -146,6 +153,23 @@ def hoop_consistency(p0, p, band):
     return medians
 
 
+def angular_drift(p0, p, band, outer=0.6):
+    """The median of theta - Theta (degrees) over the points centred within `band` of the anvil that
+    started beyond `outer` of the largest start radius, per 10 degree sector of Theta folded into
+    [0, 90); None for an empty sector."""
+    X, x = same_points(p0, p, "angular drift")
+    R = np.hypot(X[:, 0], X[:, 2])
+    start = np.degrees(np.arctan2(X[:, 2], X[:, 0]))
+    drift = (np.degrees(np.arctan2(x[:, 2], x[:, 0])) - start + 180.0) % 360.0 - 180.0
+    use = (x[:, 1] < band) & (R >= outer * R.max())
+    folded = start % 90.0
+    medians = []
+    for lo in range(0, 90, 10):
+        inside = use & (folded >= lo) & (folded < lo + 10)
+        medians.append(float(np.median(drift[inside])) if inside.any() else None)
+    return medians
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("runs", nargs="+", help="run folders (their last particles_*.h5 is read); the first is the reference")
@@ -159,29 +183,39 @@ def main():
     for run in a.runs:
         p = load(final_particle_file(run))
         measures = foot_measures(p, a.band * 1e-3)
-        hoop = None
+        hoop = drift = None
         if a.radius:
             p0 = load(first_particle_file(run))
             measures["surface_carried"] = surface_carried(p0, p, a.band * 1e-3, a.radius * 1e-3)
+            measures["corner_at_start"] = foot_measures(p0, a.band * 1e-3)["corner"]
             hoop = hoop_consistency(p0, p, a.band * 1e-3)
-        rows.append((run, p["time"], slab_radii(p, edges, sector_of(p["x"])), measures, hoop))
+            drift = angular_drift(p0, p, a.band * 1e-3)
+        rows.append((run, p["time"], slab_radii(p, edges, sector_of(p["x"])), measures, hoop, drift))
     ref = rows[0]
 
     def vs(value, reference):
         return f" ({100 * (value / reference - 1):+.1f} %)" if reference > 0 and value is not reference else ""
 
     print(f"slab radius, mm (slabs of {a.slab:g} mm from the anvil; in brackets against {ref[0]}):")
-    for run, t, radii, _, _ in rows:
+    for run, t, radii, _, _, _ in rows:
         cells = "  ".join(f"{r * 1e3:.3f}{vs(r, r0)}" for r, r0 in zip(radii, ref[2]))
         print(f"  {run} (t = {t * 1e6:.2f} us): {cells}")
     print(f"points centred within {a.band:g} mm of the anvil, mm:")
-    for run, _, _, m, _ in rows:
+    for run, _, _, m, _, _ in rows:
         print(f"  {run}: " + "  ".join(f"{k} {v * 1e3:.3f}{vs(v, ref[3][k])}" for k, v in m.items()))
+        if "corner_at_start" in m:
+            spread = m["corner"] / m["corner_at_start"]
+            against = "" if run == ref[0] else vs(spread, ref[3]["corner"] / ref[3]["corner_at_start"])
+            print(f"    corner over its start: {spread:.4f}{against}")
     if a.radius:
         bands = ", ".join(f"{lo:g}-{hi:g}" for lo, hi in zip(HOOP_BANDS[:-1], HOOP_BANDS[1:]))
         print(f"hoop consistency (r/R over |F E_theta|, median per band of R as a fraction of the largest: {bands}):")
-        for run, _, _, _, hoop in rows:
+        for run, _, _, _, hoop, _ in rows:
             print(f"  {run}: " + "  ".join("-" if q is None else f"{q:.3f}" for q in hoop))
+        print("angular drift (theta now minus at the start, degrees; median over the rim's points that started beyond "
+              "0.6 of the largest R, per 10 degree sector of the start angle folded into 0-90):")
+        for run, _, _, _, _, drift in rows:
+            print(f"  {run}: " + "  ".join("-" if d is None else f"{d:+.2f}" for d in drift))
 
 
 if __name__ == "__main__":

@@ -26,7 +26,13 @@ domains tile y exactly). So:
 - the hoop consistency of the same stretched bar: r / R = |F E_theta| = lambda for every point, so
   q = 1 in every band of R (to round-off); and with the positions spread a further 10 % radially
   while F stays (x = 1.1 lambda X across), q = 1.1 in every band: the axial stretch (1) read in
-  place of the hoop's (lambda), or the two files swapped, moves it off by a factor of lambda or more."""
+  place of the hoop's (lambda), or the two files swapped, moves it off by a factor of lambda or more;
+- the angular drift of the same stretched bar: zero in every sector (a radial motion); and with the
+  final positions turned about the axis by delta sin(4 Theta) (delta = 3 degrees: a four-fold
+  gathering, as on a lattice), each 10 degree sector's median is delta sin(4 Theta_k) at its one
+  angle Theta_k, to round-off (the files swapped, or the drift in radians, moves it by far more);
+- the corner at the start: the stretched bar's first file is the unstretched bar, so it is the
+  corner radius above."""
 import math
 import os
 import sys
@@ -65,8 +71,8 @@ def write_bar(run_dir, half_bar):
 
 def main():
     a = script_args.parse()
-    from otm_foot_reading import (final_particle_file, first_particle_file, foot_measures, hoop_consistency, load,
-                                  sector_of, slab_radii, surface_carried)
+    from otm_foot_reading import (angular_drift, final_particle_file, first_particle_file, foot_measures,
+                                  hoop_consistency, load, sector_of, slab_radii, surface_carried)
     failures = []
     edges = np.arange(9) * 1e-3
     for half_bar in (False, True):
@@ -110,6 +116,21 @@ def main():
         print(f"hoop consistency, positions spread {spread:g}: {hoop}: {'ok' if ok else 'FAIL'}")
         if not ok:
             failures.append(f"hoop consistency at spread {spread}")
+    m["corner_at_start"] = foot_measures(p0, 0.5e-3)["corner"]
+    expected["corner_at_start"] = corner
+    delta = 3.0
+    for turn in (0.0, delta):
+        start = np.arctan2(p0["x"][:, 2], p0["x"][:, 0])
+        r1 = np.hypot(p1["x"][:, 0], p1["x"][:, 2])
+        angle = start + np.radians(turn * np.sin(4 * start))
+        p1_turned = dict(p1, x=np.c_[r1 * np.cos(angle), p1["x"][:, 1], r1 * np.sin(angle)])
+        drift = angular_drift(p0, p1_turned, 0.5e-3)
+        want = [turn * math.sin(4 * t) for t in theta]
+        ok = all(d is not None and abs(d - w) < 1e-9 for d, w in zip(drift, want))
+        print(f"angular drift, turned by {turn:g} sin(4 Theta) degrees: {[round(d, 6) for d in drift]}: "
+              f"{'ok' if ok else 'FAIL'}")
+        if not ok:
+            failures.append(f"angular drift at {turn}")
     for key, value in expected.items():
         ok = abs(m[key] / value - 1) < 1e-12
         print(f"{key}: {m[key] * 1e3:.6f} mm (expected {value * 1e3:.6f}): {'ok' if ok else 'FAIL'}")
