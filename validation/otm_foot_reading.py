@@ -35,7 +35,7 @@ a quarter bar; a whole bar or a half is recognised from the points' signs). Per 
   degrees (their angle now minus that in the first file), the median over the band's points that
   started beyond 0.6 of the largest R, per 10 degree sector of the start angle folded into
   [0, 90) (a lattice's axes repeat every 90 degrees). An axisymmetric motion moves no point about
-  the axis: a drift tells material gathering at some angles, as a ring does where it necks.
+  the axis: a drift tells material gathering at some angles.
 - corner at the start (with --radius): the corner radius of the same band in the first file, and
   the final one over it: the probe's spread, free of where each seeding's domains reach at the start.
 
@@ -153,7 +153,10 @@ def hoop_consistency(p0, p, band):
     return medians
 
 
-def angular_drift(p0, p, band, outer=0.6):
+DRIFT_OUTER = 0.6  # the rim's points: started beyond this fraction of the largest start radius
+
+
+def angular_drift(p0, p, band, outer=DRIFT_OUTER):
     """The median of theta - Theta (degrees) over the points centred within `band` of the anvil that
     started beyond `outer` of the largest start radius, per 10 degree sector of Theta folded into
     [0, 90); None for an empty sector."""
@@ -213,7 +216,7 @@ def main():
         for run, _, _, _, hoop, _ in rows:
             print(f"  {run}: " + "  ".join("-" if q is None else f"{q:.3f}" for q in hoop))
         print("angular drift (theta now minus at the start, degrees; median over the rim's points that started beyond "
-              "0.6 of the largest R, per 10 degree sector of the start angle folded into 0-90):")
+              f"{DRIFT_OUTER:g} of the largest R, per 10 degree sector of the start angle folded into 0-90):")
         for run, _, _, _, _, drift in rows:
             print(f"  {run}: " + "  ".join("-" if d is None else f"{d:+.2f}" for d in drift))
 
